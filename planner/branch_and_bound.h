@@ -1,0 +1,58 @@
+#pragma once
+// Branch-and-bound for Miqp over a RelaxationSolver, with rounding heuristics. Anytime:
+// it keeps the incumbent, the best bound and the gap, and on a node or time limit
+// returns the best feasible point found.
+#include <Eigen/Core>
+#include <functional>
+
+#include "planner/miqp.h"
+#include "planner/relaxation_solver.h"
+#include "planner/solve_status.h"
+
+namespace mfp {
+
+enum class NodeSelection {
+  kBestBound,             // smallest parent bound first
+  kDepthFirst,            // newest node first
+  kDiveThenBestBound,     // depth first until an incumbent exists, then best bound
+};
+
+enum class BranchingRule {
+  kMostFractional,  // the integer variable closest to 0.5
+  kSos1Split,       // split the most fractional SOS1 group's members in two halves by weight
+};
+
+struct BranchAndBoundOptions {
+  double time_limit_s = 10.0;
+  int max_nodes = 20000;
+  double relative_gap = 1e-4;      // stop when (incumbent - bound) <= relative_gap * max(1, |incumbent|)
+  double absolute_gap = 1e-6;
+  double integrality_tolerance = 1e-5;
+  double feasibility_tolerance = 1e-5;  // row/bound violation accepted in an incumbent
+  NodeSelection node_selection = NodeSelection::kDiveThenBestBound;
+  BranchingRule branching = BranchingRule::kSos1Split;
+  bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
+  int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
+};
+
+struct BranchAndBoundResult {
+  SolveStatus status = SolveStatus::kNoSolution;
+  Eigen::VectorXd x;            // incumbent (empty when none)
+  double objective = kInfinity;  // incumbent objective, incl. constant
+  double bound = -kInfinity;     // proven lower bound
+  double gap = kInfinity;        // (objective - bound) / max(1, |objective|)
+  int nodes = 0;
+  int relaxations = 0;
+  double solve_time_s = 0.0;
+};
+
+// Heuristic hook: given a relaxation point, propose a full assignment of the integer
+// variables (values for every variable; only integer entries are used). Returns false
+// when it has no proposal. The formulation supplies one that follows the step order.
+using RoundingHeuristic = std::function<bool(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded)>;
+
+BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,
+                                         const BranchAndBoundOptions& options,
+                                         const RoundingHeuristic& extra_rounding = {});
+
+}  // namespace mfp

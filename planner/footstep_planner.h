@@ -1,0 +1,65 @@
+#pragma once
+// One entry point for planning: robot + regions + request + options -> Plan.
+// Chains receding windows of MIQPs (the paper plans 4n steps at a time) until the goal
+// is reached, max_steps are spent, or the time limit runs out. No I/O.
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "planner/branch_and_bound.h"
+#include "planner/miqp_formulation.h"
+#include "planner/plan.h"
+#include "planner/relaxation_solver.h"
+#include "planner/robot_model.h"
+#include "terrain/convex_region.h"
+
+namespace mfp {
+
+struct PlanRequest {
+  // Current feet in the robot's leg order (RobotModel::legs), world frame [m].
+  std::vector<Eigen::Vector3d> start_feet_world_m;
+  double start_yaw_rad = 0.0;  // body yaw of the start stance [rad]
+  double goal_x_m = 0.0;       // goal body position (centre of contacts) [m]
+  double goal_y_m = 0.0;
+  double goal_yaw_rad = 0.0;
+  int max_steps = 0;       // new footsteps in the whole plan; 0 = PlannerOptions default
+  int window_steps = 0;    // new footsteps per MIQP; 0 = PlannerOptions default (4 n)
+  double time_limit_s = 0; // whole plan; 0 = PlannerOptions default
+};
+
+struct PlannerOptions {
+  int default_max_steps = 0;        // 0 = 12 n
+  int default_window_steps = 0;     // 0 = 4 n
+  double default_time_limit_s = 10.0;
+  double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot
+  double goal_yaw_tolerance_rad = 0.15;  // final body yaw within this of the goal yaw
+  double start_tolerance_m = 0.02;       // a start foot may be this far off its region
+  FormulationOptions formulation;
+  BranchAndBoundOptions branch_and_bound;
+};
+
+struct PlanProgress {
+  int window = 0;          // 1-based
+  int steps_planned = 0;   // new footsteps accepted so far
+  double distance_to_goal_m = 0.0;
+  double elapsed_s = 0.0;
+  BranchAndBoundResult window_result;
+};
+
+// Nominal stance of the robot at a body pose, feet on the highest region below each
+// foot (z = 0 where there is none), in leg order.
+std::vector<Eigen::Vector3d> NominalStance(const RobotModel& robot,
+                                           const std::vector<ConvexRegion>& regions,
+                                           double x_m, double y_m, double yaw_rad);
+
+// Body yaw that best aligns the feet (leg order) with the nominal offsets [rad].
+double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vector3d>& feet_world_m);
+
+// Plans a whole route. Bad requests come back as statuses (kInvalidRequest,
+// kInvalidStart, kInvalidGoal, kNoMap) with a message naming the problem.
+Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                   const PlanRequest& request, const PlannerOptions& options,
+                   RelaxationSolver& solver,
+                   const std::function<void(const PlanProgress&)>& on_progress = {});
+
+}  // namespace mfp

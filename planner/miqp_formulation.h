@@ -1,0 +1,108 @@
+#pragma once
+// The seed paper's mixed-integer footstep program for n legs, as a Miqp.
+//
+// Steps i = 0 .. n-1 are the start stance (fixed); steps n .. N-1 are new. Step i moves
+// leg gait[(gait_phase + i) mod n]. Configuration (block) b = floor(i / n) shares one
+// yaw theta_b with s_b, c_b standing for sin/cos through a piecewise-linear chord
+// approximation selected by one segment binary per block and segment. Block 0 is the
+// start and has its exact yaw.
+//
+// Centre of contacts p_i = mean of the n latest footsteps ending at i (paper eq. 2);
+// footsteps before the plan started are the start stance. Every constraint is listed in
+// miqp_formulation.cc next to the code that writes it.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "planner/miqp.h"
+#include "planner/plan.h"
+#include "planner/robot_model.h"
+#include "terrain/convex_region.h"
+
+namespace mfp {
+
+enum class RegionEncoding {
+  kBigM,        // A_r f <= b_r + M_r (1 - H_ir), M as tight as the workspace box allows
+  kConvexHull,  // f_i = sum_r f_ir, A_r f_ir <= b_r H_ir (disaggregated, tighter)
+};
+
+struct FormulationOptions {
+  double yaw_segment_rad = 0.3927;   // width of one sin/cos chord segment [rad] (pi/8)
+  double yaw_margin_rad = 0.3927;    // yaw range = [min(start, goal) - m, max(start, goal) + m]
+  RegionEncoding region_encoding = RegionEncoding::kBigM;
+  // Drop region binaries a step cannot use: regions farther from the start stance than
+  // the step's block could travel at d_lim + l_bnd per configuration.
+  bool prune_unreachable_regions = true;
+  // Trimmed steps form a suffix (t_i <= t_{i+1}): removes symmetric solutions.
+  bool monotone_trimming = true;
+};
+
+struct FootstepProblem {
+  const RobotModel* robot = nullptr;          // not owned; outlives the formulation
+  std::vector<ConvexRegion> regions;
+  // Start stance in step order: start_feet[i] is the foot of leg gait[(gait_phase + i) % n].
+  std::vector<Eigen::Vector3d> start_feet_world_m;
+  int gait_phase = 0;
+  double start_yaw_rad = 0.0;
+  double goal_x_m = 0.0;
+  double goal_y_m = 0.0;
+  double goal_yaw_rad = 0.0;
+  int num_new_steps = 0;  // N - n
+};
+
+// Index of each decision variable in the Miqp (-1 where absent).
+struct FootstepVariables {
+  std::vector<int> x, y, z;              // per step (start steps too: fixed by bounds)
+  std::vector<int> theta, s, c;          // per block
+  std::vector<int> trim;                 // per step; -1 for start steps
+  std::vector<std::vector<int>> region;  // [step][region index] -> H_ir or -1 when pruned
+  std::vector<std::vector<int>> segment; // [block][segment] -> binary
+  // Convex-hull encoding only: [step][region] -> first of 3 copies (x, y, z) or -1.
+  std::vector<std::vector<int>> region_copy;
+};
+
+class MiqpFormulation {
+ public:
+  // Throws InputError when the problem is malformed (sizes, non-finite numbers).
+  MiqpFormulation(const FootstepProblem& problem, const FormulationOptions& options);
+
+  const Miqp& miqp() const { return miqp_; }
+  const FootstepVariables& vars() const { return vars_; }
+  const FootstepProblem& problem() const { return problem_; }
+  const FormulationOptions& options() const { return options_; }
+
+  int num_legs() const { return n_; }
+  int num_steps() const { return num_steps_; }  // N, including the start stance
+  int num_blocks() const { return num_blocks_; }
+  int LegOfStep(int step) const;
+  int BlockOfStep(int step) const { return step / n_; }
+  // Breakpoints of the yaw segments [rad] (num segments + 1 values).
+  const std::vector<double>& yaw_breakpoints() const { return breakpoints_; }
+  // Goal foot position (x, y) of a leg [m].
+  Eigen::Vector2d GoalFoot(int leg) const;
+
+  // Footsteps of a solution, start stance included, with the region each step uses.
+  std::vector<Footstep> ExtractFootsteps(const Eigen::VectorXd& x) const;
+  // Number of new steps not trimmed in a solution.
+  int CountUntrimmedSteps(const Eigen::VectorXd& x) const;
+
+  // Rounds a relaxation point step by step along the plan: region of largest weight,
+  // segment of largest weight, trimming by threshold (kept monotone).
+  bool RoundAlongPlan(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded) const;
+
+ private:
+  void AddVariables();
+  void AddConstraints();
+  void AddObjective();
+
+  FootstepProblem problem_;
+  FormulationOptions options_;
+  int n_ = 0;
+  int num_steps_ = 0;
+  int num_blocks_ = 0;
+  std::vector<double> breakpoints_;
+  Miqp miqp_;
+  FootstepVariables vars_;
+};
+
+}  // namespace mfp

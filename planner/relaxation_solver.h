@@ -1,0 +1,36 @@
+#pragma once
+// Interface to a solver of the continuous relaxation of a Miqp (integrality dropped,
+// variable bounds replaced by the branch-and-bound node's). Implementations are final
+// classes in their own adapter files (Ipopt: ipopt_relaxation_solver.h).
+#include <Eigen/Core>
+#include <string>
+
+#include "planner/miqp.h"
+
+namespace mfp {
+
+enum class RelaxationStatus {
+  kSolved,          // converged to the tolerance: x is optimal for the relaxation
+  kInfeasible,      // the relaxation has no feasible point
+  kIterationLimit,  // stopped early; x may be inaccurate
+  kFailed,          // numerical failure
+};
+
+struct RelaxationResult {
+  RelaxationStatus status = RelaxationStatus::kFailed;
+  Eigen::VectorXd x;
+  double objective = 0.0;  // 0.5 x'Qx + c'x + constant at x
+  int iterations = 0;
+};
+
+class RelaxationSolver {
+ public:
+  virtual ~RelaxationSolver() = default;
+  // lower/upper replace problem.var_lower/var_upper (same size). warm_start may be null.
+  virtual RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower,
+                                 const Eigen::VectorXd& upper,
+                                 const Eigen::VectorXd* warm_start) = 0;
+  virtual std::string Name() const = 0;
+};
+
+}  // namespace mfp

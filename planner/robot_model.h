@@ -1,0 +1,56 @@
+#pragma once
+// The robot as the footstep planner sees it: legs with nominal offsets about the centre
+// of contacts, a cyclic gait, and the reach limits of the paper. Filled by the robot
+// loaders (YAML now, URDF derivation in urdf_robot_loader); plain data, no I/O.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace mfp {
+
+struct LegModel {
+  std::string name;
+  // Foot position at the nominal stance relative to the centre of contacts, body frame,
+  // x forward, y left [m]. The paper's L_leg = |o|, phi = atan2(o_y, o_x).
+  Eigen::Vector2d nominal_offset_body_m = Eigen::Vector2d::Zero();
+  // Hip (first joint of the leg chain) in the body frame [m]; zero when unknown.
+  Eigen::Vector3d hip_body_m = Eigen::Vector3d::Zero();
+};
+
+// Cost weights of the paper's objective. The goal term must dominate.
+struct PlannerWeights {
+  double goal_position = 100.0;  // per m^2 of final-stance foot error (x, y)
+  double goal_yaw = 10.0;        // per rad^2 of final yaw error
+  double trim_step = -1.0;       // per trimmed step (negative: rewards shorter plans)
+  double displacement = 1.0;     // per m^2 of centre-of-contacts motion between configurations
+};
+
+struct RobotModel {
+  std::string name;
+  std::vector<LegModel> legs;
+  // Cyclic order in which legs move (indices into legs); each leg exactly once.
+  std::vector<int> gait;
+  double stance_height_m = 0.0;     // hip height above the feet at the nominal stance [m]
+  double foot_radius_m = 0.0;       // contact radius; terrain regions are inset by it [m]
+  double d_lim_m = 0.0;             // half-side of the reachability square [m]
+  double l_bnd_m = 0.0;             // half-side of the reference square about r_nom [m]
+  double dz_max_m = 0.0;            // largest height change of one step [m]
+  double max_yaw_change_rad = 0.0;  // largest body yaw change between configurations [rad]
+  double max_slope_rad = 0.5;       // steepest surface a foot may stand on [rad]
+  PlannerWeights weights;
+  // One line per parameter saying where its value came from ("d_lim_m = 0.070 m:
+  // override in robot.yaml (derived 0.064 m)"). Printed by mfp-robot.
+  std::vector<std::string> provenance;
+
+  int num_legs() const { return static_cast<int>(legs.size()); }
+};
+
+// Throws InputError naming the first field that is out of range (non-finite values,
+// empty legs, a gait that is not a permutation, non-positive limits, ...).
+void ValidateRobotModel(const RobotModel& robot);
+
+// Mean of the nominal offsets; offsets are expected to be centred (mean zero) so that
+// the centre of contacts of a nominal stance is the body origin.
+Eigen::Vector2d MeanNominalOffset(const RobotModel& robot);
+
+}  // namespace mfp

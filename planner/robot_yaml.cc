@@ -1,0 +1,130 @@
+#include "planner/robot_yaml.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "planner/check.h"
+#include "planner/yaml_fields.h"
+
+namespace mfp {
+namespace {
+
+std::string Describe(const std::string& key, double value, const std::string& unit,
+                     const std::string& file) {
+  std::ostringstream out;
+  out << key << " = " << value << " " << unit << ": from " << file;
+  return out.str();
+}
+
+// Gait entries may be leg indices or leg names.
+std::vector<int> ReadGait(const YAML::Node& node, const YamlContext& ctx,
+                          const std::vector<LegModel>& legs) {
+  if (!node.IsSequence()) throw InputError(ctx.Where() + ": expected a list of legs");
+  std::vector<int> gait;
+  for (size_t i = 0; i < node.size(); ++i) {
+    const YamlContext at = ctx.Index(i);
+    const std::string text = ReadString(node[i], at);
+    int index = -1;
+    for (size_t k = 0; k < legs.size(); ++k) {
+      if (legs[k].name == text) index = static_cast<int>(k);
+    }
+    if (index < 0) index = ReadInt(node[i], at, 0, static_cast<int>(legs.size()) - 1);
+    gait.push_back(index);
+  }
+  return gait;
+}
+
+}  // namespace
+
+RobotModel LoadRobotYaml(const std::string& path) {
+  const YAML::Node root = LoadYamlFile(path);
+  const YamlContext ctx{path, ""};
+  RejectUnknownKeys(root, ctx,
+                    {"name", "urdf", "legs", "gait", "stance_height", "foot_radius", "d_lim",
+                     "l_bnd", "dz_max", "max_yaw_change", "max_slope", "weights"});
+  RobotModel robot;
+  robot.name = OptionalString(root, ctx, "name").value_or("robot");
+  if (root["urdf"]) {
+    throw InputError(ctx.Child("urdf").Where() +
+                     ": URDF robots are not supported by this build (give legs and limits)");
+  }
+  if (!root["legs"] || !root["legs"].IsSequence() || root["legs"].size() == 0) {
+    throw InputError(ctx.Child("legs").Where() + ": expected a non-empty list of legs");
+  }
+  const YamlContext legs_ctx = ctx.Child("legs");
+  for (size_t k = 0; k < root["legs"].size(); ++k) {
+    const YAML::Node leg_node = root["legs"][k];
+    const YamlContext leg_ctx = legs_ctx.Index(k);
+    RejectUnknownKeys(leg_node, leg_ctx, {"name", "nominal_offset", "hip"});
+    LegModel leg;
+    leg.name = OptionalString(leg_node, leg_ctx, "name").value_or("leg" + std::to_string(k));
+    if (!leg_node["nominal_offset"]) {
+      throw InputError(leg_ctx.Child("nominal_offset").Where() + ": missing (x, y in metres)");
+    }
+    const auto offset =
+        ReadNumbers(leg_node["nominal_offset"], leg_ctx.Child("nominal_offset"), 2);
+    leg.nominal_offset_body_m = Eigen::Vector2d(offset[0], offset[1]);
+    if (leg_node["hip"]) {
+      const auto hip = ReadNumbers(leg_node["hip"], leg_ctx.Child("hip"), 3);
+      leg.hip_body_m = Eigen::Vector3d(hip[0], hip[1], hip[2]);
+    }
+    robot.legs.push_back(leg);
+  }
+  if (root["gait"]) {
+    robot.gait = ReadGait(root["gait"], ctx.Child("gait"), robot.legs);
+  } else {
+    for (int k = 0; k < robot.num_legs(); ++k) robot.gait.push_back(k);
+  }
+
+  struct LimitField {
+    const char* key;
+    double* value;
+    double min, max;
+    const char* unit;
+  };
+  const LimitField limits[] = {
+      {"stance_height", &robot.stance_height_m, 0.0, 10.0, "m"},
+      {"foot_radius", &robot.foot_radius_m, 0.0, 1.0, "m"},
+      {"d_lim", &robot.d_lim_m, 1e-4, 10.0, "m"},
+      {"l_bnd", &robot.l_bnd_m, 1e-4, 10.0, "m"},
+      {"dz_max", &robot.dz_max_m, 1e-4, 10.0, "m"},
+      {"max_yaw_change", &robot.max_yaw_change_rad, 1e-3, M_PI, "rad"},
+      {"max_slope", &robot.max_slope_rad, 0.0, M_PI / 2, "rad"},
+  };
+  for (const LimitField& f : limits) {
+    const auto value = OptionalDouble(root, ctx, f.key, f.min, f.max);
+    if (value) {
+      *f.value = *value;
+      robot.provenance.push_back(Describe(f.key, *value, f.unit, path));
+    } else if (std::string(f.key) != "max_slope" && std::string(f.key) != "foot_radius" &&
+               std::string(f.key) != "stance_height") {
+      throw InputError(ctx.Child(f.key).Where() + ": missing (allowed range [" +
+                       std::to_string(f.min) + ", " + std::to_string(f.max) + "] " + f.unit + ")");
+    }
+  }
+  if (root["weights"]) {
+    const YAML::Node w = root["weights"];
+    const YamlContext wctx = ctx.Child("weights");
+    RejectUnknownKeys(w, wctx, {"goal_position", "goal_yaw", "trim_step", "displacement"});
+    robot.weights.goal_position =
+        OptionalDouble(w, wctx, "goal_position", 1e-6, 1e9).value_or(robot.weights.goal_position);
+    robot.weights.goal_yaw =
+        OptionalDouble(w, wctx, "goal_yaw", 0.0, 1e9).value_or(robot.weights.goal_yaw);
+    robot.weights.trim_step =
+        OptionalDouble(w, wctx, "trim_step", -1e9, 0.0).value_or(robot.weights.trim_step);
+    robot.weights.displacement =
+        OptionalDouble(w, wctx, "displacement", 0.0, 1e9).value_or(robot.weights.displacement);
+  }
+  for (size_t k = 0; k < robot.legs.size(); ++k) {
+    const Eigen::Vector2d o = robot.legs[k].nominal_offset_body_m;
+    std::ostringstream out;
+    out << "legs[" << k << "] '" << robot.legs[k].name << "' nominal offset (" << o.x() << ", "
+        << o.y() << ") m, L_leg " << o.norm() << " m, phi " << std::atan2(o.y(), o.x())
+        << " rad: from " << path;
+    robot.provenance.push_back(out.str());
+  }
+  ValidateRobotModel(robot);
+  return robot;
+}
+
+}  // namespace mfp
