@@ -1,0 +1,42 @@
+#include "lcmtypes/lcm_transport.h"
+
+#include "planner/check.h"
+
+namespace mfp {
+
+LcmTransport::LcmTransport(const std::string& url) : url_(url) {
+  lcm_ = lcm_create(url.c_str());
+  if (lcm_ == nullptr) throw InputError("lcm_url: LCM could not be created for '" + url + "'");
+}
+
+LcmTransport::~LcmTransport() { lcm_destroy(lcm_); }
+
+bool LcmTransport::Publish(const std::string& channel, const void* data, size_t size) {
+  if (size > static_cast<size_t>(INT32_MAX)) return false;
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  return lcm_publish(lcm_, channel.c_str(), data, static_cast<unsigned int>(size)) == 0;
+}
+
+void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
+  MFP_CHECK_MSG(handlers_.count(channel) == 0, "one handler per channel: " + channel);
+  auto& slot = handlers_[channel];
+  slot = std::make_unique<RawHandler>(std::move(handler));
+  // LCM treats the channel as a regular expression; anchor it to the exact name.
+  lcm_subscription_t* subscription = lcm_subscribe(lcm_, ("^" + channel + "$").c_str(),
+                                                   &LcmTransport::OnMessage, slot.get());
+  MFP_CHECK_MSG(subscription != nullptr, "lcm_subscribe failed for " + channel);
+}
+
+int LcmTransport::HandleTimeout(int timeout_ms) { return lcm_handle_timeout(lcm_, timeout_ms); }
+
+void LcmTransport::OnMessage(const lcm_recv_buf_t* rbuf, const char* channel, void* user) {
+  const auto* handler = static_cast<const RawHandler*>(user);
+  RawMessage message;
+  message.channel = channel;
+  message.data = static_cast<const uint8_t*>(rbuf->data);
+  message.size = rbuf->data_size;
+  message.receive_utime = rbuf->recv_utime;
+  (*handler)(message);
+}
+
+}  // namespace mfp

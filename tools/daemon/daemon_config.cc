@@ -1,0 +1,80 @@
+#include "tools/daemon/daemon_config.h"
+
+#include "planner/check.h"
+#include "planner/yaml_fields.h"
+
+namespace mfp {
+namespace {
+
+void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* limits) {
+  RejectUnknownKeys(node, ctx,
+                    {"default_time_limit_s", "max_time_limit_s", "default_max_steps",
+                     "max_steps", "queue_size", "max_request_bytes", "max_map_bytes",
+                     "start_height_tolerance_m"});
+  if (auto v = OptionalDouble(node, ctx, "max_time_limit_s", 0.01, 3600.0))
+    limits->max_time_limit_s = *v;
+  if (auto v = OptionalDouble(node, ctx, "default_time_limit_s", 0.01, limits->max_time_limit_s))
+    limits->default_time_limit_s = *v;
+  if (auto v = OptionalInt(node, ctx, "max_steps", 1, 10000)) limits->max_steps = *v;
+  if (auto v = OptionalInt(node, ctx, "default_max_steps", 0, limits->max_steps))
+    limits->default_max_steps = *v;
+  if (auto v = OptionalInt(node, ctx, "queue_size", 1, 1000)) limits->queue_size = *v;
+  if (auto v = OptionalInt(node, ctx, "max_request_bytes", 64, 16 * 1024 * 1024))
+    limits->max_request_bytes = static_cast<size_t>(*v);
+  if (auto v = OptionalInt(node, ctx, "max_map_bytes", 64, 1024 * 1024 * 1024))
+    limits->max_map_bytes = static_cast<size_t>(*v);
+  if (auto v = OptionalDouble(node, ctx, "start_height_tolerance_m", 0.0, 1.0))
+    limits->start_height_tolerance_m = *v;
+}
+
+void ReadPlanner(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options) {
+  RejectUnknownKeys(node, ctx,
+                    {"window_steps", "goal_tolerance_m", "goal_yaw_tolerance_rad",
+                     "start_tolerance_m", "max_nodes", "relative_gap"});
+  if (auto v = OptionalInt(node, ctx, "window_steps", 0, 1000)) options->default_window_steps = *v;
+  if (auto v = OptionalDouble(node, ctx, "goal_tolerance_m", 0.0, 10.0))
+    options->goal_tolerance_m = *v;
+  if (auto v = OptionalDouble(node, ctx, "goal_yaw_tolerance_rad", 0.0, 3.15))
+    options->goal_yaw_tolerance_rad = *v;
+  if (auto v = OptionalDouble(node, ctx, "start_tolerance_m", 0.0, 1.0))
+    options->start_tolerance_m = *v;
+  if (auto v = OptionalInt(node, ctx, "max_nodes", 1, 10000000))
+    options->branch_and_bound.max_nodes = *v;
+  if (auto v = OptionalDouble(node, ctx, "relative_gap", 0.0, 1.0))
+    options->branch_and_bound.relative_gap = *v;
+}
+
+}  // namespace
+
+DaemonConfig LoadDaemonConfig(const std::string& path) {
+  const YAML::Node root = LoadYamlFile(path);
+  YamlContext ctx{path, ""};
+  if (!root.IsMap()) throw InputError(path + ": expected a mapping at the top level");
+  RejectUnknownKeys(root, ctx,
+                    {"lcm_url", "robots", "default_robot", "initial_map",
+                     "heartbeat_period_s", "limits", "planner"});
+  DaemonConfig config;
+  config.file = path;
+  if (auto v = OptionalString(root, ctx, "lcm_url")) config.lcm_url = *v;
+  if (config.lcm_url.empty()) throw InputError(ctx.Child("lcm_url").Where() + ": must not be empty");
+
+  const YAML::Node robots = root["robots"];
+  if (!robots || !robots.IsSequence() || robots.size() == 0)
+    throw InputError(ctx.Child("robots").Where() + ": expected a non-empty list of robot files");
+  for (size_t i = 0; i < robots.size(); ++i) {
+    config.robot_files.push_back(
+        ResolveRelative(path, ReadString(robots[i], ctx.Child("robots").Index(i))));
+  }
+  if (auto v = OptionalString(root, ctx, "default_robot")) config.default_robot = *v;
+  if (auto v = OptionalString(root, ctx, "initial_map"); v && !v->empty())
+    config.initial_map = ResolveRelative(path, *v);
+  if (auto v = OptionalDouble(root, ctx, "heartbeat_period_s", 0.01, 1.0))
+    config.heartbeat_period_s = *v;
+  if (root["limits"]) ReadLimits(root["limits"], ctx.Child("limits"), &config.limits);
+  if (root["planner"]) ReadPlanner(root["planner"], ctx.Child("planner"), &config.planner);
+  config.planner.default_time_limit_s = config.limits.default_time_limit_s;
+  config.planner.default_max_steps = config.limits.default_max_steps;
+  return config;
+}
+
+}  // namespace mfp

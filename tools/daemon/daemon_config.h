@@ -1,0 +1,44 @@
+#pragma once
+// Configuration of mfp-daemon (config/daemon.yaml), loaded and validated in one place.
+#include <string>
+#include <vector>
+
+#include "planner/footstep_planner.h"
+
+namespace mfp {
+
+// LCM channels of the design; fixed by the contract.
+inline constexpr const char* kTerrainMapChannel = "MFP_TERRAIN_MAP";
+inline constexpr const char* kPlanRequestChannel = "MFP_PLAN_REQUEST";
+inline constexpr const char* kPlanChannel = "MFP_PLAN";
+inline constexpr const char* kRegionsChannel = "MFP_REGIONS";
+inline constexpr const char* kStatusChannel = "MFP_STATUS";
+
+// What a request may ask for and what the daemon accepts on the wire.
+struct DaemonLimits {
+  double default_time_limit_s = 5.0;   // when plan_request_t.time_limit_s = 0 [s]
+  double max_time_limit_s = 30.0;      // larger requested limits are rejected [s]
+  int default_max_steps = 0;           // when plan_request_t.max_steps = 0; 0 = 12 n
+  int max_steps = 120;                 // larger requests are rejected
+  int queue_size = 4;                  // requests waiting; the oldest is dropped beyond
+  size_t max_request_bytes = 64 * 1024;        // larger plan_request_t payloads are rejected
+  size_t max_map_bytes = 64 * 1024 * 1024;     // larger terrain_map_t payloads are rejected
+  double start_height_tolerance_m = 0.05;  // start foot to region surface, vertically [m]
+};
+
+struct DaemonConfig {
+  std::string file;                     // the YAML it came from ("" when built in code)
+  std::string lcm_url = "udpm://239.255.76.67:7667?ttl=0";  // ttl=0: stays on this machine
+  std::vector<std::string> robot_files;  // resolved paths (URDF or YAML)
+  std::string default_robot;             // robot name used when a request names none
+  std::string initial_map;               // resolved path of a map to start with; "" = none
+  double heartbeat_period_s = 0.5;       // MFP_STATUS period, at most 1 s [s]
+  DaemonLimits limits;
+  PlannerOptions planner;
+};
+
+// Loads and validates a daemon YAML; relative paths are resolved against its directory.
+// Throws InputError naming the file, key and allowed range.
+DaemonConfig LoadDaemonConfig(const std::string& path);
+
+}  // namespace mfp

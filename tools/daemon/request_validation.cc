@@ -1,0 +1,149 @@
+#include "tools/daemon/request_validation.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace mfp {
+namespace {
+
+std::string Num(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+ValidatedRequest Reject(SolveStatus status, const std::string& message,
+                        const std::string& robot_name = "") {
+  ValidatedRequest result;
+  result.ok = false;
+  result.status = status;
+  result.message = message;
+  result.robot_name = robot_name;
+  return result;
+}
+
+// First non-finite number of the request, named ("start_feet[2][1] = nan"), or "".
+std::string FirstNonFinite(const plan_request_t& m) {
+  for (size_t i = 0; i < m.start_feet.size(); ++i) {
+    for (size_t j = 0; j < m.start_feet[i].size(); ++j) {
+      if (!std::isfinite(m.start_feet[i][j]))
+        return "start_feet[" + std::to_string(i) + "][" + std::to_string(j) + "] = " +
+               Num(m.start_feet[i][j]);
+    }
+  }
+  const std::pair<const char*, double> scalars[] = {{"goal_x", m.goal_x},
+                                                    {"goal_y", m.goal_y},
+                                                    {"goal_yaw", m.goal_yaw},
+                                                    {"time_limit_s", m.time_limit_s}};
+  for (const auto& [name, value] : scalars) {
+    if (!std::isfinite(value)) return std::string(name) + " = " + Num(value);
+  }
+  return "";
+}
+
+// True when some region has the foot on its surface: inside its polygon within
+// horizontal_tol_m and within vertical_tol_m of its plane.
+bool FootOnSomeRegion(const std::vector<ConvexRegion>& regions, const Eigen::Vector3d& foot,
+                      double horizontal_tol_m, double vertical_tol_m) {
+  for (const ConvexRegion& region : regions) {
+    const double surface_z = region.HeightAt(foot.x(), foot.y());
+    if (!std::isfinite(surface_z) || std::abs(foot.z() - surface_z) > vertical_tol_m) continue;
+    const Eigen::Vector3d on_plane(foot.x(), foot.y(), surface_z);
+    if (RegionViolation(region, on_plane) <= horizontal_tol_m) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+ValidatedRequest ValidateRequest(const plan_request_t& m,
+                                 const std::map<std::string, RobotModel>& robots,
+                                 const std::string& default_robot,
+                                 const std::vector<ConvexRegion>* regions,
+                                 const DaemonLimits& limits, const PlannerOptions& options) {
+  if (const std::string bad = FirstNonFinite(m); !bad.empty())
+    return Reject(SolveStatus::kInvalidRequest, "not a finite number: " + bad);
+
+  const std::string name = m.robot.empty() ? default_robot : m.robot;
+  const auto found = robots.find(name);
+  if (found == robots.end()) {
+    std::string known;
+    for (const auto& entry : robots) known += (known.empty() ? "" : ", ") + entry.first;
+    return Reject(SolveStatus::kInvalidRequest,
+                  "robot: unknown robot '" + name + "' (known: " + known + ")");
+  }
+  const RobotModel& robot = found->second;
+  if (m.num_legs != robot.num_legs())
+    return Reject(SolveStatus::kInvalidRequest,
+                  "num_legs = " + std::to_string(m.num_legs) + " but robot '" + name + "' has " +
+                      std::to_string(robot.num_legs()) + " legs",
+                  name);
+  if (m.max_steps < 0 || m.max_steps > limits.max_steps)
+    return Reject(SolveStatus::kInvalidRequest,
+                  "max_steps = " + std::to_string(m.max_steps) + " is outside [0, " +
+                      std::to_string(limits.max_steps) + "] (0 = default)",
+                  name);
+  if (m.time_limit_s < 0 || m.time_limit_s > limits.max_time_limit_s)
+    return Reject(SolveStatus::kInvalidRequest,
+                  "time_limit_s = " + Num(m.time_limit_s) + " is outside [0, " +
+                      Num(limits.max_time_limit_s) + "] s (0 = default)",
+                  name);
+  if (regions == nullptr)
+    return Reject(SolveStatus::kNoMap, "no terrain map received yet on MFP_TERRAIN_MAP", name);
+  if (regions->empty())
+    return Reject(SolveStatus::kNoMap, "the current terrain map has no safe regions", name);
+
+  PlanRequest request;
+  for (int leg = 0; leg < m.num_legs; ++leg) {
+    const auto& f = m.start_feet[static_cast<size_t>(leg)];
+    const Eigen::Vector3d foot(f[0], f[1], f[2]);
+    if (!FootOnSomeRegion(*regions, foot, options.start_tolerance_m,
+                          limits.start_height_tolerance_m)) {
+      return Reject(SolveStatus::kInvalidStart,
+                    "start foot of leg " + std::to_string(leg) + " (" +
+                        robot.legs[static_cast<size_t>(leg)].name + ") at (" + Num(foot.x()) +
+                        ", " + Num(foot.y()) + ", " + Num(foot.z()) +
+                        ") is off every region (tolerance " + Num(options.start_tolerance_m) +
+                        " m horizontal, " + Num(limits.start_height_tolerance_m) +
+                        " m vertical)",
+                    name);
+    }
+    request.start_feet_world_m.push_back(foot);
+  }
+
+  // The goal must be close enough to some region that a foot could stand near it.
+  double leg_reach_m = 0.0;
+  for (const LegModel& leg : robot.legs)
+    leg_reach_m = std::max(leg_reach_m, leg.nominal_offset_body_m.norm());
+  const double goal_reach_m = leg_reach_m + robot.l_bnd_m;
+  bool goal_near_region = false;
+  for (const ConvexRegion& region : *regions) {
+    const double z = region.HeightAt(m.goal_x, m.goal_y);
+    if (std::isfinite(z) &&
+        RegionViolation(region, Eigen::Vector3d(m.goal_x, m.goal_y, z)) <= goal_reach_m) {
+      goal_near_region = true;
+      break;
+    }
+  }
+  if (!goal_near_region)
+    return Reject(SolveStatus::kInvalidGoal,
+                  "goal (" + Num(m.goal_x) + ", " + Num(m.goal_y) + ") is more than " +
+                      Num(goal_reach_m) + " m (leg reach + l_bnd) from every region",
+                  name);
+
+  request.start_yaw_rad = EstimateStanceYaw(robot, request.start_feet_world_m);
+  request.goal_x_m = m.goal_x;
+  request.goal_y_m = m.goal_y;
+  request.goal_yaw_rad = m.goal_yaw;
+  request.max_steps = m.max_steps > 0 ? m.max_steps : limits.default_max_steps;
+  request.time_limit_s = m.time_limit_s > 0 ? m.time_limit_s : limits.default_time_limit_s;
+
+  ValidatedRequest result;
+  result.ok = true;
+  result.status = SolveStatus::kOptimal;
+  result.robot_name = name;
+  result.request = std::move(request);
+  return result;
+}
+
+}  // namespace mfp
