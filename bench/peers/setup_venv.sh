@@ -56,7 +56,7 @@ failed=()
 for spec in "${PIP_PACKAGES[@]}"; do
   name="${spec%%==*}"
   want="${spec##*==}"
-  have="$("$VENV/bin/python" -m pip show "$name" 2>/dev/null | sed -n 's/^Version: //p')"
+  have="$("$VENV/bin/python" -m pip show "$name" 2>/dev/null | sed -n 's/^Version: //p' || true)"
   [[ "$have" == "$want" ]] && continue
   echo "setup_venv.sh: pip install $spec"
   if ! "$VENV/bin/python" -m pip install -q "$spec"; then

@@ -166,6 +166,9 @@ def solve_copt(path, time_limit, threads, mip_gap):
         elapsed = time.perf_counter() - start
         text = "; ".join(notes + [str(e)])
         status = "refused" if any(w in str(e).lower() for w in ("size", "licen")) else "error"
+        if status == "refused":
+            # COPT's exception says only "(LICENSE) Fail to solve problem"; its log says why.
+            text += " (no licence file: COPT is limited to 2000 variables and 2000 constraints)"
         return result("copt", status, elapsed, message=text, version=version)
     elapsed = time.perf_counter() - start
     code = model.status
