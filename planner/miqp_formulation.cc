@@ -1,1 +1,476 @@
-// In progress (issue 2).
+#include "planner/miqp_formulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "planner/check.h"
+#include "planner/miqp_builder.h"
+
+namespace mfp {
+namespace {
+
+double WrapToPi(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+std::string StepName(const char* what, int i) { return std::string(what) + "_" + std::to_string(i); }
+
+// Bounding box of the regions' vertices, grown by a margin, used as variable bounds of
+// the footstep positions and as the box from which big-M constants are computed.
+struct Box3 {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(kInfinity);
+  Eigen::Vector3d hi = Eigen::Vector3d::Constant(-kInfinity);
+  void Add(const Eigen::Vector3d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+};
+
+// Largest value of a . f - b over the box (corners suffice: it is linear).
+double MaxOverBox(const Eigen::Vector3d& a, double b, const Box3& box) {
+  double value = -b;
+  for (int k = 0; k < 3; ++k) value += std::max(a(k) * box.lo(k), a(k) * box.hi(k));
+  return value;
+}
+
+}  // namespace
+
+MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const FormulationOptions& options)
+    : problem_(problem), options_(options) {
+  MFP_CHECK(problem_.robot != nullptr);
+  const RobotModel& robot = *problem_.robot;
+  n_ = robot.num_legs();
+  if (static_cast<int>(problem_.start_feet_world_m.size()) != n_) {
+    throw InputError("start stance has " + std::to_string(problem_.start_feet_world_m.size()) +
+                     " feet, robot '" + robot.name + "' has " + std::to_string(n_) + " legs");
+  }
+  for (const Eigen::Vector3d& f : problem_.start_feet_world_m) {
+    if (!f.allFinite()) throw InputError("start stance has a non-finite foot position");
+  }
+  if (!std::isfinite(problem_.start_yaw_rad) || !std::isfinite(problem_.goal_x_m) ||
+      !std::isfinite(problem_.goal_y_m) || !std::isfinite(problem_.goal_yaw_rad)) {
+    throw InputError("start yaw and goal pose must be finite numbers");
+  }
+  if (!problem_.history_feet_world_m.empty() &&
+      static_cast<int>(problem_.history_feet_world_m.size()) != n_) {
+    throw InputError("history must hold one foot per leg");
+  }
+  if (!problem_.start_step_yaw_rad.empty() &&
+      static_cast<int>(problem_.start_step_yaw_rad.size()) != n_) {
+    throw InputError("start step yaws must hold one yaw per leg");
+  }
+  if (problem_.num_new_steps < 1) {
+    throw InputError("number of new steps must be >= 1, got " +
+                     std::to_string(problem_.num_new_steps));
+  }
+  if (problem_.regions.empty()) throw InputError("no terrain regions to step on");
+  if (!(options_.yaw_segment_rad > 0.01 && options_.yaw_segment_rad <= M_PI) ||
+      !(options_.yaw_margin_rad >= 0.0 && options_.yaw_margin_rad <= M_PI)) {
+    throw InputError("yaw_segment must be in (0.01, pi] rad and yaw_margin in [0, pi] rad");
+  }
+  num_steps_ = n_ + problem_.num_new_steps;
+  num_blocks_ = (num_steps_ + n_ - 1) / n_;
+  // Goal yaw unwrapped to within pi of the start so the yaw range is the short way round.
+  problem_.goal_yaw_rad =
+      problem_.start_yaw_rad + WrapToPi(problem_.goal_yaw_rad - problem_.start_yaw_rad);
+  const double lo = std::min(problem_.start_yaw_rad, problem_.goal_yaw_rad) - options_.yaw_margin_rad;
+  const double hi = std::max(problem_.start_yaw_rad, problem_.goal_yaw_rad) + options_.yaw_margin_rad;
+  const int segments = std::max(1, static_cast<int>(std::ceil((hi - lo) / options_.yaw_segment_rad - 1e-9)));
+  for (int k = 0; k <= segments; ++k) breakpoints_.push_back(lo + (hi - lo) * k / segments);
+
+  Build();
+}
+
+int MiqpFormulation::LegOfStep(int step) const {
+  const int phase = ((problem_.gait_phase + step) % n_ + n_) % n_;
+  return problem_.robot->gait[phase];
+}
+
+Eigen::Vector2d MiqpFormulation::GoalFoot(int leg) const {
+  const Eigen::Vector2d o = problem_.robot->legs[leg].nominal_offset_body_m;
+  const double c = std::cos(problem_.goal_yaw_rad), s = std::sin(problem_.goal_yaw_rad);
+  return Eigen::Vector2d(problem_.goal_x_m + c * o.x() - s * o.y(),
+                         problem_.goal_y_m + s * o.x() + c * o.y());
+}
+
+void MiqpFormulation::Build() {
+  const RobotModel& robot = *problem_.robot;
+  const int N = num_steps_;
+  const int n = n_;
+  MiqpBuilder b;
+
+  // Workspace box: every footstep lies in some region, so in the regions' bounding box.
+  Box3 box;
+  for (const ConvexRegion& r : problem_.regions) {
+    for (const Eigen::Vector3d& v : r.vertices_world_m) {
+      box.Add(v + Eigen::Vector3d(0, 0, r.plane_tolerance_m));
+      box.Add(v - Eigen::Vector3d(0, 0, r.plane_tolerance_m));
+    }
+  }
+  for (const Eigen::Vector3d& f : problem_.start_feet_world_m) box.Add(f);
+  box.lo -= Eigen::Vector3d::Constant(1e-3);
+  box.hi += Eigen::Vector3d::Constant(1e-3);
+
+  // ---- footstep positions: constants for the start stance, variables afterwards ----
+  vars_.x.assign(N, -1);
+  vars_.y.assign(N, -1);
+  vars_.z.assign(N, -1);
+  for (int i = n; i < N; ++i) {
+    vars_.x[i] = b.AddVariable(StepName("x", i), box.lo.x(), box.hi.x(), false);
+    vars_.y[i] = b.AddVariable(StepName("y", i), box.lo.y(), box.hi.y(), false);
+    vars_.z[i] = b.AddVariable(StepName("z", i), box.lo.z(), box.hi.z(), false);
+  }
+  // Position of step j on one axis. Steps before the plan (j < 0) are the start stance of
+  // the same leg: a cyclic gait moves leg(j) = leg(j + n).
+  const bool has_history = !problem_.history_feet_world_m.empty();
+  auto pos = [&](int j, int axis) -> LinExpr {
+    if (j < 0 && has_history) return LinExpr::Constant(problem_.history_feet_world_m[j + n](axis));
+    while (j < 0) j += n;
+    if (j < n) return LinExpr::Constant(problem_.start_feet_world_m[j](axis));
+    const int index = axis == 0 ? vars_.x[j] : axis == 1 ? vars_.y[j] : vars_.z[j];
+    return LinExpr::Var(index);
+  };
+  // Centre of contacts p_i: mean of the n latest footsteps ending at step i (eq. 2).
+  auto coc = [&](int i, int axis) -> LinExpr {
+    LinExpr sum;
+    for (int j = i - n + 1; j <= i; ++j) sum += pos(j, axis);
+    return (1.0 / n) * sum;
+  };
+
+  // ---- yaw per configuration, with piecewise-linear sin/cos ----
+  const int B = num_blocks_;
+  const int K = static_cast<int>(breakpoints_.size()) - 1;
+  const double yaw_lo = breakpoints_.front(), yaw_hi = breakpoints_.back();
+  double s_lo = 1, s_hi = -1, c_lo = 1, c_hi = -1;
+  for (double psi : breakpoints_) {
+    s_lo = std::min(s_lo, std::sin(psi));
+    s_hi = std::max(s_hi, std::sin(psi));
+    c_lo = std::min(c_lo, std::cos(psi));
+    c_hi = std::max(c_hi, std::cos(psi));
+  }
+  vars_.theta.assign(B, -1);
+  vars_.s.assign(B, -1);
+  vars_.c.assign(B, -1);
+  vars_.segment.assign(B, {});
+  for (int blk = 1; blk < B; ++blk) {
+    vars_.theta[blk] = b.AddVariable(StepName("theta", blk), yaw_lo, yaw_hi, false);
+    vars_.s[blk] = b.AddVariable(StepName("sin", blk), s_lo, s_hi, false);
+    vars_.c[blk] = b.AddVariable(StepName("cos", blk), c_lo, c_hi, false);
+  }
+  auto theta = [&](int blk) {
+    return blk == 0 ? LinExpr::Constant(problem_.start_yaw_rad) : LinExpr::Var(vars_.theta[blk]);
+  };
+  auto sin_of = [&](int blk) {
+    return blk == 0 ? LinExpr::Constant(std::sin(problem_.start_yaw_rad)) : LinExpr::Var(vars_.s[blk]);
+  };
+  auto cos_of = [&](int blk) {
+    return blk == 0 ? LinExpr::Constant(std::cos(problem_.start_yaw_rad)) : LinExpr::Var(vars_.c[blk]);
+  };
+  for (int blk = 1; blk < B; ++blk) {
+    LinExpr one_segment;
+    for (int k = 0; k < K; ++k) {
+      const int sk = b.AddBinary("seg_" + std::to_string(blk) + "_" + std::to_string(k));
+      vars_.segment[blk].push_back(sk);
+      one_segment += LinExpr::Var(sk);
+    }
+    b.AddRow(StepName("one_segment", blk), one_segment, 1.0, 1.0);
+    b.AddSos1Group(vars_.segment[blk]);
+    for (int k = 0; k < K; ++k) {
+      const int sk = vars_.segment[blk][k];
+      const double a = breakpoints_[k], e = breakpoints_[k + 1];
+      const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
+      // S_bk => psi_k <= theta_b <= psi_{k+1}, written with the tightest constants:
+      // theta >= lo + (psi_k - lo) S and theta <= hi - (hi - psi_{k+1}) S.
+      b.AddRow("seg_lo_" + tag, theta(blk) - LinExpr::Var(sk, a - yaw_lo), yaw_lo, kInfinity);
+      b.AddRow("seg_hi_" + tag, theta(blk) + LinExpr::Var(sk, yaw_hi - e), -kInfinity, yaw_hi);
+      // S_bk => s = m theta + q (chord of sin over [a, e]); likewise for cos.
+      for (int fn = 0; fn < 2; ++fn) {
+        const double va = fn == 0 ? std::sin(a) : std::cos(a);
+        const double ve = fn == 0 ? std::sin(e) : std::cos(e);
+        const double m = (ve - va) / (e - a);
+        const double q = va - m * a;
+        const double lo_v = fn == 0 ? s_lo : c_lo, hi_v = fn == 0 ? s_hi : c_hi;
+        // Largest |v - m theta - q| over the variable box: the big-M of this row.
+        double M = 0.0;
+        for (double t : {yaw_lo, yaw_hi}) {
+          for (double v : {lo_v, hi_v}) M = std::max(M, std::abs(v - m * t - q));
+        }
+        const LinExpr resid = (fn == 0 ? sin_of(blk) : cos_of(blk)) - LinExpr::Var(vars_.theta[blk], m) -
+                              LinExpr::Constant(q);
+        const char* fname = fn == 0 ? "sin" : "cos";
+        // resid <= M (1 - S)  and  resid >= -M (1 - S)
+        b.AddRow(std::string(fname) + "_chord_up_" + tag, resid + LinExpr::Var(sk, M), -kInfinity, M);
+        b.AddRow(std::string(fname) + "_chord_dn_" + tag, resid - LinExpr::Var(sk, M), -M, kInfinity);
+      }
+    }
+    // Bounded yaw change between consecutive configurations.
+    b.AddRow(StepName("yaw_change", blk), theta(blk) - theta(blk - 1), -robot.max_yaw_change_rad,
+             robot.max_yaw_change_rad);
+  }
+
+  // Nominal foot position of step i: p_i + R(theta_b(i)) o_leg(i), linear in (s, c).
+  auto nominal = [&](int i, int axis) -> LinExpr {
+    int blk = i < 0 ? 0 : i / n;
+    const Eigen::Vector2d o = robot.legs[LegOfStep(i)].nominal_offset_body_m;
+    LinExpr r = coc(i, axis);
+    if (blk == 0 && !problem_.start_step_yaw_rad.empty()) {
+      const double yaw = problem_.start_step_yaw_rad[i];
+      const double c = std::cos(yaw), s = std::sin(yaw);
+      r += LinExpr::Constant(axis == 0 ? c * o.x() - s * o.y() : s * o.x() + c * o.y());
+      return r;
+    }
+    if (axis == 0) {
+      r += o.x() * cos_of(blk);
+      r -= o.y() * sin_of(blk);
+    } else {
+      r += o.x() * sin_of(blk);
+      r += o.y() * cos_of(blk);
+    }
+    return r;
+  };
+  auto eval_const = [](const LinExpr& e) {
+    MFP_CHECK(e.terms.empty());
+    return e.constant;
+  };
+  // How far each start foot is from its own nominal position (infinity norm): bounds the
+  // first move of each leg, for big-M and region pruning.
+  std::vector<double> start_offset(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      start_offset[i] = std::max(start_offset[i],
+                                 std::abs(problem_.start_feet_world_m[i](axis) - eval_const(nominal(i, axis))));
+    }
+  }
+
+  for (int i = n; i < N; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const char* ax = axis == 0 ? "x" : "y";
+      // Reference box: |f_i - r_nom,i| <= l_bnd.
+      b.AddRow(std::string("ref_") + ax + "_" + std::to_string(i), pos(i, axis) - nominal(i, axis),
+               -robot.l_bnd_m, robot.l_bnd_m);
+      // Reachability from the previous configuration: |f_i - r_nom,i-n| <= d_lim.
+      b.AddRow(std::string("reach_") + ax + "_" + std::to_string(i), pos(i, axis) - nominal(i - n, axis),
+               -robot.d_lim_m, robot.d_lim_m);
+    }
+    // Height change of one step.
+    b.AddRow(StepName("dz", i), pos(i, 2) - pos(i - n, 2), -robot.dz_max_m, robot.dz_max_m);
+  }
+
+  // ---- trimming: t_i => the foot stays where it was (f_i = f_{i-n}) ----
+  // Largest move of step i on each axis, valid for every feasible plan: the reachability
+  // box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n.
+  auto max_move_xy = [&](int i) {
+    return robot.d_lim_m + (i - n < n ? start_offset[i - n] : robot.l_bnd_m);
+  };
+  vars_.trim.assign(N, -1);
+  for (int i = n; i < N; ++i) {
+    const int t = b.AddBinary(StepName("trim", i));
+    vars_.trim[i] = t;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double M = axis < 2 ? max_move_xy(i) : robot.dz_max_m;
+      const LinExpr move = pos(i, axis) - pos(i - n, axis);
+      const std::string tag = std::string(axis == 0 ? "x" : axis == 1 ? "y" : "z") + "_" + std::to_string(i);
+      b.AddRow("trim_up_" + tag, move + LinExpr::Var(t, M), -kInfinity, M);
+      b.AddRow("trim_dn_" + tag, move - LinExpr::Var(t, M), -M, kInfinity);
+    }
+    // Trimmed steps form a suffix of the plan: once stopped, the robot stays stopped.
+    if (options_.monotone_trimming && i > n) {
+      b.AddRow(StepName("trim_suffix", i), LinExpr::Var(vars_.trim[i - 1]) - LinExpr::Var(t), -kInfinity, 0.0);
+    }
+  }
+
+  // ---- safe regions: sum_r H_ir = 1, H_ir => A_r f_i <= b_r ----
+  const int R = static_cast<int>(problem_.regions.size());
+  vars_.region.assign(N, std::vector<int>(R, -1));
+  vars_.region_copy.assign(N, std::vector<int>(R, -1));
+  // Moves of each leg so far bound how far step i can be from that leg's start foot.
+  std::vector<double> reach_xy(N, 0.0), reach_z(N, 0.0);
+  for (int i = n; i < N; ++i) {
+    reach_xy[i] = (i - n < n ? 0.0 : reach_xy[i - n]) + max_move_xy(i);
+    reach_z[i] = (i - n < n ? 0.0 : reach_z[i - n]) + robot.dz_max_m;
+  }
+  for (int i = n; i < N; ++i) {
+    const Eigen::Vector3d& start_foot = problem_.start_feet_world_m[(i - n) % n];
+    LinExpr one_region;
+    std::vector<int> members;
+    for (int r = 0; r < R; ++r) {
+      const ConvexRegion& region = problem_.regions[r];
+      if (options_.prune_unreachable_regions) {
+        Box3 rb;
+        for (const Eigen::Vector3d& v : region.vertices_world_m) rb.Add(v);
+        const double tol = region.plane_tolerance_m + 1e-6;
+        const bool reachable =
+            rb.lo.x() <= start_foot.x() + reach_xy[i] && rb.hi.x() >= start_foot.x() - reach_xy[i] &&
+            rb.lo.y() <= start_foot.y() + reach_xy[i] && rb.hi.y() >= start_foot.y() - reach_xy[i] &&
+            rb.lo.z() - tol <= start_foot.z() + reach_z[i] && rb.hi.z() + tol >= start_foot.z() - reach_z[i];
+        if (!reachable) continue;
+      }
+      const int h = b.AddBinary("H_" + std::to_string(i) + "_" + std::to_string(region.id));
+      vars_.region[i][r] = h;
+      members.push_back(h);
+      one_region += LinExpr::Var(h);
+      const std::string tag = std::to_string(i) + "_" + std::to_string(region.id);
+      if (options_.region_encoding == RegionEncoding::kBigM) {
+        for (int row = 0; row < region.A.rows(); ++row) {
+          const Eigen::Vector3d a = region.A.row(row).transpose();
+          const double M = MaxOverBox(a, region.b(row), box);
+          if (M <= 0.0) continue;  // the box already implies this face
+          LinExpr af;
+          for (int axis = 0; axis < 3; ++axis) af += a(axis) * pos(i, axis);
+          // a.f <= b + M (1 - H)
+          b.AddRow("region_" + tag + "_" + std::to_string(row), af + LinExpr::Var(h, M), -kInfinity,
+                   region.b(row) + M);
+        }
+      } else {
+        // Disaggregated copies f_ir with A_r f_ir <= b_r H_ir and box bounds scaled by H.
+        const int first = b.num_variables();
+        vars_.region_copy[i][r] = first;
+        for (int axis = 0; axis < 3; ++axis) {
+          const double lo_a = std::min(0.0, box.lo(axis)), hi_a = std::max(0.0, box.hi(axis));
+          const int v = b.AddVariable("F_" + tag + "_" + "xyz"[axis], lo_a, hi_a, false);
+          b.AddRow("F_lo_" + tag + "_" + "xyz"[axis], LinExpr::Var(v) - LinExpr::Var(h, box.lo(axis)), 0.0, kInfinity);
+          b.AddRow("F_hi_" + tag + "_" + "xyz"[axis], LinExpr::Var(v) - LinExpr::Var(h, box.hi(axis)), -kInfinity, 0.0);
+        }
+        for (int row = 0; row < region.A.rows(); ++row) {
+          LinExpr af;
+          for (int axis = 0; axis < 3; ++axis) af += LinExpr::Var(first + axis, region.A(row, axis));
+          b.AddRow("hull_" + tag + "_" + std::to_string(row), af - LinExpr::Var(h, region.b(row)), -kInfinity, 0.0);
+        }
+      }
+    }
+    if (members.empty()) {
+      std::ostringstream msg;
+      msg << "step " << i << " (leg " << LegOfStep(i) << ") cannot reach any region";
+      infeasible_reason_ = msg.str();
+      // Keep the model well formed: the empty choice row is left out; the planner
+      // reports the reason instead of solving.
+      continue;
+    }
+    b.AddRow(StepName("one_region", i), one_region, 1.0, 1.0);
+    b.AddSos1Group(members);
+    if (options_.region_encoding == RegionEncoding::kConvexHull) {
+      for (int axis = 0; axis < 3; ++axis) {
+        LinExpr sum = pos(i, axis);
+        for (int r = 0; r < R; ++r) {
+          if (vars_.region_copy[i][r] >= 0) sum -= LinExpr::Var(vars_.region_copy[i][r] + axis);
+        }
+        b.AddRow(std::string("hull_sum_") + "xyz"[axis] + "_" + std::to_string(i), sum, 0.0, 0.0);
+      }
+    }
+  }
+
+  // ---- objective ----
+  const PlannerWeights& w = robot.weights;
+  // Goal: the final stance (last step of each leg) against the goal stance.
+  for (int i = N - n; i < N; ++i) {
+    const Eigen::Vector2d g = GoalFoot(LegOfStep(i));
+    for (int axis = 0; axis < 2; ++axis) {
+      b.AddSquaredCost(pos(i, axis) - LinExpr::Constant(g(axis)), w.goal_position);
+    }
+  }
+  if (B > 1) b.AddSquaredCost(theta(B - 1) - LinExpr::Constant(problem_.goal_yaw_rad), w.goal_yaw);
+  // Fewer steps: a negative weight on every trimmed step.
+  for (int i = n; i < N; ++i) b.AddLinearCost(LinExpr::Var(vars_.trim[i], w.trim_step));
+  // Smooth progress: displacement of the centre of contacts between configurations.
+  for (int i = n; i < N; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      b.AddSquaredCost(coc(i, axis) - coc(i - n, axis), w.displacement);
+    }
+  }
+  miqp_ = b.Build();
+}
+
+std::vector<Footstep> MiqpFormulation::ExtractFootsteps(const Eigen::VectorXd& x) const {
+  MFP_CHECK(x.size() == miqp_.num_variables());
+  std::vector<Footstep> steps;
+  for (int i = 0; i < num_steps_; ++i) {
+    Footstep f;
+    f.index = i;
+    f.leg = LegOfStep(i);
+    if (i < n_) {
+      f.position_world_m = problem_.start_feet_world_m[i];
+      f.yaw_rad = problem_.start_yaw_rad;
+      const int r = FindRegionBelow(problem_.regions, f.position_world_m.x(), f.position_world_m.y(), 1e-3);
+      f.region_id = r >= 0 ? problem_.regions[r].id : -1;
+    } else {
+      f.position_world_m = Eigen::Vector3d(x(vars_.x[i]), x(vars_.y[i]), x(vars_.z[i]));
+      f.yaw_rad = x(vars_.theta[i / n_]);
+      double best = -1.0;
+      for (size_t r = 0; r < problem_.regions.size(); ++r) {
+        const int h = vars_.region[i][r];
+        if (h >= 0 && x(h) > best) {
+          best = x(h);
+          f.region_id = problem_.regions[r].id;
+        }
+      }
+    }
+    steps.push_back(f);
+  }
+  return steps;
+}
+
+int MiqpFormulation::CountUntrimmedSteps(const Eigen::VectorXd& x) const {
+  int count = 0;
+  for (int i = n_; i < num_steps_; ++i) count += x(vars_.trim[i]) < 0.5 ? 1 : 0;
+  return count;
+}
+
+bool MiqpFormulation::RoundAlongPlan(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded) const {
+  MFP_CHECK(relaxed.size() == miqp_.num_variables());
+  *rounded = relaxed;
+  // Yaw: the segment that contains the relaxed yaw.
+  for (int blk = 1; blk < num_blocks_; ++blk) {
+    const double th = relaxed(vars_.theta[blk]);
+    const int K = static_cast<int>(vars_.segment[blk].size());
+    int chosen = K - 1;
+    for (int k = 0; k < K; ++k) {
+      if (th <= breakpoints_[k + 1]) {
+        chosen = k;
+        break;
+      }
+    }
+    for (int k = 0; k < K; ++k) (*rounded)(vars_.segment[blk][k]) = k == chosen ? 1.0 : 0.0;
+  }
+  // Trimming: from the first step whose relaxed value passes one half, all trimmed.
+  bool trimming = false;
+  for (int i = n_; i < num_steps_; ++i) {
+    trimming = trimming || relaxed(vars_.trim[i]) >= 0.5;
+    (*rounded)(vars_.trim[i]) = trimming ? 1.0 : 0.0;
+  }
+  // Regions: a trimmed step keeps the region of the foot it stays on. Otherwise, among
+  // the regions whose polygon holds the relaxed foot, the one with the largest weight;
+  // when none holds it, the largest weight overall.
+  std::vector<int> chosen_region(num_steps_, -1);
+  for (int i = 0; i < n_; ++i) {
+    const Eigen::Vector3d& f = problem_.start_feet_world_m[i];
+    chosen_region[i] = FindRegionBelow(problem_.regions, f.x(), f.y(), 1e-3);
+  }
+  for (int i = n_; i < num_steps_; ++i) {
+    const Eigen::Vector3d f(relaxed(vars_.x[i]), relaxed(vars_.y[i]), relaxed(vars_.z[i]));
+    int best = -1;
+    const int kept = chosen_region[i - n_];
+    if ((*rounded)(vars_.trim[i]) > 0.5 && kept >= 0 && vars_.region[i][kept] >= 0) {
+      best = kept;
+    } else {
+      double best_score = -kInfinity;
+      for (size_t r = 0; r < problem_.regions.size(); ++r) {
+        const int h = vars_.region[i][r];
+        if (h < 0) continue;
+        const double score =
+            relaxed(h) - (RegionViolation(problem_.regions[r], f) > 1e-6 ? 10.0 : 0.0);
+        if (score > best_score) {
+          best_score = score;
+          best = static_cast<int>(r);
+        }
+      }
+    }
+    if (best < 0) return false;
+    chosen_region[i] = best;
+    for (size_t r = 0; r < problem_.regions.size(); ++r) {
+      const int h = vars_.region[i][r];
+      if (h >= 0) (*rounded)(h) = static_cast<int>(r) == best ? 1.0 : 0.0;
+    }
+  }
+  return true;
+}
+
+}  // namespace mfp

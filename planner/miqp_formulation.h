@@ -43,7 +43,12 @@ struct FootstepProblem {
   // Start stance in step order: start_feet[i] is the foot of leg gait[(gait_phase + i) % n].
   std::vector<Eigen::Vector3d> start_feet_world_m;
   int gait_phase = 0;
-  double start_yaw_rad = 0.0;
+  double start_yaw_rad = 0.0;  // yaw of the configuration the new steps start from [rad]
+  // Optional, for windows after the first: the n footsteps before the start stance (step
+  // order) and the yaw each start step was planned with. Empty: the robot stood still
+  // in the start stance with start_yaw_rad, as at the beginning of a plan.
+  std::vector<Eigen::Vector3d> history_feet_world_m;
+  std::vector<double> start_step_yaw_rad;
   double goal_x_m = 0.0;
   double goal_y_m = 0.0;
   double goal_yaw_rad = 0.0;
@@ -81,6 +86,10 @@ class MiqpFormulation {
   // Goal foot position (x, y) of a leg [m].
   Eigen::Vector2d GoalFoot(int leg) const;
 
+  // Non-empty when the problem is infeasible by construction (a step that can reach no
+  // region); the Miqp is then not worth solving.
+  const std::string& infeasible_reason() const { return infeasible_reason_; }
+
   // Footsteps of a solution, start stance included, with the region each step uses.
   std::vector<Footstep> ExtractFootsteps(const Eigen::VectorXd& x) const;
   // Number of new steps not trimmed in a solution.
@@ -91,9 +100,7 @@ class MiqpFormulation {
   bool RoundAlongPlan(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded) const;
 
  private:
-  void AddVariables();
-  void AddConstraints();
-  void AddObjective();
+  void Build();
 
   FootstepProblem problem_;
   FormulationOptions options_;
@@ -103,6 +110,7 @@ class MiqpFormulation {
   std::vector<double> breakpoints_;
   Miqp miqp_;
   FootstepVariables vars_;
+  std::string infeasible_reason_;
 };
 
 }  // namespace mfp

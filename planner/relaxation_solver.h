@@ -30,6 +30,8 @@ class RelaxationSolver {
   virtual RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower,
                                  const Eigen::VectorXd& upper,
                                  const Eigen::VectorXd* warm_start) = 0;
+  // Caps the time of the next solves (the branch-and-bound passes its remaining time).
+  virtual void SetTimeLimit(double seconds) = 0;
   virtual std::string Name() const = 0;
 };
 

@@ -1,1 +1,100 @@
-// In progress (issue 2).
+#include "planner/scenario_yaml.h"
+
+#include <cmath>
+
+#include "planner/check.h"
+#include "planner/planner_options_yaml.h"
+#include "planner/yaml_fields.h"
+
+namespace mfp {
+namespace {
+
+Pose2D ReadPose(const YAML::Node& node, const YamlContext& ctx) {
+  const std::vector<double> v = ReadNumbers(node, ctx, 3);
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx) {
+  const std::vector<double> v = ReadNumbers(node, ctx, 3);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+TerrainBox ReadBox(const YAML::Node& node, const YamlContext& ctx) {
+  RejectUnknownKeys(node, ctx, {"name", "center", "size", "rpy"});
+  TerrainBox box;
+  box.name = OptionalString(node, ctx, "name").value_or("");
+  if (!node["center"] || !node["size"]) throw InputError(ctx.Where() + ": a box needs center and size");
+  box.center_world_m = ReadVector3(node["center"], ctx.Child("center"));
+  box.size_m = ReadVector3(node["size"], ctx.Child("size"));
+  if ((box.size_m.array() <= 0.0).any()) throw InputError(ctx.Child("size").Where() + ": every size must be > 0 m");
+  if (node["rpy"]) box.rpy_rad = ReadVector3(node["rpy"], ctx.Child("rpy"));
+  return box;
+}
+
+}  // namespace
+
+Scenario LoadScenario(const std::string& path) {
+  const YAML::Node root = LoadYamlFile(path);
+  const YamlContext ctx{path, ""};
+  RejectUnknownKeys(root, ctx,
+                    {"name", "description", "robot", "terrain", "start", "goal", "max_steps", "window",
+                     "time_limit", "planner"});
+  Scenario s;
+  s.path = path;
+  s.name = OptionalString(root, ctx, "name").value_or(path);
+  if (!root["robot"]) throw InputError(ctx.Child("robot").Where() + ": missing (path of a robot YAML or URDF)");
+  s.robot_path = ResolveRelative(path, ReadString(root["robot"], ctx.Child("robot")));
+  if (!root["start"] || !root["goal"]) throw InputError(ctx.Where() + ": start and goal are required ([x, y, yaw])");
+  s.start = ReadPose(root["start"], ctx.Child("start"));
+  s.goal = ReadPose(root["goal"], ctx.Child("goal"));
+  s.max_steps = OptionalInt(root, ctx, "max_steps", 1, 100000).value_or(0);
+  s.window_steps = OptionalInt(root, ctx, "window", 1, 1000).value_or(0);
+  s.time_limit_s = OptionalDouble(root, ctx, "time_limit", 1e-3, 3600).value_or(0.0);
+  if (root["planner"]) ReadPlannerOptions(root["planner"], ctx.Child("planner"), &s.options);
+
+  if (!root["terrain"]) throw InputError(ctx.Child("terrain").Where() + ": missing (boxes, regions or map)");
+  const YAML::Node terrain = root["terrain"];
+  const YamlContext tctx = ctx.Child("terrain");
+  RejectUnknownKeys(terrain, tctx, {"resolution", "boxes", "regions", "map"});
+  s.terrain.resolution_m = OptionalDouble(terrain, tctx, "resolution", 1e-3, 1.0).value_or(s.terrain.resolution_m);
+  if (terrain["boxes"]) {
+    const YAML::Node boxes = terrain["boxes"];
+    if (!boxes.IsSequence()) throw InputError(tctx.Child("boxes").Where() + ": expected a list of boxes");
+    for (size_t i = 0; i < boxes.size(); ++i) s.terrain.boxes.push_back(ReadBox(boxes[i], tctx.Child("boxes").Index(i)));
+  }
+  if (terrain["regions"]) {
+    const YAML::Node regions = terrain["regions"];
+    const YamlContext rctx = tctx.Child("regions");
+    if (!regions.IsSequence()) throw InputError(rctx.Where() + ": expected a list of regions");
+    for (size_t i = 0; i < regions.size(); ++i) {
+      const YamlContext one = rctx.Index(i);
+      RejectUnknownKeys(regions[i], one, {"vertices", "plane_tolerance"});
+      if (!regions[i]["vertices"] || !regions[i]["vertices"].IsSequence()) {
+        throw InputError(one.Child("vertices").Where() + ": expected a list of [x, y, z] vertices");
+      }
+      std::vector<Eigen::Vector3d> vertices;
+      for (size_t k = 0; k < regions[i]["vertices"].size(); ++k) {
+        vertices.push_back(ReadVector3(regions[i]["vertices"][k], one.Child("vertices").Index(k)));
+      }
+      const double tol = OptionalDouble(regions[i], one, "plane_tolerance", 0.0, 0.1).value_or(0.0);
+      try {
+        s.listed_regions.push_back(MakeRegionFromPolygon(static_cast<int>(i), vertices, tol));
+      } catch (const InputError& e) {
+        throw InputError(one.Where() + ": " + e.what());
+      }
+    }
+  }
+  if (terrain["map"]) s.map_path = ResolveRelative(path, ReadString(terrain["map"], tctx.Child("map")));
+  const int kinds = (s.terrain.boxes.empty() ? 0 : 1) + (s.listed_regions.empty() ? 0 : 1) + (s.map_path.empty() ? 0 : 1);
+  if (kinds != 1) {
+    throw InputError(tctx.Where() + ": give exactly one of boxes, regions or map (non-empty)");
+  }
+  return s;
+}
+
+std::vector<ConvexRegion> RegionsFromDescription(const Scenario& scenario, const RobotModel& robot) {
+  if (!scenario.listed_regions.empty()) return scenario.listed_regions;
+  return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
+}
+
+}  // namespace mfp

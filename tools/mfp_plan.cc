@@ -1,1 +1,207 @@
-int main() { return 1; }
+// mfp-plan: plans footsteps for one request from a scenario file or from flags.
+// Exit codes: 0 a plan reaching the goal, 2 bad input, 3 no plan reaching the goal.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "planner/check.h"
+#include "planner/footstep_planner.h"
+#include "planner/ipopt_relaxation_solver.h"
+#include "planner/miqp_formulation.h"
+#include "planner/mps_writer.h"
+#include "planner/plan_json.h"
+#include "planner/plan_validation.h"
+#include "planner/robot_yaml.h"
+#include "planner/scenario_yaml.h"
+#include "tools/plan_svg.h"
+#include "tools/daemon/timestamped_log.h"
+
+namespace {
+
+constexpr int kExitReached = 0;
+constexpr int kExitBadInput = 2;
+constexpr int kExitNoPlan = 3;
+const char* kProgram = "mfp-plan";
+
+mfp::Pose2D ParsePose(const std::string& text, const std::string& flag) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    try {
+      size_t used = 0;
+      v.push_back(std::stod(part, &used));
+      if (used != part.size()) throw std::invalid_argument(part);
+    } catch (const std::exception&) {
+      throw mfp::InputError(flag + ": '" + part + "' is not a number (expected X,Y,YAW in m, m, rad)");
+    }
+  }
+  if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+    throw mfp::InputError(flag + ": expected three finite numbers X,Y,YAW (m, m, rad), got '" + text + "'");
+  }
+  return {v[0], v[1], v[2]};
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text;
+    return;
+  }
+  std::ofstream out(path);
+  if (!out) throw mfp::InputError(path + ": cannot open for writing");
+  out << text;
+  if (!out) throw mfp::InputError(path + ": write failed");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mfp-plan: multilegged footstep planning by mixed-integer convex optimisation"};
+  std::string scenario_path, robot_path, terrain_path, start_text, goal_text;
+  std::string json_path, svg_path, mps_path;
+  int max_steps = 0, window = 0;
+  double time_limit = 0.0;
+  bool validate = false, quiet = false;
+  app.add_option("--scenario", scenario_path, "scenario YAML (robot, terrain, start, goal)");
+  app.add_option("--robot", robot_path, "robot YAML (or URDF)");
+  app.add_option("--terrain", terrain_path, "terrain: .bt/.ot map, or a YAML with boxes/regions");
+  app.add_option("--start", start_text, "start pose X,Y,YAW [m, m, rad]");
+  app.add_option("--goal", goal_text, "goal pose X,Y,YAW [m, m, rad]");
+  app.add_option("--max-steps", max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
+  app.add_option("--window", window, "new footsteps per MIQP (default 4 n)")->check(CLI::Range(1, 1000));
+  app.add_option("--time-limit", time_limit, "time limit for the whole plan [s]")->check(CLI::Range(1e-3, 3600.0));
+  app.add_option("--json", json_path, "write the plan JSON here ('-' = stdout)");
+  app.add_option("--svg", svg_path, "write a picture of the plan here");
+  app.add_option("--write-mps", mps_path, "write the first window's MIQP as free MPS (constant left out)");
+  app.add_flag("--validate", validate, "re-check the plan constraint by constraint; exit 3 on a violation");
+  app.add_flag("--quiet", quiet, "no progress lines");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  auto log = [&](const std::string& line) {
+    if (!quiet) mfp::LogLine(kProgram, line);
+  };
+
+  try {
+    mfp::Scenario scenario;
+    if (!scenario_path.empty()) {
+      if (!robot_path.empty() || !terrain_path.empty()) {
+        throw mfp::InputError("--scenario cannot be combined with --robot or --terrain");
+      }
+      scenario = mfp::LoadScenario(scenario_path);
+      if (!start_text.empty()) scenario.start = ParsePose(start_text, "--start");
+      if (!goal_text.empty()) scenario.goal = ParsePose(goal_text, "--goal");
+    } else {
+      if (robot_path.empty() || terrain_path.empty() || start_text.empty() || goal_text.empty()) {
+        throw mfp::InputError("give --scenario FILE, or all of --robot, --terrain, --start and --goal");
+      }
+      scenario.name = terrain_path;
+      scenario.robot_path = robot_path;
+      scenario.start = ParsePose(start_text, "--start");
+      scenario.goal = ParsePose(goal_text, "--goal");
+      const std::string ext = terrain_path.substr(terrain_path.find_last_of('.') + 1);
+      if (ext == "bt" || ext == "ot") {
+        scenario.map_path = terrain_path;
+      } else {
+        throw mfp::InputError("--terrain " + terrain_path + ": expected a .bt or .ot map");
+      }
+    }
+    const mfp::RobotModel robot = mfp::LoadRobotYaml(scenario.robot_path);
+    if (!scenario.map_path.empty()) {
+      throw mfp::InputError(scenario.map_path + ": terrain maps are not supported by this build yet");
+    }
+    const std::vector<mfp::ConvexRegion> regions = mfp::RegionsFromDescription(scenario, robot);
+    log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
+        std::to_string(regions.size()) + " regions");
+
+    mfp::PlannerOptions options = scenario.options;
+    mfp::PlanRequest request;
+    request.start_feet_world_m =
+        mfp::NominalStance(robot, regions, scenario.start.x_m, scenario.start.y_m, scenario.start.yaw_rad);
+    request.start_yaw_rad = scenario.start.yaw_rad;
+    request.goal_x_m = scenario.goal.x_m;
+    request.goal_y_m = scenario.goal.y_m;
+    request.goal_yaw_rad = scenario.goal.yaw_rad;
+    request.max_steps = max_steps > 0 ? max_steps : scenario.max_steps;
+    request.window_steps = window > 0 ? window : scenario.window_steps;
+    request.time_limit_s = time_limit > 0 ? time_limit : scenario.time_limit_s;
+
+    const auto solver = mfp::MakeIpoptRelaxationSolver();
+    if (!mps_path.empty()) {
+      // The first window's MIQP, exactly as the planner builds it.
+      mfp::FootstepProblem problem;
+      problem.robot = &robot;
+      problem.regions = regions;
+      for (int i = 0; i < robot.num_legs(); ++i) {
+        problem.start_feet_world_m.push_back(request.start_feet_world_m[robot.gait[i]]);
+      }
+      problem.start_yaw_rad = request.start_yaw_rad;
+      problem.goal_x_m = request.goal_x_m;
+      problem.goal_y_m = request.goal_y_m;
+      problem.goal_yaw_rad = request.goal_yaw_rad;
+      const int n = robot.num_legs();
+      const int total = request.max_steps > 0 ? request.max_steps : (options.default_max_steps > 0 ? options.default_max_steps : 12 * n);
+      const int win = request.window_steps > 0 ? request.window_steps : (options.default_window_steps > 0 ? options.default_window_steps : 4 * n);
+      problem.num_new_steps = std::min(total, win);
+      const mfp::MiqpFormulation formulation(problem, options.formulation);
+      mfp::WriteMpsFile(formulation.miqp(), "mfp", mps_path);
+      log("wrote " + mps_path + " (" + std::to_string(formulation.miqp().num_variables()) + " columns, " +
+          std::to_string(formulation.miqp().num_rows()) + " rows, " +
+          std::to_string(formulation.miqp().num_integer()) + " integer)");
+    }
+
+    const mfp::Plan plan = mfp::PlanFootsteps(
+        robot, regions, request, options, *solver, [&](const mfp::PlanProgress& p) {
+          std::ostringstream line;
+          line.precision(3);
+          line << "window " << p.window << ": " << mfp::ToString(p.window_result.status) << ", "
+               << p.steps_planned << " steps so far, " << p.distance_to_goal_m << " m to goal, "
+               << p.window_result.nodes << " nodes, gap " << p.window_result.gap << ", "
+               << p.elapsed_s << " s";
+          log(line.str());
+        });
+
+    std::ostringstream summary;
+    summary.precision(4);
+    const int steps = std::max<int>(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
+    summary << "status " << mfp::ToString(plan.status) << ", " << (plan.reaches_goal ? "reaches goal" : "does NOT reach goal")
+            << ", " << steps << " steps, objective " << plan.objective << ", gap " << plan.gap << ", "
+            << plan.nodes << " nodes, " << plan.relaxations << " relaxations, " << plan.solve_time_s << " s";
+    if (!plan.message.empty()) summary << " (" << plan.message << ")";
+    log(summary.str());
+
+    if (!json_path.empty()) WriteText(json_path, mfp::PlanToJson(plan, robot, regions).dump(2) + "\n");
+    if (!svg_path.empty()) {
+      WriteText(svg_path, mfp::PlanToSvg(plan, robot, regions,
+                                         {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad},
+                                         scenario.name));
+      log("wrote " + svg_path);
+    }
+    if (plan.status == mfp::SolveStatus::kInvalidRequest || plan.status == mfp::SolveStatus::kInvalidStart ||
+        plan.status == mfp::SolveStatus::kInvalidGoal || plan.status == mfp::SolveStatus::kNoMap) {
+      std::cerr << kProgram << ": " << plan.message << "\n";
+      return kExitBadInput;
+    }
+    if (validate && mfp::HasPlan(plan.status)) {
+      mfp::ValidationTolerances tol;
+      tol.rotation_m = mfp::RotationTolerance(robot, options.formulation.yaw_segment_rad);
+      const auto errors = mfp::ValidatePlan(robot, regions, plan,
+                                            {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
+                                             options.goal_tolerance_m, options.goal_yaw_tolerance_rad},
+                                            tol);
+      for (const std::string& e : errors) std::cerr << kProgram << ": violation: " << e << "\n";
+      if (!errors.empty()) return kExitNoPlan;
+      log("validated: every constraint holds");
+    }
+    return plan.reaches_goal ? kExitReached : kExitNoPlan;
+  } catch (const mfp::InputError& e) {
+    std::cerr << kProgram << ": " << e.what() << "\n";
+    return kExitBadInput;
+  }
+}

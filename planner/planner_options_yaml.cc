@@ -1,0 +1,66 @@
+#include "planner/planner_options_yaml.h"
+
+#include <cmath>
+
+#include "planner/check.h"
+
+namespace mfp {
+
+void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options) {
+  RejectUnknownKeys(node, ctx,
+                    {"max_steps", "window", "time_limit", "goal_tolerance", "goal_yaw_tolerance",
+                     "start_tolerance", "yaw_segment", "yaw_margin", "region_encoding",
+                     "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
+                     "node_selection", "branching", "rounding_frequency"});
+  PlannerOptions& o = *options;
+  o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
+  o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
+  o.default_time_limit_s = OptionalDouble(node, ctx, "time_limit", 1e-3, 3600).value_or(o.default_time_limit_s);
+  o.goal_tolerance_m = OptionalDouble(node, ctx, "goal_tolerance", 1e-4, 10).value_or(o.goal_tolerance_m);
+  o.goal_yaw_tolerance_rad =
+      OptionalDouble(node, ctx, "goal_yaw_tolerance", 1e-4, M_PI).value_or(o.goal_yaw_tolerance_rad);
+  o.start_tolerance_m = OptionalDouble(node, ctx, "start_tolerance", 0, 1).value_or(o.start_tolerance_m);
+  FormulationOptions& f = o.formulation;
+  f.yaw_segment_rad = OptionalDouble(node, ctx, "yaw_segment", 0.02, M_PI).value_or(f.yaw_segment_rad);
+  f.yaw_margin_rad = OptionalDouble(node, ctx, "yaw_margin", 0, M_PI).value_or(f.yaw_margin_rad);
+  if (const auto enc = OptionalString(node, ctx, "region_encoding")) {
+    if (*enc == "big_m") {
+      f.region_encoding = RegionEncoding::kBigM;
+    } else if (*enc == "convex_hull") {
+      f.region_encoding = RegionEncoding::kConvexHull;
+    } else {
+      throw InputError(ctx.Child("region_encoding").Where() + ": '" + *enc +
+                       "' is not one of big_m, convex_hull");
+    }
+  }
+  f.prune_unreachable_regions =
+      OptionalBool(node, ctx, "prune_unreachable_regions").value_or(f.prune_unreachable_regions);
+  f.monotone_trimming = OptionalBool(node, ctx, "monotone_trimming").value_or(f.monotone_trimming);
+  BranchAndBoundOptions& b = o.branch_and_bound;
+  b.max_nodes = OptionalInt(node, ctx, "max_nodes", 1, 10000000).value_or(b.max_nodes);
+  b.relative_gap = OptionalDouble(node, ctx, "relative_gap", 0, 1).value_or(b.relative_gap);
+  b.rounding_frequency = OptionalInt(node, ctx, "rounding_frequency", 0, 1000000).value_or(b.rounding_frequency);
+  if (const auto sel = OptionalString(node, ctx, "node_selection")) {
+    if (*sel == "best_bound") {
+      b.node_selection = NodeSelection::kBestBound;
+    } else if (*sel == "depth_first") {
+      b.node_selection = NodeSelection::kDepthFirst;
+    } else if (*sel == "dive_then_best_bound") {
+      b.node_selection = NodeSelection::kDiveThenBestBound;
+    } else {
+      throw InputError(ctx.Child("node_selection").Where() + ": '" + *sel +
+                       "' is not one of best_bound, depth_first, dive_then_best_bound");
+    }
+  }
+  if (const auto br = OptionalString(node, ctx, "branching")) {
+    if (*br == "most_fractional") {
+      b.branching = BranchingRule::kMostFractional;
+    } else if (*br == "sos1") {
+      b.branching = BranchingRule::kSos1Split;
+    } else {
+      throw InputError(ctx.Child("branching").Where() + ": '" + *br + "' is not one of most_fractional, sos1");
+    }
+  }
+}
+
+}  // namespace mfp
