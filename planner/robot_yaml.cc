@@ -1,9 +1,11 @@
 #include "planner/robot_yaml.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "planner/check.h"
+#include "planner/urdf_reader.h"
 #include "planner/yaml_fields.h"
 
 namespace mfp {
@@ -34,20 +36,147 @@ std::vector<int> ReadGait(const YAML::Node& node, const YamlContext& ctx,
   return gait;
 }
 
+std::string Fixed4(double value) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(4);
+  out << value;
+  return out.str();
+}
+
+// Replaces the provenance line of `key` ("key = ...") or appends one.
+void SetProvenance(RobotModel* robot, const std::string& key, const std::string& line) {
+  for (std::string& existing : robot->provenance) {
+    if (existing.rfind(key + " =", 0) == 0) {
+      existing = line;
+      return;
+    }
+  }
+  robot->provenance.push_back(line);
+}
+
+void ReadWeights(const YAML::Node& root, const YamlContext& ctx, PlannerWeights* weights) {
+  if (!root["weights"]) return;
+  const YAML::Node w = root["weights"];
+  const YamlContext wctx = ctx.Child("weights");
+  RejectUnknownKeys(w, wctx, {"goal_position", "goal_yaw", "trim_step", "displacement"});
+  weights->goal_position =
+      OptionalDouble(w, wctx, "goal_position", 1e-6, 1e9).value_or(weights->goal_position);
+  weights->goal_yaw = OptionalDouble(w, wctx, "goal_yaw", 0.0, 1e9).value_or(weights->goal_yaw);
+  weights->trim_step =
+      OptionalDouble(w, wctx, "trim_step", -1e9, 0.0).value_or(weights->trim_step);
+  weights->displacement =
+      OptionalDouble(w, wctx, "displacement", 0.0, 1e9).value_or(weights->displacement);
+}
+
+// The URDF form: derive, then apply the YAML's values as visible overrides.
+RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const std::string& path,
+                        RobotDerivation* derivation_out) {
+  if (root["legs"]) {
+    throw InputError(ctx.Child("legs").Where() +
+                     ": not allowed with urdf (the URDF gives the legs; name the foot links "
+                     "with feet: [...])");
+  }
+  const std::string urdf_path =
+      ResolveRelative(path, ReadString(root["urdf"], ctx.Child("urdf")));
+  std::vector<std::string> feet;
+  if (root["feet"]) {
+    const YamlContext fctx = ctx.Child("feet");
+    if (!root["feet"].IsSequence() || root["feet"].size() == 0) {
+      throw InputError(fctx.Where() + ": expected a non-empty list of link names");
+    }
+    for (size_t i = 0; i < root["feet"].size(); ++i) {
+      feet.push_back(ReadString(root["feet"][i], fctx.Index(i)));
+    }
+  }
+  DerivationOptions options;
+  options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
+  RobotDerivation derivation = DeriveRobot(ReadUrdfRobot(urdf_path, feet), options);
+  RobotModel& robot = derivation.model;
+  const std::string file = ctx.file;
+  if (options.stance_height_m) {
+    SetProvenance(&robot, "stance_height",
+                  "stance_height = " + Fixed4(robot.stance_height_m) + " m: given in " + file +
+                      " (not derived)");
+  }
+  if (const auto name = OptionalString(root, ctx, "name")) robot.name = *name;
+
+  struct Override {
+    const char* key;
+    double* value;
+    double min, max;
+    const char* unit;
+  };
+  const Override overrides[] = {
+      {"d_lim", &robot.d_lim_m, 1e-4, 10.0, "m"},
+      {"l_bnd", &robot.l_bnd_m, 1e-4, 10.0, "m"},
+      {"dz_max", &robot.dz_max_m, 1e-4, 10.0, "m"},
+      {"max_yaw_change", &robot.max_yaw_change_rad, 1e-3, M_PI, "rad"},
+      {"foot_radius", &robot.foot_radius_m, 0.0, 1.0, "m"},
+      {"max_slope", &robot.max_slope_rad, 0.0, M_PI / 2, "rad"},
+  };
+  const double derived_d_lim = robot.d_lim_m;
+  for (const Override& o : overrides) {
+    const auto value = OptionalDouble(root, ctx, o.key, o.min, o.max);
+    if (!value) continue;
+    const std::string derived = Fixed4(*o.value);
+    *o.value = *value;
+    SetProvenance(&robot, o.key,
+                  std::string(o.key) + " = " + Fixed4(*value) + " " + o.unit + ": override in " +
+                      file + " (derived " + derived + " " + o.unit + ")");
+  }
+  if (robot.d_lim_m != derived_d_lim) {
+    // Values derived from d_lim follow its override unless overridden themselves.
+    if (!root["l_bnd"]) {
+      const double fraction = options.l_bnd_fraction;
+      robot.l_bnd_m = fraction * robot.d_lim_m;
+      SetProvenance(&robot, "l_bnd",
+                    "l_bnd = " + Fixed4(robot.l_bnd_m) + " m: derived, " + Fixed4(fraction) +
+                        " * d_lim (the override in " + file + ")");
+    }
+    if (!root["max_yaw_change"]) {
+      double max_leg = 0.0;
+      for (const LegModel& leg : robot.legs) {
+        max_leg = std::max(max_leg, leg.nominal_offset_body_m.norm());
+      }
+      robot.max_yaw_change_rad = 2.0 * std::asin(std::min(1.0, robot.d_lim_m / (2.0 * max_leg)));
+      SetProvenance(&robot, "max_yaw_change",
+                    "max_yaw_change = " + Fixed4(robot.max_yaw_change_rad) +
+                        " rad: derived, 2 asin(d_lim / (2 * " + Fixed4(max_leg) +
+                        " m)) with the d_lim override in " + file);
+    }
+  }
+  if (root["gait"]) {
+    robot.gait = ReadGait(root["gait"], ctx.Child("gait"), robot.legs);
+    std::string names;
+    for (int g : robot.gait) names += (names.empty() ? "" : ", ") + robot.legs[g].name;
+    SetProvenance(&robot, "gait", "gait = [" + names + "]: override in " + file);
+  }
+  if (root["weights"]) {
+    ReadWeights(root, ctx, &robot.weights);
+    SetProvenance(&robot, "weights", "weights: from " + file);
+  }
+  ValidateRobotModel(robot);
+  RobotModel result = robot;
+  if (derivation_out != nullptr) *derivation_out = std::move(derivation);
+  return result;
+}
+
 }  // namespace
 
-RobotModel LoadRobotYaml(const std::string& path) {
+RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RejectUnknownKeys(root, ctx,
-                    {"name", "urdf", "legs", "gait", "stance_height", "foot_radius", "d_lim",
-                     "l_bnd", "dz_max", "max_yaw_change", "max_slope", "weights"});
+                    {"name", "urdf", "feet", "legs", "gait", "stance_height", "foot_radius",
+                     "d_lim", "l_bnd", "dz_max", "max_yaw_change", "max_slope", "weights"});
+  if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation);
+  if (derivation != nullptr) *derivation = RobotDerivation{};
+  if (root["feet"]) {
+    throw InputError(ctx.Child("feet").Where() + ": only allowed together with urdf");
+  }
   RobotModel robot;
   robot.name = OptionalString(root, ctx, "name").value_or("robot");
-  if (root["urdf"]) {
-    throw InputError(ctx.Child("urdf").Where() +
-                     ": URDF robots are not supported by this build (give legs and limits)");
-  }
   if (!root["legs"] || !root["legs"].IsSequence() || root["legs"].size() == 0) {
     throw InputError(ctx.Child("legs").Where() + ": expected a non-empty list of legs");
   }
@@ -102,19 +231,7 @@ RobotModel LoadRobotYaml(const std::string& path) {
                        std::to_string(f.min) + ", " + std::to_string(f.max) + "] " + f.unit + ")");
     }
   }
-  if (root["weights"]) {
-    const YAML::Node w = root["weights"];
-    const YamlContext wctx = ctx.Child("weights");
-    RejectUnknownKeys(w, wctx, {"goal_position", "goal_yaw", "trim_step", "displacement"});
-    robot.weights.goal_position =
-        OptionalDouble(w, wctx, "goal_position", 1e-6, 1e9).value_or(robot.weights.goal_position);
-    robot.weights.goal_yaw =
-        OptionalDouble(w, wctx, "goal_yaw", 0.0, 1e9).value_or(robot.weights.goal_yaw);
-    robot.weights.trim_step =
-        OptionalDouble(w, wctx, "trim_step", -1e9, 0.0).value_or(robot.weights.trim_step);
-    robot.weights.displacement =
-        OptionalDouble(w, wctx, "displacement", 0.0, 1e9).value_or(robot.weights.displacement);
-  }
+  ReadWeights(root, ctx, &robot.weights);
   for (size_t k = 0; k < robot.legs.size(); ++k) {
     const Eigen::Vector2d o = robot.legs[k].nominal_offset_body_m;
     std::ostringstream out;

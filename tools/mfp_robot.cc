@@ -1,0 +1,203 @@
+// mfp-robot FILE.urdf|FILE.yaml [--json FILE] [--svg FILE]: prints the robot model the
+// planner would use (legs, hips, nominal offsets, d_lim, l_bnd, dz_max, gait) with where
+// each value came from; --json writes the plan JSON's robot object (`-` = stdout), --svg
+// draws the body, hips, nominal stance and each foot's reachable footprint with its
+// inscribed square. Exit 0 on success, 2 on bad input.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "planner/check.h"
+#include "planner/robot_json.h"
+#include "planner/robot_loader.h"
+
+namespace {
+
+std::string Fixed(double value, int precision = 4) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), "%.*f", precision, value);
+  return buffer;
+}
+
+void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation,
+                std::ostream& out) {
+  out << "robot " << robot.name << ": " << robot.num_legs() << " legs\n";
+  out << "  #  name              hip x     hip y     hip z     o_x       o_y       L_leg     "
+         "phi[rad]";
+  const bool derived = derivation.legs.size() == robot.legs.size();
+  if (derived) out << "  square    dz_up     dz_down";
+  out << "\n";
+  for (int k = 0; k < robot.num_legs(); ++k) {
+    const mfp::LegModel& leg = robot.legs[k];
+    const Eigen::Vector2d o = leg.nominal_offset_body_m;
+    char line[256];
+    std::snprintf(line, sizeof(line), "  %-2d %-16s %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f",
+                  k, leg.name.c_str(), leg.hip_body_m.x(), leg.hip_body_m.y(),
+                  leg.hip_body_m.z(), o.x(), o.y(), o.norm(), std::atan2(o.y(), o.x()));
+    out << line;
+    if (derived) {
+      const mfp::LegDerivation& d = derivation.legs[k];
+      std::snprintf(line, sizeof(line), " %9.4f %9.4f %9.4f", d.square_half_side_m, d.dz_up_m,
+                    d.dz_down_m);
+      out << line;
+    }
+    out << "\n";
+  }
+  std::string gait;
+  for (int g : robot.gait) gait += (gait.empty() ? "" : " -> ") + robot.legs[g].name;
+  out << "  gait:           " << gait << "\n";
+  out << "  stance height:  " << Fixed(robot.stance_height_m) << " m\n";
+  out << "  d_lim:          " << Fixed(robot.d_lim_m) << " m\n";
+  out << "  l_bnd:          " << Fixed(robot.l_bnd_m) << " m\n";
+  out << "  dz_max:         " << Fixed(robot.dz_max_m) << " m\n";
+  out << "  max yaw change: " << Fixed(robot.max_yaw_change_rad) << " rad\n";
+  out << "  foot radius:    " << Fixed(robot.foot_radius_m) << " m\n";
+  out << "  max slope:      " << Fixed(robot.max_slope_rad) << " rad\n";
+  out << "where each value comes from:\n";
+  for (const std::string& line : robot.provenance) out << "  " << line << "\n";
+}
+
+// SVG in body coordinates, x forward drawn to the right, y left drawn up.
+std::string RobotSvg(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation) {
+  Eigen::Vector2d lo(-0.05, -0.05), hi(0.05, 0.05);
+  const bool derived = derivation.legs.size() == robot.legs.size();
+  const Eigen::Vector2d mean_feet = [&] {
+    Eigen::Vector2d m = Eigen::Vector2d::Zero();
+    if (!derived) return m;
+    for (const auto& d : derivation.legs) m += d.nominal_foot_body_m.head<2>() / robot.num_legs();
+    return m;
+  }();
+  auto extend = [&](const Eigen::Vector2d& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  };
+  for (int k = 0; k < robot.num_legs(); ++k) {
+    extend(robot.legs[k].hip_body_m.head<2>());
+    extend(robot.legs[k].nominal_offset_body_m + mean_feet);
+    if (!derived) continue;
+    const mfp::FootprintGrid& g = derivation.legs[k].footprint;
+    for (int iy = 0; iy < g.ny(); ++iy) {
+      for (int ix = 0; ix < g.nx(); ++ix) {
+        if (g.Occupied(ix, iy)) extend(g.CellCentre(ix, iy));
+      }
+    }
+  }
+  const double margin = 0.05 * (hi - lo).maxCoeff() + 0.01;
+  lo -= Eigen::Vector2d::Constant(margin);
+  hi += Eigen::Vector2d::Constant(margin);
+  const double scale = 800.0 / (hi - lo).maxCoeff();  // pixels per metre
+  auto X = [&](double x) { return Fixed((x - lo.x()) * scale, 1); };
+  auto Y = [&](double y) { return Fixed((hi.y() - y) * scale, 1); };
+  std::ostringstream svg;
+  const double width = (hi.x() - lo.x()) * scale, height = (hi.y() - lo.y()) * scale;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << Fixed(width, 0) << "\" height=\""
+      << Fixed(height, 0) << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+  svg << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  svg << "<text x=\"8\" y=\"16\">" << robot.name << ": d_lim " << Fixed(robot.d_lim_m, 3)
+      << " m, l_bnd " << Fixed(robot.l_bnd_m, 3) << " m, dz_max " << Fixed(robot.dz_max_m, 3)
+      << " m, stance " << Fixed(robot.stance_height_m, 3) << " m</text>\n";
+  const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                           "#9467bd", "#8c564b", "#e377c2", "#17becf"};
+  // Footprints: occupied cells merged into runs per row.
+  for (int k = 0; derived && k < robot.num_legs(); ++k) {
+    const mfp::FootprintGrid& g = derivation.legs[k].footprint;
+    const double c = g.cell_m();
+    svg << "<g fill=\"" << colours[k % 8] << "\" fill-opacity=\"0.18\">\n";
+    for (int iy = 0; iy < g.ny(); ++iy) {
+      for (int ix = 0; ix < g.nx();) {
+        if (!g.Occupied(ix, iy)) {
+          ++ix;
+          continue;
+        }
+        int end = ix;
+        while (end < g.nx() && g.Occupied(end, iy)) ++end;
+        const Eigen::Vector2d a = g.CellCentre(ix, iy) - Eigen::Vector2d::Constant(0.5 * c);
+        svg << "<rect x=\"" << X(a.x()) << "\" y=\"" << Y(a.y() + c) << "\" width=\""
+            << Fixed((end - ix) * c * scale, 1) << "\" height=\"" << Fixed(c * scale, 1)
+            << "\"/>\n";
+        ix = end;
+      }
+    }
+    svg << "</g>\n";
+  }
+  // Body outline: polygon through the hips in angular order.
+  std::vector<Eigen::Vector2d> hips;
+  for (const auto& leg : robot.legs) hips.push_back(leg.hip_body_m.head<2>());
+  std::sort(hips.begin(), hips.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return std::atan2(a.y(), a.x()) < std::atan2(b.y(), b.x());
+  });
+  svg << "<polygon fill=\"#dddddd\" stroke=\"black\" points=\"";
+  for (const auto& h : hips) svg << X(h.x()) << "," << Y(h.y()) << " ";
+  svg << "\"/>\n";
+  svg << "<line x1=\"" << X(0) << "\" y1=\"" << Y(0) << "\" x2=\"" << X(0.3 * (hi.x() - 0))
+      << "\" y2=\"" << Y(0) << "\" stroke=\"black\" stroke-dasharray=\"4 3\"/>\n";
+  for (int k = 0; k < robot.num_legs(); ++k) {
+    const auto& leg = robot.legs[k];
+    const Eigen::Vector2d foot = leg.nominal_offset_body_m + mean_feet;
+    const Eigen::Vector2d hip = leg.hip_body_m.head<2>();
+    const char* colour = colours[k % 8];
+    svg << "<line x1=\"" << X(hip.x()) << "\" y1=\"" << Y(hip.y()) << "\" x2=\"" << X(foot.x())
+        << "\" y2=\"" << Y(foot.y()) << "\" stroke=\"" << colour << "\"/>\n";
+    svg << "<circle cx=\"" << X(hip.x()) << "\" cy=\"" << Y(hip.y())
+        << "\" r=\"4\" fill=\"black\"/>\n";
+    const double d = robot.d_lim_m, l = robot.l_bnd_m;
+    svg << "<rect x=\"" << X(foot.x() - d) << "\" y=\"" << Y(foot.y() + d) << "\" width=\""
+        << Fixed(2 * d * scale, 1) << "\" height=\"" << Fixed(2 * d * scale, 1)
+        << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"2\"/>\n";
+    svg << "<rect x=\"" << X(foot.x() - l) << "\" y=\"" << Y(foot.y() + l) << "\" width=\""
+        << Fixed(2 * l * scale, 1) << "\" height=\"" << Fixed(2 * l * scale, 1)
+        << "\" fill=\"none\" stroke=\"" << colour << "\" stroke-dasharray=\"5 3\"/>\n";
+    svg << "<circle cx=\"" << X(foot.x()) << "\" cy=\"" << Y(foot.y()) << "\" r=\"5\" fill=\""
+        << colour << "\"/>\n";
+    svg << "<text x=\"" << X(foot.x()) << "\" y=\"" << Y(foot.y()) << "\" dx=\"7\" dy=\"-7\">"
+        << k << " " << leg.name << "</text>\n";
+  }
+  svg << "<text x=\"8\" y=\"" << Fixed(height - 8, 0)
+      << "\">shaded: reachable footprint at stance height; solid square: d_lim; dashed: "
+         "l_bnd; dots: nominal feet; black: hips</text>\n";
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text;
+    return;
+  }
+  std::ofstream out(path);
+  if (!out) throw mfp::InputError(path + ": cannot be written");
+  out << text;
+  if (!out) throw mfp::InputError(path + ": write failed");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Prints the robot model mfp derives from a URDF or robot YAML."};
+  std::string robot_file, json_file, svg_file;
+  app.add_option("FILE", robot_file, "robot URDF or YAML")->required();
+  app.add_option("--json", json_file, "write the robot JSON here ('-' = stdout)");
+  app.add_option("--svg", svg_file, "draw body, hips, nominal stance and footprints here");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    mfp::RobotDerivation derivation;
+    const mfp::RobotModel robot = mfp::LoadRobot(robot_file, &derivation);
+    if (json_file != "-") PrintTable(robot, derivation, std::cout);
+    if (!json_file.empty()) WriteText(json_file, mfp::RobotToJson(robot).dump(2) + "\n");
+    if (!svg_file.empty()) WriteText(svg_file, RobotSvg(robot, derivation));
+  } catch (const mfp::InputError& e) {
+    std::cerr << "mfp-robot: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
