@@ -57,19 +57,19 @@ void WriteInt32(std::vector<uint8_t>* bytes, size_t at, int32_t v) {
 size_t NumLegsOffset(size_t name_length) { return 8 + 8 + 8 + 4 + name_length + 1; }
 
 TEST(LcmTypesTest, StatusConstantsMirrorSolveStatus) {
-  EXPECT_EQ(plan_t::STATUS_OPTIMAL, static_cast<int>(SolveStatus::kOptimal));
-  EXPECT_EQ(plan_t::STATUS_FEASIBLE, static_cast<int>(SolveStatus::kFeasible));
-  EXPECT_EQ(plan_t::STATUS_TIME_LIMIT, static_cast<int>(SolveStatus::kTimeLimit));
-  EXPECT_EQ(plan_t::STATUS_INFEASIBLE, static_cast<int>(SolveStatus::kInfeasible));
-  EXPECT_EQ(plan_t::STATUS_INVALID_REQUEST, static_cast<int>(SolveStatus::kInvalidRequest));
-  EXPECT_EQ(plan_t::STATUS_NO_MAP, static_cast<int>(SolveStatus::kNoMap));
-  EXPECT_EQ(plan_t::STATUS_INVALID_START, static_cast<int>(SolveStatus::kInvalidStart));
-  EXPECT_EQ(plan_t::STATUS_INVALID_GOAL, static_cast<int>(SolveStatus::kInvalidGoal));
-  EXPECT_EQ(plan_t::STATUS_INTERNAL_ERROR, static_cast<int>(SolveStatus::kInternalError));
-  EXPECT_EQ(plan_t::STATUS_NO_SOLUTION, static_cast<int>(SolveStatus::kNoSolution));
-  EXPECT_EQ(plan_t::STATUS_DROPPED, static_cast<int>(SolveStatus::kDropped));
+  EXPECT_EQ(+plan_t::STATUS_OPTIMAL, static_cast<int>(SolveStatus::kOptimal));
+  EXPECT_EQ(+plan_t::STATUS_FEASIBLE, static_cast<int>(SolveStatus::kFeasible));
+  EXPECT_EQ(+plan_t::STATUS_TIME_LIMIT, static_cast<int>(SolveStatus::kTimeLimit));
+  EXPECT_EQ(+plan_t::STATUS_INFEASIBLE, static_cast<int>(SolveStatus::kInfeasible));
+  EXPECT_EQ(+plan_t::STATUS_INVALID_REQUEST, static_cast<int>(SolveStatus::kInvalidRequest));
+  EXPECT_EQ(+plan_t::STATUS_NO_MAP, static_cast<int>(SolveStatus::kNoMap));
+  EXPECT_EQ(+plan_t::STATUS_INVALID_START, static_cast<int>(SolveStatus::kInvalidStart));
+  EXPECT_EQ(+plan_t::STATUS_INVALID_GOAL, static_cast<int>(SolveStatus::kInvalidGoal));
+  EXPECT_EQ(+plan_t::STATUS_INTERNAL_ERROR, static_cast<int>(SolveStatus::kInternalError));
+  EXPECT_EQ(+plan_t::STATUS_NO_SOLUTION, static_cast<int>(SolveStatus::kNoSolution));
+  EXPECT_EQ(+plan_t::STATUS_DROPPED, static_cast<int>(SolveStatus::kDropped));
   // Every SolveStatus has a constant: the last one is the highest value.
-  EXPECT_EQ(ToString(static_cast<SolveStatus>(plan_t::STATUS_DROPPED)), "dropped");
+  EXPECT_EQ(ToString(static_cast<SolveStatus>(+plan_t::STATUS_DROPPED)), "dropped");
 }
 
 TEST(LcmTypesTest, WireWalkersMatchTheGeneratedEncoders) {

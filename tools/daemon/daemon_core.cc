@@ -255,9 +255,10 @@ status_t DaemonCore::StatusMessage() const {
   std::lock_guard<std::mutex> lock(mutex_);
   status_t s;
   s.utime = now;
-  s.state = regions_ == nullptr ? status_t::STATE_NO_MAP
-            : planning_         ? status_t::STATE_PLANNING
-                                : status_t::STATE_IDLE;
+  // Copies of the constants: lcm-gen declares them without a definition to bind to.
+  const int8_t no_map = status_t::STATE_NO_MAP, planning = status_t::STATE_PLANNING,
+               idle = status_t::STATE_IDLE;
+  s.state = regions_ == nullptr ? no_map : planning_ ? planning : idle;
   s.requests = counters_.requests;
   s.plans = counters_.plans;
   s.rejected_messages = counters_.rejected_messages;

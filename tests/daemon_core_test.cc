@@ -1,0 +1,433 @@
+// The daemon core in-process: replies for bad requests, the bounded newest-first queue,
+// counters for unreadable messages, and the live runner over memq:// (bad payloads,
+// heartbeat during a slow plan). A fake planner and a fake map reader keep it fast;
+// daemon_replay_test runs the real ones.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "lcmtypes/lcm_transport.h"
+#include "lcmtypes/message_guard.h"
+#include "mfp/region_set_t.hpp"
+#include "mfp/terrain_map_t.hpp"
+#include "planner/check.h"
+#include "tools/daemon/daemon_core.h"
+#include "tools/daemon/daemon_runner.h"
+#include "tools/daemon/daemon_setup.h"
+
+namespace mfp {
+namespace {
+
+struct Recorded {
+  std::string channel;
+  std::vector<uint8_t> bytes;
+};
+
+class RecordingPublisher final : public Publisher {
+ public:
+  bool Publish(const std::string& channel, const void* data, size_t size) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto* p = static_cast<const uint8_t*>(data);
+    messages_.push_back({channel, std::vector<uint8_t>(p, p + size)});
+    return true;
+  }
+  template <class Message>
+  std::vector<Message> All(const std::string& channel) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<Message> out;
+    for (const Recorded& r : messages_) {
+      if (r.channel != channel) continue;
+      Message m;
+      EXPECT_EQ(DecodeGuarded(r.bytes.data(), r.bytes.size(), 1 << 24, &m), "");
+      out.push_back(m);
+    }
+    return out;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<Recorded> messages_;
+};
+
+// Test maps: "flat" is one 4 m square at z = 0; anything else is unreadable.
+std::vector<ConvexRegion> FakeMap(const std::string& bytes, const std::string& /*format*/,
+                                  const std::string& what) {
+  if (bytes != "flat") throw InputError(what + ": not a test map");
+  return {MakeRegionFromPolygon(
+      0, {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}, 0.01)};
+}
+
+// Plans nothing: returns the start stance as an optimal plan.
+Plan FakePlan(const RobotModel& robot, const std::vector<ConvexRegion>& /*regions*/,
+              const PlanRequest& request, const PlannerOptions& /*options*/) {
+  Plan plan;
+  plan.status = SolveStatus::kOptimal;
+  plan.reaches_goal = true;
+  plan.solve_time_s = 0.001;
+  for (int i = 0; i < robot.num_legs(); ++i) {
+    Footstep f;
+    f.index = i;
+    f.leg = robot.gait[static_cast<size_t>(i)];
+    f.position_world_m = request.start_feet_world_m[static_cast<size_t>(f.leg)];
+    f.region_id = 0;
+    plan.footsteps.push_back(f);
+  }
+  return plan;
+}
+
+std::shared_ptr<const DaemonSetup> TestSetup(int queue_size) {
+  DaemonConfig config;
+  config.file = "test";
+  config.robot_files = {std::string(MFP_SOURCE_DIR) + "/config/robots/hexapod.yaml",
+                        std::string(MFP_SOURCE_DIR) + "/config/robots/littledog.yaml"};
+  config.default_robot = "hexapod";
+  config.limits.queue_size = queue_size;
+  config.limits.max_request_bytes = 4096;
+  config.limits.max_map_bytes = 1 << 20;
+  return std::make_shared<const DaemonSetup>(LoadDaemonSetup(config));
+}
+
+// Nominal stance of a robot on flat ground at the origin, in leg order.
+plan_request_t Request(const RobotModel& robot, int64_t id) {
+  plan_request_t m;
+  m.utime = 1;
+  m.request_id = id;
+  m.robot = "";
+  m.num_legs = robot.num_legs();
+  for (const LegModel& leg : robot.legs)
+    m.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
+  m.goal_x = 0.5;
+  m.goal_y = 0.0;
+  m.goal_yaw = 0.0;
+  m.max_steps = 12;
+  m.time_limit_s = 1.0;
+  return m;
+}
+
+template <class Message>
+std::vector<uint8_t> Encode(const Message& m) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+terrain_map_t MapMessage(const std::string& content) {
+  terrain_map_t m;
+  m.utime = 99;
+  m.frame = "world";
+  m.format = "bt";
+  m.data.assign(content.begin(), content.end());
+  m.num_bytes = static_cast<int32_t>(m.data.size());
+  return m;
+}
+
+RawMessage Raw(const std::string& channel, const std::vector<uint8_t>& bytes) {
+  RawMessage raw;
+  raw.channel = channel;
+  raw.data = bytes.data();
+  raw.size = bytes.size();
+  return raw;
+}
+
+// The malformed payloads of the issue, for the request channel.
+std::vector<std::vector<uint8_t>> BadPayloads(const RobotModel& robot) {
+  std::vector<std::vector<uint8_t>> bad;
+  const auto valid = Encode(Request(robot, 500));
+  bad.emplace_back(valid.begin(), valid.begin() + static_cast<long>(valid.size() / 2));  // truncated
+  std::mt19937 rng(1);
+  std::vector<uint8_t> random(200);
+  for (auto& b : random) b = static_cast<uint8_t>(rng());
+  bad.push_back(random);  // random
+  auto fingerprint = valid;
+  fingerprint[0] ^= 0xff;
+  bad.push_back(fingerprint);  // wrong fingerprint
+  plan_request_t negative = Request(robot, 501);
+  negative.num_legs = -1;  // the encoder writes the length and no elements
+  negative.start_feet.clear();
+  bad.push_back(Encode(negative));
+  bad.emplace_back(8192, 0);  // oversized
+  bad.emplace_back();         // empty
+  return bad;
+}
+
+class DaemonCoreTest : public ::testing::Test {
+ protected:
+  void Make(int queue_size, PlanFunction plan = FakePlan) {
+    setup_ = TestSetup(queue_size);
+    core_ = std::make_unique<DaemonCore>(setup_, FakeMap, std::move(plan), publisher_,
+                                         [this] { return ++now_; });
+  }
+  void Send(const plan_request_t& m) {
+    const auto bytes = Encode(m);
+    core_->OnMessage(Raw(kPlanRequestChannel, bytes));
+  }
+  void SendMap(const std::string& content) {
+    const auto bytes = Encode(MapMessage(content));
+    core_->OnMessage(Raw(kTerrainMapChannel, bytes));
+  }
+  const RobotModel& Hexapod() const { return setup_->robots.at("hexapod"); }
+  std::vector<plan_t> Replies() { return publisher_.All<plan_t>(kPlanChannel); }
+
+  RecordingPublisher publisher_;
+  std::shared_ptr<const DaemonSetup> setup_;
+  std::unique_ptr<DaemonCore> core_;
+  int64_t now_ = 0;
+};
+
+TEST_F(DaemonCoreTest, RequestBeforeAnyMapIsAnsweredNoMap) {
+  Make(4);
+  Send(Request(Hexapod(), 7));
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].request_id, 7);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_NO_MAP);
+  EXPECT_NE(replies[0].message.find("no terrain map"), std::string::npos);
+  EXPECT_FALSE(core_->PlanNext());
+}
+
+TEST_F(DaemonCoreTest, MapPublishesRegionsAndRequestIsPlanned) {
+  Make(4);
+  SendMap("flat");
+  const auto sets = publisher_.All<region_set_t>(kRegionsChannel);
+  ASSERT_EQ(sets.size(), 1u);
+  EXPECT_EQ(sets[0].num_regions, 1);
+  EXPECT_EQ(sets[0].map_utime, 99);
+  Send(Request(Hexapod(), 8));
+  EXPECT_TRUE(core_->PlanNext());
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].request_id, 8);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_OPTIMAL);
+  EXPECT_EQ(replies[0].num_steps, 6);
+  EXPECT_EQ(replies[0].robot, "hexapod");
+  EXPECT_EQ(replies[0].map_utime, 99);
+}
+
+TEST_F(DaemonCoreTest, BadRequestsGetAStatusThatNamesTheProblem) {
+  Make(4);
+  SendMap("flat");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  struct Case {
+    std::function<void(plan_request_t*)> change;
+    int8_t status;
+    std::string names;
+  };
+  const std::vector<Case> cases = {
+      {[&](plan_request_t* m) { m->goal_x = nan; }, plan_t::STATUS_INVALID_REQUEST, "goal_x = nan"},
+      {[&](plan_request_t* m) { m->start_feet[2][0] = inf; }, plan_t::STATUS_INVALID_REQUEST,
+       "start_feet[2][0] = inf"},
+      {[&](plan_request_t* m) { m->time_limit_s = -inf; }, plan_t::STATUS_INVALID_REQUEST,
+       "time_limit_s = -inf"},
+      {[&](plan_request_t* m) {
+         m->num_legs = 4;
+         m->start_feet.resize(4);
+       },
+       plan_t::STATUS_INVALID_REQUEST, "num_legs = 4 but robot 'hexapod' has 6 legs"},
+      {[&](plan_request_t* m) { m->robot = "spot"; }, plan_t::STATUS_INVALID_REQUEST,
+       "unknown robot 'spot'"},
+      {[&](plan_request_t* m) { m->max_steps = 100000; }, plan_t::STATUS_INVALID_REQUEST,
+       "max_steps = 100000"},
+      {[&](plan_request_t* m) { m->max_steps = -1; }, plan_t::STATUS_INVALID_REQUEST,
+       "max_steps = -1"},
+      {[&](plan_request_t* m) { m->time_limit_s = 1000; }, plan_t::STATUS_INVALID_REQUEST,
+       "time_limit_s = 1000"},
+      {[&](plan_request_t* m) { m->start_feet[3] = {5.0, 0.0, 0.0}; }, plan_t::STATUS_INVALID_START,
+       "leg 3 (hind)"},
+      {[&](plan_request_t* m) { m->start_feet[1][2] = 0.3; }, plan_t::STATUS_INVALID_START,
+       "leg 1 (front_left)"},
+      {[&](plan_request_t* m) { m->goal_x = 40.0; }, plan_t::STATUS_INVALID_GOAL, "goal (40, 0)"},
+  };
+  for (size_t i = 0; i < cases.size(); ++i) {
+    plan_request_t m = Request(Hexapod(), static_cast<int64_t>(100 + i));
+    cases[i].change(&m);
+    Send(m);
+  }
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), cases.size());
+  for (size_t i = 0; i < cases.size(); ++i) {
+    EXPECT_EQ(replies[i].request_id, static_cast<int64_t>(100 + i));
+    EXPECT_EQ(replies[i].status, cases[i].status) << replies[i].message;
+    EXPECT_NE(replies[i].message.find(cases[i].names), std::string::npos)
+        << "'" << replies[i].message << "' does not name '" << cases[i].names << "'";
+  }
+  EXPECT_FALSE(core_->PlanNext());
+  EXPECT_EQ(core_->counters().invalid_requests, static_cast<int64_t>(cases.size()));
+  EXPECT_EQ(core_->counters().requests, static_cast<int64_t>(cases.size()));
+}
+
+TEST_F(DaemonCoreTest, OtherRobotByName) {
+  Make(4);
+  SendMap("flat");
+  plan_request_t m = Request(setup_->robots.at("littledog"), 9);
+  m.robot = "littledog";
+  Send(m);
+  ASSERT_TRUE(core_->PlanNext());
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_OPTIMAL) << replies[0].message;
+  EXPECT_EQ(replies[0].num_steps, 4);
+}
+
+TEST_F(DaemonCoreTest, FullQueueDropsTheOldestWithAReplyAndServesNewestFirst) {
+  Make(2);
+  SendMap("flat");
+  for (int64_t id = 1; id <= 4; ++id) Send(Request(Hexapod(), id));
+  // Requests 1 and 2 were evicted by 3 and 4.
+  auto replies = Replies();
+  ASSERT_EQ(replies.size(), 2u);
+  EXPECT_EQ(replies[0].request_id, 1);
+  EXPECT_EQ(replies[1].request_id, 2);
+  for (const plan_t& r : replies) {
+    EXPECT_EQ(r.status, +plan_t::STATUS_DROPPED);
+    EXPECT_NE(r.message.find("queue"), std::string::npos);
+  }
+  EXPECT_EQ(core_->queue_length(), 2u);
+  EXPECT_TRUE(core_->PlanNext());
+  EXPECT_TRUE(core_->PlanNext());
+  EXPECT_FALSE(core_->PlanNext());
+  replies = Replies();
+  ASSERT_EQ(replies.size(), 4u);
+  EXPECT_EQ(replies[2].request_id, 4);  // newest first
+  EXPECT_EQ(replies[3].request_id, 3);
+  EXPECT_EQ(core_->counters().dropped_requests, 2);
+  EXPECT_EQ(core_->counters().plans, 4);
+}
+
+TEST_F(DaemonCoreTest, StopAnswersQueuedRequests) {
+  Make(4);
+  SendMap("flat");
+  Send(Request(Hexapod(), 1));
+  Send(Request(Hexapod(), 2));
+  core_->Stop();
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 2u);
+  for (const plan_t& r : replies) EXPECT_EQ(r.status, +plan_t::STATUS_DROPPED);
+  EXPECT_FALSE(core_->PlanNext());
+}
+
+TEST_F(DaemonCoreTest, UnreadableMessagesAreCountedAndTheDaemonGoesOn) {
+  Make(4);
+  SendMap("flat");
+  const auto bad = BadPayloads(Hexapod());
+  for (const auto& payload : bad) core_->OnMessage(Raw(kPlanRequestChannel, payload));
+  for (const auto& payload : bad) core_->OnMessage(Raw(kTerrainMapChannel, payload));
+  SendMap("not a map");  // decodes, but the map reader rejects it
+  Send(Request(Hexapod(), 77));
+  ASSERT_TRUE(core_->PlanNext());
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].request_id, 77);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_OPTIMAL);
+  const DaemonCounters c = core_->counters();
+  EXPECT_EQ(c.rejected_messages, static_cast<int64_t>(2 * bad.size()));
+  EXPECT_EQ(c.rejected_maps, 1);
+  EXPECT_EQ(c.maps, 1);  // the good map is kept
+  const status_t s = core_->StatusMessage();
+  EXPECT_EQ(s.rejected_messages, c.rejected_messages);
+  EXPECT_EQ(s.num_regions, 1);
+  EXPECT_EQ(s.state, +status_t::STATE_IDLE);
+}
+
+TEST_F(DaemonCoreTest, PlannerFailureIsAnInternalErrorReply) {
+  Make(4, [](const RobotModel&, const std::vector<ConvexRegion>&, const PlanRequest&,
+             const PlannerOptions&) -> Plan { throw std::runtime_error("solver exploded"); });
+  SendMap("flat");
+  Send(Request(Hexapod(), 5));
+  ASSERT_TRUE(core_->PlanNext());
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_INTERNAL_ERROR);
+  EXPECT_NE(replies[0].message.find("solver exploded"), std::string::npos);
+}
+
+// The live runner over memq://: bad payloads and invalid requests, then a valid one
+// planned by a slow planner while the heartbeat keeps going.
+TEST(DaemonRunnerTest, SurvivesBadInputOverMemqAndKeepsTheHeartbeat) {
+  LcmTransport transport("memq://");
+  auto setup = TestSetup(4);
+  const RobotModel& hexapod = setup->robots.at("hexapod");
+  auto slow_plan = [](const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                      const PlanRequest& request, const PlannerOptions& options) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    return FakePlan(robot, regions, request, options);
+  };
+  auto clock = [] {
+    return std::chrono::duration_cast<std::chrono::microseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  };
+  DaemonCore core(setup, FakeMap, slow_plan, transport, clock);
+  core.SubscribeTo(transport);
+
+  std::mutex mutex;
+  std::vector<plan_t> replies;
+  std::vector<status_t> statuses;
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t m;
+    ASSERT_EQ(DecodeGuarded(raw.data, raw.size, 1 << 20, &m), "");
+    std::lock_guard<std::mutex> lock(mutex);
+    replies.push_back(m);
+  });
+  transport.Subscribe(kStatusChannel, [&](const RawMessage& raw) {
+    status_t m;
+    ASSERT_EQ(DecodeGuarded(raw.data, raw.size, 1 << 20, &m), "");
+    std::lock_guard<std::mutex> lock(mutex);
+    statuses.push_back(m);
+  });
+  DaemonRunner runner(core, transport, 0.2);
+
+  auto publish = [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
+    ASSERT_TRUE(transport.Publish(channel, bytes.data(), bytes.size()));
+  };
+  publish(kTerrainMapChannel, Encode(MapMessage("flat")));
+  const auto bad = BadPayloads(hexapod);
+  for (const auto& payload : bad) publish(kPlanRequestChannel, payload);
+  for (const auto& payload : bad) publish(kTerrainMapChannel, payload);
+  plan_request_t wrong_legs = Request(hexapod, 1);
+  wrong_legs.num_legs = 3;
+  wrong_legs.start_feet.resize(3);
+  publish(kPlanRequestChannel, Encode(wrong_legs));
+  plan_request_t nan_goal = Request(hexapod, 2);
+  nan_goal.goal_yaw = std::nan("");
+  publish(kPlanRequestChannel, Encode(nan_goal));
+  publish(kPlanRequestChannel, Encode(Request(hexapod, 3)));
+
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  size_t heartbeats_while_planning = 0;
+  for (;;) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      heartbeats_while_planning = 0;
+      for (const status_t& s : statuses)
+        if (s.state == status_t::STATE_PLANNING) ++heartbeats_while_planning;
+      if (replies.size() >= 3) break;
+    }
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "no reply to the valid request";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  runner.Stop();
+  std::lock_guard<std::mutex> lock(mutex);
+  ASSERT_EQ(replies.size(), 3u);
+  EXPECT_EQ(replies[0].request_id, 1);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_INVALID_REQUEST);
+  EXPECT_EQ(replies[1].request_id, 2);
+  EXPECT_NE(replies[1].message.find("goal_yaw"), std::string::npos);
+  EXPECT_EQ(replies[2].request_id, 3);
+  EXPECT_EQ(replies[2].status, +plan_t::STATUS_OPTIMAL);
+  // The 1.5 s plan ran on the worker; the 0.2 s heartbeat went on meanwhile.
+  EXPECT_GE(heartbeats_while_planning, 4u);
+  const DaemonCounters c = core.counters();
+  EXPECT_EQ(c.rejected_messages, static_cast<int64_t>(2 * bad.size()));
+  EXPECT_EQ(c.invalid_requests, 2);
+  EXPECT_EQ(c.plans, 3);
+}
+
+}  // namespace
+}  // namespace mfp
