@@ -1,0 +1,206 @@
+#include "terrain/patch_decomposition.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "planner/check.h"
+
+namespace mfp {
+namespace {
+
+struct LocalGrid {
+  int row0 = 0, col0 = 0;  // height map cell of local (0, 0)
+  int rows = 0, cols = 0;
+  std::vector<uint8_t> cells;
+  uint8_t& At(int r, int c) { return cells[static_cast<size_t>(r) * cols + c]; }
+  uint8_t At(int r, int c) const { return cells[static_cast<size_t>(r) * cols + c]; }
+};
+
+double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> pts) {
+  std::sort(pts.begin(), pts.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  if (pts.size() < 3) return pts;
+  std::vector<Eigen::Vector2d> hull(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && Cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) --k;
+    hull[k++] = pts[i - 1];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+}  // namespace
+
+double PrincipalAngleRad(const HeightMap& hm, const PlanarPatch& patch) {
+  // Only boundary-relevant points matter: the corners of each cell square (in cells).
+  std::vector<Eigen::Vector2d> pts;
+  pts.reserve(patch.cells.size());
+  for (int cell : patch.cells) {
+    pts.emplace_back(cell % hm.cols, cell / hm.cols);
+  }
+  const std::vector<Eigen::Vector2d> hull = ConvexHull(pts);
+  if (hull.size() < 3) return 0.0;
+  double best_area = INFINITY, best_angle = 0.0;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Eigen::Vector2d e = (hull[(i + 1) % hull.size()] - hull[i]).normalized();
+    const Eigen::Vector2d n(-e.y(), e.x());
+    double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+    for (const Eigen::Vector2d& p : hull) {
+      umin = std::min(umin, p.dot(e));
+      umax = std::max(umax, p.dot(e));
+      vmin = std::min(vmin, p.dot(n));
+      vmax = std::max(vmax, p.dot(n));
+    }
+    // Cells have width: add one cell to each side so thin patches compare fairly.
+    const double area = (umax - umin + 1.0) * (vmax - vmin + 1.0);
+    if (area < best_area - 1e-9) {
+      best_area = area;
+      best_angle = std::atan2(e.y(), e.x());
+    }
+  }
+  best_angle = std::fmod(best_angle, M_PI / 2);
+  if (best_angle < 0) best_angle += M_PI / 2;
+  return best_angle;
+}
+
+std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
+                                   const PatchDecompositionOptions& options) {
+  std::vector<Quad2d> quads;
+  if (patch.cells.empty()) return quads;
+  const double res = hm.resolution_m;
+  // Offsets of the cells whose squares come closer than the inset to a cell centre.
+  std::vector<Eigen::Vector2i> offsets;
+  const int reach = static_cast<int>(std::ceil(options.inset_m / res + 0.5));
+  for (int dr = -reach; dr <= reach; ++dr) {
+    for (int dc = -reach; dc <= reach; ++dc) {
+      const double ex = std::max(std::abs(dc) - 0.5, 0.0), ey = std::max(std::abs(dr) - 0.5, 0.0);
+      if (res * std::sqrt(ex * ex + ey * ey) < options.inset_m - 1e-12) offsets.emplace_back(dr, dc);
+    }
+  }
+  // Patch mask over its bounding box.
+  LocalGrid mask;
+  int rmin = hm.rows, rmax = -1, cmin = hm.cols, cmax = -1;
+  for (int cell : patch.cells) {
+    rmin = std::min(rmin, cell / hm.cols);
+    rmax = std::max(rmax, cell / hm.cols);
+    cmin = std::min(cmin, cell % hm.cols);
+    cmax = std::max(cmax, cell % hm.cols);
+  }
+  mask.row0 = rmin;
+  mask.col0 = cmin;
+  mask.rows = rmax - rmin + 1;
+  mask.cols = cmax - cmin + 1;
+  mask.cells.assign(static_cast<size_t>(mask.rows) * mask.cols, 0);
+  for (int cell : patch.cells) mask.At(cell / hm.cols - rmin, cell % hm.cols - cmin) = 1;
+  // Eroded mask: cells whose centre holds a whole foot disk.
+  LocalGrid eroded = mask;
+  for (int r = 0; r < mask.rows; ++r) {
+    for (int c = 0; c < mask.cols; ++c) {
+      if (!mask.At(r, c)) continue;
+      for (const Eigen::Vector2i& o : offsets) {
+        const int rr = r + o.x(), cc = c + o.y();
+        if (rr < 0 || rr >= mask.rows || cc < 0 || cc >= mask.cols || !mask.At(rr, cc)) {
+          eroded.At(r, c) = 0;
+          break;
+        }
+      }
+    }
+  }
+  if (mask.rows < 2 || mask.cols < 2) return quads;
+  // Dual squares: spanned by the centres of cells (r, c) .. (r + 1, c + 1), all kept.
+  LocalGrid dual;
+  dual.rows = mask.rows - 1;
+  dual.cols = mask.cols - 1;
+  dual.cells.assign(static_cast<size_t>(dual.rows) * dual.cols, 0);
+  for (int r = 0; r < dual.rows; ++r) {
+    for (int c = 0; c < dual.cols; ++c) {
+      dual.At(r, c) = eroded.At(r, c) && eroded.At(r + 1, c) && eroded.At(r, c + 1) &&
+                      eroded.At(r + 1, c + 1);
+    }
+  }
+  // Local "centre units": x = column offset from the centre of local cell (0, 0).
+  const Eigen::Vector2d origin_center = hm.CellCenter(rmin, cmin);
+  auto to_world = [&](const Eigen::Vector2d& local) { return origin_center + res * local; };
+
+  const double angle = PrincipalAngleRad(hm, patch);
+  const bool use_grid =
+      angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
+  RectangleCoverOptions cover = options.cover;
+  if (use_grid) {
+    cover.min_rect_cells =
+        std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / (res * res) - 1e-9)));
+    for (const CellRect& rect : GreedyRectangleCover(dual.cells, dual.rows, dual.cols, cover)) {
+      const double x0 = rect.col0, x1 = rect.col0 + rect.cols;
+      const double y0 = rect.row0, y1 = rect.row0 + rect.rows;
+      quads.push_back({to_world({x0, y0}), to_world({x1, y0}), to_world({x1, y1}),
+                       to_world({x0, y1})});
+    }
+    return quads;
+  }
+  // Rotated frame: u along the principal direction, v across; half-cell sampling.
+  const double step = 0.5;
+  const Eigen::Vector2d eu(std::cos(angle), std::sin(angle)), ev(-std::sin(angle), std::cos(angle));
+  double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+  for (double x : {0.0, double(dual.cols)}) {
+    for (double y : {0.0, double(dual.rows)}) {
+      const Eigen::Vector2d p(x, y);
+      umin = std::min(umin, p.dot(eu));
+      umax = std::max(umax, p.dot(eu));
+      vmin = std::min(vmin, p.dot(ev));
+      vmax = std::max(vmax, p.dot(ev));
+    }
+  }
+  LocalGrid rotated;
+  rotated.cols = static_cast<int>(std::ceil((umax - umin) / step));
+  rotated.rows = static_cast<int>(std::ceil((vmax - vmin) / step));
+  rotated.cells.assign(static_cast<size_t>(rotated.rows) * rotated.cols, 0);
+  auto corner = [&](double a, double b) {  // rotated-grid corner -> centre units
+    return Eigen::Vector2d(eu * (umin + a * step) + ev * (vmin + b * step));
+  };
+  for (int b = 0; b < rotated.rows; ++b) {
+    for (int a = 0; a < rotated.cols; ++a) {
+      double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+      for (int k = 0; k < 4; ++k) {
+        const Eigen::Vector2d p = corner(a + (k & 1), b + (k >> 1));
+        xmin = std::min(xmin, p.x());
+        xmax = std::max(xmax, p.x());
+        ymin = std::min(ymin, p.y());
+        ymax = std::max(ymax, p.y());
+      }
+      const int c0 = static_cast<int>(std::floor(xmin + 1e-9));
+      const int c1 = static_cast<int>(std::ceil(xmax - 1e-9));
+      const int r0 = static_cast<int>(std::floor(ymin + 1e-9));
+      const int r1 = static_cast<int>(std::ceil(ymax - 1e-9));
+      if (c0 < 0 || r0 < 0 || c1 > dual.cols || r1 > dual.rows) continue;
+      bool inside = true;
+      for (int r = r0; r < r1 && inside; ++r) {
+        for (int c = c0; c < c1 && inside; ++c) inside = dual.At(r, c);
+      }
+      rotated.At(b, a) = inside;
+    }
+  }
+  const double cell_area_m2 = step * step * res * res;
+  cover.min_rect_cells =
+      std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / cell_area_m2 - 1e-9)));
+  for (const CellRect& rect :
+       GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
+    const double a0 = rect.col0, a1 = rect.col0 + rect.cols;
+    const double b0 = rect.row0, b1 = rect.row0 + rect.rows;
+    quads.push_back({to_world(corner(a0, b0)), to_world(corner(a1, b0)),
+                     to_world(corner(a1, b1)), to_world(corner(a0, b1))});
+  }
+  return quads;
+}
+
+}  // namespace mfp

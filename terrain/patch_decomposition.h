@@ -1,0 +1,38 @@
+#pragma once
+// Decomposes one planar patch into convex polygons of safe foot-centre positions.
+//
+// Soundness argument (why the polygons hold only walkable surface): the patch's surface
+// S is the union of its cells' squares. A cell is kept ("eroded mask") when every cell
+// whose square comes closer than the inset to the cell's centre belongs to the patch, so
+// a foot disk centred on a kept cell's centre lies in S. For any point inside the square
+// spanned by four kept centres, each cell its disk touches is also touched by the disk of
+// the corner nearest to that cell, axis by axis; so the whole square is safe. The union of
+// such complete "dual" squares is covered by rectangles - on the grid itself, or on a
+// grid rotated into the patch's principal frame whose cells are kept only when their
+// bounding box lies in complete dual squares.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "terrain/height_map.h"
+#include "terrain/plane_segmentation.h"
+#include "terrain/rectangle_cover.h"
+
+namespace mfp {
+
+struct PatchDecompositionOptions {
+  double inset_m = 0.0;             // foot radius [m]
+  double min_area_xy_m2 = 0.0;      // smallest rectangle kept, projected on x-y [m^2]
+  double axis_snap_rad = 0.05;      // principal frames this close to the grid use the grid
+  RectangleCoverOptions cover;      // min_rect_cells is derived from min_area_xy_m2
+};
+
+using Quad2d = std::array<Eigen::Vector2d, 4>;  // counter-clockwise x-y corners [m, world]
+
+std::vector<Quad2d> DecomposePatch(const HeightMap& height_map, const PlanarPatch& patch,
+                                   const PatchDecompositionOptions& options);
+
+// Angle in [0, pi/2) of the smallest-area bounding rectangle of the patch's cells.
+double PrincipalAngleRad(const HeightMap& height_map, const PlanarPatch& patch);
+
+}  // namespace mfp

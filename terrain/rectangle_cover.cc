@@ -1,0 +1,107 @@
+#include "terrain/rectangle_cover.h"
+
+#include "planner/check.h"
+
+namespace mfp {
+
+CellRect LargestRectangle(const std::vector<uint8_t>& mask, int rows, int cols) {
+  MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  // Row by row: heights of the runs of set cells ending at this row, then the largest
+  // rectangle under that histogram with a stack (O(rows * cols) overall).
+  CellRect best;
+  std::vector<int> height(static_cast<size_t>(cols) + 1, 0);
+  std::vector<int> stack;
+  stack.reserve(static_cast<size_t>(cols) + 1);
+  for (int r = 0; r < rows; ++r) {
+    const uint8_t* row = &mask[static_cast<size_t>(r) * cols];
+    for (int c = 0; c < cols; ++c) height[c] = row[c] ? height[c] + 1 : 0;
+    height[cols] = 0;  // sentinel flushes the stack
+    stack.clear();
+    for (int c = 0; c <= cols; ++c) {
+      while (!stack.empty() && height[stack.back()] >= height[c]) {
+        const int h = height[stack.back()];
+        stack.pop_back();
+        const int left = stack.empty() ? 0 : stack.back() + 1;
+        const int width = c - left;
+        if (h * width > best.Area()) best = CellRect{r - h + 1, left, h, width};
+      }
+      stack.push_back(c);
+    }
+  }
+  return best;
+}
+
+namespace {
+
+bool RowInside(const std::vector<uint8_t>& mask, int cols, int r, int c0, int n) {
+  for (int c = c0; c < c0 + n; ++c) {
+    if (!mask[static_cast<size_t>(r) * cols + c]) return false;
+  }
+  return true;
+}
+
+bool ColInside(const std::vector<uint8_t>& mask, int cols, int c, int r0, int n) {
+  for (int r = r0; r < r0 + n; ++r) {
+    if (!mask[static_cast<size_t>(r) * cols + c]) return false;
+  }
+  return true;
+}
+
+// Grows a rectangle one row or column at a time while it stays inside the mask.
+void GrowInside(const std::vector<uint8_t>& mask, int rows, int cols, CellRect* rect) {
+  bool grew = true;
+  while (grew) {
+    grew = false;
+    if (rect->row0 > 0 && RowInside(mask, cols, rect->row0 - 1, rect->col0, rect->cols)) {
+      --rect->row0;
+      ++rect->rows;
+      grew = true;
+    }
+    if (rect->row0 + rect->rows < rows &&
+        RowInside(mask, cols, rect->row0 + rect->rows, rect->col0, rect->cols)) {
+      ++rect->rows;
+      grew = true;
+    }
+    if (rect->col0 > 0 && ColInside(mask, cols, rect->col0 - 1, rect->row0, rect->rows)) {
+      --rect->col0;
+      ++rect->cols;
+      grew = true;
+    }
+    if (rect->col0 + rect->cols < cols &&
+        ColInside(mask, cols, rect->col0 + rect->cols, rect->row0, rect->rows)) {
+      ++rect->cols;
+      grew = true;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
+                                           const RectangleCoverOptions& options) {
+  MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  std::vector<uint8_t> uncovered = mask;
+  size_t total = 0;
+  for (uint8_t m : mask) total += m ? 1 : 0;
+  size_t left = total;
+  std::vector<CellRect> rects;
+  while (left > 0 && static_cast<int>(rects.size()) < options.max_rects &&
+         static_cast<double>(total - left) < options.target_coverage * static_cast<double>(total)) {
+    CellRect rect = LargestRectangle(uncovered, rows, cols);
+    if (rect.Area() < std::max(1, options.min_rect_cells)) break;
+    GrowInside(mask, rows, cols, &rect);
+    for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
+      for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
+        uint8_t& u = uncovered[static_cast<size_t>(r) * cols + c];
+        if (u) {
+          u = 0;
+          --left;
+        }
+      }
+    }
+    rects.push_back(rect);
+  }
+  return rects;
+}
+
+}  // namespace mfp

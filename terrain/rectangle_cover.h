@@ -1,0 +1,31 @@
+#pragma once
+// Greedy cover of a binary cell mask by axis-aligned rectangles lying wholly inside it:
+// repeatedly take the largest rectangle of not-yet-covered cells, then grow it over
+// covered cells while it stays inside the mask (overlap helps a footstep move from one
+// region to the next). Rectangles of mask cells are convex and hold only mask cells,
+// which a convex hull of a non-convex mask would not.
+#include <cstdint>
+#include <vector>
+
+namespace mfp {
+
+struct CellRect {
+  int row0 = 0, col0 = 0;  // first cell
+  int rows = 0, cols = 0;  // extent in cells
+  int Area() const { return rows * cols; }
+};
+
+struct RectangleCoverOptions {
+  double target_coverage = 0.97;  // stop once this fraction of the mask is covered
+  int min_rect_cells = 1;         // stop when the largest new rectangle is smaller
+  int max_rects = 16;             // and never return more than this
+};
+
+// mask is row-major rows x cols, non-zero = inside.
+std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
+                                           const RectangleCoverOptions& options);
+
+// The largest rectangle of non-zero cells (area 0 when there is none).
+CellRect LargestRectangle(const std::vector<uint8_t>& mask, int rows, int cols);
+
+}  // namespace mfp

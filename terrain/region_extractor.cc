@@ -1,0 +1,135 @@
+#include "terrain/region_extractor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "planner/check.h"
+#include "terrain/patch_decomposition.h"
+#include "terrain/plane_segmentation.h"
+#include "terrain/voxelize.h"
+
+namespace mfp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void RequireRange(const char* field, double value, double lo, double hi, bool open_lo) {
+  if (!std::isfinite(value) || value < lo || value > hi || (open_lo && value == lo)) {
+    std::ostringstream msg;
+    msg << "region extractor option " << field << " = " << value << " is outside the allowed range "
+        << (open_lo ? "(" : "[") << lo << ", " << hi << "]";
+    throw InputError(msg.str());
+  }
+}
+
+void ValidateOptions(const RegionExtractorOptions& o) {
+  RequireRange("foot_radius_m", o.foot_radius_m, 0.0, 1.0, false);
+  RequireRange("max_slope_rad", o.max_slope_rad, 0.0, M_PI / 2, true);
+  RequireRange("min_region_area_m2", o.min_region_area_m2, 0.0, 100.0, false);
+  RequireRange("grow_tolerance_voxels", o.grow_tolerance_voxels, 0.0, 10.0, true);
+  RequireRange("max_residual_voxels", o.max_residual_voxels, 0.0, 10.0, true);
+  RequireRange("seed_roughness_voxels", o.seed_roughness_voxels, 0.0, 10.0, true);
+  RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
+  RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
+  RequireRange("max_regions_per_patch", o.max_regions_per_patch, 1, 10000, false);
+  RequireRange("max_regions", o.max_regions, 0, 100000, false);
+  RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
+}
+
+}  // namespace
+
+RegionExtractionResult ExtractRegions(const OccupancyMap& map,
+                                      const RegionExtractorOptions& options) {
+  ValidateOptions(options);
+  const Clock::time_point start = Clock::now();
+  RegionExtractionResult result;
+  RegionExtractionStats& stats = result.stats;
+  result.height_map = BuildHeightMap(map, options.max_height_map_cells);
+  const HeightMap& hm = result.height_map;
+  stats.height_map_s = SecondsSince(start);
+  if (map.leaves.empty()) {
+    result.message = "the map has no occupied voxels, so it has no regions";
+    stats.total_s = SecondsSince(start);
+    return result;
+  }
+  for (float h : hm.height_m) stats.surface_cells += std::isnan(h) ? 0 : 1;
+  const double res = hm.resolution_m;
+
+  Clock::time_point t = Clock::now();
+  // The fit window is at least a foot wide (and at least 3 cells).
+  const int window_half_cells =
+      std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
+  const SurfaceAnalysis surface = AnalyzeSurface(
+      hm, window_half_cells, options.grow_tolerance_voxels * res, options.max_slope_rad);
+  stats.analysis_s = SecondsSince(t);
+
+  t = Clock::now();
+  SegmentationOptions seg;
+  // The small margin keeps exact one-voxel risers of a voxelised tilt inside the tolerance.
+  seg.grow_tolerance_m = options.grow_tolerance_voxels * res * (1.0 + 1e-3);
+  seg.max_residual_m = options.max_residual_voxels * res;
+  seg.max_seed_roughness_m = options.seed_roughness_voxels * res;
+  std::vector<PlanarPatch> patches = SegmentPlanarPatches(hm, surface, seg);
+  stats.segmentation_s = SecondsSince(t);
+  stats.patches = static_cast<int>(patches.size());
+
+  t = Clock::now();
+  std::stable_sort(patches.begin(), patches.end(), [](const PlanarPatch& a, const PlanarPatch& b) {
+    return a.cells.size() > b.cells.size();
+  });
+  const double foot_area_m2 = M_PI * options.foot_radius_m * options.foot_radius_m;
+  PatchDecompositionOptions dec;
+  dec.inset_m = options.foot_radius_m;
+  dec.axis_snap_rad = options.axis_snap_rad;
+  dec.cover.target_coverage = options.target_coverage;
+  dec.cover.max_rects = options.max_regions_per_patch;
+  const double plane_tolerance_m = options.plane_tolerance_voxels * res;
+  for (const PlanarPatch& patch : patches) {
+    const double slope = patch.SlopeRad();
+    if (slope > options.max_slope_rad) {
+      ++stats.patches_too_steep;
+      continue;
+    }
+    const double cos_slope = std::cos(slope);
+    const double patch_area_m2 = patch.cells.size() * res * res / cos_slope;
+    if (patch_area_m2 < foot_area_m2) {
+      ++stats.patches_too_small;
+      continue;
+    }
+    // Region area on the plane = projected area / cos(slope).
+    dec.min_area_xy_m2 = options.min_region_area_m2 * cos_slope;
+    const std::vector<Quad2d> quads = DecomposePatch(hm, patch, dec);
+    if (quads.empty()) ++stats.patches_too_small;
+    for (const Quad2d& quad : quads) {
+      if (static_cast<int>(result.regions.size()) >= options.max_regions) break;
+      std::vector<Eigen::Vector3d> vertices;
+      for (const Eigen::Vector2d& xy : quad) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
+      result.regions.push_back(MakeRegionFromPolygon(static_cast<int>(result.regions.size()),
+                                                     vertices, plane_tolerance_m));
+    }
+  }
+  stats.decomposition_s = SecondsSince(t);
+  stats.total_s = SecondsSince(start);
+  if (result.regions.empty()) {
+    std::ostringstream msg;
+    msg << "no walkable regions: " << stats.patches << " planar patches, "
+        << stats.patches_too_steep << " steeper than " << options.max_slope_rad << " rad, "
+        << stats.patches_too_small << " too small for a foot of radius " << options.foot_radius_m
+        << " m";
+    result.message = msg.str();
+  }
+  return result;
+}
+
+RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terrain,
+                                                 const RegionExtractorOptions& options) {
+  return ExtractRegions(VoxelizeTerrain(terrain), options);
+}
+
+}  // namespace mfp
