@@ -81,16 +81,25 @@ Plan FakePlan(const RobotModel& robot, const std::vector<ConvexRegion>& /*region
   return plan;
 }
 
+// Robots are derived from their URDFs once for the whole test program.
+const DaemonSetup& BaseSetup() {
+  static const DaemonSetup setup = [] {
+    DaemonConfig config;
+    config.file = "test";
+    config.robot_files = {std::string(MFP_SOURCE_DIR) + "/config/robots/hexapod.yaml",
+                          std::string(MFP_SOURCE_DIR) + "/config/robots/littledog.yaml"};
+    config.default_robot = "hexapod";
+    config.limits.max_request_bytes = 4096;
+    config.limits.max_map_bytes = 1 << 20;
+    return LoadDaemonSetup(config);
+  }();
+  return setup;
+}
+
 std::shared_ptr<const DaemonSetup> TestSetup(int queue_size) {
-  DaemonConfig config;
-  config.file = "test";
-  config.robot_files = {std::string(MFP_SOURCE_DIR) + "/config/robots/hexapod.yaml",
-                        std::string(MFP_SOURCE_DIR) + "/config/robots/littledog.yaml"};
-  config.default_robot = "hexapod";
-  config.limits.queue_size = queue_size;
-  config.limits.max_request_bytes = 4096;
-  config.limits.max_map_bytes = 1 << 20;
-  return std::make_shared<const DaemonSetup>(LoadDaemonSetup(config));
+  auto setup = std::make_shared<DaemonSetup>(BaseSetup());
+  setup->config.limits.queue_size = queue_size;
+  return setup;
 }
 
 // Nominal stance of a robot on flat ground at the origin, in leg order.
