@@ -1,0 +1,83 @@
+// Height map, local surface fits and the rectangle cover, with hand-worked answers.
+#include "terrain/height_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planner/check.h"
+#include "terrain/rectangle_cover.h"
+
+namespace mfp {
+namespace {
+
+TEST(HeightMapTest, PrunedLeavesCoverSeveralCellsAndTheHighestTopWins) {
+  OccupancyMap map;
+  map.resolution_m = 0.1;
+  map.leaves.push_back({Eigen::Vector3d(0.1, 0.1, 0.1), 0.2});   // 2 x 2 cells, top 0.2
+  map.leaves.push_back({Eigen::Vector3d(0.05, 0.05, 0.45), 0.1});  // one cell, top 0.5
+  map.leaves.push_back({Eigen::Vector3d(0.35, 0.05, -0.05), 0.1}); // one cell, top 0.0
+  const HeightMap hm = BuildHeightMap(map);
+  EXPECT_EQ(hm.cols, 4);
+  EXPECT_EQ(hm.rows, 2);
+  EXPECT_NEAR(hm.origin_world_m.x(), 0.0, 1e-12);
+  EXPECT_FLOAT_EQ(hm.height_m[hm.Index(0, 0)], 0.5f);
+  EXPECT_FLOAT_EQ(hm.height_m[hm.Index(1, 1)], 0.2f);
+  EXPECT_FLOAT_EQ(hm.height_m[hm.Index(0, 3)], 0.0f);
+  EXPECT_FALSE(hm.HasSurface(0, 2));
+  EXPECT_FALSE(hm.HasSurface(1, 3));
+}
+
+TEST(HeightMapTest, EmptyMapGivesAnEmptyHeightMap) {
+  OccupancyMap map;
+  map.resolution_m = 0.02;
+  const HeightMap hm = BuildHeightMap(map);
+  EXPECT_EQ(hm.rows * hm.cols, 0);
+}
+
+TEST(HeightMapTest, RejectsExtentsBeyondTheCellLimit) {
+  OccupancyMap map;
+  map.resolution_m = 0.02;
+  map.leaves.push_back({Eigen::Vector3d(0.01, 0.01, 0.01), 0.02});
+  map.leaves.push_back({Eigen::Vector3d(100.01, 100.01, 0.01), 0.02});
+  EXPECT_THROW(BuildHeightMap(map, 1000), InputError);
+  map.leaves.push_back({Eigen::Vector3d(NAN, 0, 0), 0.02});
+  EXPECT_THROW(BuildHeightMap(map), InputError);
+}
+
+TEST(HeightMapTest, LocalFitRecoversATiltAndIgnoresAStepBeside) {
+  HeightMap hm;
+  hm.resolution_m = 0.1;
+  hm.rows = 5;
+  hm.cols = 5;
+  for (int r = 0; r < 5; ++r) {
+    for (int c = 0; c < 5; ++c) {
+      // z = 0.05 x, and a 1 m step for columns >= 3.
+      hm.height_m.push_back(static_cast<float>(0.05 * hm.CellCenter(r, c).x() + (c >= 3 ? 1.0 : 0.0)));
+    }
+  }
+  const SurfaceAnalysis s = AnalyzeSurface(hm, 1, 0.05, 0.5);
+  const Eigen::Vector3f n = s.normal_world[hm.Index(2, 2)];
+  EXPECT_NEAR(std::atan2(-n.x(), n.z()), std::atan(0.05), 1e-4);
+  EXPECT_NEAR(s.roughness_m[hm.Index(2, 2)], 0.0, 1e-6);
+}
+
+TEST(RectangleCoverTest, LargestRectangleOfAnLShape) {
+  // 1 1 0
+  // 1 1 0
+  // 1 1 1
+  // 1 1 1      rows 0..3 top to bottom in memory order
+  const std::vector<uint8_t> mask = {1, 1, 0, 1, 1, 0, 1, 1, 1, 1, 1, 1};
+  const CellRect best = LargestRectangle(mask, 4, 3);
+  EXPECT_EQ(best.Area(), 8);
+  EXPECT_EQ(best.cols, 2);
+  RectangleCoverOptions options;
+  options.target_coverage = 1.0;
+  const std::vector<CellRect> cover = GreedyRectangleCover(mask, 4, 3, options);
+  ASSERT_EQ(cover.size(), 2u);
+  // The second rectangle is grown over covered cells: the whole bottom 2 x 3 block.
+  EXPECT_EQ(cover[1].Area(), 6);
+}
+
+}  // namespace
+}  // namespace mfp

@@ -1,0 +1,200 @@
+// Region extraction on synthetic terrains with known answers (terrain_catalogue.h).
+// The maps are voxelised directly; octomap_io_test covers the same path through files.
+#include "terrain/region_extractor.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planner/check.h"
+#include "terrain/terrain_catalogue.h"
+#include "terrain/terrain_quality.h"
+#include "terrain/voxelize.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kRes = 0.02;
+constexpr double kEps = 1e-6;
+
+double Deg(double d) { return d * M_PI / 180.0; }
+
+RegionExtractionResult Extract(const TerrainDescription& t, double foot_radius_m = 0.01) {
+  RegionExtractorOptions options;
+  options.foot_radius_m = foot_radius_m;
+  options.max_slope_rad = 0.45;
+  return ExtractRegionsFromTerrain(t, options);
+}
+
+Eigen::Vector2d Min(const ConvexRegion& r) {
+  Eigen::Vector2d lo(INFINITY, INFINITY);
+  for (const auto& v : r.vertices_world_m) lo = lo.cwiseMin(v.head<2>());
+  return lo;
+}
+Eigen::Vector2d Max(const ConvexRegion& r) {
+  Eigen::Vector2d hi(-INFINITY, -INFINITY);
+  for (const auto& v : r.vertices_world_m) hi = hi.cwiseMax(v.head<2>());
+  return hi;
+}
+
+void ExpectSoundAndCovering(const TerrainDescription& t, const RegionExtractionResult& result,
+                            double foot_radius_m = 0.01) {
+  EXPECT_LE(MaxDistanceToTopSurfaceM(result.regions, t, kRes), kRes);
+  for (const FaceCoverage& c : TopFaceCoverage(result.regions, t, foot_radius_m, 0.45, kRes)) {
+    EXPECT_GE(c.coverage, 0.85) << "face " << c.name;
+  }
+}
+
+TEST(RegionExtractorTest, FlatGroundIsOneRegionInsetByTheFootRadius) {
+  const RegionExtractionResult result = Extract(FlatTerrain());
+  ASSERT_EQ(result.regions.size(), 1u);
+  const ConvexRegion& r = result.regions[0];
+  EXPECT_NEAR(r.SlopeRad(), 0.0, kEps);
+  EXPECT_NEAR(r.HeightAt(0.3, -0.2), 0.0, kEps);
+  // The 2 m square inset by 1 cm.
+  EXPECT_NEAR(Min(r).x(), -0.99, kEps);
+  EXPECT_NEAR(Max(r).y(), 0.99, kEps);
+  EXPECT_NEAR(r.area_m2, 1.98 * 1.98, 1e-6);
+  EXPECT_NEAR(r.plane_tolerance_m, 0.5 * kRes, kEps);
+  EXPECT_EQ(r.A.rows(), 6);  // four edges and the plane as two inequalities
+  EXPECT_TRUE(result.message.empty());
+}
+
+TEST(RegionExtractorTest, LargerFootRadiusInsetsExactly) {
+  const RegionExtractionResult result = Extract(FlatTerrain(), 0.05);
+  ASSERT_EQ(result.regions.size(), 1u);
+  EXPECT_NEAR(Min(result.regions[0]).x(), -0.95, kEps);
+  EXPECT_NEAR(Max(result.regions[0]).x(), 0.95, kEps);
+}
+
+TEST(RegionExtractorTest, StepGivesTwoRegionsThatStopShortOfTheEdge) {
+  const TerrainDescription t = StepTerrain();
+  const RegionExtractionResult result = Extract(t);
+  ASSERT_EQ(result.regions.size(), 2u);
+  int low = 0, high = 0;
+  for (const ConvexRegion& r : result.regions) {
+    if (std::abs(r.HeightAt(0, 0)) < kEps) {
+      ++low;
+      EXPECT_NEAR(Max(r).x(), -0.01, kEps);
+    } else {
+      ++high;
+      EXPECT_NEAR(r.HeightAt(0.5, 0), 0.1, kEps);
+      EXPECT_NEAR(Min(r).x(), 0.01, kEps);
+    }
+  }
+  EXPECT_EQ(low, 1);
+  EXPECT_EQ(high, 1);
+  ExpectSoundAndCovering(t, result);
+}
+
+TEST(RegionExtractorTest, SteppingStonesGiveOneRegionPerStoneAtItsHeight) {
+  const TerrainDescription t = SteppingStonesTerrain();
+  const RegionExtractionResult result = Extract(t);
+  ASSERT_EQ(result.regions.size(), 12u);
+  for (const ConvexRegion& r : result.regions) {
+    EXPECT_NEAR(r.area_m2, 0.18 * 0.18, 1e-9);
+    const Eigen::Vector2d c = 0.5 * (Min(r) + Max(r));
+    EXPECT_NEAR(r.HeightAt(c.x(), c.y()), TrueTopHeight(t, c.x(), c.y()), kEps);
+  }
+  ExpectSoundAndCovering(t, result);
+}
+
+TEST(RegionExtractorTest, ThreeDegreeTiltIsOneTiltedRegion) {
+  const TerrainDescription t = TiltTerrain(Deg(3), 0.0);
+  const RegionExtractionResult result = Extract(t);
+  ASSERT_GE(result.regions.size(), 1u);
+  EXPECT_NEAR(result.regions[0].SlopeRad(), Deg(3), Deg(0.5));
+  ExpectSoundAndCovering(t, result);
+}
+
+TEST(RegionExtractorTest, FifteenDegreeYawedTiltIsCoveredInItsOwnFrame) {
+  const TerrainDescription t = TiltTerrain(Deg(15), Deg(30));
+  const RegionExtractionResult result = Extract(t);
+  ASSERT_GE(result.regions.size(), 1u);
+  for (const ConvexRegion& r : result.regions) EXPECT_NEAR(r.SlopeRad(), Deg(15), Deg(1));
+  ExpectSoundAndCovering(t, result);
+}
+
+TEST(RegionExtractorTest, FortyDegreeSlopeIsRejected) {
+  const RegionExtractionResult result = Extract(TiltTerrain(Deg(40), 0.0));
+  EXPECT_TRUE(result.regions.empty());
+  EXPECT_GE(result.stats.patches_too_steep, 1);
+  EXPECT_NE(result.message.find("steeper"), std::string::npos) << result.message;
+}
+
+TEST(RegionExtractorTest, GapIsNotBridged) {
+  const TerrainDescription t = GapTerrain();
+  const RegionExtractionResult result = Extract(t);
+  ASSERT_EQ(result.regions.size(), 2u);
+  for (const ConvexRegion& r : result.regions) {
+    const bool left = Max(r).x() < 0;
+    EXPECT_TRUE(left ? Max(r).x() <= -0.11 + kEps : Min(r).x() >= 0.11 - kEps);
+  }
+  ExpectSoundAndCovering(t, result);
+}
+
+TEST(RegionExtractorTest, WallSplitsTheGroundAndKeepsFeetOffIt) {
+  const TerrainDescription t = WallTerrain();
+  const RegionExtractionResult result = Extract(t);
+  int ground = 0;
+  for (const ConvexRegion& r : result.regions) {
+    if (std::abs(r.HeightAt(0, 0)) < kEps) {
+      ++ground;
+      // The wall occupies |x| <= 0.02; a foot of radius 1 cm stays 1 cm away.
+      EXPECT_TRUE(Max(r).x() <= -0.03 + kEps || Min(r).x() >= 0.03 - kEps);
+    } else {
+      EXPECT_NEAR(r.HeightAt(0, 0), 0.5, kEps);  // the wall's top
+    }
+  }
+  EXPECT_EQ(ground, 2);
+  ExpectSoundAndCovering(t, result);
+}
+
+TEST(RegionExtractorTest, NonConvexPatchIsCoveredOnlyWhereThereIsSurface) {
+  // An L of two boxes at the same height: its hull would include the missing corner.
+  TerrainDescription t;
+  TerrainBox a, b;
+  a.center_world_m = {0.5, 0.1, -0.05};
+  a.size_m = {1.0, 0.2, 0.1};
+  b.center_world_m = {0.1, 0.6, -0.05};
+  b.size_m = {0.2, 0.8, 0.1};
+  t.boxes = {a, b};
+  const RegionExtractionResult result = Extract(t);
+  ASSERT_GE(result.regions.size(), 2u);
+  EXPECT_EQ(result.stats.patches, 1);
+  EXPECT_LE(MaxDistanceToTopSurfaceM(result.regions, t, 0.0), kEps);
+  EXPECT_EQ(FindRegionBelow(result.regions, 0.6, 0.6, 0.0), -1);  // the missing corner
+}
+
+TEST(RegionExtractorTest, EmptyMapHasNoRegionsAndSaysSo) {
+  OccupancyMap empty;
+  empty.resolution_m = kRes;
+  const RegionExtractionResult result = ExtractRegions(empty, RegionExtractorOptions());
+  EXPECT_TRUE(result.regions.empty());
+  EXPECT_NE(result.message.find("no occupied voxels"), std::string::npos);
+}
+
+TEST(RegionExtractorTest, RejectsOptionsOutOfRange) {
+  RegionExtractorOptions options;
+  options.foot_radius_m = -0.1;
+  try {
+    ExtractRegions(VoxelizeTerrain(FlatTerrain()), options);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("foot_radius_m"), std::string::npos);
+  }
+  options = RegionExtractorOptions();
+  options.max_slope_rad = 2.0;
+  EXPECT_THROW(ExtractRegions(VoxelizeTerrain(FlatTerrain()), options), InputError);
+}
+
+TEST(RegionExtractorTest, CourseRegionsAreSoundAndCoverEveryFlatFace) {
+  const TerrainDescription t = CourseTerrain4m();
+  const RegionExtractionResult result = Extract(t);
+  EXPECT_GE(result.stats.patches_too_steep, 1);  // the 40 degree ramp
+  for (const ConvexRegion& r : result.regions) EXPECT_LE(r.SlopeRad(), 0.45);
+  ExpectSoundAndCovering(t, result);
+}
+
+}  // namespace
+}  // namespace mfp
