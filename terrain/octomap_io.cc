@@ -102,9 +102,21 @@ OccupancyMap LoadMapFile(const std::string& path, const OctreeStreamLimits& limi
 
 std::vector<uint8_t> OccupancyMapBytes(const OccupancyMap& map, bool binary) {
   const std::unique_ptr<octomap::OcTree> tree = ToOcTree(map);
+  // The header is written here and the data by OctoMap's data writers: its whole-file
+  // writers print progress to stderr, and libraries here do not print.
   std::ostringstream out(std::ios::binary);
-  const bool ok = binary ? tree->writeBinary(out) : tree->write(out);
-  MFP_CHECK_MSG(ok, "OctoMap failed to serialise a tree");
+  out.precision(17);
+  if (binary) tree->toMaxLikelihood();
+  tree->prune();
+  out << (binary ? "# Octomap OcTree binary file\n" : "# Octomap OcTree file\n")
+      << "# written by mfp\nid " << tree->getTreeType() << "\nsize " << tree->size()
+      << "\nres " << tree->getResolution() << "\ndata\n";
+  if (binary) {
+    tree->writeBinaryData(out);
+  } else {
+    tree->writeData(out);
+  }
+  MFP_CHECK_MSG(static_cast<bool>(out), "OctoMap failed to serialise a tree");
   const std::string s = out.str();
   return std::vector<uint8_t>(s.begin(), s.end());
 }

@@ -1,0 +1,100 @@
+// mfp-regions MAP: the convex safe regions of an OctoMap map (.bt or .ot), as a table,
+// JSON ({"regions": [...]}) and SVG; --region ID prints one region's faces and vertices.
+// Exit 0 on success (also when the map has no regions: the reason is printed), 2 on bad
+// input with the problem on stderr.
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "planner/check.h"
+#include "terrain/octomap_io.h"
+#include "terrain/region_extractor.h"
+#include "terrain/region_json.h"
+#include "tools/region_svg.h"
+
+namespace {
+
+void WriteText(const std::string& path, const std::string& text) {
+  if (path == "-") {
+    std::cout << text;
+    return;
+  }
+  std::ofstream out(path);
+  if (!out) throw mfp::InputError(path + ": cannot open for writing");
+  out << text;
+  if (!out) throw mfp::InputError(path + ": writing failed");
+}
+
+Eigen::Vector3d Centroid(const mfp::ConvexRegion& r) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& v : r.vertices_world_m) c += v;
+  return c / static_cast<double>(r.vertices_world_m.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Convex safe regions of an OctoMap terrain map"};
+  std::string map_path, json_path, svg_path;
+  int region_id = -1;
+  mfp::RegionExtractorOptions options;
+  app.add_option("map", map_path, "map file (.bt or .ot)")->required();
+  app.add_option("--json", json_path, "write {\"regions\": [...]} to FILE ('-' = stdout)");
+  app.add_option("--svg", svg_path, "write a picture (heights shaded, regions outlined) to FILE");
+  app.add_option("--region", region_id, "print the faces (A, b) and vertices of region ID");
+  app.add_option("--foot-radius", options.foot_radius_m, "foot radius the regions are inset by [m]")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--max-slope", options.max_slope_rad, "steepest walkable surface [rad]")
+      ->check(CLI::Range(0.0, M_PI / 2));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    const mfp::OccupancyMap map = mfp::LoadMapFile(map_path);
+    const mfp::RegionExtractionResult result = mfp::ExtractRegions(map, options);
+    if (!json_path.empty()) WriteText(json_path, mfp::RegionsToJson(result.regions).dump(2) + "\n");
+    if (!svg_path.empty()) WriteText(svg_path, mfp::RegionsSvg(result.height_map, result.regions));
+    if (region_id >= 0 || app.count("--region") > 0) {
+      if (region_id < 0 || region_id >= static_cast<int>(result.regions.size())) {
+        throw mfp::InputError("--region " + std::to_string(region_id) + ": the map has " +
+                              std::to_string(result.regions.size()) + " regions (ids 0.." +
+                              std::to_string(static_cast<int>(result.regions.size()) - 1) + ")");
+      }
+      const mfp::ConvexRegion& r = result.regions[static_cast<size_t>(region_id)];
+      std::printf("region %d: area %.4f m^2, slope %.4f rad, plane tolerance %.4f m\n", r.id,
+                  r.area_m2, r.SlopeRad(), r.plane_tolerance_m);
+      std::printf("faces (a_x a_y a_z <= b):\n");
+      for (Eigen::Index j = 0; j < r.A.rows(); ++j) {
+        std::printf("  %+.6f %+.6f %+.6f <= %+.6f%s\n", r.A(j, 0), r.A(j, 1), r.A(j, 2), r.b(j),
+                    j >= r.A.rows() - 2 ? "   (plane)" : "");
+      }
+      std::printf("vertices (x y z, counter-clockwise):\n");
+      for (const auto& v : r.vertices_world_m) std::printf("  %.4f %.4f %.4f\n", v.x(), v.y(), v.z());
+      return 0;
+    }
+    if (json_path == "-") return 0;  // stdout holds the JSON only
+    std::printf("%s: %zu occupied leaves at %.3f m, %d surface cells, %d planar patches "
+                "(%d too steep, %d too small), %zu regions in %.1f ms\n",
+                map_path.c_str(), map.leaves.size(), map.resolution_m, result.stats.surface_cells,
+                result.stats.patches, result.stats.patches_too_steep,
+                result.stats.patches_too_small, result.regions.size(), 1e3 * result.stats.total_s);
+    if (result.regions.empty()) {
+      std::printf("%s\n", result.message.c_str());
+      return 0;
+    }
+    std::printf("%4s %10s %9s %9s %8s\n", "id", "area_m2", "slope_deg", "height_m", "vertices");
+    for (const mfp::ConvexRegion& r : result.regions) {
+      std::printf("%4d %10.4f %9.2f %9.3f %8zu\n", r.id, r.area_m2, r.SlopeRad() * 180.0 / M_PI,
+                  Centroid(r).z(), r.vertices_world_m.size());
+    }
+  } catch (const mfp::InputError& e) {
+    std::fprintf(stderr, "mfp-regions: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
