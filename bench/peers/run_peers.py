@@ -2,7 +2,8 @@
 """Runs the peer MIQP solvers on mfp's MPS exports and tables them against mfp.
 
     run_peers.py --instances DIR [--solvers scip,copt,cplex,gurobi,bonmin]
-                 [--time-limit 60] [--mip-gap G] [--out FILE.md] [--out FILE.json]
+                 [--time-limit 60] [--mip-gap G] [--split-ranges gurobi]
+                 [--out FILE.md] [--out FILE.json] [--strict]
 
 DIR holds pairs NAME.mps + NAME.json. NAME.json is mfp's plan JSON (DESIGN.md) for the
 same instance, as written by `mfp-plan --window N --max-steps N --write-mps NAME.mps
@@ -91,6 +92,8 @@ def run_peer(solver, mps, args):
         cmd += ["--mip-gap", str(args.mip_gap)]
     if args.bonmin_driver:
         cmd += ["--bonmin-driver", args.bonmin_driver]
+    if solver in args.split_ranges:
+        cmd.append("--split-ranges")
     env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
     hard_limit = args.time_limit * 1.5 + 30
     try:
@@ -254,12 +257,17 @@ def main():
     parser.add_argument("--python", default=VENV_PYTHON if os.path.exists(VENV_PYTHON) else sys.executable,
                         help="interpreter with the solver packages (default: bench/.venv)")
     parser.add_argument("--bonmin-driver", default=None, help="path of bonmin_mps (default: build-peers/)")
+    parser.add_argument("--split-ranges", default="", metavar="SOLVERS",
+                        help="comma-separated peers given a copy of each file with every ranged row "
+                             "as two rows; e.g. 'gurobi', whose licence counts a variable per ranged row "
+                             "(default: none, every peer reads the identical file)")
     parser.add_argument("--strict", action="store_true",
                         help="exit 1 when peers disagree or mfp's objective is below a proven bound")
     parser.add_argument("--verbose", action="store_true", help="solver logs on stderr")
     args = parser.parse_args()
     args.solvers = [s.strip() for s in args.solvers.split(",") if s.strip()]
-    bad = [s for s in args.solvers if s not in ALL_SOLVERS]
+    args.split_ranges = [s.strip() for s in args.split_ranges.split(",") if s.strip()]
+    bad = [s for s in args.solvers + args.split_ranges if s not in ALL_SOLVERS]
     if bad:
         parser.error(f"unknown solver(s) {bad}; allowed: {', '.join(ALL_SOLVERS)}")
     if args.time_limit <= 0:
@@ -279,6 +287,8 @@ def main():
     header_note = (f"Peers: one thread each, time limit {args.time_limit:g} s"
                    + (f", relative MIP gap {args.mip_gap:g}" if args.mip_gap is not None else ", each solver's default MIP gap")
                    + ". Objectives and bounds include the plan JSON's objective_offset."
+                   + (f" Ranged rows split into two rows for: {', '.join(args.split_ranges)}."
+                      if args.split_ranges else "")
                    + " Versions: " + ", ".join(f"{k} = {v}" for k, v in versions(results).items()) + ".")
     print(header_note)
     print()

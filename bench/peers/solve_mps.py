@@ -21,6 +21,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 import time
 
 SOLVERS = ("scip", "copt", "cplex", "gurobi", "bonmin")
@@ -83,6 +84,94 @@ def result(solver, status, time_s=None, objective=None, bound=None, message="", 
         "bound": finite_or_none(bound),
         "message": message,
     }
+
+
+def split_ranged_rows(path, out_path):
+    """Writes to out_path the same problem with each ranged row as two rows (L and G).
+
+    Gurobi turns every ranged row into an equality plus a variable of its own, and those
+    variables count against its size-limited licence (200 variables with a quadratic
+    objective). The copy is the same feasible set and objective without ranges; the
+    row that keeps the original name holds the upper side, ROW__lo the lower side.
+    Returns the number of rows split.
+    """
+    with open(path) as f:
+        lines = f.read().splitlines()
+    section = None
+    rhs_set = None  # the name of the RHS vector, so that the added entries join it
+    sense, rhs, rng = {}, {}, {}
+    for line in lines:
+        if not line.strip() or line.startswith("*"):
+            continue
+        if not line[0].isspace():
+            section = line.split()[0].upper()
+            continue
+        fields = line.split()
+        if section == "ROWS":
+            sense[fields[1]] = fields[0].upper()
+        elif section in ("RHS", "RANGES"):
+            target = rhs if section == "RHS" else rng
+            if section == "RHS" and len(fields) % 2 == 1 and rhs_set is None:
+                rhs_set = fields[0]
+            pairs = fields[1:] if len(fields) % 2 == 1 else fields
+            for name, value in zip(pairs[0::2], pairs[1::2]):
+                target[name] = float(value)
+    bounds = {}
+    for row, r in rng.items():
+        b = rhs.get(row, 0.0)
+        kind = sense[row]
+        if kind == "N":
+            continue
+        if kind == "L":
+            lo, hi = b - abs(r), b
+        elif kind == "G":
+            lo, hi = b, b + abs(r)
+        else:
+            lo, hi = (b, b + r) if r >= 0 else (b + r, b)
+        bounds[row] = (lo, hi)
+    rhs_set = rhs_set or "RHS"
+    split_rhs = [f" {rhs_set} {row} {hi!r}" for row, (lo, hi) in bounds.items()]
+    split_rhs += [f" {rhs_set} {row}__lo {lo!r}" for row, (lo, hi) in bounds.items()]
+    out = []
+    section = None
+    seen_rhs = False
+    for line in lines:
+        if line.strip() and not line.startswith("*") and not line[0].isspace():
+            if section == "RHS":
+                out += split_rhs
+            section = line.split()[0].upper()
+            if section == "RHS":
+                seen_rhs = True
+            elif section in ("RANGES", "BOUNDS", "QUADOBJ", "ENDATA") and not seen_rhs:
+                out += ["RHS"] + split_rhs
+                seen_rhs = True
+            if section != "RANGES":
+                out.append(line)
+            continue
+        if section == "RANGES":
+            continue
+        fields = line.split()
+        if not fields or line.startswith("*"):
+            out.append(line)
+        elif section == "ROWS" and fields[1] in bounds:
+            out += [f" L {fields[1]}", f" G {fields[1]}__lo"]
+        elif section == "COLUMNS" and not (len(fields) >= 3 and "MARKER" in fields[1].upper()):
+            col, pairs = fields[0], fields[1:]
+            for name, value in zip(pairs[0::2], pairs[1::2]):
+                out.append(f" {col} {name} {value}")
+                if name in bounds:
+                    out.append(f" {col} {name}__lo {value}")
+        elif section == "RHS":
+            pairs = fields[1:] if len(fields) % 2 == 1 else fields
+            set_name = fields[0] if len(fields) % 2 == 1 else rhs_set
+            for name, value in zip(pairs[0::2], pairs[1::2]):
+                if name not in bounds:
+                    out.append(f" {set_name} {name} {value}")
+        else:
+            out.append(line)
+    with open(out_path, "w") as f:
+        f.write("\n".join(out) + "\n")
+    return len(bounds)
 
 
 # --------------------------------------------------------------------------- SCIP
@@ -299,7 +388,15 @@ def solve_bonmin(path, time_limit, threads, mip_gap, driver, verbose):
     return json.loads(lines[-1])
 
 
-def solve(solver, path, time_limit, threads, mip_gap, verbose, bonmin_driver):
+def solve(solver, path, time_limit, threads, mip_gap, verbose, bonmin_driver, split_ranges=False):
+    if split_ranges:
+        with tempfile.TemporaryDirectory(prefix="solve_mps_") as tmp:
+            copy = os.path.join(tmp, os.path.basename(path))
+            count = split_ranged_rows(path, copy)
+            out = solve(solver, copy, time_limit, threads, mip_gap, verbose, bonmin_driver)
+        note = f"{count} ranged rows given as two rows each (--split-ranges)"
+        out["message"] = note + ("; " + out["message"] if out.get("message") else "")
+        return out
     if solver == "bonmin":
         return solve_bonmin(path, time_limit, threads, mip_gap, bonmin_driver, verbose)
     function = {"scip": solve_scip, "copt": solve_copt, "cplex": solve_cplex,
@@ -321,6 +418,8 @@ def main(argv=None):
                         help="relative MIP gap to stop at (default: each solver's own)")
     parser.add_argument("--bonmin-driver", default=os.environ.get("MFP_BONMIN_DRIVER", DEFAULT_BONMIN_DRIVER),
                         help="path of the built bonmin_mps driver")
+    parser.add_argument("--split-ranges", action="store_true",
+                        help="give the solver a copy with each ranged row as two rows (L and G)")
     parser.add_argument("--verbose", action="store_true", help="solver logs on stderr")
     args = parser.parse_args(argv)
     if not os.path.isfile(args.mps):
@@ -330,7 +429,7 @@ def main(argv=None):
     if args.threads < 1:
         parser.error("--threads must be >= 1")
     out = solve(args.solver, os.path.abspath(args.mps), args.time_limit, args.threads, args.mip_gap,
-                args.verbose, os.path.abspath(args.bonmin_driver))
+                args.verbose, os.path.abspath(args.bonmin_driver), args.split_ranges)
     print(json.dumps(out), flush=True)
     return 0
 
