@@ -224,42 +224,48 @@ def solve_copt(path, time_limit, threads, mip_gap):
     version = f"COPT {package_version('coptpy')}"
     env = coptpy.Envr()
 
+    solve_seconds = [0.0]  # over all attempts; reading the file is not counted
+
     def attempt(extra_params):
         model = env.createModel("peer")
         model.setParam(COPT.Param.Logging, 1)
         model.read(path)
-        model.setParam(COPT.Param.TimeLimit, time_limit)
+        model.setParam(COPT.Param.TimeLimit, max(time_limit - solve_seconds[0], 0.01))
         model.setParam(COPT.Param.Threads, threads)
         if mip_gap is not None:
             model.setParam(COPT.Param.RelGap, mip_gap)
         for name, value in extra_params.items():
             model.setParam(name, value)
-        model.solve()
+        start = time.perf_counter()
+        try:
+            model.solve()
+        finally:
+            solve_seconds[0] += time.perf_counter() - start
         return model
 
     notes = []
-    start = time.perf_counter()
     try:
         try:
             model = attempt({})
         except coptpy.CoptError as e:
             text = str(e)
-            if any(w in text.lower() for w in ("size", "licen")):
-                raise
+            if "(INTERNAL)" not in text:
+                raise  # a read error or a licence refusal: retrying would not help
             # COPT 8's presolve turns some small convex MIQPs into conic form and then
             # fails ("Fail to solve problem"); the same model solves with presolve off.
-            # The time of the failed attempt is kept in time_s.
+            # The time of the failed attempt is kept in time_s, and the retry gets what is
+            # left of the time limit.
             notes.append(f"default settings failed ({text}); retried with Presolve=0")
             model = attempt({"Presolve": 0})
     except coptpy.CoptError as e:
-        elapsed = time.perf_counter() - start
+        elapsed = solve_seconds[0] or None  # None: failed before solving (reading)
         text = "; ".join(notes + [str(e)])
         status = "refused" if any(w in str(e).lower() for w in ("size", "licen")) else "error"
         if status == "refused":
             # COPT's exception says only "(LICENSE) Fail to solve problem"; its log says why.
             text += " (no licence file: COPT is limited to 2000 variables and 2000 constraints)"
         return result("copt", status, elapsed, message=text, version=version)
-    elapsed = time.perf_counter() - start
+    elapsed = solve_seconds[0]
     code = model.status
     is_mip = model.getAttr("IsMIP")
     has_solution = model.getAttr("HasMipSol") if is_mip else code == COPT.OPTIMAL
@@ -405,7 +411,9 @@ def solve(solver, path, time_limit, threads, mip_gap, verbose, bonmin_driver, sp
         try:
             return function(path, time_limit, threads, mip_gap)
         except Exception as e:  # a reader or solver failure is a result, not a crash
-            return result(solver, "error", message=f"{type(e).__name__}: {e}")
+            package = {"scip": "pyscipopt", "copt": "coptpy", "cplex": "cplex", "gurobi": "gurobipy"}[solver]
+            return result(solver, "error", message=f"{type(e).__name__}: {e}",
+                          version=f"{package} {package_version(package)}")
 
 
 def main(argv=None):
@@ -428,6 +436,9 @@ def main(argv=None):
         parser.error("--time-limit must be > 0 seconds")
     if args.threads < 1:
         parser.error("--threads must be >= 1")
+    # One thread also for the BLAS / OpenMP below the solvers (Ipopt's MUMPS in Bonmin).
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[name] = str(args.threads)
     out = solve(args.solver, os.path.abspath(args.mps), args.time_limit, args.threads, args.mip_gap,
                 args.verbose, os.path.abspath(args.bonmin_driver), args.split_ranges)
     print(json.dumps(out), flush=True)
