@@ -83,7 +83,8 @@ std::string CopyAsExplicitFreeMps(const std::string& path, const std::string& te
   return out ? "" : "cannot write " + temp_path;
 }
 
-// Takes the problem out of a reader that has just read the COLUMNS..BOUNDS part of path.
+// Takes the problem out of a reader whose readMps stopped at the QUADOBJ section (or at
+// ENDATA), then reads that section.
 std::string ReadMpsFrom(CoinMpsIO& reader, int errors, const std::string& path, MpsMiqp* out) {
   if (errors != 0) {
     return "CoinMpsIO::readMps reported " + std::to_string(errors) + " error(s) reading " + path;
@@ -98,7 +99,8 @@ std::string ReadMpsFrom(CoinMpsIO& reader, int errors, const std::string& path, 
   p.row_upper.assign(reader.getRowUpper(), reader.getRowUpper() + p.num_rows);
   p.is_integer.resize(p.num_cols);
   for (int j = 0; j < p.num_cols; ++j) p.is_integer[j] = reader.isInteger(j);
-  // CoinMpsIO returns the constant as the negated RHS of the objective row.
+  // Whatever CoinMpsIO makes of an RHS on the objective row (readers disagree on its sign);
+  // mfp writes none and keeps the constant in its plan JSON.
   p.objective_constant = reader.objectiveOffset();
 
   const CoinPackedMatrix* rows = reader.getMatrixByRow();
@@ -122,7 +124,9 @@ std::string ReadMpsFrom(CoinMpsIO& reader, int errors, const std::string& path, 
   if (q_errors != 0) {
     return "CoinMpsIO::readQuadraticMps reported " + std::to_string(q_errors) + " reading " + path;
   }
-  std::map<std::pair<int, int>, double> lower;  // (row >= col) -> Q value
+  // (row >= col) -> Q value. An entry listed as both (i, j) and (j, i) is summed, as a
+  // triangle should list each entry once.
+  std::map<std::pair<int, int>, double> lower;
   for (int j = 0; j < p.num_cols; ++j) {
     for (CoinBigIndex k = q_start[j]; k < q_start[j + 1]; ++k) {
       const int i = q_index[k];
@@ -205,14 +209,12 @@ class MiqpTminlp final : public Bonmin::TMINLP {
     return true;
   }
 
-  bool get_bounds_info(Ipopt::Index n, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index m,
+  bool get_bounds_info(Ipopt::Index, Ipopt::Number* x_l, Ipopt::Number* x_u, Ipopt::Index,
                        Ipopt::Number* g_l, Ipopt::Number* g_u) override {
     std::copy(p_.col_lower.begin(), p_.col_lower.end(), x_l);
     std::copy(p_.col_upper.begin(), p_.col_upper.end(), x_u);
     std::copy(p_.row_lower.begin(), p_.row_lower.end(), g_l);
     std::copy(p_.row_upper.begin(), p_.row_upper.end(), g_u);
-    (void)n;
-    (void)m;
     return true;
   }
 
