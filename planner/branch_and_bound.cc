@@ -202,8 +202,7 @@ class Search {
   void TryRounding(const Eigen::VectorXd& x) {
     if (!opt_.rounding_heuristic) return;
     std::vector<Eigen::VectorXd> proposals;
-    Eigen::VectorXd custom;
-    if (rounding_ && rounding_(x, &custom)) proposals.push_back(custom);
+    if (rounding_) proposals = rounding_(x);
     Eigen::VectorXd simple = x;
     for (const auto& group : p_.sos1_groups) {
       int top = group.front();

@@ -4,6 +4,7 @@
 // returns the best feasible point found.
 #include <Eigen/Core>
 #include <functional>
+#include <vector>
 
 #include "planner/miqp.h"
 #include "planner/relaxation_solver.h"
@@ -46,10 +47,11 @@ struct BranchAndBoundResult {
   double solve_time_s = 0.0;
 };
 
-// Heuristic hook: given a relaxation point, propose a full assignment of the integer
-// variables (values for every variable; only integer entries are used). Returns false
-// when it has no proposal. The formulation supplies one that follows the step order.
-using RoundingHeuristic = std::function<bool(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded)>;
+// Heuristic hook: given a relaxation point, propose assignments of the integer variables
+// (each a vector over all variables; only integer entries are used). The branch-and-bound
+// fixes the integers of each proposal and solves the remaining convex QP. The footstep
+// formulation supplies proposals that follow the step order.
+using RoundingHeuristic = std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)>;
 
 BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,
                                          const BranchAndBoundOptions& options,

@@ -206,10 +206,11 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       break;
     }
     BranchAndBoundOptions bnb = options.branch_and_bound;
-    bnb.time_limit_s = std::min(bnb.time_limit_s > 0 ? bnb.time_limit_s : kInfinity,
-                                std::max(remaining_time / windows_left, 0.5 * remaining_time));
-    const RoundingHeuristic rounding = [&formulation](const Eigen::VectorXd& relaxed, Eigen::VectorXd* out) {
-      return formulation.RoundAlongPlan(relaxed, out);
+    // Each window gets its share of the remaining time, and at least half of it when
+    // few windows are left (later windows are usually shorter, near the goal).
+    bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time);
+    const RoundingHeuristic rounding = [&formulation](const Eigen::VectorXd& relaxed) {
+      return formulation.RoundAlongPlan(relaxed);
     };
     const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solver, bnb, rounding);
     plan.nodes += result.nodes;
@@ -264,9 +265,9 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.window_result = result;
       on_progress(progress);
     }
-    if (kept < steps && !plan.reaches_goal) {
+    if (kept == 0 && !plan.reaches_goal) {
       plan.message = "the planner stopped short of the goal: window " + std::to_string(plan.windows) +
-                     " trimmed its last " + std::to_string(steps - kept) + " steps";
+                     " found no step that improves on standing still";
       break;
     }
   }

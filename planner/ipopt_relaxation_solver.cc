@@ -9,11 +9,15 @@
 #include <sstream>
 
 #include "planner/check.h"
+#include "planner/fixed_variable_reduction.h"
 
 namespace mfp {
 namespace {
 
 constexpr double kIpoptInfinity = 1e19;
+// Rows are satisfied within this (Ipopt's own constraint tolerance is 1e-4 by default,
+// its interior-point iterates end within ~1e-8).
+constexpr double kRowTolerance = 1e-6;
 
 double ToIpopt(double bound) {
   return std::isinf(bound) ? (bound > 0 ? kIpoptInfinity : -kIpoptInfinity) : bound;
@@ -188,19 +192,58 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
         return result;
       }
     }
-    Ipopt::SmartPtr<QpTnlp> tnlp = new QpTnlp(problem, lower, upper, warm_start);
-    const Ipopt::ApplicationReturnStatus status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
-    result.x = tnlp->x();
-    result.objective = tnlp->objective();
+    // Ipopt sees only the free variables and the rows that still constrain them.
+    const ReducedQp reduced = ReduceFixedVariables(problem, lower, upper, kRowTolerance);
+    if (reduced.infeasible) {
+      result.status = RelaxationStatus::kInfeasible;
+      return result;
+    }
+    if (reduced.free_index.empty()) {
+      result.status = RelaxationStatus::kSolved;
+      result.x = reduced.fixed_x;
+      result.objective = problem.Objective(result.x);
+      return result;
+    }
+    Eigen::VectorXd reduced_start;
+    if (warm_start != nullptr) reduced_start = reduced.Restrict(*warm_start);
+    Ipopt::SmartPtr<QpTnlp> tnlp = new QpTnlp(reduced.problem, reduced.lower, reduced.upper,
+                                              warm_start != nullptr ? &reduced_start : nullptr);
+    Ipopt::ApplicationReturnStatus status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
+    Miqp widened;  // outlives the retry's TNLP, which refers to it
+    if (status == Ipopt::Not_Enough_Degrees_Of_Freedom) {
+      // Ipopt refuses more equality rows than free variables (deep nodes have few free
+      // variables). Give each equality a slab of width kRowTolerance instead.
+      widened = reduced.problem;
+      for (int i = 0; i < widened.num_rows(); ++i) {
+        if (widened.row_lower(i) == widened.row_upper(i)) {
+          widened.row_lower(i) -= 0.5 * kRowTolerance;
+          widened.row_upper(i) += 0.5 * kRowTolerance;
+        }
+      }
+      tnlp = new QpTnlp(widened, reduced.lower, reduced.upper, warm_start != nullptr ? &reduced_start : nullptr);
+      status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
+    }
     const Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app_->Statistics();
     if (Ipopt::IsValid(stats)) result.iterations = stats->IterationCount();
+    if (tnlp->x().size() != static_cast<Eigen::Index>(reduced.free_index.size())) {
+      result.status = RelaxationStatus::kFailed;
+      result.x = Eigen::VectorXd::Zero(problem.num_variables());
+      return result;
+    }
+    result.x = reduced.Expand(tnlp->x());
+    result.objective = problem.Objective(result.x);
     switch (status) {
       case Ipopt::Solve_Succeeded:
       case Ipopt::Solved_To_Acceptable_Level:
         result.status = RelaxationStatus::kSolved;
         break;
       case Ipopt::Infeasible_Problem_Detected:
-        result.status = RelaxationStatus::kInfeasible;
+      case Ipopt::Restoration_Failed:
+        // The problem is convex, so a point of local infeasibility proves infeasibility;
+        // a failure at a feasible point proves nothing.
+        result.status = reduced.problem.MaxViolationOfRows(tnlp->x()) > kRowTolerance
+                            ? RelaxationStatus::kInfeasible
+                            : RelaxationStatus::kFailed;
         break;
       case Ipopt::Maximum_Iterations_Exceeded:
       case Ipopt::Maximum_CpuTime_Exceeded:
@@ -209,10 +252,6 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
       default:
         result.status = RelaxationStatus::kFailed;
         break;
-    }
-    if (result.x.size() != problem.num_variables()) {
-      result.status = RelaxationStatus::kFailed;
-      result.x = Eigen::VectorXd::Zero(problem.num_variables());
     }
     return result;
   }

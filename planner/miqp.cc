@@ -18,14 +18,18 @@ double Miqp::Objective(const Eigen::VectorXd& x) const {
 
 double Miqp::MaxViolation(const Eigen::VectorXd& x) const {
   MFP_CHECK(x.size() == num_variables());
-  double worst = 0.0;
-  const Eigen::VectorXd ax = A * x;
-  for (int i = 0; i < num_rows(); ++i) {
-    worst = std::max({worst, row_lower(i) - ax(i), ax(i) - row_upper(i)});
-  }
+  double worst = MaxViolationOfRows(x);
   for (int j = 0; j < num_variables(); ++j) {
     worst = std::max({worst, var_lower(j) - x(j), x(j) - var_upper(j)});
   }
+  return worst;
+}
+
+double Miqp::MaxViolationOfRows(const Eigen::VectorXd& x) const {
+  MFP_CHECK(x.size() == num_variables());
+  double worst = 0.0;
+  const Eigen::VectorXd ax = A * x;
+  for (int i = 0; i < num_rows(); ++i) worst = std::max({worst, row_lower(i) - ax(i), ax(i) - row_upper(i)});
   return worst;
 }
 

@@ -37,6 +37,8 @@ struct Miqp {
   double Objective(const Eigen::VectorXd& x) const;  // includes constant
   // Largest violation of rows and variable bounds (0 when feasible).
   double MaxViolation(const Eigen::VectorXd& x) const;
+  // Largest violation of the rows alone.
+  double MaxViolationOfRows(const Eigen::VectorXd& x) const;
   // Largest distance of an integer variable from the nearest integer.
   double MaxIntegrality(const Eigen::VectorXd& x) const;
 };

@@ -1,6 +1,7 @@
 #include "planner/miqp_formulation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -130,10 +131,24 @@ void MiqpFormulation::Build() {
     return LinExpr::Var(index);
   };
   // Centre of contacts p_i: mean of the n latest footsteps ending at step i (eq. 2).
-  auto coc = [&](int i, int axis) -> LinExpr {
+  auto coc_sum = [&](int i, int axis) -> LinExpr {
     LinExpr sum;
     for (int j = i - n + 1; j <= i; ++j) sum += pos(j, axis);
     return (1.0 / n) * sum;
+  };
+  // For new steps p_i is a variable defined by an equality row: every constraint and
+  // cost that uses p_i then touches 1 column instead of n, which keeps the KKT systems
+  // of the relaxations sparse.
+  std::vector<std::array<int, 2>> coc_var(N, {-1, -1});
+  for (int i = n; i < N; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const std::string name = std::string(axis == 0 ? "px_" : "py_") + std::to_string(i);
+      coc_var[i][axis] = b.AddVariable(name, box.lo(axis), box.hi(axis), false);
+      b.AddRow("def_" + name, coc_sum(i, axis) - LinExpr::Var(coc_var[i][axis]), 0.0, 0.0);
+    }
+  }
+  auto coc = [&](int i, int axis) -> LinExpr {
+    return i >= n ? LinExpr::Var(coc_var[i][axis]) : coc_sum(i, axis);
   };
 
   // ---- yaw per configuration, with piecewise-linear sin/cos ----
@@ -414,8 +429,23 @@ int MiqpFormulation::CountUntrimmedSteps(const Eigen::VectorXd& x) const {
   return count;
 }
 
-bool MiqpFormulation::RoundAlongPlan(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded) const {
+std::vector<Eigen::VectorXd> MiqpFormulation::RoundAlongPlan(const Eigen::VectorXd& relaxed) const {
   MFP_CHECK(relaxed.size() == miqp_.num_variables());
+  int first_trimmed = num_steps_;
+  for (int i = num_steps_ - 1; i >= n_; --i) {
+    if (relaxed(vars_.trim[i]) >= 0.5) first_trimmed = i;
+  }
+  std::vector<Eigen::VectorXd> proposals;
+  for (int trim_from : {first_trimmed, num_steps_}) {
+    Eigen::VectorXd rounded;
+    if (RoundWithTrimming(relaxed, trim_from, &rounded)) proposals.push_back(rounded);
+    if (first_trimmed == num_steps_) break;  // both proposals would be the same
+  }
+  return proposals;
+}
+
+bool MiqpFormulation::RoundWithTrimming(const Eigen::VectorXd& relaxed, int first_trimmed,
+                                        Eigen::VectorXd* rounded) const {
   *rounded = relaxed;
   // Yaw: the segment that contains the relaxed yaw.
   for (int blk = 1; blk < num_blocks_; ++blk) {
@@ -430,12 +460,7 @@ bool MiqpFormulation::RoundAlongPlan(const Eigen::VectorXd& relaxed, Eigen::Vect
     }
     for (int k = 0; k < K; ++k) (*rounded)(vars_.segment[blk][k]) = k == chosen ? 1.0 : 0.0;
   }
-  // Trimming: from the first step whose relaxed value passes one half, all trimmed.
-  bool trimming = false;
-  for (int i = n_; i < num_steps_; ++i) {
-    trimming = trimming || relaxed(vars_.trim[i]) >= 0.5;
-    (*rounded)(vars_.trim[i]) = trimming ? 1.0 : 0.0;
-  }
+  for (int i = n_; i < num_steps_; ++i) (*rounded)(vars_.trim[i]) = i >= first_trimmed ? 1.0 : 0.0;
   // Regions: a trimmed step keeps the region of the foot it stays on. Otherwise, among
   // the regions whose polygon holds the relaxed foot, the one with the largest weight;
   // when none holds it, the largest weight overall.

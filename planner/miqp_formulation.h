@@ -95,12 +95,16 @@ class MiqpFormulation {
   // Number of new steps not trimmed in a solution.
   int CountUntrimmedSteps(const Eigen::VectorXd& x) const;
 
-  // Rounds a relaxation point step by step along the plan: region of largest weight,
-  // segment of largest weight, trimming by threshold (kept monotone).
-  bool RoundAlongPlan(const Eigen::VectorXd& relaxed, Eigen::VectorXd* rounded) const;
+  // Roundings of a relaxation point that follow the plan step by step: the yaw segment
+  // holding the relaxed yaw, for each step the region holding the relaxed foot (a
+  // trimmed step keeps its foot's region), and trimming as a suffix. Proposals differ in
+  // where trimming starts: where the relaxation passes one half, and nowhere.
+  std::vector<Eigen::VectorXd> RoundAlongPlan(const Eigen::VectorXd& relaxed) const;
 
  private:
   void Build();
+  // One rounding with steps first_trimmed .. N-1 trimmed; false when a step has no region.
+  bool RoundWithTrimming(const Eigen::VectorXd& relaxed, int first_trimmed, Eigen::VectorXd* rounded) const;
 
   FootstepProblem problem_;
   FormulationOptions options_;

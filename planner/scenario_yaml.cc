@@ -5,6 +5,9 @@
 #include "planner/check.h"
 #include "planner/planner_options_yaml.h"
 #include "planner/yaml_fields.h"
+#include "terrain/octomap_io.h"
+#include "terrain/region_extractor.h"
+#include "terrain/terrain_yaml.h"
 
 namespace mfp {
 namespace {
@@ -17,18 +20,6 @@ Pose2D ReadPose(const YAML::Node& node, const YamlContext& ctx) {
 Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx) {
   const std::vector<double> v = ReadNumbers(node, ctx, 3);
   return Eigen::Vector3d(v[0], v[1], v[2]);
-}
-
-TerrainBox ReadBox(const YAML::Node& node, const YamlContext& ctx) {
-  RejectUnknownKeys(node, ctx, {"name", "center", "size", "rpy"});
-  TerrainBox box;
-  box.name = OptionalString(node, ctx, "name").value_or("");
-  if (!node["center"] || !node["size"]) throw InputError(ctx.Where() + ": a box needs center and size");
-  box.center_world_m = ReadVector3(node["center"], ctx.Child("center"));
-  box.size_m = ReadVector3(node["size"], ctx.Child("size"));
-  if ((box.size_m.array() <= 0.0).any()) throw InputError(ctx.Child("size").Where() + ": every size must be > 0 m");
-  if (node["rpy"]) box.rpy_rad = ReadVector3(node["rpy"], ctx.Child("rpy"));
-  return box;
 }
 
 }  // namespace
@@ -55,12 +46,21 @@ Scenario LoadScenario(const std::string& path) {
   if (!root["terrain"]) throw InputError(ctx.Child("terrain").Where() + ": missing (boxes, regions or map)");
   const YAML::Node terrain = root["terrain"];
   const YamlContext tctx = ctx.Child("terrain");
-  RejectUnknownKeys(terrain, tctx, {"resolution", "boxes", "regions", "map"});
-  s.terrain.resolution_m = OptionalDouble(terrain, tctx, "resolution", 1e-3, 1.0).value_or(s.terrain.resolution_m);
+  RejectUnknownKeys(terrain, tctx, {"resolution", "boxes", "regions", "map", "source"});
   if (terrain["boxes"]) {
-    const YAML::Node boxes = terrain["boxes"];
-    if (!boxes.IsSequence()) throw InputError(tctx.Child("boxes").Where() + ": expected a list of boxes");
-    for (size_t i = 0; i < boxes.size(); ++i) s.terrain.boxes.push_back(ReadBox(boxes[i], tctx.Child("boxes").Index(i)));
+    YAML::Node boxes_only;
+    boxes_only["boxes"] = terrain["boxes"];
+    if (terrain["resolution"]) boxes_only["resolution"] = terrain["resolution"];
+    s.terrain = ParseTerrainDescription(boxes_only, tctx);
+  }
+  if (const auto source = OptionalString(terrain, tctx, "source")) {
+    if (*source == "extracted") {
+      s.boxes_source = BoxRegionSource::kExtracted;
+    } else if (*source == "top_faces") {
+      s.boxes_source = BoxRegionSource::kTopFaces;
+    } else {
+      throw InputError(tctx.Child("source").Where() + ": '" + *source + "' is not one of extracted, top_faces");
+    }
   }
   if (terrain["regions"]) {
     const YAML::Node regions = terrain["regions"];
@@ -92,9 +92,19 @@ Scenario LoadScenario(const std::string& path) {
   return s;
 }
 
-std::vector<ConvexRegion> RegionsFromDescription(const Scenario& scenario, const RobotModel& robot) {
+std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
+                                          std::string* note) {
   if (!scenario.listed_regions.empty()) return scenario.listed_regions;
-  return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
+  if (!scenario.map_path.empty()) return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad);
+  if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
+    return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
+  }
+  RegionExtractorOptions options;
+  options.foot_radius_m = robot.foot_radius_m;
+  options.max_slope_rad = robot.max_slope_rad;
+  RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
+  if (note != nullptr) *note = result.message;
+  return std::move(result.regions);
 }
 
 }  // namespace mfp

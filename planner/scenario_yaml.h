@@ -17,11 +17,17 @@ struct Pose2D {
   double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
 };
 
+// Where the regions of a box terrain come from: the map pipeline (voxelise the boxes,
+// extract regions as from any OctoMap; the default, as on the robot) or the boxes' exact
+// top faces (no perception error; for comparisons and debugging).
+enum class BoxRegionSource { kExtracted, kTopFaces };
+
 struct Scenario {
   std::string name;
   std::string path;        // the YAML file
   std::string robot_path;  // resolved relative to the scenario file
   TerrainDescription terrain;                // boxes, when given
+  BoxRegionSource boxes_source = BoxRegionSource::kExtracted;
   std::vector<ConvexRegion> listed_regions;  // explicit regions, when given
   std::string map_path;                      // map file, when given
   Pose2D start, goal;
@@ -34,9 +40,10 @@ struct Scenario {
 // Throws InputError naming the file, key and allowed range.
 Scenario LoadScenario(const std::string& path);
 
-// The scenario's regions: listed regions as given, box top faces inset by the robot's
-// foot radius and filtered by its slope limit. Map files are handled by the terrain
-// pipeline (tools pass them through RegionsFromMapFile).
-std::vector<ConvexRegion> RegionsFromDescription(const Scenario& scenario, const RobotModel& robot);
+// The scenario's regions for this robot (foot radius, slope limit): listed regions as
+// given; a map file or the boxes through the terrain pipeline; or the boxes' top faces.
+// `note` (optional) receives the extractor's message when it finds no region.
+std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
+                                          std::string* note = nullptr);
 
 }  // namespace mfp

@@ -1,1 +1,206 @@
+// Branch-and-bound on a catalogue of small MIQPs whose optima are worked out by hand in
+// the comments; every search strategy must prove each of them.
+#include "planner/branch_and_bound.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planner/ipopt_relaxation_solver.h"
+#include "planner/miqp_builder.h"
+
+namespace mfp {
+namespace {
+
+struct CatalogueEntry {
+  std::string name;
+  Miqp problem;
+  SolveStatus status;
+  double objective;        // hand-computed optimum
+  Eigen::VectorXd x;       // hand-computed optimal point (integer entries at least)
+};
+
+// min (x - 0.6)^2, x binary. x = 0 gives 0.36, x = 1 gives 0.16: optimum x = 1, 0.16.
+CatalogueEntry OneBinary() {
+  MiqpBuilder b;
+  const int x = b.AddBinary("x");
+  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(0.6), 1.0);
+  return {"one_binary", b.Build(), SolveStatus::kOptimal, 0.16, Eigen::VectorXd::Constant(1, 1.0)};
+}
+
+// Knapsack: max 5a + 4b + 3c s.t. 2a + 3b + c <= 5, binaries. Subsets within the
+// capacity: {a,b} weight 5 value 9, {a,c} 3 -> 8, {b,c} 4 -> 7, singles <= 5; {a,b,c}
+// weighs 6. Optimum -9 at (1, 1, 0). The LP relaxation is fractional (c = 1, a = 1,
+// b = 2/3, value 10.67), so branching is needed.
+CatalogueEntry Knapsack() {
+  MiqpBuilder b;
+  const int a = b.AddBinary("a"), bb = b.AddBinary("b"), c = b.AddBinary("c");
+  b.AddRow("capacity", LinExpr::Var(a, 2) + LinExpr::Var(bb, 3) + LinExpr::Var(c, 1), -kInfinity, 5);
+  b.AddLinearCost(LinExpr::Var(a, -5) + LinExpr::Var(bb, -4) + LinExpr::Var(c, -3));
+  Eigen::VectorXd x(3);
+  x << 1, 1, 0;
+  return {"knapsack", b.Build(), SolveStatus::kOptimal, -9.0, x};
+}
+
+// One of three intervals for y: [0, 1], [2, 2.2] or [3, 4], chosen by a one-of group
+// with big-M rows (M = 4); minimise (y - 2.5)^2. Distances to 2.5: 1.5, 0.3, 0.5, so
+// the optimum picks the middle interval with y = 2.2 and cost 0.09.
+CatalogueEntry IntervalChoice() {
+  MiqpBuilder b;
+  const int y = b.AddVariable("y", 0.0, 4.0, false);
+  const double lo[] = {0, 2, 3}, hi[] = {1, 2.2, 4};
+  LinExpr one;
+  std::vector<int> group;
+  for (int k = 0; k < 3; ++k) {
+    const int h = b.AddBinary("h" + std::to_string(k));
+    group.push_back(h);
+    one += LinExpr::Var(h);
+    const double M = 4.0;
+    // y >= lo - M (1 - h)  and  y <= hi + M (1 - h)
+    b.AddRow("lo" + std::to_string(k), LinExpr::Var(y) - LinExpr::Var(h, M), lo[k] - M, kInfinity);
+    b.AddRow("hi" + std::to_string(k), LinExpr::Var(y) + LinExpr::Var(h, M), -kInfinity, hi[k] + M);
+  }
+  b.AddRow("one", one, 1, 1);
+  b.AddSos1Group(group);
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.5), 1.0);
+  Eigen::VectorXd x(4);
+  x << 2.2, 0, 1, 0;
+  return {"interval_choice", b.Build(), SolveStatus::kOptimal, 0.09, x};
+}
+
+// x + y = 1.5 with x, y binary has no solution (sums are 0, 1 or 2).
+CatalogueEntry Infeasible() {
+  MiqpBuilder b;
+  const int x = b.AddBinary("x"), y = b.AddBinary("y");
+  b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), 1.5, 1.5);
+  b.AddLinearCost(LinExpr::Var(x));
+  return {"infeasible", b.Build(), SolveStatus::kInfeasible, kInfinity, Eigen::VectorXd()};
+}
+
+// A general integer: min (z - 2.4)^2, z in {0..5}: z = 2 gives 0.16, z = 3 gives 0.36.
+CatalogueEntry GeneralInteger() {
+  MiqpBuilder b;
+  const int z = b.AddVariable("z", 0.0, 5.0, true);
+  b.AddSquaredCost(LinExpr::Var(z) - LinExpr::Constant(2.4), 1.0);
+  return {"general_integer", b.Build(), SolveStatus::kOptimal, 0.16, Eigen::VectorXd::Constant(1, 2.0)};
+}
+
+// Coupled binaries: min (x1 + x2 - 1.2)^2 + 0.1 x1. (0,0): 1.44, (1,0): 0.04 + 0.1 = 0.14,
+// (0,1): 0.04, (1,1): 0.64 + 0.1 = 0.74. Optimum (0, 1) with 0.04.
+CatalogueEntry CoupledBinaries() {
+  MiqpBuilder b;
+  const int x1 = b.AddBinary("x1"), x2 = b.AddBinary("x2");
+  b.AddSquaredCost(LinExpr::Var(x1) + LinExpr::Var(x2) - LinExpr::Constant(1.2), 1.0);
+  b.AddLinearCost(LinExpr::Var(x1, 0.1));
+  Eigen::VectorXd x(2);
+  x << 0, 1;
+  return {"coupled_binaries", b.Build(), SolveStatus::kOptimal, 0.04, x};
+}
+
+// Mixed: continuous u in [-1, 3] and binary s; min (u - 2)^2 + 3 s subject to u <= 1 + 2 s.
+// s = 0: u = 1, cost 1. s = 1: u = 2, cost 3. Optimum s = 0, u = 1, cost 1.
+CatalogueEntry Mixed() {
+  MiqpBuilder b;
+  const int u = b.AddVariable("u", -1.0, 3.0, false);
+  const int s = b.AddBinary("s");
+  b.AddRow("cap", LinExpr::Var(u) - LinExpr::Var(s, 2.0), -kInfinity, 1.0);
+  b.AddSquaredCost(LinExpr::Var(u) - LinExpr::Constant(2.0), 1.0);
+  b.AddLinearCost(LinExpr::Var(s, 3.0));
+  Eigen::VectorXd x(2);
+  x << 1, 0;
+  return {"mixed", b.Build(), SolveStatus::kOptimal, 1.0, x};
+}
+
+std::vector<CatalogueEntry> Catalogue() {
+  return {OneBinary(), Knapsack(), IntervalChoice(), Infeasible(), GeneralInteger(), CoupledBinaries(), Mixed()};
+}
+
+struct Strategy {
+  NodeSelection selection;
+  BranchingRule branching;
+  bool rounding;
+};
+
+class BranchAndBoundCatalogue : public ::testing::TestWithParam<Strategy> {};
+
+TEST_P(BranchAndBoundCatalogue, ProvesEveryHandComputedOptimum) {
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.node_selection = GetParam().selection;
+  options.branching = GetParam().branching;
+  options.rounding_heuristic = GetParam().rounding;
+  options.relative_gap = 1e-9;
+  options.absolute_gap = 1e-9;
+  for (const CatalogueEntry& entry : Catalogue()) {
+    SCOPED_TRACE(entry.name);
+    const BranchAndBoundResult r = SolveBranchAndBound(entry.problem, *solver, options);
+    ASSERT_EQ(ToString(r.status), ToString(entry.status));
+    if (entry.status != SolveStatus::kOptimal) continue;
+    EXPECT_NEAR(r.objective, entry.objective, 1e-6);
+    EXPECT_NEAR(r.bound, entry.objective, 1e-6);
+    EXPECT_LE(r.gap, 1e-6);
+    ASSERT_EQ(r.x.size(), entry.x.size());
+    for (int j = 0; j < r.x.size(); ++j) EXPECT_NEAR(r.x(j), entry.x(j), 1e-5) << "variable " << j;
+    EXPECT_GE(r.relaxations, 1);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Strategies, BranchAndBoundCatalogue,
+    ::testing::Values(Strategy{NodeSelection::kBestBound, BranchingRule::kMostFractional, false},
+                      Strategy{NodeSelection::kDepthFirst, BranchingRule::kMostFractional, true},
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, true},
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, false}));
+
+TEST(BranchAndBound, KnapsackNeedsBranching) {
+  // Without rounding, the fractional root forces at least three nodes (root + 2 children).
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.rounding_heuristic = false;
+  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  EXPECT_EQ(r.status, SolveStatus::kOptimal);
+  EXPECT_GE(r.nodes, 3);
+}
+
+TEST(BranchAndBound, NodeLimitReturnsBestSoFarWithItsGap) {
+  // One node only. The interval choice's root relaxation reaches y = 2.5 (cost 0) with
+  // fractional choices; rounding picks one interval, whose fixed QP costs at least 0.09.
+  // The result must say unproven (feasible), keep the root bound 0 and report the gap.
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.max_nodes = 1;
+  const BranchAndBoundResult r = SolveBranchAndBound(IntervalChoice().problem, *solver, options);
+  ASSERT_EQ(r.status, SolveStatus::kFeasible);
+  EXPECT_NEAR(r.bound, 0.0, 1e-6);
+  EXPECT_GE(r.objective, 0.09 - 1e-6);
+  EXPECT_NEAR(r.gap, r.objective, 1e-6);  // (objective - 0) / max(1, objective)
+}
+
+TEST(BranchAndBound, TimeLimitWithoutIncumbentSaysSo) {
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.time_limit_s = 0.0;
+  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  EXPECT_EQ(r.status, SolveStatus::kNoSolution);
+  EXPECT_EQ(r.x.size(), 0);
+}
+
+TEST(BranchAndBound, ExtraRoundingProposalsAreUsed) {
+  // A proposal of the optimum itself makes the root's incumbent optimal at once.
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.max_nodes = 1;
+  int calls = 0;
+  const RoundingHeuristic propose = [&calls](const Eigen::VectorXd& relaxed) {
+    ++calls;
+    Eigen::VectorXd x = relaxed;
+    x << 1, 1, 0;
+    return std::vector<Eigen::VectorXd>{x};
+  };
+  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options, propose);
+  EXPECT_GE(calls, 1);
+  EXPECT_NEAR(r.objective, -9.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace mfp

@@ -14,7 +14,7 @@
 #include "planner/mps_writer.h"
 #include "planner/plan_json.h"
 #include "planner/plan_validation.h"
-#include "planner/robot_yaml.h"
+#include "planner/robot_loader.h"
 #include "planner/scenario_yaml.h"
 #include "tools/plan_svg.h"
 #include "tools/daemon/timestamped_log.h"
@@ -112,11 +112,10 @@ int main(int argc, char** argv) {
         throw mfp::InputError("--terrain " + terrain_path + ": expected a .bt or .ot map");
       }
     }
-    const mfp::RobotModel robot = mfp::LoadRobotYaml(scenario.robot_path);
-    if (!scenario.map_path.empty()) {
-      throw mfp::InputError(scenario.map_path + ": terrain maps are not supported by this build yet");
-    }
-    const std::vector<mfp::ConvexRegion> regions = mfp::RegionsFromDescription(scenario, robot);
+    const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
+    std::string terrain_note;
+    const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot, &terrain_note);
+    if (!terrain_note.empty()) log("terrain: " + terrain_note);
     log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
         std::to_string(regions.size()) + " regions");
 
