@@ -1,13 +1,27 @@
 #include "tools/daemon/map_regions.h"
 
-#include "planner/check.h"
+#include <algorithm>
+
+#include "terrain/octomap_io.h"
+#include "terrain/region_extractor.h"
 
 namespace mfp {
 
-MapFunction MakeOctomapMapFunction(const DaemonSetup& /*setup*/) {
-  return [](const std::string& /*bytes*/, const std::string& /*format*/,
-            const std::string& what) -> std::vector<ConvexRegion> {
-    throw InputError(what + ": OctoMap maps are not readable yet (terrain/octomap_io.h pending)");
+MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
+  // One region set serves every robot: inset by the widest foot and limited to the
+  // gentlest max_slope, so no robot is sent onto a surface it cannot take.
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.0;
+  options.max_slope_rad = 1.5;
+  for (const auto& entry : setup.robots) {
+    options.foot_radius_m = std::max(options.foot_radius_m, entry.second.foot_radius_m);
+    options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
+  }
+  return [options](const std::string& bytes, const std::string& /*format*/,
+                   const std::string& what) {
+    const std::vector<uint8_t> data(bytes.begin(), bytes.end());
+    const OccupancyMap map = LoadMapBytes(data, what);
+    return ExtractRegions(map, options).regions;
   };
 }
 

@@ -1,0 +1,107 @@
+#!/bin/bash
+# The daemon over real LCM: plays a log with lcm-logplayer into a running mfp-daemon,
+# records the replies with lcm-logger and checks every one with mfp-check-replies.
+# Multicast stays inside a private network namespace this script makes (unshare -n,
+# only lo, with a multicast route); it never sends multicast on the host network.
+# It fails loudly (never skips) when the namespace cannot be made.
+#
+# usage: daemon_replay_test.sh SOURCE_DIR BUILD_DIR
+set -euo pipefail
+
+SOURCE_DIR=$(realpath "$1")
+BUILD_DIR=$(realpath "$2")
+SCENARIO="$SOURCE_DIR/tests/daemon_replay_scenario.yaml"
+CONFIG="$SOURCE_DIR/config/daemon.yaml"
+URL="udpm://239.255.76.67:7667?ttl=0"
+
+if [ "${3:-}" != "--in-namespace" ]; then
+  for tool in unshare ip lcm-logger lcm-logplayer; do
+    command -v "$tool" >/dev/null || { echo "FAIL: $tool not found (tools/debian-packages.txt)"; exit 1; }
+  done
+  if ! unshare -n true 2>/dev/null; then
+    echo "FAIL: cannot create a network namespace (unshare -n needs root or CAP_SYS_ADMIN);"
+    echo "      this test never falls back to the host network."
+    exit 1
+  fi
+  exec unshare -n "$0" "$SOURCE_DIR" "$BUILD_DIR" --in-namespace
+fi
+
+# --- inside the private namespace ---
+# Refuse to go on unless lo is the only interface: nothing can leave this namespace.
+interfaces=$(ip -o link show | awk -F': ' '{print $2}' | sed 's/@.*//')
+if [ "$interfaces" != "lo" ]; then
+  echo "FAIL: expected only lo in the namespace, found: $interfaces"
+  exit 1
+fi
+ip link set lo up
+ip link set lo multicast on
+ip route add 224.0.0.0/4 dev lo
+
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_daemon_replay.XXXXXX")
+DAEMON_PID=""
+LOGGER_PID=""
+cleanup() {
+  [ -n "$DAEMON_PID" ] && kill -KILL "$DAEMON_PID" 2>/dev/null || true
+  [ -n "$LOGGER_PID" ] && kill -KILL "$LOGGER_PID" 2>/dev/null || true
+  rm -rf "$WORK"
+}
+trap cleanup EXIT
+
+fail() {
+  echo "FAIL: $*"
+  echo "--- daemon log ---"; cat "$WORK/daemon.log" || true
+  exit 1
+}
+
+"$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
+
+lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' \
+  --flush-interval=50 --force "$WORK/replies.lcmlog" &
+LOGGER_PID=$!
+
+"$BUILD_DIR/tools/mfp-daemon" --config "$CONFIG" --lcm-url "$URL" 2>"$WORK/daemon.log" &
+DAEMON_PID=$!
+for _ in $(seq 1 300); do
+  grep -q "started:" "$WORK/daemon.log" && break
+  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
+  sleep 0.1
+done
+grep -q "started:" "$WORK/daemon.log" || fail "mfp-daemon did not start within 30 s"
+
+# SIGHUP reloads the config while it runs.
+kill -HUP "$DAEMON_PID"
+
+lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
+
+# Wait until every request has a reply (the checker stops answering 3) or time runs out.
+deadline=$((SECONDS + 240))
+while :; do
+  check=0
+  "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" \
+    --config "$CONFIG" >"$WORK/check.txt" 2>&1 || check=$?
+  [ "$check" -ne 3 ] && break
+  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died"
+  if [ $SECONDS -ge $deadline ]; then cat "$WORK/check.txt"; fail "replies incomplete after 240 s"; fi
+  sleep 1
+done
+# One more heartbeat so the last status counts every reply.
+sleep 1
+
+# SIGTERM: a clean exit with status 0.
+kill -TERM "$DAEMON_PID"
+status=0
+wait "$DAEMON_PID" || status=$?
+DAEMON_PID=""
+[ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
+kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
+
+# The final check, on the complete log.
+"$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" --config "$CONFIG" \
+  || fail "replies do not check"
+grep -q "SIGHUP: configuration reloaded" "$WORK/daemon.log" || fail "no reload logged after SIGHUP"
+grep -q "SIGTERM: stopping" "$WORK/daemon.log" || fail "no clean stop logged"
+grep -Eq '^[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9:.]+Z mfp-daemon: ' "$WORK/daemon.log" \
+  || fail "daemon log lines carry no timestamps"
+echo "--- daemon log ---"
+cat "$WORK/daemon.log"
+echo "PASS"
