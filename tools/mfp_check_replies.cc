@@ -81,8 +81,9 @@ class Checker {
 std::string Describe(const plan_t& p) {
   std::ostringstream out;
   out << "request " << p.request_id << ": " << ToString(static_cast<SolveStatus>(p.status)) << ", "
-      << p.num_steps << " footsteps, " << (p.reaches_goal ? "reaches the goal" : "short of the goal")
-      << ", " << p.solve_time_s << " s";
+      << p.num_steps << " footsteps";
+  if (p.num_steps > 0) out << (p.reaches_goal ? ", reaches the goal" : ", short of the goal");
+  out << ", " << p.solve_time_s << " s";
   if (!p.message.empty()) out << " (" << p.message << ")";
   return out.str();
 }
