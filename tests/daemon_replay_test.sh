@@ -104,4 +104,18 @@ grep -Eq '^[0-9]{4}-[0-9]{2}-[0-9]{2}T[0-9:.]+Z mfp-daemon: ' "$WORK/daemon.log"
   || fail "daemon log lines carry no timestamps"
 echo "--- daemon log ---"
 cat "$WORK/daemon.log"
+
+# SIGINT: also a clean exit with status 0.
+"$BUILD_DIR/tools/mfp-daemon" --config "$CONFIG" --lcm-url "$URL" 2>"$WORK/daemon2.log" &
+DAEMON_PID=$!
+for _ in $(seq 1 300); do
+  grep -q "started:" "$WORK/daemon2.log" && break
+  sleep 0.1
+done
+kill -INT "$DAEMON_PID"
+status=0
+wait "$DAEMON_PID" || status=$?
+DAEMON_PID=""
+[ "$status" -eq 0 ] || { cat "$WORK/daemon2.log"; fail "mfp-daemon exited with $status on SIGINT"; }
+grep -q "SIGINT: stopping" "$WORK/daemon2.log" || fail "no clean stop logged after SIGINT"
 echo "PASS"

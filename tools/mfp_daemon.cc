@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
           Log("lcm_url changed in the config; it takes effect on restart");
         if (reloaded->config.initial_map != setup->config.initial_map)
           Log("initial_map changed in the config; it is read on restart");
-        core.Reconfigure(reloaded);
+        core.Reconfigure(reloaded, mfp::MakeOctomapMapFunction(*reloaded));
         runner.SetHeartbeatPeriod(reloaded->config.heartbeat_period_s);
         setup = reloaded;
         Log("SIGHUP: configuration reloaded from " + config_path);

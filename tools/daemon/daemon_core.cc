@@ -24,13 +24,13 @@ std::string Seconds(double s) {
 
 DaemonCore::DaemonCore(std::shared_ptr<const DaemonSetup> setup, MapFunction map_function,
                        PlanFunction plan_function, Publisher& publisher, Clock clock, LogSink log)
-    : map_function_(std::move(map_function)),
-      plan_function_(std::move(plan_function)),
+    : plan_function_(std::move(plan_function)),
       publisher_(publisher),
       clock_(std::move(clock)),
       log_(std::move(log)),
       start_utime_(clock_()),
       setup_(std::move(setup)),
+      map_function_(std::move(map_function)),
       queue_(static_cast<size_t>(setup_->config.limits.queue_size)) {
   MFP_CHECK(map_function_ && plan_function_ && clock_);
 }
@@ -103,9 +103,14 @@ void DaemonCore::LoadMapFile(const std::string& path) {
 
 void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
                            const std::string& frame, int64_t map_utime, const std::string& what) {
+  MapFunction map_function;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    map_function = map_function_;
+  }
   // Extraction runs outside the lock: requests keep being answered meanwhile.
   auto regions =
-      std::make_shared<const std::vector<ConvexRegion>>(map_function_(bytes, format, what));
+      std::make_shared<const std::vector<ConvexRegion>>(map_function(bytes, format, what));
   const int64_t now = clock_();
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -235,9 +240,12 @@ bool DaemonCore::WaitAndPlanNext(std::chrono::milliseconds timeout) {
 }
 
 void DaemonCore::Reply(const plan_t& reply) {
+  {
+    // Counted first, so no status published after a client saw the reply lags behind it.
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.plans;
+  }
   PublishMessage(publisher_, kPlanChannel, reply);
-  std::lock_guard<std::mutex> lock(mutex_);
-  ++counters_.plans;
 }
 
 void DaemonCore::ReplyDropped(const QueuedRequest& request, const std::string& why) {
@@ -282,11 +290,12 @@ status_t DaemonCore::StatusMessage() const {
 
 void DaemonCore::PublishStatus() { PublishMessage(publisher_, kStatusChannel, StatusMessage()); }
 
-void DaemonCore::Reconfigure(std::shared_ptr<const DaemonSetup> setup) {
+void DaemonCore::Reconfigure(std::shared_ptr<const DaemonSetup> setup, MapFunction map_function) {
   std::deque<QueuedRequest> evicted;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     setup_ = std::move(setup);
+    if (map_function) map_function_ = std::move(map_function);
     evicted = queue_.SetCapacity(static_cast<size_t>(setup_->config.limits.queue_size));
   }
   for (const QueuedRequest& r : evicted) ReplyDropped(r, "dropped: the queue shrank on reload");

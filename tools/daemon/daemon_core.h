@@ -83,9 +83,10 @@ class DaemonCore {
   // Publishes status_t now.
   void PublishStatus();
 
-  // Replaces the setup (config reload). Queued requests stay; the queue takes the new
+  // Replaces the setup (config reload) and, when given, the map reader for the next
+  // maps (the current regions stay). Queued requests stay; the queue takes the new
   // capacity (evicted entries are answered as dropped).
-  void Reconfigure(std::shared_ptr<const DaemonSetup> setup);
+  void Reconfigure(std::shared_ptr<const DaemonSetup> setup, MapFunction map_function = {});
 
   // Answers every queued request as dropped and wakes WaitAndPlanNext.
   void Stop();
@@ -103,7 +104,6 @@ class DaemonCore {
   void ReplyDropped(const QueuedRequest& request, const std::string& why);
   void Log(const std::string& line) const;
 
-  MapFunction map_function_;
   PlanFunction plan_function_;
   Publisher& publisher_;
   Clock clock_;
@@ -115,6 +115,7 @@ class DaemonCore {
   bool stopped_ = false;
   bool planning_ = false;
   std::shared_ptr<const DaemonSetup> setup_;
+  MapFunction map_function_;  // replaced on reload
   // Regions of the current map; shared so a plan in progress keeps its snapshot while a
   // new map replaces them.
   std::shared_ptr<const std::vector<ConvexRegion>> regions_;
