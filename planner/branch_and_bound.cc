@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "planner/bound_propagation.h"
 #include "planner/check.h"
 
 namespace mfp {
@@ -57,6 +58,12 @@ class Search {
       for (const BoundChange& ch : node.changes) {
         lower(ch.index) = ch.lower;
         upper(ch.index) = ch.upper;
+      }
+      if (opt_.bound_propagation && PropagateBounds(p_, &lower, &upper).infeasible) {
+        ++result_.propagation_prunes;
+        if (!root_done) root_infeasible_ = true;
+        root_done = true;
+        continue;
       }
       RelaxationResult rel = SolveRelaxation(lower, upper, node.warm_start.size() ? &node.warm_start : nullptr);
       if (rel.status != RelaxationStatus::kSolved && node.warm_start.size()) {

@@ -34,6 +34,7 @@ struct BranchAndBoundOptions {
   BranchingRule branching = BranchingRule::kSos1Split;
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
+  bool bound_propagation = true;   // tighten bounds over the rows at every node first
 };
 
 struct BranchAndBoundResult {
@@ -44,6 +45,7 @@ struct BranchAndBoundResult {
   double gap = kInfinity;        // (objective - bound) / max(1, |objective|)
   int nodes = 0;
   int relaxations = 0;
+  int propagation_prunes = 0;   // nodes found infeasible by bound propagation alone
   double solve_time_s = 0.0;
 };
 

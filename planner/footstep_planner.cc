@@ -41,6 +41,14 @@ double PlanarDistance(const ConvexRegion& region, const Eigen::Vector2d& q) {
 
 int ChooseValue(int requested, int fallback) { return requested > 0 ? requested : fallback; }
 
+int MaxSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options) {
+  return ChooseValue(request.max_steps, ChooseValue(options.default_max_steps, 12 * robot.num_legs()));
+}
+
+int WindowSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options) {
+  return ChooseValue(request.window_steps, ChooseValue(options.default_window_steps, 4 * robot.num_legs()));
+}
+
 // Worst (least certain) of two window statuses that both carry a plan.
 SolveStatus Combine(SolveStatus a, SolveStatus b) {
   auto rank = [](SolveStatus s) {
@@ -80,6 +88,23 @@ double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vecto
   return std::atan2(sin_sum, cos_sum);
 }
 
+FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                   const PlanRequest& request, const PlannerOptions& options) {
+  MFP_CHECK(static_cast<int>(request.start_feet_world_m.size()) == robot.num_legs());
+  FootstepProblem problem;
+  problem.robot = &robot;
+  problem.regions = regions;
+  for (int i = 0; i < robot.num_legs(); ++i) {
+    problem.start_feet_world_m.push_back(request.start_feet_world_m[robot.gait[i]]);
+  }
+  problem.start_yaw_rad = request.start_yaw_rad;
+  problem.goal_x_m = request.goal_x_m;
+  problem.goal_y_m = request.goal_y_m;
+  problem.goal_yaw_rad = request.goal_yaw_rad;
+  problem.num_new_steps = std::min(MaxSteps(robot, request, options), WindowSteps(robot, request, options));
+  return problem;
+}
+
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                    const PlanRequest& request, const PlannerOptions& options,
                    RelaxationSolver& solver,
@@ -106,8 +131,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       !std::isfinite(request.time_limit_s)) {
     return Rejected(SolveStatus::kInvalidRequest, "start yaw, goal pose and time limit must be finite numbers");
   }
-  const int max_steps = ChooseValue(request.max_steps, ChooseValue(options.default_max_steps, 12 * n));
-  const int window = ChooseValue(request.window_steps, ChooseValue(options.default_window_steps, 4 * n));
+  const int max_steps = MaxSteps(robot, request, options);
+  const int window = WindowSteps(robot, request, options);
   const double time_limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
   if (request.max_steps < 0 || max_steps > 100000 || request.window_steps < 0 || window > 1000 ||
       request.time_limit_s < 0) {
@@ -180,15 +205,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     const int steps = std::min(window, max_steps - planned);
     const int windows_left = (max_steps - planned + window - 1) / window;
-    FootstepProblem problem;
-    problem.robot = &robot;
-    problem.regions = regions;
+    FootstepProblem problem = FirstWindowProblem(robot, regions, request, options);
     problem.start_feet_world_m = stance;
     problem.gait_phase = phase;
     problem.start_yaw_rad = yaw;
-    problem.goal_x_m = request.goal_x_m;
-    problem.goal_y_m = request.goal_y_m;
-    problem.goal_yaw_rad = request.goal_yaw_rad;
     problem.num_new_steps = steps;
     if (plan.windows > 0) {
       problem.history_feet_world_m = history;

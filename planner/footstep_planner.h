@@ -55,6 +55,12 @@ std::vector<Eigen::Vector3d> NominalStance(const RobotModel& robot,
 // Body yaw that best aligns the feet (leg order) with the nominal offsets [rad].
 double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vector3d>& feet_world_m);
 
+// The MIQP of the first window of a request: the start stance in gait order, the
+// window's number of new steps. PlanFootsteps solves exactly this problem first, and
+// mfp-plan --write-mps exports it.
+FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                   const PlanRequest& request, const PlannerOptions& options);
+
 // Plans a whole route. Bad requests come back as statuses (kInvalidRequest,
 // kInvalidStart, kInvalidGoal, kNoMap) with a message naming the problem.
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,

@@ -107,4 +107,19 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
   return std::move(result.regions);
 }
 
+PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
+                            const std::vector<ConvexRegion>& regions) {
+  PlanRequest request;
+  request.start_feet_world_m =
+      NominalStance(robot, regions, scenario.start.x_m, scenario.start.y_m, scenario.start.yaw_rad);
+  request.start_yaw_rad = scenario.start.yaw_rad;
+  request.goal_x_m = scenario.goal.x_m;
+  request.goal_y_m = scenario.goal.y_m;
+  request.goal_yaw_rad = scenario.goal.yaw_rad;
+  request.max_steps = scenario.max_steps;
+  request.window_steps = scenario.window_steps;
+  request.time_limit_s = scenario.time_limit_s;
+  return request;
+}
+
 }  // namespace mfp

@@ -46,4 +46,9 @@ Scenario LoadScenario(const std::string& path);
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
                                           std::string* note = nullptr);
 
+// The request a scenario describes: the robot's nominal stance at the start pose (feet on
+// the regions below them), the goal, and the scenario's step and time settings.
+PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
+                            const std::vector<ConvexRegion>& regions);
+
 }  // namespace mfp

@@ -119,35 +119,16 @@ int main(int argc, char** argv) {
     log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
         std::to_string(regions.size()) + " regions");
 
-    mfp::PlannerOptions options = scenario.options;
-    mfp::PlanRequest request;
-    request.start_feet_world_m =
-        mfp::NominalStance(robot, regions, scenario.start.x_m, scenario.start.y_m, scenario.start.yaw_rad);
-    request.start_yaw_rad = scenario.start.yaw_rad;
-    request.goal_x_m = scenario.goal.x_m;
-    request.goal_y_m = scenario.goal.y_m;
-    request.goal_yaw_rad = scenario.goal.yaw_rad;
-    request.max_steps = max_steps > 0 ? max_steps : scenario.max_steps;
-    request.window_steps = window > 0 ? window : scenario.window_steps;
-    request.time_limit_s = time_limit > 0 ? time_limit : scenario.time_limit_s;
+    const mfp::PlannerOptions& options = scenario.options;
+    mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
+    if (max_steps > 0) request.max_steps = max_steps;
+    if (window > 0) request.window_steps = window;
+    if (time_limit > 0) request.time_limit_s = time_limit;
 
     const auto solver = mfp::MakeIpoptRelaxationSolver();
     if (!mps_path.empty()) {
       // The first window's MIQP, exactly as the planner builds it.
-      mfp::FootstepProblem problem;
-      problem.robot = &robot;
-      problem.regions = regions;
-      for (int i = 0; i < robot.num_legs(); ++i) {
-        problem.start_feet_world_m.push_back(request.start_feet_world_m[robot.gait[i]]);
-      }
-      problem.start_yaw_rad = request.start_yaw_rad;
-      problem.goal_x_m = request.goal_x_m;
-      problem.goal_y_m = request.goal_y_m;
-      problem.goal_yaw_rad = request.goal_yaw_rad;
-      const int n = robot.num_legs();
-      const int total = request.max_steps > 0 ? request.max_steps : (options.default_max_steps > 0 ? options.default_max_steps : 12 * n);
-      const int win = request.window_steps > 0 ? request.window_steps : (options.default_window_steps > 0 ? options.default_window_steps : 4 * n);
-      problem.num_new_steps = std::min(total, win);
+      const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, options);
       const mfp::MiqpFormulation formulation(problem, options.formulation);
       mfp::WriteMpsFile(formulation.miqp(), "mfp", mps_path);
       log("wrote " + mps_path + " (" + std::to_string(formulation.miqp().num_variables()) + " columns, " +

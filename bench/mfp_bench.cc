@@ -1,0 +1,143 @@
+// mfp-bench: planner benchmark. Prints a table of
+//  - single MIQPs of 12, 24 and 36 steps on the 13-region stepping stones (the sizes of
+//    the seed paper's Table I), for the hexapod and the quadruped, and
+//  - every scenario in config/scenarios/, planned end to end.
+// With --write-instances DIR it also writes each single MIQP as NAME.mps plus its plan
+// JSON (NAME.json) so bench/peers/run_peers.py can solve the identical problems.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "planner/check.h"
+#include "planner/footstep_planner.h"
+#include "planner/ipopt_relaxation_solver.h"
+#include "planner/mps_writer.h"
+#include "planner/plan_json.h"
+#include "planner/plan_validation.h"
+#include "planner/robot_loader.h"
+#include "planner/scenario_yaml.h"
+
+namespace {
+
+struct Row {
+  std::string name;
+  int steps = 0;
+  int integer_variables = 0;
+  int nodes = 0;
+  int relaxations = 0;
+  double time_s = 0.0;
+  double objective = 0.0;
+  double gap = 0.0;
+  std::string status;
+  bool reaches_goal = false;
+  int violations = 0;
+};
+
+void PrintHeader(const std::string& title) {
+  std::printf("\n%s\n", title.c_str());
+  std::printf("%-34s %6s %8s %7s %8s %9s %12s %9s %-11s %5s %5s\n", "instance", "steps", "int_vars", "nodes",
+              "relax", "time_s", "objective", "gap", "status", "goal", "viol");
+}
+
+void PrintRow(const Row& r) {
+  std::printf("%-34s %6d %8d %7d %8d %9.3f %12.4f %9.2e %-11s %5s %5d\n", r.name.c_str(), r.steps,
+              r.integer_variables, r.nodes, r.relaxations, r.time_s, r.objective, r.gap, r.status.c_str(),
+              r.reaches_goal ? "yes" : "no", r.violations);
+  std::fflush(stdout);
+}
+
+Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::RobotModel& robot,
+        const std::vector<mfp::ConvexRegion>& regions, const mfp::PlanRequest& request,
+        const std::string& instances_dir) {
+  const auto solver = mfp::MakeIpoptRelaxationSolver();
+  const mfp::Plan plan = mfp::PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  Row row;
+  row.name = name;
+  row.steps = std::max(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
+  row.integer_variables = plan.integer_variables;
+  row.nodes = plan.nodes;
+  row.relaxations = plan.relaxations;
+  row.time_s = plan.solve_time_s;
+  row.objective = plan.objective;
+  row.gap = plan.gap;
+  row.status = mfp::ToString(plan.status);
+  row.reaches_goal = plan.reaches_goal;
+  mfp::ValidationTolerances tol;
+  tol.rotation_m = mfp::RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
+  row.violations = static_cast<int>(
+      mfp::ValidatePlan(robot, regions, plan,
+                        {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
+                         scenario.options.goal_tolerance_m, scenario.options.goal_yaw_tolerance_rad},
+                        tol)
+          .size());
+  if (!instances_dir.empty()) {
+    const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, scenario.options);
+    const mfp::MiqpFormulation formulation(problem, scenario.options.formulation);
+    mfp::WriteMpsFile(formulation.miqp(), name, instances_dir + "/" + name + ".mps");
+    std::ofstream(instances_dir + "/" + name + ".json") << mfp::PlanToJson(plan, robot, regions).dump(1) << "\n";
+  }
+  return row;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mfp-bench: Table I sizes and every scenario, planned with mfp's solver"};
+  std::string scenario_dir = std::string(MFP_SOURCE_DIR) + "/config/scenarios";
+  std::string instances_dir;
+  double time_limit = 60.0;
+  bool table_only = false, scenarios_only = false;
+  std::vector<int> sizes = {12, 24, 36};
+  app.add_option("--scenarios", scenario_dir, "folder of scenario YAML files");
+  app.add_option("--time-limit", time_limit, "time limit per instance [s]")->check(CLI::Range(0.01, 3600.0));
+  app.add_option("--sizes", sizes, "single-MIQP sizes (new steps)");
+  app.add_option("--write-instances", instances_dir, "write NAME.mps + NAME.json of each single MIQP here");
+  app.add_flag("--table-only", table_only, "only the single MIQPs of Table I");
+  app.add_flag("--scenarios-only", scenarios_only, "only the scenarios");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (!instances_dir.empty()) std::filesystem::create_directories(instances_dir);
+    if (!scenarios_only) {
+      PrintHeader("Single MIQPs on the 13-region stepping stones (seed paper Table I: 12/24/36 steps, 312/552/828 "
+                  "integer variables, 0.08/0.44/3.68 s with Gurobi)");
+      for (const std::string robot_name : {"hexapod", "littledog"}) {
+        const mfp::Scenario scenario = mfp::LoadScenario(scenario_dir + "/" + robot_name + "_stepping_stones_45.yaml");
+        const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
+        const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot);
+        for (int steps : sizes) {
+          mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
+          request.max_steps = steps;
+          request.window_steps = steps;
+          request.time_limit_s = time_limit;
+          PrintRow(Run(robot_name + "_stones_" + std::to_string(steps), scenario, robot, regions, request, instances_dir));
+        }
+      }
+    }
+    if (!table_only) {
+      PrintHeader("Scenarios planned end to end (windows of 4 n steps)");
+      std::vector<std::string> files;
+      for (const auto& entry : std::filesystem::directory_iterator(scenario_dir)) {
+        if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
+      }
+      std::sort(files.begin(), files.end());
+      for (const std::string& file : files) {
+        const mfp::Scenario scenario = mfp::LoadScenario(file);
+        const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
+        const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot);
+        mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
+        if (request.time_limit_s <= 0) request.time_limit_s = time_limit;
+        PrintRow(Run(std::filesystem::path(file).stem().string(), scenario, robot, regions, request, ""));
+      }
+    }
+  } catch (const mfp::InputError& e) {
+    std::cerr << "mfp-bench: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
