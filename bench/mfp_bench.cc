@@ -16,7 +16,7 @@
 
 #include "planner/check.h"
 #include "planner/footstep_planner.h"
-#include "planner/ipopt_relaxation_solver.h"
+#include "planner/relaxation_solver_factory.h"
 #include "planner/mps_writer.h"
 #include "planner/plan_json.h"
 #include "planner/plan_validation.h"
@@ -55,7 +55,7 @@ void PrintRow(const Row& r) {
 Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::RobotModel& robot,
         const std::vector<mfp::ConvexRegion>& regions, const mfp::PlanRequest& request,
         const std::string& instances_dir) {
-  const auto solver = mfp::MakeIpoptRelaxationSolver();
+  const auto solver = mfp::MakeRelaxationSolver(scenario.options.relaxation_solver);
   const mfp::Plan plan = mfp::PlanFootsteps(robot, regions, request, scenario.options, *solver);
   Row row;
   row.name = name;

@@ -10,6 +10,7 @@
 #include "planner/miqp_formulation.h"
 #include "planner/plan.h"
 #include "planner/relaxation_solver.h"
+#include "planner/relaxation_solver_factory.h"
 #include "planner/robot_model.h"
 #include "terrain/convex_region.h"
 
@@ -34,6 +35,7 @@ struct PlannerOptions {
   double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot
   double goal_yaw_tolerance_rad = 0.15;  // final body yaw within this of the goal yaw
   double start_tolerance_m = 0.02;       // a start foot may be this far off its region
+  RelaxationBackend relaxation_solver = RelaxationBackend::kInteriorPointWithIpoptFallback;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };

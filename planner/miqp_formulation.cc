@@ -1,7 +1,6 @@
 #include "planner/miqp_formulation.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -139,16 +138,18 @@ void MiqpFormulation::Build() {
   // For new steps p_i is a variable defined by an equality row: every constraint and
   // cost that uses p_i then touches 1 column instead of n, which keeps the KKT systems
   // of the relaxations sparse.
-  std::vector<std::array<int, 2>> coc_var(N, {-1, -1});
+  vars_.px.assign(N, -1);
+  vars_.py.assign(N, -1);
   for (int i = n; i < N; ++i) {
     for (int axis = 0; axis < 2; ++axis) {
       const std::string name = std::string(axis == 0 ? "px_" : "py_") + std::to_string(i);
-      coc_var[i][axis] = b.AddVariable(name, box.lo(axis), box.hi(axis), false);
-      b.AddRow("def_" + name, coc_sum(i, axis) - LinExpr::Var(coc_var[i][axis]), 0.0, 0.0);
+      const int p = b.AddVariable(name, box.lo(axis), box.hi(axis), false);
+      (axis == 0 ? vars_.px : vars_.py)[i] = p;
+      b.AddRow("def_" + name, coc_sum(i, axis) - LinExpr::Var(p), 0.0, 0.0);
     }
   }
   auto coc = [&](int i, int axis) -> LinExpr {
-    return i >= n ? LinExpr::Var(coc_var[i][axis]) : coc_sum(i, axis);
+    return i >= n ? LinExpr::Var(axis == 0 ? vars_.px[i] : vars_.py[i]) : coc_sum(i, axis);
   };
 
   // ---- yaw per configuration, with piecewise-linear sin/cos ----
@@ -166,6 +167,7 @@ void MiqpFormulation::Build() {
   vars_.s.assign(B, -1);
   vars_.c.assign(B, -1);
   vars_.segment.assign(B, {});
+  vars_.segment_theta.assign(B, {});
   for (int blk = 1; blk < B; ++blk) {
     vars_.theta[blk] = b.AddVariable(StepName("theta", blk), yaw_lo, yaw_hi, false);
     vars_.s[blk] = b.AddVariable(StepName("sin", blk), s_lo, s_hi, false);
@@ -189,32 +191,59 @@ void MiqpFormulation::Build() {
     }
     b.AddRow(StepName("one_segment", blk), one_segment, 1.0, 1.0);
     b.AddSos1Group(vars_.segment[blk]);
-    for (int k = 0; k < K; ++k) {
-      const int sk = vars_.segment[blk][k];
-      const double a = breakpoints_[k], e = breakpoints_[k + 1];
-      const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
-      // S_bk => psi_k <= theta_b <= psi_{k+1}, written with the tightest constants:
-      // theta >= lo + (psi_k - lo) S and theta <= hi - (hi - psi_{k+1}) S.
-      b.AddRow("seg_lo_" + tag, theta(blk) - LinExpr::Var(sk, a - yaw_lo), yaw_lo, kInfinity);
-      b.AddRow("seg_hi_" + tag, theta(blk) + LinExpr::Var(sk, yaw_hi - e), -kInfinity, yaw_hi);
-      // S_bk => s = m theta + q (chord of sin over [a, e]); likewise for cos.
-      for (int fn = 0; fn < 2; ++fn) {
-        const double va = fn == 0 ? std::sin(a) : std::cos(a);
-        const double ve = fn == 0 ? std::sin(e) : std::cos(e);
-        const double m = (ve - va) / (e - a);
-        const double q = va - m * a;
-        const double lo_v = fn == 0 ? s_lo : c_lo, hi_v = fn == 0 ? s_hi : c_hi;
-        // Largest |v - m theta - q| over the variable box: the big-M of this row.
-        double M = 0.0;
-        for (double t : {yaw_lo, yaw_hi}) {
-          for (double v : {lo_v, hi_v}) M = std::max(M, std::abs(v - m * t - q));
+    if (options_.yaw_encoding == YawEncoding::kConvexHull) {
+      // Disaggregated: theta = sum_k theta_k with psi_k S_k <= theta_k <= psi_{k+1} S_k,
+      // s = sum_k (m_k theta_k + q_k S_k) and likewise c. Exact for integer S, and the
+      // relaxation is the convex hull of the piecewise-linear curves: (s, c) cannot shrink
+      // towards the origin the way the big-M rows allow.
+      LinExpr theta_sum = LinExpr::Var(vars_.theta[blk], -1.0);
+      LinExpr sin_sum = LinExpr::Var(vars_.s[blk], -1.0);
+      LinExpr cos_sum = LinExpr::Var(vars_.c[blk], -1.0);
+      for (int k = 0; k < K; ++k) {
+        const int sk = vars_.segment[blk][k];
+        const double a = breakpoints_[k], e = breakpoints_[k + 1];
+        const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
+        const int tk = b.AddVariable("theta_" + tag, std::min(0.0, a), std::max(0.0, e), false);
+        vars_.segment_theta[blk].push_back(tk);
+        b.AddRow("seg_lo_" + tag, LinExpr::Var(tk) - LinExpr::Var(sk, a), 0.0, kInfinity);
+        b.AddRow("seg_hi_" + tag, LinExpr::Var(tk) - LinExpr::Var(sk, e), -kInfinity, 0.0);
+        theta_sum += LinExpr::Var(tk);
+        const double ms = (std::sin(e) - std::sin(a)) / (e - a), qs = std::sin(a) - ms * a;
+        const double mc = (std::cos(e) - std::cos(a)) / (e - a), qc = std::cos(a) - mc * a;
+        sin_sum += LinExpr::Var(tk, ms) + LinExpr::Var(sk, qs);
+        cos_sum += LinExpr::Var(tk, mc) + LinExpr::Var(sk, qc);
+      }
+      b.AddRow(StepName("theta_sum", blk), theta_sum, 0.0, 0.0);
+      b.AddRow(StepName("sin_def", blk), sin_sum, 0.0, 0.0);
+      b.AddRow(StepName("cos_def", blk), cos_sum, 0.0, 0.0);
+    } else {
+      for (int k = 0; k < K; ++k) {
+        const int sk = vars_.segment[blk][k];
+        const double a = breakpoints_[k], e = breakpoints_[k + 1];
+        const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
+        // S_bk => psi_k <= theta_b <= psi_{k+1}, written with the tightest constants:
+        // theta >= lo + (psi_k - lo) S and theta <= hi - (hi - psi_{k+1}) S.
+        b.AddRow("seg_lo_" + tag, theta(blk) - LinExpr::Var(sk, a - yaw_lo), yaw_lo, kInfinity);
+        b.AddRow("seg_hi_" + tag, theta(blk) + LinExpr::Var(sk, yaw_hi - e), -kInfinity, yaw_hi);
+        // S_bk => s = m theta + q (chord of sin over [a, e]); likewise for cos.
+        for (int fn = 0; fn < 2; ++fn) {
+          const double va = fn == 0 ? std::sin(a) : std::cos(a);
+          const double ve = fn == 0 ? std::sin(e) : std::cos(e);
+          const double m = (ve - va) / (e - a);
+          const double q = va - m * a;
+          const double lo_v = fn == 0 ? s_lo : c_lo, hi_v = fn == 0 ? s_hi : c_hi;
+          // Largest |v - m theta - q| over the variable box: the big-M of this row.
+          double M = 0.0;
+          for (double t : {yaw_lo, yaw_hi}) {
+            for (double v : {lo_v, hi_v}) M = std::max(M, std::abs(v - m * t - q));
+          }
+          const LinExpr resid = (fn == 0 ? sin_of(blk) : cos_of(blk)) - LinExpr::Var(vars_.theta[blk], m) -
+                                LinExpr::Constant(q);
+          const char* fname = fn == 0 ? "sin" : "cos";
+          // resid <= M (1 - S)  and  resid >= -M (1 - S)
+          b.AddRow(std::string(fname) + "_chord_up_" + tag, resid + LinExpr::Var(sk, M), -kInfinity, M);
+          b.AddRow(std::string(fname) + "_chord_dn_" + tag, resid - LinExpr::Var(sk, M), -M, kInfinity);
         }
-        const LinExpr resid = (fn == 0 ? sin_of(blk) : cos_of(blk)) - LinExpr::Var(vars_.theta[blk], m) -
-                              LinExpr::Constant(q);
-        const char* fname = fn == 0 ? "sin" : "cos";
-        // resid <= M (1 - S)  and  resid >= -M (1 - S)
-        b.AddRow(std::string(fname) + "_chord_up_" + tag, resid + LinExpr::Var(sk, M), -kInfinity, M);
-        b.AddRow(std::string(fname) + "_chord_dn_" + tag, resid - LinExpr::Var(sk, M), -M, kInfinity);
       }
     }
     // Bounded yaw change between consecutive configurations.

@@ -26,10 +26,16 @@ enum class RegionEncoding {
   kConvexHull,  // f_i = sum_r f_ir, A_r f_ir <= b_r H_ir (disaggregated, tighter)
 };
 
+enum class YawEncoding {
+  kBigM,        // S_k => psi_k <= theta <= psi_k+1 and s, c on the segment's chords (big-M)
+  kConvexHull,  // disaggregated theta_k per segment: the relaxation is the hull of the curves
+};
+
 struct FormulationOptions {
   double yaw_segment_rad = 0.3927;   // width of one sin/cos chord segment [rad] (pi/8)
   double yaw_margin_rad = 0.3927;    // yaw range = [min(start, goal) - m, max(start, goal) + m]
   RegionEncoding region_encoding = RegionEncoding::kBigM;
+  YawEncoding yaw_encoding = YawEncoding::kConvexHull;
   // Drop region binaries a step cannot use: regions farther from the start stance than
   // the step's block could travel at d_lim + l_bnd per configuration.
   bool prune_unreachable_regions = true;
@@ -57,11 +63,13 @@ struct FootstepProblem {
 
 // Index of each decision variable in the Miqp (-1 where absent).
 struct FootstepVariables {
-  std::vector<int> x, y, z;              // per step (start steps too: fixed by bounds)
+  std::vector<int> x, y, z;              // per step; -1 for start steps (constants)
+  std::vector<int> px, py;               // centre of contacts p_i per step; -1 for start steps
   std::vector<int> theta, s, c;          // per block
   std::vector<int> trim;                 // per step; -1 for start steps
   std::vector<std::vector<int>> region;  // [step][region index] -> H_ir or -1 when pruned
   std::vector<std::vector<int>> segment; // [block][segment] -> binary
+  std::vector<std::vector<int>> segment_theta;  // [block][segment] -> theta_k (hull encoding)
   // Convex-hull encoding only: [step][region] -> first of 3 copies (x, y, z) or -1.
   std::vector<std::vector<int>> region_copy;
 };

@@ -9,9 +9,9 @@ namespace mfp {
 void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options) {
   RejectUnknownKeys(node, ctx,
                     {"max_steps", "window", "time_limit", "goal_tolerance", "goal_yaw_tolerance",
-                     "start_tolerance", "yaw_segment", "yaw_margin", "region_encoding",
+                     "start_tolerance", "yaw_segment", "yaw_margin", "region_encoding", "yaw_encoding",
                      "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
-                     "node_selection", "branching", "rounding_frequency"});
+                     "node_selection", "branching", "rounding_frequency", "relaxation_solver"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
@@ -20,6 +20,13 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   o.goal_yaw_tolerance_rad =
       OptionalDouble(node, ctx, "goal_yaw_tolerance", 1e-4, M_PI).value_or(o.goal_yaw_tolerance_rad);
   o.start_tolerance_m = OptionalDouble(node, ctx, "start_tolerance", 0, 1).value_or(o.start_tolerance_m);
+  if (const auto backend = OptionalString(node, ctx, "relaxation_solver")) {
+    try {
+      o.relaxation_solver = ParseRelaxationBackend(*backend);
+    } catch (const InputError& e) {
+      throw InputError(ctx.Child("relaxation_solver").Where() + ": " + e.what());
+    }
+  }
   FormulationOptions& f = o.formulation;
   f.yaw_segment_rad = OptionalDouble(node, ctx, "yaw_segment", 0.02, M_PI).value_or(f.yaw_segment_rad);
   f.yaw_margin_rad = OptionalDouble(node, ctx, "yaw_margin", 0, M_PI).value_or(f.yaw_margin_rad);
@@ -31,6 +38,15 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
     } else {
       throw InputError(ctx.Child("region_encoding").Where() + ": '" + *enc +
                        "' is not one of big_m, convex_hull");
+    }
+  }
+  if (const auto enc = OptionalString(node, ctx, "yaw_encoding")) {
+    if (*enc == "big_m") {
+      f.yaw_encoding = YawEncoding::kBigM;
+    } else if (*enc == "convex_hull") {
+      f.yaw_encoding = YawEncoding::kConvexHull;
+    } else {
+      throw InputError(ctx.Child("yaw_encoding").Where() + ": '" + *enc + "' is not one of big_m, convex_hull");
     }
   }
   f.prune_unreachable_regions =

@@ -19,8 +19,10 @@ struct LegModel {
 
 // Cost weights of the paper's objective. The goal term must dominate.
 struct PlannerWeights {
-  double goal_position = 100.0;  // per m^2 of final-stance foot error (x, y)
-  double goal_yaw = 10.0;        // per rad^2 of final yaw error
+  // A foot moves for the goal only while weight * error^2 beats one trimmed step, so
+  // 1000 leaves feet within ~3 cm (sqrt(1 / 1000) m) of their goal spots.
+  double goal_position = 1000.0;  // per m^2 of final-stance foot error (x, y)
+  double goal_yaw = 100.0;       // per rad^2 of final yaw error (~0.1 rad left at most)
   double trim_step = -1.0;       // per trimmed step (negative: rewards shorter plans)
   double displacement = 1.0;     // per m^2 of centre-of-contacts motion between configurations
 };

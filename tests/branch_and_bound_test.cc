@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "planner/ipm_relaxation_solver.h"
 #include "planner/ipopt_relaxation_solver.h"
 #include "planner/miqp_builder.h"
 
@@ -119,12 +120,13 @@ struct Strategy {
   NodeSelection selection;
   BranchingRule branching;
   bool rounding;
+  bool ipopt;  // relaxations by Ipopt, else by mfp's interior-point method
 };
 
 class BranchAndBoundCatalogue : public ::testing::TestWithParam<Strategy> {};
 
 TEST_P(BranchAndBoundCatalogue, ProvesEveryHandComputedOptimum) {
-  const auto solver = MakeIpoptRelaxationSolver();
+  const auto solver = GetParam().ipopt ? MakeIpoptRelaxationSolver() : MakeInteriorPointRelaxationSolver();
   BranchAndBoundOptions options;
   options.node_selection = GetParam().selection;
   options.branching = GetParam().branching;
@@ -147,10 +149,13 @@ TEST_P(BranchAndBoundCatalogue, ProvesEveryHandComputedOptimum) {
 
 INSTANTIATE_TEST_SUITE_P(
     Strategies, BranchAndBoundCatalogue,
-    ::testing::Values(Strategy{NodeSelection::kBestBound, BranchingRule::kMostFractional, false},
-                      Strategy{NodeSelection::kDepthFirst, BranchingRule::kMostFractional, true},
-                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, true},
-                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, false}));
+    ::testing::Values(Strategy{NodeSelection::kBestBound, BranchingRule::kMostFractional, false, true},
+                      Strategy{NodeSelection::kDepthFirst, BranchingRule::kMostFractional, true, true},
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, true, true},
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, false, true},
+                      Strategy{NodeSelection::kBestBound, BranchingRule::kMostFractional, false, false},
+                      Strategy{NodeSelection::kDepthFirst, BranchingRule::kMostFractional, true, false},
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, true, false}));
 
 TEST(BranchAndBound, KnapsackNeedsBranching) {
   // Without rounding, the fractional root forces at least three nodes (root + 2 children).

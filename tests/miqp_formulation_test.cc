@@ -1,1 +1,316 @@
+// Each constraint family of the footstep MIQP checked against a point worked out by hand.
+//
+// Robot: four legs with nominal offsets o0 = (0.1, 0.1), o1 = (0.1, -0.1),
+// o2 = (-0.1, 0.1), o3 = (-0.1, -0.1); gait 0, 1, 2, 3; l_bnd 0.05, d_lim 0.15,
+// dz_max 0.1, yaw change 0.3. Regions: r0 = [-0.5, 0.5]^2 at z = 0 and
+// r1 = [0.6, 1.5] x [-0.5, 0.5] at z = 0.05. Start: nominal stance at the origin, yaw 0.
+// Four new steps (N = 8, blocks 0 and 1); goal (0.5, 0, 0).
+//
+// The hand-made point: every foot moves 0.1 m forward, yaw 0, all in r0, nothing trimmed:
+//   f4 = (0.2, 0.1, 0), f5 = (0.2, -0.1, 0), f6 = (0, 0.1, 0), f7 = (0, -0.1, 0).
+// Centres of contacts (mean of the 4 latest feet; before the plan, the start stance):
+//   p4 = (0.1 - 0.1 - 0.1 + 0.2) / 4 = 0.025, p5 = 0.05, p6 = 0.075, p7 = 0.1 (y = 0).
+#include "planner/miqp_formulation.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planner/check.h"
+
+namespace mfp {
+namespace {
+
+RobotModel TestRobot() {
+  RobotModel robot;
+  robot.name = "test_quadruped";
+  const double o[4][2] = {{0.1, 0.1}, {0.1, -0.1}, {-0.1, 0.1}, {-0.1, -0.1}};
+  for (int k = 0; k < 4; ++k) {
+    LegModel leg;
+    leg.name = "leg" + std::to_string(k);
+    leg.nominal_offset_body_m = Eigen::Vector2d(o[k][0], o[k][1]);
+    robot.legs.push_back(leg);
+  }
+  robot.gait = {0, 1, 2, 3};
+  robot.d_lim_m = 0.15;
+  robot.l_bnd_m = 0.05;
+  robot.dz_max_m = 0.1;
+  robot.max_yaw_change_rad = 0.3;
+  robot.weights.goal_position = 100.0;  // the objective test below is worked out with these
+  robot.weights.goal_yaw = 10.0;
+  robot.weights.trim_step = -1.0;
+  robot.weights.displacement = 1.0;
+  return robot;
+}
+
+ConvexRegion Square(int id, double x0, double x1, double y0, double y1, double z) {
+  return MakeRegionFromPolygon(id, {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, 0.0);
+}
+
+class FormulationTest : public ::testing::Test {
+ protected:
+  FormulationTest() : robot_(TestRobot()) {
+    problem_.robot = &robot_;
+    problem_.regions = {Square(0, -0.5, 0.5, -0.5, 0.5, 0.0), Square(1, 0.6, 1.5, -0.5, 0.5, 0.05)};
+    problem_.start_feet_world_m = {{0.1, 0.1, 0}, {0.1, -0.1, 0}, {-0.1, 0.1, 0}, {-0.1, -0.1, 0}};
+    problem_.goal_x_m = 0.5;
+    problem_.num_new_steps = 4;
+    FormulationOptions options;
+    options.prune_unreachable_regions = false;  // keep H_i1 for the big-M checks
+    options.yaw_encoding = YawEncoding::kBigM;  // the chord rows checked below
+    formulation_ = std::make_unique<MiqpFormulation>(problem_, options);
+    x_ = HandPoint();
+  }
+
+  // The hand-made point described at the top of the file.
+  Eigen::VectorXd HandPoint() const {
+    const FootstepVariables& v = formulation_->vars();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(formulation_->miqp().num_variables());
+    const double feet[4][2] = {{0.2, 0.1}, {0.2, -0.1}, {0.0, 0.1}, {0.0, -0.1}};
+    const double coc_x[4] = {0.025, 0.05, 0.075, 0.1};
+    for (int k = 0; k < 4; ++k) {
+      const int i = 4 + k;
+      x(v.x[i]) = feet[k][0];
+      x(v.y[i]) = feet[k][1];
+      x(v.px[i]) = coc_x[k];
+      x(v.region[i][0]) = 1.0;
+    }
+    x(v.theta[1]) = 0.0;
+    x(v.s[1]) = 0.0;
+    x(v.c[1]) = 1.0;
+    x(v.segment[1][1]) = 1.0;  // theta = 0 is the lower end of segment 1, [0, pi/8]
+    return x;
+  }
+
+  // Violation of one named row at x: max(lower - a.x, a.x - upper, 0).
+  double RowViolation(const std::string& name, const Eigen::VectorXd& x) const {
+    const Miqp& m = formulation_->miqp();
+    for (int r = 0; r < m.num_rows(); ++r) {
+      if (m.row_names[r] != name) continue;
+      const double ax = m.A.row(r).dot(x.transpose());
+      return std::max({0.0, m.row_lower(r) - ax, ax - m.row_upper(r)});
+    }
+    ADD_FAILURE() << "no row named " << name;
+    return -1.0;
+  }
+
+  double MaxViolationOfRowsStarting(const std::string& prefix, const Eigen::VectorXd& x) const {
+    const Miqp& m = formulation_->miqp();
+    double worst = 0.0;
+    int found = 0;
+    for (int r = 0; r < m.num_rows(); ++r) {
+      if (m.row_names[r].rfind(prefix, 0) != 0) continue;
+      ++found;
+      worst = std::max(worst, RowViolation(m.row_names[r], x));
+    }
+    EXPECT_GT(found, 0) << prefix;
+    return worst;
+  }
+
+  RobotModel robot_;
+  FootstepProblem problem_;
+  std::unique_ptr<MiqpFormulation> formulation_;
+  Eigen::VectorXd x_;
+};
+
+TEST_F(FormulationTest, SizesAndGait) {
+  EXPECT_EQ(formulation_->num_steps(), 8);
+  EXPECT_EQ(formulation_->num_blocks(), 2);
+  // yaw range [-pi/8, pi/8] in segments of pi/8: two segments.
+  EXPECT_EQ(formulation_->yaw_breakpoints().size(), 3u);
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(formulation_->LegOfStep(i), i % 4);
+  // Binaries: 4 steps x (2 regions + 1 trim) + 2 segments.
+  EXPECT_EQ(formulation_->miqp().num_integer(), 14);
+}
+
+TEST_F(FormulationTest, CentreOfContactsDefinitions) {
+  for (int i = 4; i < 8; ++i) {
+    EXPECT_NEAR(RowViolation("def_px_" + std::to_string(i), x_), 0.0, 1e-12) << i;
+    EXPECT_NEAR(RowViolation("def_py_" + std::to_string(i), x_), 0.0, 1e-12) << i;
+  }
+  // A wrong centre is caught by exactly its error: p4 = 0.03 instead of 0.025.
+  Eigen::VectorXd bad = x_;
+  bad(formulation_->vars().px[4]) = 0.03;
+  EXPECT_NEAR(RowViolation("def_px_4", bad), 0.005, 1e-12);
+}
+
+TEST_F(FormulationTest, ReferenceBox) {
+  // Step 4 (leg 0): f4.x - (p4.x + o0.x) = 0.2 - (0.025 + 0.1) = 0.075 > l_bnd = 0.05.
+  EXPECT_NEAR(RowViolation("ref_x_4", x_), 0.025, 1e-12);
+  // y: 0.1 - (0 + 0.1) = 0.
+  EXPECT_NEAR(RowViolation("ref_y_4", x_), 0.0, 1e-12);
+  // Step 7 (leg 3): 0 - (0.1 - 0.1) = 0 and -0.1 - (0 - 0.1) = 0.
+  EXPECT_NEAR(RowViolation("ref_x_7", x_), 0.0, 1e-12);
+  EXPECT_NEAR(RowViolation("ref_y_7", x_), 0.0, 1e-12);
+}
+
+TEST_F(FormulationTest, ReachabilityFromThePreviousConfiguration) {
+  // Step 4 against the nominal foot of step 0: p0 = start centroid (0, 0), so
+  // r_nom,0 = (0.1, 0.1); |0.2 - 0.1| = 0.1 <= d_lim = 0.15.
+  EXPECT_NEAR(RowViolation("reach_x_4", x_), 0.0, 1e-12);
+  // Move f4 to x = 0.3: |0.3 - 0.1| = 0.2 exceeds d_lim by 0.05.
+  Eigen::VectorXd far = x_;
+  far(formulation_->vars().x[4]) = 0.3;
+  EXPECT_NEAR(RowViolation("reach_x_4", far), 0.05, 1e-12);
+}
+
+TEST_F(FormulationTest, HeightChange) {
+  Eigen::VectorXd high = x_;
+  high(formulation_->vars().z[5]) = 0.13;  // 0.13 above the start foot, dz_max 0.1
+  EXPECT_NEAR(RowViolation("dz_5", high), 0.03, 1e-12);
+  EXPECT_NEAR(RowViolation("dz_5", x_), 0.0, 1e-12);
+}
+
+TEST_F(FormulationTest, YawSegmentsAndChords) {
+  const FootstepVariables& v = formulation_->vars();
+  EXPECT_NEAR(MaxViolationOfRowsStarting("seg_", x_), 0.0, 1e-12);
+  EXPECT_NEAR(MaxViolationOfRowsStarting("sin_chord_", x_), 0.0, 1e-12);
+  EXPECT_NEAR(MaxViolationOfRowsStarting("cos_chord_", x_), 0.0, 1e-12);
+  // theta = 0.2 in segment 1 = [0, pi/8]: the sin chord is m theta with
+  // m = sin(pi/8) / (pi/8) = 0.974495, so s = 0.194899; exact sin(0.2) = 0.198669 is
+  // 0.003770 above the chord.
+  Eigen::VectorXd y = x_;
+  y(v.theta[1]) = 0.2;
+  const double top = formulation_->yaw_breakpoints()[2];  // the options' pi/8, 0.3927
+  EXPECT_NEAR(top, 0.3927, 1e-12);
+  const double m = std::sin(top) / top;
+  const double mc = (std::cos(top) - 1.0) / top;
+  y(v.s[1]) = m * 0.2;
+  y(v.c[1]) = 1.0 + mc * 0.2;
+  EXPECT_NEAR(MaxViolationOfRowsStarting("sin_chord_", y), 0.0, 1e-12);
+  EXPECT_NEAR(MaxViolationOfRowsStarting("cos_chord_", y), 0.0, 1e-12);
+  y(v.s[1]) = std::sin(0.2);
+  EXPECT_NEAR(RowViolation("sin_chord_up_1_1", y), std::sin(0.2) - m * 0.2, 1e-12);
+  EXPECT_NEAR(std::sin(0.2) - m * 0.2, 0.003770, 1e-6);  // hand value
+  // Segment 0 = [-pi/8, 0] selected with theta = 0.2: theta <= 0 is violated by 0.2.
+  Eigen::VectorXd z = x_;
+  z(v.theta[1]) = 0.2;
+  z(v.segment[1][1]) = 0.0;
+  z(v.segment[1][0]) = 1.0;
+  EXPECT_NEAR(RowViolation("seg_hi_1_0", z), 0.2, 1e-12);
+  EXPECT_NEAR(RowViolation("one_segment_1", z), 0.0, 1e-12);
+  z(v.segment[1][1]) = 1.0;  // two segments at once
+  EXPECT_NEAR(RowViolation("one_segment_1", z), 1.0, 1e-12);
+}
+
+TEST_F(FormulationTest, YawConvexHullEncoding) {
+  // The disaggregated encoding: theta = sum theta_k, psi_k S_k <= theta_k <= psi_k+1 S_k,
+  // s = sum (m_k theta_k + q_k S_k). At theta = 0.2 in segment 1 = [0, 0.3927] the only
+  // consistent s is the chord value m * 0.2 = 0.194899 (sin(0.2) = 0.198669 is not).
+  FormulationOptions options;
+  options.prune_unreachable_regions = false;
+  options.yaw_encoding = YawEncoding::kConvexHull;
+  const MiqpFormulation hull(problem_, options);
+  const FootstepVariables& v = hull.vars();
+  ASSERT_EQ(v.segment_theta[1].size(), 2u);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(hull.miqp().num_variables());
+  const double top = hull.yaw_breakpoints()[2];
+  const double m = std::sin(top) / top, mc = (std::cos(top) - 1.0) / top;
+  x(v.theta[1]) = 0.2;
+  x(v.segment[1][1]) = 1.0;
+  x(v.segment_theta[1][1]) = 0.2;
+  x(v.s[1]) = m * 0.2;
+  x(v.c[1]) = 1.0 + mc * 0.2;
+  const Miqp& q = hull.miqp();
+  auto violation = [&](const std::string& name, const Eigen::VectorXd& point) {
+    for (int r = 0; r < q.num_rows(); ++r) {
+      if (q.row_names[r] != name) continue;
+      const double ax = q.A.row(r).dot(point.transpose());
+      return std::max({0.0, q.row_lower(r) - ax, ax - q.row_upper(r)});
+    }
+    ADD_FAILURE() << name;
+    return -1.0;
+  };
+  for (const char* row : {"theta_sum_1", "sin_def_1", "cos_def_1", "seg_lo_1_1", "seg_hi_1_1", "seg_lo_1_0", "seg_hi_1_0"}) {
+    EXPECT_NEAR(violation(row, x), 0.0, 1e-12) << row;
+  }
+  Eigen::VectorXd exact = x;
+  exact(v.s[1]) = std::sin(0.2);
+  EXPECT_NEAR(violation("sin_def_1", exact), std::sin(0.2) - m * 0.2, 1e-12);
+  // theta_k outside its segment while selected: theta_1 = 0.5 > 0.3927.
+  Eigen::VectorXd outside = x;
+  outside(v.segment_theta[1][1]) = 0.5;
+  EXPECT_NEAR(violation("seg_hi_1_1", outside), 0.5 - top, 1e-12);
+  // An unselected segment forces its theta_k to zero.
+  Eigen::VectorXd unselected = x;
+  unselected(v.segment_theta[1][0]) = -0.1;
+  EXPECT_NEAR(violation("seg_lo_1_0", unselected), 0.1, 1e-12);
+}
+
+TEST_F(FormulationTest, YawChangeBound) {
+  Eigen::VectorXd y = x_;
+  y(formulation_->vars().theta[1]) = 0.35;  // from the start yaw 0, bound 0.3
+  EXPECT_NEAR(RowViolation("yaw_change_1", y), 0.05, 1e-12);
+}
+
+TEST_F(FormulationTest, SafeRegionsBigM) {
+  const FootstepVariables& v = formulation_->vars();
+  EXPECT_NEAR(MaxViolationOfRowsStarting("region_4_", x_), 0.0, 1e-12);
+  EXPECT_NEAR(RowViolation("one_region_4", x_), 0.0, 1e-12);
+  // Put step 4 in r1 = [0.6, 1.5] x ..., z = 0.05: f4.x = 0.2 is 0.4 short of its left
+  // edge (the plane row is off by 0.05 only).
+  Eigen::VectorXd y = x_;
+  y(v.region[4][0]) = 0.0;
+  y(v.region[4][1]) = 1.0;
+  EXPECT_NEAR(MaxViolationOfRowsStarting("region_4_1_", y), 0.4, 1e-9);
+  EXPECT_NEAR(MaxViolationOfRowsStarting("region_4_0_", y), 0.0, 1e-12);  // relaxed by M
+}
+
+TEST_F(FormulationTest, TrimmingKeepsTheFootStillAndFormsASuffix) {
+  const FootstepVariables& v = formulation_->vars();
+  Eigen::VectorXd y = x_;
+  y(v.trim[4]) = 1.0;  // step 4 trimmed, but leg 0 moved 0.1 m in x
+  EXPECT_NEAR(RowViolation("trim_up_x_4", y), 0.1, 1e-12);
+  EXPECT_NEAR(RowViolation("trim_dn_y_4", y), 0.0, 1e-12);
+  // Monotone: step 4 trimmed but step 5 not.
+  EXPECT_NEAR(RowViolation("trim_suffix_5", y), 1.0, 1e-12);
+  y(v.trim[5]) = y(v.trim[6]) = y(v.trim[7]) = 1.0;
+  EXPECT_NEAR(MaxViolationOfRowsStarting("trim_suffix_", y), 0.0, 1e-12);
+}
+
+TEST_F(FormulationTest, ObjectiveMatchesHandValue) {
+  // Goal feet (0.5, 0) + o_k; every final foot is 0.4 m behind its goal spot:
+  //   100 * 4 * 0.16 = 64. Yaw error 0. No trims. Displacement of the centre of contacts
+  //   against p_{i-4} = (0, 0): 0.025^2 + 0.05^2 + 0.075^2 + 0.1^2 = 0.01875.
+  EXPECT_NEAR(formulation_->miqp().Objective(x_), 64.01875, 1e-9);
+  // One trimmed step adds the (negative) trim weight.
+  Eigen::VectorXd y = x_;
+  y(formulation_->vars().trim[7]) = 1.0;
+  EXPECT_NEAR(formulation_->miqp().Objective(y), 64.01875 - 1.0, 1e-9);
+}
+
+TEST_F(FormulationTest, ExtractsFootstepsWithRegionsAndYaw) {
+  const std::vector<Footstep> steps = formulation_->ExtractFootsteps(x_);
+  ASSERT_EQ(steps.size(), 8u);
+  EXPECT_EQ(steps[0].region_id, 0);
+  EXPECT_NEAR(steps[4].position_world_m.x(), 0.2, 1e-12);
+  EXPECT_EQ(steps[4].leg, 0);
+  EXPECT_EQ(steps[4].region_id, 0);
+  EXPECT_EQ(formulation_->CountUntrimmedSteps(x_), 4);
+}
+
+TEST_F(FormulationTest, PruningDropsRegionsOutOfReach) {
+  // From the origin a foot moves at most d_lim + l_bnd = 0.2 m per step (plus its
+  // offset from nominal, 0 here). A region 1.0 m away is out of reach for one step per
+  // leg, so it gets no binaries.
+  FootstepProblem p = problem_;
+  p.regions.push_back(Square(7, 1.2, 1.6, -0.2, 0.2, 0.0));
+  const MiqpFormulation pruned(p, FormulationOptions());
+  for (int i = 4; i < 8; ++i) EXPECT_EQ(pruned.vars().region[i][2], -1) << i;
+  EXPECT_GE(pruned.vars().region[4][0], 0);
+}
+
+TEST_F(FormulationTest, RejectsMalformedProblems) {
+  FootstepProblem p = problem_;
+  p.start_feet_world_m.pop_back();
+  EXPECT_THROW(MiqpFormulation(p, FormulationOptions()), InputError);
+  p = problem_;
+  p.goal_x_m = std::nan("");
+  EXPECT_THROW(MiqpFormulation(p, FormulationOptions()), InputError);
+  p = problem_;
+  p.regions.clear();
+  EXPECT_THROW(MiqpFormulation(p, FormulationOptions()), InputError);
+}
+
+}  // namespace
+}  // namespace mfp

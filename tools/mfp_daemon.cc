@@ -12,7 +12,7 @@
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
 #include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/ipopt_plan_function.h"
+#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
 #include "tools/daemon/timestamped_log.h"
 
@@ -57,7 +57,7 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  mfp::DaemonCore core(setup, mfp::MakeOctomapMapFunction(*setup), mfp::MakeIpoptPlanFunction(),
+  mfp::DaemonCore core(setup, mfp::MakeOctomapMapFunction(*setup), mfp::MakeSolverPlanFunction(),
                        *transport, &mfp::WallUtime, &Log);
   core.SubscribeTo(*transport);
   if (!setup->config.initial_map.empty()) {

@@ -9,7 +9,7 @@
 
 #include "planner/check.h"
 #include "planner/footstep_planner.h"
-#include "planner/ipopt_relaxation_solver.h"
+#include "planner/relaxation_solver_factory.h"
 #include "planner/miqp_formulation.h"
 #include "planner/mps_writer.h"
 #include "planner/plan_json.h"
@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   int max_steps = 0, window = 0;
   double time_limit = 0.0;
   bool validate = false, quiet = false;
+  std::string relaxation_solver;
   app.add_option("--scenario", scenario_path, "scenario YAML (robot, terrain, start, goal)");
   app.add_option("--robot", robot_path, "robot YAML (or URDF)");
   app.add_option("--terrain", terrain_path, "terrain: .bt/.ot map, or a YAML with boxes/regions");
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
   app.add_option("--json", json_path, "write the plan JSON here ('-' = stdout)");
   app.add_option("--svg", svg_path, "write a picture of the plan here");
   app.add_option("--write-mps", mps_path, "write the first window's MIQP as free MPS (constant left out)");
+  app.add_option("--relaxation-solver", relaxation_solver, "ipm (default: mfp's interior point, Ipopt fallback) or ipopt");
   app.add_flag("--validate", validate, "re-check the plan constraint by constraint; exit 3 on a violation");
   app.add_flag("--quiet", quiet, "no progress lines");
   try {
@@ -119,13 +121,14 @@ int main(int argc, char** argv) {
     log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
         std::to_string(regions.size()) + " regions");
 
-    const mfp::PlannerOptions& options = scenario.options;
+    mfp::PlannerOptions& options = scenario.options;
+    if (!relaxation_solver.empty()) options.relaxation_solver = mfp::ParseRelaxationBackend(relaxation_solver);
     mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
     if (max_steps > 0) request.max_steps = max_steps;
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
 
-    const auto solver = mfp::MakeIpoptRelaxationSolver();
+    const auto solver = mfp::MakeRelaxationSolver(options.relaxation_solver);
     if (!mps_path.empty()) {
       // The first window's MIQP, exactly as the planner builds it.
       const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, options);

@@ -13,7 +13,7 @@
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/ipopt_plan_function.h"
+#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
 #include "tools/daemon/timestamped_log.h"
 
@@ -32,7 +32,7 @@ int Run(const std::string& log_path, const std::string& out_path, const std::str
   auto log = [verbose](const std::string& line) {
     if (verbose) LogLine(kProgram, line);
   };
-  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeIpoptPlanFunction(), output,
+  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), output,
                   [&log_utime] { return log_utime; }, log);
   const auto heartbeat_us = static_cast<int64_t>(setup->config.heartbeat_period_s * 1e6);
   int64_t next_heartbeat = -1;

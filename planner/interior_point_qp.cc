@@ -1,0 +1,190 @@
+#include "planner/interior_point_qp.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "planner/check.h"
+
+namespace mfp {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+// The problem as  min 0.5 w'Hw + q'w  s.t.  C w <= d,  w = (x, e).
+struct InequalityForm {
+  int n = 0;        // original variables
+  int elastic = 0;  // elastic variables (one per one-sided row)
+  SpMat H, C;
+  Eigen::VectorXd q, d;
+};
+
+InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                     double penalty) {
+  InequalityForm f;
+  f.n = p.num_variables();
+  std::vector<Eigen::Triplet<double>> c;
+  std::vector<double> d;
+  // Rows: a'x - e <= u and -a'x - e <= -l, each with its own elastic variable.
+  std::vector<std::pair<int, double>> row_sides;  // (row, sign)
+  for (int i = 0; i < p.num_rows(); ++i) {
+    if (std::isfinite(p.row_upper(i))) row_sides.emplace_back(i, 1.0);
+    if (std::isfinite(p.row_lower(i))) row_sides.emplace_back(i, -1.0);
+  }
+  f.elastic = static_cast<int>(row_sides.size());
+  int r = 0;
+  for (int k = 0; k < f.elastic; ++k, ++r) {
+    const auto [row, sign] = row_sides[k];
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
+      c.emplace_back(r, static_cast<int>(it.col()), sign * it.value());
+    }
+    c.emplace_back(r, f.n + k, -1.0);
+    d.push_back(sign > 0 ? p.row_upper(row) : -p.row_lower(row));
+  }
+  for (int k = 0; k < f.elastic; ++k, ++r) {  // e >= 0
+    c.emplace_back(r, f.n + k, -1.0);
+    d.push_back(0.0);
+  }
+  for (int j = 0; j < f.n; ++j) {  // variable bounds
+    MFP_CHECK(std::isfinite(lower(j)) && std::isfinite(upper(j)) && lower(j) < upper(j));
+    c.emplace_back(r++, j, 1.0);
+    d.push_back(upper(j));
+    c.emplace_back(r++, j, -1.0);
+    d.push_back(-lower(j));
+  }
+  const int nw = f.n + f.elastic;
+  f.C.resize(r, nw);
+  f.C.setFromTriplets(c.begin(), c.end());
+  f.d = Eigen::Map<const Eigen::VectorXd>(d.data(), r);
+  f.H.resize(nw, nw);
+  std::vector<Eigen::Triplet<double>> h;
+  for (int col = 0; col < p.Q.outerSize(); ++col) {
+    for (SpMat::InnerIterator it(p.Q, col); it; ++it) h.emplace_back(static_cast<int>(it.row()), col, it.value());
+  }
+  f.H.setFromTriplets(h.begin(), h.end());
+  f.q = Eigen::VectorXd::Zero(nw);
+  f.q.head(f.n) = p.c;
+  f.q.tail(f.elastic).setConstant(penalty);
+  return f;
+}
+
+// Largest alpha in (0, 1] keeping v + alpha dv >= 0.
+double MaxStep(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
+  double alpha = 1.0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (dv(i) < 0.0) alpha = std::min(alpha, -v(i) / dv(i));
+  }
+  return alpha;
+}
+
+}  // namespace
+
+RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lower,
+                                      const Eigen::VectorXd& upper, const Eigen::VectorXd* warm_start,
+                                      const InteriorPointOptions& opt) {
+  const InequalityForm f = Build(p, lower, upper, opt.elastic_penalty);
+  const int n = f.n;
+  const int nw = n + f.elastic;
+  const int m = static_cast<int>(f.d.size());
+  RelaxationResult result;
+
+  // Start: x inside its box (the warm start pulled 10% towards the middle), e covering
+  // the rows' violations, slacks and duals of order one.
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(nw);
+  for (int j = 0; j < n; ++j) {
+    const double mid = 0.5 * (lower(j) + upper(j));
+    const double v = warm_start != nullptr ? std::clamp((*warm_start)(j), lower(j), upper(j)) : mid;
+    w(j) = 0.9 * v + 0.1 * mid;
+  }
+  {
+    const Eigen::VectorXd cx = f.C.leftCols(n) * w.head(n);
+    for (int k = 0; k < f.elastic; ++k) w(n + k) = std::max(0.0, cx(k) - f.d(k)) + 1.0;
+  }
+  Eigen::VectorXd s = (f.d - f.C * w).cwiseMax(1.0);
+  // Duals: the elastic variables' dual feasibility reads penalty = z(row) + z(e >= 0), so
+  // both start at half the penalty; the bound rows start at one.
+  Eigen::VectorXd z = Eigen::VectorXd::Ones(m);
+  z.head(2 * f.elastic).setConstant(0.5 * opt.elastic_penalty);
+
+  const double scale_d = 1.0 + f.d.lpNorm<Eigen::Infinity>();
+  const double scale_c = 1.0 + p.c.lpNorm<Eigen::Infinity>();
+  Eigen::SimplicialLDLT<SpMat> ldlt;
+  bool analysed = false;
+  const SpMat Ct = f.C.transpose();
+  SpMat reg(nw, nw);
+  reg.setIdentity();
+  reg *= 1e-11;
+
+  for (int iter = 0; iter < opt.max_iterations; ++iter) {
+    result.iterations = iter;
+    const Eigen::VectorXd r_d = f.H * w + f.q + Ct * z;
+    const Eigen::VectorXd r_p = f.C * w + s - f.d;
+    const double mu = s.dot(z) / m;
+    const double dual_x = r_d.head(n).lpNorm<Eigen::Infinity>();
+    const double dual_e = f.elastic ? r_d.tail(f.elastic).lpNorm<Eigen::Infinity>() : 0.0;
+    const double objective = 0.5 * w.head(n).dot(p.Q * w.head(n)) + p.c.dot(w.head(n));
+    // Converged: primal feasible and complementary to the tolerance, and dual feasible
+    // to the tolerance or, once complementarity is far below it, to an acceptable level.
+    // (Normal equations lose digits in the duals of active bounds as sigma grows; the
+    // objective has settled long before, which is what a bound needs.)
+    const double scale_x = scale_c + (p.Q * w.head(n)).lpNorm<Eigen::Infinity>();
+    const bool primal_ok = r_p.lpNorm<Eigen::Infinity>() <= opt.tolerance * scale_d;
+    const bool complementary = mu <= opt.tolerance * (1.0 + std::abs(objective));
+    const bool dual_ok = dual_x <= opt.tolerance * scale_x && dual_e <= opt.tolerance * opt.elastic_penalty;
+    const bool dual_acceptable = complementary &&
+                                 dual_x <= opt.acceptable_dual * scale_x &&
+                                 dual_e <= opt.acceptable_dual * opt.elastic_penalty;
+    if (primal_ok && complementary && (dual_ok || dual_acceptable)) {
+      result.x = w.head(n);
+      result.objective = objective + p.constant;
+      const double violation = f.elastic ? w.tail(f.elastic).maxCoeff() : 0.0;
+      result.status = violation > opt.infeasible_violation ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
+      return result;
+    }
+    const Eigen::VectorXd sigma = z.cwiseQuotient(s);
+    const SpMat M = f.H + Ct * sigma.asDiagonal() * f.C;
+    if (!analysed) {
+      ldlt.analyzePattern(M);
+      analysed = true;
+    }
+    // Near convergence sigma spans many orders of magnitude; a small diagonal shift,
+    // grown on failure, keeps the factorisation defined.
+    const double diag_max = M.diagonal().cwiseAbs().maxCoeff();
+    bool factored = false;
+    for (double shift = 1e-14; shift <= 1e-6 && !factored; shift *= 100.0) {
+      ldlt.factorize(M + reg * (shift * (1.0 + diag_max) / reg.coeff(0, 0)));
+      factored = ldlt.info() == Eigen::Success;
+    }
+    if (!factored) break;
+    // Newton direction for a complementarity target rc (see the derivation in the design
+    // notes of docs/solver.md): (H + C'SC) dw = -r_d - C'S r_p - C' S^-1 rc.
+    auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd* dw, Eigen::VectorXd* ds, Eigen::VectorXd* dz) {
+      const Eigen::VectorXd rhs = -r_d - Ct * (sigma.cwiseProduct(r_p) + rc.cwiseQuotient(s));
+      *dw = ldlt.solve(rhs);
+      // Iterative refinement against the unshifted matrix: sigma's range (up to 1e15
+      // near convergence) costs the factorisation digits that this wins back.
+      for (int k = 0; k < 3; ++k) *dw += ldlt.solve(rhs - M * (*dw));
+      *ds = -r_p - f.C * (*dw);
+      *dz = sigma.cwiseProduct(f.C * (*dw) + r_p) + rc.cwiseQuotient(s);
+    };
+    Eigen::VectorXd dw, ds, dz;
+    direction(-s.cwiseProduct(z), &dw, &ds, &dz);  // predictor (affine scaling)
+    const double alpha_aff = std::min(MaxStep(s, ds), MaxStep(z, dz));
+    const double mu_aff = (s + alpha_aff * ds).dot(z + alpha_aff * dz) / m;
+    const double centering = std::pow(mu_aff / mu, 3);
+    const Eigen::VectorXd rc = -s.cwiseProduct(z) - ds.cwiseProduct(dz) + Eigen::VectorXd::Constant(m, centering * mu);
+    direction(rc, &dw, &ds, &dz);  // corrector
+    const double alpha = std::min(1.0, 0.99 * std::min(MaxStep(s, ds), MaxStep(z, dz)));
+    w += alpha * dw;
+    s += alpha * ds;
+    z += alpha * dz;
+  }
+  result.status = RelaxationStatus::kIterationLimit;
+  result.x = w.head(n);
+  result.objective = p.Objective(result.x);
+  return result;
+}
+
+}  // namespace mfp

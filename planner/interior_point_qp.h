@@ -1,0 +1,32 @@
+#pragma once
+// A primal-dual interior-point solver (Mehrotra predictor-corrector) for the convex QPs
+// of branch-and-bound nodes, in plain Eigen with a sparse LDL' factorisation.
+//
+// Rows are made elastic: every one-sided row a'x <= b becomes a'x - e <= b with e >= 0
+// and a cost penalty * e. The elastic problem always has an interior, so every node
+// converges in a few dozen iterations, infeasible ones included; its optimum never
+// exceeds the true one, so its objective is a valid bound; and a node whose elastic
+// variables stay positive is reported infeasible. Variable bounds stay hard (they are
+// always consistent: fixed variables are removed before, see fixed_variable_reduction.h).
+#include <Eigen/Core>
+
+#include "planner/miqp.h"
+#include "planner/relaxation_solver.h"
+
+namespace mfp {
+
+struct InteriorPointOptions {
+  double tolerance = 1e-9;          // relative residual and complementarity at convergence
+  double acceptable_dual = 1e-3;    // relative dual residual accepted once complementarity is tiny
+  int max_iterations = 80;
+  double elastic_penalty = 1e6;     // cost per unit of row violation; far above any dual here
+  double infeasible_violation = 1e-6;  // a row violated by more than this: infeasible
+};
+
+// Solves min 0.5 x'Qx + c'x + constant s.t. row bounds, lower <= x <= upper (all finite,
+// lower < upper). warm_start may be null.
+RelaxationResult SolveQpInteriorPoint(const Miqp& problem, const Eigen::VectorXd& lower,
+                                      const Eigen::VectorXd& upper, const Eigen::VectorXd* warm_start,
+                                      const InteriorPointOptions& options);
+
+}  // namespace mfp

@@ -1,0 +1,58 @@
+#include "planner/ipm_relaxation_solver.h"
+
+#include "planner/check.h"
+#include "planner/fixed_variable_reduction.h"
+
+namespace mfp {
+namespace {
+
+class InteriorPointRelaxationSolver final : public RelaxationSolver {
+ public:
+  explicit InteriorPointRelaxationSolver(const InteriorPointOptions& options) : options_(options) {}
+
+  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                         const Eigen::VectorXd* warm_start) override {
+    MFP_CHECK(lower.size() == problem.num_variables() && upper.size() == problem.num_variables());
+    RelaxationResult result;
+    for (int j = 0; j < problem.num_variables(); ++j) {
+      if (lower(j) > upper(j)) {
+        result.status = RelaxationStatus::kInfeasible;
+        return result;
+      }
+    }
+    const ReducedQp reduced = ReduceFixedVariables(problem, lower, upper, options_.infeasible_violation);
+    if (reduced.infeasible) {
+      result.status = RelaxationStatus::kInfeasible;
+      return result;
+    }
+    if (reduced.free_index.empty()) {
+      result.status = RelaxationStatus::kSolved;
+      result.x = reduced.fixed_x;
+      result.objective = problem.Objective(result.x);
+      return result;
+    }
+    Eigen::VectorXd start;
+    if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
+    const RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,
+                                                    warm_start != nullptr ? &start : nullptr, options_);
+    result.status = r.status;
+    result.iterations = r.iterations;
+    result.x = reduced.Expand(r.x);
+    result.objective = problem.Objective(result.x);
+    return result;
+  }
+
+  void SetTimeLimit(double) override {}  // one solve takes milliseconds
+  std::string Name() const override { return "ipm"; }
+
+ private:
+  InteriorPointOptions options_;
+};
+
+}  // namespace
+
+std::unique_ptr<RelaxationSolver> MakeInteriorPointRelaxationSolver(const InteriorPointOptions& options) {
+  return std::make_unique<InteriorPointRelaxationSolver>(options);
+}
+
+}  // namespace mfp

@@ -1,0 +1,52 @@
+#include "planner/relaxation_solver_factory.h"
+
+#include "planner/check.h"
+#include "planner/ipm_relaxation_solver.h"
+#include "planner/ipopt_relaxation_solver.h"
+
+namespace mfp {
+namespace {
+
+// Asks the fallback whenever the primary solver ends without an answer.
+class FallbackRelaxationSolver final : public RelaxationSolver {
+ public:
+  FallbackRelaxationSolver(std::unique_ptr<RelaxationSolver> primary, std::unique_ptr<RelaxationSolver> fallback)
+      : primary_(std::move(primary)), fallback_(std::move(fallback)) {}
+
+  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                         const Eigen::VectorXd* warm_start) override {
+    RelaxationResult result = primary_->Solve(problem, lower, upper, warm_start);
+    if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible) return result;
+    return fallback_->Solve(problem, lower, upper, warm_start);
+  }
+
+  void SetTimeLimit(double seconds) override {
+    primary_->SetTimeLimit(seconds);
+    fallback_->SetTimeLimit(seconds);
+  }
+
+  std::string Name() const override { return primary_->Name() + "+" + fallback_->Name(); }
+
+ private:
+  std::unique_ptr<RelaxationSolver> primary_;
+  std::unique_ptr<RelaxationSolver> fallback_;
+};
+
+}  // namespace
+
+RelaxationBackend ParseRelaxationBackend(const std::string& name) {
+  if (name == "ipm") return RelaxationBackend::kInteriorPointWithIpoptFallback;
+  if (name == "ipopt") return RelaxationBackend::kIpopt;
+  throw InputError("relaxation solver '" + name + "' is not one of ipm, ipopt");
+}
+
+std::string ToString(RelaxationBackend backend) {
+  return backend == RelaxationBackend::kIpopt ? "ipopt" : "ipm";
+}
+
+std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend) {
+  if (backend == RelaxationBackend::kIpopt) return MakeIpoptRelaxationSolver();
+  return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+}
+
+}  // namespace mfp

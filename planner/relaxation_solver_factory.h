@@ -1,0 +1,23 @@
+#pragma once
+// Choosing the relaxation backend by name (config, flags).
+#include <memory>
+#include <string>
+
+#include "planner/relaxation_solver.h"
+
+namespace mfp {
+
+enum class RelaxationBackend {
+  // mfp's sparse interior-point method (interior_point_qp.h); a node it cannot resolve
+  // within its iteration limit is handed to Ipopt. The default: ~20x faster per node.
+  kInteriorPointWithIpoptFallback,
+  kIpopt,  // Ipopt alone
+};
+
+// "ipm" or "ipopt"; throws InputError naming the allowed values otherwise.
+RelaxationBackend ParseRelaxationBackend(const std::string& name);
+std::string ToString(RelaxationBackend backend);
+
+std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend);
+
+}  // namespace mfp
