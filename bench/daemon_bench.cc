@@ -32,7 +32,7 @@
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
 #include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/ipopt_plan_function.h"
+#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
 
 namespace mfp {
@@ -123,7 +123,7 @@ int Run(const std::string& config_path, int latency_requests, double rate_hz, in
   map.num_bytes = static_cast<int32_t>(map.data.size());
 
   LcmTransport transport("memq://");
-  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeIpoptPlanFunction(), transport, &NowUs);
+  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
   core.SubscribeTo(transport);
   ReplyLog replies;
   transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
