@@ -46,7 +46,7 @@ int MaxSteps(const RobotModel& robot, const PlanRequest& request, const PlannerO
 }
 
 int WindowSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options) {
-  return ChooseValue(request.window_steps, ChooseValue(options.default_window_steps, 4 * robot.num_legs()));
+  return ChooseValue(request.window_steps, ChooseValue(options.default_window_steps, 2 * robot.num_legs()));
 }
 
 // Worst (least certain) of two window statuses that both carry a plan.
@@ -86,6 +86,16 @@ double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vecto
     sin_sum += o.x() * d.y() - o.y() * d.x();
   }
   return std::atan2(sin_sum, cos_sum);
+}
+
+double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& footsteps) {
+  const int n = robot.num_legs();
+  MFP_CHECK(static_cast<int>(footsteps.size()) >= n);
+  std::vector<Eigen::Vector3d> feet(n);
+  for (size_t i = footsteps.size() - n; i < footsteps.size(); ++i) {
+    feet[footsteps[i].leg] = footsteps[i].position_world_m;
+  }
+  return EstimateStanceYaw(robot, feet);
 }
 
 FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
@@ -192,7 +202,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                                 Rotate(goal_yaw, robot.legs[steps[i].leg].nominal_offset_body_m);
       if ((steps[i].position_world_m.head<2>() - g).norm() > options.goal_tolerance_m) return false;
     }
-    return std::abs(std::remainder(steps.back().yaw_rad - goal_yaw, 2 * M_PI)) <= options.goal_yaw_tolerance_rad;
+    return std::abs(std::remainder(FinalStanceYaw(robot, steps) - goal_yaw, 2 * M_PI)) <=
+           options.goal_yaw_tolerance_rad;
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "planner/check.h"
+#include "planner/footstep_planner.h"
 
 namespace mfp {
 namespace {
@@ -87,7 +88,7 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
       const double d = (steps[i].position_world_m.head<2>() - g).norm();
       if (d > goal.tolerance_m + tol.position_m) report(i, "final foot far from its goal spot", d - goal.tolerance_m);
     }
-    const double dyaw = std::abs(std::remainder(steps.back().yaw_rad - goal.yaw_rad, 2 * M_PI));
+    const double dyaw = std::abs(std::remainder(FinalStanceYaw(robot, steps) - goal.yaw_rad, 2 * M_PI));
     if (dyaw > goal.yaw_tolerance_rad + tol.yaw_rad) report(N - 1, "final yaw far from the goal yaw", dyaw - goal.yaw_tolerance_rad);
   }
   return errors;

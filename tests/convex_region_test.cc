@@ -1,1 +1,92 @@
+// Convex regions from polygons, box top faces, containment and lookup.
+#include "terrain/convex_region.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "planner/check.h"
+#include "terrain/terrain_description.h"
+
+namespace mfp {
+namespace {
+
+TEST(ConvexRegion, UnitSquareRows) {
+  // Clockwise input is reordered counter-clockwise; rows are the four edges (outward unit
+  // normals, b = distance of the edge from the origin) and the plane z = 0 twice.
+  const ConvexRegion r = MakeRegionFromPolygon(3, {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, 0.01);
+  EXPECT_EQ(r.id, 3);
+  ASSERT_EQ(r.A.rows(), 6);
+  EXPECT_NEAR(r.area_m2, 1.0, 1e-12);
+  EXPECT_NEAR(r.SlopeRad(), 0.0, 1e-12);
+  EXPECT_TRUE(RegionContains(r, {0.5, 0.5, 0.0}, 0.0));
+  EXPECT_TRUE(RegionContains(r, {0.5, 0.5, 0.01}, 1e-12));   // within the plane slab
+  EXPECT_FALSE(RegionContains(r, {0.5, 0.5, 0.02}, 1e-12));  // above it
+  EXPECT_NEAR(RegionViolation(r, {1.2, 0.5, 0.0}), 0.2, 1e-12);
+  EXPECT_NEAR(RegionViolation(r, {0.5, 0.5, 0.0}), -0.01, 1e-12);  // the plane rows bind first
+  // Every edge row is a unit outward normal with a vertex on it.
+  for (int row = 0; row < 4; ++row) {
+    EXPECT_NEAR(r.A.row(row).norm(), 1.0, 1e-12);
+    EXPECT_NEAR(r.A(row, 2), 0.0, 1e-12);
+  }
+}
+
+TEST(ConvexRegion, TiltedPlane) {
+  // The plane z = 0.1 x, pitched by atan(0.1): heights follow it and the normal tilts back.
+  const ConvexRegion r = MakeRegionFromPolygon(0, {{0, 0, 0}, {1, 0, 0.1}, {1, 1, 0.1}, {0, 1, 0}}, 0.0);
+  EXPECT_NEAR(r.HeightAt(0.5, 0.5), 0.05, 1e-12);
+  EXPECT_NEAR(r.SlopeRad(), std::atan(0.1), 1e-12);
+  EXPECT_TRUE(RegionContains(r, {0.5, 0.2, 0.05}, 1e-9));
+  EXPECT_FALSE(RegionContains(r, {0.5, 0.2, 0.06}, 1e-6));
+  EXPECT_NEAR(r.area_m2, std::sqrt(1.0 + 0.01), 1e-12);
+}
+
+TEST(ConvexRegion, RejectsBadPolygons) {
+  EXPECT_THROW(MakeRegionFromPolygon(0, {{0, 0, 0}, {1, 0, 0}}, 0.0), InputError);
+  EXPECT_THROW(MakeRegionFromPolygon(0, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, 0.0), InputError);  // collinear
+  // An L-shaped (non-convex) outline.
+  EXPECT_THROW(MakeRegionFromPolygon(0, {{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, 0.0),
+               InputError);
+  // Not coplanar: one corner 5 cm up with a 1 cm tolerance.
+  EXPECT_THROW(MakeRegionFromPolygon(0, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.05}, {0, 1, 0}}, 0.01), InputError);
+  EXPECT_THROW(MakeRegionFromPolygon(0, {{0, 0, 0}, {1, 0, std::nan("")}, {1, 1, 0}}, 0.0), InputError);
+}
+
+TEST(ConvexRegion, FindRegionBelowPicksTheHighestSurface) {
+  const std::vector<ConvexRegion> regions = {
+      MakeRegionFromPolygon(0, {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}, 0.0),
+      MakeRegionFromPolygon(1, {{0.5, 0.5, 0.2}, {1, 0.5, 0.2}, {1, 1, 0.2}, {0.5, 1, 0.2}}, 0.0)};
+  EXPECT_EQ(FindRegionBelow(regions, 0.75, 0.75, 0.0), 1);
+  EXPECT_EQ(FindRegionBelow(regions, 1.5, 1.5, 0.0), 0);
+  EXPECT_EQ(FindRegionBelow(regions, 3.0, 1.5, 0.0), -1);
+  EXPECT_EQ(FindRegionBelow(regions, 2.05, 1.5, 0.1), 0);  // within the horizontal tolerance
+}
+
+TEST(TerrainDescription, TopFacesOfBoxes) {
+  TerrainDescription terrain;
+  TerrainBox flat;
+  flat.center_world_m = {0, 0, -0.05};
+  flat.size_m = {1.0, 0.6, 0.1};
+  TerrainBox tilted;
+  tilted.center_world_m = {2, 0, 0};
+  tilted.size_m = {0.5, 0.5, 0.1};
+  tilted.rpy_rad = {0.0, 0.2, 0.0};  // pitched 0.2 rad
+  TerrainBox steep = tilted;
+  steep.rpy_rad = {0.0, 0.8, 0.0};   // steeper than the 0.5 rad limit
+  terrain.boxes = {flat, tilted, steep};
+  const std::vector<ConvexRegion> regions = TopFaceRegions(terrain, 0.05, 0.5);
+  ASSERT_EQ(regions.size(), 2u);
+  // The flat top face z = 0, inset by 5 cm on every side: 0.9 x 0.5.
+  EXPECT_NEAR(regions[0].area_m2, 0.9 * 0.5, 1e-9);
+  EXPECT_NEAR(regions[0].HeightAt(0.3, 0.1), 0.0, 1e-12);
+  EXPECT_TRUE(RegionContains(regions[0], {0.44, 0.24, 0.0}, 1e-9));
+  EXPECT_FALSE(RegionContains(regions[0], {0.46, 0.0, 0.0}, 1e-9));
+  // The pitched box: slope 0.2 rad, centre of the face 0.05 m along the box's up axis.
+  EXPECT_NEAR(regions[1].SlopeRad(), 0.2, 1e-9);
+  const Eigen::Vector3d up(std::sin(0.2), 0.0, std::cos(0.2));
+  const Eigen::Vector3d face_centre = tilted.center_world_m + 0.05 * up;
+  EXPECT_TRUE(RegionContains(regions[1], face_centre, 1e-9));
+}
+
+}  // namespace
+}  // namespace mfp

@@ -1,1 +1,109 @@
+// Every scenario in config/scenarios/ plans to its goal, and the plan is re-checked
+// constraint by constraint from its footsteps alone (ValidatePlan): each footstep inside
+// its region, both reachability boxes, height change, yaw change, gait order, goal.
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "planner/footstep_planner.h"
+#include "planner/plan_validation.h"
+#include "planner/relaxation_solver_factory.h"
+#include "planner/robot_loader.h"
+#include "planner/scenario_yaml.h"
+
+namespace mfp {
+namespace {
+
+std::vector<std::string> ScenarioFiles() {
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(MFP_SOURCE_DIR) + "/config/scenarios")) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path().string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class ScenarioPlan : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ScenarioPlan, ReachesTheGoalAndEveryConstraintHolds) {
+  const Scenario scenario = LoadScenario(GetParam());
+  const RobotModel robot = LoadRobot(scenario.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
+  ASSERT_FALSE(regions.empty());
+  PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  // Generous, so that a slow machine changes the time taken, not the outcome.
+  request.time_limit_s = 300.0;
+  const auto solver = MakeRelaxationSolver(scenario.options.relaxation_solver);
+  const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  const int n = robot.num_legs();
+  ASSERT_GE(static_cast<int>(plan.footsteps.size()), n);
+  EXPECT_GT(static_cast<int>(plan.footsteps.size()), n) << "no step planned";
+  EXPECT_LE(static_cast<int>(plan.footsteps.size()) - n, request.max_steps > 0 ? request.max_steps : 12 * n);
+
+  ValidationTolerances tol;
+  tol.rotation_m = RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
+  const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
+                      scenario.options.goal_tolerance_m, scenario.options.goal_yaw_tolerance_rad};
+  const std::vector<std::string> violations = ValidatePlan(robot, regions, plan, goal, tol);
+  for (const std::string& v : violations) ADD_FAILURE() << v;
+  // The start stance is the first n footsteps, each leg once, in gait order.
+  for (int i = 0; i < n; ++i) EXPECT_EQ(plan.footsteps[i].leg, robot.gait[i]);
+  // The last n footsteps are the final stance: each leg exactly once.
+  std::vector<int> final_legs;
+  for (size_t i = plan.footsteps.size() - n; i < plan.footsteps.size(); ++i) final_legs.push_back(plan.footsteps[i].leg);
+  std::sort(final_legs.begin(), final_legs.end());
+  for (int k = 0; k < n; ++k) EXPECT_EQ(final_legs[k], k);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllScenarios, ScenarioPlan, ::testing::ValuesIn(ScenarioFiles()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return std::filesystem::path(info.param).stem().string();
+                         });
+
+TEST(PlanValidation, CatchesEachKindOfViolation) {
+  // A valid plan of the flat hexapod scenario, then one defect at a time.
+  const Scenario scenario = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/littledog_flat.yaml");
+  const RobotModel robot = LoadRobot(scenario.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
+  PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  request.max_steps = 8;
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
+  const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  ASSERT_TRUE(HasPlan(plan.status));
+  ASSERT_EQ(plan.footsteps.size(), 12u);
+  ValidationTolerances tol;
+  tol.rotation_m = RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
+  const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad};
+  ASSERT_TRUE(ValidatePlan(robot, regions, plan, goal, tol).empty());
+  auto expect_violation = [&](const Plan& bad, const std::string& what) {
+    const auto errors = ValidatePlan(robot, regions, bad, goal, tol);
+    bool found = false;
+    for (const auto& e : errors) found = found || e.find(what) != std::string::npos;
+    EXPECT_TRUE(found) << "expected a '" << what << "' violation";
+  };
+  Plan bad = plan;
+  bad.footsteps[6].position_world_m.x() += 0.25;  // beyond both boxes
+  expect_violation(bad, "reachability box");
+  bad = plan;
+  bad.footsteps[6].position_world_m.z() += 0.2;
+  expect_violation(bad, "height change");
+  expect_violation(bad, "outside region");
+  bad = plan;
+  bad.footsteps[7].yaw_rad += 1.0;
+  expect_violation(bad, "yaw change");
+  bad = plan;
+  std::swap(bad.footsteps[5].leg, bad.footsteps[6].leg);
+  expect_violation(bad, "gait order");
+  bad = plan;
+  bad.footsteps[8].region_id = 99;
+  expect_violation(bad, "does not exist");
+  bad = plan;
+  bad.reaches_goal = true;  // eight steps do not reach a goal 0.6 m away
+  expect_violation(bad, "goal");
+}
+
+}  // namespace
+}  // namespace mfp
