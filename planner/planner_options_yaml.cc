@@ -11,7 +11,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                     {"max_steps", "window", "time_limit", "goal_tolerance", "goal_yaw_tolerance",
                      "start_tolerance", "yaw_segment", "yaw_margin", "region_encoding", "yaw_encoding",
                      "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
-                     "node_selection", "branching", "rounding_frequency", "relaxation_solver"});
+                     "node_selection", "branching", "rounding_frequency", "relaxation_solver",
+                     "bound_propagation", "rounding_heuristic"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
@@ -56,6 +57,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   b.max_nodes = OptionalInt(node, ctx, "max_nodes", 1, 10000000).value_or(b.max_nodes);
   b.relative_gap = OptionalDouble(node, ctx, "relative_gap", 0, 1).value_or(b.relative_gap);
   b.rounding_frequency = OptionalInt(node, ctx, "rounding_frequency", 0, 1000000).value_or(b.rounding_frequency);
+  b.bound_propagation = OptionalBool(node, ctx, "bound_propagation").value_or(b.bound_propagation);
+  b.rounding_heuristic = OptionalBool(node, ctx, "rounding_heuristic").value_or(b.rounding_heuristic);
   if (const auto sel = OptionalString(node, ctx, "node_selection")) {
     if (*sel == "best_bound") {
       b.node_selection = NodeSelection::kBestBound;
