@@ -72,7 +72,7 @@ int main(int argc, char** argv) {
   app.add_option("--start", start_text, "start pose X,Y,YAW [m, m, rad]");
   app.add_option("--goal", goal_text, "goal pose X,Y,YAW [m, m, rad]");
   app.add_option("--max-steps", max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
-  app.add_option("--window", window, "new footsteps per MIQP (default 4 n)")->check(CLI::Range(1, 1000));
+  app.add_option("--window", window, "new footsteps per MIQP (default 2 n; the paper used 4 n)")->check(CLI::Range(1, 1000));
   app.add_option("--time-limit", time_limit, "time limit for the whole plan [s]")->check(CLI::Range(1e-3, 3600.0));
   app.add_option("--json", json_path, "write the plan JSON here ('-' = stdout)");
   app.add_option("--svg", svg_path, "write a picture of the plan here");
