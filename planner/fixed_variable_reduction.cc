@@ -99,4 +99,26 @@ ReducedQp ReduceFixedVariables(const Miqp& p, const Eigen::VectorXd& lower,
   return r;
 }
 
+bool ReduceOrSettle(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                    double row_tolerance, ReducedQp* reduced, RelaxationResult* result) {
+  MFP_CHECK(lower.size() == problem.num_variables() && upper.size() == problem.num_variables());
+  *result = RelaxationResult();
+  if ((lower.array() > upper.array()).any()) {
+    result->status = RelaxationStatus::kInfeasible;
+    return true;
+  }
+  *reduced = ReduceFixedVariables(problem, lower, upper, row_tolerance);
+  if (reduced->infeasible) {
+    result->status = RelaxationStatus::kInfeasible;
+    return true;
+  }
+  if (reduced->free_index.empty()) {
+    result->status = RelaxationStatus::kSolved;
+    result->x = reduced->fixed_x;
+    result->objective = problem.Objective(result->x);
+    return true;
+  }
+  return false;
+}
+
 }  // namespace mfp

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "planner/miqp.h"
+#include "planner/relaxation_solver.h"
 
 namespace mfp {
 
@@ -25,5 +26,11 @@ struct ReducedQp {
 
 ReducedQp ReduceFixedVariables(const Miqp& problem, const Eigen::VectorXd& lower,
                                const Eigen::VectorXd& upper, double row_tolerance);
+
+// The first step of every relaxation backend: reduce, and settle the nodes that need no
+// solver (crossed bounds, a row that cannot be met, nothing left free). Returns true when
+// *result is final; otherwise *reduced is the QP to solve.
+bool ReduceOrSettle(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                    double row_tolerance, ReducedQp* reduced, RelaxationResult* result);
 
 }  // namespace mfp

@@ -12,25 +12,9 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
 
   RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                          const Eigen::VectorXd* warm_start) override {
-    MFP_CHECK(lower.size() == problem.num_variables() && upper.size() == problem.num_variables());
     RelaxationResult result;
-    for (int j = 0; j < problem.num_variables(); ++j) {
-      if (lower(j) > upper(j)) {
-        result.status = RelaxationStatus::kInfeasible;
-        return result;
-      }
-    }
-    const ReducedQp reduced = ReduceFixedVariables(problem, lower, upper, options_.infeasible_violation);
-    if (reduced.infeasible) {
-      result.status = RelaxationStatus::kInfeasible;
-      return result;
-    }
-    if (reduced.free_index.empty()) {
-      result.status = RelaxationStatus::kSolved;
-      result.x = reduced.fixed_x;
-      result.objective = problem.Objective(result.x);
-      return result;
-    }
+    ReducedQp reduced;
+    if (ReduceOrSettle(problem, lower, upper, options_.infeasible_violation, &reduced, &result)) return result;
     Eigen::VectorXd start;
     if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
     const RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,

@@ -184,26 +184,10 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
 
   RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower,
                          const Eigen::VectorXd& upper, const Eigen::VectorXd* warm_start) override {
-    MFP_CHECK(lower.size() == problem.num_variables() && upper.size() == problem.num_variables());
-    RelaxationResult result;
-    for (int j = 0; j < problem.num_variables(); ++j) {
-      if (lower(j) > upper(j) + 1e-12) {
-        result.status = RelaxationStatus::kInfeasible;
-        return result;
-      }
-    }
     // Ipopt sees only the free variables and the rows that still constrain them.
-    const ReducedQp reduced = ReduceFixedVariables(problem, lower, upper, kRowTolerance);
-    if (reduced.infeasible) {
-      result.status = RelaxationStatus::kInfeasible;
-      return result;
-    }
-    if (reduced.free_index.empty()) {
-      result.status = RelaxationStatus::kSolved;
-      result.x = reduced.fixed_x;
-      result.objective = problem.Objective(result.x);
-      return result;
-    }
+    RelaxationResult result;
+    ReducedQp reduced;
+    if (ReduceOrSettle(problem, lower, upper, kRowTolerance, &reduced, &result)) return result;
     Eigen::VectorXd reduced_start;
     if (warm_start != nullptr) reduced_start = reduced.Restrict(*warm_start);
     Ipopt::SmartPtr<QpTnlp> tnlp = new QpTnlp(reduced.problem, reduced.lower, reduced.upper,

@@ -2,32 +2,15 @@
 
 #include <cmath>
 
+#include "planner/robot_json.h"
+#include "terrain/region_json.h"
+
 namespace mfp {
 namespace {
 
 // JSON has no infinity; an unknown bound or gap is written as null.
 nlohmann::json Number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-nlohmann::json RobotSummary(const RobotModel& robot) {
-  nlohmann::json legs = nlohmann::json::array();
-  for (const LegModel& leg : robot.legs) {
-    legs.push_back({{"name", leg.name},
-                    {"nominal_offset", {leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y()}}});
-  }
-  return {{"name", robot.name}, {"legs", legs},         {"gait", robot.gait},
-          {"d_lim", robot.d_lim_m}, {"l_bnd", robot.l_bnd_m}, {"dz_max", robot.dz_max_m}};
-}
-
-nlohmann::json RegionObject(const ConvexRegion& region) {
-  nlohmann::json A = nlohmann::json::array(), b = nlohmann::json::array(), vertices = nlohmann::json::array();
-  for (Eigen::Index row = 0; row < region.A.rows(); ++row) {
-    A.push_back({region.A(row, 0), region.A(row, 1), region.A(row, 2)});
-    b.push_back(region.b(row));
-  }
-  for (const Eigen::Vector3d& v : region.vertices_world_m) vertices.push_back({v.x(), v.y(), v.z()});
-  return {{"id", region.id}, {"A", A}, {"b", b}, {"vertices", vertices}};
 }
 
 }  // namespace
@@ -44,8 +27,7 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
                      {"yaw", f.yaw_rad},
                      {"region", f.region_id}});
   }
-  nlohmann::json region_list = nlohmann::json::array();
-  for (const ConvexRegion& r : regions) region_list.push_back(RegionObject(r));
+  const nlohmann::json region_list = RegionsToJson(regions)["regions"];
   const int new_steps = std::max(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
   return {{"status", ToString(plan.status)},
           {"message", plan.message},
@@ -60,7 +42,7 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
           {"steps", new_steps},
           {"integer_variables", plan.integer_variables},
           {"objective_offset", plan.objective_offset},
-          {"robot", RobotSummary(robot)},
+          {"robot", RobotToJson(robot)},
           {"regions", region_list},
           {"footsteps", steps}};
 }

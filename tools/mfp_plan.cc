@@ -16,6 +16,7 @@
 #include "planner/plan_validation.h"
 #include "planner/robot_loader.h"
 #include "planner/scenario_yaml.h"
+#include "tools/text_output.h"
 #include "tools/plan_svg.h"
 #include "tools/daemon/timestamped_log.h"
 
@@ -43,17 +44,6 @@ mfp::Pose2D ParsePose(const std::string& text, const std::string& flag) {
     throw mfp::InputError(flag + ": expected three finite numbers X,Y,YAW (m, m, rad), got '" + text + "'");
   }
   return {v[0], v[1], v[2]};
-}
-
-void WriteText(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    return;
-  }
-  std::ofstream out(path);
-  if (!out) throw mfp::InputError(path + ": cannot open for writing");
-  out << text;
-  if (!out) throw mfp::InputError(path + ": write failed");
 }
 
 }  // namespace
@@ -159,9 +149,9 @@ int main(int argc, char** argv) {
     if (!plan.message.empty()) summary << " (" << plan.message << ")";
     log(summary.str());
 
-    if (!json_path.empty()) WriteText(json_path, mfp::PlanToJson(plan, robot, regions).dump(2) + "\n");
+    if (!json_path.empty()) mfp::WriteTextOutput(json_path, mfp::PlanToJson(plan, robot, regions).dump(2) + "\n");
     if (!svg_path.empty()) {
-      WriteText(svg_path, mfp::PlanToSvg(plan, robot, regions,
+      mfp::WriteTextOutput(svg_path, mfp::PlanToSvg(plan, robot, regions,
                                          {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad},
                                          scenario.name));
       log("wrote " + svg_path);

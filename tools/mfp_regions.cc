@@ -13,20 +13,10 @@
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/region_json.h"
+#include "tools/text_output.h"
 #include "tools/region_svg.h"
 
 namespace {
-
-void WriteText(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    return;
-  }
-  std::ofstream out(path);
-  if (!out) throw mfp::InputError(path + ": cannot open for writing");
-  out << text;
-  if (!out) throw mfp::InputError(path + ": writing failed");
-}
 
 Eigen::Vector3d Centroid(const mfp::ConvexRegion& r) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
@@ -57,8 +47,8 @@ int main(int argc, char** argv) {
   try {
     const mfp::OccupancyMap map = mfp::LoadMapFile(map_path);
     const mfp::RegionExtractionResult result = mfp::ExtractRegions(map, options);
-    if (!json_path.empty()) WriteText(json_path, mfp::RegionsToJson(result.regions).dump(2) + "\n");
-    if (!svg_path.empty()) WriteText(svg_path, mfp::RegionsSvg(result.height_map, result.regions));
+    if (!json_path.empty()) mfp::WriteTextOutput(json_path, mfp::RegionsToJson(result.regions).dump(2) + "\n");
+    if (!svg_path.empty()) mfp::WriteTextOutput(svg_path, mfp::RegionsSvg(result.height_map, result.regions));
     if (region_id >= 0 || app.count("--region") > 0) {
       if (region_id < 0 || region_id >= static_cast<int>(result.regions.size())) {
         throw mfp::InputError("--region " + std::to_string(region_id) + ": the map has " +

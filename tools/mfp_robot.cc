@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "planner/check.h"
+#include "tools/text_output.h"
 #include "planner/robot_json.h"
 #include "planner/robot_loader.h"
 
@@ -164,17 +165,6 @@ std::string RobotSvg(const mfp::RobotModel& robot, const mfp::RobotDerivation& d
   return svg.str();
 }
 
-void WriteText(const std::string& path, const std::string& text) {
-  if (path == "-") {
-    std::cout << text;
-    return;
-  }
-  std::ofstream out(path);
-  if (!out) throw mfp::InputError(path + ": cannot be written");
-  out << text;
-  if (!out) throw mfp::InputError(path + ": write failed");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -193,8 +183,8 @@ int main(int argc, char** argv) {
     mfp::RobotDerivation derivation;
     const mfp::RobotModel robot = mfp::LoadRobot(robot_file, &derivation);
     if (json_file != "-") PrintTable(robot, derivation, std::cout);
-    if (!json_file.empty()) WriteText(json_file, mfp::RobotToJson(robot).dump(2) + "\n");
-    if (!svg_file.empty()) WriteText(svg_file, RobotSvg(robot, derivation));
+    if (!json_file.empty()) mfp::WriteTextOutput(json_file, mfp::RobotToJson(robot).dump(2) + "\n");
+    if (!svg_file.empty()) mfp::WriteTextOutput(svg_file, RobotSvg(robot, derivation));
   } catch (const mfp::InputError& e) {
     std::cerr << "mfp-robot: " << e.what() << "\n";
     return 2;
