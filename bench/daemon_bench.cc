@@ -170,7 +170,7 @@ int Run(const std::string& config_path, int latency_requests, double rate_hz, in
       solve_ms.push_back(1e3 * reply.solve_time_s);
     }
   }
-  std::printf("mfp-daemon-bench: in-process daemon over memq://, real planner (Ipopt), real map pipeline\n");
+  std::printf("mfp-daemon-bench: in-process daemon over memq://, real planner (default relaxation backend), real map pipeline\n");
   std::printf("  hexapod, 12 new footsteps per request, goal 0.25 m ahead, time limit %.1f s, queue %d\n",
               time_limit_s, setup->config.limits.queue_size);
   std::printf("\n1. latency: %d requests at %.1f Hz\n", latency_requests, rate_hz);
