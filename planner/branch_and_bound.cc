@@ -144,6 +144,21 @@ class Search {
   // The integer variable to branch on, or -1 when x is integral.
   int ChooseBranchVariable(const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
                            const Eigen::VectorXd& upper) const {
+    if (opt_.branching == BranchingRule::kGroupOrder) {
+      for (const auto& group : p_.sos1_groups) {
+        int best = -1;
+        double best_score = opt_.integrality_tolerance;
+        for (int j : group) {
+          if (lower(j) >= upper(j)) continue;
+          const double f = Fractionality(x(j));
+          if (f > best_score) {
+            best_score = f;
+            best = j;
+          }
+        }
+        if (best >= 0) return best;
+      }
+    }
     if (opt_.branching == BranchingRule::kSos1Split) {
       // The group with the most fractional member; branch on that member (its up child
       // fixes the whole group).

@@ -20,7 +20,9 @@ enum class NodeSelection {
 
 enum class BranchingRule {
   kMostFractional,  // the integer variable closest to 0.5
-  kSos1Split,       // split the most fractional SOS1 group's members in two halves by weight
+  kSos1Split,       // the most fractional member of any one-of group; its up-branch fixes the group
+  kGroupOrder,      // the first one-of group (in the order the model lists them: along the
+                    // plan) with a fractional member; then as kSos1Split within it
 };
 
 struct BranchAndBoundOptions {
@@ -31,7 +33,7 @@ struct BranchAndBoundOptions {
   double integrality_tolerance = 1e-5;
   double feasibility_tolerance = 1e-5;  // row/bound violation accepted in an incumbent
   NodeSelection node_selection = NodeSelection::kDiveThenBestBound;
-  BranchingRule branching = BranchingRule::kSos1Split;
+  BranchingRule branching = BranchingRule::kGroupOrder;
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
   bool bound_propagation = true;   // tighten bounds over the rows at every node first

@@ -190,7 +190,6 @@ void MiqpFormulation::Build() {
       one_segment += LinExpr::Var(sk);
     }
     b.AddRow(StepName("one_segment", blk), one_segment, 1.0, 1.0);
-    b.AddSos1Group(vars_.segment[blk]);
     if (options_.yaw_encoding == YawEncoding::kConvexHull) {
       // Disaggregated: theta = sum_k theta_k with psi_k S_k <= theta_k <= psi_{k+1} S_k,
       // s = sum_k (m_k theta_k + q_k S_k) and likewise c. Exact for integer S, and the
@@ -390,7 +389,6 @@ void MiqpFormulation::Build() {
       continue;
     }
     b.AddRow(StepName("one_region", i), one_region, 1.0, 1.0);
-    b.AddSos1Group(members);
     if (options_.region_encoding == RegionEncoding::kConvexHull) {
       for (int axis = 0; axis < 3; ++axis) {
         LinExpr sum = pos(i, axis);
@@ -421,6 +419,20 @@ void MiqpFormulation::Build() {
     }
   }
   miqp_ = b.Build();
+  // One-of groups in plan order (a configuration's yaw segments, then its steps'
+  // regions), so that branching rules that follow the group order decide the plan from
+  // its start outwards.
+  miqp_.sos1_groups.clear();
+  for (int blk = 0; blk < B; ++blk) {
+    if (!vars_.segment[blk].empty()) miqp_.sos1_groups.push_back(vars_.segment[blk]);
+    for (int i = std::max(n, blk * n); i < std::min(N, (blk + 1) * n); ++i) {
+      std::vector<int> members;
+      for (int h : vars_.region[i]) {
+        if (h >= 0) members.push_back(h);
+      }
+      if (!members.empty()) miqp_.sos1_groups.push_back(members);
+    }
+  }
 }
 
 std::vector<Footstep> MiqpFormulation::ExtractFootsteps(const Eigen::VectorXd& x) const {

@@ -76,8 +76,11 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
       b.branching = BranchingRule::kMostFractional;
     } else if (*br == "sos1") {
       b.branching = BranchingRule::kSos1Split;
+    } else if (*br == "group_order") {
+      b.branching = BranchingRule::kGroupOrder;
     } else {
-      throw InputError(ctx.Child("branching").Where() + ": '" + *br + "' is not one of most_fractional, sos1");
+      throw InputError(ctx.Child("branching").Where() + ": '" + *br +
+                       "' is not one of most_fractional, sos1, group_order");
     }
   }
 }
