@@ -14,10 +14,14 @@ namespace {
 using SpMat = Eigen::SparseMatrix<double>;
 
 // The problem as  min 0.5 w'Hw + q'w  s.t.  C w <= d,  w = (x, e).
+// Rows of C, in this order: [0, E) the elastic rows a'x - e_k <= b, [E, 2E) e_k >= 0,
+// then for each variable j its upper and lower bound (rows 2E + 2j and 2E + 2j + 1).
 struct InequalityForm {
   int n = 0;        // original variables
-  int elastic = 0;  // elastic variables (one per one-sided row)
+  int elastic = 0;  // elastic variables (one per one-sided row), E above
   SpMat H, C;
+  SpMat G;          // x part of the elastic rows (E x n)
+  SpMat Q;          // x part of H
   Eigen::VectorXd q, d;
 };
 
@@ -34,11 +38,13 @@ InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::V
     if (std::isfinite(p.row_lower(i))) row_sides.emplace_back(i, -1.0);
   }
   f.elastic = static_cast<int>(row_sides.size());
+  std::vector<Eigen::Triplet<double>> g;
   int r = 0;
   for (int k = 0; k < f.elastic; ++k, ++r) {
     const auto [row, sign] = row_sides[k];
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
       c.emplace_back(r, static_cast<int>(it.col()), sign * it.value());
+      g.emplace_back(k, static_cast<int>(it.col()), sign * it.value());
     }
     c.emplace_back(r, f.n + k, -1.0);
     d.push_back(sign > 0 ? p.row_upper(row) : -p.row_lower(row));
@@ -55,6 +61,9 @@ InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::V
     d.push_back(-lower(j));
   }
   const int nw = f.n + f.elastic;
+  f.G.resize(f.elastic, f.n);
+  f.G.setFromTriplets(g.begin(), g.end());
+  f.Q = p.Q;
   f.C.resize(r, nw);
   f.C.setFromTriplets(c.begin(), c.end());
   f.d = Eigen::Map<const Eigen::VectorXd>(d.data(), r);
@@ -113,9 +122,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
   Eigen::SimplicialLDLT<SpMat> ldlt;
   bool analysed = false;
   const SpMat Ct = f.C.transpose();
-  SpMat reg(nw, nw);
-  reg.setIdentity();
-  reg *= 1e-11;
+  const SpMat Gt = f.G.transpose();
 
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
     result.iterations = iter;
@@ -144,28 +151,48 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       return result;
     }
     const Eigen::VectorXd sigma = z.cwiseQuotient(s);
-    const SpMat M = f.H + Ct * sigma.asDiagonal() * f.C;
+    // The Newton system (H + C'SC) dw = t has a diagonal block for the elastic variables
+    // (each appears in its own row and in e >= 0 only), so it is eliminated: with S1, S2
+    // the weights of those two rows and Sb the bound rows' weights,
+    //   K dx = t_x + G' (S1 / (S1 + S2) t_e),  K = Q + G' diag(S1 S2 / (S1 + S2)) G + Sb,
+    //   de = (t_e + S1 G dx) / (S1 + S2).
+    // K has the size of x alone.
+    const int E = f.elastic;
+    const Eigen::VectorXd s1 = sigma.head(E), s2 = sigma.segment(E, E);
+    const Eigen::VectorXd s12 = s1 + s2;
+    const Eigen::VectorXd row_weight = s1.cwiseProduct(s2).cwiseQuotient(s12);
+    Eigen::VectorXd bound_weight(n);
+    for (int j = 0; j < n; ++j) bound_weight(j) = sigma(2 * E + 2 * j) + sigma(2 * E + 2 * j + 1);
+    SpMat K = f.Q + Gt * row_weight.asDiagonal() * f.G;
+    K.diagonal() += bound_weight;
     if (!analysed) {
-      ldlt.analyzePattern(M);
+      ldlt.analyzePattern(K);
       analysed = true;
     }
     // Near convergence sigma spans many orders of magnitude; a small diagonal shift,
     // grown on failure, keeps the factorisation defined.
-    const double diag_max = M.diagonal().cwiseAbs().maxCoeff();
+    const double diag_max = K.diagonal().cwiseAbs().maxCoeff();
     bool factored = false;
     for (double shift = 1e-14; shift <= 1e-6 && !factored; shift *= 100.0) {
-      ldlt.factorize(M + reg * (shift * (1.0 + diag_max) / reg.coeff(0, 0)));
+      SpMat shifted = K;
+      shifted.diagonal().array() += shift * (1.0 + diag_max);
+      ldlt.factorize(shifted);
       factored = ldlt.info() == Eigen::Success;
     }
     if (!factored) break;
-    // Newton direction for a complementarity target rc (see the derivation in the design
-    // notes of docs/solver.md): (H + C'SC) dw = -r_d - C'S r_p - C' S^-1 rc.
+    // Newton direction for a complementarity target rc:
+    //   (H + C'SC) dw = -r_d - C'(S r_p + S^-1 rc),  ds = -r_p - C dw,  dz = S(C dw + r_p) + S^-1 rc.
     auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd* dw, Eigen::VectorXd* ds, Eigen::VectorXd* dz) {
-      const Eigen::VectorXd rhs = -r_d - Ct * (sigma.cwiseProduct(r_p) + rc.cwiseQuotient(s));
-      *dw = ldlt.solve(rhs);
+      const Eigen::VectorXd t = -r_d - Ct * (sigma.cwiseProduct(r_p) + rc.cwiseQuotient(s));
+      const Eigen::VectorXd t_e = t.tail(E);
+      const Eigen::VectorXd rhs = t.head(n) + Gt * s1.cwiseProduct(t_e).cwiseQuotient(s12);
+      Eigen::VectorXd dx = ldlt.solve(rhs);
       // Iterative refinement against the unshifted matrix: sigma's range (up to 1e15
       // near convergence) costs the factorisation digits that this wins back.
-      for (int k = 0; k < 3; ++k) *dw += ldlt.solve(rhs - M * (*dw));
+      for (int k = 0; k < 2; ++k) dx += ldlt.solve(rhs - K * dx);
+      dw->resize(n + E);
+      dw->head(n) = dx;
+      dw->tail(E) = (t_e + s1.cwiseProduct(f.G * dx)).cwiseQuotient(s12);
       *ds = -r_p - f.C * (*dw);
       *dz = sigma.cwiseProduct(f.C * (*dw) + r_p) + rc.cwiseQuotient(s);
     };
