@@ -1,6 +1,7 @@
 #include "tools/daemon/daemon_config.h"
 
 #include "planner/check.h"
+#include "planner/planner_options_yaml.h"
 #include "planner/yaml_fields.h"
 
 namespace mfp {
@@ -25,23 +26,6 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
     limits->max_map_bytes = static_cast<size_t>(*v);
   if (auto v = OptionalDouble(node, ctx, "start_height_tolerance_m", 0.0, 1.0))
     limits->start_height_tolerance_m = *v;
-}
-
-void ReadPlanner(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options) {
-  RejectUnknownKeys(node, ctx,
-                    {"window_steps", "goal_tolerance_m", "goal_yaw_tolerance_rad",
-                     "start_tolerance_m", "max_nodes", "relative_gap"});
-  if (auto v = OptionalInt(node, ctx, "window_steps", 0, 1000)) options->default_window_steps = *v;
-  if (auto v = OptionalDouble(node, ctx, "goal_tolerance_m", 0.0, 10.0))
-    options->goal_tolerance_m = *v;
-  if (auto v = OptionalDouble(node, ctx, "goal_yaw_tolerance_rad", 0.0, 3.15))
-    options->goal_yaw_tolerance_rad = *v;
-  if (auto v = OptionalDouble(node, ctx, "start_tolerance_m", 0.0, 1.0))
-    options->start_tolerance_m = *v;
-  if (auto v = OptionalInt(node, ctx, "max_nodes", 1, 10000000))
-    options->branch_and_bound.max_nodes = *v;
-  if (auto v = OptionalDouble(node, ctx, "relative_gap", 0.0, 1.0))
-    options->branch_and_bound.relative_gap = *v;
 }
 
 }  // namespace
@@ -71,7 +55,7 @@ DaemonConfig LoadDaemonConfig(const std::string& path) {
   if (auto v = OptionalDouble(root, ctx, "heartbeat_period_s", 0.01, 1.0))
     config.heartbeat_period_s = *v;
   if (root["limits"]) ReadLimits(root["limits"], ctx.Child("limits"), &config.limits);
-  if (root["planner"]) ReadPlanner(root["planner"], ctx.Child("planner"), &config.planner);
+  if (root["planner"]) ReadPlannerOptions(root["planner"], ctx.Child("planner"), &config.planner);
   config.planner.default_time_limit_s = config.limits.default_time_limit_s;
   config.planner.default_max_steps = config.limits.default_max_steps;
   return config;
