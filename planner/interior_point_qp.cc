@@ -19,18 +19,44 @@ using SpMat = Eigen::SparseMatrix<double>;
 struct InequalityForm {
   int n = 0;        // original variables
   int elastic = 0;  // elastic variables (one per one-sided row), E above
-  SpMat H, C;
   SpMat G;          // x part of the elastic rows (E x n)
+  SpMat Gt;         // its transpose
   SpMat Q;          // x part of H
   Eigen::VectorXd q, d;
+
+  // C w without forming C: the elastic rows, e >= 0, then each variable's bound pair.
+  Eigen::VectorXd C(const Eigen::VectorXd& w) const {
+    const int E = elastic;
+    Eigen::VectorXd out(2 * E + 2 * n);
+    out.head(E) = G * w.head(n) - w.tail(E);
+    out.segment(E, E) = -w.tail(E);
+    for (int j = 0; j < n; ++j) {
+      out(2 * E + 2 * j) = w(j);
+      out(2 * E + 2 * j + 1) = -w(j);
+    }
+    return out;
+  }
+  // C'v.
+  Eigen::VectorXd Ct(const Eigen::VectorXd& v) const {
+    const int E = elastic;
+    Eigen::VectorXd out(n + E);
+    out.head(n) = Gt * v.head(E);
+    for (int j = 0; j < n; ++j) out(j) += v(2 * E + 2 * j) - v(2 * E + 2 * j + 1);
+    out.tail(E) = -v.head(E) - v.segment(E, E);
+    return out;
+  }
+  // H w = (Q x, 0).
+  Eigen::VectorXd H(const Eigen::VectorXd& w) const {
+    Eigen::VectorXd out = Eigen::VectorXd::Zero(w.size());
+    out.head(n) = Q * w.head(n);
+    return out;
+  }
 };
 
 InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                      double penalty) {
   InequalityForm f;
   f.n = p.num_variables();
-  std::vector<Eigen::Triplet<double>> c;
-  std::vector<double> d;
   // Rows: a'x - e <= u and -a'x - e <= -l, each with its own elastic variable.
   std::vector<std::pair<int, double>> row_sides;  // (row, sign)
   for (int i = 0; i < p.num_rows(); ++i) {
@@ -38,46 +64,79 @@ InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::V
     if (std::isfinite(p.row_lower(i))) row_sides.emplace_back(i, -1.0);
   }
   f.elastic = static_cast<int>(row_sides.size());
+  const int E = f.elastic;
   std::vector<Eigen::Triplet<double>> g;
-  int r = 0;
-  for (int k = 0; k < f.elastic; ++k, ++r) {
+  f.d.resize(2 * E + 2 * f.n);
+  for (int k = 0; k < E; ++k) {
     const auto [row, sign] = row_sides[k];
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
-      c.emplace_back(r, static_cast<int>(it.col()), sign * it.value());
       g.emplace_back(k, static_cast<int>(it.col()), sign * it.value());
     }
-    c.emplace_back(r, f.n + k, -1.0);
-    d.push_back(sign > 0 ? p.row_upper(row) : -p.row_lower(row));
-  }
-  for (int k = 0; k < f.elastic; ++k, ++r) {  // e >= 0
-    c.emplace_back(r, f.n + k, -1.0);
-    d.push_back(0.0);
+    f.d(k) = sign > 0 ? p.row_upper(row) : -p.row_lower(row);
+    f.d(E + k) = 0.0;  // e >= 0
   }
   for (int j = 0; j < f.n; ++j) {  // variable bounds
     MFP_CHECK(std::isfinite(lower(j)) && std::isfinite(upper(j)) && lower(j) < upper(j));
-    c.emplace_back(r++, j, 1.0);
-    d.push_back(upper(j));
-    c.emplace_back(r++, j, -1.0);
-    d.push_back(-lower(j));
+    f.d(2 * E + 2 * j) = upper(j);
+    f.d(2 * E + 2 * j + 1) = -lower(j);
   }
-  const int nw = f.n + f.elastic;
-  f.G.resize(f.elastic, f.n);
+  f.G.resize(E, f.n);
   f.G.setFromTriplets(g.begin(), g.end());
+  f.Gt = f.G.transpose();
   f.Q = p.Q;
-  f.C.resize(r, nw);
-  f.C.setFromTriplets(c.begin(), c.end());
-  f.d = Eigen::Map<const Eigen::VectorXd>(d.data(), r);
-  f.H.resize(nw, nw);
-  std::vector<Eigen::Triplet<double>> h;
-  for (int col = 0; col < p.Q.outerSize(); ++col) {
-    for (SpMat::InnerIterator it(p.Q, col); it; ++it) h.emplace_back(static_cast<int>(it.row()), col, it.value());
-  }
-  f.H.setFromTriplets(h.begin(), h.end());
-  f.q = Eigen::VectorXd::Zero(nw);
+  f.q = Eigen::VectorXd::Zero(f.n + E);
   f.q.head(f.n) = p.c;
-  f.q.tail(f.elastic).setConstant(penalty);
+  f.q.tail(E).setConstant(penalty);
   return f;
 }
+
+// Fills K = Q + G' diag(row_weight) G + diag(bound_weight) into a fixed pattern.
+struct KktAssembly {
+  SpMat pattern;                  // union of the patterns of Q, G'G and the diagonal
+  Eigen::VectorXd base;           // Q's values at their positions in the pattern
+  std::vector<int> diagonal;      // value index of (j, j)
+  struct Term {
+    int row;       // row k of G
+    int index;     // value index in the pattern
+    double coef;   // G(k, a) G(k, b)
+  };
+  std::vector<Term> terms;
+
+  explicit KktAssembly(const InequalityForm& f) {
+    const int n = f.n;
+    SpMat identity(n, n);
+    identity.setIdentity();
+    pattern = SpMat(f.Q + f.Gt * f.G + identity);
+    pattern.makeCompressed();
+    auto index_of = [&](int row, int col) {
+      const int* begin = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col];
+      const int* end = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col + 1];
+      const int* it = std::lower_bound(begin, end, row);
+      MFP_CHECK(it != end && *it == row);
+      return static_cast<int>(it - pattern.innerIndexPtr());
+    };
+    base = Eigen::VectorXd::Zero(pattern.nonZeros());
+    for (int col = 0; col < f.Q.outerSize(); ++col) {
+      for (SpMat::InnerIterator it(f.Q, col); it; ++it) base(index_of(static_cast<int>(it.row()), col)) += it.value();
+    }
+    for (int j = 0; j < n; ++j) diagonal.push_back(index_of(j, j));
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> rows(f.G);
+    for (int k = 0; k < rows.outerSize(); ++k) {
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator a(rows, k); a; ++a) {
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator b(rows, k); b; ++b) {
+          terms.push_back({k, index_of(static_cast<int>(a.col()), static_cast<int>(b.col())), a.value() * b.value()});
+        }
+      }
+    }
+  }
+
+  void Assemble(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight, SpMat* K) const {
+    Eigen::Map<Eigen::VectorXd> values(K->valuePtr(), K->nonZeros());
+    values = base;
+    for (const Term& t : terms) values(t.index) += row_weight(t.row) * t.coef;
+    for (size_t j = 0; j < diagonal.size(); ++j) values(diagonal[j]) += bound_weight(j);
+  }
+};
 
 // Largest alpha in (0, 1] keeping v + alpha dv >= 0.
 double MaxStep(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
@@ -108,10 +167,10 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     w(j) = 0.9 * v + 0.1 * mid;
   }
   {
-    const Eigen::VectorXd cx = f.C.leftCols(n) * w.head(n);
-    for (int k = 0; k < f.elastic; ++k) w(n + k) = std::max(0.0, cx(k) - f.d(k)) + 1.0;
+    const Eigen::VectorXd gx = f.G * w.head(n);
+    for (int k = 0; k < f.elastic; ++k) w(n + k) = std::max(0.0, gx(k) - f.d(k)) + 1.0;
   }
-  Eigen::VectorXd s = (f.d - f.C * w).cwiseMax(1.0);
+  Eigen::VectorXd s = (f.d - f.C(w)).cwiseMax(1.0);
   // Duals: the elastic variables' dual feasibility reads penalty = z(row) + z(e >= 0), so
   // both start at half the penalty; the bound rows start at one.
   Eigen::VectorXd z = Eigen::VectorXd::Ones(m);
@@ -121,13 +180,16 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
   const double scale_c = 1.0 + p.c.lpNorm<Eigen::Infinity>();
   Eigen::SimplicialLDLT<SpMat> ldlt;
   bool analysed = false;
-  const SpMat Ct = f.C.transpose();
-  const SpMat Gt = f.G.transpose();
+  // K = Q + G' diag(w) G + diag(b) keeps one sparsity pattern through the solve; its
+  // values are scattered in place each iteration instead of forming sparse products.
+  const KktAssembly assembly(f);
+  SpMat K = assembly.pattern;
+  const SpMat& Gt = f.Gt;
 
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
     result.iterations = iter;
-    const Eigen::VectorXd r_d = f.H * w + f.q + Ct * z;
-    const Eigen::VectorXd r_p = f.C * w + s - f.d;
+    const Eigen::VectorXd r_d = f.H(w) + f.q + f.Ct(z);
+    const Eigen::VectorXd r_p = f.C(w) + s - f.d;
     const double mu = s.dot(z) / m;
     const double dual_x = r_d.head(n).lpNorm<Eigen::Infinity>();
     const double dual_e = f.elastic ? r_d.tail(f.elastic).lpNorm<Eigen::Infinity>() : 0.0;
@@ -163,8 +225,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     const Eigen::VectorXd row_weight = s1.cwiseProduct(s2).cwiseQuotient(s12);
     Eigen::VectorXd bound_weight(n);
     for (int j = 0; j < n; ++j) bound_weight(j) = sigma(2 * E + 2 * j) + sigma(2 * E + 2 * j + 1);
-    SpMat K = f.Q + Gt * row_weight.asDiagonal() * f.G;
-    K.diagonal() += bound_weight;
+    assembly.Assemble(row_weight, bound_weight, &K);
     if (!analysed) {
       ldlt.analyzePattern(K);
       analysed = true;
@@ -183,7 +244,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     // Newton direction for a complementarity target rc:
     //   (H + C'SC) dw = -r_d - C'(S r_p + S^-1 rc),  ds = -r_p - C dw,  dz = S(C dw + r_p) + S^-1 rc.
     auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd* dw, Eigen::VectorXd* ds, Eigen::VectorXd* dz) {
-      const Eigen::VectorXd t = -r_d - Ct * (sigma.cwiseProduct(r_p) + rc.cwiseQuotient(s));
+      const Eigen::VectorXd t = -r_d - f.Ct(sigma.cwiseProduct(r_p) + rc.cwiseQuotient(s));
       const Eigen::VectorXd t_e = t.tail(E);
       const Eigen::VectorXd rhs = t.head(n) + Gt * s1.cwiseProduct(t_e).cwiseQuotient(s12);
       Eigen::VectorXd dx = ldlt.solve(rhs);
@@ -193,8 +254,9 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       dw->resize(n + E);
       dw->head(n) = dx;
       dw->tail(E) = (t_e + s1.cwiseProduct(f.G * dx)).cwiseQuotient(s12);
-      *ds = -r_p - f.C * (*dw);
-      *dz = sigma.cwiseProduct(f.C * (*dw) + r_p) + rc.cwiseQuotient(s);
+      const Eigen::VectorXd c_dw = f.C(*dw);
+      *ds = -r_p - c_dw;
+      *dz = sigma.cwiseProduct(c_dw + r_p) + rc.cwiseQuotient(s);
     };
     Eigen::VectorXd dw, ds, dz;
     direction(-s.cwiseProduct(z), &dw, &ds, &dz);  // predictor (affine scaling)
