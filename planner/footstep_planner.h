@@ -30,9 +30,9 @@ struct PlanRequest {
 
 struct PlannerOptions {
   int default_max_steps = 0;        // 0 = 12 n
-  // 0 = 2 n. The paper plans 4 n steps per MIQP; with this solver two configurations
-  // per window reach every scenario goal with each window proven optimal, in a fraction
-  // of the time of 4 n windows that end at their time limits (README, "Windows").
+  // 0 = 2 n. The paper plans 4 n steps per MIQP; with this solver windows of two
+  // configurations reach every scenario goal with each window proven optimal, in a
+  // fraction of the time of 4 n windows, which end at their time limits (README).
   int default_window_steps = 0;
   double default_time_limit_s = 30.0;
   double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot
