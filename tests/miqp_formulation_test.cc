@@ -17,25 +17,13 @@
 #include <cmath>
 
 #include "planner/check.h"
+#include "tests/test_robots.h"
 
 namespace mfp {
 namespace {
 
 RobotModel TestRobot() {
-  RobotModel robot;
-  robot.name = "test_quadruped";
-  const double o[4][2] = {{0.1, 0.1}, {0.1, -0.1}, {-0.1, 0.1}, {-0.1, -0.1}};
-  for (int k = 0; k < 4; ++k) {
-    LegModel leg;
-    leg.name = "leg" + std::to_string(k);
-    leg.nominal_offset_body_m = Eigen::Vector2d(o[k][0], o[k][1]);
-    robot.legs.push_back(leg);
-  }
-  robot.gait = {0, 1, 2, 3};
-  robot.d_lim_m = 0.15;
-  robot.l_bnd_m = 0.05;
-  robot.dz_max_m = 0.1;
-  robot.max_yaw_change_rad = 0.3;
+  RobotModel robot = SquareQuadruped(0.15, 0.05);
   robot.weights.goal_position = 100.0;  // the objective test below is worked out with these
   robot.weights.goal_yaw = 10.0;
   robot.weights.trim_step = -1.0;

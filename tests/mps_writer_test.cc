@@ -13,6 +13,7 @@
 #include "planner/ipm_relaxation_solver.h"
 #include "planner/miqp_builder.h"
 #include "planner/miqp_formulation.h"
+#include "tests/test_robots.h"
 
 namespace mfp {
 namespace {
@@ -154,19 +155,7 @@ TEST(MpsWriter, HandMadeRowsBoundsAndQuadratic) {
 }
 
 TEST(MpsWriter, FootstepMiqpRoundTripsThePlannersSolution) {
-  RobotModel robot;
-  robot.name = "quad";
-  const double o[4][2] = {{0.1, 0.1}, {0.1, -0.1}, {-0.1, 0.1}, {-0.1, -0.1}};
-  for (auto& off : o) {
-    LegModel leg;
-    leg.nominal_offset_body_m = Eigen::Vector2d(off[0], off[1]);
-    robot.legs.push_back(leg);
-  }
-  robot.gait = {0, 1, 2, 3};
-  robot.d_lim_m = 0.12;
-  robot.l_bnd_m = 0.06;
-  robot.dz_max_m = 0.1;
-  robot.max_yaw_change_rad = 0.3;
+  const RobotModel robot = SquareQuadruped(0.12, 0.06);
   FootstepProblem problem;
   problem.robot = &robot;
   problem.regions = {MakeRegionFromPolygon(0, {{-0.3, -0.3, 0}, {0.35, -0.3, 0}, {0.35, 0.3, 0}, {-0.3, 0.3, 0}}, 0.0),
