@@ -11,6 +11,27 @@
 namespace mfp {
 namespace {
 
+// The robot's scalar limits a YAML may give: required in the hand-written form, visible
+// overrides of the derived values in the URDF form. One table, so both forms accept the
+// same keys and ranges.
+struct LimitField {
+  const char* key;
+  double RobotModel::*member;
+  double min, max;
+  const char* unit;
+  bool required_without_urdf;
+  bool derived;  // derived from the URDF (stance_height is an input of the derivation)
+};
+const LimitField kLimitFields[] = {
+    {"stance_height", &RobotModel::stance_height_m, 0.0, 10.0, "m", false, false},
+    {"foot_radius", &RobotModel::foot_radius_m, 0.0, 1.0, "m", false, true},
+    {"d_lim", &RobotModel::d_lim_m, 1e-4, 10.0, "m", true, true},
+    {"l_bnd", &RobotModel::l_bnd_m, 1e-4, 10.0, "m", true, true},
+    {"dz_max", &RobotModel::dz_max_m, 1e-4, 10.0, "m", true, true},
+    {"max_yaw_change", &RobotModel::max_yaw_change_rad, 1e-3, M_PI, "rad", true, true},
+    {"max_slope", &RobotModel::max_slope_rad, 0.0, M_PI / 2, "rad", false, true},
+};
+
 std::string Describe(const std::string& key, double value, const std::string& unit,
                      const std::string& file) {
   std::ostringstream out;
@@ -101,29 +122,17 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   }
   if (const auto name = OptionalString(root, ctx, "name")) robot.name = *name;
 
-  struct Override {
-    const char* key;
-    double* value;
-    double min, max;
-    const char* unit;
-  };
-  const Override overrides[] = {
-      {"d_lim", &robot.d_lim_m, 1e-4, 10.0, "m"},
-      {"l_bnd", &robot.l_bnd_m, 1e-4, 10.0, "m"},
-      {"dz_max", &robot.dz_max_m, 1e-4, 10.0, "m"},
-      {"max_yaw_change", &robot.max_yaw_change_rad, 1e-3, M_PI, "rad"},
-      {"foot_radius", &robot.foot_radius_m, 0.0, 1.0, "m"},
-      {"max_slope", &robot.max_slope_rad, 0.0, M_PI / 2, "rad"},
-  };
   const double derived_d_lim = robot.d_lim_m;
-  for (const Override& o : overrides) {
-    const auto value = OptionalDouble(root, ctx, o.key, o.min, o.max);
+  for (const LimitField& f : kLimitFields) {
+    if (!f.derived) continue;  // stance_height is handled above, before the derivation
+    const auto value = OptionalDouble(root, ctx, f.key, f.min, f.max);
     if (!value) continue;
-    const std::string derived = Fixed4(*o.value);
-    *o.value = *value;
-    SetProvenance(&robot, o.key,
-                  std::string(o.key) + " = " + Fixed4(*value) + " " + o.unit + ": override in " +
-                      file + " (derived " + derived + " " + o.unit + ")");
+    double& field = robot.*f.member;
+    const std::string derived = Fixed4(field);
+    field = *value;
+    SetProvenance(&robot, f.key,
+                  std::string(f.key) + " = " + Fixed4(*value) + " " + f.unit + ": override in " +
+                      file + " (derived " + derived + " " + f.unit + ")");
   }
   if (robot.d_lim_m != derived_d_lim) {
     // Values derived from d_lim follow its override unless overridden themselves.
@@ -205,28 +214,12 @@ RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
     for (int k = 0; k < robot.num_legs(); ++k) robot.gait.push_back(k);
   }
 
-  struct LimitField {
-    const char* key;
-    double* value;
-    double min, max;
-    const char* unit;
-  };
-  const LimitField limits[] = {
-      {"stance_height", &robot.stance_height_m, 0.0, 10.0, "m"},
-      {"foot_radius", &robot.foot_radius_m, 0.0, 1.0, "m"},
-      {"d_lim", &robot.d_lim_m, 1e-4, 10.0, "m"},
-      {"l_bnd", &robot.l_bnd_m, 1e-4, 10.0, "m"},
-      {"dz_max", &robot.dz_max_m, 1e-4, 10.0, "m"},
-      {"max_yaw_change", &robot.max_yaw_change_rad, 1e-3, M_PI, "rad"},
-      {"max_slope", &robot.max_slope_rad, 0.0, M_PI / 2, "rad"},
-  };
-  for (const LimitField& f : limits) {
+  for (const LimitField& f : kLimitFields) {
     const auto value = OptionalDouble(root, ctx, f.key, f.min, f.max);
     if (value) {
-      *f.value = *value;
+      robot.*f.member = *value;
       robot.provenance.push_back(Describe(f.key, *value, f.unit, path));
-    } else if (std::string(f.key) != "max_slope" && std::string(f.key) != "foot_radius" &&
-               std::string(f.key) != "stance_height") {
+    } else if (f.required_without_urdf) {
       throw InputError(ctx.Child(f.key).Where() + ": missing (allowed range [" +
                        std::to_string(f.min) + ", " + std::to_string(f.max) + "] " + f.unit + ")");
     }
