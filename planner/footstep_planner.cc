@@ -19,11 +19,6 @@ Plan Rejected(SolveStatus status, const std::string& message) {
   return plan;
 }
 
-Eigen::Vector2d Rotate(double yaw, const Eigen::Vector2d& v) {
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  return Eigen::Vector2d(c * v.x() - s * v.y(), s * v.x() + c * v.y());
-}
-
 // Distance in plan view from (x, y) to a region's polygon (0 inside).
 double PlanarDistance(const ConvexRegion& region, const Eigen::Vector2d& q) {
   const auto& v = region.vertices_world_m;
@@ -63,8 +58,8 @@ std::vector<Eigen::Vector3d> NominalStance(const RobotModel& robot,
                                            const std::vector<ConvexRegion>& regions, double x_m,
                                            double y_m, double yaw_rad) {
   std::vector<Eigen::Vector3d> feet;
-  for (const LegModel& leg : robot.legs) {
-    const Eigen::Vector2d xy = Eigen::Vector2d(x_m, y_m) + Rotate(yaw_rad, leg.nominal_offset_body_m);
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d xy = NominalFootXY(robot, leg, x_m, y_m, yaw_rad);
     const int r = FindRegionBelow(regions, xy.x(), xy.y(), 0.0);
     feet.emplace_back(xy.x(), xy.y(), r >= 0 ? regions[r].HeightAt(xy.x(), xy.y()) : 0.0);
   }
@@ -198,8 +193,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     const double goal_yaw = request.goal_yaw_rad;
     const int size = static_cast<int>(steps.size());
     for (int i = size - n; i < size; ++i) {
-      const Eigen::Vector2d g = Eigen::Vector2d(request.goal_x_m, request.goal_y_m) +
-                                Rotate(goal_yaw, robot.legs[steps[i].leg].nominal_offset_body_m);
+      const Eigen::Vector2d g = NominalFootXY(robot, steps[i].leg, request.goal_x_m, request.goal_y_m, goal_yaw);
       if ((steps[i].position_world_m.head<2>() - g).norm() > options.goal_tolerance_m) return false;
     }
     return std::abs(std::remainder(FinalStanceYaw(robot, steps) - goal_yaw, 2 * M_PI)) <=

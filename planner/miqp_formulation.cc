@@ -86,10 +86,7 @@ int MiqpFormulation::LegOfStep(int step) const {
 }
 
 Eigen::Vector2d MiqpFormulation::GoalFoot(int leg) const {
-  const Eigen::Vector2d o = problem_.robot->legs[leg].nominal_offset_body_m;
-  const double c = std::cos(problem_.goal_yaw_rad), s = std::sin(problem_.goal_yaw_rad);
-  return Eigen::Vector2d(problem_.goal_x_m + c * o.x() - s * o.y(),
-                         problem_.goal_y_m + s * o.x() + c * o.y());
+  return NominalFootXY(*problem_.robot, leg, problem_.goal_x_m, problem_.goal_y_m, problem_.goal_yaw_rad);
 }
 
 void MiqpFormulation::Build() {

@@ -7,15 +7,6 @@
 #include "planner/footstep_planner.h"
 
 namespace mfp {
-namespace {
-
-Eigen::Vector2d Rotate(double yaw, const Eigen::Vector2d& v) {
-  const double c = std::cos(yaw), s = std::sin(yaw);
-  return Eigen::Vector2d(c * v.x() - s * v.y(), s * v.x() + c * v.y());
-}
-
-}  // namespace
-
 double RotationTolerance(const RobotModel& robot, double yaw_segment_rad) {
   double reach = 0.0;
   for (const LegModel& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
@@ -50,7 +41,7 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
     Eigen::Vector2d p = Eigen::Vector2d::Zero();
     for (int j = i - n + 1; j <= i; ++j) p += pos(j).head<2>();
     p /= n;
-    return p + Rotate(yaw_of(i), robot.legs[steps[std::max(i, 0)].leg].nominal_offset_body_m);
+    return NominalFootXY(robot, steps[std::max(i, 0)].leg, p.x(), p.y(), yaw_of(i));
   };
   for (int i = 0; i < N; ++i) {
     if (steps[i].leg != robot.gait[i % n]) report(i, "leg out of gait order (expected " + std::to_string(robot.gait[i % n]) + ")", 0);
@@ -83,8 +74,7 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
   }
   if (plan.reaches_goal) {
     for (int i = N - n; i < N; ++i) {
-      const Eigen::Vector2d g = Eigen::Vector2d(goal.x_m, goal.y_m) +
-                                Rotate(goal.yaw_rad, robot.legs[steps[i].leg].nominal_offset_body_m);
+      const Eigen::Vector2d g = NominalFootXY(robot, steps[i].leg, goal.x_m, goal.y_m, goal.yaw_rad);
       const double d = (steps[i].position_world_m.head<2>() - g).norm();
       if (d > goal.tolerance_m + tol.position_m) report(i, "final foot far from its goal spot", d - goal.tolerance_m);
     }

@@ -66,6 +66,13 @@ void ValidateRobotModel(const RobotModel& robot) {
   }
 }
 
+Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, double y_m, double yaw_rad) {
+  MFP_CHECK(leg >= 0 && leg < robot.num_legs());
+  const Eigen::Vector2d o = robot.legs[leg].nominal_offset_body_m;
+  const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
+  return Eigen::Vector2d(x_m + c * o.x() - s * o.y(), y_m + s * o.x() + c * o.y());
+}
+
 Eigen::Vector2d MeanNominalOffset(const RobotModel& robot) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (const LegModel& leg : robot.legs) sum += leg.nominal_offset_body_m;

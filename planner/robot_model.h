@@ -51,6 +51,10 @@ struct RobotModel {
 // empty legs, a gait that is not a permutation, non-positive limits, ...).
 void ValidateRobotModel(const RobotModel& robot);
 
+// Where a leg's foot stands in plan view at the nominal stance of a body pose: the pose
+// (x, y) plus the leg's nominal offset rotated by yaw [m, world].
+Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, double y_m, double yaw_rad);
+
 // Mean of the nominal offsets; offsets are expected to be centred (mean zero) so that
 // the centre of contacts of a nominal stance is the body origin.
 Eigen::Vector2d MeanNominalOffset(const RobotModel& robot);

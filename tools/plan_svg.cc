@@ -100,9 +100,8 @@ std::string PlanToSvg(const Plan& plan, const RobotModel& robot,
   }
   // Goal: the goal stance as hollow squares and the body heading.
   for (int leg = 0; leg < n; ++leg) {
-    const Eigen::Vector2d o = robot.legs[leg].nominal_offset_body_m;
-    const double c = std::cos(goal.yaw_rad), sn = std::sin(goal.yaw_rad);
-    const double gx = goal.x_m + c * o.x() - sn * o.y(), gy = goal.y_m + sn * o.x() + c * o.y();
+    const Eigen::Vector2d g = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
+    const double gx = g.x(), gy = g.y();
     s << "<rect x=\"" << X(gx) - 5 << "\" y=\"" << Y(gy) - 5 << "\" width=\"10\" height=\"10\" fill=\"none\" stroke=\""
       << LegColour(leg) << "\" stroke-dasharray=\"2,2\"/>\n";
   }
