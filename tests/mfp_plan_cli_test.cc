@@ -10,6 +10,8 @@
 #include <sstream>
 #include <sys/wait.h>
 
+#include "tests/test_temp_path.h"
+
 namespace {
 
 const std::string kPlan = std::string(MFP_BINARY_DIR) + "/tools/mfp-plan";
@@ -21,7 +23,7 @@ struct Outcome {
 };
 
 Outcome Execute(const std::string& args) {
-  const std::string err_file = testing::TempDir() + "mfp_plan_cli_err.txt";
+  const std::string err_file = mfp::TestTempPath("stderr.txt");
   const int status = std::system((kPlan + " " + args + " --quiet 2> " + err_file + " > /dev/null").c_str());
   std::ifstream in(err_file);
   std::stringstream text;
@@ -61,8 +63,8 @@ TEST(MfpPlanCli, TooFewStepsExitsThree) {
 }
 
 TEST(MfpPlanCli, PlanJsonFollowsTheContract) {
-  const std::string json_path = testing::TempDir() + "mfp_plan_cli.json";
-  const std::string mps_path = testing::TempDir() + "mfp_plan_cli.mps";
+  const std::string json_path = mfp::TestTempPath("plan.json");
+  const std::string mps_path = mfp::TestTempPath("plan.mps");
   const Outcome r = Execute("--scenario " + kScenarios + "littledog_flat.yaml --json " + json_path + " --write-mps " +
                         mps_path + " --validate");
   ASSERT_EQ(r.code, 0) << r.err;

@@ -14,15 +14,10 @@
 #include "terrain/region_extractor.h"
 #include "terrain/terrain_catalogue.h"
 #include "terrain/voxelize.h"
+#include "tests/test_temp_path.h"
 
 namespace mfp {
 namespace {
-
-std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("mfp_octomap_io_test_" + std::to_string(::getpid()) + "_" + name))
-      .string();
-}
 
 std::vector<uint8_t> Bytes(const std::string& s) { return std::vector<uint8_t>(s.begin(), s.end()); }
 
@@ -43,7 +38,7 @@ TEST(OctomapIoTest, BinaryAndFullFilesRoundTripToTheSameRegions) {
   const RegionExtractorOptions options;
   const RegionExtractionResult direct = ExtractRegionsFromTerrain(t, options);
   for (const std::string ext : {".bt", ".ot"}) {
-    const std::string path = TempPath("step" + ext);
+    const std::string path = TestTempPath("step" + ext);
     WriteTerrainMap(t, path);
     const OccupancyMap map = LoadMapFile(path);
     std::filesystem::remove(path);
@@ -58,7 +53,7 @@ TEST(OctomapIoTest, BinaryAndFullFilesRoundTripToTheSameRegions) {
       EXPECT_NEAR(loaded.regions[i].area_m2, direct.regions[i].area_m2, 1e-9) << ext;
     }
   }
-  const std::string path = TempPath("flat.bt");
+  const std::string path = TestTempPath("flat.bt");
   WriteTerrainMap(FlatTerrain(), path);
   EXPECT_EQ(RegionsFromMapFile(path, 0.01, 0.4).size(), 1u);
   std::filesystem::remove(path);
@@ -66,7 +61,7 @@ TEST(OctomapIoTest, BinaryAndFullFilesRoundTripToTheSameRegions) {
 
 TEST(OctomapIoTest, MissingFileAndBadExtensionAreInputErrors) {
   EXPECT_THROW(LoadMapFile("/nonexistent/map.bt"), InputError);
-  EXPECT_THROW(WriteTerrainMap(FlatTerrain(), TempPath("map.png")), InputError);
+  EXPECT_THROW(WriteTerrainMap(FlatTerrain(), TestTempPath("map.png")), InputError);
 }
 
 TEST(OctomapIoTest, EmptyMapLoadsWithoutLeavesAndHasNoRegions) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "planner/check.h"
+#include "tests/test_temp_path.h"
 
 namespace mfp {
 namespace {
@@ -54,7 +55,7 @@ TEST(TerrainYamlTest, ErrorsNameFileKeyAndRange) {
 
 TEST(TerrainYamlTest, LoadsTheTerrainBlockOfAScenarioFile) {
   const std::string path =
-      (std::filesystem::temp_directory_path() / "mfp_terrain_yaml_test.yaml").string();
+      TestTempPath("scenario.yaml");
   {
     std::ofstream out(path);
     out << "robot: littledog\nterrain:\n  boxes:\n    - {center: [0, 0, 0], size: [1, 1, 1]}\n";
