@@ -7,11 +7,14 @@
 
 #include "planner/bound_propagation.h"
 #include "planner/check.h"
+#include "planner/pseudo_costs.h"
 
 namespace mfp {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+constexpr int kPruned = -2;           // a branching choice that proved the node empty
+constexpr double kLargeGain = 1e12;   // stands in for an empty child in a product score
 
 struct BoundChange {
   int index;
@@ -24,6 +27,11 @@ struct Node {
   std::vector<BoundChange> changes;
   double parent_bound = -kInfinity;
   int depth = 0;
+  // The branching that made this node, for the pseudo-costs.
+  int branch_var = -1;
+  bool branch_up = false;
+  double branch_distance = 0.0;
+  double parent_objective = 0.0;
   Eigen::VectorXd warm_start;  // parent's relaxation point
 };
 
@@ -31,7 +39,12 @@ class Search {
  public:
   Search(const Miqp& problem, RelaxationSolver& solver, const BranchAndBoundOptions& options,
          const RoundingHeuristic& rounding)
-      : p_(problem), solver_(solver), opt_(options), rounding_(rounding), start_(Clock::now()) {
+      : p_(problem),
+        solver_(solver),
+        opt_(options),
+        rounding_(rounding),
+        start_(Clock::now()),
+        pseudo_(problem.num_variables()) {
     group_of_.assign(p_.num_variables(), -1);
     for (size_t g = 0; g < p_.sos1_groups.size(); ++g) {
       for (int j : p_.sos1_groups[g]) group_of_[j] = static_cast<int>(g);
@@ -52,7 +65,10 @@ class Search {
         break;
       }
       Node node = PopNode();
-      if (HasIncumbent() && !Improves(node.parent_bound)) continue;
+      if (HasIncumbent() && !Improves(node.parent_bound)) {
+        NoteGapPrune(node.parent_bound);
+        continue;
+      }
       ++result_.nodes;
       Eigen::VectorXd lower = p_.var_lower, upper = p_.var_upper;
       for (const BoundChange& ch : node.changes) {
@@ -81,14 +97,24 @@ class Search {
         root_done = true;
         continue;
       }
+      if (node.branch_var >= 0) {
+        pseudo_.Record(node.branch_var, node.branch_up, rel.objective - node.parent_objective,
+                       node.branch_distance);
+      }
       const double bound = std::max(rel.objective, node.parent_bound);
       if (!root_done) {
         root_done = true;
         result_.bound = bound;
         TryRounding(rel.x);
       }
-      if (HasIncumbent() && !Improves(bound)) continue;
-      const int branch_var = ChooseBranchVariable(rel.x, lower, upper);
+      if (HasIncumbent() && !Improves(bound)) {
+        NoteGapPrune(bound);
+        continue;
+      }
+      const int branch_var = opt_.branching == BranchingRule::kReliability
+                                 ? ChooseByReliability(rel, &lower, &upper)
+                                 : ChooseBranchVariable(rel.x, lower, upper);
+      if (branch_var == kPruned) continue;
       if (branch_var < 0) {
         OfferIncumbent(rel.x);
         continue;
@@ -97,7 +123,7 @@ class Search {
           result_.nodes % opt_.rounding_frequency == 0) {
         TryRounding(rel.x);
       }
-      Branch(node, rel.x, bound, branch_var, lower, upper);
+      Branch(node, rel, bound, branch_var, lower, upper);
     }
     return Finish();
   }
@@ -112,6 +138,10 @@ class Search {
     return bound < result_.objective - tol;
   }
 
+  // A subtree dropped because it cannot beat the incumbent by more than the gap still
+  // bounds the optimum: the reported bound must not rise above it.
+  void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
+
   RelaxationResult SolveRelaxation(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                    const Eigen::VectorXd* warm) {
     solver_.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
@@ -121,8 +151,11 @@ class Search {
 
   Node PopNode() {
     size_t pick = open_.size() - 1;  // depth first: newest
+    const bool plunge = just_branched_ && PlungeContinues(open_.back().parent_bound);
+    just_branched_ = false;
     const bool best_bound = opt_.node_selection == NodeSelection::kBestBound ||
-                            (opt_.node_selection == NodeSelection::kDiveThenBestBound && HasIncumbent());
+                            (opt_.node_selection == NodeSelection::kDiveThenBestBound && HasIncumbent()) ||
+                            (opt_.node_selection == NodeSelection::kBestBoundWithPlunging && !plunge);
     if (best_bound) {
       for (size_t k = 0; k < open_.size(); ++k) {
         const Node& a = open_[k];
@@ -137,6 +170,16 @@ class Search {
     open_[pick] = std::move(open_.back());
     open_.pop_back();
     return node;
+  }
+
+  // Plunging: the newest node is the child just pushed; go on with it while its bound is
+  // close enough to the best open bound, measured against the incumbent.
+  bool PlungeContinues(double child_bound) const {
+    if (opt_.node_selection != NodeSelection::kBestBoundWithPlunging) return false;
+    if (!HasIncumbent()) return true;
+    double best = child_bound;
+    for (const Node& n : open_) best = std::min(best, n.parent_bound);
+    return child_bound <= best + opt_.plunge_fraction * (result_.objective - best);
   }
 
   double Fractionality(double v) const { return std::abs(v - std::round(v)); }
@@ -189,35 +232,127 @@ class Search {
     return best;
   }
 
-  void Branch(const Node& node, const Eigen::VectorXd& x, double bound, int j,
-              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
-    const double floor_v = std::floor(x(j) + opt_.integrality_tolerance);
-    Node down, up;
-    for (Node* child : {&down, &up}) {
-      child->changes = node.changes;
-      child->parent_bound = bound;
-      child->depth = node.depth + 1;
-      child->warm_start = x;
+  // The bounds of one child of branching on j at value v: down sets j <= floor(v), up
+  // sets j >= floor(v) + 1 and, in a one-of group, the other members to 0. Returns the
+  // distance the branching moves j, or a negative value when the child is empty.
+  double ChildBounds(int j, double v, bool up, Eigen::VectorXd* lower, Eigen::VectorXd* upper,
+                     std::vector<BoundChange>* changes) const {
+    const double floor_v = std::floor(v + opt_.integrality_tolerance);
+    BoundChange ch{j, (*lower)(j), (*upper)(j)};
+    if (up) {
+      ch.lower = std::max(ch.lower, floor_v + 1.0);
+    } else {
+      ch.upper = std::min(ch.upper, floor_v);
     }
-    down.changes.push_back({j, lower(j), std::min(upper(j), floor_v)});
-    up.changes.push_back({j, std::max(lower(j), floor_v + 1.0), upper(j)});
-    // In a one-of group, choosing j = 1 rules the others out.
-    if (group_of_[j] >= 0 && floor_v + 1.0 >= 1.0) {
+    if (ch.lower > ch.upper) return -1.0;
+    changes->push_back(ch);
+    (*lower)(j) = ch.lower;
+    (*upper)(j) = ch.upper;
+    if (up && group_of_[j] >= 0 && ch.lower >= 1.0) {  // choosing j = 1 rules the others out
       for (int other : p_.sos1_groups[group_of_[j]]) {
-        if (other != j && upper(other) > 0.0) up.changes.push_back({other, 0.0, 0.0});
+        if (other != j && (*upper)(other) > 0.0) {
+          changes->push_back({other, (*lower)(other), 0.0});
+          (*upper)(other) = 0.0;
+          if ((*lower)(other) > 0.0) return -1.0;
+        }
       }
     }
-    const bool up_valid = up.changes.back().lower <= up.changes.back().upper;
-    const bool down_valid = down.changes.back().lower <= down.changes.back().upper;
+    return std::max(up ? floor_v + 1.0 - v : v - floor_v, opt_.integrality_tolerance);
+  }
+
+  void Branch(const Node& node, const RelaxationResult& rel, double bound, int j,
+              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+    const Eigen::VectorXd& x = rel.x;
+    const double floor_v = std::floor(x(j) + opt_.integrality_tolerance);
+    Node children[2];  // down, up
+    bool valid[2];
+    for (int up = 0; up < 2; ++up) {
+      Node& child = children[up];
+      child.changes = node.changes;
+      child.parent_bound = bound;
+      child.depth = node.depth + 1;
+      child.warm_start = x;
+      child.branch_var = j;
+      child.branch_up = up == 1;
+      child.parent_objective = rel.objective;
+      Eigen::VectorXd l = lower, u = upper;
+      child.branch_distance = ChildBounds(j, x(j), up == 1, &l, &u, &child.changes);
+      valid[up] = child.branch_distance > 0.0;
+    }
+    just_branched_ = valid[0] || valid[1];
     // Pushed last is explored first by a dive: go towards the relaxation's rounding.
     const bool up_first = x(j) - floor_v >= 0.5 || group_of_[j] >= 0;
-    if (up_first) {
-      if (down_valid) open_.push_back(std::move(down));
-      if (up_valid) open_.push_back(std::move(up));
-    } else {
-      if (up_valid) open_.push_back(std::move(up));
-      if (down_valid) open_.push_back(std::move(down));
+    const int first = up_first ? 1 : 0;
+    if (valid[1 - first]) open_.push_back(std::move(children[1 - first]));
+    if (valid[first]) open_.push_back(std::move(children[first]));
+  }
+
+  // Reliability branching. Returns the variable, -1 when x is integral, or kPruned when
+  // strong branching shows that both children of some candidate are empty or cut off.
+  int ChooseByReliability(const RelaxationResult& rel, Eigen::VectorXd* lower, Eigen::VectorXd* upper) {
+    const Eigen::VectorXd& x = rel.x;
+    struct Candidate {
+      int var;
+      double down_dist, up_dist, score;
+    };
+    std::vector<Candidate> candidates;
+    for (int j = 0; j < p_.num_variables(); ++j) {
+      if (!p_.is_integer[j] || (*lower)(j) >= (*upper)(j)) continue;
+      const double f = x(j) - std::floor(x(j));
+      if (std::min(f, 1.0 - f) <= opt_.integrality_tolerance) continue;
+      const double down = f, up = 1.0 - f;
+      candidates.push_back({j, down, up,
+                            PseudoCosts::Score(down * pseudo_.PerUnit(j, false), up * pseudo_.PerUnit(j, true))});
     }
+    if (candidates.empty()) return -1;
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
+    int best = candidates.front().var;
+    double best_score = -1.0;
+    int trials = 0, since_better = 0;
+    for (const Candidate& c : candidates) {
+      const bool reliable = pseudo_.Count(c.var, false) >= opt_.reliability &&
+                            pseudo_.Count(c.var, true) >= opt_.reliability;
+      double score = c.score;
+      if (!reliable && trials < opt_.strong_branching_candidates &&
+          since_better < opt_.strong_branching_lookahead && Elapsed() < opt_.time_limit_s) {
+        ++trials;
+        double gain[2];
+        for (int up = 0; up < 2; ++up) gain[up] = StrongBranchGain(c.var, x, rel.objective, up == 1, *lower, *upper);
+        if (std::isinf(gain[0]) && std::isinf(gain[1])) return kPruned;
+        score = PseudoCosts::Score(std::min(gain[0], kLargeGain), std::min(gain[1], kLargeGain));
+      }
+      if (score > best_score) {
+        best_score = score;
+        best = c.var;
+        since_better = 0;
+      } else {
+        ++since_better;
+      }
+    }
+    return best;
+  }
+
+  // The objective increase of one child over its parent, +inf when the child is empty
+  // or cannot beat the incumbent; recorded in the pseudo-costs when solved.
+  double StrongBranchGain(int j, const Eigen::VectorXd& x, double parent_objective, bool up,
+                          const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+    Eigen::VectorXd l = lower, u = upper;
+    std::vector<BoundChange> unused;
+    const double distance = ChildBounds(j, x(j), up, &l, &u, &unused);
+    if (distance <= 0.0) return kInfinity;
+    if (opt_.bound_propagation && PropagateBounds(p_, &l, &u).infeasible) return kInfinity;
+    ++result_.strong_branching_solves;
+    const RelaxationResult child = SolveRelaxation(l, u, &x);
+    if (child.status == RelaxationStatus::kInfeasible) return kInfinity;
+    if (child.status != RelaxationStatus::kSolved) return distance * pseudo_.PerUnit(j, up);
+    const double gain = std::max(0.0, child.objective - parent_objective);
+    pseudo_.Record(j, up, gain, distance);
+    if (HasIncumbent() && !Improves(child.objective)) {
+      NoteGapPrune(child.objective);
+      return kInfinity;
+    }
+    return gain;
   }
 
   // Fix the integers to a rounding of x and solve the remaining convex QP.
@@ -264,10 +399,12 @@ class Search {
     result_.solve_time_s = Elapsed();
     double open_bound = kInfinity;
     for (const Node& node : open_) open_bound = std::min(open_bound, node.parent_bound);
-    open_bound = std::min(open_bound, unresolved_bound_);
+    open_bound = std::min({open_bound, unresolved_bound_, gap_pruned_bound_});
     if (HasIncumbent()) {
       result_.bound = std::min(result_.objective, std::max(result_.bound, open_bound));
-      if (open_.empty() && unresolved_bound_ == kInfinity) result_.bound = result_.objective;
+      if (open_.empty() && unresolved_bound_ == kInfinity) {
+        result_.bound = std::min(result_.objective, gap_pruned_bound_);
+      }
       result_.gap = (result_.objective - result_.bound) / std::max(1.0, std::abs(result_.objective));
       const bool limits = hit_time_limit_ || hit_node_limit_;
       if (!limits && unresolved_bound_ == kInfinity) {
@@ -295,14 +432,17 @@ class Search {
   const BranchAndBoundOptions& opt_;
   const RoundingHeuristic& rounding_;
   const Clock::time_point start_;
+  PseudoCosts pseudo_;
   std::vector<int> group_of_;
   std::vector<Node> open_;
   BranchAndBoundResult result_;
+  bool just_branched_ = false;  // open_.back() is the preferred child of the last node
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
   bool root_infeasible_ = false;
   bool root_failed_ = false;
   double unresolved_bound_ = kInfinity;
+  double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
 };
 
 }  // namespace

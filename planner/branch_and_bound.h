@@ -16,6 +16,9 @@ enum class NodeSelection {
   kBestBound,             // smallest parent bound first
   kDepthFirst,            // newest node first
   kDiveThenBestBound,     // depth first until an incumbent exists, then best bound
+  kBestBoundWithPlunging,  // best bound, but after branching go on into the preferred child
+                           // while its bound lies within plunge_fraction of the way from the
+                           // best bound to the incumbent (always, before an incumbent exists)
 };
 
 enum class BranchingRule {
@@ -23,6 +26,8 @@ enum class BranchingRule {
   kSos1Split,       // the most fractional member of any one-of group; its up-branch fixes the group
   kGroupOrder,      // the first one-of group (in the order the model lists them: along the
                     // plan) with a fractional member; then as kSos1Split within it
+  kReliability,     // pseudo-costs, learnt from every child; candidates whose pseudo-costs
+                    // are not yet reliable are strong-branched (both children solved)
 };
 
 struct BranchAndBoundOptions {
@@ -33,7 +38,11 @@ struct BranchAndBoundOptions {
   double integrality_tolerance = 1e-5;
   double feasibility_tolerance = 1e-5;  // row/bound violation accepted in an incumbent
   NodeSelection node_selection = NodeSelection::kDiveThenBestBound;
+  double plunge_fraction = 0.5;  // see kBestBoundWithPlunging
   BranchingRule branching = BranchingRule::kGroupOrder;
+  int reliability = 2;              // kReliability: observations per direction to trust a pseudo-cost
+  int strong_branching_candidates = 8;  // kReliability: most candidates strong-branched at a node
+  int strong_branching_lookahead = 4;   // kReliability: stop after this many trials without a better score
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
@@ -48,6 +57,7 @@ struct BranchAndBoundResult {
   int nodes = 0;
   int relaxations = 0;
   int propagation_prunes = 0;   // nodes found infeasible by bound propagation alone
+  int strong_branching_solves = 0;  // relaxations solved to score branching candidates
   double solve_time_s = 0.0;
 };
 

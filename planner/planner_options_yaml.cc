@@ -12,7 +12,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "start_tolerance", "yaw_segment", "yaw_margin", "region_encoding", "yaw_encoding",
                      "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
                      "node_selection", "branching", "rounding_frequency", "relaxation_solver",
-                     "bound_propagation", "rounding_heuristic"});
+                     "bound_propagation", "rounding_heuristic", "plunge_fraction", "reliability",
+                     "strong_branching_candidates", "strong_branching_lookahead"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
@@ -59,6 +60,12 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   b.rounding_frequency = OptionalInt(node, ctx, "rounding_frequency", 0, 1000000).value_or(b.rounding_frequency);
   b.bound_propagation = OptionalBool(node, ctx, "bound_propagation").value_or(b.bound_propagation);
   b.rounding_heuristic = OptionalBool(node, ctx, "rounding_heuristic").value_or(b.rounding_heuristic);
+  b.plunge_fraction = OptionalDouble(node, ctx, "plunge_fraction", 0, 1).value_or(b.plunge_fraction);
+  b.reliability = OptionalInt(node, ctx, "reliability", 0, 1000).value_or(b.reliability);
+  b.strong_branching_candidates =
+      OptionalInt(node, ctx, "strong_branching_candidates", 0, 10000).value_or(b.strong_branching_candidates);
+  b.strong_branching_lookahead =
+      OptionalInt(node, ctx, "strong_branching_lookahead", 1, 10000).value_or(b.strong_branching_lookahead);
   if (const auto sel = OptionalString(node, ctx, "node_selection")) {
     if (*sel == "best_bound") {
       b.node_selection = NodeSelection::kBestBound;
@@ -66,9 +73,11 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
       b.node_selection = NodeSelection::kDepthFirst;
     } else if (*sel == "dive_then_best_bound") {
       b.node_selection = NodeSelection::kDiveThenBestBound;
+    } else if (*sel == "plunging") {
+      b.node_selection = NodeSelection::kBestBoundWithPlunging;
     } else {
       throw InputError(ctx.Child("node_selection").Where() + ": '" + *sel +
-                       "' is not one of best_bound, depth_first, dive_then_best_bound");
+                       "' is not one of best_bound, depth_first, dive_then_best_bound, plunging");
     }
   }
   if (const auto br = OptionalString(node, ctx, "branching")) {
@@ -78,9 +87,11 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
       b.branching = BranchingRule::kSos1Split;
     } else if (*br == "group_order") {
       b.branching = BranchingRule::kGroupOrder;
+    } else if (*br == "reliability") {
+      b.branching = BranchingRule::kReliability;
     } else {
       throw InputError(ctx.Child("branching").Where() + ": '" + *br +
-                       "' is not one of most_fractional, sos1, group_order");
+                       "' is not one of most_fractional, sos1, group_order, reliability");
     }
   }
 }

@@ -155,7 +155,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, false, true},
                       Strategy{NodeSelection::kBestBound, BranchingRule::kMostFractional, false, false},
                       Strategy{NodeSelection::kDepthFirst, BranchingRule::kMostFractional, true, false},
-                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, true, false}));
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kSos1Split, true, false},
+                      Strategy{NodeSelection::kBestBound, BranchingRule::kReliability, false, false},
+                      Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kReliability, true, false},
+                      Strategy{NodeSelection::kBestBoundWithPlunging, BranchingRule::kGroupOrder, false, false},
+                      Strategy{NodeSelection::kBestBoundWithPlunging, BranchingRule::kReliability, true, true}));
 
 TEST(BranchAndBound, KnapsackNeedsBranching) {
   // Without rounding, the fractional root forces at least three nodes (root + 2 children).
@@ -179,6 +183,55 @@ TEST(BranchAndBound, NodeLimitReturnsBestSoFarWithItsGap) {
   EXPECT_NEAR(r.bound, 0.0, 1e-6);
   EXPECT_GE(r.objective, 0.09 - 1e-6);
   EXPECT_NEAR(r.gap, r.objective, 1e-6);  // (objective - 0) / max(1, objective)
+}
+
+// Two intervals for y, [3, 4] (h_a) and [2, 2.2] (h_b), big-M rows with M = 4; minimise
+// (y - 2.5)^2 - 0.01 h_a. The relaxation keeps y = 2.5 and pushes h_a to its largest
+// value 0.875, so rounding it picks h_a: y = 3, cost 0.24. The optimum is h_b = 1,
+// y = 2.2, cost 0.09.
+Miqp DecoyInterval() {
+  MiqpBuilder b;
+  const int y = b.AddVariable("y", 0.0, 4.0, false);
+  const int ha = b.AddBinary("h_a"), hb = b.AddBinary("h_b");
+  const double M = 4.0;
+  b.AddRow("a_lo", LinExpr::Var(y) - LinExpr::Var(ha, M), 3.0 - M, kInfinity);
+  b.AddRow("a_hi", LinExpr::Var(y) + LinExpr::Var(ha, M), -kInfinity, 4.0 + M);
+  b.AddRow("b_lo", LinExpr::Var(y) - LinExpr::Var(hb, M), 2.0 - M, kInfinity);
+  b.AddRow("b_hi", LinExpr::Var(y) + LinExpr::Var(hb, M), -kInfinity, 2.2 + M);
+  b.AddRow("one", LinExpr::Var(ha) + LinExpr::Var(hb), 1, 1);
+  b.AddSos1Group({ha, hb});
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.5), 1.0);
+  b.AddLinearCost(LinExpr::Var(ha, -0.01));
+  return b.Build();
+}
+
+TEST(BranchAndBound, GapTolerancePrunesButKeepsTheBoundValid) {
+  // With a 0.3 absolute gap the root's rounding (0.24) ends the search: the root's
+  // bound (about 0) cannot beat it by more than 0.3. The bound reported must be the
+  // root's, not the incumbent's: at or below the true optimum 0.09.
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.relative_gap = 0.0;
+  options.absolute_gap = 0.3;
+  const BranchAndBoundResult r = SolveBranchAndBound(DecoyInterval(), *solver, options);
+  ASSERT_EQ(r.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.objective, 0.24, 1e-6);  // the decoy: the search did stop early
+  EXPECT_LE(r.bound, 0.09 + 1e-6);
+  EXPECT_NEAR(r.gap, (r.objective - r.bound) / std::max(1.0, std::abs(r.objective)), 1e-12);
+}
+
+TEST(BranchAndBound, StrongBranchingCountsItsSolvesAsRelaxations) {
+  // Knapsack without rounding must branch; reliability branching strong-branches the
+  // fractional root, so some relaxations are trials, and the optimum is still proven.
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.rounding_heuristic = false;
+  options.branching = BranchingRule::kReliability;
+  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  EXPECT_EQ(r.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.objective, -9.0, 1e-6);
+  EXPECT_GE(r.strong_branching_solves, 2);
+  EXPECT_GE(r.relaxations, r.nodes + r.strong_branching_solves - r.propagation_prunes);
 }
 
 TEST(BranchAndBound, TimeLimitWithoutIncumbentSaysSo) {
