@@ -60,8 +60,9 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   std::vector<double> times;
   mfp::Plan plan;
   for (int k = 0; k < repeat; ++k) {
-    const auto solver = mfp::MakeRelaxationSolver(scenario.options.relaxation_solver);
-    mfp::Plan run = mfp::PlanFootsteps(robot, regions, request, scenario.options, *solver);
+    const mfp::RelaxationSolverSet solvers =
+        mfp::MakeRelaxationSolvers(scenario.options.relaxation_solver, scenario.options.threads);
+    mfp::Plan run = mfp::PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
     times.push_back(run.solve_time_s);
     if (k == 0) plan = std::move(run);
   }

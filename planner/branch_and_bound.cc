@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "planner/bound_propagation.h"
@@ -37,10 +38,10 @@ struct Node {
 
 class Search {
  public:
-  Search(const Miqp& problem, RelaxationSolver& solver, const BranchAndBoundOptions& options,
+  Search(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers, const BranchAndBoundOptions& options,
          const RoundingHeuristic& rounding)
       : p_(problem),
-        solver_(solver),
+        solvers_(solvers),
         opt_(options),
         rounding_(rounding),
         start_(Clock::now()),
@@ -54,7 +55,7 @@ class Search {
   BranchAndBoundResult Run() {
     Node root;
     open_.push_back(std::move(root));
-    bool root_done = false;
+    const int workers = static_cast<int>(solvers_.size());
     while (!open_.empty()) {
       if (Elapsed() >= opt_.time_limit_s) {
         hit_time_limit_ = true;
@@ -64,68 +65,114 @@ class Search {
         hit_node_limit_ = true;
         break;
       }
-      Node node = PopNode();
-      if (HasIncumbent() && !Improves(node.parent_bound)) {
-        NoteGapPrune(node.parent_bound);
-        continue;
+      // Up to one node per worker: their relaxations are solved side by side, then the
+      // nodes are processed one after the other in the order they were chosen.
+      std::vector<Node> batch;
+      while (!open_.empty() && static_cast<int>(batch.size()) < workers &&
+             result_.nodes + static_cast<int>(batch.size()) < opt_.max_nodes) {
+        Node node = PopNode();
+        if (HasIncumbent() && !Improves(node.parent_bound)) {
+          NoteGapPrune(node.parent_bound);
+          continue;
+        }
+        batch.push_back(std::move(node));
+        if (!root_done_) break;  // the root alone
       }
-      ++result_.nodes;
-      Eigen::VectorXd lower = p_.var_lower, upper = p_.var_upper;
-      for (const BoundChange& ch : node.changes) {
-        lower(ch.index) = ch.lower;
-        upper(ch.index) = ch.upper;
-      }
-      if (opt_.bound_propagation && PropagateBounds(p_, &lower, &upper).infeasible) {
-        ++result_.propagation_prunes;
-        if (!root_done) root_infeasible_ = true;
-        root_done = true;
-        continue;
-      }
-      RelaxationResult rel = SolveRelaxation(lower, upper, node.warm_start.size() ? &node.warm_start : nullptr);
-      if (rel.status != RelaxationStatus::kSolved && node.warm_start.size()) {
-        rel = SolveRelaxation(lower, upper, nullptr);  // a bad warm start can stall Ipopt
-      }
-      if (rel.status == RelaxationStatus::kInfeasible) {
-        if (!root_done) root_infeasible_ = true;
-        root_done = true;
-        continue;
-      }
-      if (rel.status != RelaxationStatus::kSolved) {
-        // Cannot bound this subtree: drop it and remember that optimality is unproven.
-        unresolved_bound_ = std::min(unresolved_bound_, node.parent_bound);
-        if (!root_done) root_failed_ = true;
-        root_done = true;
-        continue;
-      }
-      if (node.branch_var >= 0) {
-        pseudo_.Record(node.branch_var, node.branch_up, rel.objective - node.parent_objective,
-                       node.branch_distance);
-      }
-      const double bound = std::max(rel.objective, node.parent_bound);
-      if (!root_done) {
-        root_done = true;
-        result_.bound = bound;
-        TryRounding(rel.x);
-      }
-      if (HasIncumbent() && !Improves(bound)) {
-        NoteGapPrune(bound);
-        continue;
-      }
-      const int branch_var = opt_.branching == BranchingRule::kReliability
-                                 ? ChooseByReliability(rel, &lower, &upper)
-                                 : ChooseBranchVariable(rel.x, lower, upper);
-      if (branch_var == kPruned) continue;
-      if (branch_var < 0) {
-        OfferIncumbent(rel.x);
-        continue;
-      }
-      if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 &&
-          result_.nodes % opt_.rounding_frequency == 0) {
-        TryRounding(rel.x);
-      }
-      Branch(node, rel, bound, branch_var, lower, upper);
+      std::vector<NodeEvaluation> evaluations(batch.size());
+      ForEachInParallel(static_cast<int>(batch.size()), [&](int k) {
+        evaluations[k] = Evaluate(batch[k], *solvers_[k]);
+      });
+      for (size_t k = 0; k < batch.size(); ++k) Process(batch[k], std::move(evaluations[k]));
     }
     return Finish();
+  }
+
+ private:
+  // A node's bounds after propagation and its relaxation: the part of a node's work that
+  // touches nothing shared, so that several nodes can be evaluated at once.
+  struct NodeEvaluation {
+    Eigen::VectorXd lower, upper;
+    bool propagation_infeasible = false;
+    RelaxationResult relaxation;
+    int solves = 0;
+  };
+
+  NodeEvaluation Evaluate(const Node& node, RelaxationSolver& solver) const {
+    NodeEvaluation e;
+    e.lower = p_.var_lower;
+    e.upper = p_.var_upper;
+    for (const BoundChange& ch : node.changes) {
+      e.lower(ch.index) = ch.lower;
+      e.upper(ch.index) = ch.upper;
+    }
+    if (opt_.bound_propagation && PropagateBounds(p_, &e.lower, &e.upper).infeasible) {
+      e.propagation_infeasible = true;
+      return e;
+    }
+    const Eigen::VectorXd* warm = node.warm_start.size() ? &node.warm_start : nullptr;
+    e.relaxation = SolveWith(solver, e.lower, e.upper, warm);
+    ++e.solves;
+    if (e.relaxation.status != RelaxationStatus::kSolved && warm != nullptr) {
+      e.relaxation = SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
+      ++e.solves;
+    }
+    return e;
+  }
+
+  // Runs task(0 .. count-1), task(k) on a thread of its own for k >= 1.
+  template <typename Task>
+  static void ForEachInParallel(int count, const Task& task) {
+    std::vector<std::thread> threads;
+    for (int k = 1; k < count; ++k) threads.emplace_back([&task, k] { task(k); });
+    if (count > 0) task(0);
+    for (std::thread& t : threads) t.join();
+  }
+
+  void Process(const Node& node, NodeEvaluation e) {
+    ++result_.nodes;
+    result_.relaxations += e.solves;
+    const bool is_root = !root_done_;
+    root_done_ = true;
+    if (e.propagation_infeasible) {
+      ++result_.propagation_prunes;
+      if (is_root) root_infeasible_ = true;
+      return;
+    }
+    const RelaxationResult& rel = e.relaxation;
+    if (rel.status == RelaxationStatus::kInfeasible) {
+      if (is_root) root_infeasible_ = true;
+      return;
+    }
+    if (rel.status != RelaxationStatus::kSolved) {
+      // Cannot bound this subtree: drop it and remember that optimality is unproven.
+      unresolved_bound_ = std::min(unresolved_bound_, node.parent_bound);
+      if (is_root) root_failed_ = true;
+      return;
+    }
+    if (node.branch_var >= 0) {
+      pseudo_.Record(node.branch_var, node.branch_up, rel.objective - node.parent_objective, node.branch_distance);
+    }
+    const double bound = std::max(rel.objective, node.parent_bound);
+    if (is_root) {
+      result_.bound = bound;
+      TryRounding(rel.x);
+    }
+    if (HasIncumbent() && !Improves(bound)) {
+      NoteGapPrune(bound);
+      return;
+    }
+    const int branch_var = opt_.branching == BranchingRule::kReliability
+                               ? ChooseByReliability(rel, &e.lower, &e.upper)
+                               : ChooseBranchVariable(rel.x, e.lower, e.upper);
+    if (branch_var == kPruned) return;
+    if (branch_var < 0) {
+      OfferIncumbent(rel.x);
+      return;
+    }
+    if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result_.nodes % opt_.rounding_frequency == 0) {
+      TryRounding(rel.x);
+    }
+    Branch(node, rel, bound, branch_var, e.lower, e.upper);
   }
 
  private:
@@ -142,11 +189,17 @@ class Search {
   // bounds the optimum: the reported bound must not rise above it.
   void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
 
+  RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                             const Eigen::VectorXd* warm) const {
+    solver.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
+    return solver.Solve(p_, lower, upper, warm);
+  }
+
+  // Heuristics and strong branching run between batches, on the first worker's solver.
   RelaxationResult SolveRelaxation(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                    const Eigen::VectorXd* warm) {
-    solver_.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
     ++result_.relaxations;
-    return solver_.Solve(p_, lower, upper, warm);
+    return SolveWith(*solvers_.front(), lower, upper, warm);
   }
 
   Node PopNode() {
@@ -318,7 +371,7 @@ class Search {
           since_better < opt_.strong_branching_lookahead && Elapsed() < opt_.time_limit_s) {
         ++trials;
         double gain[2];
-        for (int up = 0; up < 2; ++up) gain[up] = StrongBranchGain(c.var, x, rel.objective, up == 1, *lower, *upper);
+        StrongBranchGains(c.var, x, rel.objective, *lower, *upper, gain);
         if (std::isinf(gain[0]) && std::isinf(gain[1])) return kPruned;
         score = PseudoCosts::Score(std::min(gain[0], kLargeGain), std::min(gain[1], kLargeGain));
       }
@@ -333,17 +386,40 @@ class Search {
     return best;
   }
 
-  // The objective increase of one child over its parent, +inf when the child is empty
-  // or cannot beat the incumbent; recorded in the pseudo-costs when solved.
-  double StrongBranchGain(int j, const Eigen::VectorXd& x, double parent_objective, bool up,
-                          const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
-    Eigen::VectorXd l = lower, u = upper;
-    std::vector<BoundChange> unused;
-    const double distance = ChildBounds(j, x(j), up, &l, &u, &unused);
-    if (distance <= 0.0) return kInfinity;
-    if (opt_.bound_propagation && PropagateBounds(p_, &l, &u).infeasible) return kInfinity;
+  // gain[down, up]: each child's objective increase over its parent (see RecordTrial).
+  void StrongBranchGains(int j, const Eigen::VectorXd& x, double parent_objective, const Eigen::VectorXd& lower,
+                         const Eigen::VectorXd& upper, double gain[2]) {
+    // The two children are solved side by side when there are two workers.
+    struct Trial {
+      double distance = -1.0;
+      bool empty = false;
+      RelaxationResult child;
+    };
+    Trial trials[2];
+    const auto solve = [&](int up, RelaxationSolver& solver) {
+      Trial& t = trials[up];
+      Eigen::VectorXd l = lower, u = upper;
+      std::vector<BoundChange> unused;
+      t.distance = ChildBounds(j, x(j), up == 1, &l, &u, &unused);
+      t.empty = t.distance <= 0.0 || (opt_.bound_propagation && PropagateBounds(p_, &l, &u).infeasible);
+      if (!t.empty) t.child = SolveWith(solver, l, u, &x);
+    };
+    if (solvers_.size() >= 2) {
+      ForEachInParallel(2, [&](int up) { solve(up, *solvers_[up]); });
+    } else {
+      for (int up = 0; up < 2; ++up) solve(up, *solvers_.front());
+    }
+    for (int up = 0; up < 2; ++up) gain[up] = RecordTrial(j, up == 1, parent_objective, trials[up].distance,
+                                                          trials[up].empty, trials[up].child);
+  }
+
+  // The objective increase of one strong-branching child over its parent, +inf when the
+  // child is empty or cannot beat the incumbent; recorded in the pseudo-costs when solved.
+  double RecordTrial(int j, bool up, double parent_objective, double distance, bool empty,
+                     const RelaxationResult& child) {
+    if (empty) return kInfinity;
     ++result_.strong_branching_solves;
-    const RelaxationResult child = SolveRelaxation(l, u, &x);
+    ++result_.relaxations;
     if (child.status == RelaxationStatus::kInfeasible) return kInfinity;
     if (child.status != RelaxationStatus::kSolved) return distance * pseudo_.PerUnit(j, up);
     const double gain = std::max(0.0, child.objective - parent_objective);
@@ -370,16 +446,26 @@ class Search {
       if (p_.is_integer[j] && group_of_[j] < 0) simple(j) = std::round(x(j));
     }
     proposals.push_back(simple);
-    for (const Eigen::VectorXd& r : proposals) {
+    // Each proposal is a QP with the integers fixed: solved a round of workers at a time.
+    const int workers = static_cast<int>(solvers_.size());
+    for (size_t first = 0; first < proposals.size(); first += workers) {
       if (Elapsed() >= opt_.time_limit_s) return;
-      Eigen::VectorXd lower = p_.var_lower, upper = p_.var_upper;
-      for (int j = 0; j < p_.num_variables(); ++j) {
-        if (!p_.is_integer[j]) continue;
-        const double v = std::clamp(std::round(r(j)), p_.var_lower(j), p_.var_upper(j));
-        lower(j) = upper(j) = v;
+      const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
+      std::vector<RelaxationResult> results(count);
+      ForEachInParallel(count, [&](int k) {
+        const Eigen::VectorXd& r = proposals[first + k];
+        Eigen::VectorXd lower = p_.var_lower, upper = p_.var_upper;
+        for (int j = 0; j < p_.num_variables(); ++j) {
+          if (!p_.is_integer[j]) continue;
+          const double v = std::clamp(std::round(r(j)), p_.var_lower(j), p_.var_upper(j));
+          lower(j) = upper(j) = v;
+        }
+        results[k] = SolveWith(*solvers_[k], lower, upper, &x);
+      });
+      result_.relaxations += count;
+      for (RelaxationResult& rel : results) {
+        if (rel.status == RelaxationStatus::kSolved) OfferIncumbent(std::move(rel.x));
       }
-      const RelaxationResult rel = SolveRelaxation(lower, upper, &x);
-      if (rel.status == RelaxationStatus::kSolved) OfferIncumbent(rel.x);
     }
   }
 
@@ -428,7 +514,7 @@ class Search {
   }
 
   const Miqp& p_;
-  RelaxationSolver& solver_;
+  const std::vector<RelaxationSolver*>& solvers_;  // one per worker
   const BranchAndBoundOptions& opt_;
   const RoundingHeuristic& rounding_;
   const Clock::time_point start_;
@@ -437,6 +523,7 @@ class Search {
   std::vector<Node> open_;
   BranchAndBoundResult result_;
   bool just_branched_ = false;  // open_.back() is the preferred child of the last node
+  bool root_done_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
   bool root_infeasible_ = false;
@@ -447,12 +534,20 @@ class Search {
 
 }  // namespace
 
-BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,
+BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
                                          const BranchAndBoundOptions& options,
                                          const RoundingHeuristic& extra_rounding) {
   CheckMiqpShape(problem);
-  Search search(problem, solver, options, extra_rounding);
+  MFP_CHECK_MSG(!solvers.empty(), "branch-and-bound needs at least one relaxation solver");
+  for (const RelaxationSolver* s : solvers) MFP_CHECK(s != nullptr);
+  Search search(problem, solvers, options, extra_rounding);
   return search.Run();
+}
+
+BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,
+                                         const BranchAndBoundOptions& options,
+                                         const RoundingHeuristic& extra_rounding) {
+  return SolveBranchAndBound(problem, std::vector<RelaxationSolver*>{&solver}, options, extra_rounding);
 }
 
 }  // namespace mfp

@@ -71,4 +71,11 @@ BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& 
                                          const BranchAndBoundOptions& options,
                                          const RoundingHeuristic& extra_rounding = {});
 
+// The same search with one relaxation solver per worker: each round takes up to
+// solvers.size() open nodes and solves their relaxations on threads of their own (the
+// solvers must not share state). Heuristics and strong branching use solvers[0].
+BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
+                                         const BranchAndBoundOptions& options,
+                                         const RoundingHeuristic& extra_rounding = {});
+
 }  // namespace mfp

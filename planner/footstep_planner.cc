@@ -112,7 +112,7 @@ FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<Co
 
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                    const PlanRequest& request, const PlannerOptions& options,
-                   RelaxationSolver& solver,
+                   const std::vector<RelaxationSolver*>& solvers,
                    const std::function<void(const PlanProgress&)>& on_progress) {
   const auto start_time = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start_time).count(); };
@@ -237,7 +237,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     const RoundingHeuristic rounding = [&formulation](const Eigen::VectorXd& relaxed) {
       return formulation.RoundAlongPlan(relaxed);
     };
-    const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solver, bnb, rounding);
+    const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
     plan.nodes += result.nodes;
     plan.relaxations += result.relaxations;
     if (!HasPlan(result.status)) {
@@ -302,6 +302,13 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   plan.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
   plan.solve_time_s = elapsed();
   return plan;
+}
+
+Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                   const PlanRequest& request, const PlannerOptions& options,
+                   RelaxationSolver& solver,
+                   const std::function<void(const PlanProgress&)>& on_progress) {
+  return PlanFootsteps(robot, regions, request, options, std::vector<RelaxationSolver*>{&solver}, on_progress);
 }
 
 }  // namespace mfp

@@ -39,6 +39,9 @@ struct PlannerOptions {
   double goal_yaw_tolerance_rad = 0.15;  // final body yaw within this of the goal yaw
   double start_tolerance_m = 0.02;       // a start foot may be this far off its region
   RelaxationBackend relaxation_solver = RelaxationBackend::kInteriorPointWithIpoptFallback;
+  // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
+  // are solved this many at a time. Callers make the solvers (MakeRelaxationSolvers).
+  int threads = 1;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };
@@ -73,6 +76,13 @@ double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& foot
 
 // Plans a whole route. Bad requests come back as statuses (kInvalidRequest,
 // kInvalidStart, kInvalidGoal, kNoMap) with a message naming the problem.
+// solvers: one per branch-and-bound worker (at least one; see PlannerOptions::threads).
+Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                   const PlanRequest& request, const PlannerOptions& options,
+                   const std::vector<RelaxationSolver*>& solvers,
+                   const std::function<void(const PlanProgress&)>& on_progress = {});
+
+// The same with a single worker.
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                    const PlanRequest& request, const PlannerOptions& options,
                    RelaxationSolver& solver,

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "planner/check.h"
@@ -190,6 +191,10 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
     if (ReduceOrSettle(problem, lower, upper, kRowTolerance, &reduced, &result)) return result;
     Eigen::VectorXd reduced_start;
     if (warm_start != nullptr) reduced_start = reduced.Restrict(*warm_start);
+    // Debian's Ipopt factorises with sequential MUMPS, which keeps global state: one
+    // Ipopt solve at a time in the process, whichever solver object runs it.
+    static std::mutex ipopt_mutex;
+    const std::lock_guard<std::mutex> lock(ipopt_mutex);
     Ipopt::SmartPtr<QpTnlp> tnlp = new QpTnlp(reduced.problem, reduced.lower, reduced.upper,
                                               warm_start != nullptr ? &reduced_start : nullptr);
     Ipopt::ApplicationReturnStatus status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));

@@ -13,9 +13,10 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
                      "node_selection", "branching", "rounding_frequency", "relaxation_solver",
                      "bound_propagation", "rounding_heuristic", "plunge_fraction", "reliability",
-                     "strong_branching_candidates", "strong_branching_lookahead"});
+                     "strong_branching_candidates", "strong_branching_lookahead", "threads"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
+  o.threads = OptionalInt(node, ctx, "threads", 1, 64).value_or(o.threads);
   o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
   o.default_time_limit_s = OptionalDouble(node, ctx, "time_limit", 1e-3, 3600).value_or(o.default_time_limit_s);
   o.goal_tolerance_m = OptionalDouble(node, ctx, "goal_tolerance", 1e-4, 10).value_or(o.goal_tolerance_m);

@@ -49,4 +49,17 @@ std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend
   return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
 }
 
+std::vector<RelaxationSolver*> RelaxationSolverSet::workers() const {
+  std::vector<RelaxationSolver*> out;
+  for (const auto& s : owned) out.push_back(s.get());
+  return out;
+}
+
+RelaxationSolverSet MakeRelaxationSolvers(RelaxationBackend backend, int count) {
+  MFP_CHECK(count >= 1);
+  RelaxationSolverSet set;
+  for (int k = 0; k < count; ++k) set.owned.push_back(MakeRelaxationSolver(backend));
+  return set;
+}
+
 }  // namespace mfp

@@ -2,6 +2,7 @@
 // Choosing the relaxation backend by name (config, flags).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "planner/relaxation_solver.h"
 
@@ -19,5 +20,12 @@ RelaxationBackend ParseRelaxationBackend(const std::string& name);
 std::string ToString(RelaxationBackend backend);
 
 std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend);
+
+// One solver per branch-and-bound worker; workers() is what PlanFootsteps takes.
+struct RelaxationSolverSet {
+  std::vector<std::unique_ptr<RelaxationSolver>> owned;
+  std::vector<RelaxationSolver*> workers() const;
+};
+RelaxationSolverSet MakeRelaxationSolvers(RelaxationBackend backend, int count);
 
 }  // namespace mfp

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "planner/ipm_relaxation_solver.h"
 #include "planner/ipopt_relaxation_solver.h"
@@ -160,6 +162,31 @@ INSTANTIATE_TEST_SUITE_P(
                       Strategy{NodeSelection::kDiveThenBestBound, BranchingRule::kReliability, true, false},
                       Strategy{NodeSelection::kBestBoundWithPlunging, BranchingRule::kGroupOrder, false, false},
                       Strategy{NodeSelection::kBestBoundWithPlunging, BranchingRule::kReliability, true, true}));
+
+TEST(BranchAndBound, TwoWorkersProveEveryHandComputedOptimum) {
+  // Node relaxations, roundings and strong-branching trials two at a time, on two IPM
+  // solvers and on two Ipopt solvers (which take turns on Ipopt's global state).
+  for (const bool ipopt : {false, true}) {
+    std::unique_ptr<RelaxationSolver> a = ipopt ? MakeIpoptRelaxationSolver() : MakeInteriorPointRelaxationSolver();
+    std::unique_ptr<RelaxationSolver> b = ipopt ? MakeIpoptRelaxationSolver() : MakeInteriorPointRelaxationSolver();
+    const std::vector<RelaxationSolver*> workers = {a.get(), b.get()};
+    for (const BranchingRule rule : {BranchingRule::kGroupOrder, BranchingRule::kReliability}) {
+      BranchAndBoundOptions options;
+      options.branching = rule;
+      options.relative_gap = 1e-9;
+      options.absolute_gap = 1e-9;
+      for (const CatalogueEntry& entry : Catalogue()) {
+        SCOPED_TRACE(entry.name + (ipopt ? " ipopt" : " ipm"));
+        const BranchAndBoundResult r = SolveBranchAndBound(entry.problem, workers, options);
+        ASSERT_EQ(ToString(r.status), ToString(entry.status));
+        if (entry.status != SolveStatus::kOptimal) continue;
+        EXPECT_NEAR(r.objective, entry.objective, 1e-6);
+        EXPECT_NEAR(r.bound, entry.objective, 1e-6);
+        for (int j = 0; j < r.x.size(); ++j) EXPECT_NEAR(r.x(j), entry.x(j), 1e-5) << "variable " << j;
+      }
+    }
+  }
+}
 
 TEST(BranchAndBound, KnapsackNeedsBranching) {
   // Without rounding, the fractional root forces at least three nodes (root + 2 children).

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "planner/branch_and_bound.h"
 #include "planner/footstep_planner.h"
+#include "planner/miqp_formulation.h"
 #include "planner/plan_validation.h"
 #include "planner/relaxation_solver_factory.h"
 #include "planner/robot_loader.h"
@@ -62,6 +64,40 @@ INSTANTIATE_TEST_SUITE_P(AllScenarios, ScenarioPlan, ::testing::ValuesIn(Scenari
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return std::filesystem::path(info.param).stem().string();
                          });
+
+TEST(ScenarioPlanWorkers, TwoWorkersProveTheSameFirstWindowOptimum) {
+  // The first window's MIQP of the hexapod stones, solved by one and by two workers
+  // (both to the default gap): the same optimum, and the whole plan still valid.
+  const Scenario scenario =
+      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_stepping_stones_45.yaml");
+  const RobotModel robot = LoadRobot(scenario.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
+  PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  request.time_limit_s = 300.0;
+  const MiqpFormulation formulation(FirstWindowProblem(robot, regions, request, scenario.options),
+                                    scenario.options.formulation);
+  BranchAndBoundOptions bnb = scenario.options.branch_and_bound;
+  bnb.time_limit_s = 300.0;
+  double objective[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, threads);
+    const BranchAndBoundResult r = SolveBranchAndBound(formulation.miqp(), solvers.workers(), bnb);
+    ASSERT_EQ(ToString(r.status), "optimal") << threads << " workers";
+    objective[threads - 1] = r.objective;
+  }
+  EXPECT_NEAR(objective[1], objective[0], 2 * bnb.relative_gap * std::abs(objective[0]));
+
+  PlannerOptions options = scenario.options;
+  options.threads = 2;
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.relaxation_solver, options.threads);
+  const Plan plan = PlanFootsteps(robot, regions, request, options, solvers.workers());
+  ASSERT_TRUE(plan.reaches_goal) << plan.message;
+  ValidationTolerances tol;
+  tol.rotation_m = RotationTolerance(robot, options.formulation.yaw_segment_rad);
+  const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad, options.goal_tolerance_m,
+                      options.goal_yaw_tolerance_rad};
+  for (const std::string& v : ValidatePlan(robot, regions, plan, goal, tol)) ADD_FAILURE() << v;
+}
 
 TEST(PlanValidation, CatchesEachKindOfViolation) {
   // A valid plan of the flat hexapod scenario, then one defect at a time.

@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
   std::string json_path, svg_path, mps_path;
   int max_steps = 0, window = 0;
   double time_limit = 0.0;
+  int threads = 0;
   bool validate = false, quiet = false;
   std::string relaxation_solver;
   app.add_option("--scenario", scenario_path, "scenario YAML (robot, terrain, start, goal)");
@@ -68,6 +69,8 @@ int main(int argc, char** argv) {
   app.add_option("--svg", svg_path, "write a picture of the plan here");
   app.add_option("--write-mps", mps_path, "write the first window's MIQP as free MPS (constant left out)");
   app.add_option("--relaxation-solver", relaxation_solver, "ipm (default: mfp's interior point, Ipopt fallback) or ipopt");
+  app.add_option("--threads", threads, "branch-and-bound workers solving node relaxations at once (default 1)")
+      ->check(CLI::Range(1, 64));
   app.add_flag("--validate", validate, "re-check the plan constraint by constraint; exit 3 on a violation");
   app.add_flag("--quiet", quiet, "no progress lines");
   try {
@@ -118,7 +121,8 @@ int main(int argc, char** argv) {
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
 
-    const auto solver = mfp::MakeRelaxationSolver(options.relaxation_solver);
+    if (threads > 0) options.threads = threads;
+    const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);
     if (!mps_path.empty()) {
       // The first window's MIQP, exactly as the planner builds it.
       const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, options);
@@ -130,7 +134,7 @@ int main(int argc, char** argv) {
     }
 
     const mfp::Plan plan = mfp::PlanFootsteps(
-        robot, regions, request, options, *solver, [&](const mfp::PlanProgress& p) {
+        robot, regions, request, options, solvers.workers(), [&](const mfp::PlanProgress& p) {
           std::ostringstream line;
           line.precision(3);
           line << "window " << p.window << ": " << mfp::ToString(p.window_result.status) << ", "

@@ -9,8 +9,8 @@ PlanFunction MakeSolverPlanFunction() {
             const PlanRequest& request, const PlannerOptions& options) {
     // One solver per plan: plans run one at a time and solver set-up is cheap next to
     // a solve; no state leaks from one request into the next.
-    const std::unique_ptr<RelaxationSolver> solver = MakeRelaxationSolver(options.relaxation_solver);
-    return PlanFootsteps(robot, regions, request, options, *solver);
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.relaxation_solver, options.threads);
+    return PlanFootsteps(robot, regions, request, options, solvers.workers());
   };
 }
 

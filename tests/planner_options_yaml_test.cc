@@ -1,0 +1,62 @@
+// The `planner:` block: every search option it names reaches PlannerOptions, and bad
+// values or unknown keys are errors that name the key.
+#include "planner/planner_options_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "planner/check.h"
+
+namespace mfp {
+namespace {
+
+PlannerOptions Read(const std::string& text) {
+  PlannerOptions options;
+  ReadPlannerOptions(YAML::Load(text), YamlContext{"test.yaml", "planner"}, &options);
+  return options;
+}
+
+std::string ErrorOf(const std::string& text) {
+  try {
+    Read(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PlannerOptionsYaml, SearchOptionsReachTheBranchAndBound) {
+  const PlannerOptions o = Read(
+      "threads: 2\nbranching: reliability\nnode_selection: plunging\nrelative_gap: 0.005\n"
+      "reliability: 3\nstrong_branching_candidates: 5\nstrong_branching_lookahead: 2\nplunge_fraction: 0.25\n");
+  EXPECT_EQ(o.threads, 2);
+  EXPECT_EQ(o.branch_and_bound.branching, BranchingRule::kReliability);
+  EXPECT_EQ(o.branch_and_bound.node_selection, NodeSelection::kBestBoundWithPlunging);
+  EXPECT_DOUBLE_EQ(o.branch_and_bound.relative_gap, 0.005);
+  EXPECT_EQ(o.branch_and_bound.reliability, 3);
+  EXPECT_EQ(o.branch_and_bound.strong_branching_candidates, 5);
+  EXPECT_EQ(o.branch_and_bound.strong_branching_lookahead, 2);
+  EXPECT_DOUBLE_EQ(o.branch_and_bound.plunge_fraction, 0.25);
+}
+
+TEST(PlannerOptionsYaml, DefaultsStayWhenAbsent) {
+  const PlannerOptions defaults;
+  const PlannerOptions o = Read("max_steps: 10\n");
+  EXPECT_EQ(o.threads, defaults.threads);
+  EXPECT_EQ(o.branch_and_bound.branching, defaults.branch_and_bound.branching);
+  EXPECT_EQ(o.default_max_steps, 10);
+}
+
+TEST(PlannerOptionsYaml, BadValuesNameTheKey) {
+  EXPECT_NE(ErrorOf("threads: 0\n").find("threads"), std::string::npos);
+  EXPECT_NE(ErrorOf("threads: 65\n").find("threads"), std::string::npos);
+  const std::string branching = ErrorOf("branching: strongest\n");
+  EXPECT_NE(branching.find("branching"), std::string::npos);
+  EXPECT_NE(branching.find("reliability"), std::string::npos);  // lists what is allowed
+  EXPECT_NE(ErrorOf("node_selection: random\n").find("plunging"), std::string::npos);
+  EXPECT_NE(ErrorOf("thread: 2\n").find("thread"), std::string::npos);  // a typo is not ignored
+}
+
+}  // namespace
+}  // namespace mfp
