@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include "planner/check.h"
 #include "planner/footstep_planner.h"
 #include "planner/relaxation_solver_factory.h"
+#include "planner/miqp_formulation.h"
 #include "planner/mps_writer.h"
 #include "planner/planner_options_yaml.h"
 #include "planner/plan_json.h"
@@ -38,31 +41,61 @@ struct Row {
   std::string status;
   bool reaches_goal = false;
   int violations = 0;
+  // The lower limit: one convex QP with the first window's integer assignment fixed
+  // (median of several solves) [s]; 0 when not measured.
+  double fixed_qp_s = 0.0;
 };
 
 void PrintHeader(const std::string& title) {
   std::printf("\n%s\n", title.c_str());
-  std::printf("%-34s %6s %8s %7s %8s %9s %12s %9s %-11s %5s %5s\n", "instance", "steps", "int_vars", "nodes",
-              "relax", "time_s", "objective", "gap", "status", "goal", "viol");
+  std::printf("%-34s %6s %8s %7s %8s %9s %12s %9s %-11s %5s %5s %10s %8s\n", "instance", "steps", "int_vars",
+              "nodes", "relax", "time_s", "objective", "gap", "status", "goal", "viol", "fixed_qp_s", "x_fixed");
 }
 
 void PrintRow(const Row& r) {
-  std::printf("%-34s %6d %8d %7d %8d %9.3f %12.4f %9.2e %-11s %5s %5d\n", r.name.c_str(), r.steps,
+  std::printf("%-34s %6d %8d %7d %8d %9.3f %12.4f %9.2e %-11s %5s %5d", r.name.c_str(), r.steps,
               r.integer_variables, r.nodes, r.relaxations, r.time_s, r.objective, r.gap, r.status.c_str(),
               r.reaches_goal ? "yes" : "no", r.violations);
+  if (r.fixed_qp_s > 0.0) {
+    std::printf(" %10.5f %8.0f\n", r.fixed_qp_s, r.time_s / r.fixed_qp_s);
+  } else {
+    std::printf(" %10s %8s\n", "-", "-");
+  }
   std::fflush(stdout);
+}
+
+// Median time of one relaxation solve with every integer fixed to its value in x [s].
+double FixedAssignmentQpTime(const mfp::Miqp& miqp, const Eigen::VectorXd& x, mfp::RelaxationBackend backend) {
+  Eigen::VectorXd lower = miqp.var_lower, upper = miqp.var_upper;
+  for (int j = 0; j < miqp.num_variables(); ++j) {
+    if (miqp.is_integer[j]) lower(j) = upper(j) = std::round(x(j));
+  }
+  const auto solver = mfp::MakeRelaxationSolver(backend);
+  std::vector<double> times;
+  for (int k = 0; k < 21; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    const mfp::RelaxationResult r = solver->Solve(miqp, lower, upper, nullptr);
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (r.status != mfp::RelaxationStatus::kSolved) return 0.0;  // not a lower limit then
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
 }
 
 Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::RobotModel& robot,
         const std::vector<mfp::ConvexRegion>& regions, const mfp::PlanRequest& request,
-        const std::string& instances_dir, int repeat) {
+        const std::string& instances_dir, int repeat, bool measure_fixed_qp) {
   // The plan of the first run; the time is the median over `repeat` runs.
   std::vector<double> times;
   mfp::Plan plan;
+  Eigen::VectorXd first_window_x;  // the first window's MIQP solution, first run
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
         mfp::MakeRelaxationSolvers(scenario.options.relaxation_solver, scenario.options.threads);
-    mfp::Plan run = mfp::PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
+    mfp::Plan run = mfp::PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(),
+                                       [&](const mfp::PlanProgress& p) {
+                                         if (k == 0 && p.window == 1) first_window_x = p.window_result.x;
+                                       });
     times.push_back(run.solve_time_s);
     if (k == 0) plan = std::move(run);
   }
@@ -86,6 +119,11 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                          scenario.options.goal_tolerance_m, scenario.options.goal_yaw_tolerance_rad},
                         tol)
           .size());
+  if (measure_fixed_qp && first_window_x.size() > 0) {
+    const mfp::MiqpFormulation formulation(mfp::FirstWindowProblem(robot, regions, request, scenario.options),
+                                           scenario.options.formulation);
+    row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.relaxation_solver);
+  }
   if (!instances_dir.empty()) {
     const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, scenario.options);
     const mfp::MiqpFormulation formulation(problem, scenario.options.formulation);
@@ -143,7 +181,8 @@ int main(int argc, char** argv) {
           request.max_steps = steps;
           request.window_steps = steps;
           request.time_limit_s = time_limit;
-          PrintRow(Run(robot_name + "_stones_" + std::to_string(steps), scenario, robot, regions, request, instances_dir, repeat));
+          PrintRow(Run(robot_name + "_stones_" + std::to_string(steps), scenario, robot, regions, request, instances_dir, repeat,
+                       /*measure_fixed_qp=*/true));
         }
       }
     }
@@ -161,7 +200,8 @@ int main(int argc, char** argv) {
         const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot);
         mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
         if (request.time_limit_s <= 0) request.time_limit_s = time_limit;
-        PrintRow(Run(std::filesystem::path(file).stem().string(), scenario, robot, regions, request, "", repeat));
+        PrintRow(Run(std::filesystem::path(file).stem().string(), scenario, robot, regions, request, "", repeat,
+                     /*measure_fixed_qp=*/false));
       }
     }
   } catch (const mfp::InputError& e) {

@@ -78,6 +78,8 @@ class Search {
         batch.push_back(std::move(node));
         if (!root_done_) break;  // the root alone
       }
+      in_flight_bound_ = kInfinity;
+      for (const Node& node : batch) in_flight_bound_ = std::min(in_flight_bound_, node.parent_bound);
       std::vector<NodeEvaluation> evaluations(batch.size());
       ForEachInParallel(static_cast<int>(batch.size()), [&](int k) {
         evaluations[k] = Evaluate(batch[k], *solvers_[k]);
@@ -193,13 +195,6 @@ class Search {
                              const Eigen::VectorXd* warm) const {
     solver.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
     return solver.Solve(p_, lower, upper, warm);
-  }
-
-  // Heuristics and strong branching run between batches, on the first worker's solver.
-  RelaxationResult SolveRelaxation(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                                   const Eigen::VectorXd* warm) {
-    ++result_.relaxations;
-    return SolveWith(*solvers_.front(), lower, upper, warm);
   }
 
   Node PopNode() {
@@ -478,7 +473,24 @@ class Search {
     if (!HasIncumbent() || objective < result_.objective) {
       result_.x = std::move(x);
       result_.objective = objective;
+      if (opt_.on_incumbent) ReportProgress();
     }
+  }
+
+  void ReportProgress() const {
+    BranchAndBoundResult progress;
+    progress.status = SolveStatus::kFeasible;
+    progress.objective = result_.objective;
+    double open_bound = std::min({in_flight_bound_, unresolved_bound_, gap_pruned_bound_});
+    for (const Node& node : open_) open_bound = std::min(open_bound, node.parent_bound);
+    progress.bound = std::min(result_.objective, std::max(result_.bound, open_bound));
+    progress.gap = (progress.objective - progress.bound) / std::max(1.0, std::abs(progress.objective));
+    progress.nodes = result_.nodes;
+    progress.relaxations = result_.relaxations;
+    progress.strong_branching_solves = result_.strong_branching_solves;
+    progress.propagation_prunes = result_.propagation_prunes;
+    progress.solve_time_s = Elapsed();
+    opt_.on_incumbent(progress);
   }
 
   BranchAndBoundResult Finish() {
@@ -530,6 +542,7 @@ class Search {
   bool root_failed_ = false;
   double unresolved_bound_ = kInfinity;
   double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
+  double in_flight_bound_ = kInfinity;   // least parent bound of the round being processed
 };
 
 }  // namespace

@@ -30,6 +30,8 @@ enum class BranchingRule {
                     // are not yet reliable are strong-branched (both children solved)
 };
 
+struct BranchAndBoundResult;
+
 struct BranchAndBoundOptions {
   double time_limit_s = 10.0;
   int max_nodes = 20000;
@@ -46,6 +48,10 @@ struct BranchAndBoundOptions {
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
+  // Progress for logs: called with the result so far (incumbent objective, a valid bound,
+  // gap, nodes, relaxations, elapsed time in solve_time_s; x left empty) each time the
+  // incumbent improves.
+  std::function<void(const BranchAndBoundResult&)> on_incumbent;
 };
 
 struct BranchAndBoundResult {

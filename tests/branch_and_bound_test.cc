@@ -114,6 +114,26 @@ CatalogueEntry Mixed() {
   return {"mixed", b.Build(), SolveStatus::kOptimal, 1.0, x};
 }
 
+// Two intervals for y, [3, 4] (h_a) and [2, 2.2] (h_b), big-M rows with M = 4; minimise
+// (y - 2.5)^2 - 0.01 h_a. The relaxation keeps y = 2.5 and pushes h_a to its largest
+// value 0.875, so rounding it picks h_a: y = 3, cost 0.24. The optimum is h_b = 1,
+// y = 2.2, cost 0.09.
+Miqp DecoyInterval() {
+  MiqpBuilder b;
+  const int y = b.AddVariable("y", 0.0, 4.0, false);
+  const int ha = b.AddBinary("h_a"), hb = b.AddBinary("h_b");
+  const double M = 4.0;
+  b.AddRow("a_lo", LinExpr::Var(y) - LinExpr::Var(ha, M), 3.0 - M, kInfinity);
+  b.AddRow("a_hi", LinExpr::Var(y) + LinExpr::Var(ha, M), -kInfinity, 4.0 + M);
+  b.AddRow("b_lo", LinExpr::Var(y) - LinExpr::Var(hb, M), 2.0 - M, kInfinity);
+  b.AddRow("b_hi", LinExpr::Var(y) + LinExpr::Var(hb, M), -kInfinity, 2.2 + M);
+  b.AddRow("one", LinExpr::Var(ha) + LinExpr::Var(hb), 1, 1);
+  b.AddSos1Group({ha, hb});
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.5), 1.0);
+  b.AddLinearCost(LinExpr::Var(ha, -0.01));
+  return b.Build();
+}
+
 std::vector<CatalogueEntry> Catalogue() {
   return {OneBinary(), Knapsack(), IntervalChoice(), Infeasible(), GeneralInteger(), CoupledBinaries(), Mixed()};
 }
@@ -188,6 +208,30 @@ TEST(BranchAndBound, TwoWorkersProveEveryHandComputedOptimum) {
   }
 }
 
+TEST(BranchAndBound, ReportsEachBetterIncumbentWithAValidBound) {
+  // Depth first without rounding on the decoy: first the decoy leaf (0.24), then the
+  // optimum (0.09). Each report improves on the last and its bound stays at or below
+  // the optimum; the last one is the result.
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.node_selection = NodeSelection::kDepthFirst;
+  options.rounding_heuristic = false;
+  std::vector<BranchAndBoundResult> reports;
+  options.on_incumbent = [&reports](const BranchAndBoundResult& r) { reports.push_back(r); };
+  const BranchAndBoundResult r = SolveBranchAndBound(DecoyInterval(), *solver, options);
+  ASSERT_EQ(r.status, SolveStatus::kOptimal);
+  ASSERT_FALSE(reports.empty());
+  for (size_t k = 0; k < reports.size(); ++k) {
+    EXPECT_LE(reports[k].bound, 0.09 + 1e-6);
+    EXPECT_LE(reports[k].bound, reports[k].objective);
+    EXPECT_GE(reports[k].nodes, 1);
+    if (k > 0) {
+      EXPECT_LT(reports[k].objective, reports[k - 1].objective);
+    }
+  }
+  EXPECT_NEAR(reports.back().objective, r.objective, 1e-12);
+}
+
 TEST(BranchAndBound, KnapsackNeedsBranching) {
   // Without rounding, the fractional root forces at least three nodes (root + 2 children).
   const auto solver = MakeIpoptRelaxationSolver();
@@ -210,26 +254,6 @@ TEST(BranchAndBound, NodeLimitReturnsBestSoFarWithItsGap) {
   EXPECT_NEAR(r.bound, 0.0, 1e-6);
   EXPECT_GE(r.objective, 0.09 - 1e-6);
   EXPECT_NEAR(r.gap, r.objective, 1e-6);  // (objective - 0) / max(1, objective)
-}
-
-// Two intervals for y, [3, 4] (h_a) and [2, 2.2] (h_b), big-M rows with M = 4; minimise
-// (y - 2.5)^2 - 0.01 h_a. The relaxation keeps y = 2.5 and pushes h_a to its largest
-// value 0.875, so rounding it picks h_a: y = 3, cost 0.24. The optimum is h_b = 1,
-// y = 2.2, cost 0.09.
-Miqp DecoyInterval() {
-  MiqpBuilder b;
-  const int y = b.AddVariable("y", 0.0, 4.0, false);
-  const int ha = b.AddBinary("h_a"), hb = b.AddBinary("h_b");
-  const double M = 4.0;
-  b.AddRow("a_lo", LinExpr::Var(y) - LinExpr::Var(ha, M), 3.0 - M, kInfinity);
-  b.AddRow("a_hi", LinExpr::Var(y) + LinExpr::Var(ha, M), -kInfinity, 4.0 + M);
-  b.AddRow("b_lo", LinExpr::Var(y) - LinExpr::Var(hb, M), 2.0 - M, kInfinity);
-  b.AddRow("b_hi", LinExpr::Var(y) + LinExpr::Var(hb, M), -kInfinity, 2.2 + M);
-  b.AddRow("one", LinExpr::Var(ha) + LinExpr::Var(hb), 1, 1);
-  b.AddSos1Group({ha, hb});
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.5), 1.0);
-  b.AddLinearCost(LinExpr::Var(ha, -0.01));
-  return b.Build();
 }
 
 TEST(BranchAndBound, GapTolerancePrunesButKeepsTheBoundValid) {

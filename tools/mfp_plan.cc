@@ -133,8 +133,20 @@ int main(int argc, char** argv) {
           std::to_string(formulation.miqp().num_integer()) + " integer)");
     }
 
+    // Long windows also report each better plan found, with its bound, as they go.
+    int windows_done = 0;
+    options.branch_and_bound.on_incumbent = [&](const mfp::BranchAndBoundResult& r) {
+      if (r.solve_time_s < 1.0) return;
+      std::ostringstream line;
+      line.precision(7);
+      line << "window " << windows_done + 1 << ": incumbent " << r.objective << ", bound " << r.bound;
+      line.precision(3);
+      line << ", gap " << r.gap << ", " << r.nodes << " nodes, " << r.solve_time_s << " s";
+      log(line.str());
+    };
     const mfp::Plan plan = mfp::PlanFootsteps(
         robot, regions, request, options, solvers.workers(), [&](const mfp::PlanProgress& p) {
+          windows_done = p.window;
           std::ostringstream line;
           line.precision(3);
           line << "window " << p.window << ": " << mfp::ToString(p.window_result.status) << ", "
