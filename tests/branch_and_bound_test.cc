@@ -45,16 +45,14 @@ CatalogueEntry Knapsack() {
   return {"knapsack", b.Build(), SolveStatus::kOptimal, -9.0, x};
 }
 
-// One of three intervals for y: [0, 1], [2, 2.2] or [3, 4], chosen by a one-of group
-// with big-M rows (M = 4); minimise (y - 2.5)^2. Distances to 2.5: 1.5, 0.3, 0.5, so
-// the optimum picks the middle interval with y = 2.2 and cost 0.09.
-CatalogueEntry IntervalChoice() {
+// y in [0, 4] in one of the intervals [lo_k, hi_k], chosen by a one-of group of
+// binaries h_k with big-M rows (M = 4); minimise (y - 2.5)^2 + sum_k linear_k h_k.
+Miqp Intervals(const std::vector<double>& lo, const std::vector<double>& hi, const std::vector<double>& linear) {
   MiqpBuilder b;
   const int y = b.AddVariable("y", 0.0, 4.0, false);
-  const double lo[] = {0, 2, 3}, hi[] = {1, 2.2, 4};
   LinExpr one;
   std::vector<int> group;
-  for (int k = 0; k < 3; ++k) {
+  for (size_t k = 0; k < lo.size(); ++k) {
     const int h = b.AddBinary("h" + std::to_string(k));
     group.push_back(h);
     one += LinExpr::Var(h);
@@ -62,13 +60,20 @@ CatalogueEntry IntervalChoice() {
     // y >= lo - M (1 - h)  and  y <= hi + M (1 - h)
     b.AddRow("lo" + std::to_string(k), LinExpr::Var(y) - LinExpr::Var(h, M), lo[k] - M, kInfinity);
     b.AddRow("hi" + std::to_string(k), LinExpr::Var(y) + LinExpr::Var(h, M), -kInfinity, hi[k] + M);
+    if (linear[k] != 0.0) b.AddLinearCost(LinExpr::Var(h, linear[k]));
   }
   b.AddRow("one", one, 1, 1);
   b.AddSos1Group(group);
   b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.5), 1.0);
+  return b.Build();
+}
+
+// One of three intervals for y: [0, 1], [2, 2.2] or [3, 4]. Distances to 2.5: 1.5, 0.3,
+// 0.5, so the optimum picks the middle interval with y = 2.2 and cost 0.09.
+CatalogueEntry IntervalChoice() {
   Eigen::VectorXd x(4);
   x << 2.2, 0, 1, 0;
-  return {"interval_choice", b.Build(), SolveStatus::kOptimal, 0.09, x};
+  return {"interval_choice", Intervals({0, 2, 3}, {1, 2.2, 4}, {0, 0, 0}), SolveStatus::kOptimal, 0.09, x};
 }
 
 // x + y = 1.5 with x, y binary has no solution (sums are 0, 1 or 2).
@@ -114,25 +119,10 @@ CatalogueEntry Mixed() {
   return {"mixed", b.Build(), SolveStatus::kOptimal, 1.0, x};
 }
 
-// Two intervals for y, [3, 4] (h_a) and [2, 2.2] (h_b), big-M rows with M = 4; minimise
-// (y - 2.5)^2 - 0.01 h_a. The relaxation keeps y = 2.5 and pushes h_a to its largest
-// value 0.875, so rounding it picks h_a: y = 3, cost 0.24. The optimum is h_b = 1,
-// y = 2.2, cost 0.09.
-Miqp DecoyInterval() {
-  MiqpBuilder b;
-  const int y = b.AddVariable("y", 0.0, 4.0, false);
-  const int ha = b.AddBinary("h_a"), hb = b.AddBinary("h_b");
-  const double M = 4.0;
-  b.AddRow("a_lo", LinExpr::Var(y) - LinExpr::Var(ha, M), 3.0 - M, kInfinity);
-  b.AddRow("a_hi", LinExpr::Var(y) + LinExpr::Var(ha, M), -kInfinity, 4.0 + M);
-  b.AddRow("b_lo", LinExpr::Var(y) - LinExpr::Var(hb, M), 2.0 - M, kInfinity);
-  b.AddRow("b_hi", LinExpr::Var(y) + LinExpr::Var(hb, M), -kInfinity, 2.2 + M);
-  b.AddRow("one", LinExpr::Var(ha) + LinExpr::Var(hb), 1, 1);
-  b.AddSos1Group({ha, hb});
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.5), 1.0);
-  b.AddLinearCost(LinExpr::Var(ha, -0.01));
-  return b.Build();
-}
+// Two intervals for y, [3, 4] (h_a) and [2, 2.2] (h_b), with a cost of -0.01 on h_a.
+// The relaxation keeps y = 2.5 and pushes h_a to its largest value 0.875, so rounding it
+// picks h_a: y = 3, cost 0.24. The optimum is h_b = 1, y = 2.2, cost 0.09.
+Miqp DecoyInterval() { return Intervals({3, 2}, {4, 2.2}, {-0.01, 0}); }
 
 std::vector<CatalogueEntry> Catalogue() {
   return {OneBinary(), Knapsack(), IntervalChoice(), Infeasible(), GeneralInteger(), CoupledBinaries(), Mixed()};
