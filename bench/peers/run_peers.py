@@ -31,6 +31,8 @@ import os
 import subprocess
 import sys
 
+from solve_mps import mps_records
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 VENV_PYTHON = os.path.join(REPO, "bench", ".venv", "bin", "python")
@@ -42,19 +44,12 @@ REL_TOL = 1e-4
 
 def mps_size(path):
     """(columns, integer columns, rows other than the objective) of a free MPS file."""
-    section = None
     rows = 0
     columns = set()
     integers = set()
     in_int = False
     with open(path) as f:
-        for line in f:
-            if not line.strip() or line.startswith("*"):
-                continue
-            if not line[0].isspace():
-                section = line.split()[0].upper()
-                continue
-            fields = line.split()
+        for section, fields in mps_records(f):
             if section == "ROWS":
                 rows += fields[0].upper() != "N"
             elif section == "COLUMNS":

@@ -86,6 +86,20 @@ def result(solver, status, time_s=None, objective=None, bound=None, message="", 
     }
 
 
+def mps_records(lines):
+    """(section, fields) for each data line of a free MPS file: comments, blank lines and
+    the section header lines themselves are skipped; section is the upper-case name of
+    the section the line belongs to."""
+    section = None
+    for line in lines:
+        if not line.strip() or line.startswith("*"):
+            continue
+        if not line[0].isspace():
+            section = line.split()[0].upper()
+            continue
+        yield section, line.split()
+
+
 def split_ranged_rows(path, out_path):
     """Writes to out_path the same problem with each ranged row as two rows (L and G).
 
@@ -97,16 +111,9 @@ def split_ranged_rows(path, out_path):
     """
     with open(path) as f:
         lines = f.read().splitlines()
-    section = None
     rhs_set = None  # the name of the RHS vector, so that the added entries join it
     sense, rhs, rng = {}, {}, {}
-    for line in lines:
-        if not line.strip() or line.startswith("*"):
-            continue
-        if not line[0].isspace():
-            section = line.split()[0].upper()
-            continue
-        fields = line.split()
+    for section, fields in mps_records(lines):
         if section == "ROWS":
             sense[fields[1]] = fields[0].upper()
         elif section in ("RHS", "RANGES"):
