@@ -78,13 +78,13 @@ class Search {
         batch.push_back(std::move(node));
         if (!root_done_) break;  // the root alone
       }
-      in_flight_bound_ = kInfinity;
       for (const Node& node : batch) in_flight_bound_ = std::min(in_flight_bound_, node.parent_bound);
       std::vector<NodeEvaluation> evaluations(batch.size());
       ForEachInParallel(static_cast<int>(batch.size()), [&](int k) {
         evaluations[k] = Evaluate(batch[k], *solvers_[k]);
       });
       for (size_t k = 0; k < batch.size(); ++k) Process(batch[k], std::move(evaluations[k]));
+      in_flight_bound_ = kInfinity;  // every node of the round is settled or back in open_
     }
     return Finish();
   }
@@ -477,14 +477,24 @@ class Search {
     }
   }
 
+  // The least bound of everything not yet settled: open nodes, the round in flight,
+  // subtrees that could not be bounded and subtrees pruned by the gap tolerance.
+  double UnexploredBound() const {
+    double bound = std::min({in_flight_bound_, unresolved_bound_, gap_pruned_bound_});
+    for (const Node& node : open_) bound = std::min(bound, node.parent_bound);
+    return bound;
+  }
+
+  static double RelativeGap(double objective, double bound) {
+    return (objective - bound) / std::max(1.0, std::abs(objective));
+  }
+
   void ReportProgress() const {
     BranchAndBoundResult progress;
     progress.status = SolveStatus::kFeasible;
     progress.objective = result_.objective;
-    double open_bound = std::min({in_flight_bound_, unresolved_bound_, gap_pruned_bound_});
-    for (const Node& node : open_) open_bound = std::min(open_bound, node.parent_bound);
-    progress.bound = std::min(result_.objective, std::max(result_.bound, open_bound));
-    progress.gap = (progress.objective - progress.bound) / std::max(1.0, std::abs(progress.objective));
+    progress.bound = std::min(result_.objective, std::max(result_.bound, UnexploredBound()));
+    progress.gap = RelativeGap(progress.objective, progress.bound);
     progress.nodes = result_.nodes;
     progress.relaxations = result_.relaxations;
     progress.strong_branching_solves = result_.strong_branching_solves;
@@ -495,15 +505,13 @@ class Search {
 
   BranchAndBoundResult Finish() {
     result_.solve_time_s = Elapsed();
-    double open_bound = kInfinity;
-    for (const Node& node : open_) open_bound = std::min(open_bound, node.parent_bound);
-    open_bound = std::min({open_bound, unresolved_bound_, gap_pruned_bound_});
+    const double open_bound = UnexploredBound();
     if (HasIncumbent()) {
       result_.bound = std::min(result_.objective, std::max(result_.bound, open_bound));
       if (open_.empty() && unresolved_bound_ == kInfinity) {
         result_.bound = std::min(result_.objective, gap_pruned_bound_);
       }
-      result_.gap = (result_.objective - result_.bound) / std::max(1.0, std::abs(result_.objective));
+      result_.gap = RelativeGap(result_.objective, result_.bound);
       const bool limits = hit_time_limit_ || hit_node_limit_;
       if (!limits && unresolved_bound_ == kInfinity) {
         result_.status = SolveStatus::kOptimal;
@@ -542,7 +550,8 @@ class Search {
   bool root_failed_ = false;
   double unresolved_bound_ = kInfinity;
   double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
-  double in_flight_bound_ = kInfinity;   // least parent bound of the round being processed
+  double in_flight_bound_ = kInfinity;   // least parent bound of the round being processed;
+                                         // infinity between rounds
 };
 
 }  // namespace
