@@ -156,7 +156,7 @@ class Search {
     }
     const double bound = std::max(rel.objective, node.parent_bound);
     if (is_root) {
-      result_.bound = bound;
+      result_.bound = result_.root_bound = bound;
       TryRounding(rel.x);
     }
     if (HasIncumbent() && !Improves(bound)) {

@@ -59,6 +59,7 @@ struct BranchAndBoundResult {
   Eigen::VectorXd x;            // incumbent (empty when none)
   double objective = kInfinity;  // incumbent objective, incl. constant
   double bound = -kInfinity;     // proven lower bound
+  double root_bound = -kInfinity;  // the root relaxation's bound (after propagation)
   double gap = kInfinity;        // (objective - bound) / max(1, |objective|)
   int nodes = 0;
   int relaxations = 0;

@@ -140,9 +140,9 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   const int window = WindowSteps(robot, request, options);
   const double time_limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
   if (request.max_steps < 0 || max_steps > 100000 || request.window_steps < 0 || window > 1000 ||
-      request.time_limit_s < 0) {
+      request.time_limit_s < 0 || request.max_windows < 0) {
     return Rejected(SolveStatus::kInvalidRequest,
-                    "max_steps must be in [0, 100000], window in [0, 1000], time limit >= 0 s");
+                    "max_steps must be in [0, 100000], window in [0, 1000], time limit >= 0 s, max_windows >= 0");
   }
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector3d& f = request.start_feet_world_m[k];
@@ -201,7 +201,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
 
-  while (!plan.reaches_goal && planned < max_steps) {
+  while (!plan.reaches_goal && planned < max_steps &&
+         (request.max_windows <= 0 || plan.windows < request.max_windows)) {
     const double remaining_time = time_limit - elapsed();
     if (remaining_time <= 0.0) {
       plan.status = SolveStatus::kTimeLimit;
@@ -297,7 +298,9 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
   }
   if (!plan.reaches_goal && plan.message.empty() && HasPlan(plan.status)) {
-    plan.message = "goal not reached within " + std::to_string(max_steps) + " steps";
+    plan.message = planned < max_steps && request.max_windows > 0
+                       ? "goal not reached within " + std::to_string(request.max_windows) + " window(s)"
+                       : "goal not reached within " + std::to_string(max_steps) + " steps";
   }
   plan.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
   plan.solve_time_s = elapsed();

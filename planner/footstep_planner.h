@@ -26,6 +26,8 @@ struct PlanRequest {
   int max_steps = 0;       // new footsteps in the whole plan; 0 = PlannerOptions default
   int window_steps = 0;    // new footsteps per MIQP; 0 = PlannerOptions default (2 n)
   double time_limit_s = 0; // whole plan; 0 = PlannerOptions default
+  int max_windows = 0;     // MIQPs solved at most; 0 = as many as the route needs. 1 = exactly
+                           // the single MIQP of FirstWindowProblem (benchmarks of Table I)
 };
 
 struct PlannerOptions {

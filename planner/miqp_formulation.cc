@@ -76,6 +76,26 @@ MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const Formulati
   const double hi = std::max(problem_.start_yaw_rad, problem_.goal_yaw_rad) + options_.yaw_margin_rad;
   const int segments = std::max(1, static_cast<int>(std::ceil((hi - lo) / options_.yaw_segment_rad - 1e-9)));
   for (int k = 0; k <= segments; ++k) breakpoints_.push_back(lo + (hi - lo) * k / segments);
+  // Configuration b turns at most b max_yaw_change from the start, so only the segments
+  // that meet that range can hold its yaw: the others are left out. The chords stay
+  // those of the grid, so the plans are exactly those of the full grid.
+  block_breakpoints_.assign(num_blocks_, {});
+  yaw_reach_.assign(num_blocks_, {lo, hi});
+  for (int blk = 1; blk < num_blocks_; ++blk) {
+    double lo_b = lo, hi_b = hi;
+    if (options_.clip_yaw_to_reach) {
+      const double turn = blk * problem_.robot->max_yaw_change_rad;
+      lo_b = problem_.start_yaw_rad - turn;
+      hi_b = problem_.start_yaw_rad + turn;
+    }
+    std::vector<double>& bp = block_breakpoints_[blk];
+    for (int k = 0; k < segments; ++k) {
+      if (breakpoints_[k + 1] < lo_b || breakpoints_[k] > hi_b) continue;
+      if (bp.empty()) bp.push_back(breakpoints_[k]);
+      bp.push_back(breakpoints_[k + 1]);
+    }
+    yaw_reach_[blk] = {std::max(lo, lo_b), std::min(hi, hi_b)};
+  }
 
   Build();
 }
@@ -151,14 +171,25 @@ void MiqpFormulation::Build() {
 
   // ---- yaw per configuration, with piecewise-linear sin/cos ----
   const int B = num_blocks_;
-  const int K = static_cast<int>(breakpoints_.size()) - 1;
-  const double yaw_lo = breakpoints_.front(), yaw_hi = breakpoints_.back();
-  double s_lo = 1, s_hi = -1, c_lo = 1, c_hi = -1;
-  for (double psi : breakpoints_) {
-    s_lo = std::min(s_lo, std::sin(psi));
-    s_hi = std::max(s_hi, std::sin(psi));
-    c_lo = std::min(c_lo, std::cos(psi));
-    c_hi = std::max(c_hi, std::cos(psi));
+  // Range of theta, sin and cos over a configuration's segments: the chords' values lie
+  // between those at the breakpoints.
+  struct YawRange {
+    double theta_lo, theta_hi, s_lo = 1, s_hi = -1, c_lo = 1, c_hi = -1;
+  };
+  std::vector<YawRange> range(B);
+  for (int blk = 1; blk < B; ++blk) {
+    const std::vector<double>& bp = block_breakpoints_[blk];
+    YawRange& r = range[blk];
+    r.theta_lo = bp.front();
+    r.theta_hi = bp.back();
+    // theta itself is bounded by the yaw it can reach (the big-M rows use the segments'
+    // span, which contains it).
+    for (double psi : bp) {
+      r.s_lo = std::min(r.s_lo, std::sin(psi));
+      r.s_hi = std::max(r.s_hi, std::sin(psi));
+      r.c_lo = std::min(r.c_lo, std::cos(psi));
+      r.c_hi = std::max(r.c_hi, std::cos(psi));
+    }
   }
   vars_.theta.assign(B, -1);
   vars_.s.assign(B, -1);
@@ -166,9 +197,10 @@ void MiqpFormulation::Build() {
   vars_.segment.assign(B, {});
   vars_.segment_theta.assign(B, {});
   for (int blk = 1; blk < B; ++blk) {
-    vars_.theta[blk] = b.AddVariable(StepName("theta", blk), yaw_lo, yaw_hi, false);
-    vars_.s[blk] = b.AddVariable(StepName("sin", blk), s_lo, s_hi, false);
-    vars_.c[blk] = b.AddVariable(StepName("cos", blk), c_lo, c_hi, false);
+    const YawRange& r = range[blk];
+    vars_.theta[blk] = b.AddVariable(StepName("theta", blk), yaw_reach_[blk].first, yaw_reach_[blk].second, false);
+    vars_.s[blk] = b.AddVariable(StepName("sin", blk), r.s_lo, r.s_hi, false);
+    vars_.c[blk] = b.AddVariable(StepName("cos", blk), r.c_lo, r.c_hi, false);
   }
   auto theta = [&](int blk) {
     return blk == 0 ? LinExpr::Constant(problem_.start_yaw_rad) : LinExpr::Var(vars_.theta[blk]);
@@ -180,6 +212,10 @@ void MiqpFormulation::Build() {
     return blk == 0 ? LinExpr::Constant(std::cos(problem_.start_yaw_rad)) : LinExpr::Var(vars_.c[blk]);
   };
   for (int blk = 1; blk < B; ++blk) {
+    const std::vector<double>& bp = block_breakpoints_[blk];
+    const int K = static_cast<int>(bp.size()) - 1;
+    const double yaw_lo = range[blk].theta_lo, yaw_hi = range[blk].theta_hi;
+    const double s_lo = range[blk].s_lo, s_hi = range[blk].s_hi, c_lo = range[blk].c_lo, c_hi = range[blk].c_hi;
     LinExpr one_segment;
     for (int k = 0; k < K; ++k) {
       const int sk = b.AddBinary("seg_" + std::to_string(blk) + "_" + std::to_string(k));
@@ -197,7 +233,7 @@ void MiqpFormulation::Build() {
       LinExpr cos_sum = LinExpr::Var(vars_.c[blk], -1.0);
       for (int k = 0; k < K; ++k) {
         const int sk = vars_.segment[blk][k];
-        const double a = breakpoints_[k], e = breakpoints_[k + 1];
+        const double a = bp[k], e = bp[k + 1];
         const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
         const int tk = b.AddVariable("theta_" + tag, std::min(0.0, a), std::max(0.0, e), false);
         vars_.segment_theta[blk].push_back(tk);
@@ -215,7 +251,7 @@ void MiqpFormulation::Build() {
     } else {
       for (int k = 0; k < K; ++k) {
         const int sk = vars_.segment[blk][k];
-        const double a = breakpoints_[k], e = breakpoints_[k + 1];
+        const double a = bp[k], e = bp[k + 1];
         const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
         // S_bk => psi_k <= theta_b <= psi_{k+1}, written with the tightest constants:
         // theta >= lo + (psi_k - lo) S and theta <= hi - (hi - psi_{k+1}) S.
@@ -491,7 +527,7 @@ bool MiqpFormulation::RoundWithTrimming(const Eigen::VectorXd& relaxed, int firs
     const int K = static_cast<int>(vars_.segment[blk].size());
     int chosen = K - 1;
     for (int k = 0; k < K; ++k) {
-      if (th <= breakpoints_[k + 1]) {
+      if (th <= block_breakpoints_[blk][k + 1]) {
         chosen = k;
         break;
       }

@@ -41,6 +41,11 @@ struct FormulationOptions {
   bool prune_unreachable_regions = true;
   // Trimmed steps form a suffix (t_i <= t_{i+1}): removes symmetric solutions.
   bool monotone_trimming = true;
+  // Each configuration's yaw is also bounded by the yaw it can reach from the start at
+  // max_yaw_change per configuration, and the chord segments outside that range are left
+  // out. Same plans (the yaw change rows imply the range); the relaxation of sin/cos is
+  // tighter for the first configurations, whose range is narrow.
+  bool clip_yaw_to_reach = true;
 };
 
 struct FootstepProblem {
@@ -89,8 +94,13 @@ class MiqpFormulation {
   int num_blocks() const { return num_blocks_; }
   int LegOfStep(int step) const;
   int BlockOfStep(int step) const { return step / n_; }
-  // Breakpoints of the yaw segments [rad] (num segments + 1 values).
+  // Breakpoints of the yaw segments [rad] (num segments + 1 values): the uniform grid
+  // over the whole yaw range.
   const std::vector<double>& yaw_breakpoints() const { return breakpoints_; }
+  // The breakpoints of configuration blk's own segments (vars().segment[blk][k] spans
+  // [k, k+1]): the grid's segments that meet the yaw the configuration can reach. Empty
+  // for block 0.
+  const std::vector<double>& block_yaw_breakpoints(int blk) const { return block_breakpoints_[blk]; }
   // Goal foot position (x, y) of a leg [m].
   Eigen::Vector2d GoalFoot(int leg) const;
 
@@ -120,6 +130,8 @@ class MiqpFormulation {
   int num_steps_ = 0;
   int num_blocks_ = 0;
   std::vector<double> breakpoints_;
+  std::vector<std::vector<double>> block_breakpoints_;
+  std::vector<std::pair<double, double>> yaw_reach_;  // per block: [lowest, highest] yaw [rad]
   Miqp miqp_;
   FootstepVariables vars_;
   std::string infeasible_reason_;

@@ -13,7 +13,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
                      "node_selection", "branching", "rounding_frequency", "relaxation_solver",
                      "bound_propagation", "rounding_heuristic", "plunge_fraction", "reliability",
-                     "strong_branching_candidates", "strong_branching_lookahead", "threads"});
+                     "strong_branching_candidates", "strong_branching_lookahead", "threads", "clip_yaw_to_reach"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.threads = OptionalInt(node, ctx, "threads", 1, 64).value_or(o.threads);
@@ -55,6 +55,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   f.prune_unreachable_regions =
       OptionalBool(node, ctx, "prune_unreachable_regions").value_or(f.prune_unreachable_regions);
   f.monotone_trimming = OptionalBool(node, ctx, "monotone_trimming").value_or(f.monotone_trimming);
+  f.clip_yaw_to_reach = OptionalBool(node, ctx, "clip_yaw_to_reach").value_or(f.clip_yaw_to_reach);
   BranchAndBoundOptions& b = o.branch_and_bound;
   b.max_nodes = OptionalInt(node, ctx, "max_nodes", 1, 10000000).value_or(b.max_nodes);
   b.relative_gap = OptionalDouble(node, ctx, "relative_gap", 0, 1).value_or(b.relative_gap);

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "planner/check.h"
@@ -223,6 +224,38 @@ TEST_F(FormulationTest, YawConvexHullEncoding) {
   Eigen::VectorXd unselected = x;
   unselected(v.segment_theta[1][0]) = -0.1;
   EXPECT_NEAR(violation("seg_lo_1_0", unselected), 0.1, 1e-12);
+}
+
+TEST_F(FormulationTest, ConfigurationsOnlyGetTheYawSegmentsTheyCanReach) {
+  // Goal yaw 1.2 rad: the grid spans [-pi/8, 1.2 + pi/8] in 6 segments of 0.3309 rad
+  // (breakpoints -0.3927, -0.0618, 0.2691, 0.6000, 0.9309, 1.2618, 1.5927). With a yaw
+  // change of 0.3 rad per configuration, block 1 reaches [-0.3, 0.3] (3 segments) and
+  // block 3 [-0.3927, 0.9] (4 segments).
+  FootstepProblem problem = problem_;
+  problem.goal_yaw_rad = 1.2;
+  problem.num_new_steps = 12;
+  FormulationOptions options;
+  const MiqpFormulation clipped(problem, options);
+  ASSERT_EQ(clipped.yaw_breakpoints().size(), 7u);
+  EXPECT_EQ(clipped.vars().segment[1].size(), 3u);
+  EXPECT_EQ(clipped.vars().segment[3].size(), 4u);
+  const Miqp& m = clipped.miqp();
+  EXPECT_NEAR(m.var_lower(clipped.vars().theta[1]), -0.3, 1e-12);
+  EXPECT_NEAR(m.var_upper(clipped.vars().theta[1]), 0.3, 1e-12);
+  EXPECT_NEAR(m.var_upper(clipped.vars().theta[3]), 0.9, 1e-12);
+  // The kept segments are the grid's own, so their chords (and the plans) are unchanged.
+  for (int blk = 1; blk < clipped.num_blocks(); ++blk) {
+    const std::vector<double>& bp = clipped.block_yaw_breakpoints(blk);
+    ASSERT_EQ(bp.size(), clipped.vars().segment[blk].size() + 1);
+    const auto& grid = clipped.yaw_breakpoints();
+    const auto first = std::find(grid.begin(), grid.end(), bp.front());
+    ASSERT_NE(first, grid.end()) << blk;
+    for (size_t k = 0; k < bp.size(); ++k) EXPECT_EQ(bp[k], *(first + k)) << blk;
+  }
+  options.clip_yaw_to_reach = false;
+  const MiqpFormulation full(problem, options);
+  for (int blk = 1; blk < full.num_blocks(); ++blk) EXPECT_EQ(full.vars().segment[blk].size(), 6u) << blk;
+  EXPECT_LT(m.num_integer(), full.miqp().num_integer());
 }
 
 TEST_F(FormulationTest, YawChangeBound) {

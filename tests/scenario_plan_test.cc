@@ -99,6 +99,54 @@ TEST(ScenarioPlanWorkers, TwoWorkersProveTheSameFirstWindowOptimum) {
   for (const std::string& v : ValidatePlan(robot, regions, plan, goal, tol)) ADD_FAILURE() << v;
 }
 
+TEST(ScenarioPlanFormulation, YawSegmentsOutOfReachLeaveTheOptimumAlone) {
+  // The hexapod turns 45 degrees: its first configurations cannot reach the whole yaw
+  // range, so clip_yaw_to_reach leaves out segments; the optimum must not move.
+  const Scenario scenario =
+      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_stepping_stones_45.yaml");
+  const RobotModel robot = LoadRobot(scenario.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
+  PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  BranchAndBoundOptions bnb = scenario.options.branch_and_bound;
+  bnb.time_limit_s = 300.0;
+  const auto solver = MakeRelaxationSolver(scenario.options.relaxation_solver);
+  double objective[2];
+  int integers[2];
+  for (int clip = 0; clip < 2; ++clip) {
+    FormulationOptions options = scenario.options.formulation;
+    options.clip_yaw_to_reach = clip == 1;
+    const MiqpFormulation formulation(FirstWindowProblem(robot, regions, request, scenario.options), options);
+    const BranchAndBoundResult r = SolveBranchAndBound(formulation.miqp(), *solver, bnb);
+    ASSERT_EQ(ToString(r.status), "optimal") << "clip " << clip;
+    objective[clip] = r.objective;
+    integers[clip] = formulation.miqp().num_integer();
+  }
+  EXPECT_LT(integers[1], integers[0]);
+  EXPECT_NEAR(objective[1], objective[0], 2 * bnb.relative_gap * std::abs(objective[0]));
+}
+
+TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
+  const Scenario scenario =
+      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/littledog_stepping_stones_45.yaml");
+  const RobotModel robot = LoadRobot(scenario.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
+  PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  request.time_limit_s = 300.0;
+  request.max_windows = 1;
+  const auto solver = MakeRelaxationSolver(scenario.options.relaxation_solver);
+  const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  ASSERT_TRUE(HasPlan(plan.status)) << plan.message;
+  EXPECT_EQ(plan.windows, 1);
+  EXPECT_FALSE(plan.reaches_goal);
+  EXPECT_NE(plan.message.find("1 window"), std::string::npos) << plan.message;
+  EXPECT_LE(static_cast<int>(plan.footsteps.size()) - robot.num_legs(), 2 * robot.num_legs());
+
+  request.max_windows = -1;
+  const Plan rejected = PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  EXPECT_EQ(rejected.status, SolveStatus::kInvalidRequest);
+  EXPECT_NE(rejected.message.find("max_windows"), std::string::npos) << rejected.message;
+}
+
 TEST(PlanValidation, CatchesEachKindOfViolation) {
   // A valid plan of the flat hexapod scenario, then one defect at a time.
   const Scenario scenario = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/littledog_flat.yaml");
