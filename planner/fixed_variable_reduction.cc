@@ -78,9 +78,15 @@ ReducedQp ReduceFixedVariables(const Miqp& p, const Eigen::VectorXd& lower,
         shift += it.value() * r.fixed_x(it.col());
       }
     }
-    const double lo = p.row_lower(row) - shift, hi = p.row_upper(row) - shift;
+    double lo = p.row_lower(row) - shift, hi = p.row_upper(row) - shift;
     if (activity_max < lo - row_tolerance || activity_min > hi + row_tolerance) r.infeasible = true;
     if (!has_free) continue;
+    // A side the variable box already keeps is left out, and a row with neither side
+    // left is dropped: at deep nodes most big-M rows of the regions and chords a node has
+    // ruled out are such rows, and the solvers get fewer inequalities.
+    if (lo > -kInfinity && lo < hi && activity_min >= lo) lo = -kInfinity;
+    if (hi < kInfinity && lo < hi && activity_max <= hi) hi = kInfinity;
+    if (lo == -kInfinity && hi == kInfinity) continue;
     const int out_row = static_cast<int>(row_lo.size());
     for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
       if (reduced_of[it.col()] >= 0) a_triplets.emplace_back(out_row, reduced_of[it.col()], it.value());

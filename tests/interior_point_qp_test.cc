@@ -99,6 +99,33 @@ TEST(InteriorPointQp, FixedVariablesAreRemovedAndDegenerateNodesFallBackToIpopt)
   EXPECT_NEAR(r.objective, 1.0, 1e-6);
 }
 
+TEST(InteriorPointQp, RowsTheBoxAlreadyKeepsAreLeftOut) {
+  // y in [0, 2], x fixed to 1 by the node. Of the rows
+  //   big_m:  y + 2x <= 5       -> y <= 3: the box keeps it, dropped
+  //   loose:  y - x >= -5       -> y >= -4: dropped
+  //   range:  0.5 <= y + x <= 10 -> -0.5 <= y <= 9: both sides kept by the box, dropped
+  //   cap:    -3 <= y + x <= 2.5 -> y <= 1.5 binds; its lower side y >= -4 is left out
+  // only cap's upper side reaches the solver, and min (y - 2)^2 ends on it at y = 1.5.
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", 0, 1, true), y = b.AddVariable("y", 0, 2, false);
+  b.AddRow("big_m", LinExpr::Var(y) + LinExpr::Var(x, 2.0), -kInfinity, 5.0);
+  b.AddRow("loose", LinExpr::Var(y) - LinExpr::Var(x), -5.0, kInfinity);
+  b.AddRow("range", LinExpr::Var(y) + LinExpr::Var(x), 0.5, 10.0);
+  b.AddRow("cap", LinExpr::Var(y) + LinExpr::Var(x), -3.0, 2.5);
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.0), 1.0);
+  const Miqp p = b.Build();
+  Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
+  lo(x) = up(x) = 1.0;
+  const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
+  ASSERT_EQ(reduced.problem.num_rows(), 1);
+  EXPECT_EQ(reduced.problem.row_lower(0), -kInfinity);
+  EXPECT_NEAR(reduced.problem.row_upper(0), 1.5, 1e-15);
+  const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
+  ASSERT_EQ(r.status, RelaxationStatus::kSolved);
+  EXPECT_NEAR(r.x(y), 1.5, 1e-6);
+  EXPECT_NEAR(r.objective, 0.25, 1e-6);
+}
+
 TEST(BoundPropagation, TightensAndDetectsInfeasibility) {
   // x + y <= 1 with y >= 0.75 gives x <= 0.25; with x integer in [0, 3], x = 0.
   MiqpBuilder b;
