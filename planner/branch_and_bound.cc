@@ -163,6 +163,8 @@ class Search {
       NoteGapPrune(bound);
       return;
     }
+    std::vector<BoundChange> fixings;
+    if (opt_.reduced_cost_fixing && HasIncumbent()) FixByReducedCosts(rel, &e.lower, &e.upper, &fixings);
     const int branch_var = opt_.branching == BranchingRule::kReliability
                                ? ChooseByReliability(rel, &e.lower, &e.upper)
                                : ChooseBranchVariable(rel.x, e.lower, e.upper);
@@ -174,7 +176,43 @@ class Search {
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result_.nodes % opt_.rounding_frequency == 0) {
       TryRounding(rel.x);
     }
-    Branch(node, rel, bound, branch_var, e.lower, e.upper);
+    Branch(node, rel, bound, branch_var, e.lower, e.upper, fixings);
+  }
+
+  // Integer values whose subtree cannot beat the incumbent by more than the gap, by the
+  // relaxation's reduced-cost certificate: x_j >= l_j + t costs at least
+  // floor + rate_l t (likewise below u_j). Tightened bounds go to both children; the
+  // bound of what they rule out is kept for the final gap.
+  void FixByReducedCosts(const RelaxationResult& rel, Eigen::VectorXd* lower, Eigen::VectorXd* upper,
+                         std::vector<BoundChange>* fixings) {
+    if (rel.lower_cost_rate.size() != p_.num_variables() || !std::isfinite(rel.cost_floor)) return;
+    const double tol = std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
+    const double room = result_.objective - tol - rel.cost_floor;  // objective increase still allowed
+    if (room < 0.0) return;
+    for (int j = 0; j < p_.num_variables(); ++j) {
+      if (!p_.is_integer[j] || (*lower)(j) >= (*upper)(j)) continue;
+      double lo = (*lower)(j), hi = (*upper)(j);
+      const double up_rate = rel.lower_cost_rate(j), down_rate = rel.upper_cost_rate(j);
+      if (up_rate > 0.0 && lo + room / up_rate < hi) {
+        const double new_hi = std::floor(lo + room / up_rate + opt_.integrality_tolerance);
+        if (new_hi < hi) {
+          NoteGapPrune(rel.cost_floor + up_rate * (new_hi + 1.0 - lo));
+          hi = new_hi;
+        }
+      }
+      if (down_rate > 0.0 && hi - room / down_rate > lo) {
+        const double new_lo = std::ceil(hi - room / down_rate - opt_.integrality_tolerance);
+        if (new_lo > lo) {
+          NoteGapPrune(rel.cost_floor + down_rate * ((*upper)(j) - (new_lo - 1.0)));
+          lo = new_lo;
+        }
+      }
+      if (lo == (*lower)(j) && hi == (*upper)(j)) continue;
+      ++result_.reduced_cost_fixings;
+      fixings->push_back({j, lo, hi});
+      (*lower)(j) = lo;
+      (*upper)(j) = hi;
+    }
   }
 
  private:
@@ -309,7 +347,7 @@ class Search {
   }
 
   void Branch(const Node& node, const RelaxationResult& rel, double bound, int j,
-              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const std::vector<BoundChange>& fixings) {
     const Eigen::VectorXd& x = rel.x;
     const double floor_v = std::floor(x(j) + opt_.integrality_tolerance);
     Node children[2];  // down, up
@@ -317,6 +355,7 @@ class Search {
     for (int up = 0; up < 2; ++up) {
       Node& child = children[up];
       child.changes = node.changes;
+      child.changes.insert(child.changes.end(), fixings.begin(), fixings.end());
       child.parent_bound = bound;
       child.depth = node.depth + 1;
       child.warm_start = x;

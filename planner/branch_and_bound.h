@@ -48,6 +48,10 @@ struct BranchAndBoundOptions {
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
+  // Reduced-cost fixing: when the relaxation solver certifies how fast the objective
+  // grows away from a bound (RelaxationResult::cost_floor and rates), integer values
+  // that cannot beat the incumbent are ruled out for the node's subtree.
+  bool reduced_cost_fixing = true;
   // Progress for logs: called with the result so far (incumbent objective, a valid bound,
   // gap, nodes, relaxations, elapsed time in solve_time_s; x left empty) each time the
   // incumbent improves.
@@ -65,6 +69,7 @@ struct BranchAndBoundResult {
   int relaxations = 0;
   int propagation_prunes = 0;   // nodes found infeasible by bound propagation alone
   int strong_branching_solves = 0;  // relaxations solved to score branching candidates
+  int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
   double solve_time_s = 0.0;
 };
 

@@ -147,6 +147,32 @@ double MaxStep(const Eigen::VectorXd& v, const Eigen::VectorXd& dv) {
   return alpha;
 }
 
+// The reduced-cost certificate of RelaxationResult from the final iterate. With the
+// Lagrangian L(w) = f_el(w) + z'(C w - d) (f_el: objective plus elastic penalty), any
+// point x of the box that meets the rows (so e = 0) satisfies
+//   f(x) >= L(w) + sum_j z_l,j (x_j - l_j) + z_u,j (u_j - x_j)
+// (the row terms left out are >= 0), and by convexity L(w) >= L(w*) + r_d'(w - w*),
+// where L(w*) = f_el(w*) + z'(r_p - s). The residual term is bounded over the box and
+// the elastic part (w_e = 0 against w*_e), so the floor holds for the inexact iterate.
+void SetCostRates(const InequalityForm& f, double constant, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                  const Eigen::VectorXd& w, const Eigen::VectorXd& s, const Eigen::VectorXd& z,
+                  const Eigen::VectorXd& r_d, const Eigen::VectorXd& r_p, RelaxationResult* result) {
+  const int n = f.n, E = f.elastic;
+  const double f_el = 0.5 * w.head(n).dot(f.Q * w.head(n)) + f.q.dot(w);
+  double residual = 0.0;
+  for (int j = 0; j < n; ++j) {
+    residual += std::abs(r_d(j)) * std::max(upper(j) - w(j), w(j) - lower(j));
+  }
+  for (int k = 0; k < E; ++k) residual += std::abs(r_d(n + k)) * std::abs(w(n + k));
+  result->cost_floor = std::min(result->objective, f_el + constant + z.dot(r_p - s) - residual);
+  result->lower_cost_rate.resize(n);
+  result->upper_cost_rate.resize(n);
+  for (int j = 0; j < n; ++j) {
+    result->upper_cost_rate(j) = std::max(0.0, z(2 * E + 2 * j));
+    result->lower_cost_rate(j) = std::max(0.0, z(2 * E + 2 * j + 1));
+  }
+}
+
 }  // namespace
 
 RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lower,
@@ -210,6 +236,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       result.objective = objective + p.constant;
       const double violation = f.elastic ? w.tail(f.elastic).maxCoeff() : 0.0;
       result.status = violation > opt.infeasible_violation ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
+      if (result.status == RelaxationStatus::kSolved) SetCostRates(f, p.constant, lower, upper, w, s, z, r_d, r_p, &result);
       return result;
     }
     const Eigen::VectorXd sigma = z.cwiseQuotient(s);

@@ -23,6 +23,17 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     result.iterations = r.iterations;
     result.x = reduced.Expand(r.x);
     result.objective = problem.Objective(result.x);
+    if (r.lower_cost_rate.size() > 0) {
+      // The reduced problem's objective differs from the original's by rounding only
+      // (its constant holds the fixed part); rates of fixed variables are 0.
+      result.cost_floor = std::min(result.objective, r.cost_floor - 1e-9 * (1.0 + std::abs(r.cost_floor)));
+      result.lower_cost_rate = Eigen::VectorXd::Zero(problem.num_variables());
+      result.upper_cost_rate = Eigen::VectorXd::Zero(problem.num_variables());
+      for (size_t k = 0; k < reduced.free_index.size(); ++k) {
+        result.lower_cost_rate(reduced.free_index[k]) = r.lower_cost_rate(static_cast<Eigen::Index>(k));
+        result.upper_cost_rate(reduced.free_index[k]) = r.upper_cost_rate(static_cast<Eigen::Index>(k));
+      }
+    }
     return result;
   }
 

@@ -13,7 +13,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
                      "node_selection", "branching", "rounding_frequency", "relaxation_solver",
                      "bound_propagation", "rounding_heuristic", "plunge_fraction", "reliability",
-                     "strong_branching_candidates", "strong_branching_lookahead", "threads", "clip_yaw_to_reach"});
+                     "strong_branching_candidates", "strong_branching_lookahead", "threads", "clip_yaw_to_reach",
+                     "reduced_cost_fixing"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.threads = OptionalInt(node, ctx, "threads", 1, 64).value_or(o.threads);
@@ -61,6 +62,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   b.relative_gap = OptionalDouble(node, ctx, "relative_gap", 0, 1).value_or(b.relative_gap);
   b.rounding_frequency = OptionalInt(node, ctx, "rounding_frequency", 0, 1000000).value_or(b.rounding_frequency);
   b.bound_propagation = OptionalBool(node, ctx, "bound_propagation").value_or(b.bound_propagation);
+  b.reduced_cost_fixing = OptionalBool(node, ctx, "reduced_cost_fixing").value_or(b.reduced_cost_fixing);
   b.rounding_heuristic = OptionalBool(node, ctx, "rounding_heuristic").value_or(b.rounding_heuristic);
   b.plunge_fraction = OptionalDouble(node, ctx, "plunge_fraction", 0, 1).value_or(b.plunge_fraction);
   b.reliability = OptionalInt(node, ctx, "reliability", 0, 1000).value_or(b.reliability);

@@ -21,6 +21,13 @@ struct RelaxationResult {
   Eigen::VectorXd x;
   double objective = 0.0;  // 0.5 x'Qx + c'x + constant at x
   int iterations = 0;
+  // Optional, from the duals of the variable bounds (reduced costs): every point of the
+  // node's box that meets the rows costs at least
+  //   cost_floor + sum_j lower_cost_rate(j) (x_j - lower_j) + upper_cost_rate(j) (upper_j - x_j),
+  // with cost_floor <= objective and the rates >= 0. The branch-and-bound uses it to
+  // rule out integer values that cannot beat the incumbent. Empty rates: not given.
+  double cost_floor = -kInfinity;
+  Eigen::VectorXd lower_cost_rate, upper_cost_rate;
 };
 
 class RelaxationSolver {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "planner/bound_propagation.h"
 #include "planner/fixed_variable_reduction.h"
 #include "planner/ipm_relaxation_solver.h"
@@ -124,6 +126,44 @@ TEST(InteriorPointQp, RowsTheBoxAlreadyKeepsAreLeftOut) {
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
   EXPECT_NEAR(r.x(y), 1.5, 1e-6);
   EXPECT_NEAR(r.objective, 0.25, 1e-6);
+}
+
+TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
+  // min (a - 0.2)^2 + 3 (b - 0.9)^2 - 2 c  s.t.  a + b + c <= 1.6, a - b >= -0.5,
+  // a, b, c in [0, 1]. The relaxation's certificate must bound the objective from below
+  // at every point of the box that meets the rows: checked on 20000 sampled points.
+  MiqpBuilder bld;
+  const int a = bld.AddVariable("a", 0, 1, false), b = bld.AddVariable("b", 0, 1, false),
+            c = bld.AddVariable("c", 0, 1, false);
+  bld.AddRow("sum", LinExpr::Var(a) + LinExpr::Var(b) + LinExpr::Var(c), -kInfinity, 1.6);
+  bld.AddRow("diff", LinExpr::Var(a) - LinExpr::Var(b), -0.5, kInfinity);
+  bld.AddSquaredCost(LinExpr::Var(a) - LinExpr::Constant(0.2), 1.0);
+  bld.AddSquaredCost(LinExpr::Var(b) - LinExpr::Constant(0.9), 3.0);
+  bld.AddLinearCost(LinExpr::Var(c, -2.0));
+  const Miqp p = bld.Build();
+  const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, p.var_lower, p.var_upper, nullptr);
+  ASSERT_EQ(r.status, RelaxationStatus::kSolved);
+  ASSERT_EQ(r.lower_cost_rate.size(), 3);
+  ASSERT_EQ(r.upper_cost_rate.size(), 3);
+  EXPECT_LE(r.cost_floor, r.objective);
+  EXPECT_GT(r.cost_floor, r.objective - 1e-6);
+  // c sits at its upper bound with a positive rate: lowering it must cost.
+  EXPECT_GT(r.upper_cost_rate(c), 0.1);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int checked = 0;
+  for (int k = 0; k < 20000; ++k) {
+    Eigen::VectorXd x(3);
+    x << unit(rng), unit(rng), unit(rng);
+    if (p.MaxViolation(x) > 0.0) continue;
+    ++checked;
+    double floor = r.cost_floor;
+    for (int j = 0; j < 3; ++j) {
+      floor += r.lower_cost_rate(j) * (x(j) - p.var_lower(j)) + r.upper_cost_rate(j) * (p.var_upper(j) - x(j));
+    }
+    ASSERT_GE(p.Objective(x), floor - 1e-9) << x.transpose();
+  }
+  EXPECT_GT(checked, 1000);
 }
 
 TEST(BoundPropagation, TightensAndDetectsInfeasibility) {
