@@ -1,5 +1,7 @@
 #include "planner/footstep_planner.h"
 
+#include "planner/relax_and_fix.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -235,8 +237,19 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     // Each window gets its share of the remaining time, and at least half of it when
     // few windows are left (later windows are usually shorter, near the goal).
     bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time);
-    const RoundingHeuristic rounding = [&formulation](const Eigen::VectorXd& relaxed) {
-      return formulation.RoundAlongPlan(relaxed);
+    bool seeded = !options.relax_and_fix ||
+                  formulation.num_blocks() - 1 < options.relax_and_fix_min_configurations;
+    const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
+      std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
+      if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
+        seeded = true;
+        RelaxAndFixOptions rf;
+        rf.stage = bnb;
+        rf.time_limit_s = options.relax_and_fix_time_share * bnb.time_limit_s;
+        const RelaxAndFixResult r = RelaxAndFix(formulation, solvers, rf);
+        if (r.x) proposals.push_back(*r.x);
+      }
+      return proposals;
     };
     const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
     plan.nodes += result.nodes;

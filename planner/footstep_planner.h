@@ -44,6 +44,13 @@ struct PlannerOptions {
   // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
   // are solved this many at a time. Callers make the solvers (MakeRelaxationSolvers).
   int threads = 1;
+  // Seed each window's search with a relax-and-fix plan (planner/relax_and_fix.h),
+  // given at most this share of the window's time, when the window has at least this
+  // many configurations of new steps (on fewer, relax-and-fix is nearly the search
+  // itself: the 2-configuration default windows and 12-step MIQPs solve faster without).
+  bool relax_and_fix = true;
+  double relax_and_fix_time_share = 0.25;
+  int relax_and_fix_min_configurations = 4;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };

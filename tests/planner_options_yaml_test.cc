@@ -40,6 +40,20 @@ TEST(PlannerOptionsYaml, SearchOptionsReachTheBranchAndBound) {
   EXPECT_DOUBLE_EQ(o.branch_and_bound.plunge_fraction, 0.25);
 }
 
+TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {
+  const PlannerOptions o = Read(
+      "clip_yaw_to_reach: false\nreduced_cost_fixing: false\nrelax_and_fix: false\n"
+      "relax_and_fix_time_share: 0.5\nrelax_and_fix_min_configurations: 6\n");
+  EXPECT_FALSE(o.formulation.clip_yaw_to_reach);
+  EXPECT_FALSE(o.branch_and_bound.reduced_cost_fixing);
+  EXPECT_FALSE(o.relax_and_fix);
+  EXPECT_DOUBLE_EQ(o.relax_and_fix_time_share, 0.5);
+  EXPECT_EQ(o.relax_and_fix_min_configurations, 6);
+  EXPECT_NE(ErrorOf("relax_and_fix_time_share: 0\n").find("relax_and_fix_time_share"), std::string::npos);
+  EXPECT_NE(ErrorOf("relax_and_fix_min_configurations: 1\n").find("relax_and_fix_min_configurations"),
+            std::string::npos);
+}
+
 TEST(PlannerOptionsYaml, DefaultsStayWhenAbsent) {
   const PlannerOptions defaults;
   const PlannerOptions o = Read("max_steps: 10\n");

@@ -10,6 +10,7 @@
 #include "planner/footstep_planner.h"
 #include "planner/miqp_formulation.h"
 #include "planner/plan_validation.h"
+#include "planner/relax_and_fix.h"
 #include "planner/relaxation_solver_factory.h"
 #include "planner/robot_loader.h"
 #include "planner/scenario_yaml.h"
@@ -123,6 +124,37 @@ TEST(ScenarioPlanFormulation, YawSegmentsOutOfReachLeaveTheOptimumAlone) {
   }
   EXPECT_LT(integers[1], integers[0]);
   EXPECT_NEAR(objective[1], objective[0], 2 * bnb.relative_gap * std::abs(objective[0]));
+}
+
+TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
+  // The hexapod stones with 24 new steps (Table I): relax-and-fix fixes the four
+  // configurations one at a time. Its plan must meet every row and bound with integral
+  // choices and lie within 1 % of the optimum the branch-and-bound proves (measured: 0 %).
+  const Scenario scenario =
+      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_stepping_stones_45.yaml");
+  const RobotModel robot = LoadRobot(scenario.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
+  PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  request.window_steps = 24;
+  const MiqpFormulation formulation(FirstWindowProblem(robot, regions, request, scenario.options),
+                                    scenario.options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+  RelaxAndFixOptions rf;
+  rf.stage = scenario.options.branch_and_bound;
+  rf.time_limit_s = 300.0;
+  const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_TRUE(r.x.has_value());
+  EXPECT_EQ(r.stages, formulation.num_blocks() - 1);
+  const Miqp& m = formulation.miqp();
+  EXPECT_LE(m.MaxViolation(*r.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
+
+  BranchAndBoundOptions bnb = scenario.options.branch_and_bound;
+  bnb.time_limit_s = 300.0;
+  const BranchAndBoundResult proof = SolveBranchAndBound(m, solvers.workers(), bnb);
+  ASSERT_EQ(ToString(proof.status), "optimal");
+  EXPECT_GE(m.Objective(*r.x), proof.bound - 1e-6);
+  EXPECT_LE(m.Objective(*r.x), proof.objective + 0.01 * std::abs(proof.objective));
 }
 
 TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {

@@ -1,0 +1,93 @@
+#include "planner/relax_and_fix.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "planner/check.h"
+
+namespace mfp {
+namespace {
+
+// The integer variables of each configuration (block): its yaw segments, and the region
+// and trim binaries of its steps.
+std::vector<std::vector<int>> IntegersByBlock(const MiqpFormulation& f) {
+  const FootstepVariables& v = f.vars();
+  std::vector<std::vector<int>> blocks(f.num_blocks());
+  for (int blk = 0; blk < f.num_blocks(); ++blk) {
+    for (int s : v.segment[blk]) blocks[blk].push_back(s);
+  }
+  for (int i = f.num_legs(); i < f.num_steps(); ++i) {
+    std::vector<int>& block = blocks[f.BlockOfStep(i)];
+    for (int h : v.region[i]) {
+      if (h >= 0) block.push_back(h);
+    }
+    if (v.trim[i] >= 0) block.push_back(v.trim[i]);
+  }
+  return blocks;
+}
+
+}  // namespace
+
+RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
+                              const RelaxAndFixOptions& options) {
+  MFP_CHECK(options.lookahead_blocks >= 0 && options.nodes_per_stage >= 1);
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  const Miqp& full = formulation.miqp();
+  const std::vector<std::vector<int>> blocks = IntegersByBlock(formulation);
+  const int B = formulation.num_blocks();
+  const RoundingHeuristic rounding = [&formulation](const Eigen::VectorXd& relaxed) {
+    return formulation.RoundAlongPlan(relaxed);
+  };
+
+  RelaxAndFixResult result;
+  Miqp stage = full;
+  std::vector<int> block_of(full.num_variables(), -1);
+  for (int blk = 0; blk < B; ++blk) {
+    for (int j : blocks[blk]) block_of[j] = blk;
+  }
+  Eigen::VectorXd x;
+  // Stages for the configurations that have integers; the last stage takes all the rest.
+  for (int blk = 1; blk < B; ++blk) {
+    const double remaining = options.time_limit_s - elapsed();
+    if (remaining <= 0.0) return result;
+    const int last_integer_block = blk + options.lookahead_blocks;
+    const bool final_stage = last_integer_block >= B - 1;
+    for (int j = 0; j < full.num_variables(); ++j) {
+      if (!full.is_integer[j]) continue;
+      stage.is_integer[j] = final_stage || block_of[j] <= last_integer_block;
+    }
+    // Branch only on groups whose members are integer in this stage.
+    stage.sos1_groups.clear();
+    for (const std::vector<int>& group : full.sos1_groups) {
+      if (stage.is_integer[group.front()]) stage.sos1_groups.push_back(group);
+    }
+    BranchAndBoundOptions bnb = options.stage;
+    bnb.max_nodes = options.nodes_per_stage;
+    bnb.relative_gap = options.stage_relative_gap;
+    bnb.time_limit_s = final_stage ? remaining : remaining / std::max(1, B - blk);
+    bnb.on_incumbent = nullptr;
+    const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
+    ++result.stages;
+    result.nodes += r.nodes;
+    result.relaxations += r.relaxations;
+    if (r.x.size() == 0) return result;  // earlier choices left no plan, or out of time
+    x = r.x;
+    if (final_stage) break;
+    for (int j : blocks[blk]) {  // fix this configuration's choices
+      stage.var_lower(j) = stage.var_upper(j) = std::round(x(j));
+    }
+  }
+  if (x.size() == 0) return result;
+  for (int j = 0; j < full.num_variables(); ++j) {
+    if (full.is_integer[j]) x(j) = std::round(x(j));
+  }
+  if (full.MaxViolation(x) > options.stage.feasibility_tolerance) return result;
+  result.x = x;
+  return result;
+}
+
+}  // namespace mfp

@@ -1,0 +1,45 @@
+#pragma once
+// Relax-and-fix along the plan: a primal heuristic for the footstep MIQP that decides
+// the integers configuration by configuration. Stage b solves the whole MIQP by a small
+// branch-and-bound in which only the integers of configurations b .. b + lookahead are
+// integer (those of earlier configurations are fixed to the earlier stages' choices,
+// later ones are relaxed), then fixes configuration b's choices. The last stage leaves
+// no integer relaxed, so its solution is a feasible plan of the whole MIQP.
+//
+// Every stage sees the whole horizon through the relaxation of the later steps, so the
+// early choices are made for the goal, not greedily; each stage is about as hard as
+// a 2-configuration window. Used to seed the search with a good incumbent.
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "planner/branch_and_bound.h"
+#include "planner/miqp_formulation.h"
+#include "planner/relaxation_solver.h"
+
+namespace mfp {
+
+// Defaults measured with the Table I instances (README): lookahead 0 gave the best plans
+// in the least time (lookahead 1 and 2 made each stage a bigger search that ended at its
+// node limit with worse choices), and a stage gap of 0.5 % the same plans as 1e-4 sooner.
+struct RelaxAndFixOptions {
+  int lookahead_blocks = 0;          // configurations kept integer beyond the one being fixed
+  int nodes_per_stage = 100;         // branch-and-bound nodes per stage
+  double stage_relative_gap = 0.005;  // a stage's search stops this close to its optimum
+  double time_limit_s = 1.0;         // whole heuristic [s]
+  BranchAndBoundOptions stage;       // other search options of each stage
+};
+
+struct RelaxAndFixResult {
+  std::optional<Eigen::VectorXd> x;  // a feasible point of formulation.miqp(), if found
+  int stages = 0;
+  int nodes = 0;
+  int relaxations = 0;
+};
+
+// Each stage's search runs with the given workers (SolveBranchAndBound); none of them may
+// be in use elsewhere meanwhile.
+RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
+                              const RelaxAndFixOptions& options);
+
+}  // namespace mfp
