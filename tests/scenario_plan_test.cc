@@ -27,6 +27,23 @@ std::vector<std::string> ScenarioFiles() {
   return files;
 }
 
+// A scenario of config/scenarios/ loaded with its robot, regions and request.
+struct Course {
+  Scenario scenario;
+  RobotModel robot;
+  std::vector<ConvexRegion> regions;
+  PlanRequest request;
+};
+
+Course LoadCourse(const std::string& file_name) {
+  Course c;
+  c.scenario = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/" + file_name);
+  c.robot = LoadRobot(c.scenario.robot_path);
+  c.regions = ScenarioRegions(c.scenario, c.robot);
+  c.request = ScenarioRequest(c.scenario, c.robot, c.regions);
+  return c;
+}
+
 class ScenarioPlan : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ScenarioPlan, ReachesTheGoalAndEveryConstraintHolds) {
@@ -69,54 +86,46 @@ INSTANTIATE_TEST_SUITE_P(AllScenarios, ScenarioPlan, ::testing::ValuesIn(Scenari
 TEST(ScenarioPlanWorkers, TwoWorkersProveTheSameFirstWindowOptimum) {
   // The first window's MIQP of the hexapod stones, solved by one and by two workers
   // (both to the default gap): the same optimum, and the whole plan still valid.
-  const Scenario scenario =
-      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_stepping_stones_45.yaml");
-  const RobotModel robot = LoadRobot(scenario.robot_path);
-  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
-  PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  request.time_limit_s = 300.0;
-  const MiqpFormulation formulation(FirstWindowProblem(robot, regions, request, scenario.options),
-                                    scenario.options.formulation);
-  BranchAndBoundOptions bnb = scenario.options.branch_and_bound;
+  Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
+  c.request.time_limit_s = 300.0;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
   bnb.time_limit_s = 300.0;
   double objective[2];
   for (int threads = 1; threads <= 2; ++threads) {
-    const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, threads);
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, threads);
     const BranchAndBoundResult r = SolveBranchAndBound(formulation.miqp(), solvers.workers(), bnb);
     ASSERT_EQ(ToString(r.status), "optimal") << threads << " workers";
     objective[threads - 1] = r.objective;
   }
   EXPECT_NEAR(objective[1], objective[0], 2 * bnb.relative_gap * std::abs(objective[0]));
 
-  PlannerOptions options = scenario.options;
+  PlannerOptions options = c.scenario.options;
   options.threads = 2;
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.relaxation_solver, options.threads);
-  const Plan plan = PlanFootsteps(robot, regions, request, options, solvers.workers());
+  const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, options, solvers.workers());
   ASSERT_TRUE(plan.reaches_goal) << plan.message;
   ValidationTolerances tol;
-  tol.rotation_m = RotationTolerance(robot, options.formulation.yaw_segment_rad);
-  const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad, options.goal_tolerance_m,
+  tol.rotation_m = RotationTolerance(c.robot, options.formulation.yaw_segment_rad);
+  const GoalSpec goal{c.scenario.goal.x_m, c.scenario.goal.y_m, c.scenario.goal.yaw_rad, options.goal_tolerance_m,
                       options.goal_yaw_tolerance_rad};
-  for (const std::string& v : ValidatePlan(robot, regions, plan, goal, tol)) ADD_FAILURE() << v;
+  for (const std::string& v : ValidatePlan(c.robot, c.regions, plan, goal, tol)) ADD_FAILURE() << v;
 }
 
 TEST(ScenarioPlanFormulation, YawSegmentsOutOfReachLeaveTheOptimumAlone) {
   // The hexapod turns 45 degrees: its first configurations cannot reach the whole yaw
   // range, so clip_yaw_to_reach leaves out segments; the optimum must not move.
-  const Scenario scenario =
-      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_stepping_stones_45.yaml");
-  const RobotModel robot = LoadRobot(scenario.robot_path);
-  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
-  PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  BranchAndBoundOptions bnb = scenario.options.branch_and_bound;
+  Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
+  BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
   bnb.time_limit_s = 300.0;
-  const auto solver = MakeRelaxationSolver(scenario.options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(c.scenario.options.relaxation_solver);
   double objective[2];
   int integers[2];
   for (int clip = 0; clip < 2; ++clip) {
-    FormulationOptions options = scenario.options.formulation;
+    FormulationOptions options = c.scenario.options.formulation;
     options.clip_yaw_to_reach = clip == 1;
-    const MiqpFormulation formulation(FirstWindowProblem(robot, regions, request, scenario.options), options);
+    const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options), options);
     const BranchAndBoundResult r = SolveBranchAndBound(formulation.miqp(), *solver, bnb);
     ASSERT_EQ(ToString(r.status), "optimal") << "clip " << clip;
     objective[clip] = r.objective;
@@ -130,17 +139,13 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   // The hexapod stones with 24 new steps (Table I): relax-and-fix fixes the four
   // configurations one at a time. Its plan must meet every row and bound with integral
   // choices and lie within 1 % of the optimum the branch-and-bound proves (measured: 0 %).
-  const Scenario scenario =
-      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_stepping_stones_45.yaml");
-  const RobotModel robot = LoadRobot(scenario.robot_path);
-  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
-  PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  request.window_steps = 24;
-  const MiqpFormulation formulation(FirstWindowProblem(robot, regions, request, scenario.options),
-                                    scenario.options.formulation);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+  Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
+  c.request.window_steps = 24;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 1);
   RelaxAndFixOptions rf;
-  rf.stage = scenario.options.branch_and_bound;
+  rf.stage = c.scenario.options.branch_and_bound;
   rf.time_limit_s = 300.0;
   const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), rf);
   ASSERT_TRUE(r.x.has_value());
@@ -149,7 +154,7 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   EXPECT_LE(m.MaxViolation(*r.x), 1e-5);
   EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
 
-  BranchAndBoundOptions bnb = scenario.options.branch_and_bound;
+  BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
   bnb.time_limit_s = 300.0;
   const BranchAndBoundResult proof = SolveBranchAndBound(m, solvers.workers(), bnb);
   ASSERT_EQ(ToString(proof.status), "optimal");
@@ -158,23 +163,19 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
 }
 
 TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
-  const Scenario scenario =
-      LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/littledog_stepping_stones_45.yaml");
-  const RobotModel robot = LoadRobot(scenario.robot_path);
-  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
-  PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  request.time_limit_s = 300.0;
-  request.max_windows = 1;
-  const auto solver = MakeRelaxationSolver(scenario.options.relaxation_solver);
-  const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  Course c = LoadCourse("littledog_stepping_stones_45.yaml");
+  c.request.time_limit_s = 300.0;
+  c.request.max_windows = 1;
+  const auto solver = MakeRelaxationSolver(c.scenario.options.relaxation_solver);
+  const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, c.scenario.options, *solver);
   ASSERT_TRUE(HasPlan(plan.status)) << plan.message;
   EXPECT_EQ(plan.windows, 1);
   EXPECT_FALSE(plan.reaches_goal);
   EXPECT_NE(plan.message.find("1 window"), std::string::npos) << plan.message;
-  EXPECT_LE(static_cast<int>(plan.footsteps.size()) - robot.num_legs(), 2 * robot.num_legs());
+  EXPECT_LE(static_cast<int>(plan.footsteps.size()) - c.robot.num_legs(), 2 * c.robot.num_legs());
 
-  request.max_windows = -1;
-  const Plan rejected = PlanFootsteps(robot, regions, request, scenario.options, *solver);
+  c.request.max_windows = -1;
+  const Plan rejected = PlanFootsteps(c.robot, c.regions, c.request, c.scenario.options, *solver);
   EXPECT_EQ(rejected.status, SolveStatus::kInvalidRequest);
   EXPECT_NE(rejected.message.find("max_windows"), std::string::npos) << rejected.message;
 }
