@@ -1,13 +1,12 @@
 #include "planner/footstep_planner.h"
 
-#include "planner/relax_and_fix.h"
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "planner/check.h"
+#include "planner/relax_and_fix.h"
 
 namespace mfp {
 namespace {

@@ -236,7 +236,9 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       result.objective = objective + p.constant;
       const double violation = f.elastic ? w.tail(f.elastic).maxCoeff() : 0.0;
       result.status = violation > opt.infeasible_violation ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
-      if (result.status == RelaxationStatus::kSolved) SetCostRates(f, p.constant, lower, upper, w, s, z, r_d, r_p, &result);
+      if (result.status == RelaxationStatus::kSolved) {
+        SetCostRates(f, p.constant, lower, upper, w, s, z, r_d, r_p, &result);
+      }
       return result;
     }
     const Eigen::VectorXd sigma = z.cwiseQuotient(s);
