@@ -155,16 +155,18 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                          scenario.options.goal_tolerance_m, scenario.options.goal_yaw_tolerance_rad},
                         tol)
           .size());
-  if (measure_fixed_qp && first_window_x.size() > 0) {
+  // The first window's MIQP: its fixed-assignment QP time and its export.
+  const bool fixed_qp = measure_fixed_qp && first_window_x.size() > 0;
+  if (fixed_qp || !instances_dir.empty()) {
     const mfp::MiqpFormulation formulation(mfp::FirstWindowProblem(robot, regions, request, scenario.options),
                                            scenario.options.formulation);
-    row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.relaxation_solver);
-  }
-  if (!instances_dir.empty()) {
-    const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, scenario.options);
-    const mfp::MiqpFormulation formulation(problem, scenario.options.formulation);
-    mfp::WriteMpsFile(formulation.miqp(), name, instances_dir + "/" + name + ".mps");
-    std::ofstream(instances_dir + "/" + name + ".json") << mfp::PlanToJson(plan, robot, regions).dump(1) << "\n";
+    if (fixed_qp) {
+      row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.relaxation_solver);
+    }
+    if (!instances_dir.empty()) {
+      mfp::WriteMpsFile(formulation.miqp(), name, instances_dir + "/" + name + ".mps");
+      std::ofstream(instances_dir + "/" + name + ".json") << mfp::PlanToJson(plan, robot, regions).dump(1) << "\n";
+    }
   }
   return row;
 }

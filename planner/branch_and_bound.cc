@@ -186,8 +186,7 @@ class Search {
   void FixByReducedCosts(const RelaxationResult& rel, Eigen::VectorXd* lower, Eigen::VectorXd* upper,
                          std::vector<BoundChange>* fixings) {
     if (rel.lower_cost_rate.size() != p_.num_variables() || !std::isfinite(rel.cost_floor)) return;
-    const double tol = std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
-    const double room = result_.objective - tol - rel.cost_floor;  // objective increase still allowed
+    const double room = result_.objective - GapTolerance() - rel.cost_floor;  // objective increase still allowed
     if (room < 0.0) return;
     for (int j = 0; j < p_.num_variables(); ++j) {
       if (!p_.is_integer[j] || (*lower)(j) >= (*upper)(j)) continue;
@@ -220,9 +219,11 @@ class Search {
   bool HasIncumbent() const { return result_.x.size() > 0; }
 
   // True when a subtree with this bound may still beat the incumbent by more than the gap.
-  bool Improves(double bound) const {
-    const double tol = std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
-    return bound < result_.objective - tol;
+  bool Improves(double bound) const { return bound < result_.objective - GapTolerance(); }
+
+  // How much better than the incumbent a subtree must be able to get to be explored.
+  double GapTolerance() const {
+    return std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
   }
 
   // A subtree dropped because it cannot beat the incumbent by more than the gap still

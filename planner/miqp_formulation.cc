@@ -182,8 +182,6 @@ void MiqpFormulation::Build() {
     YawRange& r = range[blk];
     r.theta_lo = bp.front();
     r.theta_hi = bp.back();
-    // theta itself is bounded by the yaw it can reach (the big-M rows use the segments'
-    // span, which contains it).
     for (double psi : bp) {
       r.s_lo = std::min(r.s_lo, std::sin(psi));
       r.s_hi = std::max(r.s_hi, std::sin(psi));
@@ -198,6 +196,8 @@ void MiqpFormulation::Build() {
   vars_.segment_theta.assign(B, {});
   for (int blk = 1; blk < B; ++blk) {
     const YawRange& r = range[blk];
+    // theta itself is bounded by the yaw it can reach; the big-M rows use the segments'
+    // span, which contains that range.
     vars_.theta[blk] = b.AddVariable(StepName("theta", blk), yaw_reach_[blk].first, yaw_reach_[blk].second, false);
     vars_.s[blk] = b.AddVariable(StepName("sin", blk), r.s_lo, r.s_hi, false);
     vars_.c[blk] = b.AddVariable(StepName("cos", blk), r.c_lo, r.c_hi, false);
