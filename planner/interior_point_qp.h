@@ -16,7 +16,7 @@
 namespace mfp {
 
 struct InteriorPointOptions {
-  double tolerance = 1e-9;          // relative residual and complementarity at convergence
+  double tolerance = 1e-8;          // relative residual and complementarity at convergence
   double acceptable_dual = 1e-3;    // relative dual residual accepted once complementarity is tiny
   int max_iterations = 80;
   double elastic_penalty = 1e6;     // cost per unit of row violation; far above any dual here
