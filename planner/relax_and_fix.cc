@@ -28,11 +28,43 @@ std::vector<std::vector<int>> IntegersByBlock(const MiqpFormulation& f) {
   return blocks;
 }
 
+// Out of time before the last stage: the integers still open are rounded along the plan
+// from the latest stage's solution (earlier configurations keep their fixed values, which
+// that solution holds), and the best rounding whose QP is feasible becomes the plan. One
+// QP per proposal, so a short time limit still ends with a complete plan.
+std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formulation, const Eigen::VectorXd& x,
+                                                  RelaxationSolver& solver, double feasibility_tolerance,
+                                                  int* relaxations) {
+  const Miqp& full = formulation.miqp();
+  std::optional<Eigen::VectorXd> best;
+  double best_objective = kInfinity;
+  for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
+    Eigen::VectorXd lower = full.var_lower, upper = full.var_upper;
+    for (int j = 0; j < full.num_variables(); ++j) {
+      if (!full.is_integer[j]) continue;
+      lower(j) = upper(j) = std::clamp(std::round(proposal(j)), full.var_lower(j), full.var_upper(j));
+    }
+    RelaxationResult r = solver.Solve(full, lower, upper, &x);
+    ++*relaxations;
+    if (r.status != RelaxationStatus::kSolved) continue;
+    for (int j = 0; j < full.num_variables(); ++j) {
+      if (full.is_integer[j]) r.x(j) = lower(j);
+    }
+    if (full.MaxViolation(r.x) > feasibility_tolerance) continue;
+    const double objective = full.Objective(r.x);
+    if (objective < best_objective) {
+      best_objective = objective;
+      best = std::move(r.x);
+    }
+  }
+  return best;
+}
+
 }  // namespace
 
 RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
                               const RelaxAndFixOptions& options) {
-  MFP_CHECK(options.lookahead_blocks >= 0 && options.nodes_per_stage >= 1);
+  MFP_CHECK(options.lookahead_blocks >= 0 && options.nodes_per_stage >= 1 && options.max_searched_stages >= 0);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -50,10 +82,19 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     for (int j : blocks[blk]) block_of[j] = blk;
   }
   Eigen::VectorXd x;
+  const auto complete_by_rounding = [&] {
+    if (x.size() == 0) return;
+    result.x = CompleteByRounding(formulation, x, *solvers.front(), options.stage.feasibility_tolerance,
+                                  &result.relaxations);
+    result.completed_by_rounding = result.x.has_value();
+  };
   // Stages for the configurations that have integers; the last stage takes all the rest.
   for (int blk = 1; blk < B; ++blk) {
     const double remaining = options.time_limit_s - elapsed();
-    if (remaining <= 0.0) return result;
+    if (remaining <= 0.0 || (options.max_searched_stages > 0 && result.stages >= options.max_searched_stages)) {
+      complete_by_rounding();
+      return result;
+    }
     const int last_integer_block = blk + options.lookahead_blocks;
     const bool final_stage = last_integer_block >= B - 1;
     for (int j = 0; j < full.num_variables(); ++j) {
@@ -74,7 +115,10 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     ++result.stages;
     result.nodes += r.nodes;
     result.relaxations += r.relaxations;
-    if (r.x.size() == 0) return result;  // earlier choices left no plan, or out of time
+    if (r.x.size() == 0) {  // earlier choices left no plan, or the stage's limits came first
+      if (r.status != SolveStatus::kInfeasible) complete_by_rounding();
+      return result;
+    }
     x = r.x;
     if (final_stage) break;
     for (int j : blocks[blk]) {  // fix this configuration's choices

@@ -9,6 +9,10 @@
 // Every stage sees the whole horizon through the relaxation of the later steps, so the
 // early choices are made for the goal, not greedily; each stage is about as hard as
 // a 2-configuration window. Used to seed the search with a good incumbent.
+//
+// Anytime: when the time runs out before the last stage, the configurations still open
+// are rounded along the plan from the latest stage's solution, so a short budget ends
+// with a complete (if worse) plan rather than none.
 #include <Eigen/Core>
 #include <optional>
 #include <vector>
@@ -26,7 +30,8 @@ struct RelaxAndFixOptions {
   int lookahead_blocks = 0;          // configurations kept integer beyond the one being fixed
   int nodes_per_stage = 100;         // branch-and-bound nodes per stage
   double stage_relative_gap = 0.005;  // a stage's search stops this close to its optimum
-  double time_limit_s = 1.0;         // whole heuristic [s]
+  double time_limit_s = 1.0;         // whole heuristic [s]; past it, the rest is rounded
+  int max_searched_stages = 0;       // stages searched before the rest is rounded (0: all)
   BranchAndBoundOptions stage;       // other search options of each stage
 };
 
@@ -35,6 +40,9 @@ struct RelaxAndFixResult {
   int stages = 0;
   int nodes = 0;
   int relaxations = 0;
+  // The time ran out before the last stage: the configurations left were rounded along
+  // the plan from the last stage's solution instead of searched.
+  bool completed_by_rounding = false;
 };
 
 // Each stage's search runs with the given workers (SolveBranchAndBound); none of them may

@@ -160,6 +160,18 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   ASSERT_EQ(ToString(proof.status), "optimal");
   EXPECT_GE(m.Objective(*r.x), proof.bound - 1e-6);
   EXPECT_LE(m.Objective(*r.x), proof.objective + 0.01 * std::abs(proof.objective));
+
+  // Stopped after one stage (as when its time runs out), the configurations left are
+  // rounded: still a complete plan that meets every row, no better than the optimum.
+  rf.max_searched_stages = 1;
+  const RelaxAndFixResult partial = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_TRUE(partial.x.has_value());
+  EXPECT_TRUE(partial.completed_by_rounding);
+  EXPECT_FALSE(r.completed_by_rounding);
+  EXPECT_EQ(partial.stages, 1);
+  EXPECT_LE(m.MaxViolation(*partial.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*partial.x), 0.0);
+  EXPECT_GE(m.Objective(*partial.x), proof.bound - 1e-6);
 }
 
 TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
