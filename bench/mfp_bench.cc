@@ -37,8 +37,8 @@ struct Row {
   int relaxations = 0;
   double time_s = 0.0;
   double objective = 0.0;
-  double worst_objective = 0.0;  // the largest over the runs: differs from the first
-                                 // run's when a time limit cuts runs at different points
+  double worst_objective = 0.0;  // the largest over the runs (inf: a run without a plan): differs
+                                 // from the first run's when a time limit cuts runs at different points
   double gap = 0.0;
   std::string status;
   bool reaches_goal = false;
@@ -131,7 +131,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                                          }
                                        });
     times.push_back(run.solve_time_s);
-    if (mfp::HasPlan(run.status)) worst_objective = std::max(worst_objective, run.objective);
+    worst_objective = std::max(worst_objective, mfp::HasPlan(run.status) ? run.objective : mfp::kInfinity);
     if (k == 0) plan = std::move(run);
   }
   std::sort(times.begin(), times.end());

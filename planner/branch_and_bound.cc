@@ -481,6 +481,9 @@ class Search {
       if (p_.is_integer[j] && group_of_[j] < 0) simple(j) = std::round(x(j));
     }
     proposals.push_back(simple);
+    // A proposal may already be a plan (a heuristic's own, such as relax-and-fix's): it
+    // is kept even when no time is left for its QP.
+    for (const Eigen::VectorXd& proposal : proposals) OfferIncumbent(proposal);
     // Each proposal is a QP with the integers fixed: solved a round of workers at a time.
     const int workers = static_cast<int>(solvers_.size());
     for (size_t first = 0; first < proposals.size(); first += workers) {

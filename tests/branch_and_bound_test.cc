@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 #include <vector>
 
 #include "planner/ipm_relaxation_solver.h"
@@ -323,6 +325,24 @@ TEST(BranchAndBound, ExtraRoundingProposalsAreUsed) {
   };
   const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options, propose);
   EXPECT_GE(calls, 1);
+  EXPECT_NEAR(r.objective, -9.0, 1e-6);
+}
+
+TEST(BranchAndBound, AProposalThatIsAPlanIsKeptWhenNoTimeIsLeftForItsQp) {
+  // A heuristic that uses up the time (as relax-and-fix may) and returns a complete
+  // plan: the search keeps it although no time is left to solve the proposal's QP.
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.time_limit_s = 0.05;
+  const RoundingHeuristic slow = [](const Eigen::VectorXd& relaxed) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    Eigen::VectorXd x = relaxed;
+    x << 1, 1, 0;
+    return std::vector<Eigen::VectorXd>{x};
+  };
+  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options, slow);
+  EXPECT_EQ(r.status, SolveStatus::kTimeLimit);
+  ASSERT_EQ(r.x.size(), 3);
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
 }
 
