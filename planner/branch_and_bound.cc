@@ -112,9 +112,13 @@ class Search {
       return e;
     }
     const Eigen::VectorXd* warm = node.warm_start.size() ? &node.warm_start : nullptr;
-    e.relaxation = SolveWith(solver, e.lower, e.upper, warm);
+    // A node whose relaxation cannot beat the incumbent is pruned: its solve may stop as
+    // soon as that is proven.
+    const double cutoff = HasIncumbent() ? result_.objective - GapTolerance() : kInfinity;
+    e.relaxation = SolveWith(solver, e.lower, e.upper, warm, cutoff);
     ++e.solves;
-    if (e.relaxation.status != RelaxationStatus::kSolved && warm != nullptr) {
+    if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
+        warm != nullptr) {
       e.relaxation = SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
       ++e.solves;
     }
@@ -143,6 +147,13 @@ class Search {
     const RelaxationResult& rel = e.relaxation;
     if (rel.status == RelaxationStatus::kInfeasible) {
       if (is_root) root_infeasible_ = true;
+      return;
+    }
+    if (rel.status == RelaxationStatus::kCutoff) {  // proven not to beat the incumbent
+      ++result_.early_cutoffs;
+      const double bound = std::max(rel.objective, node.parent_bound);
+      if (is_root) result_.bound = result_.root_bound = bound;
+      NoteGapPrune(bound);
       return;
     }
     if (rel.status != RelaxationStatus::kSolved) {
@@ -231,8 +242,9 @@ class Search {
   void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
 
   RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                             const Eigen::VectorXd* warm) const {
+                             const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
     solver.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
+    if (opt_.early_cutoff) solver.SetCutoff(cutoff);
     return solver.Solve(p_, lower, upper, warm);
   }
 

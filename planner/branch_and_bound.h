@@ -52,6 +52,9 @@ struct BranchAndBoundOptions {
   // grows away from a bound (RelaxationResult::cost_floor and rates), integer values
   // that cannot beat the incumbent are ruled out for the node's subtree.
   bool reduced_cost_fixing = true;
+  // A node's relaxation may stop as soon as its solver proves that it cannot beat the
+  // incumbent (RelaxationSolver::SetCutoff).
+  bool early_cutoff = true;
   // Progress for logs: called with the result so far (incumbent objective, a valid bound,
   // gap, nodes, relaxations, elapsed time in solve_time_s; x left empty) each time the
   // incumbent improves.
@@ -70,6 +73,7 @@ struct BranchAndBoundResult {
   int propagation_prunes = 0;   // nodes found infeasible by bound propagation alone
   int strong_branching_solves = 0;  // relaxations solved to score branching candidates
   int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
+  int early_cutoffs = 0;            // node relaxations stopped once they could not beat the incumbent
   double solve_time_s = 0.0;
 };
 

@@ -21,6 +21,9 @@ struct InteriorPointOptions {
   int max_iterations = 80;
   double elastic_penalty = 1e6;     // cost per unit of row violation; far above any dual here
   double infeasible_violation = 1e-6;  // a row violated by more than this: infeasible
+  // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
+  // cost_floor) reaches this; infinite: solve to convergence.
+  double cutoff = kInfinity;
 };
 
 // Solves min 0.5 x'Qx + c'x + constant s.t. row bounds, lower <= x <= upper (all finite,

@@ -14,15 +14,20 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
                          const Eigen::VectorXd* warm_start) override {
     RelaxationResult result;
     ReducedQp reduced;
-    if (ReduceOrSettle(problem, lower, upper, options_.infeasible_violation, &reduced, &result)) return result;
+    InteriorPointOptions options = options_;
+    options.cutoff = cutoff_;
+    cutoff_ = kInfinity;  // the next solve only
+    if (ReduceOrSettle(problem, lower, upper, options.infeasible_violation, &reduced, &result)) return result;
     Eigen::VectorXd start;
     if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
     const RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,
-                                                    warm_start != nullptr ? &start : nullptr, options_);
+                                                    warm_start != nullptr ? &start : nullptr, options);
     result.status = r.status;
     result.iterations = r.iterations;
     result.x = reduced.Expand(r.x);
-    result.objective = problem.Objective(result.x);
+    // A cutoff's objective is its floor (the reduced problem's constant holds the fixed
+    // variables' part), not the value at its unfinished point.
+    result.objective = r.status == RelaxationStatus::kCutoff ? r.objective : problem.Objective(result.x);
     if (r.lower_cost_rate.size() > 0) {
       // The reduced problem's objective differs from the original's by rounding only
       // (its constant holds the fixed part); rates of fixed variables are 0.
@@ -38,10 +43,12 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
   }
 
   void SetTimeLimit(double) override {}  // one solve takes milliseconds
+  void SetCutoff(double objective) override { cutoff_ = objective; }
   std::string Name() const override { return "ipm"; }
 
  private:
   InteriorPointOptions options_;
+  double cutoff_ = kInfinity;
 };
 
 }  // namespace

@@ -14,7 +14,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "node_selection", "branching", "rounding_frequency", "relaxation_solver",
                      "bound_propagation", "rounding_heuristic", "plunge_fraction", "reliability",
                      "strong_branching_candidates", "strong_branching_lookahead", "threads", "clip_yaw_to_reach",
-                     "reduced_cost_fixing", "relax_and_fix", "relax_and_fix_time_share",
+                     "reduced_cost_fixing", "early_cutoff", "relax_and_fix", "relax_and_fix_time_share",
                      "relax_and_fix_min_configurations"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
@@ -70,6 +70,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   b.rounding_frequency = OptionalInt(node, ctx, "rounding_frequency", 0, 1000000).value_or(b.rounding_frequency);
   b.bound_propagation = OptionalBool(node, ctx, "bound_propagation").value_or(b.bound_propagation);
   b.reduced_cost_fixing = OptionalBool(node, ctx, "reduced_cost_fixing").value_or(b.reduced_cost_fixing);
+  b.early_cutoff = OptionalBool(node, ctx, "early_cutoff").value_or(b.early_cutoff);
   b.rounding_heuristic = OptionalBool(node, ctx, "rounding_heuristic").value_or(b.rounding_heuristic);
   b.plunge_fraction = OptionalDouble(node, ctx, "plunge_fraction", 0, 1).value_or(b.plunge_fraction);
   b.reliability = OptionalInt(node, ctx, "reliability", 0, 1000).value_or(b.reliability);

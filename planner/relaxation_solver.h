@@ -13,6 +13,8 @@ enum class RelaxationStatus {
   kSolved,          // converged to the tolerance: x is optimal for the relaxation
   kInfeasible,      // the relaxation has no feasible point
   kIterationLimit,  // stopped early; x may be inaccurate
+  kCutoff,          // stopped early on SetCutoff: objective is a proven floor of the
+                    // relaxation's optimum at or above the cutoff; x is not optimal
   kFailed,          // numerical failure
 };
 
@@ -39,6 +41,10 @@ class RelaxationSolver {
                                  const Eigen::VectorXd* warm_start) = 0;
   // Caps the time of the next solves (the branch-and-bound passes its remaining time).
   virtual void SetTimeLimit(double seconds) = 0;
+  // For the next Solve only: it may stop, with status kCutoff, once it proves that the
+  // relaxation's optimum is at least this objective (a node that cannot beat the
+  // incumbent need not be solved to the end). Solvers that cannot prove it ignore it.
+  virtual void SetCutoff(double /*objective*/) {}
   virtual std::string Name() const = 0;
 };
 

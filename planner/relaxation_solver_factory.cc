@@ -16,13 +16,20 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                          const Eigen::VectorXd* warm_start) override {
     RelaxationResult result = primary_->Solve(problem, lower, upper, warm_start);
-    if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible) return result;
+    if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible ||
+        result.status == RelaxationStatus::kCutoff) {
+      return result;
+    }
     return fallback_->Solve(problem, lower, upper, warm_start);
   }
 
   void SetTimeLimit(double seconds) override {
     primary_->SetTimeLimit(seconds);
     fallback_->SetTimeLimit(seconds);
+  }
+
+  void SetCutoff(double objective) override {  // the fallback solves to the end
+    primary_->SetCutoff(objective);
   }
 
   std::string Name() const override { return primary_->Name() + "+" + fallback_->Name(); }

@@ -302,6 +302,31 @@ TEST(BranchAndBound, ReducedCostFixingKeepsEveryOptimum) {
   EXPECT_GE(fixings, 1);
 }
 
+TEST(BranchAndBound, EarlyCutoffKeepsEveryOptimum) {
+  // The catalogue with node solves stopped as soon as they cannot beat the incumbent:
+  // the same optima and bounds, and some solve was stopped (else this proves nothing).
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  int cutoffs = 0;
+  for (const CatalogueEntry& entry : Catalogue()) {
+    SCOPED_TRACE(entry.name);
+    BranchAndBoundResult r[2];
+    for (int on = 0; on < 2; ++on) {
+      BranchAndBoundOptions options;
+      options.relative_gap = 1e-9;
+      options.absolute_gap = 1e-9;
+      options.early_cutoff = on == 1;
+      r[on] = SolveBranchAndBound(entry.problem, *solver, options);
+    }
+    EXPECT_EQ(r[0].early_cutoffs, 0);
+    cutoffs += r[1].early_cutoffs;
+    ASSERT_EQ(ToString(r[1].status), ToString(entry.status));
+    if (entry.status != SolveStatus::kOptimal) continue;
+    EXPECT_NEAR(r[1].objective, entry.objective, 1e-6);
+    EXPECT_NEAR(r[1].bound, entry.objective, 1e-6);
+  }
+  EXPECT_GE(cutoffs, 1);
+}
+
 TEST(BranchAndBound, TimeLimitWithoutIncumbentSaysSo) {
   const auto solver = MakeIpoptRelaxationSolver();
   BranchAndBoundOptions options;

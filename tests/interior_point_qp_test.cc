@@ -37,6 +37,30 @@ TEST(InteriorPointQp, ProjectionOntoAHalfPlane) {
   EXPECT_LT(r.iterations, 30);
 }
 
+TEST(InteriorPointQp, CutoffStopsOnceAProvenFloorReachesIt) {
+  const Miqp p = Projection();  // optimum 0.5
+  const RelaxationResult full = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, InteriorPointOptions());
+  InteriorPointOptions options;
+  options.cutoff = 0.4;  // below the optimum: provable before convergence
+  const RelaxationResult cut = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, options);
+  ASSERT_EQ(cut.status, RelaxationStatus::kCutoff);
+  EXPECT_GE(cut.objective, 0.4);
+  EXPECT_LE(cut.objective, 0.5 + 1e-12);  // a floor: never above the optimum
+  EXPECT_LT(cut.iterations, full.iterations);
+  options.cutoff = 0.5 + 1e-3;  // above the optimum: solved to the end
+  const RelaxationResult solved = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, options);
+  ASSERT_EQ(solved.status, RelaxationStatus::kSolved);
+  EXPECT_NEAR(solved.objective, 0.5, 1e-8);
+
+  // Through the solver interface the cutoff holds for the next solve only.
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
+  solver->SetCutoff(0.4);
+  EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).status, RelaxationStatus::kCutoff);
+  const RelaxationResult next = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  ASSERT_EQ(next.status, RelaxationStatus::kSolved);
+  EXPECT_NEAR(next.objective, 0.5, 1e-8);
+}
+
 TEST(InteriorPointQp, LinearProgramWithActiveBounds) {
   // min -x - 2y s.t. x + y <= 1.5, x, y in [0, 1]: y = 1, x = 0.5, objective -2.5.
   MiqpBuilder b;
