@@ -40,8 +40,9 @@ struct RelaxAndFixResult {
   int stages = 0;
   int nodes = 0;
   int relaxations = 0;
-  // The time ran out before the last stage: the configurations left were rounded along
-  // the plan from the last stage's solution instead of searched.
+  // Stopped before the last stage (time, max_searched_stages, or a stage's own limits):
+  // the configurations left were rounded along the plan from the last stage's solution
+  // instead of searched.
   bool completed_by_rounding = false;
 };
 
