@@ -1,7 +1,6 @@
 #include "planner/branch_and_bound.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -13,13 +12,6 @@
 
 namespace mfp {
 namespace {
-
-// Several workers: a round takes this many nodes per worker. Node solves vary (10 to 25
-// interior-point iterations), and a round waits for its slowest worker; with more nodes
-// per round the workers' loads even out. Measured with two workers (README): littledog
-// 24 20.5 s instead of 21.8 s, littledog 36 19357 nodes in 60 s instead of 15207,
-// hexapod 36 unchanged.
-constexpr int kNodesPerWorkerPerRound = 3;
 
 using Clock = std::chrono::steady_clock;
 constexpr int kPruned = -2;           // a branching choice that proved the node empty
@@ -73,12 +65,10 @@ class Search {
         hit_node_limit_ = true;
         break;
       }
-      // Up to round_size nodes: their relaxations are solved side by side, each worker
-      // taking the next unsolved one, then the nodes are processed one after the other in
-      // the order they were chosen (so a run is deterministic for a given worker count).
-      const int round_size = workers == 1 ? 1 : workers * kNodesPerWorkerPerRound;
+      // Up to one node per worker: their relaxations are solved side by side, then the
+      // nodes are processed one after the other in the order they were chosen.
       std::vector<Node> batch;
-      while (!open_.empty() && static_cast<int>(batch.size()) < round_size &&
+      while (!open_.empty() && static_cast<int>(batch.size()) < workers &&
              result_.nodes + static_cast<int>(batch.size()) < opt_.max_nodes) {
         Node node = PopNode();
         if (HasIncumbent() && !Improves(node.parent_bound)) {
@@ -90,11 +80,8 @@ class Search {
       }
       for (const Node& node : batch) in_flight_bound_ = std::min(in_flight_bound_, node.parent_bound);
       std::vector<NodeEvaluation> evaluations(batch.size());
-      std::atomic<int> next{0};
-      ForEachInParallel(std::min<int>(workers, static_cast<int>(batch.size())), [&](int worker) {
-        for (int k = next++; k < static_cast<int>(batch.size()); k = next++) {
-          evaluations[k] = Evaluate(batch[k], *solvers_[worker]);
-        }
+      ForEachInParallel(static_cast<int>(batch.size()), [&](int k) {
+        evaluations[k] = Evaluate(batch[k], *solvers_[k]);
       });
       for (size_t k = 0; k < batch.size(); ++k) Process(batch[k], std::move(evaluations[k]));
       in_flight_bound_ = kInfinity;  // every node of the round is settled or back in open_
