@@ -48,12 +48,6 @@ struct InequalityForm {
     out.tail(E) = -v.head(E) - v.segment(E, E);
     return out;
   }
-  // H w = (Q x, 0).
-  Eigen::VectorXd H(const Eigen::VectorXd& w) const {
-    Eigen::VectorXd out = Eigen::VectorXd::Zero(w.size());
-    out.head(n) = Q * w.head(n);
-    return out;
-  }
 };
 
 InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
@@ -152,18 +146,18 @@ double MaxStep(const Eigen::VectorXd& inverse_v, const Eigen::VectorXd& dv) {
 }
 
 // The floor below of any iterate (z >= 0): no point of the box that meets the rows costs
-// less. The derivation is SetCostRates's.
-double LagrangianFloor(const InequalityForm& f, double constant, const Eigen::VectorXd& lower,
+// less. The derivation is SetCostRates's. objective: 0.5 x'Qx + c'x + constant at w.
+double LagrangianFloor(const InequalityForm& f, double objective, const Eigen::VectorXd& lower,
                        const Eigen::VectorXd& upper, const Eigen::VectorXd& w, const Eigen::VectorXd& s,
                        const Eigen::VectorXd& z, const Eigen::VectorXd& r_d, const Eigen::VectorXd& r_p) {
   const int n = f.n, E = f.elastic;
-  const double f_el = 0.5 * w.head(n).dot(f.Q * w.head(n)) + f.q.dot(w);
+  const double elastic_cost = f.q.tail(E).dot(w.tail(E));
   double residual = 0.0;
   for (int j = 0; j < n; ++j) {
     residual += std::abs(r_d(j)) * std::max(upper(j) - w(j), w(j) - lower(j));
   }
   for (int k = 0; k < E; ++k) residual += std::abs(r_d(n + k)) * std::abs(w(n + k));
-  return f_el + constant + z.dot(r_p - s) - residual;
+  return objective + elastic_cost + z.dot(r_p - s) - residual;
 }
 
 // The reduced-cost certificate of RelaxationResult from the final iterate. With the
@@ -173,11 +167,12 @@ double LagrangianFloor(const InequalityForm& f, double constant, const Eigen::Ve
 // (the row terms left out are >= 0), and by convexity L(w) >= L(w*) + r_d'(w - w*),
 // where L(w*) = f_el(w*) + z'(r_p - s). The residual term is bounded over the box and
 // the elastic part (w_e = 0 against w*_e), so the floor holds for the inexact iterate.
-void SetCostRates(const InequalityForm& f, double constant, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+void SetCostRates(const InequalityForm& f, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                   const Eigen::VectorXd& w, const Eigen::VectorXd& s, const Eigen::VectorXd& z,
                   const Eigen::VectorXd& r_d, const Eigen::VectorXd& r_p, RelaxationResult* result) {
   const int n = f.n, E = f.elastic;
-  result->cost_floor = std::min(result->objective, LagrangianFloor(f, constant, lower, upper, w, s, z, r_d, r_p));
+  result->cost_floor =
+      std::min(result->objective, LagrangianFloor(f, result->objective, lower, upper, w, s, z, r_d, r_p));
   result->lower_cost_rate.resize(n);
   result->upper_cost_rate.resize(n);
   for (int j = 0; j < n; ++j) {
@@ -227,17 +222,21 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
 
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
     result.iterations = iter;
-    const Eigen::VectorXd r_d = f.H(w) + f.q + f.Ct(z);
+    // Q x once per iteration: the dual residual, the objective and the dual scale use it.
+    const Eigen::VectorXd qx = f.Q * w.head(n);
+    Eigen::VectorXd r_d = f.q;
+    r_d.head(n) += qx;
+    r_d += f.Ct(z);
     const Eigen::VectorXd r_p = f.C(w) + s - f.d;
     const double mu = s.dot(z) / m;
     const double dual_x = r_d.head(n).lpNorm<Eigen::Infinity>();
     const double dual_e = f.elastic ? r_d.tail(f.elastic).lpNorm<Eigen::Infinity>() : 0.0;
-    const double objective = 0.5 * w.head(n).dot(p.Q * w.head(n)) + p.c.dot(w.head(n));
+    const double objective = 0.5 * w.head(n).dot(qx) + p.c.dot(w.head(n));
     // Converged: primal feasible and complementary to the tolerance, and dual feasible
     // to the tolerance or, once complementarity is far below it, to an acceptable level.
     // (Normal equations lose digits in the duals of active bounds as sigma grows; the
     // objective has settled long before, which is what a bound needs.)
-    const double scale_x = scale_c + (p.Q * w.head(n)).lpNorm<Eigen::Infinity>();
+    const double scale_x = scale_c + qx.lpNorm<Eigen::Infinity>();
     const bool primal_ok = r_p.lpNorm<Eigen::Infinity>() <= opt.tolerance * scale_d;
     const bool complementary = mu <= opt.tolerance * (1.0 + std::abs(objective));
     const bool dual_ok = dual_x <= opt.tolerance * scale_x && dual_e <= opt.tolerance * opt.elastic_penalty;
@@ -250,14 +249,14 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       const double violation = f.elastic ? w.tail(f.elastic).maxCoeff() : 0.0;
       result.status = violation > opt.infeasible_violation ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
       if (result.status == RelaxationStatus::kSolved) {
-        SetCostRates(f, p.constant, lower, upper, w, s, z, r_d, r_p, &result);
+        SetCostRates(f, lower, upper, w, s, z, r_d, r_p, &result);
       }
       return result;
     }
     // A node that cannot beat the incumbent is settled as soon as the floor proves it,
     // often many iterations before convergence.
     if (opt.cutoff < kInfinity) {
-      const double floor = LagrangianFloor(f, p.constant, lower, upper, w, s, z, r_d, r_p);
+      const double floor = LagrangianFloor(f, objective + p.constant, lower, upper, w, s, z, r_d, r_p);
       if (floor >= opt.cutoff) {
         result.status = RelaxationStatus::kCutoff;
         result.x = w.head(n);
