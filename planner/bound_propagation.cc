@@ -35,6 +35,7 @@ PropagationResult PropagateBounds(const Miqp& p, Eigen::VectorXd* lower_ptr, Eig
   Eigen::VectorXd& upper = *upper_ptr;
   MFP_CHECK(lower.size() == p.num_variables() && upper.size() == p.num_variables());
   PropagationResult result;
+  constexpr double kTinyCoefficient = 1e-9;
   // A change smaller than this (relative to the variable's range) is not worth a pass.
   constexpr double kMinChange = 1e-6;
   for (int pass = 0; pass < max_passes; ++pass) {
@@ -56,7 +57,9 @@ PropagationResult PropagateBounds(const Miqp& p, Eigen::VectorXd* lower_ptr, Eig
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
         const int j = static_cast<int>(it.col());
         const double a = it.value(), l = lower(j), u = upper(j);
-        if (l == u) continue;
+        // A coefficient this small bounds nothing: dividing by it turns rounding noise
+        // of the activity into a bound at infinity, a false infeasibility.
+        if (l == u || std::abs(a) < kTinyCoefficient) continue;
         const double own_min = a > 0 ? a * l : a * u;
         const double own_max = a > 0 ? a * u : a * l;
         const double rest_min = amin.Without(own_min, -kInfinity);

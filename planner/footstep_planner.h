@@ -53,6 +53,9 @@ struct PlannerOptions {
   bool relax_and_fix = true;
   double relax_and_fix_time_share = 1.0;
   int relax_and_fix_min_configurations = 4;
+  // Relax-and-fix's stages see the steps they have not reached standing in the convex
+  // hull of their regions (RelaxAndFixOptions::hull_for_later_steps).
+  bool relax_and_fix_region_hull = true;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };

@@ -39,6 +39,7 @@ class MiqpBuilder {
   void SetBounds(int index, double lower, double upper);
 
   int num_variables() const { return static_cast<int>(lower_.size()); }
+  int num_rows() const { return static_cast<int>(row_names_.size()); }
   double lower(int index) const { return lower_[index]; }
   double upper(int index) const { return upper_[index]; }
 

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "planner/check.h"
 #include "planner/miqp_builder.h"
+#include "planner/region_union_hull.h"
 
 namespace mfp {
 namespace {
@@ -364,8 +366,10 @@ void MiqpFormulation::Build() {
     reach_xy[i] = (i - n < n ? 0.0 : reach_xy[i - n]) + max_move_xy(i);
     reach_z[i] = (i - n < n ? 0.0 : reach_z[i - n]) + robot.dz_max_m;
   }
+  region_rows_.assign(N, {-1, -1});
   for (int i = n; i < N; ++i) {
     const Eigen::Vector3d& start_foot = problem_.start_feet_world_m[(i - n) % n];
+    const int first_region_row = b.num_rows();
     LinExpr one_region;
     std::vector<int> members;
     for (int r = 0; r < R; ++r) {
@@ -431,6 +435,7 @@ void MiqpFormulation::Build() {
         b.AddRow(std::string("hull_sum_") + "xyz"[axis] + "_" + std::to_string(i), sum, 0.0, 0.0);
       }
     }
+    region_rows_[i] = {first_region_row, b.num_rows()};
   }
 
   // ---- objective ----
@@ -466,6 +471,58 @@ void MiqpFormulation::Build() {
       if (!members.empty()) miqp_.sos1_groups.push_back(members);
     }
   }
+}
+
+Miqp MiqpFormulation::WithRegionsRelaxedFrom(int first_step) const {
+  first_step = std::max(first_step, n_);
+  if (first_step >= num_steps_) return miqp_;
+  Miqp out = miqp_;
+  std::vector<bool> dropped(miqp_.num_rows(), false);
+  for (int i = first_step; i < num_steps_; ++i) {
+    for (int row = region_rows_[i].first; row < region_rows_[i].second; ++row) dropped[row] = true;
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<double> row_lo, row_hi;
+  out.row_names.clear();
+  for (int row = 0; row < miqp_.num_rows(); ++row) {
+    if (dropped[row]) continue;
+    const int out_row = static_cast<int>(row_lo.size());
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(miqp_.A, row); it; ++it) {
+      triplets.emplace_back(out_row, static_cast<int>(it.col()), it.value());
+    }
+    row_lo.push_back(miqp_.row_lower(row));
+    row_hi.push_back(miqp_.row_upper(row));
+    out.row_names.push_back(miqp_.row_names[row]);
+  }
+  for (int i = first_step; i < num_steps_; ++i) {
+    if (region_rows_[i].first < 0) continue;  // reaches no region: the model is infeasible anyway
+    std::vector<const ConvexRegion*> reachable;
+    for (size_t r = 0; r < problem_.regions.size(); ++r) {
+      const int h = vars_.region[i][r];
+      if (h < 0) continue;
+      reachable.push_back(&problem_.regions[r]);
+      out.var_lower(h) = out.var_upper(h) = 0.0;
+      if (!vars_.region_copy[i].empty() && vars_.region_copy[i][r] >= 0) {
+        for (int axis = 0; axis < 3; ++axis) out.var_lower(vars_.region_copy[i][r] + axis) = out.var_upper(vars_.region_copy[i][r] + axis) = 0.0;
+      }
+    }
+    const RegionUnionHull hull = HullOfRegions(reachable);
+    for (int k = 0; k < hull.A.rows(); ++k) {
+      const int out_row = static_cast<int>(row_lo.size());
+      if (hull.A(k, 0) != 0.0) triplets.emplace_back(out_row, vars_.x[i], hull.A(k, 0));
+      if (hull.A(k, 1) != 0.0) triplets.emplace_back(out_row, vars_.y[i], hull.A(k, 1));
+      row_lo.push_back(-kInfinity);
+      row_hi.push_back(hull.b(k));
+      out.row_names.push_back("union_hull_" + std::to_string(i) + "_" + std::to_string(k));
+    }
+    out.var_lower(vars_.z[i]) = std::max(out.var_lower(vars_.z[i]), hull.z_lower_m);
+    out.var_upper(vars_.z[i]) = std::min(out.var_upper(vars_.z[i]), hull.z_upper_m);
+  }
+  out.A.resize(static_cast<Eigen::Index>(row_lo.size()), miqp_.num_variables());
+  out.A.setFromTriplets(triplets.begin(), triplets.end());
+  out.row_lower = Eigen::Map<const Eigen::VectorXd>(row_lo.data(), static_cast<Eigen::Index>(row_lo.size()));
+  out.row_upper = Eigen::Map<const Eigen::VectorXd>(row_hi.data(), static_cast<Eigen::Index>(row_hi.size()));
+  return out;
 }
 
 std::vector<Footstep> MiqpFormulation::ExtractFootsteps(const Eigen::VectorXd& x) const {
@@ -550,14 +607,17 @@ bool MiqpFormulation::RoundWithTrimming(const Eigen::VectorXd& relaxed, int firs
     if ((*rounded)(vars_.trim[i]) > 0.5 && kept >= 0 && vars_.region[i][kept] >= 0) {
       best = kept;
     } else {
-      double best_score = -kInfinity;
+      // Regions that hold the foot first, then by weight, then (where weights tie, as
+      // they do for steps whose region choice was relaxed to a hull, all of weight 0)
+      // the nearer first.
+      std::tuple<bool, double, double> best_key(false, -kInfinity, -kInfinity);
       for (size_t r = 0; r < problem_.regions.size(); ++r) {
         const int h = vars_.region[i][r];
         if (h < 0) continue;
-        const double score =
-            relaxed(h) - (RegionViolation(problem_.regions[r], f) > 1e-6 ? 10.0 : 0.0);
-        if (score > best_score) {
-          best_score = score;
+        const double violation = RegionViolation(problem_.regions[r], f);
+        const std::tuple<bool, double, double> key(violation <= 1e-6, relaxed(h), -violation);
+        if (best < 0 || key > best_key) {
+          best_key = key;
           best = static_cast<int>(r);
         }
       }

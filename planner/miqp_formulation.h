@@ -119,6 +119,15 @@ class MiqpFormulation {
   // where trimming starts: where the relaxation passes one half, and nowhere.
   std::vector<Eigen::VectorXd> RoundAlongPlan(const Eigen::VectorXd& relaxed) const;
 
+  // The Miqp with the region choice of steps first_step .. N-1 relaxed to the convex hull
+  // of the union of each step's regions (RegionUnionHull: half-planes on (x, y) and the
+  // height range): their region rows are left out, their region binaries (and copies)
+  // fixed at 0, and the hull's rows added after the others. Same variables, so points
+  // move between the two; the other rows keep their order. Relax-and-fix uses it for the
+  // steps it has not reached: the relaxed choice in a few rows instead of a binary and a
+  // handful of rows per region, so its stage QPs are smaller. first_step >= N: miqp().
+  Miqp WithRegionsRelaxedFrom(int first_step) const;
+
  private:
   void Build();
   // One rounding with steps first_trimmed .. N-1 trimmed; false when a step has no region.
@@ -134,6 +143,9 @@ class MiqpFormulation {
   std::vector<std::pair<double, double>> yaw_reach_;  // per block: [lowest, highest] yaw [rad]
   Miqp miqp_;
   FootstepVariables vars_;
+  // Per step: the rows [first, last) that encode its region choice (-1, -1 for start
+  // steps and steps that reach no region).
+  std::vector<std::pair<int, int>> region_rows_;
   std::string infeasible_reason_;
 };
 

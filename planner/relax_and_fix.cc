@@ -76,11 +76,12 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   };
 
   RelaxAndFixResult result;
-  Miqp stage = full;
   std::vector<int> block_of(full.num_variables(), -1);
   for (int blk = 0; blk < B; ++blk) {
     for (int j : blocks[blk]) block_of[j] = blk;
   }
+  // The earlier stages' choices, as bounds on the full model's variables.
+  Eigen::VectorXd fixed_lower = full.var_lower, fixed_upper = full.var_upper;
   Eigen::VectorXd x;
   const auto complete_by_rounding = [&] {
     if (x.size() == 0) return;
@@ -97,9 +98,16 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     }
     const int last_integer_block = blk + options.lookahead_blocks;
     const bool final_stage = last_integer_block >= B - 1;
+    Miqp stage = options.hull_for_later_steps && !final_stage
+                     ? formulation.WithRegionsRelaxedFrom((last_integer_block + 1) * formulation.num_legs())
+                     : full;
     for (int j = 0; j < full.num_variables(); ++j) {
       if (!full.is_integer[j]) continue;
       stage.is_integer[j] = final_stage || block_of[j] <= last_integer_block;
+      if (block_of[j] < blk) {
+        stage.var_lower(j) = fixed_lower(j);
+        stage.var_upper(j) = fixed_upper(j);
+      }
     }
     // Branch only on groups whose members are integer in this stage.
     stage.sos1_groups.clear();
@@ -122,7 +130,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     x = r.x;
     if (final_stage) break;
     for (int j : blocks[blk]) {  // fix this configuration's choices
-      stage.var_lower(j) = stage.var_upper(j) = std::round(x(j));
+      fixed_lower(j) = fixed_upper(j) = std::round(x(j));
     }
   }
   if (x.size() == 0) return result;

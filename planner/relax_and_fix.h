@@ -32,6 +32,10 @@ struct RelaxAndFixOptions {
   double stage_relative_gap = 0.005;  // a stage's search stops this close to its optimum
   double time_limit_s = 1.0;         // whole heuristic [s]; past it, the rest is rounded
   int max_searched_stages = 0;       // stages searched before the rest is rounded (0: all)
+  // The steps after the stage's integer configurations choose no region: each stands in
+  // the convex hull of its regions (MiqpFormulation::WithRegionsRelaxedFrom) instead of
+  // the continuous relaxation of the region binaries. Smaller stage QPs.
+  bool hull_for_later_steps = true;
   BranchAndBoundOptions stage;       // other search options of each stage
 };
 

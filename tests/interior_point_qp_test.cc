@@ -211,5 +211,22 @@ TEST(BoundPropagation, TightensAndDetectsInfeasibility) {
   EXPECT_TRUE(PropagateBounds(p, &lo, &up).infeasible);
 }
 
+TEST(BoundPropagation, ATinyCoefficientBoundsNothing) {
+  // y - 1e-17 x <= 0.3 with y >= 0.3 + 1e-12: met within the tolerance. Solving the row
+  // for x divides a rounding-sized excess by 1e-17 and would demand x >= 1e5, outside
+  // [-1, 1]: a false infeasibility (as a hull edge normal with a 6e-17 component once
+  // gave). Such a coefficient is skipped; y's bound is still derived and checked.
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", -1, 1, false), y = b.AddVariable("y", 0.3 + 1e-12, 2, false);
+  b.AddRow("edge", LinExpr::Var(y) - LinExpr::Var(x, 1e-17), -kInfinity, 0.3);
+  const Miqp p = b.Build();
+  Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
+  const PropagationResult r = PropagateBounds(p, &lo, &up);
+  EXPECT_FALSE(r.infeasible);
+  EXPECT_EQ(lo(x), -1.0);
+  EXPECT_EQ(up(x), 1.0);
+  EXPECT_NEAR(up(y), 0.3, 1e-9);
+}
+
 }  // namespace
 }  // namespace mfp

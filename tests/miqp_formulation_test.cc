@@ -321,6 +321,54 @@ TEST_F(FormulationTest, PruningDropsRegionsOutOfReach) {
   EXPECT_GE(pruned.vars().region[4][0], 0);
 }
 
+TEST_F(FormulationTest, RegionsRelaxedToTheirHullFromAStep) {
+  const Miqp& full = formulation_->miqp();
+  const FootstepVariables& v = formulation_->vars();
+  EXPECT_EQ(formulation_->WithRegionsRelaxedFrom(8).num_rows(), full.num_rows());  // no step left
+  const Miqp relaxed = formulation_->WithRegionsRelaxedFrom(6);
+  ASSERT_EQ(relaxed.num_variables(), full.num_variables());
+  auto has_row = [&](const std::string& name) {
+    return std::find(relaxed.row_names.begin(), relaxed.row_names.end(), name) != relaxed.row_names.end();
+  };
+  // Steps 4 and 5 keep their region rows; 6 and 7 have the hull of r0 and r1 instead,
+  // the rectangle [-0.5, 1.5] x [-0.5, 0.5] (4 rows), heights [0, 0.05], no binaries.
+  EXPECT_TRUE(has_row("one_region_5"));
+  EXPECT_TRUE(has_row("region_4_1_0"));
+  EXPECT_FALSE(has_row("one_region_6"));
+  EXPECT_FALSE(has_row("region_7_0_0"));
+  EXPECT_TRUE(has_row("union_hull_6_3"));
+  EXPECT_FALSE(has_row("union_hull_6_4"));
+  EXPECT_FALSE(has_row("union_hull_5_0"));
+  for (int i : {6, 7}) {
+    for (int r : {0, 1}) EXPECT_EQ(relaxed.var_upper(v.region[i][r]), 0.0);
+    EXPECT_EQ(relaxed.var_lower(v.z[i]), 0.0);
+    EXPECT_NEAR(relaxed.var_upper(v.z[i]), 0.05, 1e-12);
+  }
+  EXPECT_EQ(relaxed.var_upper(v.region[5][1]), 1.0);
+  // The hand-made point, its later region choices cleared, is no further from meeting
+  // the relaxed model than the full one (it is not a whole plan: yaw and chords are
+  // left at 0), and the hull rows hold it.
+  Eigen::VectorXd y = x_;
+  y(v.region[6][0]) = y(v.region[7][0]) = 0.0;
+  EXPECT_LE(relaxed.MaxViolation(y), full.MaxViolation(x_) + 1e-12);
+  // Step 6 in the gap between the stones: no region of the full model holds it, the
+  // hull does. Past the far edge of r1, the hull does not hold it either (other rows,
+  // such as reachability, are not the point here).
+  auto hull_violation = [&](const Eigen::VectorXd& point) {
+    double worst = 0.0;
+    for (int r = 0; r < relaxed.num_rows(); ++r) {
+      if (relaxed.row_names[r].rfind("union_hull_6_", 0) != 0) continue;
+      const double ax = relaxed.A.row(r).dot(point.transpose());
+      worst = std::max({worst, relaxed.row_lower(r) - ax, ax - relaxed.row_upper(r)});
+    }
+    return worst;
+  };
+  y(v.x[6]) = 0.55;
+  EXPECT_NEAR(hull_violation(y), 0.0, 1e-12);
+  y(v.x[6]) = 1.6;
+  EXPECT_NEAR(hull_violation(y), 0.1, 1e-12);
+}
+
 TEST_F(FormulationTest, RejectsMalformedProblems) {
   FootstepProblem p = problem_;
   p.start_feet_world_m.pop_back();

@@ -172,6 +172,16 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   EXPECT_LE(m.MaxViolation(*partial.x), 1e-5);
   EXPECT_EQ(m.MaxIntegrality(*partial.x), 0.0);
   EXPECT_GE(m.Objective(*partial.x), proof.bound - 1e-6);
+
+  // The stages with the steps they have not reached in the full relaxation of their
+  // region binaries (the hull is the default): also a complete plan within 1 %.
+  rf.max_searched_stages = 0;
+  rf.hull_for_later_steps = false;
+  const RelaxAndFixResult binaries = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_TRUE(binaries.x.has_value());
+  EXPECT_LE(m.MaxViolation(*binaries.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*binaries.x), 0.0);
+  EXPECT_LE(m.Objective(*binaries.x), proof.objective + 0.01 * std::abs(proof.objective));
 }
 
 TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
