@@ -245,6 +245,7 @@ class Search {
                              const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
     solver.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
     if (opt_.early_cutoff) solver.SetCutoff(cutoff);
+    if (opt_.relaxation_tolerance > 0.0) solver.SetRelativeTolerance(opt_.relaxation_tolerance);
     return solver.Solve(p_, lower, upper, warm);
   }
 

@@ -55,6 +55,9 @@ struct BranchAndBoundOptions {
   // A node's relaxation may stop as soon as its solver proves that it cannot beat the
   // incumbent (RelaxationSolver::SetCutoff).
   bool early_cutoff = true;
+  // Relative accuracy asked of each relaxation (RelaxationSolver::SetRelativeTolerance)
+  // when looser than the solver's own; 0: the solver's own.
+  double relaxation_tolerance = 0.0;
   // Progress for logs: called with the result so far (incumbent objective, a valid bound,
   // gap, nodes, relaxations, elapsed time in solve_time_s; x left empty) each time the
   // incumbent improves.

@@ -1,5 +1,7 @@
 #include "planner/ipm_relaxation_solver.h"
 
+#include <algorithm>
+
 #include "planner/check.h"
 #include "planner/fixed_variable_reduction.h"
 
@@ -16,7 +18,9 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     ReducedQp reduced;
     InteriorPointOptions options = options_;
     options.cutoff = cutoff_;
+    options.tolerance = std::max(options.tolerance, tolerance_);
     cutoff_ = kInfinity;  // the next solve only
+    tolerance_ = 0.0;
     if (ReduceOrSettle(problem, lower, upper, options.infeasible_violation, &reduced, &result)) return result;
     Eigen::VectorXd start;
     if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
@@ -44,11 +48,13 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
 
   void SetTimeLimit(double) override {}  // one solve takes milliseconds
   void SetCutoff(double objective) override { cutoff_ = objective; }
+  void SetRelativeTolerance(double tolerance) override { tolerance_ = tolerance; }
   std::string Name() const override { return "ipm"; }
 
  private:
   InteriorPointOptions options_;
   double cutoff_ = kInfinity;
+  double tolerance_ = 0.0;  // 0: options_.tolerance
 };
 
 }  // namespace

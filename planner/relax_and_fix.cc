@@ -117,6 +117,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     BranchAndBoundOptions bnb = options.stage;
     bnb.max_nodes = options.nodes_per_stage;
     bnb.relative_gap = options.stage_relative_gap;
+    if (!final_stage) bnb.relaxation_tolerance = std::max(bnb.relaxation_tolerance, options.stage_relaxation_tolerance);
     bnb.time_limit_s = final_stage ? remaining : remaining / std::max(1, B - blk);
     bnb.on_incumbent = nullptr;
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);

@@ -36,6 +36,10 @@ struct RelaxAndFixOptions {
   // the convex hull of its regions (MiqpFormulation::WithRegionsRelaxedFrom) instead of
   // the continuous relaxation of the region binaries. Smaller stage QPs.
   bool hull_for_later_steps = true;
+  // Relative accuracy of the QPs of every stage but the last: a stage keeps a choice
+  // within stage_relative_gap, far coarser. The last stage, whose point is the plan,
+  // keeps the solver's own accuracy.
+  double stage_relaxation_tolerance = 1e-6;
   BranchAndBoundOptions stage;       // other search options of each stage
 };
 

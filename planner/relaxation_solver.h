@@ -45,6 +45,10 @@ class RelaxationSolver {
   // relaxation's optimum is at least this objective (a node that cannot beat the
   // incumbent need not be solved to the end). Solvers that cannot prove it ignore it.
   virtual void SetCutoff(double /*objective*/) {}
+  // For the next Solve only: the relative accuracy asked of it, when looser than the
+  // solver's own (a search that only needs bounds to a coarse gap need not pay for
+  // digits it will not use). Solvers without such a setting ignore it.
+  virtual void SetRelativeTolerance(double /*tolerance*/) {}
   virtual std::string Name() const = 0;
 };
 

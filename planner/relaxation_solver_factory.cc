@@ -31,6 +31,7 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   void SetCutoff(double objective) override {  // the fallback solves to the end
     primary_->SetCutoff(objective);
   }
+  void SetRelativeTolerance(double tolerance) override { primary_->SetRelativeTolerance(tolerance); }
 
   std::string Name() const override { return primary_->Name() + "+" + fallback_->Name(); }
 

@@ -61,6 +61,22 @@ TEST(InteriorPointQp, CutoffStopsOnceAProvenFloorReachesIt) {
   EXPECT_NEAR(next.objective, 0.5, 1e-8);
 }
 
+TEST(InteriorPointQp, ALooserToleranceHoldsForTheNextSolveOnly) {
+  const Miqp p = Projection();  // optimum 0.5
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
+  const RelaxationResult exact = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  solver->SetRelativeTolerance(1e-3);
+  const RelaxationResult coarse = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  ASSERT_EQ(coarse.status, RelaxationStatus::kSolved);
+  EXPECT_LT(coarse.iterations, exact.iterations);
+  EXPECT_NEAR(coarse.objective, 0.5, 1e-2);
+  const RelaxationResult next = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  EXPECT_EQ(next.iterations, exact.iterations);
+  EXPECT_NEAR(next.objective, 0.5, 1e-8);
+  solver->SetRelativeTolerance(1e-12);  // tighter than the solver's own: its own holds
+  EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).iterations, exact.iterations);
+}
+
 TEST(InteriorPointQp, LinearProgramWithActiveBounds) {
   // min -x - 2y s.t. x + y <= 1.5, x, y in [0, 1]: y = 1, x = 0.5, objective -2.5.
   MiqpBuilder b;
