@@ -5,36 +5,9 @@
 #include <limits>
 
 #include "planner/check.h"
+#include "terrain/convex_hull_2d.h"
 
 namespace mfp {
-namespace {
-
-double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-// Andrew's monotone chain: the hull's vertices counter-clockwise, without collinear ones.
-std::vector<Eigen::Vector2d> HullCounterClockwise(std::vector<Eigen::Vector2d> points) {
-  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  if (points.size() < 3) return points;
-  std::vector<Eigen::Vector2d> hull(2 * points.size());
-  size_t k = 0;
-  for (size_t i = 0; i < points.size(); ++i) {  // lower chain
-    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
-    hull[k++] = points[i];
-  }
-  for (size_t i = points.size() - 1, lower_size = k + 1; i-- > 0;) {  // upper chain
-    while (k >= lower_size && Cross(hull[k - 2], hull[k - 1], points[i]) <= 0.0) --k;
-    hull[k++] = points[i];
-  }
-  hull.resize(k - 1);  // the last point repeats the first
-  return hull;
-}
-
-}  // namespace
 
 RegionUnionHull HullOfRegions(const std::vector<const ConvexRegion*>& regions) {
   MFP_CHECK(!regions.empty());
@@ -49,7 +22,7 @@ RegionUnionHull HullOfRegions(const std::vector<const ConvexRegion*>& regions) {
       h.z_upper_m = std::max(h.z_upper_m, v.z() + r->plane_tolerance_m);
     }
   }
-  const std::vector<Eigen::Vector2d> hull = HullCounterClockwise(points);
+  const std::vector<Eigen::Vector2d> hull = ConvexHull2d(points);
   std::vector<std::pair<Eigen::Vector2d, double>> rows;
   if (hull.size() >= 3) {
     for (size_t k = 0; k < hull.size(); ++k) {

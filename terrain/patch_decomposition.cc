@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "planner/check.h"
+#include "terrain/convex_hull_2d.h"
 
 namespace mfp {
 namespace {
@@ -16,30 +17,6 @@ struct LocalGrid {
   uint8_t At(int r, int c) const { return cells[static_cast<size_t>(r) * cols + c]; }
 };
 
-double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> pts) {
-  std::sort(pts.begin(), pts.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-  if (pts.size() < 3) return pts;
-  std::vector<Eigen::Vector2d> hull(2 * pts.size());
-  size_t k = 0;
-  for (size_t i = 0; i < pts.size(); ++i) {
-    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
-    hull[k++] = pts[i];
-  }
-  for (size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && Cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) --k;
-    hull[k++] = pts[i - 1];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
-
 }  // namespace
 
 double PrincipalAngleRad(const HeightMap& hm, const PlanarPatch& patch) {
@@ -49,7 +26,7 @@ double PrincipalAngleRad(const HeightMap& hm, const PlanarPatch& patch) {
   for (int cell : patch.cells) {
     pts.emplace_back(cell % hm.cols, cell / hm.cols);
   }
-  const std::vector<Eigen::Vector2d> hull = ConvexHull(pts);
+  const std::vector<Eigen::Vector2d> hull = ConvexHull2d(pts);
   if (hull.size() < 3) return 0.0;
   double best_area = INFINITY, best_angle = 0.0;
   for (size_t i = 0; i < hull.size(); ++i) {
