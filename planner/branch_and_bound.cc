@@ -166,6 +166,7 @@ class Search {
       pseudo_.Record(node.branch_var, node.branch_up, rel.objective - node.parent_objective, node.branch_distance);
     }
     const double bound = std::max(rel.objective, node.parent_bound);
+    if (opt_.equivalent_point) UseEquivalentPoint(e.lower, e.upper, &e.relaxation.x);
     if (is_root) {
       result_.bound = result_.root_bound = bound;
       TryRounding(rel.x);
@@ -188,6 +189,20 @@ class Search {
       TryRounding(rel.x);
     }
     Branch(node, rel, bound, branch_var, e.lower, e.upper, fixings);
+  }
+
+  // The caller's equivalent of a relaxation point, when it meets the node's rows and
+  // bounds and costs no more.
+  void UseEquivalentPoint(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x) {
+    Eigen::VectorXd y = *x;
+    if (!opt_.equivalent_point(lower, upper, &y)) return;
+    const double tol = opt_.feasibility_tolerance;
+    if ((y.array() < lower.array() - tol).any() || (y.array() > upper.array() + tol).any()) return;
+    if (p_.MaxViolationOfRows(y) > std::max(tol, p_.MaxViolationOfRows(*x))) return;
+    const double before = p_.Objective(*x);
+    if (p_.Objective(y) > before + 1e-9 * (1.0 + std::abs(before))) return;
+    *x = std::move(y);
+    ++result_.equivalent_points;
   }
 
   // Integer values whose subtree cannot beat the incumbent by more than the gap, by the

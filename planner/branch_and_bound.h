@@ -58,6 +58,13 @@ struct BranchAndBoundOptions {
   // Relative accuracy asked of each relaxation (RelaxationSolver::SetRelativeTolerance)
   // when looser than the solver's own; 0: the solver's own.
   double relaxation_tolerance = 0.0;
+  // Optional: replaces a node's relaxation point x by one with more integral values that
+  // is just as good (the caller knows where fractional values are only an artefact of
+  // the encoding), within the node's bounds lower/upper; returns false when it changed
+  // nothing. The search checks the new point (rows, bounds, objective no higher) and
+  // branches on it, so no subtree is explored twice for a choice that does not matter.
+  std::function<bool(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x)>
+      equivalent_point;
   // Progress for logs: called with the result so far (incumbent objective, a valid bound,
   // gap, nodes, relaxations, elapsed time in solve_time_s; x left empty) each time the
   // incumbent improves.
@@ -77,6 +84,7 @@ struct BranchAndBoundResult {
   int strong_branching_solves = 0;  // relaxations solved to score branching candidates
   int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
   int early_cutoffs = 0;            // node relaxations stopped once they could not beat the incumbent
+  int equivalent_points = 0;        // relaxation points replaced by options.equivalent_point
   double solve_time_s = 0.0;
 };
 

@@ -236,6 +236,12 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     // Each window gets its share of the remaining time, and at least half of it when
     // few windows are left (later windows are usually shorter, near the goal).
     bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time);
+    if (options.snap_yaw_segments) {
+      bnb.equivalent_point = [&formulation](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                            Eigen::VectorXd* x) {
+        return formulation.SnapYawToOneSegment(lower, upper, x);
+      };
+    }
     bool seeded = !options.relax_and_fix ||
                   formulation.num_blocks() - 1 < options.relax_and_fix_min_configurations;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {

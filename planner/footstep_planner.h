@@ -56,6 +56,9 @@ struct PlannerOptions {
   // Relax-and-fix's stages see the steps they have not reached standing in the convex
   // hull of their regions (RelaxAndFixOptions::hull_for_later_steps).
   bool relax_and_fix_region_hull = true;
+  // A relaxed yaw that one segment alone represents (on a breakpoint, as the goal yaw
+  // is) is set to that segment before branching (MiqpFormulation::SnapYawToOneSegment).
+  bool snap_yaw_segments = true;
   // Relative accuracy of the QPs of relax-and-fix's stages but the last
   // (RelaxAndFixOptions::stage_relaxation_tolerance; 0: the solver's own).
   double relax_and_fix_stage_tolerance = 1e-6;

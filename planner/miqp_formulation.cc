@@ -525,6 +525,44 @@ Miqp MiqpFormulation::WithRegionsRelaxedFrom(int first_step) const {
   return out;
 }
 
+bool MiqpFormulation::SnapYawToOneSegment(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                          Eigen::VectorXd* x_ptr) const {
+  Eigen::VectorXd& x = *x_ptr;
+  MFP_CHECK(x.size() == miqp_.num_variables());
+  // Accuracy of a relaxation point: chords and breakpoints are met to about this.
+  constexpr double kTolerance = 1e-6;
+  bool changed = false;
+  for (int blk = 1; blk < num_blocks_; ++blk) {
+    const std::vector<int>& seg = vars_.segment[blk];
+    const int K = static_cast<int>(seg.size());
+    bool integral = true;
+    for (int k = 0; k < K; ++k) integral = integral && std::min(x(seg[k]), 1.0 - x(seg[k])) <= 1e-9;
+    if (integral) continue;
+    const std::vector<double>& bp = block_breakpoints_[blk];
+    const double theta = x(vars_.theta[blk]), s = x(vars_.s[blk]), c = x(vars_.c[blk]);
+    int chosen = -1;
+    for (int k = 0; k < K; ++k) {
+      if (upper(seg[k]) < 0.5 || theta < bp[k] - kTolerance || theta > bp[k + 1] + kTolerance) continue;
+      const double t = std::clamp(theta, bp[k], bp[k + 1]);
+      const double ms = (std::sin(bp[k + 1]) - std::sin(bp[k])) / (bp[k + 1] - bp[k]);
+      const double mc = (std::cos(bp[k + 1]) - std::cos(bp[k])) / (bp[k + 1] - bp[k]);
+      const double chord_s = std::sin(bp[k]) + ms * (t - bp[k]), chord_c = std::cos(bp[k]) + mc * (t - bp[k]);
+      if (std::abs(s - chord_s) > kTolerance || std::abs(c - chord_c) > kTolerance) continue;
+      if (chosen < 0 || x(seg[k]) > x(seg[chosen])) chosen = k;
+    }
+    if (chosen < 0) continue;
+    bool allowed = true;  // the other segments must be allowed to be 0
+    for (int k = 0; k < K; ++k) allowed = allowed && (k == chosen || lower(seg[k]) < 0.5);
+    if (!allowed) continue;
+    for (int k = 0; k < K; ++k) {
+      x(seg[k]) = k == chosen ? 1.0 : 0.0;
+      if (!vars_.segment_theta[blk].empty()) x(vars_.segment_theta[blk][k]) = k == chosen ? theta : 0.0;
+    }
+    changed = true;
+  }
+  return changed;
+}
+
 std::vector<Footstep> MiqpFormulation::ExtractFootsteps(const Eigen::VectorXd& x) const {
   MFP_CHECK(x.size() == miqp_.num_variables());
   std::vector<Footstep> steps;

@@ -128,6 +128,14 @@ class MiqpFormulation {
   // handful of rows per region, so its stage QPs are smaller. first_step >= N: miqp().
   Miqp WithRegionsRelaxedFrom(int first_step) const;
 
+  // Yaw segments that are fractional only because the relaxed yaw lies where one
+  // segment alone represents it (typically on a breakpoint shared by two segments: the
+  // goal yaw is one), set to that segment, within lower/upper (a node's bounds), with the
+  // yaw's disaggregated parts moved to it. Returns true when x changed. For
+  // BranchAndBoundOptions::equivalent_point: without it a search branches on such a
+  // segment and explores the same plans under both children.
+  bool SnapYawToOneSegment(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x) const;
+
  private:
   void Build();
   // One rounding with steps first_trimmed .. N-1 trimmed; false when a step has no region.

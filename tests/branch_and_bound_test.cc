@@ -345,6 +345,56 @@ TEST(BranchAndBound, ExtraRoundingProposalsAreUsed) {
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
 }
 
+// min (x - 1)^2 with x <= 1 + a, x <= 1 + b, a + b = 1 (binaries): x = 1 whatever the
+// choice, so the relaxation's (a, b) = (0.5, 0.5) (the interior point's centre) is
+// fractional only in appearance: (1, 0) is just as good.
+Miqp ChoiceThatDoesNotMatter() {
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", 0, 3, false), a = b.AddBinary("a"), c = b.AddBinary("b");
+  b.AddRow("cap_a", LinExpr::Var(x) - LinExpr::Var(a), -kInfinity, 1.0);
+  b.AddRow("cap_b", LinExpr::Var(x) - LinExpr::Var(c), -kInfinity, 1.0);
+  b.AddRow("one", LinExpr::Var(a) + LinExpr::Var(c), 1.0, 1.0);
+  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(1.0), 1.0);
+  return b.Build();
+}
+
+TEST(BranchAndBound, AnEquivalentPointWithIntegralChoicesEndsTheNode) {
+  const Miqp p = ChoiceThatDoesNotMatter();
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.rounding_heuristic = false;
+  const BranchAndBoundResult plain = SolveBranchAndBound(p, *solver, options);
+  ASSERT_EQ(plain.status, SolveStatus::kOptimal);
+  EXPECT_GE(plain.nodes, 2);  // the root branches on a or b
+  EXPECT_EQ(plain.equivalent_points, 0);
+
+  options.equivalent_point = [](const Eigen::VectorXd& lower, const Eigen::VectorXd&, Eigen::VectorXd* x) {
+    if (lower(2) > 0.5) return false;  // b fixed to 1: not this choice
+    (*x)(1) = 1.0;
+    (*x)(2) = 0.0;
+    return true;
+  };
+  const BranchAndBoundResult snapped = SolveBranchAndBound(p, *solver, options);
+  ASSERT_EQ(snapped.status, SolveStatus::kOptimal);
+  EXPECT_EQ(snapped.nodes, 1);
+  EXPECT_EQ(snapped.equivalent_points, 1);
+  EXPECT_NEAR(snapped.objective, 0.0, 1e-6);
+  EXPECT_EQ(snapped.x(1), 1.0);
+
+  // A point that breaks a row (x = 1.5 with a = 0: cap_a fails) is not taken: the
+  // search branches as before.
+  options.equivalent_point = [](const Eigen::VectorXd&, const Eigen::VectorXd&, Eigen::VectorXd* x) {
+    (*x)(0) = 1.5;
+    (*x)(1) = 0.0;
+    (*x)(2) = 1.0;
+    return true;
+  };
+  const BranchAndBoundResult rejected = SolveBranchAndBound(p, *solver, options);
+  ASSERT_EQ(rejected.status, SolveStatus::kOptimal);
+  EXPECT_EQ(rejected.equivalent_points, 0);
+  EXPECT_EQ(rejected.nodes, plain.nodes);
+}
+
 TEST(BranchAndBound, AProposalThatIsAPlanIsKeptWhenNoTimeIsLeftForItsQp) {
   // A heuristic that uses up the time (as relax-and-fix may) and returns a complete
   // plan: the search keeps it although no time is left to solve the proposal's QP.

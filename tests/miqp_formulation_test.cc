@@ -369,6 +369,42 @@ TEST_F(FormulationTest, RegionsRelaxedToTheirHullFromAStep) {
   EXPECT_NEAR(hull_violation(y), 0.1, 1e-12);
 }
 
+TEST_F(FormulationTest, YawOnABreakpointSnapsToOneSegment) {
+  // The fixture's configuration 1 has segments [-pi/8, 0] (0) and [0, pi/8] (1) among
+  // others; yaw 0 is the breakpoint they share, where both chords give (sin, cos) =
+  // (0, 1). Big-M encoding: only the segment binaries move.
+  const FootstepVariables& v = formulation_->vars();
+  const std::vector<double>& bp = formulation_->block_yaw_breakpoints(1);
+  const auto zero = std::find_if(bp.begin(), bp.end(), [](double b) { return std::abs(b) < 1e-12; });
+  ASSERT_NE(zero, bp.end());
+  ASSERT_NE(zero, bp.begin());
+  const int right = static_cast<int>(zero - bp.begin()), left = right - 1;
+  const Miqp& m = formulation_->miqp();
+  Eigen::VectorXd x = x_;
+  for (int s : v.segment[1]) x(s) = 0.0;
+  x(v.segment[1][left]) = 0.4;
+  x(v.segment[1][right]) = 0.6;
+  Eigen::VectorXd snapped = x;
+  ASSERT_TRUE(formulation_->SnapYawToOneSegment(m.var_lower, m.var_upper, &snapped));
+  EXPECT_EQ(snapped(v.segment[1][right]), 1.0);  // the larger share
+  EXPECT_EQ(snapped(v.segment[1][left]), 0.0);
+  EXPECT_NEAR(MaxViolationOfRowsStarting("sin_chord_", snapped), 0.0, 1e-12);
+  EXPECT_NEAR(MaxViolationOfRowsStarting("cos_chord_", snapped), 0.0, 1e-12);
+  EXPECT_FALSE(formulation_->SnapYawToOneSegment(m.var_lower, m.var_upper, &snapped));  // nothing left
+  // A node that ruled out the right segment gets the left one.
+  Eigen::VectorXd upper = m.var_upper;
+  upper(v.segment[1][right]) = 0.0;
+  snapped = x;
+  ASSERT_TRUE(formulation_->SnapYawToOneSegment(m.var_lower, upper, &snapped));
+  EXPECT_EQ(snapped(v.segment[1][left]), 1.0);
+  // Off the chords ((sin, cos) pulled inside the circle, as a relaxation may), no single
+  // segment represents the point: nothing changes.
+  x(v.c[1]) = 0.99;
+  snapped = x;
+  EXPECT_FALSE(formulation_->SnapYawToOneSegment(m.var_lower, m.var_upper, &snapped));
+  EXPECT_EQ(snapped, x);
+}
+
 TEST_F(FormulationTest, RejectsMalformedProblems) {
   FootstepProblem p = problem_;
   p.start_feet_world_m.pop_back();
