@@ -250,6 +250,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         seeded = true;
         RelaxAndFixOptions rf;
         rf.stage = bnb;
+        // Stage searches are small (nodes_per_stage): strong branching would cost them more
+        // than it saves, and their plans came out worse (littledog 24: the first plan
+        // within 0.5 % at 30 s instead of 0.28 s).
+        if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
         rf.time_limit_s = options.relax_and_fix_time_share * bnb.time_limit_s;
         rf.hull_for_later_steps = options.relax_and_fix_region_hull;
         rf.stage_relaxation_tolerance = options.relax_and_fix_stage_tolerance;
