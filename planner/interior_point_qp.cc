@@ -181,6 +181,65 @@ void SetCostRates(const InequalityForm& f, const Eigen::VectorXd& lower, const E
   }
 }
 
+// Cold start: x in the middle of its box, e covering the rows' violations plus one,
+// slacks of at least one, duals of one (half the penalty for the elastic pairs: their
+// dual feasibility reads penalty = z(row) + z(e >= 0)).
+void ColdStart(const InequalityForm& f, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+               const InteriorPointOptions& opt, Eigen::VectorXd* w, Eigen::VectorXd* s, Eigen::VectorXd* z) {
+  const int n = f.n, E = f.elastic;
+  *w = Eigen::VectorXd::Zero(n + E);
+  for (int j = 0; j < n; ++j) (*w)(j) = 0.5 * (lower(j) + upper(j));
+  const Eigen::VectorXd gx = f.G * w->head(n);
+  for (int k = 0; k < E; ++k) (*w)(n + k) = std::max(0.0, gx(k) - f.d(k)) + 1.0;
+  *s = (f.d - f.C(*w)).cwiseMax(1.0);
+  *z = Eigen::VectorXd::Ones(f.d.size());
+  z->head(2 * E).setConstant(0.5 * opt.elastic_penalty);
+}
+
+// Warm start from a point x0 (a parent node's solution): x near x0, and for every
+// inequality a slack-dual pair with product mu0 = warm_start_complementarity. A row
+// that x meets with slack r gets dual mu0 / r; its elastic variable takes what is left
+// of the penalty as its dual and mu0 over that as its value (tiny). A row that x
+// violates or nearly meets gets slack warm_start_min_slack, its elastic variable
+// covering the rest. The cold start's products are of the order of the penalty, so the
+// warm one starts many orders of magnitude closer to complementarity.
+void WarmStart(const InequalityForm& f, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+               const Eigen::VectorXd& x0, const InteriorPointOptions& opt, Eigen::VectorXd* w, Eigen::VectorXd* s,
+               Eigen::VectorXd* z) {
+  const int n = f.n, E = f.elastic;
+  const double mu0 = opt.warm_start_complementarity, min_slack = opt.warm_start_min_slack;
+  const double penalty = opt.elastic_penalty;
+  MFP_CHECK(mu0 > 0.0 && min_slack > 0.0 && opt.warm_start_pull > 0.0 && opt.warm_start_pull <= 1.0);
+  *w = Eigen::VectorXd::Zero(n + E);
+  *s = Eigen::VectorXd::Zero(f.d.size());
+  *z = Eigen::VectorXd::Zero(f.d.size());
+  for (int j = 0; j < n; ++j) {
+    const double mid = 0.5 * (lower(j) + upper(j));
+    (*w)(j) = (1.0 - opt.warm_start_pull) * std::clamp(x0(j), lower(j), upper(j)) + opt.warm_start_pull * mid;
+    (*s)(2 * E + 2 * j) = upper(j) - (*w)(j);
+    (*s)(2 * E + 2 * j + 1) = (*w)(j) - lower(j);
+    (*z)(2 * E + 2 * j) = mu0 / (*s)(2 * E + 2 * j);
+    (*z)(2 * E + 2 * j + 1) = mu0 / (*s)(2 * E + 2 * j + 1);
+  }
+  const Eigen::VectorXd gx = f.G * w->head(n);
+  for (int k = 0; k < E; ++k) {
+    const double slack = f.d(k) - gx(k);  // of the row without its elastic variable
+    double e, z_row;
+    if (slack >= min_slack) {
+      z_row = std::min(mu0 / slack, 0.5 * penalty);
+      e = mu0 / (penalty - z_row);
+    } else {
+      z_row = std::min(mu0 / min_slack, 0.5 * penalty);
+      e = min_slack - slack;
+    }
+    (*w)(n + k) = e;
+    (*s)(k) = slack + e;
+    (*z)(k) = z_row;
+    (*s)(E + k) = e;
+    (*z)(E + k) = penalty - z_row;
+  }
+}
+
 }  // namespace
 
 RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lower,
@@ -188,27 +247,15 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
                                       const InteriorPointOptions& opt) {
   const InequalityForm f = Build(p, lower, upper, opt.elastic_penalty);
   const int n = f.n;
-  const int nw = n + f.elastic;
   const int m = static_cast<int>(f.d.size());
   RelaxationResult result;
 
-  // Start: x inside its box (the warm start pulled 10% towards the middle), e covering
-  // the rows' violations, slacks and duals of order one.
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(nw);
-  for (int j = 0; j < n; ++j) {
-    const double mid = 0.5 * (lower(j) + upper(j));
-    const double v = warm_start != nullptr ? std::clamp((*warm_start)(j), lower(j), upper(j)) : mid;
-    w(j) = 0.9 * v + 0.1 * mid;
+  Eigen::VectorXd w, s, z;
+  if (warm_start != nullptr) {
+    WarmStart(f, lower, upper, *warm_start, opt, &w, &s, &z);
+  } else {
+    ColdStart(f, lower, upper, opt, &w, &s, &z);
   }
-  {
-    const Eigen::VectorXd gx = f.G * w.head(n);
-    for (int k = 0; k < f.elastic; ++k) w(n + k) = std::max(0.0, gx(k) - f.d(k)) + 1.0;
-  }
-  Eigen::VectorXd s = (f.d - f.C(w)).cwiseMax(1.0);
-  // Duals: the elastic variables' dual feasibility reads penalty = z(row) + z(e >= 0), so
-  // both start at half the penalty; the bound rows start at one.
-  Eigen::VectorXd z = Eigen::VectorXd::Ones(m);
-  z.head(2 * f.elastic).setConstant(0.5 * opt.elastic_penalty);
 
   const double scale_d = 1.0 + f.d.lpNorm<Eigen::Infinity>();
   const double scale_c = 1.0 + p.c.lpNorm<Eigen::Infinity>();
@@ -247,7 +294,9 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       result.x = w.head(n);
       result.objective = objective + p.constant;
       const double violation = f.elastic ? w.tail(f.elastic).maxCoeff() : 0.0;
-      result.status = violation > opt.infeasible_violation ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
+      const double threshold =
+          std::max(opt.infeasible_violation, opt.infeasible_violation_per_tolerance * opt.tolerance * scale_d);
+      result.status = violation > threshold ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
       if (result.status == RelaxationStatus::kSolved) {
         SetCostRates(f, lower, upper, w, s, z, r_d, r_p, &result);
       }

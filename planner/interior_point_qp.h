@@ -21,6 +21,19 @@ struct InteriorPointOptions {
   int max_iterations = 80;
   double elastic_penalty = 1e6;     // cost per unit of row violation; far above any dual here
   double infeasible_violation = 1e-6;  // a row violated by more than this: infeasible
+  // ... and by more than this many times the tolerance (relative to the rows' scale): a
+  // looser tolerance leaves larger residual violations at convergence, which are not
+  // infeasibility. Calling a feasible node infeasible would prune it; the reverse only
+  // costs a node.
+  double infeasible_violation_per_tolerance = 100.0;
+  // Warm start: x from the given point (pulled this share of the way to its box's
+  // middle), the elastic variables, slacks and duals set so that every slack-dual product
+  // starts at warm_start_complementarity (a centred point), slacks at least
+  // warm_start_min_slack. Measured against the cold start (slacks >= 1, duals 1 and half
+  // the penalty): 21-29 % fewer iterations per node QP (README).
+  double warm_start_pull = 0.01;
+  double warm_start_complementarity = 100.0;
+  double warm_start_min_slack = 1e-3;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;
