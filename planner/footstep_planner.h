@@ -56,6 +56,10 @@ struct PlannerOptions {
   // Relax-and-fix's stages see the steps they have not reached standing in the convex
   // hull of their regions (RelaxAndFixOptions::hull_for_later_steps).
   bool relax_and_fix_region_hull = true;
+  // With two or more workers, two single-worker relax-and-fix runs on different paths
+  // and the better plan (RelaxAndFixTwoPaths) instead of one run whose stage searches
+  // share the workers.
+  bool relax_and_fix_two_paths = true;
   // A relaxed yaw that one segment alone represents (on a breakpoint, as the goal yaw
   // is) is set to that segment before branching (MiqpFormulation::SnapYawToOneSegment).
   bool snap_yaw_segments = true;

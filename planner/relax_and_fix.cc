@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "planner/check.h"
@@ -144,6 +145,29 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   }
   if (full.MaxViolation(x) > options.stage.feasibility_tolerance) return result;
   result.x = x;
+  return result;
+}
+
+RelaxAndFixResult RelaxAndFixTwoPaths(const MiqpFormulation& formulation,
+                                      const std::vector<RelaxationSolver*>& solvers,
+                                      const RelaxAndFixOptions& options) {
+  if (solvers.size() < 2) return RelaxAndFix(formulation, solvers, options);
+  RelaxAndFixOptions second = options;
+  second.stage_relaxation_tolerance = 0.0;
+  RelaxAndFixResult other;
+  std::thread thread([&] { other = RelaxAndFix(formulation, {solvers[1]}, second); });
+  RelaxAndFixResult result = RelaxAndFix(formulation, {solvers[0]}, options);
+  thread.join();
+  const Miqp& full = formulation.miqp();
+  const bool other_better =
+      other.x && (!result.x || full.Objective(*other.x) < full.Objective(*result.x));
+  if (other_better) {
+    result.x = other.x;
+    result.completed_by_rounding = other.completed_by_rounding;
+  }
+  result.stages += other.stages;
+  result.nodes += other.nodes;
+  result.relaxations += other.relaxations;
   return result;
 }
 

@@ -59,4 +59,15 @@ struct RelaxAndFixResult {
 RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
                               const RelaxAndFixOptions& options);
 
+// With two or more solvers: two single-worker runs side by side, the second with its
+// stage QPs at the solver's own accuracy, and the better plan (stages, nodes and
+// relaxations are summed; completed_by_rounding is the better plan's). A stage's choice
+// can turn on differences within its QPs' tolerance, so one path can end far from the
+// other (littledog 36: 673.39 on one, 1503.82 on the stage searches shared by two
+// workers); two paths make such a turn matter less, and the first path is the
+// one-worker run. With one solver: RelaxAndFix.
+RelaxAndFixResult RelaxAndFixTwoPaths(const MiqpFormulation& formulation,
+                                      const std::vector<RelaxationSolver*>& solvers,
+                                      const RelaxAndFixOptions& options);
+
 }  // namespace mfp

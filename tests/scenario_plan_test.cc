@@ -182,6 +182,19 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   EXPECT_LE(m.MaxViolation(*binaries.x), 1e-5);
   EXPECT_EQ(m.MaxIntegrality(*binaries.x), 0.0);
   EXPECT_LE(m.Objective(*binaries.x), proof.objective + 0.01 * std::abs(proof.objective));
+
+  // Two paths side by side with two workers: the first is the one-worker run, so the
+  // plan is never worse than that one, and it is a plan.
+  rf.hull_for_later_steps = true;
+  const RelaxAndFixResult one = RelaxAndFix(formulation, solvers.workers(), rf);
+  const RelaxationSolverSet two_workers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 2);
+  const RelaxAndFixResult two = RelaxAndFixTwoPaths(formulation, two_workers.workers(), rf);
+  ASSERT_TRUE(one.x.has_value());
+  ASSERT_TRUE(two.x.has_value());
+  EXPECT_LE(m.MaxViolation(*two.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*two.x), 0.0);
+  EXPECT_LE(m.Objective(*two.x), m.Objective(*one.x) + 1e-9 * std::abs(m.Objective(*one.x)));
+  EXPECT_EQ(two.stages, 2 * one.stages);
 }
 
 TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
