@@ -358,6 +358,13 @@ Miqp ChoiceThatDoesNotMatter() {
   return b.Build();
 }
 
+// Sets ChoiceThatDoesNotMatter's point (x, a, b).
+void SetChoicePoint(Eigen::VectorXd* point, double x, double a, double b) {
+  (*point)(0) = x;
+  (*point)(1) = a;
+  (*point)(2) = b;
+}
+
 TEST(BranchAndBound, AnEquivalentPointWithIntegralChoicesEndsTheNode) {
   const Miqp p = ChoiceThatDoesNotMatter();
   const auto solver = MakeInteriorPointRelaxationSolver();
@@ -370,8 +377,7 @@ TEST(BranchAndBound, AnEquivalentPointWithIntegralChoicesEndsTheNode) {
 
   options.equivalent_point = [](const Eigen::VectorXd& lower, const Eigen::VectorXd&, Eigen::VectorXd* x) {
     if (lower(2) > 0.5) return false;  // b fixed to 1: not this choice
-    (*x)(1) = 1.0;
-    (*x)(2) = 0.0;
+    SetChoicePoint(x, (*x)(0), 1.0, 0.0);
     return true;
   };
   const BranchAndBoundResult snapped = SolveBranchAndBound(p, *solver, options);
@@ -384,9 +390,7 @@ TEST(BranchAndBound, AnEquivalentPointWithIntegralChoicesEndsTheNode) {
   // A point that breaks a row (x = 1.5 with a = 0: cap_a fails) is not taken: the
   // search branches as before.
   options.equivalent_point = [](const Eigen::VectorXd&, const Eigen::VectorXd&, Eigen::VectorXd* x) {
-    (*x)(0) = 1.5;
-    (*x)(1) = 0.0;
-    (*x)(2) = 1.0;
+    SetChoicePoint(x, 1.5, 0.0, 1.0);
     return true;
   };
   const BranchAndBoundResult rejected = SolveBranchAndBound(p, *solver, options);
