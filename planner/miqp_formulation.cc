@@ -16,6 +16,18 @@ double WrapToPi(double a) { return std::remainder(a, 2.0 * M_PI); }
 
 std::string StepName(const char* what, int i) { return std::string(what) + "_" + std::to_string(i); }
 
+// The chord of sin (sine = true) or cos over [a, e]: v(theta) = slope theta + intercept.
+// One definition for both yaw encodings and for SnapYawToOneSegment's check.
+struct Chord {
+  double slope, intercept;
+  double At(double theta) const { return slope * theta + intercept; }
+};
+Chord ChordOf(bool sine, double a, double e) {
+  const double va = sine ? std::sin(a) : std::cos(a), ve = sine ? std::sin(e) : std::cos(e);
+  const double slope = (ve - va) / (e - a);
+  return {slope, va - slope * a};
+}
+
 // Bounding box of the regions' vertices, grown by a margin, used as variable bounds of
 // the footstep positions and as the box from which big-M constants are computed.
 struct Box3 {
@@ -242,10 +254,9 @@ void MiqpFormulation::Build() {
         b.AddRow("seg_lo_" + tag, LinExpr::Var(tk) - LinExpr::Var(sk, a), 0.0, kInfinity);
         b.AddRow("seg_hi_" + tag, LinExpr::Var(tk) - LinExpr::Var(sk, e), -kInfinity, 0.0);
         theta_sum += LinExpr::Var(tk);
-        const double ms = (std::sin(e) - std::sin(a)) / (e - a), qs = std::sin(a) - ms * a;
-        const double mc = (std::cos(e) - std::cos(a)) / (e - a), qc = std::cos(a) - mc * a;
-        sin_sum += LinExpr::Var(tk, ms) + LinExpr::Var(sk, qs);
-        cos_sum += LinExpr::Var(tk, mc) + LinExpr::Var(sk, qc);
+        const Chord cs = ChordOf(true, a, e), cc = ChordOf(false, a, e);
+        sin_sum += LinExpr::Var(tk, cs.slope) + LinExpr::Var(sk, cs.intercept);
+        cos_sum += LinExpr::Var(tk, cc.slope) + LinExpr::Var(sk, cc.intercept);
       }
       b.AddRow(StepName("theta_sum", blk), theta_sum, 0.0, 0.0);
       b.AddRow(StepName("sin_def", blk), sin_sum, 0.0, 0.0);
@@ -261,10 +272,8 @@ void MiqpFormulation::Build() {
         b.AddRow("seg_hi_" + tag, theta(blk) + LinExpr::Var(sk, yaw_hi - e), -kInfinity, yaw_hi);
         // S_bk => s = m theta + q (chord of sin over [a, e]); likewise for cos.
         for (int fn = 0; fn < 2; ++fn) {
-          const double va = fn == 0 ? std::sin(a) : std::cos(a);
-          const double ve = fn == 0 ? std::sin(e) : std::cos(e);
-          const double m = (ve - va) / (e - a);
-          const double q = va - m * a;
+          const Chord chord = ChordOf(fn == 0, a, e);
+          const double m = chord.slope, q = chord.intercept;
           const double lo_v = fn == 0 ? s_lo : c_lo, hi_v = fn == 0 ? s_hi : c_hi;
           // Largest |v - m theta - q| over the variable box: the big-M of this row.
           double M = 0.0;
@@ -502,9 +511,8 @@ Miqp MiqpFormulation::WithRegionsRelaxedFrom(int first_step) const {
       if (h < 0) continue;
       reachable.push_back(&problem_.regions[r]);
       out.var_lower(h) = out.var_upper(h) = 0.0;
-      if (!vars_.region_copy[i].empty() && vars_.region_copy[i][r] >= 0) {
-        for (int axis = 0; axis < 3; ++axis) out.var_lower(vars_.region_copy[i][r] + axis) = out.var_upper(vars_.region_copy[i][r] + axis) = 0.0;
-      }
+      const int copy = vars_.region_copy[i][r];  // convex-hull encoding only
+      for (int axis = 0; copy >= 0 && axis < 3; ++axis) out.var_lower(copy + axis) = out.var_upper(copy + axis) = 0.0;
     }
     const RegionUnionHull hull = HullOfRegions(reachable);
     for (int k = 0; k < hull.A.rows(); ++k) {
@@ -544,10 +552,10 @@ bool MiqpFormulation::SnapYawToOneSegment(const Eigen::VectorXd& lower, const Ei
     for (int k = 0; k < K; ++k) {
       if (upper(seg[k]) < 0.5 || theta < bp[k] - kTolerance || theta > bp[k + 1] + kTolerance) continue;
       const double t = std::clamp(theta, bp[k], bp[k + 1]);
-      const double ms = (std::sin(bp[k + 1]) - std::sin(bp[k])) / (bp[k + 1] - bp[k]);
-      const double mc = (std::cos(bp[k + 1]) - std::cos(bp[k])) / (bp[k + 1] - bp[k]);
-      const double chord_s = std::sin(bp[k]) + ms * (t - bp[k]), chord_c = std::cos(bp[k]) + mc * (t - bp[k]);
-      if (std::abs(s - chord_s) > kTolerance || std::abs(c - chord_c) > kTolerance) continue;
+      if (std::abs(s - ChordOf(true, bp[k], bp[k + 1]).At(t)) > kTolerance ||
+          std::abs(c - ChordOf(false, bp[k], bp[k + 1]).At(t)) > kTolerance) {
+        continue;
+      }
       if (chosen < 0 || x(seg[k]) > x(seg[chosen])) chosen = k;
     }
     if (chosen < 0) continue;
