@@ -54,6 +54,9 @@ PropagationResult PropagateBounds(const Miqp& p, Eigen::VectorXd* lower_ptr, Eig
         result.infeasible = true;
         return result;
       }
+      // A row the bounds already keep tightens nothing: each variable's implied bounds
+      // lie outside its own (most big-M rows of regions a node has ruled out).
+      if (min_all >= lo && max_all <= hi) continue;
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
         const int j = static_cast<int>(it.col());
         const double a = it.value(), l = lower(j), u = upper(j);

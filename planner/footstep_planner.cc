@@ -257,6 +257,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         rf.time_limit_s = options.relax_and_fix_time_share * bnb.time_limit_s;
         rf.hull_for_later_steps = options.relax_and_fix_region_hull;
         rf.stage_relaxation_tolerance = options.relax_and_fix_stage_tolerance;
+        rf.stage_rounding = options.relax_and_fix_stage_rounding;
         const RelaxAndFixResult r = options.relax_and_fix_two_paths ? RelaxAndFixTwoPaths(formulation, solvers, rf)
                                                                     : RelaxAndFix(formulation, solvers, rf);
         if (r.x) proposals.push_back(*r.x);

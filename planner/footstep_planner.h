@@ -66,6 +66,9 @@ struct PlannerOptions {
   // Relative accuracy of the QPs of relax-and-fix's stages but the last
   // (RelaxAndFixOptions::stage_relaxation_tolerance; 0: the solver's own).
   double relax_and_fix_stage_tolerance = 1e-6;
+  // The search's rounding heuristic inside relax-and-fix's stages
+  // (RelaxAndFixOptions::stage_rounding).
+  bool relax_and_fix_stage_rounding = false;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };

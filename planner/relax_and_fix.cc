@@ -118,6 +118,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     BranchAndBoundOptions bnb = options.stage;
     bnb.max_nodes = options.nodes_per_stage;
     bnb.relative_gap = options.stage_relative_gap;
+    bnb.rounding_heuristic = bnb.rounding_heuristic && options.stage_rounding;
     if (!final_stage) bnb.relaxation_tolerance = std::max(bnb.relaxation_tolerance, options.stage_relaxation_tolerance);
     // A stage may take half of what is left: the later stages are the larger searches
     // (more of the plan's cost is decided there), so an even split starved them and their
