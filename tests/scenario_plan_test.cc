@@ -183,6 +183,18 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   EXPECT_EQ(m.MaxIntegrality(*binaries.x), 0.0);
   EXPECT_LE(m.Objective(*binaries.x), proof.objective + 0.01 * std::abs(proof.objective));
 
+  // With the search's rounding heuristic in the stages (off by default): rounding QPs
+  // on top of the node relaxations, and still a complete plan within 1 %.
+  rf.hull_for_later_steps = true;
+  rf.stage_rounding = true;
+  const RelaxAndFixResult rounded = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_TRUE(rounded.x.has_value());
+  EXPECT_LE(m.MaxViolation(*rounded.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*rounded.x), 0.0);
+  EXPECT_LE(m.Objective(*rounded.x), proof.objective + 0.01 * std::abs(proof.objective));
+  EXPECT_GT(rounded.relaxations - rounded.nodes, r.relaxations - r.nodes);
+  rf.stage_rounding = false;
+
   // Two paths side by side with two workers: the first is the one-worker run, so the
   // plan is never worse than that one, and it is a plan.
   rf.hull_for_later_steps = true;
