@@ -396,11 +396,18 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     if (!factored) break;
     // Newton direction for a complementarity target rc:
     //   (H + C'SC) dw = -r_d - C'(S r_p + S^-1 rc),  ds = -r_p - C dw,  dz = S(C dw + r_p) + S^-1 rc.
+    // With v = S r_p + S^-1 rc split by row groups (v_R the elastic rows, v_P their
+    // e >= 0 rows, v_U and v_L the bound pairs), t = -r_d - C'v reads
+    //   t_x = -r_d,x - G'v_R - (v_U - v_L),  t_e = -r_d,e + v_R + v_P,
+    // so the right-hand side K dx = t_x + G'(S1 t_e / (S1 + S2)) needs one product with
+    // G' and C dw one with G (G dx, which de needs too).
     auto direction = [&](const Eigen::VectorXd& rc, Eigen::VectorXd* dw, Eigen::VectorXd* ds, Eigen::VectorXd* dz) {
-      const Eigen::VectorXd t = -r_d - f.Ct(sigma.cwiseProduct(r_p) + rc.cwiseProduct(inverse_s));
-      const Eigen::VectorXd t_e = t.tail(E);
-      const Eigen::VectorXd rhs =
-          assembly.Permute(t.head(n) + Gt * s1.cwiseProduct(t_e).cwiseQuotient(s12));
+      const Eigen::VectorXd v = sigma.cwiseProduct(r_p) + rc.cwiseProduct(inverse_s);
+      const Eigen::VectorXd t_e = -r_d.tail(E) + v.head(E) + v.segment(E, E);
+      const Eigen::VectorXd row_part = s1.cwiseProduct(t_e).cwiseQuotient(s12) - v.head(E);
+      Eigen::VectorXd rhs_x = Gt * row_part - r_d.head(n);
+      for (int j = 0; j < n; ++j) rhs_x(j) -= v(2 * E + 2 * j) - v(2 * E + 2 * j + 1);
+      const Eigen::VectorXd rhs = assembly.Permute(rhs_x);
       Eigen::VectorXd dx_permuted = ldlt.solve(rhs);
       // Iterative refinement against the unshifted matrix: sigma's range (up to 1e15
       // near convergence) costs the factorisation digits that this wins back. Early
@@ -412,10 +419,17 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
         dx_permuted += ldlt.solve(residual);
       }
       const Eigen::VectorXd dx = assembly.Unpermute(dx_permuted);
+      const Eigen::VectorXd g_dx = f.G * dx;
       dw->resize(n + E);
       dw->head(n) = dx;
-      dw->tail(E) = (t_e + s1.cwiseProduct(f.G * dx)).cwiseQuotient(s12);
-      const Eigen::VectorXd c_dw = f.C(*dw);
+      dw->tail(E) = (t_e + s1.cwiseProduct(g_dx)).cwiseQuotient(s12);
+      Eigen::VectorXd c_dw(m);  // C dw from G dx
+      c_dw.head(E) = g_dx - dw->tail(E);
+      c_dw.segment(E, E) = -dw->tail(E);
+      for (int j = 0; j < n; ++j) {
+        c_dw(2 * E + 2 * j) = dx(j);
+        c_dw(2 * E + 2 * j + 1) = -dx(j);
+      }
       *ds = -r_p - c_dw;
       *dz = sigma.cwiseProduct(c_dw + r_p) + rc.cwiseProduct(inverse_s);
     };
