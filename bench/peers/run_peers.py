@@ -17,7 +17,9 @@ limit; a process that overruns the limit by far is killed and shown as such. A p
 that refuses an instance (licence size) is shown as "refused", never left out.
 
 Per instance and peer: time, objective and bound (both plus the offset, so they compare
-with mfp's objective), status, and mfp's time over the peer's time. Per instance: the
+with mfp's objective), status, mfp's time over the peer's time, and (SCIP, which lists
+its solutions with their times) when the peer first held a solution within 0.5 % of the
+best objective any solver found: the time to compare with mfp-bench's within_s. Per instance: the
 best objective any peer found, mfp's gap to it, the best proven bound and mfp's gap to
 that, and warnings when peers that claim optimality disagree or when mfp's objective is
 below a peer's proven bound (which would mean the export and mfp's model differ).
@@ -37,6 +39,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, "..", ".."))
 VENV_PYTHON = os.path.join(REPO, "bench", ".venv", "bin", "python")
 ALL_SOLVERS = ("gurobi", "cplex", "copt", "scip", "bonmin")
+# "Within" for the time to a good solution: the issue's targets count a plan within 0.5 %
+# of the best objective any solver found.
+WITHIN = 0.005
 # Two objectives agree when they differ by at most this (absolute + relative).
 ABS_TOL = 1e-4
 REL_TOL = 1e-4
@@ -150,6 +155,9 @@ def evaluate(name, mps, args):
     infeasible = [p["solver"] for p in peers if p["status"] == "infeasible"]
     if infeasible and found:
         notes.append(f"DISAGREE: {', '.join(infeasible)} report infeasible, others found a solution")
+    best_any = min([v for v in found + [mfp and mfp["objective"]] if v is not None], default=None)
+    for p in peers:
+        p["within_s"] = first_within(p.get("solutions") or [], offset, best_any)
     summary = {"best_objective": best, "best_solver": best_solver, "best_bound": best_bound}
     if mfp and mfp["objective"] is not None:
         summary["mfp_gap_to_best"] = relative_gap(mfp["objective"], best)
@@ -160,6 +168,15 @@ def evaluate(name, mps, args):
                          f"bound {best_bound:.6g}: the MPS and mfp's model may differ")
     return {"instance": name, "mps": mps, "columns": columns, "integer_variables": integers, "rows": rows,
             "objective_offset": offset, "mfp": mfp, "peers": peers, "summary": summary, "notes": notes}
+
+
+def first_within(solutions, offset, best):
+    """The earliest time of a solution within WITHIN of best (objectives plus offset)."""
+    if best is None:
+        return None
+    limit = best + WITHIN * max(1.0, abs(best))
+    times = [t for t, objective in solutions if objective + offset <= limit]
+    return min(times) if times else None
 
 
 def fmt(value, unit="", digits=4):
@@ -177,7 +194,7 @@ def fmt(value, unit="", digits=4):
 
 
 HEADER = ["instance", "int vars", "cols", "rows", "solver", "status", "time", "objective", "bound",
-          "mfp time / solver time"]
+          "mfp time / solver time", "first within 0.5 %"]
 
 
 def table_rows(results):
@@ -187,7 +204,7 @@ def table_rows(results):
         if res["mfp"]:
             m = res["mfp"]
             rows.append(lead + ["mfp", str(m["status"]), fmt(m["time_s"], "s"), fmt(m["objective"]),
-                                fmt(m["bound"]), ""])
+                                fmt(m["bound"]), "", "mfp-bench within_s"])
             lead = ["", "", "", ""]
         for p in res["peers"]:
             status = p["status"]
@@ -196,8 +213,9 @@ def table_rows(results):
             ratio = fmt(p["mfp_time_ratio"], "x")
             if p["mfp_time_ratio"] is not None and p["status"] == "time_limit":
                 ratio = "<= " + ratio  # the peer stopped at its limit
+            within = fmt(p["within_s"], "s") if p.get("solutions") else "-"
             rows.append(lead + [p["solver"], status, fmt(p.get("time_s"), "s"),
-                                fmt(p["objective_with_offset"]), fmt(p["bound_with_offset"]), ratio])
+                                fmt(p["objective_with_offset"]), fmt(p["bound_with_offset"]), ratio, within])
             lead = ["", "", "", ""]
     return rows
 

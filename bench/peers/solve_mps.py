@@ -6,7 +6,9 @@
 Printed fields: solver, version, status (optimal|feasible|time_limit|infeasible|refused|
 error|unavailable), time_s (wall time of the solve call, reading excluded), objective and
 bound (as the solver reports them: the constant term mfp keeps in its plan JSON is NOT
-added here), message. The solver's own log goes to stderr with --verbose, else nowhere,
+added here), message, and for SCIP solutions: [time_s, objective] of each solution it
+kept (SCIP's solving clock), from which run_peers.py reads when a solution within 0.5 %
+of the best first appeared. The solver's own log goes to stderr with --verbose, else nowhere,
 so that stdout carries only the JSON line.
 
 Licence-size refusals (CPLEX Community Edition, the size-limited Gurobi and COPT
@@ -72,7 +74,7 @@ def package_version(name):
         return "?"
 
 
-def result(solver, status, time_s=None, objective=None, bound=None, message="", version=""):
+def result(solver, status, time_s=None, objective=None, bound=None, message="", version="", solutions=None):
     if status in ("infeasible", "refused", "unavailable"):
         bound = None  # CPLEX reports a meaningless 0 as the bound of an infeasible MIP
     return {
@@ -83,6 +85,7 @@ def result(solver, status, time_s=None, objective=None, bound=None, message="", 
         "objective": finite_or_none(objective),
         "bound": finite_or_none(bound),
         "message": message,
+        "solutions": solutions or [],
     }
 
 
@@ -214,7 +217,8 @@ def solve_scip(path, time_limit, threads, mip_gap):
         status = "time_limit"
     else:
         status = "feasible" if has_solution else "error"
-    return result("scip", status, elapsed, objective, bound, f"SCIP status {scip_status}", version)
+    solutions = sorted([model.getSolTime(sol), model.getSolObjVal(sol)] for sol in model.getSols())
+    return result("scip", status, elapsed, objective, bound, f"SCIP status {scip_status}", version, solutions)
 
 
 # --------------------------------------------------------------------------- COPT
