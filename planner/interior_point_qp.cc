@@ -114,54 +114,92 @@ struct KktAssembly {
   };
   std::vector<Term> terms;
 
+  // The pattern is built column by column from G's rows, as a symbolic product with a
+  // marker array, not from sparse products and conversions: per QP those took more
+  // than one interior-point iteration.
   KktAssembly(const InequalityForm& f, const std::vector<int>* elimination_order) {
     const int n = f.n;
-    SpMat identity(n, n);
-    identity.setIdentity();
-    const SpMat lower = SpMat(f.Q + f.Gt * f.G + identity).triangularView<Eigen::Lower>();
-    const std::vector<int> order =
-        elimination_order != nullptr ? *elimination_order : MinimumDegreeOrder(lower);
+    // 1. The lower triangle of Q + G'G + I in the original order (compressed columns,
+    //    sorted rows). entry_of[a] is row a's entry in the column being built.
+    std::vector<int> lower_outer(n + 1, 0), lower_inner;
+    std::vector<int> mark(n, -1), entry_of(n, -1);
+    std::vector<int> term_var;  // row of the term in its column, until its entry is known
+    std::vector<std::pair<int, double>> q_entries;  // (entry, value)
+    diagonal.resize(n);
+    for (int col = 0; col < n; ++col) {
+      const int begin = static_cast<int>(lower_inner.size());
+      const auto touch = [&](int row) {
+        if (mark[row] == col) return;
+        mark[row] = col;
+        lower_inner.push_back(row);
+      };
+      touch(col);
+      for (SpMat::InnerIterator q(f.Q, col); q; ++q) {
+        if (q.row() >= col) touch(static_cast<int>(q.row()));
+      }
+      const size_t first_term = terms.size();
+      for (SpMat::InnerIterator g(f.G, col); g; ++g) {  // the elastic rows k holding col
+        const int k = static_cast<int>(g.row());
+        for (SpMat::InnerIterator a(f.Gt, k); a; ++a) {  // the variables of row k
+          if (a.row() < col) continue;
+          touch(static_cast<int>(a.row()));
+          terms.push_back({k, -1, a.value() * g.value()});
+          term_var.push_back(static_cast<int>(a.row()));
+        }
+      }
+      std::sort(lower_inner.begin() + begin, lower_inner.end());
+      for (int e = begin; e < static_cast<int>(lower_inner.size()); ++e) entry_of[lower_inner[e]] = e;
+      diagonal[col] = entry_of[col];
+      for (SpMat::InnerIterator q(f.Q, col); q; ++q) {
+        if (q.row() >= col) q_entries.emplace_back(entry_of[q.row()], q.value());
+      }
+      for (size_t t = first_term; t < terms.size(); ++t) terms[t].index = entry_of[term_var[t]];
+      lower_outer[col + 1] = static_cast<int>(lower_inner.size());
+    }
+    const int entries = lower_outer[n];
+    // 2. The elimination order.
+    std::vector<int> order;
+    if (elimination_order != nullptr) {
+      order = *elimination_order;
+    } else {
+      const std::vector<double> ones(entries, 1.0);
+      const Eigen::Map<const SpMat> lower(n, n, entries, lower_outer.data(), lower_inner.data(), ones.data());
+      order = MinimumDegreeOrder(SpMat(lower));
+    }
     MFP_CHECK(static_cast<int>(order.size()) == n);
     position.assign(n, -1);
     for (int k = 0; k < n; ++k) {
       MFP_CHECK(order[k] >= 0 && order[k] < n && position[order[k]] < 0);
       position[order[k]] = k;
     }
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(lower.nonZeros());
-    for (int col = 0; col < n; ++col) {
-      for (SpMat::InnerIterator it(lower, col); it; ++it) {
-        const int a = position[it.row()], b = position[col];
-        entries.emplace_back(std::min(a, b), std::max(a, b), 1.0);
+    // 3. The permuted upper triangle: entry (a, b) goes to (min, max) of their positions;
+    //    columns by counting, rows sorted within each. slot: an entry's value index there.
+    std::vector<int> upper_outer(n + 1, 0), upper_inner(entries), slot(entries);
+    std::vector<std::pair<int, int>> placed(entries);  // (row, entry) by column
+    for (int b = 0; b < n; ++b) {
+      for (int e = lower_outer[b]; e < lower_outer[b + 1]; ++e) {
+        ++upper_outer[std::max(position[lower_inner[e]], position[b]) + 1];
       }
     }
-    pattern.resize(n, n);
-    pattern.setFromTriplets(entries.begin(), entries.end());
-    pattern.makeCompressed();
-    // The value index of original entry (a, b), either triangle.
-    auto index_of = [&](int a, int b) {
-      const int row = std::min(position[a], position[b]), col = std::max(position[a], position[b]);
-      const int* begin = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col];
-      const int* end = pattern.innerIndexPtr() + pattern.outerIndexPtr()[col + 1];
-      const int* it = std::lower_bound(begin, end, row);
-      MFP_CHECK(it != end && *it == row);
-      return static_cast<int>(it - pattern.innerIndexPtr());
-    };
-    base = Eigen::VectorXd::Zero(pattern.nonZeros());
-    for (int col = 0; col < f.Q.outerSize(); ++col) {
-      for (SpMat::InnerIterator it(f.Q, col); it; ++it) {
-        if (it.row() >= col) base(index_of(static_cast<int>(it.row()), col)) += it.value();
+    for (int c = 0; c < n; ++c) upper_outer[c + 1] += upper_outer[c];
+    std::vector<int> fill(upper_outer.begin(), upper_outer.end() - 1);
+    for (int b = 0; b < n; ++b) {
+      for (int e = lower_outer[b]; e < lower_outer[b + 1]; ++e) {
+        const int pa = position[lower_inner[e]], pb = position[b];
+        placed[fill[std::max(pa, pb)]++] = {std::min(pa, pb), e};
       }
     }
-    for (int j = 0; j < n; ++j) diagonal.push_back(index_of(j, j));
-    const Eigen::SparseMatrix<double, Eigen::RowMajor> rows(f.G);
-    for (int k = 0; k < rows.outerSize(); ++k) {
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator a(rows, k); a; ++a) {
-        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator b(rows, k); b && b.col() <= a.col(); ++b) {
-          terms.push_back({k, index_of(static_cast<int>(a.col()), static_cast<int>(b.col())), a.value() * b.value()});
-        }
-      }
+    for (int c = 0; c < n; ++c) std::sort(placed.begin() + upper_outer[c], placed.begin() + upper_outer[c + 1]);
+    for (int i = 0; i < entries; ++i) {
+      upper_inner[i] = placed[i].first;
+      slot[placed[i].second] = i;
     }
+    const std::vector<double> zeros(entries, 0.0);
+    pattern = Eigen::Map<const SpMat>(n, n, entries, upper_outer.data(), upper_inner.data(), zeros.data());
+    base = Eigen::VectorXd::Zero(entries);
+    for (const auto& [e, value] : q_entries) base(slot[e]) += value;
+    for (int& d : diagonal) d = slot[d];
+    for (Term& t : terms) t.index = slot[t.index];
   }
 
   void Assemble(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight, SpMat* K) const {
