@@ -173,25 +173,26 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   EXPECT_EQ(m.MaxIntegrality(*partial.x), 0.0);
   EXPECT_GE(m.Objective(*partial.x), proof.bound - 1e-6);
 
+  // A complete plan: integral choices that meet every row, within 1 % of the optimum.
+  const auto expect_plan_near_optimum = [&](const RelaxAndFixResult& run) {
+    ASSERT_TRUE(run.x.has_value());
+    EXPECT_LE(m.MaxViolation(*run.x), 1e-5);
+    EXPECT_EQ(m.MaxIntegrality(*run.x), 0.0);
+    EXPECT_LE(m.Objective(*run.x), proof.objective + 0.01 * std::abs(proof.objective));
+  };
+
   // The stages with the steps they have not reached in the full relaxation of their
   // region binaries (the hull is the default): also a complete plan within 1 %.
   rf.max_searched_stages = 0;
   rf.hull_for_later_steps = false;
-  const RelaxAndFixResult binaries = RelaxAndFix(formulation, solvers.workers(), rf);
-  ASSERT_TRUE(binaries.x.has_value());
-  EXPECT_LE(m.MaxViolation(*binaries.x), 1e-5);
-  EXPECT_EQ(m.MaxIntegrality(*binaries.x), 0.0);
-  EXPECT_LE(m.Objective(*binaries.x), proof.objective + 0.01 * std::abs(proof.objective));
+  expect_plan_near_optimum(RelaxAndFix(formulation, solvers.workers(), rf));
 
   // With the search's rounding heuristic in the stages (off by default): rounding QPs
   // on top of the node relaxations, and still a complete plan within 1 %.
   rf.hull_for_later_steps = true;
   rf.stage_rounding = true;
   const RelaxAndFixResult rounded = RelaxAndFix(formulation, solvers.workers(), rf);
-  ASSERT_TRUE(rounded.x.has_value());
-  EXPECT_LE(m.MaxViolation(*rounded.x), 1e-5);
-  EXPECT_EQ(m.MaxIntegrality(*rounded.x), 0.0);
-  EXPECT_LE(m.Objective(*rounded.x), proof.objective + 0.01 * std::abs(proof.objective));
+  expect_plan_near_optimum(rounded);
   EXPECT_GT(rounded.relaxations - rounded.nodes, r.relaxations - r.nodes);
   rf.stage_rounding = false;
 
