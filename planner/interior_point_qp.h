@@ -9,7 +9,6 @@
 // variables stay positive is reported infeasible. Variable bounds stay hard (they are
 // always consistent: fixed variables are removed before, see fixed_variable_reduction.h).
 #include <Eigen/Core>
-#include <vector>
 
 #include "planner/miqp.h"
 #include "planner/relaxation_solver.h"
@@ -43,14 +42,9 @@ struct InteriorPointOptions {
 };
 
 // Solves min 0.5 x'Qx + c'x + constant s.t. row bounds, lower <= x <= upper (all finite,
-// lower < upper). warm_start may be null. elimination_order, if given, is the order in
-// which the Newton systems eliminate the variables (a permutation of 0 .. n-1); null: an
-// approximate minimum degree order of this problem's pattern, computed per call (an
-// order computed once for the whole MIQP and restricted to a node's free variables
-// had 23-34 % more fill-in, which cost more than the ordering).
+// lower < upper). warm_start may be null.
 RelaxationResult SolveQpInteriorPoint(const Miqp& problem, const Eigen::VectorXd& lower,
                                       const Eigen::VectorXd& upper, const Eigen::VectorXd* warm_start,
-                                      const InteriorPointOptions& options,
-                                      const std::vector<int>* elimination_order = nullptr);
+                                      const InteriorPointOptions& options);
 
 }  // namespace mfp
