@@ -123,7 +123,6 @@ struct KktAssembly {
     //    sorted rows). entry_of[a] is row a's entry in the column being built.
     std::vector<int> lower_outer(n + 1, 0), lower_inner;
     std::vector<int> mark(n, -1), entry_of(n, -1);
-    std::vector<int> term_var;  // row of the term in its column, until its entry is known
     std::vector<std::pair<int, double>> q_entries;  // (entry, value)
     diagonal.resize(n);
     for (int col = 0; col < n; ++col) {
@@ -143,8 +142,8 @@ struct KktAssembly {
         for (SpMat::InnerIterator a(f.Gt, k); a; ++a) {  // the variables of row k
           if (a.row() < col) continue;
           touch(static_cast<int>(a.row()));
-          terms.push_back({k, -1, a.value() * g.value()});
-          term_var.push_back(static_cast<int>(a.row()));
+          // index holds the term's row in this column until that row's entry is known
+          terms.push_back({k, static_cast<int>(a.row()), a.value() * g.value()});
         }
       }
       std::sort(lower_inner.begin() + begin, lower_inner.end());
@@ -153,7 +152,7 @@ struct KktAssembly {
       for (SpMat::InnerIterator q(f.Q, col); q; ++q) {
         if (q.row() >= col) q_entries.emplace_back(entry_of[q.row()], q.value());
       }
-      for (size_t t = first_term; t < terms.size(); ++t) terms[t].index = entry_of[term_var[t]];
+      for (size_t t = first_term; t < terms.size(); ++t) terms[t].index = entry_of[terms[t].index];
       lower_outer[col + 1] = static_cast<int>(lower_inner.size());
     }
     const int entries = lower_outer[n];
