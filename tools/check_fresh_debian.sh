@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# The fresh-machine check: does a new user's Debian 12 go from clone to result with the
+# README's two commands? Makes a minimal bookworm root (debootstrap --variant=minbase,
+# nothing installed by hand), copies a clean clone of HEAD into it, and runs
+# tools/demo.sh and then tools/test.sh inside it with chroot. A package missing from
+# tools/debian-packages.txt fails here even when this machine happens to have it.
+#
+# usage: tools/check_fresh_debian.sh [--keep] [--root DIR]
+#   --keep      leave the root in place afterwards (for a look inside)
+#   --root DIR  where to build the root (default: a new folder under /var/tmp)
+# Needs root. The base system's packages are cached as a tarball in
+# ${MFP_CACHE_DIR:-~/.cache/mfp}/ so later runs skip that download. The Debian mirror is
+# the one this machine's own apt sources name. Ends with one line: 'fresh Debian check:
+# passed' or 'fresh Debian check: FAILED at STEP: REASON'. Mounts are undone on every exit.
+set -uo pipefail
+
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+keep=0
+root=""
+while (($#)); do
+  case "$1" in
+    --keep) keep=1 ;;
+    --root) shift; root="${1:?--root needs a folder}" ;;
+    -h|--help) sed -n '2,15p' "${BASH_SOURCE[0]}"; exit 0 ;;
+    *) echo "check_fresh_debian: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+
+say() { printf '[fresh debian] %s\n' "$*"; }
+step_name="setup"
+fail() {
+  echo "fresh Debian check: FAILED at $step_name: $*"
+  exit 1
+}
+
+[ "$(id -u)" -eq 0 ] || { step_name="start"; fail "needs root (debootstrap and chroot); run it as root"; }
+
+# The mirror: the first Debian archive URI in this machine's apt sources (deb822 or
+# one-line format), so the check uses the same archive the machine itself installs from.
+mirror="$(grep -hE '^\s*(URIs:|deb\s)' /etc/apt/sources.list.d/*.sources /etc/apt/sources.list 2>/dev/null \
+  | grep -v -- '-security' | grep -oE 'https?://[^ ]+' | head -n 1)"
+mirror="${mirror:-http://deb.debian.org/debian}"
+
+cache="${MFP_CACHE_DIR:-$HOME/.cache/mfp}"
+tarball="$cache/debootstrap-bookworm-minbase.tgz"
+root="${root:-$(mktemp -d /var/tmp/mfp-fresh-debian.XXXXXX)}"
+mounted=()
+
+cleanup() {
+  local m
+  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
+    m="${mounted[$i]}"
+    umount -l "$m" 2>/dev/null || true
+  done
+  if ((keep)); then
+    say "root kept at $root"
+  elif [ -n "$root" ] && [ -d "$root" ]; then
+    # Only after every mount is gone: never delete through a bind mount.
+    if ! grep -q " $root" /proc/mounts; then rm -rf --one-file-system "$root"; fi
+  fi
+}
+trap cleanup EXIT
+trap 'step_name="$step_name (interrupted)"; fail "signal"' INT TERM
+
+timed() {  # timed NAME COMMAND...: runs a step, prints its time, fails the check on error
+  step_name="$1"; shift
+  local start=$SECONDS log="$cache/fresh-debian-$step_name.log"
+  say "$step_name ..."
+  if "$@" >"$log" 2>&1; then
+    say "$step_name: $((SECONDS - start)) s"
+  else
+    local code=$?
+    say "$step_name: failed after $((SECONDS - start)) s (exit $code); last lines of $log:"
+    tail -n 25 "$log" | sed 's/^/    /'
+    local why
+    why="$(grep -m1 -E 'cannot find -l|error:|Error|FAILED|failed' "$log" | cut -c1-200)"
+    fail "${why:-exit $code, see $log}"
+  fi
+}
+
+mkdir -p "$cache"
+say "repository $repo at $(git -C "$repo" rev-parse --short HEAD); mirror $mirror; root $root"
+
+if ! command -v debootstrap >/dev/null; then
+  timed install-debootstrap bash -c 'apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq debootstrap'
+fi
+
+if [ ! -s "$tarball" ]; then
+  tmp_root="$(mktemp -d /var/tmp/mfp-debootstrap-download.XXXXXX)"
+  timed download-base debootstrap --variant=minbase --make-tarball="$tarball.part" bookworm "$tmp_root" "$mirror"
+  rm -rf "$tmp_root"
+  mv "$tarball.part" "$tarball"
+else
+  say "base packages cached: $tarball"
+fi
+timed make-root debootstrap --variant=minbase --unpack-tarball="$tarball" bookworm "$root" "$mirror"
+
+# A clean clone of HEAD: what a user gets, with nothing untracked or ignored.
+timed copy-clone git clone -q --no-hardlinks "$repo" "$root/mfp"
+# The scenarios and tests read ../shared only where the repository says so; keep it beside.
+[ -d "$repo/../shared" ] && cp -r "$repo/../shared" "$root/shared"
+
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+for m in proc sys dev dev/pts; do
+  mkdir -p "$root/$m"
+  case "$m" in
+    proc) mount -t proc proc "$root/proc" ;;
+    sys) mount -t sysfs sysfs "$root/sys" ;;
+    *) mount --bind "/$m" "$root/$m" ;;
+  esac || fail "could not mount /$m in the root"
+  mounted+=("$root/$m")
+done
+
+in_root() { chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 CI="${CI:-}" "$@"; }
+timed demo in_root bash -c 'cd /mfp && tools/demo.sh'
+timed test in_root bash -c 'cd /mfp && tools/test.sh'
+step_name="done"
+echo "fresh Debian check: passed (demo and the whole suite on a fresh bookworm, $SECONDS s in all)"
