@@ -74,7 +74,9 @@ timed() {  # timed NAME COMMAND...: runs a step, prints its time, fails the chec
     say "$step_name: failed after $((SECONDS - start)) s (exit $code); last lines of $log:"
     tail -n 25 "$log" | sed 's/^/    /'
     local why
-    why="$(grep -m1 -E 'cannot find -l|error:|Error|FAILED|failed' "$log" | cut -c1-200)"
+    # The most telling line first: a missing library, then a compile error, then any failure.
+    why="$(grep -m1 -E 'cannot find -l' "$log" || grep -m1 -E 'error:|Error|FAILED|failed' "$log")"
+    why="$(cut -c1-200 <<<"$why")"
     fail "${why:-exit $code, see $log}"
   fi
 }
@@ -98,8 +100,6 @@ timed make-root debootstrap --variant=minbase --unpack-tarball="$tarball" bookwo
 
 # A clean clone of HEAD: what a user gets, with nothing untracked or ignored.
 timed copy-clone git clone -q --no-hardlinks "$repo" "$root/mfp"
-# The scenarios and tests read ../shared only where the repository says so; keep it beside.
-[ -d "$repo/../shared" ] && cp -r "$repo/../shared" "$root/shared"
 
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 for m in proc sys dev dev/pts; do
