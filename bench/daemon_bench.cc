@@ -25,7 +25,7 @@
 #include "mfp/plan_request_t.hpp"
 #include "mfp/plan_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/octomap_io.h"
 #include "terrain/voxelize.h"
 #include "tools/daemon/daemon_config.h"

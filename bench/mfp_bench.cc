@@ -16,16 +16,16 @@
 #include <string>
 #include <vector>
 
-#include "planner/check.h"
-#include "planner/footstep_planner.h"
-#include "planner/relaxation_solver_factory.h"
-#include "planner/miqp_formulation.h"
-#include "planner/mps_writer.h"
-#include "planner/planner_options_yaml.h"
-#include "planner/plan_json.h"
-#include "planner/plan_validation.h"
-#include "planner/robot_loader.h"
-#include "planner/scenario_yaml.h"
+#include "planner/base/check.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/miqp/mps_writer.h"
+#include "planner/io/planner_options_yaml.h"
+#include "planner/io/plan_json.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/io/robot_loader.h"
+#include "planner/io/scenario_yaml.h"
 
 namespace {
 

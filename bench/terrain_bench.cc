@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/terrain_catalogue.h"

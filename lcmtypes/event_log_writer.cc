@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

@@ -1,6 +1,6 @@
 #include "lcmtypes/lcm_transport.h"
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

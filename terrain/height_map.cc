@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

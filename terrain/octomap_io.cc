@@ -8,7 +8,7 @@
 #include <memory>
 #include <sstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/voxelize.h"
 
 namespace mfp {

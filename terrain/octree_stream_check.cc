@@ -5,7 +5,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 namespace {

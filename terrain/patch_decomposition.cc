@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/convex_hull_2d.h"
 
 namespace mfp {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <deque>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 namespace {

@@ -1,6 +1,6 @@
 #include "terrain/rectangle_cover.h"
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/patch_decomposition.h"
 #include "terrain/plane_segmentation.h"
 #include "terrain/voxelize.h"

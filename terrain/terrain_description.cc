@@ -4,7 +4,7 @@
 #include <array>
 #include <cmath>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

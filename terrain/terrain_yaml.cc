@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 namespace {

@@ -10,7 +10,7 @@
 
 #include <string>
 
-#include "planner/yaml_fields.h"
+#include "planner/base/yaml_fields.h"
 #include "terrain/terrain_description.h"
 
 namespace mfp {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

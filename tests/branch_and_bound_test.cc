@@ -1,6 +1,6 @@
 // Branch-and-bound on a catalogue of small MIQPs whose optima are worked out by hand in
 // the comments; every search strategy must prove each of them.
-#include "planner/branch_and_bound.h"
+#include "planner/search/branch_and_bound.h"
 
 #include <gtest/gtest.h>
 
@@ -11,9 +11,9 @@
 #include <thread>
 #include <vector>
 
-#include "planner/ipm_relaxation_solver.h"
-#include "planner/ipopt_relaxation_solver.h"
-#include "planner/miqp_builder.h"
+#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/ipopt_relaxation_solver.h"
+#include "planner/miqp/miqp_builder.h"
 
 namespace mfp {
 namespace {

@@ -16,7 +16,7 @@
 #include "lcmtypes/message_guard.h"
 #include "mfp/region_set_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
 #include "tools/daemon/daemon_setup.h"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/rectangle_cover.h"
 
 namespace mfp {

@@ -1,15 +1,15 @@
 // mfp's interior-point QP and bound propagation on problems solved by hand.
-#include "planner/interior_point_qp.h"
+#include "planner/qp/interior_point_qp.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "planner/bound_propagation.h"
-#include "planner/fixed_variable_reduction.h"
-#include "planner/ipm_relaxation_solver.h"
-#include "planner/miqp_builder.h"
-#include "planner/relaxation_solver_factory.h"
+#include "planner/search/bound_propagation.h"
+#include "planner/qp/fixed_variable_reduction.h"
+#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
 namespace {

@@ -11,7 +11,7 @@
 #include "mfp/plan_t.hpp"
 #include "mfp/status_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/solve_status.h"
+#include "planner/base/solve_status.h"
 
 namespace mfp {
 namespace {

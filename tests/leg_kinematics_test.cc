@@ -6,9 +6,9 @@
 #include <cmath>
 #include <functional>
 
-#include "planner/footprint_grid.h"
-#include "planner/inscribed_square.h"
-#include "planner/leg_kinematics.h"
+#include "planner/robot/footprint_grid.h"
+#include "planner/robot/inscribed_square.h"
+#include "planner/robot/leg_kinematics.h"
 
 namespace mfp {
 namespace {

@@ -10,14 +10,14 @@
 //   f4 = (0.2, 0.1, 0), f5 = (0.2, -0.1, 0), f6 = (0, 0.1, 0), f7 = (0, -0.1, 0).
 // Centres of contacts (mean of the 4 latest feet; before the plan, the start stance):
 //   p4 = (0.1 - 0.1 - 0.1 + 0.2) / 4 = 0.025, p5 = 0.05, p6 = 0.075, p7 = 0.1 (y = 0).
-#include "planner/miqp_formulation.h"
+#include "planner/formulation/miqp_formulation.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tests/test_robots.h"
 
 namespace mfp {

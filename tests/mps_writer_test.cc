@@ -2,17 +2,17 @@
 // must satisfy every row and bound of the file, its integer columns must be the MIQP's,
 // and the file's objective at that solution plus objective_offset must be the objective
 // the planner reports.
-#include "planner/mps_writer.h"
+#include "planner/miqp/mps_writer.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 #include <sstream>
 
-#include "planner/branch_and_bound.h"
-#include "planner/ipm_relaxation_solver.h"
-#include "planner/miqp_builder.h"
-#include "planner/miqp_formulation.h"
+#include "planner/search/branch_and_bound.h"
+#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/formulation/miqp_formulation.h"
 #include "tests/test_robots.h"
 
 namespace mfp {

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <random>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/region_extractor.h"
 #include "terrain/terrain_catalogue.h"
 #include "terrain/voxelize.h"

@@ -1,12 +1,12 @@
 // The `planner:` block: every search option it names reaches PlannerOptions, and bad
 // values or unknown keys are errors that name the key.
-#include "planner/planner_options_yaml.h"
+#include "planner/io/planner_options_yaml.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/terrain_catalogue.h"
 #include "terrain/terrain_quality.h"
 #include "terrain/voxelize.h"

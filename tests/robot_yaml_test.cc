@@ -5,9 +5,9 @@
 #include <fstream>
 #include <string>
 
-#include "planner/check.h"
-#include "planner/robot_loader.h"
-#include "planner/robot_yaml.h"
+#include "planner/base/check.h"
+#include "planner/io/robot_loader.h"
+#include "planner/io/robot_yaml.h"
 
 namespace mfp {
 namespace {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {

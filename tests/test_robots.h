@@ -2,7 +2,7 @@
 // Small hand-made robots shared by the unit tests.
 #include <string>
 
-#include "planner/robot_model.h"
+#include "planner/robot/robot_model.h"
 
 namespace mfp {
 

@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "planner/check.h"
-#include "planner/robot_derivation.h"
-#include "planner/robot_loader.h"
-#include "planner/urdf_reader.h"
+#include "planner/base/check.h"
+#include "planner/robot/robot_derivation.h"
+#include "planner/io/robot_loader.h"
+#include "planner/robot/urdf_reader.h"
 
 namespace mfp {
 namespace {

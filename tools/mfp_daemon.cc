@@ -7,7 +7,7 @@
 #include <string>
 
 #include "lcmtypes/lcm_transport.h"
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/region_json.h"

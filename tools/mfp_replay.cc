@@ -9,7 +9,7 @@
 
 #include "lcmtypes/event_log_writer.h"
 #include "lcmtypes/lcm_transport.h"
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_setup.h"

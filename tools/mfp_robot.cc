@@ -12,10 +12,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tools/text_output.h"
-#include "planner/robot_json.h"
-#include "planner/robot_loader.h"
+#include "planner/io/robot_json.h"
+#include "planner/io/robot_loader.h"
 
 namespace {
 

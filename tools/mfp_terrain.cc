@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "terrain/octomap_io.h"
 #include "terrain/terrain_yaml.h"
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "planner/plan.h"
-#include "planner/robot_model.h"
+#include "planner/formulation/plan.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
 
 namespace mfp {

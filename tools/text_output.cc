@@ -3,7 +3,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

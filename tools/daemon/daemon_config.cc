@@ -1,8 +1,8 @@
 #include "tools/daemon/daemon_config.h"
 
-#include "planner/check.h"
-#include "planner/planner_options_yaml.h"
-#include "planner/yaml_fields.h"
+#include "planner/base/check.h"
+#include "planner/io/planner_options_yaml.h"
+#include "planner/base/yaml_fields.h"
 
 namespace mfp {
 namespace {

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/footstep_planner.h"
+#include "planner/planning/footstep_planner.h"
 
 namespace mfp {
 

@@ -6,7 +6,7 @@
 
 #include "lcmtypes/message_guard.h"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/check.h"
+#include "planner/base/check.h"
 #include "tools/daemon/message_conversion.h"
 #include "tools/daemon/request_validation.h"
 

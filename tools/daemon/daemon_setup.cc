@@ -1,7 +1,7 @@
 #include "tools/daemon/daemon_setup.h"
 
-#include "planner/check.h"
-#include "planner/robot_loader.h"
+#include "planner/base/check.h"
+#include "planner/io/robot_loader.h"
 
 namespace mfp {
 

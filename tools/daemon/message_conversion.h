@@ -5,7 +5,7 @@
 
 #include "mfp/plan_t.hpp"
 #include "mfp/region_set_t.hpp"
-#include "planner/plan.h"
+#include "planner/formulation/plan.h"
 #include "terrain/convex_region.h"
 
 namespace mfp {

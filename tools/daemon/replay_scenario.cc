@@ -4,8 +4,8 @@
 
 #include "mfp/plan_request_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/check.h"
-#include "planner/yaml_fields.h"
+#include "planner/base/check.h"
+#include "planner/base/yaml_fields.h"
 #include "terrain/terrain_yaml.h"
 #include "tools/daemon/daemon_config.h"
 

@@ -1,6 +1,6 @@
 #include "tools/daemon/request_queue.h"
 
-#include "planner/check.h"
+#include "planner/base/check.h"
 
 namespace mfp {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "planner/footstep_planner.h"
+#include "planner/planning/footstep_planner.h"
 
 namespace mfp {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "mfp/plan_request_t.hpp"
-#include "planner/footstep_planner.h"
-#include "planner/robot_model.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
 #include "tools/daemon/daemon_config.h"
 

@@ -1,6 +1,6 @@
 #include "tools/daemon/solver_plan_function.h"
 
-#include "planner/relaxation_solver_factory.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
 

@@ -1,0 +1,143 @@
+#include "planner/base/yaml_fields.h"
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "planner/base/check.h"
+
+namespace mfp {
+
+YamlContext YamlContext::Child(const std::string& key) const {
+  return {file, path.empty() ? key : path + "." + key};
+}
+
+YamlContext YamlContext::Index(size_t i) const {
+  return {file, path + "[" + std::to_string(i) + "]"};
+}
+
+std::string YamlContext::Where() const {
+  return file + (path.empty() ? "" : ": " + path);
+}
+
+YAML::Node LoadYamlFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(path + ": no such file");
+  }
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw InputError(path + ": not valid YAML: " + e.what());
+  }
+}
+
+void RejectUnknownKeys(const YAML::Node& map, const YamlContext& ctx,
+                       const std::vector<std::string>& allowed) {
+  if (!map.IsMap()) throw InputError(ctx.Where() + ": expected a mapping");
+  const std::set<std::string> ok(allowed.begin(), allowed.end());
+  for (const auto& kv : map) {
+    const std::string key = kv.first.as<std::string>();
+    if (!ok.count(key)) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(ctx.Where() + ": unknown key '" + key + "' (allowed: " + list + ")");
+    }
+  }
+}
+
+double ReadDouble(const YAML::Node& node, const YamlContext& ctx, double min, double max) {
+  double value = 0.0;
+  try {
+    if (!node.IsScalar()) throw YAML::Exception(YAML::Mark(), "not a scalar");
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw InputError(ctx.Where() + ": expected a number");
+  }
+  if (!std::isfinite(value) || value < min || value > max) {
+    std::ostringstream msg;
+    msg << ctx.Where() << ": " << value << " is outside the allowed range [" << min << ", "
+        << max << "]";
+    throw InputError(msg.str());
+  }
+  return value;
+}
+
+int ReadInt(const YAML::Node& node, const YamlContext& ctx, int min, int max) {
+  long long value = 0;
+  try {
+    if (!node.IsScalar()) throw YAML::Exception(YAML::Mark(), "not a scalar");
+    value = node.as<long long>();
+  } catch (const YAML::Exception&) {
+    throw InputError(ctx.Where() + ": expected a whole number");
+  }
+  if (value < min || value > max) {
+    throw InputError(ctx.Where() + ": " + std::to_string(value) +
+                     " is outside the allowed range [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "]");
+  }
+  return static_cast<int>(value);
+}
+
+bool ReadBool(const YAML::Node& node, const YamlContext& ctx) {
+  try {
+    if (!node.IsScalar()) throw YAML::Exception(YAML::Mark(), "not a scalar");
+    return node.as<bool>();
+  } catch (const YAML::Exception&) {
+    throw InputError(ctx.Where() + ": expected true or false");
+  }
+}
+
+std::string ReadString(const YAML::Node& node, const YamlContext& ctx) {
+  if (!node.IsScalar()) throw InputError(ctx.Where() + ": expected a string");
+  return node.as<std::string>();
+}
+
+std::vector<double> ReadNumbers(const YAML::Node& node, const YamlContext& ctx, int size) {
+  if (!node.IsSequence()) {
+    throw InputError(ctx.Where() + ": expected a list of " +
+                     (size < 0 ? std::string("numbers") : std::to_string(size) + " numbers"));
+  }
+  if (size >= 0 && static_cast<int>(node.size()) != size) {
+    throw InputError(ctx.Where() + ": expected " + std::to_string(size) + " numbers, got " +
+                     std::to_string(node.size()));
+  }
+  std::vector<double> out;
+  for (size_t i = 0; i < node.size(); ++i) {
+    out.push_back(ReadDouble(node[i], ctx.Index(i), -1e9, 1e9));
+  }
+  return out;
+}
+
+std::optional<double> OptionalDouble(const YAML::Node& map, const YamlContext& ctx,
+                                     const std::string& key, double min, double max) {
+  if (!map[key]) return std::nullopt;
+  return ReadDouble(map[key], ctx.Child(key), min, max);
+}
+
+std::optional<int> OptionalInt(const YAML::Node& map, const YamlContext& ctx,
+                               const std::string& key, int min, int max) {
+  if (!map[key]) return std::nullopt;
+  return ReadInt(map[key], ctx.Child(key), min, max);
+}
+
+std::optional<bool> OptionalBool(const YAML::Node& map, const YamlContext& ctx,
+                                 const std::string& key) {
+  if (!map[key]) return std::nullopt;
+  return ReadBool(map[key], ctx.Child(key));
+}
+
+std::optional<std::string> OptionalString(const YAML::Node& map, const YamlContext& ctx,
+                                          const std::string& key) {
+  if (!map[key]) return std::nullopt;
+  return ReadString(map[key], ctx.Child(key));
+}
+
+std::string ResolveRelative(const std::string& yaml_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return path;
+  return (std::filesystem::path(yaml_file).parent_path() / p).lexically_normal().string();
+}
+
+}  // namespace mfp

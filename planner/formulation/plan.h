@@ -1,0 +1,37 @@
+#pragma once
+// The result of planning: footsteps plus the solver's account of how it got them.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "planner/base/solve_status.h"
+
+namespace mfp {
+
+struct Footstep {
+  int index = 0;                                            // position in the plan
+  int leg = 0;                                              // index into RobotModel::legs
+  Eigen::Vector3d position_world_m = Eigen::Vector3d::Zero();
+  double yaw_rad = 0.0;                                     // body yaw of the configuration
+  int region_id = -1;                                       // ConvexRegion::id it stands in
+};
+
+struct Plan {
+  SolveStatus status = SolveStatus::kInternalError;
+  std::string message;        // human-readable detail for non-optimal outcomes
+  bool reaches_goal = false;  // final stance within the goal tolerances
+  double objective = 0.0;     // sum over windows of each MIQP's objective (incl. constants)
+  double bound = 0.0;         // sum of the windows' best lower bounds
+  double gap = 0.0;           // relative gap (objective - bound) / max(1, |objective|)
+  double objective_offset = 0.0;  // constant terms: objective = MPS objective + offset (first window)
+  double solve_time_s = 0.0;
+  int nodes = 0;               // branch-and-bound nodes over all windows
+  int relaxations = 0;         // continuous QPs solved over all windows
+  int integer_variables = 0;   // in the first window's MIQP
+  int windows = 0;
+  // footsteps[0 .. n-1] are the start stance (in gait order); the last n are the final
+  // stance, one per leg.
+  std::vector<Footstep> footsteps;
+};
+
+}  // namespace mfp

@@ -1,0 +1,14 @@
+#pragma once
+// The `planner:` block shared by scenario files and the daemon's config.
+#include <yaml-cpp/yaml.h>
+
+#include "planner/planning/footstep_planner.h"
+#include "planner/base/yaml_fields.h"
+
+namespace mfp {
+
+// Overrides the fields present in `node` (a mapping); throws InputError naming the file,
+// key and allowed range on a bad value or an unknown key.
+void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options);
+
+}  // namespace mfp

@@ -1,0 +1,19 @@
+#pragma once
+// One entry point for `--robot FILE`: a URDF alone (everything derived, defaults for
+// what a URDF cannot say) or a robot YAML (robot_yaml.h), chosen by the extension.
+#include <string>
+
+#include "planner/robot/robot_derivation.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+// FILE.urdf or FILE.yaml / FILE.yml. The result passed ValidateRobotModel. Throws
+// InputError (missing file, bad URDF or YAML, unknown extension, a leg that cannot stand).
+RobotModel LoadRobot(const std::string& path);
+
+// The same, also returning the derivation details when the robot comes from a URDF
+// (`derivation->legs` is left empty for a hand-written YAML).
+RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation);
+
+}  // namespace mfp

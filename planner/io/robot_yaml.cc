@@ -1,0 +1,240 @@
+#include "planner/io/robot_yaml.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "planner/base/check.h"
+#include "planner/robot/urdf_reader.h"
+#include "planner/base/yaml_fields.h"
+
+namespace mfp {
+namespace {
+
+// The robot's scalar limits a YAML may give: required in the hand-written form, visible
+// overrides of the derived values in the URDF form. One table, so both forms accept the
+// same keys and ranges.
+struct LimitField {
+  const char* key;
+  double RobotModel::*member;
+  double min, max;
+  const char* unit;
+  bool required_without_urdf;
+  bool derived;  // derived from the URDF (stance_height is an input of the derivation)
+};
+const LimitField kLimitFields[] = {
+    {"stance_height", &RobotModel::stance_height_m, 0.0, 10.0, "m", false, false},
+    {"foot_radius", &RobotModel::foot_radius_m, 0.0, 1.0, "m", false, true},
+    {"d_lim", &RobotModel::d_lim_m, 1e-4, 10.0, "m", true, true},
+    {"l_bnd", &RobotModel::l_bnd_m, 1e-4, 10.0, "m", true, true},
+    {"dz_max", &RobotModel::dz_max_m, 1e-4, 10.0, "m", true, true},
+    {"max_yaw_change", &RobotModel::max_yaw_change_rad, 1e-3, M_PI, "rad", true, true},
+    {"max_slope", &RobotModel::max_slope_rad, 0.0, M_PI / 2, "rad", false, true},
+};
+
+std::string Describe(const std::string& key, double value, const std::string& unit,
+                     const std::string& file) {
+  std::ostringstream out;
+  out << key << " = " << value << " " << unit << ": from " << file;
+  return out.str();
+}
+
+// Gait entries may be leg indices or leg names.
+std::vector<int> ReadGait(const YAML::Node& node, const YamlContext& ctx,
+                          const std::vector<LegModel>& legs) {
+  if (!node.IsSequence()) throw InputError(ctx.Where() + ": expected a list of legs");
+  std::vector<int> gait;
+  for (size_t i = 0; i < node.size(); ++i) {
+    const YamlContext at = ctx.Index(i);
+    const std::string text = ReadString(node[i], at);
+    int index = -1;
+    for (size_t k = 0; k < legs.size(); ++k) {
+      if (legs[k].name == text) index = static_cast<int>(k);
+    }
+    if (index < 0) index = ReadInt(node[i], at, 0, static_cast<int>(legs.size()) - 1);
+    gait.push_back(index);
+  }
+  return gait;
+}
+
+std::string Fixed4(double value) {
+  std::ostringstream out;
+  out.setf(std::ios::fixed);
+  out.precision(4);
+  out << value;
+  return out.str();
+}
+
+// Replaces the provenance line of `key` ("key = ...") or appends one.
+void SetProvenance(RobotModel* robot, const std::string& key, const std::string& line) {
+  for (std::string& existing : robot->provenance) {
+    if (existing.rfind(key + " =", 0) == 0) {
+      existing = line;
+      return;
+    }
+  }
+  robot->provenance.push_back(line);
+}
+
+void ReadWeights(const YAML::Node& root, const YamlContext& ctx, PlannerWeights* weights) {
+  if (!root["weights"]) return;
+  const YAML::Node w = root["weights"];
+  const YamlContext wctx = ctx.Child("weights");
+  RejectUnknownKeys(w, wctx, {"goal_position", "goal_yaw", "trim_step", "displacement"});
+  weights->goal_position =
+      OptionalDouble(w, wctx, "goal_position", 1e-6, 1e9).value_or(weights->goal_position);
+  weights->goal_yaw = OptionalDouble(w, wctx, "goal_yaw", 0.0, 1e9).value_or(weights->goal_yaw);
+  weights->trim_step =
+      OptionalDouble(w, wctx, "trim_step", -1e9, 0.0).value_or(weights->trim_step);
+  weights->displacement =
+      OptionalDouble(w, wctx, "displacement", 0.0, 1e9).value_or(weights->displacement);
+}
+
+// The URDF form: derive, then apply the YAML's values as visible overrides.
+RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const std::string& path,
+                        RobotDerivation* derivation_out) {
+  if (root["legs"]) {
+    throw InputError(ctx.Child("legs").Where() +
+                     ": not allowed with urdf (the URDF gives the legs; name the foot links "
+                     "with feet: [...])");
+  }
+  const std::string urdf_path =
+      ResolveRelative(path, ReadString(root["urdf"], ctx.Child("urdf")));
+  std::vector<std::string> feet;
+  if (root["feet"]) {
+    const YamlContext fctx = ctx.Child("feet");
+    if (!root["feet"].IsSequence() || root["feet"].size() == 0) {
+      throw InputError(fctx.Where() + ": expected a non-empty list of link names");
+    }
+    for (size_t i = 0; i < root["feet"].size(); ++i) {
+      feet.push_back(ReadString(root["feet"][i], fctx.Index(i)));
+    }
+  }
+  DerivationOptions options;
+  options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
+  RobotDerivation derivation = DeriveRobot(ReadUrdfRobot(urdf_path, feet), options);
+  RobotModel& robot = derivation.model;
+  const std::string file = ctx.file;
+  if (options.stance_height_m) {
+    SetProvenance(&robot, "stance_height",
+                  "stance_height = " + Fixed4(robot.stance_height_m) + " m: given in " + file +
+                      " (not derived)");
+  }
+  if (const auto name = OptionalString(root, ctx, "name")) robot.name = *name;
+
+  const double derived_d_lim = robot.d_lim_m;
+  for (const LimitField& f : kLimitFields) {
+    if (!f.derived) continue;  // stance_height is handled above, before the derivation
+    const auto value = OptionalDouble(root, ctx, f.key, f.min, f.max);
+    if (!value) continue;
+    double& field = robot.*f.member;
+    const std::string derived = Fixed4(field);
+    field = *value;
+    SetProvenance(&robot, f.key,
+                  std::string(f.key) + " = " + Fixed4(*value) + " " + f.unit + ": override in " +
+                      file + " (derived " + derived + " " + f.unit + ")");
+  }
+  if (robot.d_lim_m != derived_d_lim) {
+    // Values derived from d_lim follow its override unless overridden themselves.
+    if (!root["l_bnd"]) {
+      const double fraction = options.l_bnd_fraction;
+      robot.l_bnd_m = fraction * robot.d_lim_m;
+      SetProvenance(&robot, "l_bnd",
+                    "l_bnd = " + Fixed4(robot.l_bnd_m) + " m: derived, " + Fixed4(fraction) +
+                        " * d_lim (the override in " + file + ")");
+    }
+    if (!root["max_yaw_change"]) {
+      double max_leg = 0.0;
+      for (const LegModel& leg : robot.legs) {
+        max_leg = std::max(max_leg, leg.nominal_offset_body_m.norm());
+      }
+      robot.max_yaw_change_rad = 2.0 * std::asin(std::min(1.0, robot.d_lim_m / (2.0 * max_leg)));
+      SetProvenance(&robot, "max_yaw_change",
+                    "max_yaw_change = " + Fixed4(robot.max_yaw_change_rad) +
+                        " rad: derived, 2 asin(d_lim / (2 * " + Fixed4(max_leg) +
+                        " m)) with the d_lim override in " + file);
+    }
+  }
+  if (root["gait"]) {
+    robot.gait = ReadGait(root["gait"], ctx.Child("gait"), robot.legs);
+    std::string names;
+    for (int g : robot.gait) names += (names.empty() ? "" : ", ") + robot.legs[g].name;
+    SetProvenance(&robot, "gait", "gait = [" + names + "]: override in " + file);
+  }
+  if (root["weights"]) {
+    ReadWeights(root, ctx, &robot.weights);
+    SetProvenance(&robot, "weights", "weights: from " + file);
+  }
+  ValidateRobotModel(robot);
+  RobotModel result = robot;
+  if (derivation_out != nullptr) *derivation_out = std::move(derivation);
+  return result;
+}
+
+}  // namespace
+
+RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
+  const YAML::Node root = LoadYamlFile(path);
+  const YamlContext ctx{path, ""};
+  RejectUnknownKeys(root, ctx,
+                    {"name", "urdf", "feet", "legs", "gait", "stance_height", "foot_radius",
+                     "d_lim", "l_bnd", "dz_max", "max_yaw_change", "max_slope", "weights"});
+  if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation);
+  if (derivation != nullptr) *derivation = RobotDerivation{};
+  if (root["feet"]) {
+    throw InputError(ctx.Child("feet").Where() + ": only allowed together with urdf");
+  }
+  RobotModel robot;
+  robot.name = OptionalString(root, ctx, "name").value_or("robot");
+  if (!root["legs"] || !root["legs"].IsSequence() || root["legs"].size() == 0) {
+    throw InputError(ctx.Child("legs").Where() + ": expected a non-empty list of legs");
+  }
+  const YamlContext legs_ctx = ctx.Child("legs");
+  for (size_t k = 0; k < root["legs"].size(); ++k) {
+    const YAML::Node leg_node = root["legs"][k];
+    const YamlContext leg_ctx = legs_ctx.Index(k);
+    RejectUnknownKeys(leg_node, leg_ctx, {"name", "nominal_offset", "hip"});
+    LegModel leg;
+    leg.name = OptionalString(leg_node, leg_ctx, "name").value_or("leg" + std::to_string(k));
+    if (!leg_node["nominal_offset"]) {
+      throw InputError(leg_ctx.Child("nominal_offset").Where() + ": missing (x, y in metres)");
+    }
+    const auto offset =
+        ReadNumbers(leg_node["nominal_offset"], leg_ctx.Child("nominal_offset"), 2);
+    leg.nominal_offset_body_m = Eigen::Vector2d(offset[0], offset[1]);
+    if (leg_node["hip"]) {
+      const auto hip = ReadNumbers(leg_node["hip"], leg_ctx.Child("hip"), 3);
+      leg.hip_body_m = Eigen::Vector3d(hip[0], hip[1], hip[2]);
+    }
+    robot.legs.push_back(leg);
+  }
+  if (root["gait"]) {
+    robot.gait = ReadGait(root["gait"], ctx.Child("gait"), robot.legs);
+  } else {
+    for (int k = 0; k < robot.num_legs(); ++k) robot.gait.push_back(k);
+  }
+
+  for (const LimitField& f : kLimitFields) {
+    const auto value = OptionalDouble(root, ctx, f.key, f.min, f.max);
+    if (value) {
+      robot.*f.member = *value;
+      robot.provenance.push_back(Describe(f.key, *value, f.unit, path));
+    } else if (f.required_without_urdf) {
+      throw InputError(ctx.Child(f.key).Where() + ": missing (allowed range [" +
+                       std::to_string(f.min) + ", " + std::to_string(f.max) + "] " + f.unit + ")");
+    }
+  }
+  ReadWeights(root, ctx, &robot.weights);
+  for (size_t k = 0; k < robot.legs.size(); ++k) {
+    const Eigen::Vector2d o = robot.legs[k].nominal_offset_body_m;
+    std::ostringstream out;
+    out << "legs[" << k << "] '" << robot.legs[k].name << "' nominal offset (" << o.x() << ", "
+        << o.y() << ") m, L_leg " << o.norm() << " m, phi " << std::atan2(o.y(), o.x())
+        << " rad: from " << path;
+    robot.provenance.push_back(out.str());
+  }
+  ValidateRobotModel(robot);
+  return robot;
+}
+
+}  // namespace mfp

@@ -1,0 +1,125 @@
+#include "planner/io/scenario_yaml.h"
+
+#include <cmath>
+
+#include "planner/base/check.h"
+#include "planner/io/planner_options_yaml.h"
+#include "planner/base/yaml_fields.h"
+#include "terrain/octomap_io.h"
+#include "terrain/region_extractor.h"
+#include "terrain/terrain_yaml.h"
+
+namespace mfp {
+namespace {
+
+Pose2D ReadPose(const YAML::Node& node, const YamlContext& ctx) {
+  const std::vector<double> v = ReadNumbers(node, ctx, 3);
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx) {
+  const std::vector<double> v = ReadNumbers(node, ctx, 3);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+}  // namespace
+
+Scenario LoadScenario(const std::string& path) {
+  const YAML::Node root = LoadYamlFile(path);
+  const YamlContext ctx{path, ""};
+  RejectUnknownKeys(root, ctx,
+                    {"name", "description", "robot", "terrain", "start", "goal", "max_steps", "window",
+                     "time_limit", "planner"});
+  Scenario s;
+  s.path = path;
+  s.name = OptionalString(root, ctx, "name").value_or(path);
+  if (!root["robot"]) throw InputError(ctx.Child("robot").Where() + ": missing (path of a robot YAML or URDF)");
+  s.robot_path = ResolveRelative(path, ReadString(root["robot"], ctx.Child("robot")));
+  if (!root["start"] || !root["goal"]) throw InputError(ctx.Where() + ": start and goal are required ([x, y, yaw])");
+  s.start = ReadPose(root["start"], ctx.Child("start"));
+  s.goal = ReadPose(root["goal"], ctx.Child("goal"));
+  s.max_steps = OptionalInt(root, ctx, "max_steps", 1, 100000).value_or(0);
+  s.window_steps = OptionalInt(root, ctx, "window", 1, 1000).value_or(0);
+  s.time_limit_s = OptionalDouble(root, ctx, "time_limit", 1e-3, 3600).value_or(0.0);
+  if (root["planner"]) ReadPlannerOptions(root["planner"], ctx.Child("planner"), &s.options);
+
+  if (!root["terrain"]) throw InputError(ctx.Child("terrain").Where() + ": missing (boxes, regions or map)");
+  const YAML::Node terrain = root["terrain"];
+  const YamlContext tctx = ctx.Child("terrain");
+  RejectUnknownKeys(terrain, tctx, {"resolution", "boxes", "regions", "map", "source"});
+  if (terrain["boxes"]) {
+    YAML::Node boxes_only;
+    boxes_only["boxes"] = terrain["boxes"];
+    if (terrain["resolution"]) boxes_only["resolution"] = terrain["resolution"];
+    s.terrain = ParseTerrainDescription(boxes_only, tctx);
+  }
+  if (const auto source = OptionalString(terrain, tctx, "source")) {
+    if (*source == "extracted") {
+      s.boxes_source = BoxRegionSource::kExtracted;
+    } else if (*source == "top_faces") {
+      s.boxes_source = BoxRegionSource::kTopFaces;
+    } else {
+      throw InputError(tctx.Child("source").Where() + ": '" + *source + "' is not one of extracted, top_faces");
+    }
+  }
+  if (terrain["regions"]) {
+    const YAML::Node regions = terrain["regions"];
+    const YamlContext rctx = tctx.Child("regions");
+    if (!regions.IsSequence()) throw InputError(rctx.Where() + ": expected a list of regions");
+    for (size_t i = 0; i < regions.size(); ++i) {
+      const YamlContext one = rctx.Index(i);
+      RejectUnknownKeys(regions[i], one, {"vertices", "plane_tolerance"});
+      if (!regions[i]["vertices"] || !regions[i]["vertices"].IsSequence()) {
+        throw InputError(one.Child("vertices").Where() + ": expected a list of [x, y, z] vertices");
+      }
+      std::vector<Eigen::Vector3d> vertices;
+      for (size_t k = 0; k < regions[i]["vertices"].size(); ++k) {
+        vertices.push_back(ReadVector3(regions[i]["vertices"][k], one.Child("vertices").Index(k)));
+      }
+      const double tol = OptionalDouble(regions[i], one, "plane_tolerance", 0.0, 0.1).value_or(0.0);
+      try {
+        s.listed_regions.push_back(MakeRegionFromPolygon(static_cast<int>(i), vertices, tol));
+      } catch (const InputError& e) {
+        throw InputError(one.Where() + ": " + e.what());
+      }
+    }
+  }
+  if (terrain["map"]) s.map_path = ResolveRelative(path, ReadString(terrain["map"], tctx.Child("map")));
+  const int kinds = (s.terrain.boxes.empty() ? 0 : 1) + (s.listed_regions.empty() ? 0 : 1) + (s.map_path.empty() ? 0 : 1);
+  if (kinds != 1) {
+    throw InputError(tctx.Where() + ": give exactly one of boxes, regions or map (non-empty)");
+  }
+  return s;
+}
+
+std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
+                                          std::string* note) {
+  if (!scenario.listed_regions.empty()) return scenario.listed_regions;
+  if (!scenario.map_path.empty()) return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad);
+  if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
+    return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
+  }
+  RegionExtractorOptions options;
+  options.foot_radius_m = robot.foot_radius_m;
+  options.max_slope_rad = robot.max_slope_rad;
+  RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
+  if (note != nullptr) *note = result.message;
+  return std::move(result.regions);
+}
+
+PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
+                            const std::vector<ConvexRegion>& regions) {
+  PlanRequest request;
+  request.start_feet_world_m =
+      NominalStance(robot, regions, scenario.start.x_m, scenario.start.y_m, scenario.start.yaw_rad);
+  request.start_yaw_rad = scenario.start.yaw_rad;
+  request.goal_x_m = scenario.goal.x_m;
+  request.goal_y_m = scenario.goal.y_m;
+  request.goal_yaw_rad = scenario.goal.yaw_rad;
+  request.max_steps = scenario.max_steps;
+  request.window_steps = scenario.window_steps;
+  request.time_limit_s = scenario.time_limit_s;
+  return request;
+}
+
+}  // namespace mfp

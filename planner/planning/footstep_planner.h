@@ -1,0 +1,118 @@
+#pragma once
+// One entry point for planning: robot + regions + request + options -> Plan.
+// Chains receding windows of MIQPs (the paper plans 4n steps at a time) until the goal
+// is reached, max_steps are spent, or the time limit runs out. No I/O.
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "planner/search/branch_and_bound.h"
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/formulation/plan.h"
+#include "planner/qp/relaxation_solver.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "planner/robot/robot_model.h"
+#include "terrain/convex_region.h"
+
+namespace mfp {
+
+struct PlanRequest {
+  // Current feet in the robot's leg order (RobotModel::legs), world frame [m].
+  std::vector<Eigen::Vector3d> start_feet_world_m;
+  double start_yaw_rad = 0.0;  // body yaw of the start stance [rad]
+  double goal_x_m = 0.0;       // goal body position (centre of contacts) [m]
+  double goal_y_m = 0.0;
+  double goal_yaw_rad = 0.0;
+  int max_steps = 0;       // new footsteps in the whole plan; 0 = PlannerOptions default
+  int window_steps = 0;    // new footsteps per MIQP; 0 = PlannerOptions default (2 n)
+  double time_limit_s = 0; // whole plan; 0 = PlannerOptions default
+  int max_windows = 0;     // MIQPs solved at most; 0 = as many as the route needs. 1 = exactly
+                           // the single MIQP of FirstWindowProblem (benchmarks of Table I)
+};
+
+struct PlannerOptions {
+  int default_max_steps = 0;        // 0 = 12 n
+  // 0 = 2 n. The paper plans 4 n steps per MIQP; with this solver windows of two
+  // configurations reach every scenario goal with each window proven optimal, in a
+  // fraction of the time of 4 n windows, which end at their time limits (README).
+  int default_window_steps = 0;
+  double default_time_limit_s = 30.0;
+  double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot
+  double goal_yaw_tolerance_rad = 0.15;  // final body yaw within this of the goal yaw
+  double start_tolerance_m = 0.02;       // a start foot may be this far off its region
+  RelaxationBackend relaxation_solver = RelaxationBackend::kInteriorPointWithIpoptFallback;
+  // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
+  // are solved this many at a time. Callers make the solvers (MakeRelaxationSolvers).
+  int threads = 1;
+  // Seed each window's search with a relax-and-fix plan (planner/planning/relax_and_fix.h),
+  // given at most this share of the window's time, when the window has at least this
+  // many configurations of new steps (on fewer, relax-and-fix is nearly the search
+  // itself: the 2-configuration default windows and 12-step MIQPs solve faster without).
+  // The whole time by default: relax-and-fix rounds what it has not searched when the
+  // time runs out, and on Table I its plans at any budget beat the search's (README).
+  bool relax_and_fix = true;
+  double relax_and_fix_time_share = 1.0;
+  int relax_and_fix_min_configurations = 4;
+  // Relax-and-fix's stages see the steps they have not reached standing in the convex
+  // hull of their regions (RelaxAndFixOptions::hull_for_later_steps).
+  bool relax_and_fix_region_hull = true;
+  // With two or more workers, two single-worker relax-and-fix runs on different paths
+  // and the better plan (RelaxAndFixTwoPaths) instead of one run whose stage searches
+  // share the workers.
+  bool relax_and_fix_two_paths = true;
+  // A relaxed yaw that one segment alone represents (on a breakpoint, as the goal yaw
+  // is) is set to that segment before branching (MiqpFormulation::SnapYawToOneSegment).
+  bool snap_yaw_segments = true;
+  // Relative accuracy of the QPs of relax-and-fix's stages but the last
+  // (RelaxAndFixOptions::stage_relaxation_tolerance; 0: the solver's own).
+  double relax_and_fix_stage_tolerance = 1e-6;
+  // The search's rounding heuristic inside relax-and-fix's stages
+  // (RelaxAndFixOptions::stage_rounding).
+  bool relax_and_fix_stage_rounding = false;
+  FormulationOptions formulation;
+  BranchAndBoundOptions branch_and_bound;
+};
+
+struct PlanProgress {
+  int window = 0;          // 1-based
+  int steps_planned = 0;   // new footsteps accepted so far
+  double distance_to_goal_m = 0.0;
+  double elapsed_s = 0.0;
+  BranchAndBoundResult window_result;
+};
+
+// Nominal stance of the robot at a body pose, feet on the highest region below each
+// foot (z = 0 where there is none), in leg order.
+std::vector<Eigen::Vector3d> NominalStance(const RobotModel& robot,
+                                           const std::vector<ConvexRegion>& regions,
+                                           double x_m, double y_m, double yaw_rad);
+
+// Body yaw that best aligns the feet (leg order) with the nominal offsets [rad].
+double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vector3d>& feet_world_m);
+
+// The MIQP of the first window of a request: the start stance in gait order, the
+// window's number of new steps. PlanFootsteps solves exactly this problem first, and
+// mfp-plan --write-mps exports it.
+FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                   const PlanRequest& request, const PlannerOptions& options);
+
+// Body yaw of the final stance of a footstep list (its last n footsteps, one per leg),
+// from the feet themselves [rad]. Goal checks use it: a plan's per-step yaw is the
+// configuration's planning variable, not where the feet put the body.
+double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& footsteps);
+
+// Plans a whole route. Bad requests come back as statuses (kInvalidRequest,
+// kInvalidStart, kInvalidGoal, kNoMap) with a message naming the problem.
+// solvers: one per branch-and-bound worker (at least one; see PlannerOptions::threads).
+Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                   const PlanRequest& request, const PlannerOptions& options,
+                   const std::vector<RelaxationSolver*>& solvers,
+                   const std::function<void(const PlanProgress&)>& on_progress = {});
+
+// The same with a single worker.
+Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                   const PlanRequest& request, const PlannerOptions& options,
+                   RelaxationSolver& solver,
+                   const std::function<void(const PlanProgress&)>& on_progress = {});
+
+}  // namespace mfp

@@ -1,0 +1,78 @@
+#pragma once
+// Relax-and-fix along the plan: a primal heuristic for the footstep MIQP that decides
+// the integers configuration by configuration. Stage b solves the whole MIQP by a small
+// branch-and-bound in which only the integers of configurations b .. b + lookahead are
+// integer (those of earlier configurations are fixed to the earlier stages' choices,
+// later ones are relaxed), then fixes configuration b's choices. The last stage leaves
+// no integer relaxed, so its solution is a feasible plan of the whole MIQP.
+//
+// Every stage sees the whole horizon through the relaxation of the later steps, so the
+// early choices are made for the goal, not greedily; each stage is about as hard as
+// a 2-configuration window. Used to seed the search with a good incumbent.
+//
+// Anytime: when the time runs out before the last stage, the configurations still open
+// are rounded along the plan from the latest stage's solution, so a short budget ends
+// with a complete (if worse) plan rather than none.
+#include <Eigen/Core>
+#include <optional>
+#include <vector>
+
+#include "planner/search/branch_and_bound.h"
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/qp/relaxation_solver.h"
+
+namespace mfp {
+
+// Defaults measured with the Table I instances (README): lookahead 0 gave the best plans
+// in the least time (lookahead 1 and 2 made each stage a bigger search that ended at its
+// node limit with worse choices), and a stage gap of 0.5 % the same plans as 1e-4 sooner.
+struct RelaxAndFixOptions {
+  int lookahead_blocks = 0;          // configurations kept integer beyond the one being fixed
+  int nodes_per_stage = 100;         // branch-and-bound nodes per stage
+  double stage_relative_gap = 0.005;  // a stage's search stops this close to its optimum
+  double time_limit_s = 1.0;         // whole heuristic [s]; past it, the rest is rounded
+  int max_searched_stages = 0;       // stages searched before the rest is rounded (0: all)
+  // The steps after the stage's integer configurations choose no region: each stands in
+  // the convex hull of its regions (MiqpFormulation::WithRegionsRelaxedFrom) instead of
+  // the continuous relaxation of the region binaries. Smaller stage QPs.
+  bool hull_for_later_steps = true;
+  // Relative accuracy of the QPs of every stage but the last: a stage keeps a choice
+  // within stage_relative_gap, far coarser. The last stage, whose point is the plan,
+  // keeps the solver's own accuracy.
+  double stage_relaxation_tolerance = 1e-6;
+  // Run the search's rounding heuristic inside the stages. Off: its QPs (integers fixed
+  // to a rounding, warm-started from a fractional point) were a fifth of the heuristic's
+  // work on Table I, and the plans came out the same without them (README). A stage
+  // out of time before its first leaf still ends rounded (completed_by_rounding).
+  bool stage_rounding = false;
+  BranchAndBoundOptions stage;       // other search options of each stage
+};
+
+struct RelaxAndFixResult {
+  std::optional<Eigen::VectorXd> x;  // a feasible point of formulation.miqp(), if found
+  int stages = 0;
+  int nodes = 0;
+  int relaxations = 0;
+  // Stopped before the last stage (time, max_searched_stages, or a stage's own limits):
+  // the configurations left were rounded along the plan from the last stage's solution
+  // instead of searched.
+  bool completed_by_rounding = false;
+};
+
+// Each stage's search runs with the given workers (SolveBranchAndBound); none of them may
+// be in use elsewhere meanwhile.
+RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
+                              const RelaxAndFixOptions& options);
+
+// With two or more solvers: two single-worker runs side by side, the second with its
+// stage QPs at the solver's own accuracy, and the better plan (stages, nodes and
+// relaxations are summed; completed_by_rounding is the better plan's). A stage's choice
+// can turn on differences within its QPs' tolerance, so one path can end far from the
+// other (littledog 36: 673.39 on one, 1503.82 on the stage searches shared by two
+// workers); two paths make such a turn matter less, and the first path is the
+// one-worker run. With one solver: RelaxAndFix.
+RelaxAndFixResult RelaxAndFixTwoPaths(const MiqpFormulation& formulation,
+                                      const std::vector<RelaxationSolver*>& solvers,
+                                      const RelaxAndFixOptions& options);
+
+}  // namespace mfp

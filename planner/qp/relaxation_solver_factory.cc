@@ -1,0 +1,73 @@
+#include "planner/qp/relaxation_solver_factory.h"
+
+#include "planner/base/check.h"
+#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/ipopt_relaxation_solver.h"
+
+namespace mfp {
+namespace {
+
+// Asks the fallback whenever the primary solver ends without an answer.
+class FallbackRelaxationSolver final : public RelaxationSolver {
+ public:
+  FallbackRelaxationSolver(std::unique_ptr<RelaxationSolver> primary, std::unique_ptr<RelaxationSolver> fallback)
+      : primary_(std::move(primary)), fallback_(std::move(fallback)) {}
+
+  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                         const Eigen::VectorXd* warm_start) override {
+    RelaxationResult result = primary_->Solve(problem, lower, upper, warm_start);
+    if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible ||
+        result.status == RelaxationStatus::kCutoff) {
+      return result;
+    }
+    return fallback_->Solve(problem, lower, upper, warm_start);
+  }
+
+  void SetTimeLimit(double seconds) override {
+    primary_->SetTimeLimit(seconds);
+    fallback_->SetTimeLimit(seconds);
+  }
+
+  void SetCutoff(double objective) override {  // the fallback solves to the end
+    primary_->SetCutoff(objective);
+  }
+  void SetRelativeTolerance(double tolerance) override { primary_->SetRelativeTolerance(tolerance); }
+
+  std::string Name() const override { return primary_->Name() + "+" + fallback_->Name(); }
+
+ private:
+  std::unique_ptr<RelaxationSolver> primary_;
+  std::unique_ptr<RelaxationSolver> fallback_;
+};
+
+}  // namespace
+
+RelaxationBackend ParseRelaxationBackend(const std::string& name) {
+  if (name == "ipm") return RelaxationBackend::kInteriorPointWithIpoptFallback;
+  if (name == "ipopt") return RelaxationBackend::kIpopt;
+  throw InputError("relaxation solver '" + name + "' is not one of ipm, ipopt");
+}
+
+std::string ToString(RelaxationBackend backend) {
+  return backend == RelaxationBackend::kIpopt ? "ipopt" : "ipm";
+}
+
+std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend) {
+  if (backend == RelaxationBackend::kIpopt) return MakeIpoptRelaxationSolver();
+  return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+}
+
+std::vector<RelaxationSolver*> RelaxationSolverSet::workers() const {
+  std::vector<RelaxationSolver*> out;
+  for (const auto& s : owned) out.push_back(s.get());
+  return out;
+}
+
+RelaxationSolverSet MakeRelaxationSolvers(RelaxationBackend backend, int count) {
+  MFP_CHECK(count >= 1);
+  RelaxationSolverSet set;
+  for (int k = 0; k < count; ++k) set.owned.push_back(MakeRelaxationSolver(backend));
+  return set;
+}
+
+}  // namespace mfp

@@ -1,0 +1,87 @@
+#include "planner/robot/footprint_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "planner/base/check.h"
+
+namespace mfp {
+
+FootprintGrid::FootprintGrid(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m,
+                             double cell_m, int margin_cells)
+    : cell_m_(cell_m) {
+  MFP_CHECK(cell_m > 0.0 && margin_cells >= 1);
+  MFP_CHECK((max_m - min_m).minCoeff() >= 0.0);
+  nx_ = static_cast<int>(std::ceil((max_m.x() - min_m.x()) / cell_m)) + 1 + 2 * margin_cells;
+  ny_ = static_cast<int>(std::ceil((max_m.y() - min_m.y()) / cell_m)) + 1 + 2 * margin_cells;
+  origin_m_ = min_m - Eigen::Vector2d::Constant(margin_cells * cell_m);
+  cells_.assign(static_cast<size_t>(nx_) * ny_, 0);
+}
+
+void FootprintGrid::Set(int ix, int iy, bool occupied) {
+  MFP_CHECK(InGrid(ix, iy));
+  cells_[Index(ix, iy)] = occupied ? 1 : 0;
+  boundary_stale_ = true;
+}
+
+bool FootprintGrid::CellOf(const Eigen::Vector2d& p, int* ix, int* iy) const {
+  const Eigen::Vector2d u = (p - origin_m_) / cell_m_;
+  *ix = static_cast<int>(std::floor(u.x() + 0.5));
+  *iy = static_cast<int>(std::floor(u.y() + 0.5));
+  return InGrid(*ix, *iy);
+}
+
+bool FootprintGrid::OccupiedAt(const Eigen::Vector2d& p) const {
+  int ix = 0, iy = 0;
+  return CellOf(p, &ix, &iy) && Occupied(ix, iy);
+}
+
+Eigen::Vector2d FootprintGrid::CellCentre(int ix, int iy) const {
+  return origin_m_ + cell_m_ * Eigen::Vector2d(ix, iy);
+}
+
+int FootprintGrid::CountOccupied() const {
+  return static_cast<int>(std::count(cells_.begin(), cells_.end(), 1));
+}
+
+void FootprintGrid::UpdateBoundary() {
+  boundary_stale_ = false;
+  boundary_centres_m_.clear();
+  occupied_centres_m_.clear();
+  for (int iy = 0; iy < ny_; ++iy) {
+    for (int ix = 0; ix < nx_; ++ix) {
+      if (Occupied(ix, iy)) {
+        occupied_centres_m_.push_back(CellCentre(ix, iy));
+        continue;
+      }
+      bool borders = false;
+      for (int dy = -1; dy <= 1 && !borders; ++dy) {
+        for (int dx = -1; dx <= 1 && !borders; ++dx) borders = Occupied(ix + dx, iy + dy);
+      }
+      if (borders) boundary_centres_m_.push_back(CellCentre(ix, iy));
+    }
+  }
+}
+
+double FootprintGrid::Clearance(const Eigen::Vector2d& p) const {
+  MFP_CHECK_MSG(!boundary_stale_, "FootprintGrid::UpdateBoundary() not called after Set()");
+  const double half = 0.5 * cell_m_;
+  if (!OccupiedAt(p)) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector2d& c : occupied_centres_m_) {
+      nearest = std::min(nearest, (p - c).cwiseAbs().maxCoeff());
+    }
+    return occupied_centres_m_.empty() ? -1.0 : -nearest;
+  }
+  // Inside: the L-infinity distance from p to the nearest empty cell (a closed box).
+  // The grid's outer ring is empty, so the boundary list bounds every square.
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& c : boundary_centres_m_) {
+    const Eigen::Vector2d gap = ((p - c).cwiseAbs().array() - half).cwiseMax(0.0);
+    clearance = std::min(clearance, gap.maxCoeff());
+  }
+  return clearance;
+}
+
+}  // namespace mfp

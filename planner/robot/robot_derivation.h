@@ -1,0 +1,65 @@
+#pragma once
+// Derives the planner's robot model (robot_model.h) from leg kinematics alone:
+//  - reachable footprint of each foot at a height: the cells of a grid in the body frame
+//    whose centre the foot reaches at that height within the joint limits (inverse
+//    kinematics, flood-filled from joint-space samples);
+//  - stance height: unless given, the one among candidates spanning 25 %..95 % of the
+//    smallest downward reach that maximises the smallest leg's inscribed square;
+//  - nominal foot: the centre of the largest square inscribed in the footprint at the
+//    stance height (the paper puts the workspace centre at the nominal foot), ties broken
+//    towards the point below the hip; o_k = nominal foot - mean of the nominal feet;
+//  - d_lim: the smallest of the legs' inscribed half-sides, less half a grid cell;
+//  - dz_max: the smallest, over legs and up/down, vertical travel of the foot from the
+//    nominal foot that stays reachable (continuation inverse kinematics);
+//  - l_bnd = l_bnd_fraction * d_lim; max yaw change: the yaw about the centre of contacts
+//    that moves the farthest nominal foot by d_lim, 2 asin(d_lim / (2 max L_leg));
+//  - gait: a wave around the body, legs in decreasing angle of o_k, starting from the
+//    one nearest the rear left (angle closest to +pi).
+// Every value gets a provenance line saying how it was derived.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "planner/robot/footprint_grid.h"
+#include "planner/robot/leg_kinematics.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+struct DerivationOptions {
+  std::optional<double> stance_height_m;  // fixed stance height (YAML); else chosen
+  int samples_per_leg = 40000;            // joint-space grid used to seed the footprints
+  int final_cells = 96;                   // footprint cells across the leg's horizontal reach
+  int scan_cells = 24;                    // coarser cells while choosing the stance height
+  int stance_candidates = 12;             // heights tried when choosing the stance height
+  double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
+  double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
+  double ik_tolerance_m = 1e-5;
+};
+
+struct LegDerivation {
+  Eigen::Vector3d hip_body_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d nominal_foot_body_m = Eigen::Vector3d::Zero();
+  Eigen::VectorXd nominal_q;       // joint positions of the nominal stance [rad or m]
+  double square_half_side_m = 0;   // this leg's inscribed square (before the half-cell margin)
+  double dz_up_m = 0;              // reachable rise above the stance at the nominal foot
+  double dz_down_m = 0;            // reachable drop below it
+  double lowest_foot_z_m = 0;      // lowest foot point over the joint space (body frame)
+  FootprintGrid footprint;         // at the stance height
+};
+
+struct RobotDerivation {
+  RobotModel model;
+  std::vector<LegDerivation> legs;
+  double feet_plane_z_body_m = 0;  // body-frame height of the ground at the nominal stance
+};
+
+// Throws InputError when a leg cannot reach the ground at any stance height (or at the
+// given one) or the legs have no common stance height.
+RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptions& options);
+
+// The default wave gait for nominal offsets (see above).
+std::vector<int> WaveGait(const std::vector<LegModel>& legs);
+
+}  // namespace mfp

@@ -1,0 +1,82 @@
+#include "planner/robot/robot_model.h"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "planner/base/check.h"
+
+namespace mfp {
+namespace {
+
+void RequirePositive(const std::string& robot, const char* field, double value) {
+  if (!std::isfinite(value) || value <= 0.0) {
+    std::ostringstream msg;
+    msg << "robot '" << robot << "': " << field << " must be a finite number > 0, got " << value;
+    throw InputError(msg.str());
+  }
+}
+
+}  // namespace
+
+void ValidateRobotModel(const RobotModel& robot) {
+  const std::string& name = robot.name;
+  if (robot.legs.size() < 2) {
+    throw InputError("robot '" + name + "': needs at least 2 legs, has " +
+                     std::to_string(robot.legs.size()));
+  }
+  for (size_t k = 0; k < robot.legs.size(); ++k) {
+    const LegModel& leg = robot.legs[k];
+    if (!leg.nominal_offset_body_m.allFinite() || !leg.hip_body_m.allFinite()) {
+      throw InputError("robot '" + name + "': leg " + std::to_string(k) + " ('" + leg.name +
+                       "') has a non-finite nominal offset or hip position");
+    }
+  }
+  if (robot.gait.size() != robot.legs.size()) {
+    throw InputError("robot '" + name + "': gait must list each of the " +
+                     std::to_string(robot.legs.size()) + " legs once, lists " +
+                     std::to_string(robot.gait.size()));
+  }
+  std::set<int> seen;
+  for (int leg : robot.gait) {
+    if (leg < 0 || leg >= robot.num_legs() || !seen.insert(leg).second) {
+      throw InputError("robot '" + name + "': gait entry " + std::to_string(leg) +
+                       " is out of range [0, " + std::to_string(robot.num_legs() - 1) +
+                       "] or repeated");
+    }
+  }
+  RequirePositive(name, "d_lim", robot.d_lim_m);
+  RequirePositive(name, "l_bnd", robot.l_bnd_m);
+  RequirePositive(name, "dz_max", robot.dz_max_m);
+  RequirePositive(name, "max_yaw_change", robot.max_yaw_change_rad);
+  RequirePositive(name, "max_slope", robot.max_slope_rad);
+  if (!std::isfinite(robot.foot_radius_m) || robot.foot_radius_m < 0.0) {
+    throw InputError("robot '" + name + "': foot_radius must be a finite number >= 0");
+  }
+  if (!std::isfinite(robot.stance_height_m) || robot.stance_height_m < 0.0) {
+    throw InputError("robot '" + name + "': stance_height must be a finite number >= 0");
+  }
+  const PlannerWeights& w = robot.weights;
+  if (!std::isfinite(w.goal_position) || w.goal_position <= 0.0 || !std::isfinite(w.goal_yaw) ||
+      w.goal_yaw < 0.0 || !std::isfinite(w.trim_step) || w.trim_step > 0.0 ||
+      !std::isfinite(w.displacement) || w.displacement < 0.0) {
+    throw InputError("robot '" + name +
+                     "': weights need goal_position > 0, goal_yaw >= 0, trim_step <= 0, "
+                     "displacement >= 0 (all finite)");
+  }
+}
+
+Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, double y_m, double yaw_rad) {
+  MFP_CHECK(leg >= 0 && leg < robot.num_legs());
+  const Eigen::Vector2d o = robot.legs[leg].nominal_offset_body_m;
+  const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
+  return Eigen::Vector2d(x_m + c * o.x() - s * o.y(), y_m + s * o.x() + c * o.y());
+}
+
+Eigen::Vector2d MeanNominalOffset(const RobotModel& robot) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (const LegModel& leg : robot.legs) sum += leg.nominal_offset_body_m;
+  return robot.legs.empty() ? sum : Eigen::Vector2d(sum / robot.legs.size());
+}
+
+}  // namespace mfp

@@ -1,0 +1,108 @@
+#pragma once
+// Branch-and-bound for Miqp over a RelaxationSolver, with rounding heuristics. Anytime:
+// it keeps the incumbent, the best bound and the gap, and on a node or time limit
+// returns the best feasible point found.
+#include <Eigen/Core>
+#include <functional>
+#include <vector>
+
+#include "planner/miqp/miqp.h"
+#include "planner/qp/relaxation_solver.h"
+#include "planner/base/solve_status.h"
+
+namespace mfp {
+
+enum class NodeSelection {
+  kBestBound,             // smallest parent bound first
+  kDepthFirst,            // newest node first
+  kDiveThenBestBound,     // depth first until an incumbent exists, then best bound
+  kBestBoundWithPlunging,  // best bound, but after branching go on into the preferred child
+                           // while its bound lies within plunge_fraction of the way from the
+                           // best bound to the incumbent (always, before an incumbent exists)
+};
+
+enum class BranchingRule {
+  kMostFractional,  // the integer variable closest to 0.5
+  kSos1Split,       // the most fractional member of any one-of group; its up-branch fixes the group
+  kGroupOrder,      // the first one-of group (in the order the model lists them: along the
+                    // plan) with a fractional member; then as kSos1Split within it
+  kReliability,     // pseudo-costs, learnt from every child; candidates whose pseudo-costs
+                    // are not yet reliable are strong-branched (both children solved)
+};
+
+struct BranchAndBoundResult;
+
+struct BranchAndBoundOptions {
+  double time_limit_s = 10.0;
+  int max_nodes = 20000;
+  double relative_gap = 1e-4;      // stop when (incumbent - bound) <= relative_gap * max(1, |incumbent|)
+  double absolute_gap = 1e-6;
+  double integrality_tolerance = 1e-5;
+  double feasibility_tolerance = 1e-5;  // row/bound violation accepted in an incumbent
+  NodeSelection node_selection = NodeSelection::kDiveThenBestBound;
+  double plunge_fraction = 0.5;  // see kBestBoundWithPlunging
+  BranchingRule branching = BranchingRule::kGroupOrder;
+  int reliability = 2;              // kReliability: observations per direction to trust a pseudo-cost
+  int strong_branching_candidates = 8;  // kReliability: most candidates strong-branched at a node
+  int strong_branching_lookahead = 4;   // kReliability: stop after this many trials without a better score
+  bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
+  int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
+  bool bound_propagation = true;   // tighten bounds over the rows at every node first
+  // Reduced-cost fixing: when the relaxation solver certifies how fast the objective
+  // grows away from a bound (RelaxationResult::cost_floor and rates), integer values
+  // that cannot beat the incumbent are ruled out for the node's subtree.
+  bool reduced_cost_fixing = true;
+  // A node's relaxation may stop as soon as its solver proves that it cannot beat the
+  // incumbent (RelaxationSolver::SetCutoff).
+  bool early_cutoff = true;
+  // Relative accuracy asked of each relaxation (RelaxationSolver::SetRelativeTolerance)
+  // when looser than the solver's own; 0: the solver's own.
+  double relaxation_tolerance = 0.0;
+  // Optional: replaces a node's relaxation point x by one with more integral values that
+  // is just as good (the caller knows where fractional values are only an artefact of
+  // the encoding), within the node's bounds lower/upper; returns false when it changed
+  // nothing. The search checks the new point (rows, bounds, objective no higher) and
+  // branches on it, so no subtree is explored twice for a choice that does not matter.
+  std::function<bool(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x)>
+      equivalent_point;
+  // Progress for logs: called with the result so far (incumbent objective, a valid bound,
+  // gap, nodes, relaxations, elapsed time in solve_time_s; x left empty) each time the
+  // incumbent improves.
+  std::function<void(const BranchAndBoundResult&)> on_incumbent;
+};
+
+struct BranchAndBoundResult {
+  SolveStatus status = SolveStatus::kNoSolution;
+  Eigen::VectorXd x;            // incumbent (empty when none)
+  double objective = kInfinity;  // incumbent objective, incl. constant
+  double bound = -kInfinity;     // proven lower bound
+  double root_bound = -kInfinity;  // the root relaxation's bound (after propagation)
+  double gap = kInfinity;        // (objective - bound) / max(1, |objective|)
+  int nodes = 0;
+  int relaxations = 0;
+  int propagation_prunes = 0;   // nodes found infeasible by bound propagation alone
+  int strong_branching_solves = 0;  // relaxations solved to score branching candidates
+  int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
+  int early_cutoffs = 0;            // node relaxations stopped once they could not beat the incumbent
+  int equivalent_points = 0;        // relaxation points replaced by options.equivalent_point
+  double solve_time_s = 0.0;
+};
+
+// Heuristic hook: given a relaxation point, propose assignments of the integer variables
+// (each a vector over all variables; only integer entries are used). The branch-and-bound
+// fixes the integers of each proposal and solves the remaining convex QP. The footstep
+// formulation supplies proposals that follow the step order.
+using RoundingHeuristic = std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)>;
+
+BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,
+                                         const BranchAndBoundOptions& options,
+                                         const RoundingHeuristic& extra_rounding = {});
+
+// The same search with one relaxation solver per worker: each round takes up to
+// solvers.size() open nodes and solves their relaxations on threads of their own (the
+// solvers must not share state). Heuristics and strong branching use solvers[0].
+BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
+                                         const BranchAndBoundOptions& options,
+                                         const RoundingHeuristic& extra_rounding = {});
+
+}  // namespace mfp
