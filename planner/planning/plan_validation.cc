@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/formulation/centre_of_contacts.h"
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {
@@ -37,10 +38,11 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
     return steps[j].position_world_m;
   };
   auto yaw_of = [&](int j) { return steps[std::max(j, 0)].yaw_rad; };
+  // The formulation's step expressions with exact sin/cos: centre of contacts (eq. 2) and
+  // nominal foot (eq. 3).
   auto nominal = [&](int i) -> Eigen::Vector2d {
-    Eigen::Vector2d p = Eigen::Vector2d::Zero();
-    for (int j = i - n + 1; j <= i; ++j) p += pos(j).head<2>();
-    p /= n;
+    const Eigen::Vector2d p =
+        CentreOfContacts<Eigen::Vector2d>(i, n, [&](int j) { return Eigen::Vector2d(pos(j).head<2>()); });
     return NominalFootXY(robot, steps[std::max(i, 0)].leg, p.x(), p.y(), yaw_of(i));
   };
   for (int i = 0; i < N; ++i) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/robot/nominal_foot.h"
 
 namespace mfp {
 namespace {
@@ -70,7 +71,7 @@ Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, doub
   MFP_CHECK(leg >= 0 && leg < robot.num_legs());
   const Eigen::Vector2d o = robot.legs[leg].nominal_offset_body_m;
   const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
-  return Eigen::Vector2d(x_m + c * o.x() - s * o.y(), y_m + s * o.x() + c * o.y());
+  return Eigen::Vector2d(NominalFootX(x_m, s, c, o), NominalFootY(y_m, s, c, o));
 }
 
 Eigen::Vector2d MeanNominalOffset(const RobotModel& robot) {

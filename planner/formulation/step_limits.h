@@ -1,0 +1,28 @@
+#pragma once
+// The seed paper's limits on one step i (leg l, configuration b(i)), about the nominal
+// foot r_nom,i = p_i + R(theta_b(i)) o_l:
+//   reference box   |f_i - r_nom,i|_inf   <= l_bnd   (x, y)
+//   reachability    |f_i - r_nom,i-n|_inf <= d_lim   (x, y): from the previous configuration
+//   height change   |z_i - z_i-n|         <= dz_max
+//   yaw change      |theta_b - theta_b-1| <= max_yaw_change
+#include <vector>
+
+#include "planner/formulation/step_expressions.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+// Reference box, reachability and height change of new step i.
+void AddStepLimits(const StepExpressions& e, const RobotModel& robot, int i, MiqpBuilder* b);
+
+// Yaw change between configurations blk - 1 and blk.
+void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int blk, MiqpBuilder* b);
+
+// Largest move in plan view (x or y) of each step, valid for every feasible plan: the
+// reachability box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n
+// (l_bnd, or for a leg's first move how far its start foot is from its nominal foot).
+// Indexed by step; 0 for start steps. Bounds big-M constants and region pruning.
+std::vector<double> MaxMovesXY(const StepExpressions& e, const RobotModel& robot, int num_steps);
+
+}  // namespace mfp

@@ -1,0 +1,19 @@
+#pragma once
+// Trimming (seed paper): a binary t_i per new step; t_i => the foot stays where it was,
+// f_i = f_i-n, written as |f_i - f_i-n| <= M (1 - t_i) per axis with M the step's largest
+// move. With monotone trimming, trimmed steps form a suffix (t_i-1 <= t_i): once stopped,
+// the robot stays stopped, which removes symmetric solutions.
+#include <vector>
+
+#include "planner/formulation/footstep_problem.h"
+#include "planner/formulation/step_expressions.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+// max_move_xy: MaxMovesXY (step_limits.h).
+void AddTrimming(const StepExpressions& e, const RobotModel& robot, const std::vector<double>& max_move_xy,
+                 int num_steps, bool monotone, MiqpBuilder* b, FootstepVariables* vars);
+
+}  // namespace mfp
