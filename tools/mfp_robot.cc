@@ -13,17 +13,14 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/base/format.h"
 #include "tools/text_output.h"
 #include "planner/io/robot_json.h"
 #include "planner/io/robot_loader.h"
 
 namespace {
 
-std::string Fixed(double value, int precision = 4) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%.*f", precision, value);
-  return buffer;
-}
+using mfp::Fixed;
 
 void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation,
                 std::ostream& out) {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/base/format.h"
 #include "planner/robot/urdf_reader.h"
 #include "planner/base/yaml_fields.h"
 
@@ -57,13 +58,6 @@ std::vector<int> ReadGait(const YAML::Node& node, const YamlContext& ctx,
   return gait;
 }
 
-std::string Fixed4(double value) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(4);
-  out << value;
-  return out.str();
-}
 
 // Replaces the provenance line of `key` ("key = ...") or appends one.
 void SetProvenance(RobotModel* robot, const std::string& key, const std::string& line) {
@@ -117,7 +111,7 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   const std::string file = ctx.file;
   if (options.stance_height_m) {
     SetProvenance(&robot, "stance_height",
-                  "stance_height = " + Fixed4(robot.stance_height_m) + " m: given in " + file +
+                  "stance_height = " + Fixed(robot.stance_height_m) + " m: given in " + file +
                       " (not derived)");
   }
   if (const auto name = OptionalString(root, ctx, "name")) robot.name = *name;
@@ -128,10 +122,10 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
     const auto value = OptionalDouble(root, ctx, f.key, f.min, f.max);
     if (!value) continue;
     double& field = robot.*f.member;
-    const std::string derived = Fixed4(field);
+    const std::string derived = Fixed(field);
     field = *value;
     SetProvenance(&robot, f.key,
-                  std::string(f.key) + " = " + Fixed4(*value) + " " + f.unit + ": override in " +
+                  std::string(f.key) + " = " + Fixed(*value) + " " + f.unit + ": override in " +
                       file + " (derived " + derived + " " + f.unit + ")");
   }
   if (robot.d_lim_m != derived_d_lim) {
@@ -140,18 +134,15 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
       const double fraction = options.l_bnd_fraction;
       robot.l_bnd_m = fraction * robot.d_lim_m;
       SetProvenance(&robot, "l_bnd",
-                    "l_bnd = " + Fixed4(robot.l_bnd_m) + " m: derived, " + Fixed4(fraction) +
+                    "l_bnd = " + Fixed(robot.l_bnd_m) + " m: derived, " + Fixed(fraction) +
                         " * d_lim (the override in " + file + ")");
     }
     if (!root["max_yaw_change"]) {
-      double max_leg = 0.0;
-      for (const LegModel& leg : robot.legs) {
-        max_leg = std::max(max_leg, leg.nominal_offset_body_m.norm());
-      }
-      robot.max_yaw_change_rad = 2.0 * std::asin(std::min(1.0, robot.d_lim_m / (2.0 * max_leg)));
+      const double max_leg = LegReach(robot);
+      robot.max_yaw_change_rad = MaxYawChangeFor(robot.d_lim_m, max_leg);
       SetProvenance(&robot, "max_yaw_change",
-                    "max_yaw_change = " + Fixed4(robot.max_yaw_change_rad) +
-                        " rad: derived, 2 asin(d_lim / (2 * " + Fixed4(max_leg) +
+                    "max_yaw_change = " + Fixed(robot.max_yaw_change_rad) +
+                        " rad: derived, 2 asin(d_lim / (2 * " + Fixed(max_leg) +
                         " m)) with the d_lim override in " + file);
     }
   }

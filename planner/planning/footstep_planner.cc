@@ -156,8 +156,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       return Rejected(SolveStatus::kInvalidStart, msg.str());
     }
   }
-  double reach = 0.0;
-  for (const LegModel& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
+  const double reach = LegReach(robot);
   double goal_distance = kInfinity;
   for (const ConvexRegion& r : regions) {
     goal_distance = std::min(goal_distance, PlanarDistance(r, Eigen::Vector2d(request.goal_x_m, request.goal_y_m)));

@@ -9,8 +9,7 @@
 
 namespace mfp {
 double RotationTolerance(const RobotModel& robot, double yaw_segment_rad) {
-  double reach = 0.0;
-  for (const LegModel& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
+  const double reach = LegReach(robot);
   // Distance between a point of the chord (linear in yaw) and the arc point of the same
   // yaw is below w^2/4 for segments up to pi/2; scaled by the offset length.
   return reach * yaw_segment_rad * yaw_segment_rad / 4.0;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/base/format.h"
 #include "planner/robot/inscribed_square.h"
 
 namespace mfp {
@@ -128,14 +129,6 @@ double VerticalTravel(const LegChain& leg, const Eigen::Vector3d& start,
   return reached;
 }
 
-std::string Fmt(double value, int precision = 4) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(precision);
-  out << value;
-  return out.str();
-}
-
 }  // namespace
 
 std::vector<int> WaveGait(const std::vector<LegModel>& legs) {
@@ -179,7 +172,7 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
       std::ostringstream msg;
       msg << src << ": leg '" << robot.legs[k].name
           << "' cannot reach the ground at any stance height: its lowest foot point is at z = "
-          << Fmt(lowest[k]) << " m, not below the hips (z = " << Fmt(hip_z) << " m)";
+          << Fixed(lowest[k]) << " m, not below the hips (z = " << Fixed(hip_z) << " m)";
       throw InputError(msg.str());
     }
     common_reach = std::min(common_reach, reach);
@@ -231,13 +224,13 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
     }
     if (best_score <= 0.0) {
       throw InputError(src + ": the legs have no common stance height: at no height between " +
-                       Fmt(0.25 * common_reach) + " and " + Fmt(0.95 * common_reach) +
+                       Fixed(0.25 * common_reach) + " and " + Fixed(0.95 * common_reach) +
                        " m below the hips can every foot stand");
     }
     model.provenance.push_back(
-        "stance_height = " + Fmt(stance) + " m: derived, the height among " +
+        "stance_height = " + Fixed(stance) + " m: derived, the height among " +
         std::to_string(options.stance_candidates) + " between 25% and 95% of the smallest "
-        "downward reach (" + Fmt(common_reach) + " m) where the smallest leg's inscribed "
+        "downward reach (" + Fixed(common_reach) + " m) where the smallest leg's inscribed "
         "square is largest");
   }
   model.stance_height_m = stance;
@@ -257,8 +250,8 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
     if (fp.grid.CountOccupied() == 0) {
       std::ostringstream msg;
       msg << src << ": leg '" << chain.name << "' cannot reach the stance height "
-          << Fmt(stance) << " m below the hips (its foot reaches down to "
-          << Fmt(hip_z - lowest[k]) << " m below them)";
+          << Fixed(stance) << " m below the hips (its foot reaches down to "
+          << Fixed(hip_z - lowest[k]) << " m below them)";
       throw InputError(msg.str());
     }
     const InscribedSquare square = LargestInscribedSquare(
@@ -295,48 +288,46 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
 
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(n);
-  double max_leg = 0.0;
   double foot_radius = 0.0;
   for (size_t k = 0; k < n; ++k) {
     LegModel leg;
     leg.name = robot.legs[k].name;
     leg.nominal_offset_body_m = feet_xy[k] - mean;
     leg.hip_body_m = hips[k];
-    max_leg = std::max(max_leg, leg.nominal_offset_body_m.norm());
     foot_radius = std::max(foot_radius, robot.legs[k].foot_sphere_radius_m);
     model.legs.push_back(leg);
     const Eigen::Vector2d o = leg.nominal_offset_body_m;
     std::ostringstream line;
-    line << "legs[" << k << "] '" << leg.name << "' nominal offset (" << Fmt(o.x()) << ", "
-         << Fmt(o.y()) << ") m, L_leg " << Fmt(o.norm()) << " m, phi "
-         << Fmt(std::atan2(o.y(), o.x())) << " rad: derived, centre of the largest square in "
+    line << "legs[" << k << "] '" << leg.name << "' nominal offset (" << Fixed(o.x()) << ", "
+         << Fixed(o.y()) << ") m, L_leg " << Fixed(o.norm()) << " m, phi "
+         << Fixed(std::atan2(o.y(), o.x())) << " rad: derived, centre of the largest square in "
          << "the foot's reachable footprint at the stance height (foot link '"
          << robot.legs[k].foot_link << "'), minus the mean of the feet";
     model.provenance.push_back(line.str());
   }
   model.d_lim_m = std::max(0.0, d_lim_raw - 0.5 * cell);
   model.provenance.push_back(
-      "d_lim = " + Fmt(model.d_lim_m) + " m: derived, half-side of the largest square in the "
+      "d_lim = " + Fixed(model.d_lim_m) + " m: derived, half-side of the largest square in the "
       "reachable footprint at the stance height, smallest over legs (leg '" + d_leg + "', " +
-      Fmt(d_lim_raw) + " m) less half a footprint cell (" + Fmt(0.5 * cell) + " m)");
+      Fixed(d_lim_raw) + " m) less half a footprint cell (" + Fixed(0.5 * cell) + " m)");
   model.l_bnd_m = options.l_bnd_fraction * model.d_lim_m;
-  model.provenance.push_back("l_bnd = " + Fmt(model.l_bnd_m) + " m: derived, " +
-                             Fmt(options.l_bnd_fraction, 2) + " * d_lim");
+  model.provenance.push_back("l_bnd = " + Fixed(model.l_bnd_m) + " m: derived, " +
+                             Fixed(options.l_bnd_fraction, 2) + " * d_lim");
   model.dz_max_m = dz_max;
   model.provenance.push_back(
-      "dz_max = " + Fmt(dz_max) + " m: derived, the smallest vertical travel (up or down) of a "
-      "foot from its nominal point that stays reachable, in steps of " + Fmt(0.5 * cell) +
+      "dz_max = " + Fixed(dz_max) + " m: derived, the smallest vertical travel (up or down) of a "
+      "foot from its nominal point that stays reachable, in steps of " + Fixed(0.5 * cell) +
       " m (leg '" + dz_leg + "')");
-  model.max_yaw_change_rad =
-      max_leg > 0.0 ? 2.0 * std::asin(std::min(1.0, model.d_lim_m / (2.0 * max_leg))) : M_PI / 4;
+  const double max_leg = LegReach(model);
+  model.max_yaw_change_rad = MaxYawChangeFor(model.d_lim_m, max_leg);
   model.provenance.push_back(
-      "max_yaw_change = " + Fmt(model.max_yaw_change_rad) + " rad: derived, 2 asin(d_lim / (2 * " +
-      Fmt(max_leg) + " m)), the yaw that moves the farthest nominal foot by d_lim");
+      "max_yaw_change = " + Fixed(model.max_yaw_change_rad) + " rad: derived, 2 asin(d_lim / (2 * " +
+      Fixed(max_leg) + " m)), the yaw that moves the farthest nominal foot by d_lim");
   model.foot_radius_m = foot_radius;
   model.provenance.push_back(
-      "foot_radius = " + Fmt(foot_radius) + " m: derived, " +
+      "foot_radius = " + Fixed(foot_radius) + " m: derived, " +
       (foot_radius > 0 ? "largest foot collision sphere" : "no foot collision sphere"));
-  model.provenance.push_back("max_slope = " + Fmt(model.max_slope_rad) +
+  model.provenance.push_back("max_slope = " + Fixed(model.max_slope_rad) +
                              " rad: default (a URDF cannot say)");
   model.gait = WaveGait(model.legs);
   std::string gait_text;

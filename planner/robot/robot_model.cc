@@ -74,6 +74,16 @@ Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, doub
   return Eigen::Vector2d(NominalFootX(x_m, s, c, o), NominalFootY(y_m, s, c, o));
 }
 
+double LegReach(const RobotModel& robot) {
+  double reach = 0.0;
+  for (const LegModel& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
+  return reach;
+}
+
+double MaxYawChangeFor(double d_lim_m, double leg_reach_m) {
+  return leg_reach_m > 0.0 ? 2.0 * std::asin(std::min(1.0, d_lim_m / (2.0 * leg_reach_m))) : M_PI / 4;
+}
+
 Eigen::Vector2d MeanNominalOffset(const RobotModel& robot) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (const LegModel& leg : robot.legs) sum += leg.nominal_offset_body_m;

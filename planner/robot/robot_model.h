@@ -55,6 +55,13 @@ void ValidateRobotModel(const RobotModel& robot);
 // (x, y) plus the leg's nominal offset rotated by yaw [m, world].
 Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, double y_m, double yaw_rad);
 
+// Farthest nominal foot from the centre of contacts, max over legs of |o_leg| [m].
+double LegReach(const RobotModel& robot);
+
+// The yaw change that moves a foot leg_reach_m from the centre by d_lim_m,
+// 2 asin(d_lim / (2 leg_reach)) [rad] (pi/4 when leg_reach is 0).
+double MaxYawChangeFor(double d_lim_m, double leg_reach_m);
+
 // Mean of the nominal offsets; offsets are expected to be centred (mean zero) so that
 // the centre of contacts of a nominal stance is the body origin.
 Eigen::Vector2d MeanNominalOffset(const RobotModel& robot);

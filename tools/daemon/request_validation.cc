@@ -3,14 +3,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "planner/base/format.h"
+
 namespace mfp {
 namespace {
-
-std::string Num(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
 
 ValidatedRequest Reject(SolveStatus status, const std::string& message,
                         const std::string& robot_name = "") {
@@ -28,7 +24,7 @@ std::string FirstNonFinite(const plan_request_t& m) {
     for (size_t j = 0; j < m.start_feet[i].size(); ++j) {
       if (!std::isfinite(m.start_feet[i][j]))
         return "start_feet[" + std::to_string(i) + "][" + std::to_string(j) + "] = " +
-               Num(m.start_feet[i][j]);
+               Number(m.start_feet[i][j]);
     }
   }
   const std::pair<const char*, double> scalars[] = {{"goal_x", m.goal_x},
@@ -36,7 +32,7 @@ std::string FirstNonFinite(const plan_request_t& m) {
                                                     {"goal_yaw", m.goal_yaw},
                                                     {"time_limit_s", m.time_limit_s}};
   for (const auto& [name, value] : scalars) {
-    if (!std::isfinite(value)) return std::string(name) + " = " + Num(value);
+    if (!std::isfinite(value)) return std::string(name) + " = " + Number(value);
   }
   return "";
 }
@@ -85,8 +81,8 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
                   name);
   if (m.time_limit_s < 0 || m.time_limit_s > limits.max_time_limit_s)
     return Reject(SolveStatus::kInvalidRequest,
-                  "time_limit_s = " + Num(m.time_limit_s) + " is outside [0, " +
-                      Num(limits.max_time_limit_s) + "] s (0 = default)",
+                  "time_limit_s = " + Number(m.time_limit_s) + " is outside [0, " +
+                      Number(limits.max_time_limit_s) + "] s (0 = default)",
                   name);
   if (regions == nullptr)
     return Reject(SolveStatus::kNoMap, "no terrain map received yet on MFP_TERRAIN_MAP", name);
@@ -101,10 +97,10 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
                           limits.start_height_tolerance_m)) {
       return Reject(SolveStatus::kInvalidStart,
                     "start foot of leg " + std::to_string(leg) + " (" +
-                        robot.legs[static_cast<size_t>(leg)].name + ") at (" + Num(foot.x()) +
-                        ", " + Num(foot.y()) + ", " + Num(foot.z()) +
-                        ") is off every region (tolerance " + Num(options.start_tolerance_m) +
-                        " m horizontal, " + Num(limits.start_height_tolerance_m) +
+                        robot.legs[static_cast<size_t>(leg)].name + ") at (" + Number(foot.x()) +
+                        ", " + Number(foot.y()) + ", " + Number(foot.z()) +
+                        ") is off every region (tolerance " + Number(options.start_tolerance_m) +
+                        " m horizontal, " + Number(limits.start_height_tolerance_m) +
                         " m vertical)",
                     name);
     }
@@ -112,9 +108,7 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
   }
 
   // The goal must be close enough to some region that a foot could stand near it.
-  double leg_reach_m = 0.0;
-  for (const LegModel& leg : robot.legs)
-    leg_reach_m = std::max(leg_reach_m, leg.nominal_offset_body_m.norm());
+  const double leg_reach_m = LegReach(robot);
   const double goal_reach_m = leg_reach_m + robot.l_bnd_m;
   bool goal_near_region = false;
   for (const ConvexRegion& region : *regions) {
@@ -127,8 +121,8 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
   }
   if (!goal_near_region)
     return Reject(SolveStatus::kInvalidGoal,
-                  "goal (" + Num(m.goal_x) + ", " + Num(m.goal_y) + ") is more than " +
-                      Num(goal_reach_m) + " m (leg reach + l_bnd) from every region",
+                  "goal (" + Number(m.goal_x) + ", " + Number(m.goal_y) + ") is more than " +
+                      Number(goal_reach_m) + " m (leg reach + l_bnd) from every region",
                   name);
 
   request.start_yaw_rad = EstimateStanceYaw(robot, request.start_feet_world_m);
