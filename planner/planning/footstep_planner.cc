@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/planning/goal.h"
 #include "planner/planning/relax_and_fix.h"
 
 namespace mfp {
@@ -18,21 +19,6 @@ Plan Rejected(SolveStatus status, const std::string& message) {
   plan.status = status;
   plan.message = message;
   return plan;
-}
-
-// Distance in plan view from (x, y) to a region's polygon (0 inside).
-double PlanarDistance(const ConvexRegion& region, const Eigen::Vector2d& q) {
-  const auto& v = region.vertices_world_m;
-  bool inside = true;
-  double best = kInfinity;
-  for (size_t k = 0; k < v.size(); ++k) {
-    const Eigen::Vector2d a = v[k].head<2>(), b = v[(k + 1) % v.size()].head<2>();
-    const Eigen::Vector2d e = b - a;
-    if (e.x() * (q - a).y() - e.y() * (q - a).x() < 0) inside = false;
-    const double t = std::clamp((q - a).dot(e) / std::max(e.squaredNorm(), 1e-18), 0.0, 1.0);
-    best = std::min(best, (a + t * e - q).norm());
-  }
-  return inside ? 0.0 : best;
 }
 
 int ChooseValue(int requested, int fallback) { return requested > 0 ? requested : fallback; }
@@ -157,10 +143,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
   }
   const double reach = LegReach(robot);
-  double goal_distance = kInfinity;
-  for (const ConvexRegion& r : regions) {
-    goal_distance = std::min(goal_distance, PlanarDistance(r, Eigen::Vector2d(request.goal_x_m, request.goal_y_m)));
-  }
+  const double goal_distance = DistanceToNearestRegion(regions, Eigen::Vector2d(request.goal_x_m, request.goal_y_m));
   if (goal_distance > reach + robot.l_bnd_m) {
     std::ostringstream msg;
     msg << "goal (" << request.goal_x_m << ", " << request.goal_y_m << ") m is " << goal_distance
@@ -189,15 +172,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   int phase = 0;
   int planned = 0;
   double yaw = request.start_yaw_rad;
+  const GoalSpec goal{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad, options.goal_tolerance_m,
+                      options.goal_yaw_tolerance_rad};
   auto goal_reached = [&](const std::vector<Footstep>& steps) {
-    const double goal_yaw = request.goal_yaw_rad;
-    const int size = static_cast<int>(steps.size());
-    for (int i = size - n; i < size; ++i) {
-      const Eigen::Vector2d g = NominalFootXY(robot, steps[i].leg, request.goal_x_m, request.goal_y_m, goal_yaw);
-      if ((steps[i].position_world_m.head<2>() - g).norm() > options.goal_tolerance_m) return false;
-    }
-    return std::abs(std::remainder(FinalStanceYaw(robot, steps) - goal_yaw, 2 * M_PI)) <=
-           options.goal_yaw_tolerance_rad;
+    return WithinGoal(DistancesToGoal(robot, steps, goal), goal);
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
 

@@ -74,13 +74,12 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
     if (dyaw > robot.max_yaw_change_rad + tol.yaw_rad) report(i, "yaw change", dyaw - robot.max_yaw_change_rad);
   }
   if (plan.reaches_goal) {
-    for (int i = N - n; i < N; ++i) {
-      const Eigen::Vector2d g = NominalFootXY(robot, steps[i].leg, goal.x_m, goal.y_m, goal.yaw_rad);
-      const double d = (steps[i].position_world_m.head<2>() - g).norm();
-      if (d > goal.tolerance_m + tol.position_m) report(i, "final foot far from its goal spot", d - goal.tolerance_m);
+    const GoalDistances d = DistancesToGoal(robot, steps, goal);
+    for (int k = 0; k < n; ++k) {
+      const double foot = d.foot_m[k];
+      if (foot > goal.tolerance_m + tol.position_m) report(N - n + k, "final foot far from its goal spot", foot - goal.tolerance_m);
     }
-    const double dyaw = std::abs(std::remainder(FinalStanceYaw(robot, steps) - goal.yaw_rad, 2 * M_PI));
-    if (dyaw > goal.yaw_tolerance_rad + tol.yaw_rad) report(N - 1, "final yaw far from the goal yaw", dyaw - goal.yaw_tolerance_rad);
+    if (d.yaw_rad > goal.yaw_tolerance_rad + tol.yaw_rad) report(N - 1, "final yaw far from the goal yaw", d.yaw_rad - goal.yaw_tolerance_rad);
   }
   return errors;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "planner/formulation/plan.h"
+#include "planner/planning/goal.h"
 #include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
 
@@ -16,11 +17,6 @@ struct ValidationTolerances {
   // sin/cos: the chord of a yaw segment of width w is off the circle by up to ~w^2/8.
   double rotation_m = 0.0;
   double yaw_rad = 1e-5;
-};
-
-struct GoalSpec {
-  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
-  double tolerance_m = 0.05, yaw_tolerance_rad = 0.15;
 };
 
 // Slack on the boxes implied by yaw segments of the given width for this robot.

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "planner/base/format.h"
+#include "planner/planning/goal.h"
 
 namespace mfp {
 namespace {
@@ -110,16 +111,7 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
   // The goal must be close enough to some region that a foot could stand near it.
   const double leg_reach_m = LegReach(robot);
   const double goal_reach_m = leg_reach_m + robot.l_bnd_m;
-  bool goal_near_region = false;
-  for (const ConvexRegion& region : *regions) {
-    const double z = region.HeightAt(m.goal_x, m.goal_y);
-    if (std::isfinite(z) &&
-        RegionViolation(region, Eigen::Vector3d(m.goal_x, m.goal_y, z)) <= goal_reach_m) {
-      goal_near_region = true;
-      break;
-    }
-  }
-  if (!goal_near_region)
+  if (DistanceToNearestRegion(*regions, Eigen::Vector2d(m.goal_x, m.goal_y)) > goal_reach_m)
     return Reject(SolveStatus::kInvalidGoal,
                   "goal (" + Number(m.goal_x) + ", " + Number(m.goal_y) + ") is more than " +
                       Number(goal_reach_m) + " m (leg reach + l_bnd) from every region",
