@@ -4,7 +4,7 @@
 // o2 = (-0.1, 0.1), o3 = (-0.1, -0.1); gait 0, 1, 2, 3; l_bnd 0.05, d_lim 0.15,
 // dz_max 0.1, yaw change 0.3. Regions: r0 = [-0.5, 0.5]^2 at z = 0 and
 // r1 = [0.6, 1.5] x [-0.5, 0.5] at z = 0.05. Start: nominal stance at the origin, yaw 0.
-// Four new steps (N = 8, blocks 0 and 1); goal (0.5, 0, 0).
+// Four new steps (N = 8, configurations 0 and 1); goal (0.5, 0, 0).
 //
 // The hand-made point: every foot moves 0.1 m forward, yaw 0, all in r0, nothing trimmed:
 //   f4 = (0.2, 0.1, 0), f5 = (0.2, -0.1, 0), f6 = (0, 0.1, 0), f7 = (0, -0.1, 0).
@@ -104,7 +104,7 @@ class FormulationTest : public ::testing::Test {
 
 TEST_F(FormulationTest, SizesAndGait) {
   EXPECT_EQ(formulation_->num_steps(), 8);
-  EXPECT_EQ(formulation_->num_blocks(), 2);
+  EXPECT_EQ(formulation_->num_configurations(), 2);
   // yaw range [-pi/8, pi/8] in segments of pi/8: two segments.
   EXPECT_EQ(formulation_->yaw_breakpoints().size(), 3u);
   for (int i = 0; i < 8; ++i) EXPECT_EQ(formulation_->LegOfStep(i), i % 4);
@@ -229,8 +229,8 @@ TEST_F(FormulationTest, YawConvexHullEncoding) {
 TEST_F(FormulationTest, ConfigurationsOnlyGetTheYawSegmentsTheyCanReach) {
   // Goal yaw 1.2 rad: the grid spans [-pi/8, 1.2 + pi/8] in 6 segments of 0.3309 rad
   // (breakpoints -0.3927, -0.0618, 0.2691, 0.6000, 0.9309, 1.2618, 1.5927). With a yaw
-  // change of 0.3 rad per configuration, block 1 reaches [-0.3, 0.3] (3 segments) and
-  // block 3 [-0.3927, 0.9] (4 segments).
+  // change of 0.3 rad per configuration, configuration 1 reaches [-0.3, 0.3] (3 segments) and
+  // configuration 3 [-0.3927, 0.9] (4 segments).
   FootstepProblem problem = problem_;
   problem.goal_yaw_rad = 1.2;
   problem.num_new_steps = 12;
@@ -244,17 +244,17 @@ TEST_F(FormulationTest, ConfigurationsOnlyGetTheYawSegmentsTheyCanReach) {
   EXPECT_NEAR(m.var_upper(clipped.vars().theta[1]), 0.3, 1e-12);
   EXPECT_NEAR(m.var_upper(clipped.vars().theta[3]), 0.9, 1e-12);
   // The kept segments are the grid's own, so their chords (and the plans) are unchanged.
-  for (int blk = 1; blk < clipped.num_blocks(); ++blk) {
-    const std::vector<double>& bp = clipped.block_yaw_breakpoints(blk);
-    ASSERT_EQ(bp.size(), clipped.vars().segment[blk].size() + 1);
+  for (int cfg = 1; cfg < clipped.num_configurations(); ++cfg) {
+    const std::vector<double>& bp = clipped.configuration_yaw_breakpoints(cfg);
+    ASSERT_EQ(bp.size(), clipped.vars().segment[cfg].size() + 1);
     const auto& grid = clipped.yaw_breakpoints();
     const auto first = std::find(grid.begin(), grid.end(), bp.front());
-    ASSERT_NE(first, grid.end()) << blk;
-    for (size_t k = 0; k < bp.size(); ++k) EXPECT_EQ(bp[k], *(first + k)) << blk;
+    ASSERT_NE(first, grid.end()) << cfg;
+    for (size_t k = 0; k < bp.size(); ++k) EXPECT_EQ(bp[k], *(first + k)) << cfg;
   }
   options.clip_yaw_to_reach = false;
   const MiqpFormulation full(problem, options);
-  for (int blk = 1; blk < full.num_blocks(); ++blk) EXPECT_EQ(full.vars().segment[blk].size(), 6u) << blk;
+  for (int cfg = 1; cfg < full.num_configurations(); ++cfg) EXPECT_EQ(full.vars().segment[cfg].size(), 6u) << cfg;
   EXPECT_LT(m.num_integer(), full.miqp().num_integer());
 }
 
@@ -374,7 +374,7 @@ TEST_F(FormulationTest, YawOnABreakpointSnapsToOneSegment) {
   // others; yaw 0 is the breakpoint they share, where both chords give (sin, cos) =
   // (0, 1). Big-M encoding: only the segment binaries move.
   const FootstepVariables& v = formulation_->vars();
-  const std::vector<double>& bp = formulation_->block_yaw_breakpoints(1);
+  const std::vector<double>& bp = formulation_->configuration_yaw_breakpoints(1);
   const auto zero = std::find_if(bp.begin(), bp.end(), [](double b) { return std::abs(b) < 1e-12; });
   ASSERT_NE(zero, bp.end());
   ASSERT_NE(zero, bp.begin());

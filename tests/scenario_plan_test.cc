@@ -149,7 +149,7 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   rf.time_limit_s = 300.0;
   const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), rf);
   ASSERT_TRUE(r.x.has_value());
-  EXPECT_EQ(r.stages, formulation.num_blocks() - 1);
+  EXPECT_EQ(r.stages, formulation.num_configurations() - 1);
   const Miqp& m = formulation.miqp();
   EXPECT_LE(m.MaxViolation(*r.x), 1e-5);
   EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);

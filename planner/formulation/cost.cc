@@ -6,7 +6,7 @@ Eigen::Vector2d GoalFoot(const FootstepProblem& problem, int leg) {
   return NominalFootXY(*problem.robot, leg, problem.goal_x_m, problem.goal_y_m, problem.goal_yaw_rad);
 }
 
-void AddCost(const StepExpressions& e, const FootstepProblem& problem, int num_steps, int num_blocks,
+void AddCost(const StepExpressions& e, const FootstepProblem& problem, int num_steps, int num_configurations,
              const FootstepVariables& vars, MiqpBuilder* b) {
   const int n = e.num_legs();
   const int N = num_steps;
@@ -15,7 +15,7 @@ void AddCost(const StepExpressions& e, const FootstepProblem& problem, int num_s
     const Eigen::Vector2d g = GoalFoot(problem, LegOfStep(problem, i));
     for (int axis = 0; axis < 2; ++axis) b->AddSquaredCost(e.Position(i, axis) - LinExpr::Constant(g(axis)), w.goal_position);
   }
-  if (num_blocks > 1) b->AddSquaredCost(e.Yaw(num_blocks - 1) - LinExpr::Constant(problem.goal_yaw_rad), w.goal_yaw);
+  if (num_configurations > 1) b->AddSquaredCost(e.Yaw(num_configurations - 1) - LinExpr::Constant(problem.goal_yaw_rad), w.goal_yaw);
   for (int i = n; i < N; ++i) b->AddLinearCost(LinExpr::Var(vars.trim[i], w.trim_step));
   for (int i = n; i < N; ++i) {
     for (int axis = 0; axis < 2; ++axis) {

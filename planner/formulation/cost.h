@@ -12,7 +12,7 @@
 namespace mfp {
 
 // problem.goal_yaw_rad: unwrapped to within pi of the start yaw (MiqpFormulation's copy is).
-void AddCost(const StepExpressions& e, const FootstepProblem& problem, int num_steps, int num_blocks,
+void AddCost(const StepExpressions& e, const FootstepProblem& problem, int num_steps, int num_configurations,
              const FootstepVariables& vars, MiqpBuilder* b);
 
 // Goal foot position (x, y) of a leg [m]: its nominal foot at the goal pose.

@@ -28,7 +28,7 @@ struct FormulationOptions {
   RegionEncoding region_encoding = RegionEncoding::kBigM;
   YawEncoding yaw_encoding = YawEncoding::kConvexHull;
   // Drop region binaries a step cannot use: regions farther from the start stance than
-  // the step's block could travel at d_lim + l_bnd per configuration.
+  // the step's configuration could travel at d_lim + l_bnd per configuration.
   bool prune_unreachable_regions = true;
   // Trimmed steps form a suffix (t_i <= t_{i+1}): removes symmetric solutions.
   bool monotone_trimming = true;
@@ -61,11 +61,11 @@ struct FootstepProblem {
 struct FootstepVariables {
   std::vector<int> x, y, z;              // per step; -1 for start steps (constants)
   std::vector<int> px, py;               // centre of contacts p_i per step; -1 for start steps
-  std::vector<int> theta, s, c;          // per block
+  std::vector<int> theta, s, c;          // per configuration
   std::vector<int> trim;                 // per step; -1 for start steps
   std::vector<std::vector<int>> region;  // [step][region index] -> H_ir or -1 when pruned
-  std::vector<std::vector<int>> segment; // [block][segment] -> binary
-  std::vector<std::vector<int>> segment_theta;  // [block][segment] -> theta_k (hull encoding)
+  std::vector<std::vector<int>> segment; // [configuration][segment] -> binary
+  std::vector<std::vector<int>> segment_theta;  // [configuration][segment] -> theta_k (hull encoding)
   // Convex-hull encoding only: [step][region] -> first of 3 copies (x, y, z) or -1.
   std::vector<std::vector<int>> region_copy;
 };

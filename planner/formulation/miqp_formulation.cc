@@ -26,10 +26,10 @@ double WrapToPi(double a) { return std::remainder(a, 2.0 * M_PI); }
 // outwards.
 std::vector<std::vector<int>> OneOfGroupsInPlanOrder(const FootstepVariables& vars, int n, int num_steps) {
   std::vector<std::vector<int>> groups;
-  const int num_blocks = static_cast<int>(vars.segment.size());
-  for (int blk = 0; blk < num_blocks; ++blk) {
-    if (!vars.segment[blk].empty()) groups.push_back(vars.segment[blk]);
-    for (int i = std::max(n, blk * n); i < std::min(num_steps, (blk + 1) * n); ++i) {
+  const int num_configurations = static_cast<int>(vars.segment.size());
+  for (int cfg = 0; cfg < num_configurations; ++cfg) {
+    if (!vars.segment[cfg].empty()) groups.push_back(vars.segment[cfg]);
+    for (int i = std::max(n, cfg * n); i < std::min(num_steps, (cfg + 1) * n); ++i) {
       std::vector<int> members;
       for (int h : vars.region[i]) {
         if (h >= 0) members.push_back(h);
@@ -76,11 +76,11 @@ MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const Formulati
     throw InputError("yaw_segment must be in (0.01, pi] rad and yaw_margin in [0, pi] rad");
   }
   num_steps_ = n_ + problem_.num_new_steps;
-  num_blocks_ = (num_steps_ + n_ - 1) / n_;
+  num_configurations_ = (num_steps_ + n_ - 1) / n_;
   // Goal yaw unwrapped to within pi of the start so the yaw range is the short way round.
   problem_.goal_yaw_rad =
       problem_.start_yaw_rad + WrapToPi(problem_.goal_yaw_rad - problem_.start_yaw_rad);
-  yaw_ = MakeYawGrid(problem_.start_yaw_rad, problem_.goal_yaw_rad, robot.max_yaw_change_rad, num_blocks_, options_);
+  yaw_ = MakeYawGrid(problem_.start_yaw_rad, problem_.goal_yaw_rad, robot.max_yaw_change_rad, num_configurations_, options_);
 
   Build();
 }
@@ -97,9 +97,9 @@ void MiqpFormulation::Build() {
   AddFootstepPositions(box, num_steps_, n_, &b, &vars_);
   AddCentreOfContacts(e, box, num_steps_, &b, &vars_);
   AddYawVariables(yaw_, &b, &vars_);
-  for (int blk = 1; blk < num_blocks_; ++blk) {
-    AddYawChords(e, yaw_, blk, options_.yaw_encoding, &b, &vars_);
-    AddYawChangeLimit(e, robot, blk, &b);
+  for (int cfg = 1; cfg < num_configurations_; ++cfg) {
+    AddYawChords(e, yaw_, cfg, options_.yaw_encoding, &b, &vars_);
+    AddYawChangeLimit(e, robot, cfg, &b);
   }
   for (int i = n_; i < num_steps_; ++i) AddStepLimits(e, robot, i, &b);
   const std::vector<double> max_move_xy = MaxMovesXY(e, robot, num_steps_);
@@ -107,7 +107,7 @@ void MiqpFormulation::Build() {
   RegionChoiceRows regions = AddRegionChoice(e, problem_, options_, box, max_move_xy, num_steps_, &b, &vars_);
   region_rows_ = std::move(regions.rows);
   infeasible_reason_ = std::move(regions.infeasible_reason);
-  AddCost(e, problem_, num_steps_, num_blocks_, vars_, &b);
+  AddCost(e, problem_, num_steps_, num_configurations_, vars_, &b);
   miqp_ = b.Build();
   miqp_.sos1_groups = OneOfGroupsInPlanOrder(vars_, n_, num_steps_);
 }
@@ -170,14 +170,14 @@ bool MiqpFormulation::SnapYawToOneSegment(const Eigen::VectorXd& lower, const Ei
   // Accuracy of a relaxation point: chords and breakpoints are met to about this.
   constexpr double kTolerance = 1e-6;
   bool changed = false;
-  for (int blk = 1; blk < num_blocks_; ++blk) {
-    const std::vector<int>& seg = vars_.segment[blk];
+  for (int cfg = 1; cfg < num_configurations_; ++cfg) {
+    const std::vector<int>& seg = vars_.segment[cfg];
     const int K = static_cast<int>(seg.size());
     bool integral = true;
     for (int k = 0; k < K; ++k) integral = integral && std::min(x(seg[k]), 1.0 - x(seg[k])) <= 1e-9;
     if (integral) continue;
-    const std::vector<double>& bp = yaw_.block_breakpoints[blk];
-    const double theta = x(vars_.theta[blk]), s = x(vars_.s[blk]), c = x(vars_.c[blk]);
+    const std::vector<double>& bp = yaw_.configuration_breakpoints[cfg];
+    const double theta = x(vars_.theta[cfg]), s = x(vars_.s[cfg]), c = x(vars_.c[cfg]);
     int chosen = -1;
     for (int k = 0; k < K; ++k) {
       if (upper(seg[k]) < 0.5 || theta < bp[k] - kTolerance || theta > bp[k + 1] + kTolerance) continue;
@@ -194,7 +194,7 @@ bool MiqpFormulation::SnapYawToOneSegment(const Eigen::VectorXd& lower, const Ei
     if (!allowed) continue;
     for (int k = 0; k < K; ++k) {
       x(seg[k]) = k == chosen ? 1.0 : 0.0;
-      if (!vars_.segment_theta[blk].empty()) x(vars_.segment_theta[blk][k]) = k == chosen ? theta : 0.0;
+      if (!vars_.segment_theta[cfg].empty()) x(vars_.segment_theta[cfg][k]) = k == chosen ? theta : 0.0;
     }
     changed = true;
   }
@@ -255,10 +255,10 @@ bool MiqpFormulation::RoundWithTrimming(const Eigen::VectorXd& relaxed, int firs
                                         Eigen::VectorXd* rounded) const {
   *rounded = relaxed;
   // Yaw: the segment that contains the relaxed yaw.
-  for (int blk = 1; blk < num_blocks_; ++blk) {
-    const int K = static_cast<int>(vars_.segment[blk].size());
-    const int chosen = SegmentHolding(yaw_.block_breakpoints[blk], relaxed(vars_.theta[blk]));
-    for (int k = 0; k < K; ++k) (*rounded)(vars_.segment[blk][k]) = k == chosen ? 1.0 : 0.0;
+  for (int cfg = 1; cfg < num_configurations_; ++cfg) {
+    const int K = static_cast<int>(vars_.segment[cfg].size());
+    const int chosen = SegmentHolding(yaw_.configuration_breakpoints[cfg], relaxed(vars_.theta[cfg]));
+    for (int k = 0; k < K; ++k) (*rounded)(vars_.segment[cfg][k]) = k == chosen ? 1.0 : 0.0;
   }
   for (int i = n_; i < num_steps_; ++i) (*rounded)(vars_.trim[i]) = i >= first_trimmed ? 1.0 : 0.0;
   // Regions: a trimmed step keeps the region of the foot it stays on. Otherwise, among

@@ -2,9 +2,9 @@
 // The seed paper's mixed-integer footstep program for n legs, as a Miqp.
 //
 // Steps i = 0 .. n-1 are the start stance (fixed); steps n .. N-1 are new. Step i moves
-// leg gait[(gait_phase + i) mod n]. Configuration (block) b = floor(i / n) shares one
+// leg gait[(gait_phase + i) mod n]. Configuration b = floor(i / n) shares one
 // yaw theta_b with s_b, c_b standing for sin/cos through a piecewise-linear chord
-// approximation selected by one segment binary per block and segment. Block 0 is the
+// approximation selected by one segment binary per configuration and segment. Configuration 0 is the
 // start and has its exact yaw.
 //
 // Build() writes the paper's equation families in this order, one unit each:
@@ -40,16 +40,16 @@ class MiqpFormulation {
 
   int num_legs() const { return n_; }
   int num_steps() const { return num_steps_; }  // N, including the start stance
-  int num_blocks() const { return num_blocks_; }
+  int num_configurations() const { return num_configurations_; }
   int LegOfStep(int step) const;
-  int BlockOfStep(int step) const { return step / n_; }
+  int ConfigurationOfStep(int step) const { return step / n_; }
   // Breakpoints of the yaw segments [rad] (num segments + 1 values): the uniform grid
   // over the whole yaw range.
   const std::vector<double>& yaw_breakpoints() const { return yaw_.breakpoints; }
-  // The breakpoints of configuration blk's own segments (vars().segment[blk][k] spans
+  // The breakpoints of configuration cfg's own segments (vars().segment[cfg][k] spans
   // [k, k+1]): the grid's segments that meet the yaw the configuration can reach. Empty
-  // for block 0.
-  const std::vector<double>& block_yaw_breakpoints(int blk) const { return yaw_.block_breakpoints[blk]; }
+  // for configuration 0.
+  const std::vector<double>& configuration_yaw_breakpoints(int cfg) const { return yaw_.configuration_breakpoints[cfg]; }
   // Goal foot position (x, y) of a leg [m].
   Eigen::Vector2d GoalFoot(int leg) const;
 
@@ -94,7 +94,7 @@ class MiqpFormulation {
   FormulationOptions options_;
   int n_ = 0;
   int num_steps_ = 0;
-  int num_blocks_ = 0;
+  int num_configurations_ = 0;
   YawGrid yaw_;
   Miqp miqp_;
   FootstepVariables vars_;

@@ -36,30 +36,30 @@ LinExpr StepExpressions::CentreOfContacts(int i, int axis) const {
   return i >= n_ ? LinExpr::Var(axis == 0 ? vars_.px[i] : vars_.py[i]) : CentreOfContactsSum(i, axis);
 }
 
-LinExpr StepExpressions::Yaw(int blk) const {
-  return blk == 0 ? LinExpr::Constant(problem_.start_yaw_rad) : LinExpr::Var(vars_.theta[blk]);
+LinExpr StepExpressions::Yaw(int cfg) const {
+  return cfg == 0 ? LinExpr::Constant(problem_.start_yaw_rad) : LinExpr::Var(vars_.theta[cfg]);
 }
 
-LinExpr StepExpressions::Sin(int blk) const {
-  return blk == 0 ? LinExpr::Constant(std::sin(problem_.start_yaw_rad)) : LinExpr::Var(vars_.s[blk]);
+LinExpr StepExpressions::Sin(int cfg) const {
+  return cfg == 0 ? LinExpr::Constant(std::sin(problem_.start_yaw_rad)) : LinExpr::Var(vars_.s[cfg]);
 }
 
-LinExpr StepExpressions::Cos(int blk) const {
-  return blk == 0 ? LinExpr::Constant(std::cos(problem_.start_yaw_rad)) : LinExpr::Var(vars_.c[blk]);
+LinExpr StepExpressions::Cos(int cfg) const {
+  return cfg == 0 ? LinExpr::Constant(std::cos(problem_.start_yaw_rad)) : LinExpr::Var(vars_.c[cfg]);
 }
 
 LinExpr StepExpressions::NominalFoot(int i, int axis) const {
-  const int blk = i < 0 ? 0 : i / n_;
+  const int cfg = i < 0 ? 0 : i / n_;
   const Eigen::Vector2d o = problem_.robot->legs[LegOfStep(problem_, i)].nominal_offset_body_m;
   const LinExpr p = CentreOfContacts(i, axis);
-  if (blk == 0 && !problem_.start_step_yaw_rad.empty()) {
+  if (cfg == 0 && !problem_.start_step_yaw_rad.empty()) {
     // The rotated offset is a constant: R(yaw) o about the origin, then added to p.
     const double yaw = problem_.start_step_yaw_rad[i];
     const double c = std::cos(yaw), s = std::sin(yaw);
     const double offset = axis == 0 ? NominalFootX(0.0, s, c, o) : NominalFootY(0.0, s, c, o);
     return p + LinExpr::Constant(offset);
   }
-  return axis == 0 ? NominalFootX(p, Sin(blk), Cos(blk), o) : NominalFootY(p, Sin(blk), Cos(blk), o);
+  return axis == 0 ? NominalFootX(p, Sin(cfg), Cos(cfg), o) : NominalFootY(p, Sin(cfg), Cos(cfg), o);
 }
 
 }  // namespace mfp

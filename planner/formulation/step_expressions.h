@@ -33,9 +33,9 @@ class StepExpressions {
   LinExpr CentreOfContactsSum(int i, int axis) const;
   // p_i: the variable defined by that mean for new steps, the mean itself otherwise.
   LinExpr CentreOfContacts(int i, int axis) const;
-  LinExpr Yaw(int blk) const;
-  LinExpr Sin(int blk) const;
-  LinExpr Cos(int blk) const;
+  LinExpr Yaw(int cfg) const;
+  LinExpr Sin(int cfg) const;
+  LinExpr Cos(int cfg) const;
   // Nominal foot of step i on axis 0 or 1. Start steps of a later window keep the yaw
   // they were planned with (FootstepProblem::start_step_yaw_rad).
   LinExpr NominalFoot(int i, int axis) const;

@@ -20,8 +20,8 @@ void AddStepLimits(const StepExpressions& e, const RobotModel& robot, int i, Miq
   b->AddRow(StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m, robot.dz_max_m);
 }
 
-void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int blk, MiqpBuilder* b) {
-  b->AddRow(StepName("yaw_change", blk), e.Yaw(blk) - e.Yaw(blk - 1), -robot.max_yaw_change_rad,
+void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int cfg, MiqpBuilder* b) {
+  b->AddRow(StepName("yaw_change", cfg), e.Yaw(cfg) - e.Yaw(cfg - 1), -robot.max_yaw_change_rad,
             robot.max_yaw_change_rad);
 }
 

@@ -16,8 +16,8 @@ namespace mfp {
 // Reference box, reachability and height change of new step i.
 void AddStepLimits(const StepExpressions& e, const RobotModel& robot, int i, MiqpBuilder* b);
 
-// Yaw change between configurations blk - 1 and blk.
-void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int blk, MiqpBuilder* b);
+// Yaw change between configurations cfg - 1 and cfg.
+void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int cfg, MiqpBuilder* b);
 
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the
 // reachability box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n

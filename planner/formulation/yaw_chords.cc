@@ -26,17 +26,17 @@ YawRange RangeOf(const std::vector<double>& bp) {
   return r;
 }
 
-void AddConvexHullChords(const std::vector<double>& bp, int blk, MiqpBuilder* b, FootstepVariables* vars) {
+void AddConvexHullChords(const std::vector<double>& bp, int cfg, MiqpBuilder* b, FootstepVariables* vars) {
   const int K = static_cast<int>(bp.size()) - 1;
-  LinExpr theta_sum = LinExpr::Var(vars->theta[blk], -1.0);
-  LinExpr sin_sum = LinExpr::Var(vars->s[blk], -1.0);
-  LinExpr cos_sum = LinExpr::Var(vars->c[blk], -1.0);
+  LinExpr theta_sum = LinExpr::Var(vars->theta[cfg], -1.0);
+  LinExpr sin_sum = LinExpr::Var(vars->s[cfg], -1.0);
+  LinExpr cos_sum = LinExpr::Var(vars->c[cfg], -1.0);
   for (int k = 0; k < K; ++k) {
-    const int sk = vars->segment[blk][k];
+    const int sk = vars->segment[cfg][k];
     const double a = bp[k], e = bp[k + 1];
-    const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
+    const std::string tag = std::to_string(cfg) + "_" + std::to_string(k);
     const int tk = b->AddVariable("theta_" + tag, std::min(0.0, a), std::max(0.0, e), false);
-    vars->segment_theta[blk].push_back(tk);
+    vars->segment_theta[cfg].push_back(tk);
     b->AddRow("seg_lo_" + tag, LinExpr::Var(tk) - LinExpr::Var(sk, a), 0.0, kInfinity);
     b->AddRow("seg_hi_" + tag, LinExpr::Var(tk) - LinExpr::Var(sk, e), -kInfinity, 0.0);
     theta_sum += LinExpr::Var(tk);
@@ -44,24 +44,24 @@ void AddConvexHullChords(const std::vector<double>& bp, int blk, MiqpBuilder* b,
     sin_sum += LinExpr::Var(tk, cs.slope) + LinExpr::Var(sk, cs.intercept);
     cos_sum += LinExpr::Var(tk, cc.slope) + LinExpr::Var(sk, cc.intercept);
   }
-  b->AddRow(StepName("theta_sum", blk), theta_sum, 0.0, 0.0);
-  b->AddRow(StepName("sin_def", blk), sin_sum, 0.0, 0.0);
-  b->AddRow(StepName("cos_def", blk), cos_sum, 0.0, 0.0);
+  b->AddRow(StepName("theta_sum", cfg), theta_sum, 0.0, 0.0);
+  b->AddRow(StepName("sin_def", cfg), sin_sum, 0.0, 0.0);
+  b->AddRow(StepName("cos_def", cfg), cos_sum, 0.0, 0.0);
 }
 
-void AddBigMChords(const StepExpressions& ex, const std::vector<double>& bp, int blk, MiqpBuilder* b,
+void AddBigMChords(const StepExpressions& ex, const std::vector<double>& bp, int cfg, MiqpBuilder* b,
                    const FootstepVariables& vars) {
   const int K = static_cast<int>(bp.size()) - 1;
   const YawRange range = RangeOf(bp);
   const double yaw_lo = range.theta_lo, yaw_hi = range.theta_hi;
   for (int k = 0; k < K; ++k) {
-    const int sk = vars.segment[blk][k];
+    const int sk = vars.segment[cfg][k];
     const double a = bp[k], e = bp[k + 1];
-    const std::string tag = std::to_string(blk) + "_" + std::to_string(k);
+    const std::string tag = std::to_string(cfg) + "_" + std::to_string(k);
     // S_bk => psi_k <= theta_b <= psi_{k+1}, written with the tightest constants:
     // theta >= lo + (psi_k - lo) S and theta <= hi - (hi - psi_{k+1}) S.
-    b->AddRow("seg_lo_" + tag, ex.Yaw(blk) - LinExpr::Var(sk, a - yaw_lo), yaw_lo, kInfinity);
-    b->AddRow("seg_hi_" + tag, ex.Yaw(blk) + LinExpr::Var(sk, yaw_hi - e), -kInfinity, yaw_hi);
+    b->AddRow("seg_lo_" + tag, ex.Yaw(cfg) - LinExpr::Var(sk, a - yaw_lo), yaw_lo, kInfinity);
+    b->AddRow("seg_hi_" + tag, ex.Yaw(cfg) + LinExpr::Var(sk, yaw_hi - e), -kInfinity, yaw_hi);
     // S_bk => s = m theta + q (chord of sin over [a, e]); likewise for cos.
     for (int fn = 0; fn < 2; ++fn) {
       const Chord chord = ChordOf(fn == 0, a, e);
@@ -73,7 +73,7 @@ void AddBigMChords(const StepExpressions& ex, const std::vector<double>& bp, int
         for (double v : {lo_v, hi_v}) M = std::max(M, std::abs(v - m * t - q));
       }
       const LinExpr resid =
-          (fn == 0 ? ex.Sin(blk) : ex.Cos(blk)) - LinExpr::Var(vars.theta[blk], m) - LinExpr::Constant(q);
+          (fn == 0 ? ex.Sin(cfg) : ex.Cos(cfg)) - LinExpr::Var(vars.theta[cfg], m) - LinExpr::Constant(q);
       const char* fname = fn == 0 ? "sin" : "cos";
       // resid <= M (1 - S)  and  resid >= -M (1 - S)
       b->AddRow(std::string(fname) + "_chord_up_" + tag, resid + LinExpr::Var(sk, M), -kInfinity, M);
@@ -90,29 +90,29 @@ Chord ChordOf(bool sine, double a, double e) {
   return {slope, va - slope * a};
 }
 
-YawGrid MakeYawGrid(double start_yaw_rad, double goal_yaw_rad, double max_yaw_change_rad, int num_blocks,
+YawGrid MakeYawGrid(double start_yaw_rad, double goal_yaw_rad, double max_yaw_change_rad, int num_configurations,
                     const FormulationOptions& options) {
   YawGrid grid;
   const double lo = std::min(start_yaw_rad, goal_yaw_rad) - options.yaw_margin_rad;
   const double hi = std::max(start_yaw_rad, goal_yaw_rad) + options.yaw_margin_rad;
   const int segments = std::max(1, static_cast<int>(std::ceil((hi - lo) / options.yaw_segment_rad - 1e-9)));
   for (int k = 0; k <= segments; ++k) grid.breakpoints.push_back(lo + (hi - lo) * k / segments);
-  grid.block_breakpoints.assign(num_blocks, {});
-  grid.reach.assign(num_blocks, {lo, hi});
-  for (int blk = 1; blk < num_blocks; ++blk) {
+  grid.configuration_breakpoints.assign(num_configurations, {});
+  grid.reach.assign(num_configurations, {lo, hi});
+  for (int cfg = 1; cfg < num_configurations; ++cfg) {
     double lo_b = lo, hi_b = hi;
     if (options.clip_yaw_to_reach) {
-      const double turn = blk * max_yaw_change_rad;
+      const double turn = cfg * max_yaw_change_rad;
       lo_b = start_yaw_rad - turn;
       hi_b = start_yaw_rad + turn;
     }
-    std::vector<double>& bp = grid.block_breakpoints[blk];
+    std::vector<double>& bp = grid.configuration_breakpoints[cfg];
     for (int k = 0; k < segments; ++k) {
       if (grid.breakpoints[k + 1] < lo_b || grid.breakpoints[k] > hi_b) continue;
       if (bp.empty()) bp.push_back(grid.breakpoints[k]);
       bp.push_back(grid.breakpoints[k + 1]);
     }
-    grid.reach[blk] = {std::max(lo, lo_b), std::min(hi, hi_b)};
+    grid.reach[cfg] = {std::max(lo, lo_b), std::min(hi, hi_b)};
   }
   return grid;
 }
@@ -126,37 +126,37 @@ int SegmentHolding(const std::vector<double>& bp, double theta) {
 }
 
 void AddYawVariables(const YawGrid& grid, MiqpBuilder* b, FootstepVariables* vars) {
-  const int B = static_cast<int>(grid.block_breakpoints.size());
+  const int B = static_cast<int>(grid.configuration_breakpoints.size());
   vars->theta.assign(B, -1);
   vars->s.assign(B, -1);
   vars->c.assign(B, -1);
   vars->segment.assign(B, {});
   vars->segment_theta.assign(B, {});
-  for (int blk = 1; blk < B; ++blk) {
-    const YawRange r = RangeOf(grid.block_breakpoints[blk]);
+  for (int cfg = 1; cfg < B; ++cfg) {
+    const YawRange r = RangeOf(grid.configuration_breakpoints[cfg]);
     // theta itself is bounded by the yaw it can reach; the big-M rows use the segments'
     // span, which contains that range.
-    vars->theta[blk] = b->AddVariable(StepName("theta", blk), grid.reach[blk].first, grid.reach[blk].second, false);
-    vars->s[blk] = b->AddVariable(StepName("sin", blk), r.s_lo, r.s_hi, false);
-    vars->c[blk] = b->AddVariable(StepName("cos", blk), r.c_lo, r.c_hi, false);
+    vars->theta[cfg] = b->AddVariable(StepName("theta", cfg), grid.reach[cfg].first, grid.reach[cfg].second, false);
+    vars->s[cfg] = b->AddVariable(StepName("sin", cfg), r.s_lo, r.s_hi, false);
+    vars->c[cfg] = b->AddVariable(StepName("cos", cfg), r.c_lo, r.c_hi, false);
   }
 }
 
-void AddYawChords(const StepExpressions& e, const YawGrid& grid, int blk, YawEncoding encoding, MiqpBuilder* b,
+void AddYawChords(const StepExpressions& e, const YawGrid& grid, int cfg, YawEncoding encoding, MiqpBuilder* b,
                   FootstepVariables* vars) {
-  const std::vector<double>& bp = grid.block_breakpoints[blk];
+  const std::vector<double>& bp = grid.configuration_breakpoints[cfg];
   const int K = static_cast<int>(bp.size()) - 1;
   LinExpr one_segment;
   for (int k = 0; k < K; ++k) {
-    const int sk = b->AddBinary("seg_" + std::to_string(blk) + "_" + std::to_string(k));
-    vars->segment[blk].push_back(sk);
+    const int sk = b->AddBinary("seg_" + std::to_string(cfg) + "_" + std::to_string(k));
+    vars->segment[cfg].push_back(sk);
     one_segment += LinExpr::Var(sk);
   }
-  b->AddRow(StepName("one_segment", blk), one_segment, 1.0, 1.0);
+  b->AddRow(StepName("one_segment", cfg), one_segment, 1.0, 1.0);
   if (encoding == YawEncoding::kConvexHull) {
-    AddConvexHullChords(bp, blk, b, vars);
+    AddConvexHullChords(bp, cfg, b, vars);
   } else {
-    AddBigMChords(e, bp, blk, b, *vars);
+    AddBigMChords(e, bp, cfg, b, *vars);
   }
 }
 

@@ -30,7 +30,7 @@ struct YawGrid {
   std::vector<double> breakpoints;
   // Per configuration: the breakpoints of its own segments (those of the grid that meet
   // the yaw it can reach); empty for configuration 0, the start.
-  std::vector<std::vector<double>> block_breakpoints;
+  std::vector<std::vector<double>> configuration_breakpoints;
   // Per configuration: [lowest, highest] yaw it can reach [rad].
   std::vector<std::pair<double, double>> reach;
 };
@@ -39,7 +39,7 @@ struct YawGrid {
 // With options.clip_yaw_to_reach, configuration b keeps only the segments within
 // b max_yaw_change of the start: the chords stay those of the grid, so the plans are
 // exactly those of the full grid.
-YawGrid MakeYawGrid(double start_yaw_rad, double goal_yaw_rad, double max_yaw_change_rad, int num_blocks,
+YawGrid MakeYawGrid(double start_yaw_rad, double goal_yaw_rad, double max_yaw_change_rad, int num_configurations,
                     const FormulationOptions& options);
 
 // Index of the segment of breakpoints bp that holds theta (the last one above the range).
@@ -49,9 +49,9 @@ int SegmentHolding(const std::vector<double>& bp, double theta);
 // reach and the range of sin/cos over its segments.
 void AddYawVariables(const YawGrid& grid, MiqpBuilder* b, FootstepVariables* vars);
 
-// Configuration blk's segment binaries, its one-segment row and its chord rows in the
+// Configuration cfg's segment binaries, its one-segment row and its chord rows in the
 // chosen encoding.
-void AddYawChords(const StepExpressions& e, const YawGrid& grid, int blk, YawEncoding encoding, MiqpBuilder* b,
+void AddYawChords(const StepExpressions& e, const YawGrid& grid, int cfg, YawEncoding encoding, MiqpBuilder* b,
                   FootstepVariables* vars);
 
 }  // namespace mfp

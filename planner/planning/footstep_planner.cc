@@ -220,7 +220,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       };
     }
     bool seeded = !options.relax_and_fix ||
-                  formulation.num_blocks() - 1 < options.relax_and_fix_min_configurations;
+                  formulation.num_configurations() - 1 < options.relax_and_fix_min_configurations;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
       if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)

@@ -11,22 +11,22 @@
 namespace mfp {
 namespace {
 
-// The integer variables of each configuration (block): its yaw segments, and the region
+// The integer variables of each configuration: its yaw segments, and the region
 // and trim binaries of its steps.
-std::vector<std::vector<int>> IntegersByBlock(const MiqpFormulation& f) {
+std::vector<std::vector<int>> IntegersByConfiguration(const MiqpFormulation& f) {
   const FootstepVariables& v = f.vars();
-  std::vector<std::vector<int>> blocks(f.num_blocks());
-  for (int blk = 0; blk < f.num_blocks(); ++blk) {
-    for (int s : v.segment[blk]) blocks[blk].push_back(s);
+  std::vector<std::vector<int>> integers(f.num_configurations());
+  for (int cfg = 0; cfg < f.num_configurations(); ++cfg) {
+    for (int s : v.segment[cfg]) integers[cfg].push_back(s);
   }
   for (int i = f.num_legs(); i < f.num_steps(); ++i) {
-    std::vector<int>& block = blocks[f.BlockOfStep(i)];
+    std::vector<int>& members = integers[f.ConfigurationOfStep(i)];
     for (int h : v.region[i]) {
-      if (h >= 0) block.push_back(h);
+      if (h >= 0) members.push_back(h);
     }
-    if (v.trim[i] >= 0) block.push_back(v.trim[i]);
+    if (v.trim[i] >= 0) members.push_back(v.trim[i]);
   }
-  return blocks;
+  return integers;
 }
 
 // Out of time before the last stage: the integers still open are rounded along the plan
@@ -65,21 +65,21 @@ std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formula
 
 RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
                               const RelaxAndFixOptions& options) {
-  MFP_CHECK(options.lookahead_blocks >= 0 && options.nodes_per_stage >= 1 && options.max_searched_stages >= 0);
+  MFP_CHECK(options.lookahead_configurations >= 0 && options.nodes_per_stage >= 1 && options.max_searched_stages >= 0);
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   const Miqp& full = formulation.miqp();
-  const std::vector<std::vector<int>> blocks = IntegersByBlock(formulation);
-  const int B = formulation.num_blocks();
+  const std::vector<std::vector<int>> integers = IntegersByConfiguration(formulation);
+  const int B = formulation.num_configurations();
   const RoundingHeuristic rounding = [&formulation](const Eigen::VectorXd& relaxed) {
     return formulation.RoundAlongPlan(relaxed);
   };
 
   RelaxAndFixResult result;
-  std::vector<int> block_of(full.num_variables(), -1);
-  for (int blk = 0; blk < B; ++blk) {
-    for (int j : blocks[blk]) block_of[j] = blk;
+  std::vector<int> configuration_of(full.num_variables(), -1);
+  for (int cfg = 0; cfg < B; ++cfg) {
+    for (int j : integers[cfg]) configuration_of[j] = cfg;
   }
   // The earlier stages' choices, as bounds on the full model's variables.
   Eigen::VectorXd fixed_lower = full.var_lower, fixed_upper = full.var_upper;
@@ -91,21 +91,21 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     result.completed_by_rounding = result.x.has_value();
   };
   // Stages for the configurations that have integers; the last stage takes all the rest.
-  for (int blk = 1; blk < B; ++blk) {
+  for (int cfg = 1; cfg < B; ++cfg) {
     const double remaining = options.time_limit_s - elapsed();
     if (remaining <= 0.0 || (options.max_searched_stages > 0 && result.stages >= options.max_searched_stages)) {
       complete_by_rounding();
       return result;
     }
-    const int last_integer_block = blk + options.lookahead_blocks;
-    const bool final_stage = last_integer_block >= B - 1;
+    const int last_integer_configuration = cfg + options.lookahead_configurations;
+    const bool final_stage = last_integer_configuration >= B - 1;
     Miqp stage = options.hull_for_later_steps && !final_stage
-                     ? formulation.WithRegionsRelaxedFrom((last_integer_block + 1) * formulation.num_legs())
+                     ? formulation.WithRegionsRelaxedFrom((last_integer_configuration + 1) * formulation.num_legs())
                      : full;
     for (int j = 0; j < full.num_variables(); ++j) {
       if (!full.is_integer[j]) continue;
-      stage.is_integer[j] = final_stage || block_of[j] <= last_integer_block;
-      if (block_of[j] < blk) {
+      stage.is_integer[j] = final_stage || configuration_of[j] <= last_integer_configuration;
+      if (configuration_of[j] < cfg) {
         stage.var_lower(j) = fixed_lower(j);
         stage.var_upper(j) = fixed_upper(j);
       }
@@ -136,7 +136,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     }
     x = r.x;
     if (final_stage) break;
-    for (int j : blocks[blk]) {  // fix this configuration's choices
+    for (int j : integers[cfg]) {  // fix this configuration's choices
       fixed_lower(j) = fixed_upper(j) = std::round(x(j));
     }
   }

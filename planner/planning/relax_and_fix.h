@@ -27,7 +27,7 @@ namespace mfp {
 // in the least time (lookahead 1 and 2 made each stage a bigger search that ended at its
 // node limit with worse choices), and a stage gap of 0.5 % the same plans as 1e-4 sooner.
 struct RelaxAndFixOptions {
-  int lookahead_blocks = 0;          // configurations kept integer beyond the one being fixed
+  int lookahead_configurations = 0;          // configurations kept integer beyond the one being fixed
   int nodes_per_stage = 100;         // branch-and-bound nodes per stage
   double stage_relative_gap = 0.005;  // a stage's search stops this close to its optimum
   double time_limit_s = 1.0;         // whole heuristic [s]; past it, the rest is rounded
