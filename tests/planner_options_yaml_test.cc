@@ -49,14 +49,14 @@ TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {
   EXPECT_FALSE(o.formulation.clip_yaw_to_reach);
   EXPECT_FALSE(o.branch_and_bound.reduced_cost_fixing);
   EXPECT_FALSE(o.branch_and_bound.early_cutoff);
-  EXPECT_FALSE(o.relax_and_fix);
-  EXPECT_DOUBLE_EQ(o.relax_and_fix_time_share, 0.5);
-  EXPECT_EQ(o.relax_and_fix_min_configurations, 6);
-  EXPECT_FALSE(o.relax_and_fix_region_hull);
-  EXPECT_EQ(o.relax_and_fix_stage_tolerance, 0.0);
+  EXPECT_FALSE(o.relax_and_fix.enabled);
+  EXPECT_DOUBLE_EQ(o.relax_and_fix.time_share, 0.5);
+  EXPECT_EQ(o.relax_and_fix.min_configurations, 6);
+  EXPECT_FALSE(o.relax_and_fix.hull_for_later_steps);
+  EXPECT_EQ(o.relax_and_fix.stage_relaxation_tolerance, 0.0);
   EXPECT_FALSE(o.snap_yaw_segments);
-  EXPECT_FALSE(o.relax_and_fix_two_paths);
-  EXPECT_TRUE(o.relax_and_fix_stage_rounding);
+  EXPECT_FALSE(o.relax_and_fix.two_paths);
+  EXPECT_TRUE(o.relax_and_fix.stage_rounding);
   EXPECT_NE(ErrorOf("relax_and_fix_stage_tolerance: 0.1\n").find("relax_and_fix_stage_tolerance"), std::string::npos);
   EXPECT_NE(ErrorOf("relax_and_fix_time_share: 0\n").find("relax_and_fix_time_share"), std::string::npos);
   EXPECT_NE(ErrorOf("relax_and_fix_min_configurations: 1\n").find("relax_and_fix_min_configurations"),

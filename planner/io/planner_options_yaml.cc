@@ -1,119 +1,156 @@
 #include "planner/io/planner_options_yaml.h"
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
 
 #include "planner/base/check.h"
 
 namespace mfp {
+namespace {
+
+// One key of the `planner:` section: the member of struct S it sets and its range.
+template <class S>
+struct Field {
+  const char* key;
+  std::variant<int S::*, double S::*, bool S::*> member;
+  double min = 0.0, max = 0.0;  // ignored for bool
+};
+
+// One key naming an enum value: the member of struct S it sets and the names it takes.
+template <class S, class E>
+struct EnumField {
+  const char* key;
+  E S::*member;
+  std::vector<std::pair<const char*, E>> names;
+};
+
+// Each struct's keys, named once: they drive both the unknown-key check and the reading.
+const std::vector<Field<PlannerOptions>> kPlannerFields = {
+    {"max_steps", &PlannerOptions::default_max_steps, 1, 100000},
+    {"window", &PlannerOptions::default_window_steps, 1, 1000},
+    {"time_limit", &PlannerOptions::default_time_limit_s, 1e-3, 3600},
+    {"goal_tolerance", &PlannerOptions::goal_tolerance_m, 1e-4, 10},
+    {"goal_yaw_tolerance", &PlannerOptions::goal_yaw_tolerance_rad, 1e-4, M_PI},
+    {"start_tolerance", &PlannerOptions::start_tolerance_m, 0, 1},
+    {"threads", &PlannerOptions::threads, 1, 64},
+    {"snap_yaw_segments", &PlannerOptions::snap_yaw_segments},
+};
+
+const std::vector<Field<FormulationOptions>> kFormulationFields = {
+    {"yaw_segment", &FormulationOptions::yaw_segment_rad, 0.02, M_PI},
+    {"yaw_margin", &FormulationOptions::yaw_margin_rad, 0, M_PI},
+    {"prune_unreachable_regions", &FormulationOptions::prune_unreachable_regions},
+    {"monotone_trimming", &FormulationOptions::monotone_trimming},
+    {"clip_yaw_to_reach", &FormulationOptions::clip_yaw_to_reach},
+};
+
+const std::vector<Field<BranchAndBoundOptions>> kSearchFields = {
+    {"max_nodes", &BranchAndBoundOptions::max_nodes, 1, 10000000},
+    {"relative_gap", &BranchAndBoundOptions::relative_gap, 0, 1},
+    {"rounding_frequency", &BranchAndBoundOptions::rounding_frequency, 0, 1000000},
+    {"bound_propagation", &BranchAndBoundOptions::bound_propagation},
+    {"reduced_cost_fixing", &BranchAndBoundOptions::reduced_cost_fixing},
+    {"early_cutoff", &BranchAndBoundOptions::early_cutoff},
+    {"rounding_heuristic", &BranchAndBoundOptions::rounding_heuristic},
+    {"plunge_fraction", &BranchAndBoundOptions::plunge_fraction, 0, 1},
+    {"reliability", &BranchAndBoundOptions::reliability, 0, 1000},
+    {"strong_branching_candidates", &BranchAndBoundOptions::strong_branching_candidates, 0, 10000},
+    {"strong_branching_lookahead", &BranchAndBoundOptions::strong_branching_lookahead, 1, 10000},
+};
+
+// Flat keys with the relax_and_fix prefix, as scenario files have always named them.
+const std::vector<Field<RelaxAndFixOptions>> kRelaxAndFixFields = {
+    {"relax_and_fix", &RelaxAndFixOptions::enabled},
+    {"relax_and_fix_time_share", &RelaxAndFixOptions::time_share, 0.01, 1},
+    {"relax_and_fix_min_configurations", &RelaxAndFixOptions::min_configurations, 2, 100000},
+    {"relax_and_fix_region_hull", &RelaxAndFixOptions::hull_for_later_steps},
+    {"relax_and_fix_two_paths", &RelaxAndFixOptions::two_paths},
+    {"relax_and_fix_stage_tolerance", &RelaxAndFixOptions::stage_relaxation_tolerance, 0.0, 1e-3},
+    {"relax_and_fix_stage_rounding", &RelaxAndFixOptions::stage_rounding},
+};
+
+const EnumField<FormulationOptions, RegionEncoding> kRegionEncoding = {
+    "region_encoding", &FormulationOptions::region_encoding,
+    {{"big_m", RegionEncoding::kBigM}, {"convex_hull", RegionEncoding::kConvexHull}}};
+const EnumField<FormulationOptions, YawEncoding> kYawEncoding = {
+    "yaw_encoding", &FormulationOptions::yaw_encoding,
+    {{"big_m", YawEncoding::kBigM}, {"convex_hull", YawEncoding::kConvexHull}}};
+const EnumField<BranchAndBoundOptions, NodeSelection> kNodeSelection = {
+    "node_selection", &BranchAndBoundOptions::node_selection,
+    {{"best_bound", NodeSelection::kBestBound},
+     {"depth_first", NodeSelection::kDepthFirst},
+     {"dive_then_best_bound", NodeSelection::kDiveThenBestBound},
+     {"plunging", NodeSelection::kBestBoundWithPlunging}}};
+const EnumField<BranchAndBoundOptions, BranchingRule> kBranching = {
+    "branching", &BranchAndBoundOptions::branching,
+    {{"most_fractional", BranchingRule::kMostFractional},
+     {"sos1", BranchingRule::kSos1Split},
+     {"group_order", BranchingRule::kGroupOrder},
+     {"reliability", BranchingRule::kReliability}}};
+constexpr const char* kRelaxationSolverKey = "relaxation_solver";
+
+template <class S>
+void AddKeys(const std::vector<Field<S>>& fields, std::vector<std::string>* keys) {
+  for (const Field<S>& f : fields) keys->push_back(f.key);
+}
+
+template <class S>
+void ReadFields(const YAML::Node& node, const YamlContext& ctx, const std::vector<Field<S>>& fields, S* s) {
+  for (const Field<S>& f : fields) {
+    if (const auto* m = std::get_if<int S::*>(&f.member)) {
+      s->**m = OptionalInt(node, ctx, f.key, static_cast<int>(f.min), static_cast<int>(f.max)).value_or(s->**m);
+    } else if (const auto* m = std::get_if<double S::*>(&f.member)) {
+      s->**m = OptionalDouble(node, ctx, f.key, f.min, f.max).value_or(s->**m);
+    } else if (const auto* m = std::get_if<bool S::*>(&f.member)) {
+      s->**m = OptionalBool(node, ctx, f.key).value_or(s->**m);
+    }
+  }
+}
+
+template <class S, class E>
+void ReadEnum(const YAML::Node& node, const YamlContext& ctx, const EnumField<S, E>& field, S* s) {
+  const auto name = OptionalString(node, ctx, field.key);
+  if (!name) return;
+  std::string allowed;
+  for (const auto& [text, value] : field.names) {
+    if (*name == text) {
+      s->*field.member = value;
+      return;
+    }
+    allowed += (allowed.empty() ? "" : ", ") + std::string(text);
+  }
+  throw InputError(ctx.Child(field.key).Where() + ": '" + *name + "' is not one of " + allowed);
+}
+
+}  // namespace
 
 void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options) {
-  RejectUnknownKeys(node, ctx,
-                    {"max_steps", "window", "time_limit", "goal_tolerance", "goal_yaw_tolerance",
-                     "start_tolerance", "yaw_segment", "yaw_margin", "region_encoding", "yaw_encoding",
-                     "prune_unreachable_regions", "monotone_trimming", "max_nodes", "relative_gap",
-                     "node_selection", "branching", "rounding_frequency", "relaxation_solver",
-                     "bound_propagation", "rounding_heuristic", "plunge_fraction", "reliability",
-                     "strong_branching_candidates", "strong_branching_lookahead", "threads", "clip_yaw_to_reach",
-                     "reduced_cost_fixing", "early_cutoff", "relax_and_fix", "relax_and_fix_time_share",
-                     "relax_and_fix_min_configurations", "relax_and_fix_region_hull",
-                     "relax_and_fix_stage_tolerance", "snap_yaw_segments",
-                     "relax_and_fix_two_paths", "relax_and_fix_stage_rounding"});
+  std::vector<std::string> keys;
+  AddKeys(kPlannerFields, &keys);
+  AddKeys(kFormulationFields, &keys);
+  AddKeys(kSearchFields, &keys);
+  AddKeys(kRelaxAndFixFields, &keys);
+  for (const char* key : {kRegionEncoding.key, kYawEncoding.key, kNodeSelection.key, kBranching.key}) keys.push_back(key);
+  keys.push_back(kRelaxationSolverKey);
+  RejectUnknownKeys(node, ctx, keys);
+
   PlannerOptions& o = *options;
-  o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
-  o.threads = OptionalInt(node, ctx, "threads", 1, 64).value_or(o.threads);
-  o.relax_and_fix = OptionalBool(node, ctx, "relax_and_fix").value_or(o.relax_and_fix);
-  o.relax_and_fix_time_share =
-      OptionalDouble(node, ctx, "relax_and_fix_time_share", 0.01, 1).value_or(o.relax_and_fix_time_share);
-  o.relax_and_fix_min_configurations =
-      OptionalInt(node, ctx, "relax_and_fix_min_configurations", 2, 100000)
-          .value_or(o.relax_and_fix_min_configurations);
-  o.relax_and_fix_region_hull =
-      OptionalBool(node, ctx, "relax_and_fix_region_hull").value_or(o.relax_and_fix_region_hull);
-  o.relax_and_fix_two_paths = OptionalBool(node, ctx, "relax_and_fix_two_paths").value_or(o.relax_and_fix_two_paths);
-  o.relax_and_fix_stage_rounding =
-      OptionalBool(node, ctx, "relax_and_fix_stage_rounding").value_or(o.relax_and_fix_stage_rounding);
-  o.snap_yaw_segments = OptionalBool(node, ctx, "snap_yaw_segments").value_or(o.snap_yaw_segments);
-  o.relax_and_fix_stage_tolerance = OptionalDouble(node, ctx, "relax_and_fix_stage_tolerance", 0.0, 1e-3)
-                                        .value_or(o.relax_and_fix_stage_tolerance);
-  o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
-  o.default_time_limit_s = OptionalDouble(node, ctx, "time_limit", 1e-3, 3600).value_or(o.default_time_limit_s);
-  o.goal_tolerance_m = OptionalDouble(node, ctx, "goal_tolerance", 1e-4, 10).value_or(o.goal_tolerance_m);
-  o.goal_yaw_tolerance_rad =
-      OptionalDouble(node, ctx, "goal_yaw_tolerance", 1e-4, M_PI).value_or(o.goal_yaw_tolerance_rad);
-  o.start_tolerance_m = OptionalDouble(node, ctx, "start_tolerance", 0, 1).value_or(o.start_tolerance_m);
-  if (const auto backend = OptionalString(node, ctx, "relaxation_solver")) {
+  ReadFields(node, ctx, kPlannerFields, &o);
+  ReadFields(node, ctx, kFormulationFields, &o.formulation);
+  ReadFields(node, ctx, kSearchFields, &o.branch_and_bound);
+  ReadFields(node, ctx, kRelaxAndFixFields, &o.relax_and_fix);
+  ReadEnum(node, ctx, kRegionEncoding, &o.formulation);
+  ReadEnum(node, ctx, kYawEncoding, &o.formulation);
+  ReadEnum(node, ctx, kNodeSelection, &o.branch_and_bound);
+  ReadEnum(node, ctx, kBranching, &o.branch_and_bound);
+  if (const auto backend = OptionalString(node, ctx, kRelaxationSolverKey)) {
     try {
       o.relaxation_solver = ParseRelaxationBackend(*backend);
     } catch (const InputError& e) {
-      throw InputError(ctx.Child("relaxation_solver").Where() + ": " + e.what());
-    }
-  }
-  FormulationOptions& f = o.formulation;
-  f.yaw_segment_rad = OptionalDouble(node, ctx, "yaw_segment", 0.02, M_PI).value_or(f.yaw_segment_rad);
-  f.yaw_margin_rad = OptionalDouble(node, ctx, "yaw_margin", 0, M_PI).value_or(f.yaw_margin_rad);
-  if (const auto enc = OptionalString(node, ctx, "region_encoding")) {
-    if (*enc == "big_m") {
-      f.region_encoding = RegionEncoding::kBigM;
-    } else if (*enc == "convex_hull") {
-      f.region_encoding = RegionEncoding::kConvexHull;
-    } else {
-      throw InputError(ctx.Child("region_encoding").Where() + ": '" + *enc +
-                       "' is not one of big_m, convex_hull");
-    }
-  }
-  if (const auto enc = OptionalString(node, ctx, "yaw_encoding")) {
-    if (*enc == "big_m") {
-      f.yaw_encoding = YawEncoding::kBigM;
-    } else if (*enc == "convex_hull") {
-      f.yaw_encoding = YawEncoding::kConvexHull;
-    } else {
-      throw InputError(ctx.Child("yaw_encoding").Where() + ": '" + *enc + "' is not one of big_m, convex_hull");
-    }
-  }
-  f.prune_unreachable_regions =
-      OptionalBool(node, ctx, "prune_unreachable_regions").value_or(f.prune_unreachable_regions);
-  f.monotone_trimming = OptionalBool(node, ctx, "monotone_trimming").value_or(f.monotone_trimming);
-  f.clip_yaw_to_reach = OptionalBool(node, ctx, "clip_yaw_to_reach").value_or(f.clip_yaw_to_reach);
-  BranchAndBoundOptions& b = o.branch_and_bound;
-  b.max_nodes = OptionalInt(node, ctx, "max_nodes", 1, 10000000).value_or(b.max_nodes);
-  b.relative_gap = OptionalDouble(node, ctx, "relative_gap", 0, 1).value_or(b.relative_gap);
-  b.rounding_frequency = OptionalInt(node, ctx, "rounding_frequency", 0, 1000000).value_or(b.rounding_frequency);
-  b.bound_propagation = OptionalBool(node, ctx, "bound_propagation").value_or(b.bound_propagation);
-  b.reduced_cost_fixing = OptionalBool(node, ctx, "reduced_cost_fixing").value_or(b.reduced_cost_fixing);
-  b.early_cutoff = OptionalBool(node, ctx, "early_cutoff").value_or(b.early_cutoff);
-  b.rounding_heuristic = OptionalBool(node, ctx, "rounding_heuristic").value_or(b.rounding_heuristic);
-  b.plunge_fraction = OptionalDouble(node, ctx, "plunge_fraction", 0, 1).value_or(b.plunge_fraction);
-  b.reliability = OptionalInt(node, ctx, "reliability", 0, 1000).value_or(b.reliability);
-  b.strong_branching_candidates =
-      OptionalInt(node, ctx, "strong_branching_candidates", 0, 10000).value_or(b.strong_branching_candidates);
-  b.strong_branching_lookahead =
-      OptionalInt(node, ctx, "strong_branching_lookahead", 1, 10000).value_or(b.strong_branching_lookahead);
-  if (const auto sel = OptionalString(node, ctx, "node_selection")) {
-    if (*sel == "best_bound") {
-      b.node_selection = NodeSelection::kBestBound;
-    } else if (*sel == "depth_first") {
-      b.node_selection = NodeSelection::kDepthFirst;
-    } else if (*sel == "dive_then_best_bound") {
-      b.node_selection = NodeSelection::kDiveThenBestBound;
-    } else if (*sel == "plunging") {
-      b.node_selection = NodeSelection::kBestBoundWithPlunging;
-    } else {
-      throw InputError(ctx.Child("node_selection").Where() + ": '" + *sel +
-                       "' is not one of best_bound, depth_first, dive_then_best_bound, plunging");
-    }
-  }
-  if (const auto br = OptionalString(node, ctx, "branching")) {
-    if (*br == "most_fractional") {
-      b.branching = BranchingRule::kMostFractional;
-    } else if (*br == "sos1") {
-      b.branching = BranchingRule::kSos1Split;
-    } else if (*br == "group_order") {
-      b.branching = BranchingRule::kGroupOrder;
-    } else if (*br == "reliability") {
-      b.branching = BranchingRule::kReliability;
-    } else {
-      throw InputError(ctx.Child("branching").Where() + ": '" + *br +
-                       "' is not one of most_fractional, sos1, group_order, reliability");
+      throw InputError(ctx.Child(kRelaxationSolverKey).Where() + ": " + e.what());
     }
   }
 }

@@ -219,24 +219,21 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         return formulation.SnapYawToOneSegment(lower, upper, x);
       };
     }
-    bool seeded = !options.relax_and_fix ||
-                  formulation.num_configurations() - 1 < options.relax_and_fix_min_configurations;
+    bool seeded = !options.relax_and_fix.enabled ||
+                  formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
       if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
         seeded = true;
-        RelaxAndFixOptions rf;
+        RelaxAndFixOptions rf = options.relax_and_fix;
         rf.stage = bnb;
         // Stage searches are small (nodes_per_stage): strong branching would cost them more
         // than it saves, and their plans came out worse (littledog 24: the first plan
         // within 0.5 % at 30 s instead of 0.28 s).
         if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
-        rf.time_limit_s = options.relax_and_fix_time_share * bnb.time_limit_s;
-        rf.hull_for_later_steps = options.relax_and_fix_region_hull;
-        rf.stage_relaxation_tolerance = options.relax_and_fix_stage_tolerance;
-        rf.stage_rounding = options.relax_and_fix_stage_rounding;
-        const RelaxAndFixResult r = options.relax_and_fix_two_paths ? RelaxAndFixTwoPaths(formulation, solvers, rf)
-                                                                    : RelaxAndFix(formulation, solvers, rf);
+        rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+        const RelaxAndFixResult r = rf.two_paths ? RelaxAndFixTwoPaths(formulation, solvers, rf)
+                                                 : RelaxAndFix(formulation, solvers, rf);
         if (r.x) proposals.push_back(*r.x);
       }
       return proposals;

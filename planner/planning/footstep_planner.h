@@ -9,6 +9,7 @@
 #include "planner/search/branch_and_bound.h"
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
+#include "planner/planning/relax_and_fix.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/robot_model.h"
@@ -44,33 +45,14 @@ struct PlannerOptions {
   // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
   // are solved this many at a time. Callers make the solvers (MakeRelaxationSolvers).
   int threads = 1;
-  // Seed each window's search with a relax-and-fix plan (planner/planning/relax_and_fix.h),
-  // given at most this share of the window's time, when the window has at least this
-  // many configurations of new steps (on fewer, relax-and-fix is nearly the search
-  // itself: the 2-configuration default windows and 12-step MIQPs solve faster without).
-  // The whole time by default: relax-and-fix rounds what it has not searched when the
-  // time runs out, and on Table I its plans at any budget beat the search's (README).
-  bool relax_and_fix = true;
-  double relax_and_fix_time_share = 1.0;
-  int relax_and_fix_min_configurations = 4;
-  // Relax-and-fix's stages see the steps they have not reached standing in the convex
-  // hull of their regions (RelaxAndFixOptions::hull_for_later_steps).
-  bool relax_and_fix_region_hull = true;
-  // With two or more workers, two single-worker relax-and-fix runs on different paths
-  // and the better plan (RelaxAndFixTwoPaths) instead of one run whose stage searches
-  // share the workers.
-  bool relax_and_fix_two_paths = true;
   // A relaxed yaw that one segment alone represents (on a breakpoint, as the goal yaw
   // is) is set to that segment before branching (MiqpFormulation::SnapYawToOneSegment).
   bool snap_yaw_segments = true;
-  // Relative accuracy of the QPs of relax-and-fix's stages but the last
-  // (RelaxAndFixOptions::stage_relaxation_tolerance; 0: the solver's own).
-  double relax_and_fix_stage_tolerance = 1e-6;
-  // The search's rounding heuristic inside relax-and-fix's stages
-  // (RelaxAndFixOptions::stage_rounding).
-  bool relax_and_fix_stage_rounding = false;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
+  // The seed of each window's search; its stage search options and time limit are set
+  // from branch_and_bound and the window's time.
+  RelaxAndFixOptions relax_and_fix;
 };
 
 struct PlanProgress {

@@ -46,6 +46,20 @@ struct RelaxAndFixOptions {
   // out of time before its first leaf still ends rounded (completed_by_rounding).
   bool stage_rounding = false;
   BranchAndBoundOptions stage;       // other search options of each stage
+
+  // How PlanFootsteps uses it: each window's search is seeded with a relax-and-fix plan
+  // when enabled and the window has at least min_configurations configurations of new
+  // steps (on fewer, relax-and-fix is nearly the search itself: the 2-configuration
+  // default windows and 12-step MIQPs solve faster without), given time_share of the
+  // window's time. The whole time by default: relax-and-fix rounds what it has not
+  // searched when the time runs out, and on Table I its plans at any budget beat the
+  // search's (docs/measurements.md). With two or more workers and two_paths, two
+  // single-worker runs (RelaxAndFixTwoPaths) instead of one run whose stage searches
+  // share the workers.
+  bool enabled = true;
+  double time_share = 1.0;
+  int min_configurations = 4;
+  bool two_paths = true;
 };
 
 struct RelaxAndFixResult {
