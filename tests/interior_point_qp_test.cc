@@ -1,11 +1,10 @@
-// mfp's interior-point QP and bound propagation on problems solved by hand.
+// mfp's interior-point QP on problems solved by hand.
 #include "planner/qp/interior_point_qp.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-#include "planner/search/bound_propagation.h"
 #include "planner/qp/fixed_variable_reduction.h"
 #include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/miqp/miqp_builder.h"
@@ -277,41 +276,6 @@ TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
     ASSERT_GE(p.Objective(x), floor - 1e-9) << x.transpose();
   }
   EXPECT_GT(checked, 1000);
-}
-
-TEST(BoundPropagation, TightensAndDetectsInfeasibility) {
-  // x + y <= 1 with y >= 0.75 gives x <= 0.25; with x integer in [0, 3], x = 0.
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", 0, 3, true), y = b.AddVariable("y", 0.75, 2, false);
-  b.AddRow("cap", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 1.0);
-  const Miqp p = b.Build();
-  Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  const PropagationResult r = PropagateBounds(p, &lo, &up);
-  EXPECT_FALSE(r.infeasible);
-  EXPECT_EQ(up(0), 0.0);
-  EXPECT_NEAR(up(1), 1.0, 1e-12);
-  // With y >= 1.5 nothing fits.
-  lo = p.var_lower;
-  up = p.var_upper;
-  lo(1) = 1.5;
-  EXPECT_TRUE(PropagateBounds(p, &lo, &up).infeasible);
-}
-
-TEST(BoundPropagation, ATinyCoefficientBoundsNothing) {
-  // y - 1e-17 x <= 0.3 with y >= 0.3 + 1e-12: met within the tolerance. Solving the row
-  // for x divides a rounding-sized excess by 1e-17 and would demand x >= 1e5, outside
-  // [-1, 1]: a false infeasibility (as a hull edge normal with a 6e-17 component once
-  // gave). Such a coefficient is skipped; y's bound is still derived and checked.
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", -1, 1, false), y = b.AddVariable("y", 0.3 + 1e-12, 2, false);
-  b.AddRow("edge", LinExpr::Var(y) - LinExpr::Var(x, 1e-17), -kInfinity, 0.3);
-  const Miqp p = b.Build();
-  Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  const PropagationResult r = PropagateBounds(p, &lo, &up);
-  EXPECT_FALSE(r.infeasible);
-  EXPECT_EQ(lo(x), -1.0);
-  EXPECT_EQ(up(x), 1.0);
-  EXPECT_NEAR(up(y), 0.3, 1e-9);
 }
 
 }  // namespace

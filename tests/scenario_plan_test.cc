@@ -14,6 +14,7 @@
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
+#include "tests/test_scenarios.h"
 
 namespace mfp {
 namespace {
@@ -25,23 +26,6 @@ std::vector<std::string> ScenarioFiles() {
   }
   std::sort(files.begin(), files.end());
   return files;
-}
-
-// A scenario of config/scenarios/ loaded with its robot, regions and request.
-struct Course {
-  Scenario scenario;
-  RobotModel robot;
-  std::vector<ConvexRegion> regions;
-  PlanRequest request;
-};
-
-Course LoadCourse(const std::string& file_name) {
-  Course c;
-  c.scenario = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/" + file_name);
-  c.robot = LoadRobot(c.scenario.robot_path);
-  c.regions = ScenarioRegions(c.scenario, c.robot);
-  c.request = ScenarioRequest(c.scenario, c.robot, c.regions);
-  return c;
 }
 
 class ScenarioPlan : public ::testing::TestWithParam<std::string> {};
@@ -135,81 +119,6 @@ TEST(ScenarioPlanFormulation, YawSegmentsOutOfReachLeaveTheOptimumAlone) {
   EXPECT_NEAR(objective[1], objective[0], 2 * bnb.relative_gap * std::abs(objective[0]));
 }
 
-TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
-  // The hexapod stones with 24 new steps (Table I): relax-and-fix fixes the four
-  // configurations one at a time. Its plan must meet every row and bound with integral
-  // choices and lie within 1 % of the optimum the branch-and-bound proves (measured: 0 %).
-  Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
-  c.request.window_steps = 24;
-  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
-                                    c.scenario.options.formulation);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 1);
-  RelaxAndFixOptions rf;
-  rf.stage = c.scenario.options.branch_and_bound;
-  rf.time_limit_s = 300.0;
-  const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), rf);
-  ASSERT_TRUE(r.x.has_value());
-  EXPECT_EQ(r.stages, formulation.num_configurations() - 1);
-  const Miqp& m = formulation.miqp();
-  EXPECT_LE(m.MaxViolation(*r.x), 1e-5);
-  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
-
-  BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
-  bnb.time_limit_s = 300.0;
-  const BranchAndBoundResult proof = SolveBranchAndBound(m, solvers.workers(), bnb);
-  ASSERT_EQ(ToString(proof.status), "optimal");
-  EXPECT_GE(m.Objective(*r.x), proof.bound - 1e-6);
-  EXPECT_LE(m.Objective(*r.x), proof.objective + 0.01 * std::abs(proof.objective));
-
-  // Stopped after one stage (as when its time runs out), the configurations left are
-  // rounded: still a complete plan that meets every row, no better than the optimum.
-  rf.max_searched_stages = 1;
-  const RelaxAndFixResult partial = RelaxAndFix(formulation, solvers.workers(), rf);
-  ASSERT_TRUE(partial.x.has_value());
-  EXPECT_TRUE(partial.completed_by_rounding);
-  EXPECT_FALSE(r.completed_by_rounding);
-  EXPECT_EQ(partial.stages, 1);
-  EXPECT_LE(m.MaxViolation(*partial.x), 1e-5);
-  EXPECT_EQ(m.MaxIntegrality(*partial.x), 0.0);
-  EXPECT_GE(m.Objective(*partial.x), proof.bound - 1e-6);
-
-  // A complete plan: integral choices that meet every row, within 1 % of the optimum.
-  const auto expect_plan_near_optimum = [&](const RelaxAndFixResult& run) {
-    ASSERT_TRUE(run.x.has_value());
-    EXPECT_LE(m.MaxViolation(*run.x), 1e-5);
-    EXPECT_EQ(m.MaxIntegrality(*run.x), 0.0);
-    EXPECT_LE(m.Objective(*run.x), proof.objective + 0.01 * std::abs(proof.objective));
-  };
-
-  // The stages with the steps they have not reached in the full relaxation of their
-  // region binaries (the hull is the default): also a complete plan within 1 %.
-  rf.max_searched_stages = 0;
-  rf.hull_for_later_steps = false;
-  expect_plan_near_optimum(RelaxAndFix(formulation, solvers.workers(), rf));
-
-  // With the search's rounding heuristic in the stages (off by default): rounding QPs
-  // on top of the node relaxations, and still a complete plan within 1 %.
-  rf.hull_for_later_steps = true;
-  rf.stage_rounding = true;
-  const RelaxAndFixResult rounded = RelaxAndFix(formulation, solvers.workers(), rf);
-  expect_plan_near_optimum(rounded);
-  EXPECT_GT(rounded.relaxations - rounded.nodes, r.relaxations - r.nodes);
-  rf.stage_rounding = false;
-
-  // Two paths side by side with two workers: the first is the one-worker run, so the
-  // plan is never worse than that one, and it is a plan.
-  rf.hull_for_later_steps = true;
-  const RelaxAndFixResult one = RelaxAndFix(formulation, solvers.workers(), rf);
-  const RelaxationSolverSet two_workers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 2);
-  const RelaxAndFixResult two = RelaxAndFixTwoPaths(formulation, two_workers.workers(), rf);
-  ASSERT_TRUE(one.x.has_value());
-  ASSERT_TRUE(two.x.has_value());
-  EXPECT_LE(m.MaxViolation(*two.x), 1e-5);
-  EXPECT_EQ(m.MaxIntegrality(*two.x), 0.0);
-  EXPECT_LE(m.Objective(*two.x), m.Objective(*one.x) + 1e-9 * std::abs(m.Objective(*one.x)));
-  EXPECT_EQ(two.stages, 2 * one.stages);
-}
-
 TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
   Course c = LoadCourse("littledog_stepping_stones_45.yaml");
   c.request.time_limit_s = 300.0;
@@ -226,48 +135,6 @@ TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
   const Plan rejected = PlanFootsteps(c.robot, c.regions, c.request, c.scenario.options, *solver);
   EXPECT_EQ(rejected.status, SolveStatus::kInvalidRequest);
   EXPECT_NE(rejected.message.find("max_windows"), std::string::npos) << rejected.message;
-}
-
-TEST(PlanValidation, CatchesEachKindOfViolation) {
-  // A valid plan of the flat hexapod scenario, then one defect at a time.
-  const Scenario scenario = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/littledog_flat.yaml");
-  const RobotModel robot = LoadRobot(scenario.robot_path);
-  const std::vector<ConvexRegion> regions = ScenarioRegions(scenario, robot);
-  PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  request.max_steps = 8;
-  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
-  const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
-  ASSERT_TRUE(HasPlan(plan.status));
-  ASSERT_EQ(plan.footsteps.size(), 12u);
-  ValidationTolerances tol;
-  tol.rotation_m = RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
-  const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad};
-  ASSERT_TRUE(ValidatePlan(robot, regions, plan, goal, tol).empty());
-  auto expect_violation = [&](const Plan& bad, const std::string& what) {
-    const auto errors = ValidatePlan(robot, regions, bad, goal, tol);
-    bool found = false;
-    for (const auto& e : errors) found = found || e.find(what) != std::string::npos;
-    EXPECT_TRUE(found) << "expected a '" << what << "' violation";
-  };
-  Plan bad = plan;
-  bad.footsteps[6].position_world_m.x() += 0.25;  // beyond both boxes
-  expect_violation(bad, "reachability box");
-  bad = plan;
-  bad.footsteps[6].position_world_m.z() += 0.2;
-  expect_violation(bad, "height change");
-  expect_violation(bad, "outside region");
-  bad = plan;
-  bad.footsteps[7].yaw_rad += 1.0;
-  expect_violation(bad, "yaw change");
-  bad = plan;
-  std::swap(bad.footsteps[5].leg, bad.footsteps[6].leg);
-  expect_violation(bad, "gait order");
-  bad = plan;
-  bad.footsteps[8].region_id = 99;
-  expect_violation(bad, "does not exist");
-  bad = plan;
-  bad.reaches_goal = true;  // eight steps do not reach a goal 0.6 m away
-  expect_violation(bad, "goal");
 }
 
 }  // namespace

@@ -1,0 +1,90 @@
+// Relax-and-fix on a Table I instance: a feasible plan near the proven optimum.
+#include "planner/planning/relax_and_fix.h"
+
+#include <gtest/gtest.h>
+
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "planner/search/branch_and_bound.h"
+#include "tests/test_scenarios.h"
+
+namespace mfp {
+namespace {
+
+TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
+  // The hexapod stones with 24 new steps (Table I): relax-and-fix fixes the four
+  // configurations one at a time. Its plan must meet every row and bound with integral
+  // choices and lie within 1 % of the optimum the branch-and-bound proves (measured: 0 %).
+  Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
+  c.request.window_steps = 24;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 1);
+  RelaxAndFixOptions rf;
+  rf.stage = c.scenario.options.branch_and_bound;
+  rf.time_limit_s = 300.0;
+  const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_TRUE(r.x.has_value());
+  EXPECT_EQ(r.stages, formulation.num_configurations() - 1);
+  const Miqp& m = formulation.miqp();
+  EXPECT_LE(m.MaxViolation(*r.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
+
+  BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
+  bnb.time_limit_s = 300.0;
+  const BranchAndBoundResult proof = SolveBranchAndBound(m, solvers.workers(), bnb);
+  ASSERT_EQ(ToString(proof.status), "optimal");
+  EXPECT_GE(m.Objective(*r.x), proof.bound - 1e-6);
+  EXPECT_LE(m.Objective(*r.x), proof.objective + 0.01 * std::abs(proof.objective));
+
+  // Stopped after one stage (as when its time runs out), the configurations left are
+  // rounded: still a complete plan that meets every row, no better than the optimum.
+  rf.max_searched_stages = 1;
+  const RelaxAndFixResult partial = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_TRUE(partial.x.has_value());
+  EXPECT_TRUE(partial.completed_by_rounding);
+  EXPECT_FALSE(r.completed_by_rounding);
+  EXPECT_EQ(partial.stages, 1);
+  EXPECT_LE(m.MaxViolation(*partial.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*partial.x), 0.0);
+  EXPECT_GE(m.Objective(*partial.x), proof.bound - 1e-6);
+
+  // A complete plan: integral choices that meet every row, within 1 % of the optimum.
+  const auto expect_plan_near_optimum = [&](const RelaxAndFixResult& run) {
+    ASSERT_TRUE(run.x.has_value());
+    EXPECT_LE(m.MaxViolation(*run.x), 1e-5);
+    EXPECT_EQ(m.MaxIntegrality(*run.x), 0.0);
+    EXPECT_LE(m.Objective(*run.x), proof.objective + 0.01 * std::abs(proof.objective));
+  };
+
+  // The stages with the steps they have not reached in the full relaxation of their
+  // region binaries (the hull is the default): also a complete plan within 1 %.
+  rf.max_searched_stages = 0;
+  rf.hull_for_later_steps = false;
+  expect_plan_near_optimum(RelaxAndFix(formulation, solvers.workers(), rf));
+
+  // With the search's rounding heuristic in the stages (off by default): rounding QPs
+  // on top of the node relaxations, and still a complete plan within 1 %.
+  rf.hull_for_later_steps = true;
+  rf.stage_rounding = true;
+  const RelaxAndFixResult rounded = RelaxAndFix(formulation, solvers.workers(), rf);
+  expect_plan_near_optimum(rounded);
+  EXPECT_GT(rounded.relaxations - rounded.nodes, r.relaxations - r.nodes);
+  rf.stage_rounding = false;
+
+  // Two paths side by side with two workers: the first is the one-worker run, so the
+  // plan is never worse than that one, and it is a plan.
+  rf.hull_for_later_steps = true;
+  const RelaxAndFixResult one = RelaxAndFix(formulation, solvers.workers(), rf);
+  const RelaxationSolverSet two_workers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 2);
+  const RelaxAndFixResult two = RelaxAndFixTwoPaths(formulation, two_workers.workers(), rf);
+  ASSERT_TRUE(one.x.has_value());
+  ASSERT_TRUE(two.x.has_value());
+  EXPECT_LE(m.MaxViolation(*two.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*two.x), 0.0);
+  EXPECT_LE(m.Objective(*two.x), m.Objective(*one.x) + 1e-9 * std::abs(m.Objective(*one.x)));
+  EXPECT_EQ(two.stages, 2 * one.stages);
+}
+
+}  // namespace
+}  // namespace mfp

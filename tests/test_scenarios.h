@@ -1,0 +1,29 @@
+#pragma once
+// Scenarios of config/scenarios/ for tests, loaded the way mfp-plan loads them.
+#include <string>
+#include <vector>
+
+#include "planner/io/robot_loader.h"
+#include "planner/io/scenario_yaml.h"
+#include "planner/planning/footstep_planner.h"
+
+namespace mfp {
+
+// A scenario of config/scenarios/ loaded with its robot, regions and request.
+struct Course {
+  Scenario scenario;
+  RobotModel robot;
+  std::vector<ConvexRegion> regions;
+  PlanRequest request;
+};
+
+inline Course LoadCourse(const std::string& file_name) {
+  Course c;
+  c.scenario = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/" + file_name);
+  c.robot = LoadRobot(c.scenario.robot_path);
+  c.regions = ScenarioRegions(c.scenario, c.robot);
+  c.request = ScenarioRequest(c.scenario, c.robot, c.regions);
+  return c;
+}
+
+}  // namespace mfp
