@@ -35,7 +35,7 @@ struct PlannerOptions {
   int default_max_steps = 0;        // 0 = 12 n
   // 0 = 2 n. The paper plans 4 n steps per MIQP; with this solver windows of two
   // configurations reach every scenario goal with each window proven optimal, in a
-  // fraction of the time of 4 n windows, which end at their time limits (README).
+  // fraction of the time of 4 n windows, which end at their time limits (docs/measurements.md).
   int default_window_steps = 0;
   double default_time_limit_s = 30.0;
   double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot

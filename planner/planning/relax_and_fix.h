@@ -23,7 +23,7 @@
 
 namespace mfp {
 
-// Defaults measured with the Table I instances (README): lookahead 0 gave the best plans
+// Defaults measured with the Table I instances (docs/measurements.md): lookahead 0 gave the best plans
 // in the least time (lookahead 1 and 2 made each stage a bigger search that ended at its
 // node limit with worse choices), and a stage gap of 0.5 % the same plans as 1e-4 sooner.
 struct RelaxAndFixOptions {
@@ -42,7 +42,7 @@ struct RelaxAndFixOptions {
   double stage_relaxation_tolerance = 1e-6;
   // Run the search's rounding heuristic inside the stages. Off: its QPs (integers fixed
   // to a rounding, warm-started from a fractional point) were a fifth of the heuristic's
-  // work on Table I, and the plans came out the same without them (README). A stage
+  // work on Table I, and the plans came out the same without them (docs/measurements.md). A stage
   // out of time before its first leaf still ends rounded (completed_by_rounding).
   bool stage_rounding = false;
   BranchAndBoundOptions stage;       // other search options of each stage

@@ -17,7 +17,7 @@ using SpMat = Eigen::SparseMatrix<double>;
 // A Newton system solved to this relative residual, as a multiple of the solve's
 // tolerance, needs no refinement step: 1e-10 at the search's 1e-8, 1e-8 at
 // relax-and-fix's stage accuracy of 1e-6, where refining further took a third more
-// triangular solves and changed no iterate count or plan (README).
+// triangular solves and changed no iterate count or plan (docs/measurements.md).
 constexpr double kRefinementPerTolerance = 0.01;
 
 // The problem as  min 0.5 w'Hw + q'w  s.t.  C w <= d,  w = (x, e).
