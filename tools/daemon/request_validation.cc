@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "planner/base/format.h"
-#include "planner/planning/goal.h"
+#include "planner/planning/request_check.h"
 
 namespace mfp {
 namespace {
@@ -108,21 +108,16 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
     request.start_feet_world_m.push_back(foot);
   }
 
-  // The goal must be close enough to some region that a foot could stand near it.
-  const double leg_reach_m = LegReach(robot);
-  const double goal_reach_m = leg_reach_m + robot.l_bnd_m;
-  if (DistanceToNearestRegion(*regions, Eigen::Vector2d(m.goal_x, m.goal_y)) > goal_reach_m)
-    return Reject(SolveStatus::kInvalidGoal,
-                  "goal (" + Number(m.goal_x) + ", " + Number(m.goal_y) + ") is more than " +
-                      Number(goal_reach_m) + " m (leg reach + l_bnd) from every region",
-                  name);
-
   request.start_yaw_rad = EstimateStanceYaw(robot, request.start_feet_world_m);
   request.goal_x_m = m.goal_x;
   request.goal_y_m = m.goal_y;
   request.goal_yaw_rad = m.goal_yaw;
   request.max_steps = m.max_steps > 0 ? m.max_steps : limits.default_max_steps;
   request.time_limit_s = m.time_limit_s > 0 ? m.time_limit_s : limits.default_time_limit_s;
+
+  // The planner's own checks (ranges, start feet on regions, the goal within reach).
+  if (const RequestCheck check = CheckPlanRequest(robot, *regions, request, options); !check.ok())
+    return Reject(check.status, check.message, name);
 
   ValidatedRequest result;
   result.ok = true;

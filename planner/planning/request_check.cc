@@ -1,0 +1,73 @@
+#include "planner/planning/request_check.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "planner/planning/goal.h"
+
+namespace mfp {
+namespace {
+
+RequestCheck Rejection(SolveStatus status, const std::string& message) { return RequestCheck{status, message}; }
+
+int ChooseValue(int requested, int fallback) { return requested > 0 ? requested : fallback; }
+
+}  // namespace
+
+int MaxSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options) {
+  return ChooseValue(request.max_steps, ChooseValue(options.default_max_steps, 12 * robot.num_legs()));
+}
+
+int WindowSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options) {
+  return ChooseValue(request.window_steps, ChooseValue(options.default_window_steps, 2 * robot.num_legs()));
+}
+
+RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                              const PlanRequest& request, const PlannerOptions& options) {
+  const int n = robot.num_legs();
+  if (regions.empty()) return Rejection(SolveStatus::kNoMap, "no terrain regions: no map yet or the map has no walkable surface");
+  if (static_cast<int>(request.start_feet_world_m.size()) != n) {
+    return Rejection(SolveStatus::kInvalidRequest,
+                    "start stance has " + std::to_string(request.start_feet_world_m.size()) +
+                        " feet; robot '" + robot.name + "' has " + std::to_string(n) + " legs");
+  }
+  for (int k = 0; k < n; ++k) {
+    if (!request.start_feet_world_m[k].allFinite()) {
+      return Rejection(SolveStatus::kInvalidRequest, "start foot of leg " + std::to_string(k) + " is not finite");
+    }
+  }
+  if (!std::isfinite(request.start_yaw_rad) || !std::isfinite(request.goal_x_m) ||
+      !std::isfinite(request.goal_y_m) || !std::isfinite(request.goal_yaw_rad) ||
+      !std::isfinite(request.time_limit_s)) {
+    return Rejection(SolveStatus::kInvalidRequest, "start yaw, goal pose and time limit must be finite numbers");
+  }
+  const int max_steps = MaxSteps(robot, request, options);
+  const int window = WindowSteps(robot, request, options);
+  if (request.max_steps < 0 || max_steps > 100000 || request.window_steps < 0 || window > 1000 ||
+      request.time_limit_s < 0 || request.max_windows < 0) {
+    return Rejection(SolveStatus::kInvalidRequest,
+                    "max_steps must be in [0, 100000], window in [0, 1000], time limit >= 0 s, max_windows >= 0");
+  }
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d& f = request.start_feet_world_m[k];
+    bool on_region = false;
+    for (const ConvexRegion& r : regions) on_region = on_region || RegionContains(r, f, options.start_tolerance_m);
+    if (!on_region) {
+      std::ostringstream msg;
+      msg << "start foot of leg " << k << " ('" << robot.legs[k].name << "') at (" << f.x() << ", "
+          << f.y() << ", " << f.z() << ") m is not on any region (tolerance " << options.start_tolerance_m << " m)";
+      return Rejection(SolveStatus::kInvalidStart, msg.str());
+    }
+  }
+  const double reach = LegReach(robot);
+  const double goal_distance = DistanceToNearestRegion(regions, Eigen::Vector2d(request.goal_x_m, request.goal_y_m));
+  if (goal_distance > reach + robot.l_bnd_m) {
+    std::ostringstream msg;
+    msg << "goal (" << request.goal_x_m << ", " << request.goal_y_m << ") m is " << goal_distance
+        << " m from the nearest region; the robot's feet reach " << reach + robot.l_bnd_m << " m from its centre";
+    return Rejection(SolveStatus::kInvalidGoal, msg.str());
+  }
+  return RequestCheck{};
+}
+
+}  // namespace mfp

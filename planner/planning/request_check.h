@@ -1,0 +1,29 @@
+#pragma once
+// The checks every plan request passes before planning, in one place: PlanFootsteps runs
+// them, and the daemon runs them after its own checks of the message's fields.
+#include <string>
+#include <vector>
+
+#include "planner/base/solve_status.h"
+#include "planner/planning/footstep_planner.h"
+
+namespace mfp {
+
+struct RequestCheck {
+  SolveStatus status = SolveStatus::kOptimal;  // of the rejection when !ok()
+  std::string message;                         // names the problem and the allowed range
+  bool ok() const { return message.empty(); }
+};
+
+// Rejections: kNoMap (no regions), kInvalidRequest (sizes, non-finite numbers, ranges),
+// kInvalidStart (a start foot on no region within options.start_tolerance_m),
+// kInvalidGoal (the goal farther than LegReach + l_bnd from every region in plan view).
+RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                              const PlanRequest& request, const PlannerOptions& options);
+
+// New footsteps of the whole plan and of one window: the request's, else the options'
+// default, else 12 n and 2 n.
+int MaxSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options);
+int WindowSteps(const RobotModel& robot, const PlanRequest& request, const PlannerOptions& options);
+
+}  // namespace mfp
