@@ -61,6 +61,13 @@ Eigen::VectorXd LegChain::UpperLimits() const {
   return upper;
 }
 
+void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad) {
+  const Eigen::Isometry3d turn(Eigen::AngleAxisd(-forward_yaw_rad, Eigen::Vector3d::UnitZ()));
+  for (LegChain& leg : robot->legs) {
+    if (!leg.joints.empty()) leg.joints.front().T_parent_joint = turn * leg.joints.front().T_parent_joint;
+  }
+}
+
 Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q) {
   const Eigen::Isometry3d T_body_foot =
       WalkChain(leg, q, [](const JointModel&, const Eigen::Isometry3d&, int) {});

@@ -51,6 +51,10 @@ struct RobotDescription {
   std::vector<std::string> notes;
 };
 
+// Turns the body frame about z so that the robot's forward direction, at forward_yaw_rad
+// from the URDF root's x axis, becomes x (every leg's first joint pose is rotated).
+void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad);
+
 // Foot point in the body frame for movable-joint positions q (size num_dof()).
 Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q);
 

@@ -487,6 +487,8 @@ RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::s
                        "' to a leaf link has a movable joint)");
     }
   }
+  std::stable_sort(ordered.begin(), ordered.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& [order, leg] : ordered) {
     if (leg.num_dof() > kMaxLegDof) {
       throw InputError(path + ": leg to '" + leg.foot_link + "' has " + std::to_string(leg.num_dof()) +
@@ -517,8 +519,6 @@ RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::s
       }
     }
   }
-  std::stable_sort(ordered.begin(), ordered.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
   std::map<std::string, int> name_count;
   for (const auto& [order, leg] : ordered) ++name_count[leg.name];
   for (auto& [order, leg] : ordered) {
