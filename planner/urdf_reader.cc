@@ -489,6 +489,11 @@ RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::s
   }
   std::stable_sort(ordered.begin(), ordered.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::map<std::string, int> name_count;
+  for (const auto& [order, leg] : ordered) ++name_count[leg.name];
+  for (auto& [order, leg] : ordered) {
+    if (leg.name.empty() || name_count[leg.name] > 1) leg.name = leg.foot_link;
+  }
   for (auto& [order, leg] : ordered) {
     if (leg.num_dof() > kMaxLegDof) {
       throw InputError(path + ": leg to '" + leg.foot_link + "' has " + std::to_string(leg.num_dof()) +
@@ -519,12 +524,7 @@ RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::s
       }
     }
   }
-  std::map<std::string, int> name_count;
-  for (const auto& [order, leg] : ordered) ++name_count[leg.name];
-  for (auto& [order, leg] : ordered) {
-    if (leg.name.empty() || name_count[leg.name] > 1) leg.name = leg.foot_link;
-    robot.legs.push_back(leg);
-  }
+  for (auto& [order, leg] : ordered) robot.legs.push_back(leg);
   return robot;
 }
 
