@@ -320,6 +320,26 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
     out.legs.push_back(std::move(leg));
   }
 
+  // A stance where a leg has no reach left is not a model to plan with: say which leg
+  // and which heights would do, instead of handing on a zero limit.
+  const std::string heights = Fmt(0.25 * common_reach) + " and " + Fmt(0.95 * common_reach) + " m";
+  if (!(d_lim_raw - 0.5 * cell > 0.0)) {
+    int dof = 0;
+    for (const LegChain& leg : robot.legs) {
+      if (leg.name == d_leg) dof = leg.num_dof();
+    }
+    throw InputError(src + ": at the stance height " + Fmt(stance) + " m leg '" + d_leg +
+                     "' reaches no square wider than a footprint cell (" + Fmt(cell) + " m)" +
+                     (dof < 3 ? " (with " + std::to_string(dof) +
+                                    " movable joints its foot reaches a curve, not an area, at one height; "
+                                    "mfp needs legs of at least 3)"
+                              : "; choose stance_height between " + heights + " in a robot YAML"));
+  }
+  if (!(dz_max > 0.0)) {
+    throw InputError(src + ": at the stance height " + Fmt(stance) + " m leg '" + dz_leg +
+                     "' cannot move its foot up or down from its nominal point (the edge of its vertical "
+                     "reach); choose stance_height between " + heights + " in a robot YAML");
+  }
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(n);
   double max_leg = 0.0;

@@ -17,14 +17,15 @@ PACKAGE="example-robot-data==6.0.0"
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_zoo.XXXXXX")
 [ -n "${MFP_ZOO_KEEP:-}" ] && echo "zoo: keeping $WORK" || trap 'rm -rf "$WORK"' EXIT
 
-if ! "$VENV/bin/python" -c 'import cmeel' 2>/dev/null ||
-   ! "$VENV/bin/pip" show -q example-robot-data >/dev/null 2>&1; then
+robots_dir() { find "$VENV" -type d -path '*share/example-robot-data/robots' 2>/dev/null | head -1; }
+ROBOTS=$(robots_dir)
+if [ -z "$ROBOTS" ] || ! "$VENV/bin/pip" show -q example-robot-data >/dev/null 2>&1; then
   echo "zoo: installing $PACKAGE into $VENV"
   mkdir -p "$(dirname "$VENV")"
   python3 -m venv "$VENV"
   "$VENV/bin/pip" install --quiet --disable-pip-version-check --no-deps "$PACKAGE"
+  ROBOTS=$(robots_dir)
 fi
-ROBOTS=$(find "$VENV" -type d -path '*share/example-robot-data/robots' | head -1)
 [ -d "$ROBOTS" ] || { echo "zoo: no robots directory in $VENV" >&2; exit 1; }
 
 failures=0

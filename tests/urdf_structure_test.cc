@@ -274,6 +274,15 @@ TEST(UrdfStructure, AHipOriginCopiedFromAnotherLegLiesOnTheAxis) {
   }
 }
 
+TEST(UrdfStructure, AStanceWithoutReachLeftIsRefusedNotAZeroLimit) {
+  // The feet at full extension (0.4 m below the hip pitch joints): no travel down.
+  const std::string urdf = Write("q.urdf", Urdf(Quad{}));
+  const std::string yaml = Write("q.yaml", "urdf: " + urdf + "\nstance_height: 0.3999\n");
+  const std::string error = ErrorOf([&] { LoadRobot(yaml); });
+  EXPECT_NE(error.find("choose stance_height between"), std::string::npos) << error;
+  EXPECT_EQ(ExitCode(yaml), 2);
+}
+
 TEST(UrdfStructure, PlanarLegsAreRefusedByName) {
   Quad q;  // no hip roll: the roll joint turns about y like the others
   q.pitch_axis = "0 1 0";
@@ -393,6 +402,19 @@ TEST(UrdfHostile, ANameThatIsNotUtf8IsWrittenToJson) {
   std::ifstream in(json);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"name\": \"quad\xEF\xBF\xBD\xEF\xBF\xBD\""), std::string::npos) << text.substr(0, 200);
+  // mfp-plan writes the robot object in the plan JSON too.
+  const std::string scenario = Write("s.yaml", "robot: " + urdf +
+                                                   "\nterrain:\n  source: top_faces\n  boxes:\n"
+                                                   "    - {name: ground, center: [0.3, 0, -0.05], size: [2, 2, 0.1]}\n"
+                                                   "start: [0, 0, 0]\ngoal: [0.2, 0, 0]\n");
+  const std::string plan = TestTempPath("plan.json");
+  const int status = std::system((std::string(MFP_BINARY_DIR) + "/tools/mfp-plan --scenario " + scenario +
+                                  " --time-limit 20 --json " + plan + " >/dev/null 2>&1").c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  std::ifstream plan_in(plan);
+  const std::string plan_text((std::istreambuf_iterator<char>(plan_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(plan_text.find("quad\xEF\xBF\xBD\xEF\xBF\xBD"), std::string::npos) << plan_text.substr(0, 200);
 }
 
 }  // namespace
