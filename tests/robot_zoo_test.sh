@@ -17,7 +17,7 @@ PACKAGE="example-robot-data==6.0.0"
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_zoo.XXXXXX")
 [ -n "${MFP_ZOO_KEEP:-}" ] && echo "zoo: keeping $WORK" || trap 'rm -rf "$WORK"' EXIT
 
-robots_dir() { find "$VENV" -type d -path '*share/example-robot-data/robots' 2>/dev/null | head -1; }
+robots_dir() { find "$VENV" -type d -path '*share/example-robot-data/robots' 2>/dev/null | head -1 || true; }
 ROBOTS=$(robots_dir)
 if [ -z "$ROBOTS" ] || ! "$VENV/bin/pip" show -q example-robot-data >/dev/null 2>&1; then
   echo "zoo: installing $PACKAGE into $VENV"
