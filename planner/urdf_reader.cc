@@ -250,6 +250,17 @@ void CheckAndPruneJointGraph(tinyxml2::XMLElement* robot_xml, const std::string&
   }
 }
 
+// The chain's common suffix when it has no common prefix ("abduct_fr", "thigh_fr",
+// "shank_fr" -> "fr"), separators trimmed.
+std::string CommonSuffixName(const std::vector<std::string>& names) {
+  std::vector<std::string> reversed;
+  for (const std::string& n : names) reversed.emplace_back(n.rbegin(), n.rend());
+  std::string suffix = CommonPrefixName(reversed);
+  std::reverse(suffix.begin(), suffix.end());
+  while (!suffix.empty() && (suffix.front() == '_' || suffix.front() == '-')) suffix.erase(suffix.begin());
+  return suffix;
+}
+
 struct Chain {
   std::vector<urdf::JointConstSharedPtr> joints;  // body to foot
   std::vector<std::string> links;                 // below the body, body to foot
@@ -324,6 +335,7 @@ LegChain MakeLeg(const urdf::Link& foot, const Chain& chain, const std::string& 
     leg.foot_sphere_radius_m = sphere->radius;
   }
   leg.name = CommonPrefixName(chain.links);
+  if (leg.name.empty()) leg.name = CommonSuffixName(chain.links);
   return leg;
 }
 

@@ -17,7 +17,8 @@
 // joint's axis is refused (the URDF holds no foot). Leg order: the order of the legs'
 // first movable joints in the file. Leg name: the longest common prefix of the
 // chain's link names with trailing '_' or '-' removed ("front_left_hip",
-// "front_left_upper_leg", ... -> "front_left"), else the foot link's name.
+// "front_left_upper_leg", ... -> "front_left"), else the longest common suffix
+// ("abduct_fr", "thigh_fr", ... -> "fr"), else the foot link's name.
 #include <Eigen/Core>
 #include <optional>
 #include <string>

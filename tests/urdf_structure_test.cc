@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -119,6 +120,16 @@ TEST(UrdfStructure, WorldRootWithAFloatingJointIsAFrameAboveTheBody) {
   const RobotModel plain = LoadRobot(Write("p.urdf", Urdf(Quad{})));
   EXPECT_NEAR(robot.stance_height_m, plain.stance_height_m, 1e-9);
   EXPECT_NEAR(robot.d_lim_m, plain.d_lim_m, 1e-9);
+}
+
+TEST(UrdfStructure, LegNamesFromACommonSuffix) {
+  // Mini Cheetah style names: "abduct_fr", "thigh_fr", "toe_fr".
+  const std::string text = std::regex_replace(Urdf(Quad{}), std::regex("\"(fl|fr|hl|hr)_(\\w+)\""), "\"$2_$1\"");
+  ASSERT_NE(text.find("\"hip_fl\""), std::string::npos);
+  const RobotDescription robot = ReadUrdfRobot(Write("s.urdf", text));
+  ASSERT_EQ(robot.legs.size(), 4u);
+  EXPECT_EQ(robot.legs[0].name, "fl");
+  EXPECT_EQ(robot.legs[3].name, "hr");
 }
 
 TEST(UrdfStructure, ALinkInNoJointIsIgnored) {
