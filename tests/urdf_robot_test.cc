@@ -63,10 +63,19 @@ TEST(UrdfReader, EightLegsEndInFootLinksThroughFixedJoints) {
 }
 
 TEST(UrdfReader, ExplicitFootLinks) {
-  const RobotDescription robot =
-      ReadUrdfRobot(TestRobot("octopod.urdf"), {"left1_tibia", "right1_tibia"});
+  // The tibia's origin is the knee: without a foot offset the URDF holds no foot there.
+  try {
+    ReadUrdfRobot(TestRobot("octopod.urdf"), {"left1_tibia", "right1_tibia"});
+    ADD_FAILURE() << "a foot on the knee axis was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds no foot for leg 'left1'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("foot_offset"), std::string::npos) << e.what();
+  }
+  const RobotDescription robot = ReadUrdfRobot(TestRobot("octopod.urdf"), {"left1_tibia", "right1_tibia"},
+                                               Eigen::Vector3d(0, 0, -0.1));
   ASSERT_EQ(robot.legs.size(), 2u);
   EXPECT_EQ(robot.legs[0].foot_link, "left1_tibia");
+  EXPECT_TRUE(robot.legs[0].p_footlink_foot_m.isApprox(Eigen::Vector3d(0, 0, -0.1)));
   EXPECT_THROW(ReadUrdfRobot(TestRobot("octopod.urdf"), {"no_such_link"}), InputError);
 }
 

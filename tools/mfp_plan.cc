@@ -165,7 +165,7 @@ int main(int argc, char** argv) {
     if (!plan.message.empty()) summary << " (" << plan.message << ")";
     log(summary.str());
 
-    if (!json_path.empty()) mfp::WriteTextOutput(json_path, mfp::PlanToJson(plan, robot, regions).dump(2) + "\n");
+    if (!json_path.empty()) mfp::WriteTextOutput(json_path, mfp::PlanToJson(plan, robot, regions).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!svg_path.empty()) {
       mfp::WriteTextOutput(svg_path, mfp::PlanToSvg(plan, robot, regions,
                                          {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad},

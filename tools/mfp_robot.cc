@@ -180,7 +180,7 @@ int main(int argc, char** argv) {
     mfp::RobotDerivation derivation;
     const mfp::RobotModel robot = mfp::LoadRobot(robot_file, &derivation);
     if (json_file != "-") PrintTable(robot, derivation, std::cout);
-    if (!json_file.empty()) mfp::WriteTextOutput(json_file, mfp::RobotToJson(robot).dump(2) + "\n");
+    if (!json_file.empty()) mfp::WriteTextOutput(json_file, mfp::RobotToJson(robot).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!svg_file.empty()) mfp::WriteTextOutput(svg_file, RobotSvg(robot, derivation));
   } catch (const mfp::InputError& e) {
     std::cerr << "mfp-robot: " << e.what() << "\n";

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <optional>
 #include <sstream>
 
 #include "planner/base/check.h"
@@ -104,9 +106,30 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
       feet.push_back(ReadString(root["feet"][i], fctx.Index(i)));
     }
   }
+  std::optional<Eigen::Vector3d> foot_offset;
+  if (root["foot_offset"]) {
+    const auto v = ReadNumbers(root["foot_offset"], ctx.Child("foot_offset"), 3);
+    foot_offset = Eigen::Vector3d(v[0], v[1], v[2]);
+  }
+  RobotDescription description = ReadUrdfRobot(urdf_path, feet, foot_offset);
+  if (foot_offset) {
+    description.notes.push_back("foot point (" + Fixed((*foot_offset)[0]) + ", " + Fixed((*foot_offset)[1]) +
+                                ", " + Fixed((*foot_offset)[2]) + ") m in each foot link: foot_offset in " + ctx.file);
+  }
+  if (root["forward"]) {
+    const std::string forward = ReadString(root["forward"], ctx.Child("forward"));
+    const std::map<std::string, double> kYaw = {{"x", 0.0}, {"y", M_PI / 2}, {"-x", M_PI}, {"-y", -M_PI / 2}};
+    const auto it = kYaw.find(forward);
+    if (it == kYaw.end()) {
+      throw InputError(ctx.Child("forward").Where() + ": '" + forward + "' is not one of x, y, -x, -y (the URDF "
+                       "axis the robot walks along)");
+    }
+    TurnForwardToX(&description, it->second);
+    description.notes.push_back("forward: the URDF's " + forward + " axis (forward in " + ctx.file + ")");
+  }
   DerivationOptions options;
   options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
-  RobotDerivation derivation = DeriveRobot(ReadUrdfRobot(urdf_path, feet), options);
+  RobotDerivation derivation = DeriveRobot(description, options);
   RobotModel& robot = derivation.model;
   const std::string file = ctx.file;
   if (options.stance_height_m) {
@@ -168,12 +191,12 @@ RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RejectUnknownKeys(root, ctx,
-                    {"name", "urdf", "feet", "legs", "gait", "stance_height", "foot_radius",
+                    {"name", "urdf", "feet", "foot_offset", "forward", "legs", "gait", "stance_height", "foot_radius",
                      "d_lim", "l_bnd", "dz_max", "max_yaw_change", "max_slope", "weights"});
   if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation);
   if (derivation != nullptr) *derivation = RobotDerivation{};
-  if (root["feet"]) {
-    throw InputError(ctx.Child("feet").Where() + ": only allowed together with urdf");
+  for (const char* key : {"feet", "foot_offset", "forward"}) {
+    if (root[key]) throw InputError(ctx.Child(key).Where() + ": only allowed together with urdf");
   }
   RobotModel robot;
   robot.name = OptionalString(root, ctx, "name").value_or("robot");

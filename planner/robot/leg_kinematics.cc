@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <sstream>
 
 #include "planner/base/check.h"
 
@@ -60,6 +61,13 @@ Eigen::VectorXd LegChain::UpperLimits() const {
   return upper;
 }
 
+void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad) {
+  const Eigen::Isometry3d turn(Eigen::AngleAxisd(-forward_yaw_rad, Eigen::Vector3d::UnitZ()));
+  for (LegChain& leg : robot->legs) {
+    if (!leg.joints.empty()) leg.joints.front().T_parent_joint = turn * leg.joints.front().T_parent_joint;
+  }
+}
+
 Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q) {
   const Eigen::Isometry3d T_body_foot =
       WalkChain(leg, q, [](const JointModel&, const Eigen::Isometry3d&, int) {});
@@ -68,15 +76,48 @@ Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q) {
 
 Eigen::Vector3d HipPosition(const LegChain& leg) {
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(leg.num_dof());
-  Eigen::Vector3d hip = Eigen::Vector3d::Zero();
-  bool found = false;
+  // The first movable joint's axis (a line) and the origin of the next movable joint, or
+  // the foot: the hip is the point of that line nearest it. A joint origin anywhere on
+  // the axis describes the same leg, and some URDFs copy it from another leg.
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::Zero();
+  Eigen::Vector3d next = Eigen::Vector3d::Zero();
+  int seen = 0;
   WalkChain(leg, zero, [&](const JointModel& joint, const Eigen::Isometry3d& T, int) {
-    if (!found && joint.movable()) {
-      hip = T.translation();
-      found = true;
+    if (!joint.movable()) return;
+    if (seen == 0) {
+      origin = T.translation();
+      if (joint.type == JointModel::Type::kRevolute) axis = T.linear() * joint.axis;
+    } else if (seen == 1) {
+      next = T.translation();
+    }
+    ++seen;
+  });
+  if (seen == 0) return origin;
+  if (seen == 1) next = FootPosition(leg, zero);
+  if (axis.squaredNorm() == 0.0) return origin;
+  return origin + (next - origin).dot(axis) * axis;
+}
+
+std::string PlanarLegAxis(const LegChain& leg) {
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(leg.num_dof());
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  bool planar = true;
+  WalkChain(leg, zero, [&](const JointModel& joint, const Eigen::Isometry3d& T, int) {
+    if (!joint.movable()) return;
+    const Eigen::Vector3d axis = T.linear() * joint.axis;
+    if (joint.type != JointModel::Type::kRevolute) {
+      planar = false;  // a slider moves the foot out of any one plane but along its axis
+    } else if (first.squaredNorm() == 0.0) {
+      first = axis;
+    } else if (first.cross(axis).norm() > 1e-6) {
+      planar = false;
     }
   });
-  return hip;
+  if (!planar || first.squaredNorm() == 0.0) return "";
+  std::ostringstream text;
+  text.precision(3);
+  text << "(" << first.x() << ", " << first.y() << ", " << first.z() << ")";
+  return text.str();
 }
 
 Eigen::MatrixXd FootJacobian(const LegChain& leg, const Eigen::VectorXd& q) {

@@ -46,13 +46,26 @@ struct RobotDescription {
   std::string root_link;
   std::vector<LegChain> legs;
   std::string source;  // the file it was read from, for messages
+  // What the reader chose or assumed (body link below a frame root, ignored links, joint
+  // ranges given to continuous or placeholder limits, foot choices); shown as provenance.
+  std::vector<std::string> notes;
 };
+
+// Turns the body frame about z so that the robot's forward direction, at forward_yaw_rad
+// from the URDF root's x axis, becomes x (every leg's first joint pose is rotated).
+void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad);
 
 // Foot point in the body frame for movable-joint positions q (size num_dof()).
 Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q);
 
-// Origin of the chain's first movable joint in the body frame: the leg's hip.
+// The leg's hip in the body frame, at zero joint positions: the point of the first
+// movable joint's axis nearest the next movable joint's origin (or the foot); the first
+// joint's origin when it is a slider.
 Eigen::Vector3d HipPosition(const LegChain& leg);
+
+// When every movable joint of the leg is revolute about one common axis (the foot moves
+// in a plane, no sideways freedom): that axis in the body frame as text; else "".
+std::string PlanarLegAxis(const LegChain& leg);
 
 // Jacobian d(foot)/dq in the body frame, 3 x num_dof(), by central differences.
 Eigen::MatrixXd FootJacobian(const LegChain& leg, const Eigen::VectorXd& q);

@@ -150,6 +150,19 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
   MFP_CHECK(!robot.legs.empty());
   const size_t n = robot.legs.size();
   const std::string& src = robot.source;
+  for (const LegChain& leg : robot.legs) {
+    const std::string axis = PlanarLegAxis(leg);
+    if (!axis.empty()) {
+      std::string joints;
+      for (const JointModel& j : leg.joints) {
+        if (j.movable()) joints += (joints.empty() ? "'" : ", '") + j.name + "'";
+      }
+      throw InputError(src + ": leg '" + leg.name + "' is planar: its joints " + joints +
+                       " all turn about the axis " + axis +
+                       ", so its foot has no sideways freedom; mfp's reachability square needs a foot that "
+                       "moves both along and across the body (planar-legged robots are not supported)");
+    }
+  }
   std::vector<LegSamples> samples(n);
   std::vector<Eigen::Vector3d> hips(n);
   double widest_reach = 0.0;
@@ -207,31 +220,45 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
   RobotDerivation out;
   RobotModel& model = out.model;
   model.name = robot.name;
+  for (const std::string& note : robot.notes) model.provenance.push_back("urdf: " + note);
   double stance = 0.0;
   if (options.stance_height_m) {
     stance = *options.stance_height_m;
   } else {
+    // Legged robots stand with the knee bent, the hips at 60-80 % of the legs' full
+    // extension, so that a foot can both rise and drop: the nearest height to
+    // stance_fraction of the reach where every leg still has a useful footprint (its
+    // inscribed square at least half the best over the candidates). Never the crouched
+    // height where the footprint alone is largest.
     const double scan_cell = widest_reach / options.scan_cells;
+    std::vector<double> fractions, scores;
     double best_score = 0.0;
     for (int i = 0; i < options.stance_candidates; ++i) {
       const double frac = 0.25 + 0.70 * i / std::max(1, options.stance_candidates - 1);
-      const double h = frac * common_reach;
-      const double s = score(hip_z - h, scan_cell);
-      if (s > best_score + 1e-9) {
-        best_score = s;
-        stance = h;
-      }
+      fractions.push_back(frac);
+      scores.push_back(score(hip_z - frac * common_reach, scan_cell));
+      best_score = std::max(best_score, scores.back());
     }
     if (best_score <= 0.0) {
       throw InputError(src + ": the legs have no common stance height: at no height between " +
                        Fixed(0.25 * common_reach) + " and " + Fixed(0.95 * common_reach) +
                        " m below the hips can every foot stand");
     }
+    double chosen = -1.0;
+    for (size_t i = 0; i < fractions.size(); ++i) {
+      if (scores[i] < 0.5 * best_score) continue;
+      if (chosen < 0 || std::abs(fractions[i] - options.stance_fraction) <
+                            std::abs(chosen - options.stance_fraction) - 1e-9) {
+        chosen = fractions[i];
+      }
+    }
+    stance = chosen * common_reach;
     model.provenance.push_back(
-        "stance_height = " + Fixed(stance) + " m: derived, the height among " +
-        std::to_string(options.stance_candidates) + " between 25% and 95% of the smallest "
-        "downward reach (" + Fixed(common_reach) + " m) where the smallest leg's inscribed "
-        "square is largest");
+        "stance_height = " + Fixed(stance) + " m: derived, " + Fixed(100 * chosen, 0) +
+        "% of the smallest downward reach below the hips (" + Fixed(common_reach) + " m): of " +
+        std::to_string(options.stance_candidates) + " heights between 25% and 95%, the nearest to " +
+        Fixed(100 * options.stance_fraction, 0) + "% (knee bent, as legged robots stand) where every "
+        "leg's inscribed square is at least half the best");
   }
   model.stance_height_m = stance;
   out.feet_plane_z_body_m = hip_z - stance;
@@ -286,6 +313,26 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
     out.legs.push_back(std::move(leg));
   }
 
+  // A stance where a leg has no reach left is not a model to plan with: say which leg
+  // and which heights would do, instead of handing on a zero limit.
+  const std::string heights = Fixed(0.25 * common_reach) + " and " + Fixed(0.95 * common_reach) + " m";
+  if (!(d_lim_raw - 0.5 * cell > 0.0)) {
+    int dof = 0;
+    for (const LegChain& leg : robot.legs) {
+      if (leg.name == d_leg) dof = leg.num_dof();
+    }
+    throw InputError(src + ": at the stance height " + Fixed(stance) + " m leg '" + d_leg +
+                     "' reaches no square wider than a footprint cell (" + Fixed(cell) + " m)" +
+                     (dof < 3 ? " (with " + std::to_string(dof) +
+                                    " movable joints its foot reaches a curve, not an area, at one height; "
+                                    "mfp needs legs of at least 3)"
+                              : "; choose stance_height between " + heights + " in a robot YAML"));
+  }
+  if (!(dz_max > 0.0)) {
+    throw InputError(src + ": at the stance height " + Fixed(stance) + " m leg '" + dz_leg +
+                     "' cannot move its foot up or down from its nominal point (the edge of its vertical "
+                     "reach); choose stance_height between " + heights + " in a robot YAML");
+  }
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(n);
   double foot_radius = 0.0;

@@ -3,8 +3,10 @@
 //  - reachable footprint of each foot at a height: the cells of a grid in the body frame
 //    whose centre the foot reaches at that height within the joint limits (inverse
 //    kinematics, flood-filled from joint-space samples);
-//  - stance height: unless given, the one among candidates spanning 25 %..95 % of the
-//    smallest downward reach that maximises the smallest leg's inscribed square;
+//  - stance height: unless given, among candidates spanning 25 %..95 % of the smallest
+//    downward reach (full extension below the hips), the one nearest stance_fraction
+//    (70 %: legged robots stand with the knee bent, at 60-80 % of full extension) where
+//    every leg's inscribed square is at least half the best over the candidates;
 //  - nominal foot: the centre of the largest square inscribed in the footprint at the
 //    stance height (the paper puts the workspace centre at the nominal foot), ties broken
 //    towards the point below the hip; o_k = nominal foot - mean of the nominal feet;
@@ -32,7 +34,8 @@ struct DerivationOptions {
   int samples_per_leg = 40000;            // joint-space grid used to seed the footprints
   int final_cells = 96;                   // footprint cells across the leg's horizontal reach
   int scan_cells = 24;                    // coarser cells while choosing the stance height
-  int stance_candidates = 12;             // heights tried when choosing the stance height
+  int stance_candidates = 15;             // heights tried when choosing the stance height
+  double stance_fraction = 0.70;          // preferred stance: this fraction of the downward reach
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;

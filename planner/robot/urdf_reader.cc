@@ -13,6 +13,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "planner/base/check.h"
 
@@ -102,7 +103,8 @@ Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
   return T;
 }
 
-JointModel ToJointModel(const urdf::Joint& joint, const std::string& path) {
+JointModel ToJointModel(const urdf::Joint& joint, const std::string& path,
+                        std::vector<std::string>* notes) {
   const std::string where = path + ": joint '" + joint.name + "'";
   JointModel model;
   model.name = joint.name;
@@ -131,6 +133,7 @@ JointModel ToJointModel(const urdf::Joint& joint, const std::string& path) {
   if (joint.type == urdf::Joint::CONTINUOUS) {
     model.lower = -M_PI;
     model.upper = M_PI;
+    if (notes) notes->push_back("joint '" + joint.name + "': continuous, sampled over [-pi, pi] rad (one turn)");
     return model;
   }
   if (!joint.limits) throw InputError(where + ": missing <limit lower upper>");
@@ -141,6 +144,18 @@ JointModel ToJointModel(const urdf::Joint& joint, const std::string& path) {
     msg << where << ": limit lower = " << model.lower << " is above upper = " << model.upper
         << " (needs lower <= upper)";
     throw InputError(msg.str());
+  }
+  // Placeholder limits (+-10 rad, +-1e16) wider than a turn: one turn about the middle of
+  // the range, which covers every distinct pose of the joint.
+  if (model.type == JointModel::Type::kRevolute && model.upper - model.lower > 2.0 * M_PI) {
+    std::ostringstream note;
+    note << "joint '" << joint.name << "': limits [" << model.lower << ", " << model.upper
+         << "] rad span more than a turn; ";
+    const double mid = std::abs(model.upper + model.lower) < 1e6 ? 0.5 * (model.upper + model.lower) : 0.0;
+    model.lower = mid - M_PI;
+    model.upper = mid + M_PI;
+    note << "sampled over [" << model.lower << ", " << model.upper << "] rad";
+    if (notes) notes->push_back(note.str());
   }
   return model;
 }
@@ -161,45 +176,195 @@ std::string CommonPrefixName(const std::vector<std::string>& names) {
   return TrimSeparators(prefix);
 }
 
+// Limits of the URDF path (docs/robot_derivation.md): beyond them a description is
+// refused with a message instead of exhausting time or memory.
+constexpr int kMaxLinks = 10000;      // links in the file
+constexpr int kMaxLegs = 16;          // legs found (or named)
+constexpr int kMaxLegDof = 12;        // movable joints in one leg
+constexpr int kMaxChainJoints = 64;   // joints (fixed included) from the body to a foot
+
+// Checks the joint graph of the raw XML before urdfdom sees it: too many links, a joint
+// whose parent is its child, joints that form a loop (urdfdom accepts a loop that is not
+// connected to the root, and walking up from it never ends). Removes links that appear
+// in no joint (urdfdom takes each for a second root), noting them.
+void CheckAndPruneJointGraph(tinyxml2::XMLElement* robot_xml, const std::string& path,
+                             std::vector<std::string>* notes) {
+  std::map<std::string, std::pair<std::string, std::string>> parent_of;  // child -> (parent, joint)
+  std::set<std::string> in_joint;
+  int links = 0;
+  for (const tinyxml2::XMLElement* l = robot_xml->FirstChildElement("link"); l != nullptr;
+       l = l->NextSiblingElement("link")) {
+    if (++links > kMaxLinks) {
+      throw InputError(path + ": more than " + std::to_string(kMaxLinks) +
+                       " links (mfp reads at most " + std::to_string(kMaxLinks) + ")");
+    }
+  }
+  for (const tinyxml2::XMLElement* j = robot_xml->FirstChildElement("joint"); j != nullptr;
+       j = j->NextSiblingElement("joint")) {
+    const tinyxml2::XMLElement* parent = j->FirstChildElement("parent");
+    const tinyxml2::XMLElement* child = j->FirstChildElement("child");
+    const char* name = j->Attribute("name");
+    const char* p = parent ? parent->Attribute("link") : nullptr;
+    const char* c = child ? child->Attribute("link") : nullptr;
+    if (name == nullptr || p == nullptr || c == nullptr) continue;  // urdfdom reports these
+    const std::string where = path + ": line " + std::to_string(j->GetLineNum()) + ": joint '" + name + "'";
+    if (std::string(p) == c) throw InputError(where + ": link '" + p + "' is its own parent");
+    in_joint.insert(p);
+    in_joint.insert(c);
+    parent_of.emplace(c, std::make_pair(std::string(p), std::string(name)));
+  }
+  // Walk up from every link; a walk that meets itself is a loop. Each link is finished once.
+  std::map<std::string, int> state;  // 1 on the current walk, 2 finished
+  for (const auto& [start, unused] : parent_of) {
+    std::vector<std::string> walk;
+    std::string link = start;
+    while (true) {
+      int& s = state[link];
+      if (s == 2) break;
+      if (s == 1) {
+        std::string cycle;
+        for (auto it = std::find(walk.begin(), walk.end(), link); it != walk.end(); ++it) {
+          cycle += "'" + parent_of.at(*it).second + "' -> ";
+        }
+        throw InputError(path + ": the joints form a loop (" + cycle + "back to link '" + link +
+                         "'); a URDF must be a tree");
+      }
+      s = 1;
+      walk.push_back(link);
+      const auto up = parent_of.find(link);
+      if (up == parent_of.end()) break;
+      link = up->second.first;
+    }
+    for (const std::string& l : walk) state[l] = 2;
+  }
+  if (in_joint.empty()) return;
+  std::vector<tinyxml2::XMLElement*> orphans;
+  for (tinyxml2::XMLElement* l = robot_xml->FirstChildElement("link"); l != nullptr;
+       l = l->NextSiblingElement("link")) {
+    const char* name = l->Attribute("name");
+    if (name != nullptr && in_joint.count(name) == 0) orphans.push_back(l);
+  }
+  for (tinyxml2::XMLElement* l : orphans) {
+    notes->push_back(std::string("link '") + l->Attribute("name") + "' is in no joint: ignored");
+    robot_xml->DeleteChild(l);
+  }
+}
+
+// The chain's common suffix when it has no common prefix ("abduct_fr", "thigh_fr",
+// "shank_fr" -> "fr"), separators trimmed.
+std::string CommonSuffixName(const std::vector<std::string>& names) {
+  std::vector<std::string> reversed;
+  for (const std::string& n : names) reversed.emplace_back(n.rbegin(), n.rend());
+  std::string suffix = CommonPrefixName(reversed);
+  std::reverse(suffix.begin(), suffix.end());
+  while (!suffix.empty() && (suffix.front() == '_' || suffix.front() == '-')) suffix.erase(suffix.begin());
+  return suffix;
+}
+
 struct Chain {
-  std::vector<urdf::JointConstSharedPtr> joints;  // root to foot
-  std::vector<std::string> links;                 // below the root, root to foot
+  std::vector<urdf::JointConstSharedPtr> joints;  // body to foot
+  std::vector<std::string> links;                 // below the body, body to foot
+  std::vector<int> movable;                       // indices into joints of the movable ones
 };
 
-Chain ChainTo(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& foot) {
+Chain ChainTo(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& body,
+              const urdf::LinkConstSharedPtr& foot, const std::string& path) {
   Chain chain;
-  for (urdf::LinkConstSharedPtr link = foot; link && link->parent_joint;
+  for (urdf::LinkConstSharedPtr link = foot; link && link != body && link->parent_joint;
        link = model.getLink(link->parent_joint->parent_link_name)) {
+    if (static_cast<int>(chain.joints.size()) >= kMaxChainJoints) {
+      throw InputError(path + ": the chain from the body to link '" + foot->name + "' has more than " +
+                       std::to_string(kMaxChainJoints) + " joints (mfp reads at most " +
+                       std::to_string(kMaxChainJoints) + " per leg)");
+    }
     chain.joints.push_back(link->parent_joint);
     chain.links.push_back(link->name);
   }
   std::reverse(chain.joints.begin(), chain.joints.end());
   std::reverse(chain.links.begin(), chain.links.end());
+  for (size_t i = 0; i < chain.joints.size(); ++i) {
+    if (chain.joints[i]->type != urdf::Joint::FIXED) chain.movable.push_back(static_cast<int>(i));
+  }
   return chain;
 }
 
-bool HasMovableJoint(const Chain& chain) {
-  for (const auto& j : chain.joints) {
-    if (j->type != urdf::Joint::FIXED) return true;
+const urdf::Sphere* FootSphere(const urdf::Link& link, Eigen::Vector3d* centre) {
+  for (const auto& collision : link.collision_array) {
+    if (collision && collision->geometry && collision->geometry->type == urdf::Geometry::SPHERE) {
+      const auto& p = collision->origin.position;
+      *centre = Eigen::Vector3d(p.x, p.y, p.z);
+      return static_cast<const urdf::Sphere*>(collision->geometry.get());
+    }
+  }
+  return nullptr;
+}
+
+bool FootLikeName(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* word : {"foot", "feet", "toe", "tip"}) {
+    if (name.find(word) != std::string::npos) return true;
   }
   return false;
 }
 
+// Below a root that is only a frame (`world`, `base` with a floating or fixed joint to the
+// body and nothing else) lies the body the legs hang from.
+urdf::LinkConstSharedPtr BodyLink(const urdf::LinkConstSharedPtr& root, std::vector<std::string>* notes) {
+  urdf::LinkConstSharedPtr body = root;
+  for (int depth = 0; depth < kMaxLinks && body->child_joints.size() == 1; ++depth) {
+    const urdf::JointSharedPtr& joint = body->child_joints.front();
+    if (joint->type != urdf::Joint::FLOATING && joint->type != urdf::Joint::FIXED) break;
+    if (body->child_links.size() != 1) break;
+    notes->push_back("body: link '" + body->child_links.front()->name + "', below '" + body->name +
+                     "' by the " + (joint->type == urdf::Joint::FLOATING ? "floating" : "fixed") +
+                     " joint '" + joint->name + "'");
+    body = body->child_links.front();
+  }
+  return body;
+}
+
+LegChain MakeLeg(const urdf::Link& foot, const Chain& chain, const std::string& path,
+                 std::vector<std::string>* notes) {
+  LegChain leg;
+  leg.foot_link = foot.name;
+  for (const auto& joint : chain.joints) leg.joints.push_back(ToJointModel(*joint, path, notes));
+  Eigen::Vector3d centre;
+  if (const urdf::Sphere* sphere = FootSphere(foot, &centre)) {
+    leg.p_footlink_foot_m = centre;
+    leg.foot_sphere_radius_m = sphere->radius;
+  }
+  leg.name = CommonPrefixName(chain.links);
+  if (leg.name.empty()) leg.name = CommonSuffixName(chain.links);
+  return leg;
+}
+
+// Distance of the foot point from the chain's first movable joint at zero joint positions.
+double ReachAtZero(const LegChain& leg) {
+  if (leg.num_dof() == 0) return 0.0;
+  return (FootPosition(leg, Eigen::VectorXd::Zero(leg.num_dof())) - HipPosition(leg)).norm();
+}
+
 }  // namespace
 
-RobotDescription ReadUrdfRobot(const std::string& path,
-                               const std::vector<std::string>& foot_links) {
-  const std::string xml = ReadWholeFile(path);
+RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::string>& foot_links,
+                               const std::optional<Eigen::Vector3d>& foot_offset_m) {
+  const std::string xml_in = ReadWholeFile(path);
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+  if (doc.Parse(xml_in.c_str(), xml_in.size()) != tinyxml2::XML_SUCCESS) {
     std::ostringstream msg;
     msg << path << ": malformed XML at line " << doc.ErrorLineNum() << ": " << doc.ErrorStr();
     throw InputError(msg.str());
   }
-  const tinyxml2::XMLElement* robot_xml = doc.FirstChildElement("robot");
+  tinyxml2::XMLElement* robot_xml = doc.FirstChildElement("robot");
   if (robot_xml == nullptr) throw InputError(path + ": not a URDF (no <robot> element)");
   CheckFiniteNumbers(robot_xml, path);
+  RobotDescription robot;
+  CheckAndPruneJointGraph(robot_xml, path, &robot.notes);
   const std::map<std::string, int> joint_order = JointOrder(robot_xml);
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  const std::string xml = printer.CStr();
 
   urdf::ModelInterfaceSharedPtr model;
   std::string parser_messages;
@@ -212,73 +377,127 @@ RobotDescription ReadUrdfRobot(const std::string& path,
     throw InputError(path + ": not a valid URDF" +
                      (parser_messages.empty() ? "" : ": " + parser_messages));
   }
-  RobotDescription robot;
   robot.name = model->getName();
   robot.source = path;
   const urdf::LinkConstSharedPtr root = model->getRoot();
   if (!root) throw InputError(path + ": URDF has no root link");
-  robot.root_link = root->name;
+  const urdf::LinkConstSharedPtr body = foot_links.empty() ? BodyLink(root, &robot.notes) : root;
+  robot.root_link = body->name;
 
-  std::vector<urdf::LinkConstSharedPtr> feet;
+  auto first_movable_order = [&](const Chain& chain) {
+    if (chain.movable.empty()) return 0;
+    const auto it = joint_order.find(chain.joints[chain.movable.front()]->name);
+    return it == joint_order.end() ? 0 : it->second;
+  };
+  std::vector<std::pair<int, LegChain>> ordered;
   if (!foot_links.empty()) {
+    if (static_cast<int>(foot_links.size()) > kMaxLegs) {
+      throw InputError(path + ": " + std::to_string(foot_links.size()) + " foot links named; mfp plans for at most " +
+                       std::to_string(kMaxLegs) + " legs");
+    }
+    std::map<std::string, std::string> leg_of_joint;  // movable joint -> foot link using it
     for (const std::string& name : foot_links) {
       urdf::LinkConstSharedPtr link = model->getLink(name);
       if (!link) throw InputError(path + ": foot link '" + name + "' is not a link of the URDF");
       if (link == root) throw InputError(path + ": foot link '" + name + "' is the root link");
-      feet.push_back(link);
-    }
-  } else {
-    std::vector<urdf::LinkSharedPtr> links;
-    model->getLinks(links);
-    for (const auto& link : links) {
-      if (link->child_links.empty() && link != root) feet.push_back(link);
-    }
-  }
-
-  std::map<std::string, std::string> leg_of_joint;  // movable joint -> foot link using it
-  std::vector<std::pair<int, LegChain>> ordered;
-  for (const auto& foot : feet) {
-    const Chain chain = ChainTo(*model, foot);
-    if (!HasMovableJoint(chain)) {
-      if (!foot_links.empty()) {
-        throw InputError(path + ": foot link '" + foot->name +
+      const Chain chain = ChainTo(*model, body, link, path);
+      if (chain.movable.empty()) {
+        throw InputError(path + ": foot link '" + name +
                          "' hangs from the root by fixed joints only (a leg needs a movable joint)");
       }
-      continue;  // a sensor or cover fixed to the body, not a leg
-    }
-    LegChain leg;
-    leg.foot_link = foot->name;
-    int first_movable = -1;
-    for (const auto& joint : chain.joints) {
-      leg.joints.push_back(ToJointModel(*joint, path));
-      if (joint->type == urdf::Joint::FIXED) continue;
-      if (first_movable < 0) {
-        const auto it = joint_order.find(joint->name);
-        first_movable = it == joint_order.end() ? 0 : it->second;
+      for (int i : chain.movable) {
+        const std::string& joint = chain.joints[i]->name;
+        const auto [it, inserted] = leg_of_joint.emplace(joint, name);
+        if (!inserted) {
+          throw InputError(path + ": foot links '" + it->second + "' and '" + name + "' share the joint '" + joint +
+                           "'; each leg needs its own joints");
+        }
       }
-      const auto [it, inserted] = leg_of_joint.emplace(joint->name, foot->name);
-      if (!inserted) {
-        throw InputError(path + ": links '" + it->second + "' and '" + foot->name +
-                         "' share the joint '" + joint->name +
-                         "'; name the foot links in the robot YAML (feet: [...])");
-      }
+      ordered.emplace_back(first_movable_order(chain), MakeLeg(*link, chain, path, &robot.notes));
     }
-    for (const auto& collision : foot->collision_array) {
-      if (collision && collision->geometry &&
-          collision->geometry->type == urdf::Geometry::SPHERE) {
-        const auto& p = collision->origin.position;
-        leg.p_footlink_foot_m = Eigen::Vector3d(p.x, p.y, p.z);
-        leg.foot_sphere_radius_m =
-            static_cast<const urdf::Sphere&>(*collision->geometry).radius;
-        break;
+  } else {
+    // Leaves below the body, each with its chain.
+    std::vector<std::pair<urdf::LinkConstSharedPtr, Chain>> leaves;
+    std::vector<urdf::LinkConstSharedPtr> stack = {body};
+    while (!stack.empty()) {
+      const urdf::LinkConstSharedPtr link = stack.back();
+      stack.pop_back();
+      if (link->child_links.empty() && link != body) {
+        Chain chain = ChainTo(*model, body, link, path);
+        if (!chain.movable.empty()) leaves.emplace_back(link, std::move(chain));
+        continue;  // hanging off the body by fixed joints only: a sensor or cover
       }
+      for (const auto& child : link->child_links) stack.push_back(child);
     }
-    leg.name = CommonPrefixName(chain.links);
-    ordered.emplace_back(first_movable, leg);
-  }
-  if (ordered.empty()) {
-    throw InputError(path + ": no legs found (no chain from the root link '" + root->name +
-                     "' to a leaf link has a movable joint)");
+    // A leaf whose last movable joint is not the last of another leaf hangs partway along
+    // a leg by fixed joints (a rotor, a cover, a sensor): not a foot.
+    std::set<std::string> inner;
+    for (const auto& [leaf, chain] : leaves) {
+      for (size_t i = 0; i + 1 < chain.movable.size(); ++i) inner.insert(chain.joints[chain.movable[i]]->name);
+    }
+    // Leaves that share a leg's first movable joint are one leg: keep the best foot.
+    std::map<std::string, std::vector<size_t>> groups;
+    std::vector<std::string> group_order;
+    for (size_t i = 0; i < leaves.size(); ++i) {
+      const Chain& chain = leaves[i].second;
+      if (inner.count(chain.joints[chain.movable.back()]->name)) continue;
+      const std::string key = chain.joints[chain.movable.front()]->name;
+      if (groups[key].empty()) group_order.push_back(key);
+      groups[key].push_back(i);
+    }
+    std::vector<std::string> one_joint;
+    int legs_found = 0;
+    for (const std::string& key : group_order) {
+      const std::vector<size_t>& group = groups[key];
+      // Rank: a collision sphere, then a foot-like name, then more movable joints, then
+      // the foot point farthest from the hip at zero joint positions.
+      size_t best = group.front();
+      std::tuple<bool, bool, size_t, double> best_rank{false, false, 0, -1.0};
+      for (size_t i : group) {
+        const auto& [leaf, chain] = leaves[i];
+        Eigen::Vector3d centre;
+        const LegChain trial = MakeLeg(*leaf, chain, path, nullptr);
+        const std::tuple<bool, bool, size_t, double> rank{FootSphere(*leaf, &centre) != nullptr,
+                                                          FootLikeName(leaf->name), chain.movable.size(),
+                                                          ReachAtZero(trial)};
+        if (rank > best_rank) {
+          best_rank = rank;
+          best = i;
+        }
+      }
+      const auto& [leaf, chain] = leaves[best];
+      if (chain.movable.size() < 2) {
+        one_joint.push_back(leaf->name + " (joint '" + chain.joints[chain.movable.front()]->name + "')");
+        continue;
+      }
+      if (++legs_found > kMaxLegs) {
+        throw InputError(path + ": more than " + std::to_string(kMaxLegs) + " legs found; mfp plans for at most " +
+                         std::to_string(kMaxLegs) + " legs");
+      }
+      if (group.size() > 1) {
+        std::string others;
+        for (size_t i : group) {
+          if (i != best) others += (others.empty() ? "'" : ", '") + leaves[i].first->name + "'";
+        }
+        robot.notes.push_back("foot link '" + leaf->name + "' chosen over " + others +
+                              " (same leg joints): " +
+                              (std::get<0>(best_rank) ? "collision sphere"
+                               : std::get<1>(best_rank) ? "foot-like name"
+                                                        : "farthest along the chain"));
+      }
+      ordered.emplace_back(first_movable_order(chain), MakeLeg(*leaf, chain, path, &robot.notes));
+    }
+    if (ordered.empty()) {
+      if (!one_joint.empty()) {
+        std::string list;
+        for (const std::string& s : one_joint) list += (list.empty() ? "" : ", ") + s;
+        throw InputError(path + ": no legs found: every chain from the body '" + body->name +
+                         "' has a single movable joint (" + list +
+                         "); a leg needs at least two, so rotating C-legs and wheels are not supported");
+      }
+      throw InputError(path + ": no legs found (no chain from the root link '" + root->name +
+                       "' to a leaf link has a movable joint)");
+    }
   }
   std::stable_sort(ordered.begin(), ordered.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -286,8 +505,38 @@ RobotDescription ReadUrdfRobot(const std::string& path,
   for (const auto& [order, leg] : ordered) ++name_count[leg.name];
   for (auto& [order, leg] : ordered) {
     if (leg.name.empty() || name_count[leg.name] > 1) leg.name = leg.foot_link;
-    robot.legs.push_back(leg);
   }
+  for (auto& [order, leg] : ordered) {
+    if (leg.num_dof() > kMaxLegDof) {
+      throw InputError(path + ": leg to '" + leg.foot_link + "' has " + std::to_string(leg.num_dof()) +
+                       " movable joints; mfp reads at most " + std::to_string(kMaxLegDof) + " per leg");
+    }
+    if (foot_offset_m) {
+      leg.p_footlink_foot_m = *foot_offset_m;
+    } else if (leg.foot_sphere_radius_m == 0.0) {
+      // The foot point must move with the last joint, else the URDF holds no foot (the
+      // lower leg is only in a mesh and the leaf link's origin is the knee).
+      const JointModel* last = nullptr;
+      Eigen::Isometry3d T = Eigen::Isometry3d::Identity(), T_last = T;
+      for (const JointModel& j : leg.joints) {
+        T = T * j.T_parent_joint;
+        if (j.movable()) {
+          last = &j;
+          T_last = T;
+        }
+      }
+      const Eigen::Vector3d foot = FootPosition(leg, Eigen::VectorXd::Zero(leg.num_dof()));
+      const Eigen::Vector3d axis = T_last.linear() * last->axis;
+      const Eigen::Vector3d r = foot - T_last.translation();
+      if (last->type == JointModel::Type::kRevolute && (r - r.dot(axis) * axis).norm() < 1e-6) {
+        throw InputError(path + ": the URDF holds no foot for leg '" + leg.name + "': the foot link '" + leg.foot_link +
+                         "' has its origin on the axis of the leg's last joint '" + last->name +
+                         "' and no collision sphere (the lower leg is probably only a mesh); give the foot's "
+                         "position in that link in a robot YAML: foot_offset: [x, y, z] (m)");
+      }
+    }
+  }
+  for (auto& [order, leg] : ordered) robot.legs.push_back(leg);
   return robot;
 }
 
