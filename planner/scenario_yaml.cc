@@ -24,7 +24,7 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx) {
 
 }  // namespace
 
-Scenario LoadScenario(const std::string& path) {
+static Scenario LoadScenarioUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RejectUnknownKeys(root, ctx,
@@ -120,6 +120,10 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
   request.window_steps = scenario.window_steps;
   request.time_limit_s = scenario.time_limit_s;
   return request;
+}
+
+Scenario LoadScenario(const std::string& path) {
+  return GuardYaml(path, [&] { return LoadScenarioUnguarded(path); });
 }
 
 }  // namespace mfp
