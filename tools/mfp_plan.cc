@@ -2,6 +2,7 @@
 // Exit codes: 0 a plan reaching the goal, 2 bad input, 3 no plan reaching the goal.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -83,6 +84,8 @@ int main(int argc, char** argv) {
     if (!quiet) mfp::LogLine(kProgram, line);
   };
 
+  // The time limit counts from here: loading the robot and the terrain spend it too.
+  const auto run_start = std::chrono::steady_clock::now();
   try {
     mfp::Scenario scenario;
     if (!scenario_path.empty()) {
@@ -120,6 +123,11 @@ int main(int argc, char** argv) {
     if (max_steps > 0) request.max_steps = max_steps;
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
+    {
+      const double limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
+      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
+      request.deadline = mfp::Deadline::After(limit - spent);
+    }
 
     if (threads > 0) options.threads = threads;
     const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);

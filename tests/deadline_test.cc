@@ -1,0 +1,95 @@
+// Deadlines and stop flags hold inside a solve: the interior point QP and Ipopt stop at
+// their next iteration, the search at its next node, the planner with the best so far.
+#include "planner/deadline.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+
+#include "planner/branch_and_bound.h"
+#include "planner/interior_point_qp.h"
+#include "planner/ipm_relaxation_solver.h"
+#include "planner/ipopt_relaxation_solver.h"
+#include "planner/miqp_builder.h"
+#include "planner/relaxation_solver_factory.h"
+
+namespace mfp {
+namespace {
+
+TEST(Deadline, NeverAfterWithinAndStop) {
+  EXPECT_FALSE(Deadline().Expired());
+  EXPECT_EQ(Deadline().RemainingSeconds(), std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(Deadline::After(0.0).Expired());
+  EXPECT_FALSE(Deadline::After(100.0).Expired());
+  EXPECT_LE(Deadline::After(100.0).Within(1.0).RemainingSeconds(), 1.0);
+  EXPECT_LE(Deadline().Within(2.0).RemainingSeconds(), 2.0);
+  EXPECT_LE(Deadline::After(1.0).Within(100.0).RemainingSeconds(), 1.0);
+  std::atomic<bool> stop{false};
+  const Deadline d = Deadline::After(100.0).WithStop(&stop).Within(50.0);
+  EXPECT_FALSE(d.Expired());
+  stop = true;
+  EXPECT_TRUE(d.Expired());
+  EXPECT_TRUE(d.Stopped());
+  EXPECT_EQ(d.RemainingSeconds(), 0.0);
+}
+
+// n variables, each pulled to a target outside a shared budget row: many iterations.
+Miqp Qp(int n) {
+  MiqpBuilder b;
+  LinExpr sum;
+  for (int j = 0; j < n; ++j) {
+    const int x = b.AddVariable("x" + std::to_string(j), -1, 1, j % 2 == 0);
+    b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(0.3 + 0.01 * j), 1.0);
+    sum += LinExpr::Var(x);
+  }
+  b.AddRow("budget", sum, -kInfinity, 0.5);
+  return b.Build();
+}
+
+TEST(Deadline, EverySolverStopsAtItsNextIterationWhenStopped) {
+  const Miqp p = Qp(20);
+  std::atomic<bool> stop{true};
+  const Deadline stopped = Deadline().WithStop(&stop);
+  InteriorPointOptions options;
+  options.deadline = stopped;
+  const RelaxationResult direct = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, options);
+  EXPECT_EQ(direct.status, RelaxationStatus::kIterationLimit);
+  EXPECT_EQ(direct.iterations, 0);
+  for (RelaxationBackend backend : {RelaxationBackend::kIpopt, RelaxationBackend::kInteriorPointWithIpoptFallback}) {
+    const auto solver = MakeRelaxationSolver(backend);
+    solver->SetDeadline(stopped);
+    const RelaxationResult r = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+    EXPECT_EQ(r.status, RelaxationStatus::kIterationLimit) << solver->Name();
+    stop = false;  // the same solver solves once the flag is down
+    EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).status, RelaxationStatus::kSolved)
+        << solver->Name();
+    stop = true;
+  }
+}
+
+TEST(Deadline, SearchStopsWhenTheFlagIsSetDuringIt) {
+  // The flag goes up inside the root's rounding, mid-search: no node after the root is
+  // solved and the result says time_limit, keeping the rounding's incumbent.
+  const Miqp p = Qp(16);
+  std::atomic<bool> stop{false};
+  BranchAndBoundOptions options;
+  options.time_limit_s = 3600.0;
+  options.deadline = Deadline().WithStop(&stop);
+  const RoundingHeuristic raise = [&stop](const Eigen::VectorXd&) {
+    stop = true;
+    return std::vector<Eigen::VectorXd>{};
+  };
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
+  const BranchAndBoundResult r = SolveBranchAndBound(p, *solver, options, raise);
+  EXPECT_TRUE(stop);
+  EXPECT_EQ(r.nodes, 1);
+  EXPECT_TRUE(r.status == SolveStatus::kTimeLimit || r.status == SolveStatus::kNoSolution)
+      << ToString(r.status);
+  // Without the flag the same search goes on past the root.
+  std::atomic<bool> never{false};
+  options.deadline = Deadline().WithStop(&never);
+  EXPECT_GT(SolveBranchAndBound(p, *solver, options).nodes, 1);
+}
+
+}  // namespace
+}  // namespace mfp
