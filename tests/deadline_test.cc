@@ -7,11 +7,14 @@
 #include <atomic>
 
 #include "planner/branch_and_bound.h"
+#include "planner/footstep_planner.h"
 #include "planner/interior_point_qp.h"
 #include "planner/ipm_relaxation_solver.h"
 #include "planner/ipopt_relaxation_solver.h"
 #include "planner/miqp_builder.h"
 #include "planner/relaxation_solver_factory.h"
+#include "planner/robot_loader.h"
+#include "planner/scenario_yaml.h"
 
 namespace mfp {
 namespace {
@@ -89,6 +92,30 @@ TEST(Deadline, SearchStopsWhenTheFlagIsSetDuringIt) {
   std::atomic<bool> never{false};
   options.deadline = Deadline().WithStop(&never);
   EXPECT_GT(SolveBranchAndBound(p, *solver, options).nodes, 1);
+}
+
+TEST(Deadline, APlanStopsAtTheFlagAndKeepsWhatItHas) {
+  // A stop flag raised after the first window (from the progress callback, as a daemon's
+  // SIGTERM handler would from its own thread): the plan returns at once, with the first
+  // window's steps and status time_limit saying it was stopped.
+  const Scenario s = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_flat.yaml");
+  const RobotModel robot = LoadRobot(s.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(s, robot, nullptr);
+  PlanRequest request = ScenarioRequest(s, robot, regions);
+  std::atomic<bool> stop{false};
+  request.deadline = Deadline().WithStop(&stop);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(s.options.relaxation_solver, 1);
+  int windows = 0;
+  const Plan plan = PlanFootsteps(robot, regions, request, s.options, solvers.workers(),
+                                  [&](const PlanProgress& p) {
+                                    windows = p.window;
+                                    stop = true;
+                                  });
+  EXPECT_EQ(windows, 1);
+  EXPECT_EQ(plan.status, SolveStatus::kTimeLimit);
+  EXPECT_NE(plan.message.find("stopped"), std::string::npos) << plan.message;
+  EXPECT_GT(plan.footsteps.size(), static_cast<size_t>(robot.num_legs()));
+  EXPECT_FALSE(plan.reaches_goal);
 }
 
 }  // namespace
