@@ -93,15 +93,18 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
 }
 
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
-                                          std::string* note) {
+                                          std::string* note, const Deadline& deadline) {
   if (!scenario.listed_regions.empty()) return scenario.listed_regions;
-  if (!scenario.map_path.empty()) return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad);
+  if (!scenario.map_path.empty()) {
+    return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad, deadline, note);
+  }
   if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
     return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
   }
   RegionExtractorOptions options;
   options.foot_radius_m = robot.foot_radius_m;
   options.max_slope_rad = robot.max_slope_rad;
+  options.deadline = deadline;
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
   if (note != nullptr) *note = result.message;
   return std::move(result.regions);

@@ -112,7 +112,14 @@ int main(int argc, char** argv) {
     }
     const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
     std::string terrain_note;
-    const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot, &terrain_note);
+    // One deadline for the whole run: region extraction spends the same time limit.
+    const double run_limit = time_limit > 0 ? time_limit
+                             : scenario.time_limit_s > 0 ? scenario.time_limit_s
+                                                         : scenario.options.default_time_limit_s;
+    const mfp::Deadline run_deadline = mfp::Deadline::After(
+        run_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
+    const std::vector<mfp::ConvexRegion> regions =
+        mfp::ScenarioRegions(scenario, robot, &terrain_note, run_deadline);
     if (!terrain_note.empty()) log("terrain: " + terrain_note);
     log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
         std::to_string(regions.size()) + " regions");
@@ -123,11 +130,7 @@ int main(int argc, char** argv) {
     if (max_steps > 0) request.max_steps = max_steps;
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
-    {
-      const double limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
-      const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count();
-      request.deadline = mfp::Deadline::After(limit - spent);
-    }
+    request.deadline = run_deadline;
 
     if (threads > 0) options.threads = threads;
     const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);
