@@ -66,6 +66,27 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
     const YAML::Node regions = terrain["regions"];
     const YamlContext rctx = tctx.Child("regions");
     if (!regions.IsSequence()) throw InputError(rctx.Where() + ": expected a list of regions");
+    // Caps on listed regions: YAML aliases let a small file name one long polygon many
+    // times (an "alias bomb"), so the totals are checked before anything is built.
+    constexpr size_t kMaxListedRegions = 100000, kMaxRegionVertices = 1000, kMaxListedVertices = 1000000;
+    if (regions.size() > kMaxListedRegions) {
+      throw InputError(rctx.Where() + ": " + std::to_string(regions.size()) +
+                       " regions, more than the limit of " + std::to_string(kMaxListedRegions));
+    }
+    size_t total_vertices = 0;
+    for (size_t i = 0; i < regions.size(); ++i) {
+      const YAML::Node v = regions[i].IsMap() ? regions[i]["vertices"] : YAML::Node();
+      const size_t count = v && v.IsSequence() ? v.size() : 0;
+      if (count > kMaxRegionVertices) {
+        throw InputError(rctx.Index(i).Child("vertices").Where() + ": " + std::to_string(count) +
+                         " vertices, more than the limit of " + std::to_string(kMaxRegionVertices));
+      }
+      total_vertices += count;
+      if (total_vertices > kMaxListedVertices) {
+        throw InputError(rctx.Where() + ": more than " + std::to_string(kMaxListedVertices) +
+                         " vertices in all (YAML aliases count each time they are used)");
+      }
+    }
     for (size_t i = 0; i < regions.size(); ++i) {
       const YamlContext one = rctx.Index(i);
       RejectUnknownKeys(regions[i], one, {"vertices", "plane_tolerance"});

@@ -3,6 +3,7 @@
 // nesting, aliases. Each loader a user or the daemon's SIGHUP reaches is fed each shape.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -113,6 +114,34 @@ TEST(HostileYaml, StringsOfAnyBytes) {
       EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     }
   }
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+TEST(HostileYaml, AnAliasBombOfRegionsIsRefusedBeforeItIsBuilt) {
+  // One 1,000-vertex polygon named 2,000 times: a 30 KB file, 2 M vertices.
+  std::string poly = "[";
+  for (int k = 0; k < 1000; ++k) {
+    const double a = 2 * M_PI * k / 1000;
+    poly += (k ? ", " : "") + std::string("[") + std::to_string(std::cos(a)) + ", " +
+            std::to_string(std::sin(a)) + ", 0]";
+  }
+  poly += "]";
+  std::string text = "robot: " + kRobot + "\nstart: [0, 0, 0]\ngoal: [0.5, 0, 0]\nterrain:\n  regions:\n";
+  text += "    - {vertices: &p " + poly + "}\n";
+  for (int i = 0; i < 2000; ++i) text += "    - {vertices: *p}\n";
+  const std::string path = Write("bomb.yaml", text);
+  ExpectInputError([&] { LoadScenario(path); }, "vertices in all");
+  // A polygon of too many vertices, once.
+  std::string many = "[";
+  for (int k = 0; k < 1001; ++k) many += (k ? ", " : "") + std::string("[0, 0, 0]");
+  const std::string one = Write("one.yaml", "robot: " + kRobot + "\nstart: [0, 0, 0]\ngoal: [0.5, 0, 0]\n"
+                                                 "terrain:\n  regions:\n    - {vertices: " + many + "]}\n");
+  ExpectInputError([&] { LoadScenario(one); }, "regions[0].vertices: 1001 vertices");
 }
 
 }  // namespace
