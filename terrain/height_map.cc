@@ -74,8 +74,13 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
   return hm;
 }
 
+double FitWork(size_t surface_cells, int window_half_cells) {
+  const double side = 2.0 * window_half_cells + 1.0;
+  return static_cast<double>(surface_cells) * side * side;
+}
+
 SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, double step_gate_m,
-                               double max_slope_rad) {
+                               double max_slope_rad, const Deadline& deadline) {
   MFP_CHECK(window_half_cells >= 1);
   const size_t n = hm.height_m.size();
   SurfaceAnalysis out;
@@ -86,6 +91,10 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
   const double tan_slope = std::tan(max_slope_rad);
   const int w = window_half_cells;
   for (int r = 0; r < hm.rows; ++r) {
+    if (deadline.Expired()) {
+      out.stopped = true;
+      break;
+    }
     for (int c = 0; c < hm.cols; ++c) {
       const float hc = hm.height_m[static_cast<size_t>(hm.Index(r, c))];
       if (std::isnan(hc)) continue;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "planner/base/deadline.h"
 #include "terrain/occupancy_map.h"
 
 namespace mfp {
@@ -36,13 +37,18 @@ HeightMap BuildHeightMap(const OccupancyMap& map,
 struct SurfaceAnalysis {
   std::vector<Eigen::Vector3f> normal_world;  // per cell, upward unit normal; NaN if unknown
   std::vector<float> roughness_m;             // per cell, RMS residual of the fit; inf if unknown
+  bool stopped = false;  // the deadline ended the analysis; cells not reached are unknown
 };
 
 // Fits z = a x + b y + c around each cell over a (2 w + 1)^2 window, w = window_half_cells.
 // Neighbours whose height differs from the centre by more than
 // step_gate_m + (distance * tan(max_slope_rad)) are left out, so a cell beside a step
 // still gets the normal of its own surface.
+// The work is (surface cells) * (2 w + 1)^2 neighbour visits (FitWork); the deadline is
+// checked every row.
 SurfaceAnalysis AnalyzeSurface(const HeightMap& height_map, int window_half_cells,
-                               double step_gate_m, double max_slope_rad);
+                               double step_gate_m, double max_slope_rad,
+                               const Deadline& deadline = Deadline());
+double FitWork(size_t surface_cells, int window_half_cells);
 
 }  // namespace mfp

@@ -143,11 +143,15 @@ void WriteTerrainMap(const TerrainDescription& terrain, const std::string& out_p
 }
 
 std::vector<ConvexRegion> RegionsFromMapFile(const std::string& path, double foot_radius_m,
-                                             double max_slope_rad) {
+                                             double max_slope_rad, const Deadline& deadline,
+                                             std::string* note) {
   RegionExtractorOptions options;
   options.foot_radius_m = foot_radius_m;
   options.max_slope_rad = max_slope_rad;
-  return ExtractRegions(LoadMapFile(path), options).regions;
+  options.deadline = deadline;
+  RegionExtractionResult result = ExtractRegions(LoadMapFile(path), options);
+  if (note != nullptr) *note = result.message;
+  return std::move(result.regions);
 }
 
 }  // namespace mfp

@@ -35,8 +35,11 @@ void WriteOccupancyMap(const OccupancyMap& map, const std::string& out_path);
 std::vector<uint8_t> OccupancyMapBytes(const OccupancyMap& map, bool binary);
 
 // Loads a map file and extracts its regions with the default options and the given foot
-// radius and slope limit. Throws InputError as LoadMapFile and ExtractRegions do.
+// radius and slope limit, until the deadline. Throws InputError as LoadMapFile and
+// ExtractRegions do. `note` (optional) receives the extractor's message.
 std::vector<ConvexRegion> RegionsFromMapFile(const std::string& path, double foot_radius_m,
-                                             double max_slope_rad);
+                                             double max_slope_rad,
+                                             const Deadline& deadline = Deadline(),
+                                             std::string* note = nullptr);
 
 }  // namespace mfp

@@ -15,7 +15,9 @@ enum class OctreeFileKind { kBinary, kFull };  // .bt ("binary file"), .ot ("fil
 
 struct OctreeStreamLimits {
   size_t max_bytes = size_t{256} << 20;  // whole file [bytes]
-  uint64_t max_nodes = 16'000'000;       // nodes of the tree (inner and leaves)
+  // Nodes of the tree (inner and leaves). OctoMap holds about 115 bytes a node while
+  // reading, so this caps a map's memory near 0.5 GB (and its reading time at seconds).
+  uint64_t max_nodes = 4'000'000;
   double min_resolution_m = 1e-4;
   double max_resolution_m = 10.0;
 };

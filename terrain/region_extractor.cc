@@ -65,9 +65,27 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   // The fit window is at least a foot wide (and at least 3 cells).
   const int window_half_cells =
       std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
-  const SurfaceAnalysis surface = AnalyzeSurface(
-      hm, window_half_cells, options.grow_tolerance_voxels * res, options.max_slope_rad);
+  const double work = FitWork(static_cast<size_t>(stats.surface_cells), window_half_cells);
+  if (work > options.max_fit_work) {
+    std::ostringstream msg;
+    msg << "the map's resolution " << res << " m is too fine for a foot of radius "
+        << options.foot_radius_m << " m: fitting its " << stats.surface_cells
+        << " surface cells over " << 2 * window_half_cells + 1 << "^2-cell windows is " << work
+        << " visits, more than the limit of " << options.max_fit_work
+        << " (cell visits); give a coarser map (cells of "
+        << std::max(0.5 * options.foot_radius_m, 1e-3) << " m or more suit this foot)";
+    throw InputError(msg.str());
+  }
+  const SurfaceAnalysis surface =
+      AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
+                     options.max_slope_rad, options.deadline);
   stats.analysis_s = SecondsSince(t);
+  if (surface.stopped) {
+    result.stopped = true;
+    result.message = "time limit reached during the surface fit: no regions";
+    stats.total_s = SecondsSince(start);
+    return result;
+  }
 
   t = Clock::now();
   SegmentationOptions seg;
@@ -90,7 +108,15 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   dec.cover.target_coverage = options.target_coverage;
   dec.cover.max_rects = options.max_regions_per_patch;
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
+  int patches_done = 0;
   for (const PlanarPatch& patch : patches) {
+    if (options.deadline.Expired()) {
+      result.stopped = true;
+      result.message = "time limit reached after " + std::to_string(patches_done) + " of " +
+                       std::to_string(patches.size()) + " planar patches (the largest first)";
+      break;
+    }
+    ++patches_done;
     const double slope = patch.SlopeRad();
     if (slope > options.max_slope_rad) {
       ++stats.patches_too_steep;
@@ -116,7 +142,7 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   }
   stats.decomposition_s = SecondsSince(t);
   stats.total_s = SecondsSince(start);
-  if (result.regions.empty()) {
+  if (result.regions.empty() && !result.stopped) {
     std::ostringstream msg;
     msg << "no walkable regions: " << stats.patches << " planar patches, "
         << stats.patches_too_steep << " steeper than " << options.max_slope_rad << " rad, "

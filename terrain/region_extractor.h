@@ -31,6 +31,14 @@ struct RegionExtractorOptions {
   int max_regions = 256;                // the largest patches are kept first
   double axis_snap_rad = 0.05;          // a patch within this of the grid axes uses the grid
   size_t max_height_map_cells = kDefaultMaxHeightMapCells;
+  // Most neighbour visits of the surface fit, (surface cells) * (2 w + 1)^2 with w the
+  // foot radius in cells: a map much finer than the foot (0.1 mm cells for a 1 cm foot:
+  // 201^2 visits per cell) is refused up front, naming its resolution, instead of taking
+  // minutes. About 1e8 visits a second on one core; a 4096^2-cell map at w = 1 is 1.5e8.
+  double max_fit_work = 3e8;
+  // Ends the extraction (checked every height map row and every patch): the regions of
+  // the patches done so far are returned, with a message saying the time ran out.
+  Deadline deadline;
 };
 
 struct RegionExtractionStats {
@@ -50,6 +58,7 @@ struct RegionExtractionResult {
   RegionExtractionStats stats;
   HeightMap height_map;               // for display (mfp-regions --svg)
   std::string message;                // why there are no regions, when there are none
+  bool stopped = false;               // the deadline ended it early (message says where)
 };
 
 // Throws InputError on options out of range (foot radius not in [0, 1] m, max slope not in

@@ -52,13 +52,17 @@ TerrainDescription ParseTerrainDescription(const YAML::Node& terrain_node, const
   return terrain;
 }
 
-TerrainDescription LoadTerrainDescription(const std::string& scenario_yaml_path) {
+static TerrainDescription LoadTerrainDescriptionUnguarded(const std::string& scenario_yaml_path) {
   const YAML::Node root = LoadYamlFile(scenario_yaml_path);
   const YamlContext ctx{scenario_yaml_path, ""};
   if (!root.IsMap() || !root["terrain"]) {
     throw InputError(scenario_yaml_path + ": missing key 'terrain' (resolution and boxes)");
   }
   return ParseTerrainDescription(root["terrain"], ctx.Child("terrain"));
+}
+
+TerrainDescription LoadTerrainDescription(const std::string& scenario_yaml_path) {
+  return GuardYaml(scenario_yaml_path, [&] { return LoadTerrainDescriptionUnguarded(scenario_yaml_path); });
 }
 
 }  // namespace mfp

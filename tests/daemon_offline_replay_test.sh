@@ -13,3 +13,27 @@ trap 'rm -rf "$WORK"' EXIT
 "$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
 "$BUILD_DIR/tools/mfp-replay" "$WORK/requests.lcmlog" --config "$CONFIG" --out "$WORK/replies.lcmlog"
 "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" --config "$CONFIG"
+
+# A log whose event claims 2^31 - 1 bytes (crashed inside liblcm's reader): exit 2, the
+# message names the event and the claim; the valid events before it were replayed.
+cp "$WORK/requests.lcmlog" "$WORK/hostile.lcmlog"
+printf '\xed\xa1\xda\x01\0\0\0\0\0\0\0\x63\0\0\0\0\0\0\0\0\0\0\0\x0f\x7f\xff\xff\xffMFP_TERRAIN_MAPabcd' \
+  >> "$WORK/hostile.lcmlog"
+set +e
+"$BUILD_DIR/tools/mfp-replay" "$WORK/hostile.lcmlog" --config "$CONFIG" --out "$WORK/h.lcmlog" \
+  2> "$WORK/hostile.err"
+code=$?
+set -e
+cat "$WORK/hostile.err"
+[ "$code" -eq 2 ] || { echo "FAIL: mfp-replay on a log claiming 2^31-1 bytes exited $code, not 2"; exit 1; }
+grep -q "2147483647 data bytes but only 19 remain" "$WORK/hostile.err" ||
+  { echo "FAIL: the error does not name the bad length"; exit 1; }
+# Not an LCM log at all.
+head -c 1000 /dev/urandom > "$WORK/random.lcmlog"
+set +e
+"$BUILD_DIR/tools/mfp-replay" "$WORK/random.lcmlog" --config "$CONFIG" --out "$WORK/r.lcmlog" 2> "$WORK/random.err"
+code=$?
+set -e
+[ "$code" -eq 2 ] && grep -q "no sync word" "$WORK/random.err" ||
+  { echo "FAIL: mfp-replay on random bytes exited $code: $(cat "$WORK/random.err")"; exit 1; }
+echo "hostile logs: exit 2 with a message"

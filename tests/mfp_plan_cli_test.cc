@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <sys/wait.h>
@@ -92,6 +93,35 @@ TEST(MfpPlanCli, PlanJsonFollowsTheContract) {
   text << mps.rdbuf();
   EXPECT_NE(text.str().find("QUADOBJ"), std::string::npos);
   EXPECT_NE(text.str().find("ENDATA"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+// Issue 19: a YAML key that is a list aborted mfp-plan (SIGABRT, an uncaught yaml-cpp
+// exception); a map far finer than the foot took tens of seconds. Both are exit 2 now.
+TEST(MfpPlanCli, HostileScenarioAndMapAreBadInputNotASignal) {
+  const std::string scenario = mfp::TestTempPath("key.yaml");
+  std::ofstream(scenario) << "robot: " << MFP_SOURCE_DIR << "/config/robots/hexapod.yaml\n? [a, b]\n: 1\n";
+  Outcome r = Execute("--scenario " + scenario);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("a key is a list"), std::string::npos) << r.err;
+
+  // The flat course as a map, its resolution line rewritten to 0.1 mm.
+  const std::string coarse = mfp::TestTempPath("flat.bt"), fine = mfp::TestTempPath("fine.bt");
+  ASSERT_EQ(std::system((std::string(MFP_BINARY_DIR) + "/tools/mfp-terrain " + kScenarios +
+                         "hexapod_flat.yaml --out " + coarse + " > /dev/null 2>&1").c_str()), 0);
+  std::ifstream in(coarse, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const size_t at = bytes.find("res 0.02\n");
+  ASSERT_NE(at, std::string::npos);
+  bytes.replace(at, 9, "res 0.0001\n");
+  std::ofstream(fine, std::ios::binary) << bytes;
+  r = Execute("--robot " + std::string(MFP_SOURCE_DIR) + "/config/robots/hexapod.yaml --terrain " + fine +
+              " --start 0,0,0 --goal 1,0,0 --time-limit 1");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("resolution 0.0001 m is too fine"), std::string::npos) << r.err;
 }
 
 }  // namespace

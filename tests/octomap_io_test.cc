@@ -131,6 +131,11 @@ TEST(OctomapIoTest, CorruptedValidFilesLoadOrFailCleanly) {
 TEST(OctomapIoTest, HugeDeclaredSizesAreRejectedBeforeReading) {
   const std::string s = "# Octomap OcTree binary file\nid OcTree\nsize 4000000000\nres 0.05\ndata\n";
   EXPECT_NE(ErrorOf(Bytes(s)).find("node limit"), std::string::npos) << ErrorOf(Bytes(s));
+  // The 8 MB map of the report declared 15.9 M nodes (1.8 GB while OctoMap read it): above
+  // the default cap of 4 M, refused from its header.
+  const std::string report = "# Octomap OcTree binary file\nid OcTree\nsize 15900000\nres 0.02\ndata\n";
+  EXPECT_NE(ErrorOf(Bytes(report)).find("15900000 nodes, more than the 4000000 node limit"), std::string::npos)
+      << ErrorOf(Bytes(report));
   const std::string big = "# Octomap OcTree binary file\nid OcTree\nsize 99999999999999999999999\nres 0.05\ndata\n";
   EXPECT_NE(ErrorOf(Bytes(big)), "");
   OctreeStreamLimits small;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 
 #include "planner/base/check.h"
@@ -194,6 +195,58 @@ TEST(RegionExtractorTest, CourseRegionsAreSoundAndCoverEveryFlatFace) {
   EXPECT_GE(result.stats.patches_too_steep, 1);  // the 40 degree ramp
   for (const ConvexRegion& r : result.regions) EXPECT_LE(r.SlopeRad(), 0.45);
   ExpectSoundAndCovering(t, result);
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+// Six 0.4 m x 2 m slabs at 2 cm, relabelled as finer cells: the same tree, but a 1 cm foot
+// spans 201^2 cells of 0.1 mm per fit. Refused up front with a message naming the resolution.
+OccupancyMap FineStones(double resolution_m) {
+  TerrainDescription t;
+  t.resolution_m = 0.02;
+  for (int i = 0; i < 6; ++i) {
+    TerrainBox b;
+    b.center_world_m = Eigen::Vector3d(0.42 * i, 0.0, -0.05 + 0.01 * i);
+    b.size_m = Eigen::Vector3d(0.4, 2.0, 0.1);  // 6 x 20 x 100 cells of surface
+    t.boxes.push_back(b);
+  }
+  OccupancyMap map = VoxelizeTerrain(t);
+  const double scale = resolution_m / map.resolution_m;
+  map.resolution_m = resolution_m;
+  for (auto& leaf : map.leaves) {
+    leaf.center_world_m *= scale;
+    leaf.size_m *= scale;
+  }
+  return map;
+}
+
+TEST(RegionExtractorLimits, AMapFarFinerThanTheFootIsRefusedNamingItsResolution) {
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.01;
+  try {
+    ExtractRegions(FineStones(1e-4), options);
+    ADD_FAILURE() << "a 0.1 mm map was extracted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("resolution 0.0001 m is too fine"), std::string::npos) << e.what();
+  }
+  // The same map at 2 cm: extracted.
+  EXPECT_FALSE(ExtractRegions(FineStones(0.02), options).regions.empty());
+}
+
+TEST(RegionExtractorLimits, AnExpiredDeadlineEndsTheExtractionWithAMessage) {
+  RegionExtractorOptions options;
+  options.deadline = Deadline::After(0.0);
+  const RegionExtractionResult r = ExtractRegions(FineStones(0.02), options);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_TRUE(r.regions.empty());
+  EXPECT_NE(r.message.find("time limit"), std::string::npos) << r.message;
+  std::atomic<bool> stop{false};
+  options.deadline = Deadline().WithStop(&stop);
+  EXPECT_FALSE(ExtractRegions(FineStones(0.02), options).stopped);
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 // published regions, status_t counters that account for every malformed payload.
 // Exit 0 when every check passes, 1 otherwise, 3 when some request has no reply yet,
 // 2 on bad input.
-#include <lcm/eventlog.h>
+#include "lcmtypes/event_log_reader.h"
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -37,13 +37,13 @@ struct Recorded {
 };
 
 Recorded ReadLog(const std::string& path) {
-  lcm_eventlog_t* log = lcm_eventlog_create(path.c_str(), "r");
-  if (log == nullptr) throw InputError("cannot open the LCM log '" + path + "'");
+  EventLogReader log(path, kMaxReplyBytes);
   Recorded r;
-  while (lcm_eventlog_event_t* e = lcm_eventlog_read_next_event(log)) {
-    const std::string channel(e->channel, static_cast<size_t>(e->channellen));
-    const auto* data = static_cast<const uint8_t*>(e->data);
-    const auto size = static_cast<size_t>(e->datalen);
+  LogEvent e;
+  while (log.Next(&e)) {
+    const std::string& channel = e.channel;
+    const uint8_t* data = e.data.data();
+    const size_t size = e.data.size();
     std::string error;
     if (channel == kPlanChannel) {
       plan_t m;
@@ -59,9 +59,7 @@ Recorded ReadLog(const std::string& path) {
       std::cout << "undecodable " << channel << " event: " << error << "\n";
       ++r.undecodable;
     }
-    lcm_eventlog_free_event(e);
   }
-  lcm_eventlog_destroy(log);
   return r;
 }
 

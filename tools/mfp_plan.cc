@@ -2,6 +2,7 @@
 // Exit codes: 0 a plan reaching the goal, 2 bad input, 3 no plan reaching the goal.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -83,6 +84,8 @@ int main(int argc, char** argv) {
     if (!quiet) mfp::LogLine(kProgram, line);
   };
 
+  // The time limit counts from here: loading the robot and the terrain spend it too.
+  const auto run_start = std::chrono::steady_clock::now();
   try {
     mfp::Scenario scenario;
     if (!scenario_path.empty()) {
@@ -109,7 +112,14 @@ int main(int argc, char** argv) {
     }
     const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
     std::string terrain_note;
-    const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot, &terrain_note);
+    // One deadline for the whole run: region extraction spends the same time limit.
+    const double run_limit = time_limit > 0 ? time_limit
+                             : scenario.time_limit_s > 0 ? scenario.time_limit_s
+                                                         : scenario.options.default_time_limit_s;
+    const mfp::Deadline run_deadline = mfp::Deadline::After(
+        run_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
+    const std::vector<mfp::ConvexRegion> regions =
+        mfp::ScenarioRegions(scenario, robot, &terrain_note, run_deadline);
     if (!terrain_note.empty()) log("terrain: " + terrain_note);
     log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
         std::to_string(regions.size()) + " regions");
@@ -120,6 +130,7 @@ int main(int argc, char** argv) {
     if (max_steps > 0) request.max_steps = max_steps;
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
+    request.deadline = run_deadline;
 
     if (threads > 0) options.threads = threads;
     const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);

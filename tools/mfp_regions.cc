@@ -39,11 +39,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--max-slope", options.max_slope_rad, "steepest walkable surface [rad]")
       ->check(CLI::Range(0.0, M_PI / 2));
+  double time_limit_s = 0.0;
+  app.add_option("--time-limit", time_limit_s,
+                 "seconds for loading and extraction; when they run out, the regions of the "
+                 "patches done so far (largest first) and a line saying so")
+      ->check(CLI::Range(1e-3, 3600.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  if (time_limit_s > 0) options.deadline = mfp::Deadline::After(time_limit_s);
   try {
     const mfp::OccupancyMap map = mfp::LoadMapFile(map_path);
     const mfp::RegionExtractionResult result = mfp::ExtractRegions(map, options);
@@ -73,10 +79,8 @@ int main(int argc, char** argv) {
                 map_path.c_str(), map.leaves.size(), map.resolution_m, result.stats.surface_cells,
                 result.stats.patches, result.stats.patches_too_steep,
                 result.stats.patches_too_small, result.regions.size(), 1e3 * result.stats.total_s);
-    if (result.regions.empty()) {
-      std::printf("%s\n", result.message.c_str());
-      return 0;
-    }
+    if (result.regions.empty() || result.stopped) std::printf("%s\n", result.message.c_str());
+    if (result.regions.empty()) return 0;
     std::printf("%4s %10s %9s %9s %8s\n", "id", "area_m2", "slope_deg", "height_m", "vertices");
     for (const mfp::ConvexRegion& r : result.regions) {
       std::printf("%4d %10.4f %9.2f %9.3f %8zu\n", r.id, r.area_m2, r.SlopeRad() * 180.0 / M_PI,

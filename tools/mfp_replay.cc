@@ -7,8 +7,9 @@
 // heartbeat period of log time) to an LCM log.
 #include <CLI/CLI.hpp>
 
+#include "lcmtypes/event_log_reader.h"
 #include "lcmtypes/event_log_writer.h"
-#include "lcmtypes/lcm_transport.h"
+#include "lcmtypes/transport.h"
 #include "planner/base/check.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
@@ -25,7 +26,9 @@ constexpr const char* kProgram = "mfp-replay";
 int Run(const std::string& log_path, const std::string& out_path, const std::string& config_path,
         bool verbose) {
   auto setup = std::make_shared<const DaemonSetup>(LoadDaemonSetup(LoadDaemonConfig(config_path)));
-  LcmTransport input("file://" + log_path + "?speed=0&mode=r");
+  // The largest event the daemon would accept (larger ones could only be rejected).
+  EventLogReader input(log_path, std::max(setup->config.limits.max_map_bytes,
+                                          setup->config.limits.max_request_bytes));
   EventLogWriter output(out_path);
 
   int64_t log_utime = 0;
@@ -51,10 +54,10 @@ int Run(const std::string& log_path, const std::string& out_path, const std::str
     while (core.PlanNext()) {
     }
   };
-  input.Subscribe(kTerrainMapChannel, handle);
-  input.Subscribe(kPlanRequestChannel, handle);
-  // The file provider returns < 0 at the end of the log.
-  while (input.HandleTimeout(1000) >= 0) {
+  LogEvent event;
+  while (input.Next(&event)) {
+    if (event.channel != kTerrainMapChannel && event.channel != kPlanRequestChannel) continue;
+    handle(RawMessage{event.channel, event.data.data(), event.data.size(), event.utime});
   }
   core.PublishStatus();
   const DaemonCounters c = core.counters();

@@ -21,6 +21,10 @@ std::string YamlContext::Where() const {
   return file + (path.empty() ? "" : ": " + path);
 }
 
+void RethrowYamlAsInputError(const std::string& file, const YAML::Exception& e) {
+  throw InputError(file + ": unexpected YAML shape: " + e.what());
+}
+
 YAML::Node LoadYamlFile(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
@@ -38,7 +42,14 @@ void RejectUnknownKeys(const YAML::Node& map, const YamlContext& ctx,
   if (!map.IsMap()) throw InputError(ctx.Where() + ": expected a mapping");
   const std::set<std::string> ok(allowed.begin(), allowed.end());
   for (const auto& kv : map) {
-    const std::string key = kv.first.as<std::string>();
+    // A key may be any node ("? [a, b]\n: 1"); only scalars can name a field.
+    if (!kv.first.IsScalar()) {
+      throw InputError(ctx.Where() + ": a key is a " +
+                       (kv.first.IsSequence() ? std::string("list") : std::string("mapping")) +
+                       " (at line " + std::to_string(kv.first.Mark().line + 1) +
+                       "); keys must be plain names");
+    }
+    const std::string key = kv.first.Scalar();
     if (!ok.count(key)) {
       std::string list;
       for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;

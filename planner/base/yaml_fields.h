@@ -22,6 +22,20 @@ struct YamlContext {
 // Loads a YAML file; throws InputError when it is missing, unreadable or malformed.
 YAML::Node LoadYamlFile(const std::string& path);
 
+// Runs parse(), turning any yaml-cpp exception that escaped the typed readers below (a
+// node of an unexpected kind subscripted, an alias cycle, nesting too deep) into an
+// InputError naming the file: bad YAML of any shape is an input error, never an abort.
+void RethrowYamlAsInputError(const std::string& file, const YAML::Exception& e);
+template <typename Parse>
+auto GuardYaml(const std::string& file, Parse parse) -> decltype(parse()) {
+  try {
+    return parse();
+  } catch (const YAML::Exception& e) {
+    RethrowYamlAsInputError(file, e);
+    throw;  // not reached
+  }
+}
+
 // Throws InputError when a mapping has keys other than the allowed ones (catches typos).
 void RejectUnknownKeys(const YAML::Node& map, const YamlContext& ctx,
                        const std::vector<std::string>& allowed);

@@ -187,7 +187,7 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
 
 }  // namespace
 
-RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
+static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivation* derivation) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RejectUnknownKeys(root, ctx,
@@ -249,6 +249,10 @@ RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
   }
   ValidateRobotModel(robot);
   return robot;
+}
+
+RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
+  return GuardYaml(path, [&] { return LoadRobotYamlUnguarded(path, derivation); });
 }
 
 }  // namespace mfp

@@ -24,7 +24,7 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx) {
 
 }  // namespace
 
-Scenario LoadScenario(const std::string& path) {
+static Scenario LoadScenarioUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RejectUnknownKeys(root, ctx,
@@ -66,6 +66,27 @@ Scenario LoadScenario(const std::string& path) {
     const YAML::Node regions = terrain["regions"];
     const YamlContext rctx = tctx.Child("regions");
     if (!regions.IsSequence()) throw InputError(rctx.Where() + ": expected a list of regions");
+    // Caps on listed regions: YAML aliases let a small file name one long polygon many
+    // times (an "alias bomb"), so the totals are checked before anything is built.
+    constexpr size_t kMaxListedRegions = 100000, kMaxRegionVertices = 1000, kMaxListedVertices = 1000000;
+    if (regions.size() > kMaxListedRegions) {
+      throw InputError(rctx.Where() + ": " + std::to_string(regions.size()) +
+                       " regions, more than the limit of " + std::to_string(kMaxListedRegions));
+    }
+    size_t total_vertices = 0;
+    for (size_t i = 0; i < regions.size(); ++i) {
+      const YAML::Node v = regions[i].IsMap() ? regions[i]["vertices"] : YAML::Node();
+      const size_t count = v && v.IsSequence() ? v.size() : 0;
+      if (count > kMaxRegionVertices) {
+        throw InputError(rctx.Index(i).Child("vertices").Where() + ": " + std::to_string(count) +
+                         " vertices, more than the limit of " + std::to_string(kMaxRegionVertices));
+      }
+      total_vertices += count;
+      if (total_vertices > kMaxListedVertices) {
+        throw InputError(rctx.Where() + ": more than " + std::to_string(kMaxListedVertices) +
+                         " vertices in all (YAML aliases count each time they are used)");
+      }
+    }
     for (size_t i = 0; i < regions.size(); ++i) {
       const YamlContext one = rctx.Index(i);
       RejectUnknownKeys(regions[i], one, {"vertices", "plane_tolerance"});
@@ -93,15 +114,18 @@ Scenario LoadScenario(const std::string& path) {
 }
 
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
-                                          std::string* note) {
+                                          std::string* note, const Deadline& deadline) {
   if (!scenario.listed_regions.empty()) return scenario.listed_regions;
-  if (!scenario.map_path.empty()) return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad);
+  if (!scenario.map_path.empty()) {
+    return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad, deadline, note);
+  }
   if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
     return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
   }
   RegionExtractorOptions options;
   options.foot_radius_m = robot.foot_radius_m;
   options.max_slope_rad = robot.max_slope_rad;
+  options.deadline = deadline;
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
   if (note != nullptr) *note = result.message;
   return std::move(result.regions);
@@ -120,6 +144,10 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
   request.window_steps = scenario.window_steps;
   request.time_limit_s = scenario.time_limit_s;
   return request;
+}
+
+Scenario LoadScenario(const std::string& path) {
+  return GuardYaml(path, [&] { return LoadScenarioUnguarded(path); });
 }
 
 }  // namespace mfp

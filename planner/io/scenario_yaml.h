@@ -42,9 +42,11 @@ Scenario LoadScenario(const std::string& path);
 
 // The scenario's regions for this robot (foot radius, slope limit): listed regions as
 // given; a map file or the boxes through the terrain pipeline; or the boxes' top faces.
-// `note` (optional) receives the extractor's message when it finds no region.
+// `note` (optional) receives the extractor's message when it finds no region or the
+// deadline ended it (then the regions of the patches done so far are returned).
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
-                                          std::string* note = nullptr);
+                                          std::string* note = nullptr,
+                                          const Deadline& deadline = Deadline());
 
 // The request a scenario describes: the robot's nominal stance at the start pose (feet on
 // the regions below them), the goal, and the scenario's step and time settings.

@@ -134,10 +134,11 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
 
   while (!plan.reaches_goal && planned < max_steps &&
          (request.max_windows <= 0 || plan.windows < request.max_windows)) {
-    const double remaining_time = time_limit - elapsed();
+    const double remaining_time = std::min(time_limit - elapsed(), request.deadline.RemainingSeconds());
     if (remaining_time <= 0.0) {
       plan.status = SolveStatus::kTimeLimit;
-      plan.message = "time limit reached after " + std::to_string(planned) + " steps";
+      plan.message = (request.deadline.Stopped() ? "stopped after " : "time limit reached after ") +
+                     std::to_string(planned) + " steps";
       break;
     }
     const int steps = std::min(window, max_steps - planned);
@@ -166,6 +167,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     // Each window gets its share of the remaining time, and at least half of it when
     // few windows are left (later windows are usually shorter, near the goal).
     bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time);
+    // No window runs past the whole plan's limit, whatever it is given.
+    bnb.deadline = request.deadline.Within(time_limit - elapsed());
     if (options.snap_yaw_segments) {
       bnb.equivalent_point = [&formulation](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                             Eigen::VectorXd* x) {
@@ -199,6 +202,9 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         plan.status = result.status;
       } else {
         plan.status = result.status == SolveStatus::kInfeasible ? plan.status : result.status;
+        // A later window cut by its time share before its first plan: the plan so far
+        // stands, ended by the time limit.
+        if (result.status == SolveStatus::kNoSolution) plan.status = SolveStatus::kTimeLimit;
       }
       plan.message = "window " + std::to_string(plan.windows) + ": " + ToString(result.status) +
                      " after " + std::to_string(result.nodes) + " nodes";

@@ -27,6 +27,11 @@ struct PlanRequest {
   int max_steps = 0;       // new footsteps in the whole plan; 0 = PlannerOptions default
   int window_steps = 0;    // new footsteps per MIQP; 0 = PlannerOptions default (2 n)
   double time_limit_s = 0; // whole plan; 0 = PlannerOptions default
+  // The caller's deadline, and its stop flag (default: none): the plan ends at the sooner
+  // of it and time_limit_s, checked inside every relaxation solve; the best plan so far is
+  // returned with status time_limit. A daemon passes the request's arrival + its limit
+  // (queue time counts) and a flag that SIGTERM or a superseding request sets.
+  Deadline deadline;
   int max_windows = 0;     // MIQPs solved at most; 0 = as many as the route needs. 1 = exactly
                            // the single MIQP of FirstWindowProblem (benchmarks of Table I)
 };

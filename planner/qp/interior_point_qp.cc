@@ -347,6 +347,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
 
   for (int iter = 0; iter < opt.max_iterations; ++iter) {
     result.iterations = iter;
+    if (opt.deadline.Expired()) break;  // kIterationLimit below
     // Q x once per iteration: the dual residual, the objective and the dual scale use it.
     const Eigen::VectorXd qx = f.Q * w.head(n);
     Eigen::VectorXd r_d = f.q;

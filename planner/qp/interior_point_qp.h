@@ -10,6 +10,7 @@
 // always consistent: fixed variables are removed before, see fixed_variable_reduction.h).
 #include <Eigen/Core>
 
+#include "planner/base/deadline.h"
 #include "planner/miqp/miqp.h"
 #include "planner/qp/relaxation_solver.h"
 
@@ -39,6 +40,8 @@ struct InteriorPointOptions {
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;
+  // Checked at every iteration: once expired the solve returns kIterationLimit.
+  Deadline deadline;
 };
 
 // Solves min 0.5 x'Qx + c'x + constant s.t. row bounds, lower <= x <= upper (all finite,

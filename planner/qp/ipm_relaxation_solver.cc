@@ -18,6 +18,7 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     ReducedQp reduced;
     InteriorPointOptions options = options_;
     options.cutoff = cutoff_;
+    options.deadline = deadline_;
     options.tolerance = std::max(options.tolerance, tolerance_);
     cutoff_ = kInfinity;  // the next solve only
     tolerance_ = 0.0;
@@ -46,7 +47,8 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     return result;
   }
 
-  void SetTimeLimit(double) override {}  // one solve takes milliseconds
+  void SetTimeLimit(double) override {}  // SetDeadline holds the time
+  void SetDeadline(const Deadline& deadline) override { deadline_ = deadline; }
   void SetCutoff(double objective) override { cutoff_ = objective; }
   void SetRelativeTolerance(double tolerance) override { tolerance_ = tolerance; }
   std::string Name() const override { return "ipm"; }
@@ -55,6 +57,7 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
   InteriorPointOptions options_;
   double cutoff_ = kInfinity;
   double tolerance_ = 0.0;  // 0: options_.tolerance
+  Deadline deadline_;
 };
 
 }  // namespace

@@ -29,8 +29,8 @@ double ToIpopt(double bound) {
 class QpTnlp final : public Ipopt::TNLP {
  public:
   QpTnlp(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-         const Eigen::VectorXd* warm_start)
-      : p_(problem), lower_(lower), upper_(upper) {
+         const Eigen::VectorXd* warm_start, const Deadline& deadline)
+      : p_(problem), lower_(lower), upper_(upper), deadline_(deadline) {
     if (warm_start != nullptr) start_ = *warm_start;
     // Lower triangle of Q in column-major order.
     for (int col = 0; col < p_.Q.outerSize(); ++col) {
@@ -141,6 +141,15 @@ class QpTnlp final : public Ipopt::TNLP {
     objective_ = obj_value;
   }
 
+  // Called by Ipopt after every iteration: false stops it (User_Requested_Stop), so a
+  // deadline or a stop flag holds inside a solve, on wall time (max_cpu_time counts CPU).
+  bool intermediate_callback(Ipopt::AlgorithmMode, Ipopt::Index, Ipopt::Number, Ipopt::Number,
+                             Ipopt::Number, Ipopt::Number, Ipopt::Number, Ipopt::Number,
+                             Ipopt::Number, Ipopt::Number, Ipopt::Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    return !deadline_.Expired();
+  }
+
   Ipopt::SolverReturn solver_return() const { return solver_return_; }
   const Eigen::VectorXd& x() const { return x_; }
   double objective() const { return objective_; }
@@ -150,6 +159,7 @@ class QpTnlp final : public Ipopt::TNLP {
   const Eigen::VectorXd& lower_;
   const Eigen::VectorXd& upper_;
   Eigen::VectorXd start_;
+  const Deadline deadline_;
   std::vector<int> h_rows_, h_cols_;
   std::vector<double> h_vals_;
   Ipopt::SolverReturn solver_return_ = Ipopt::INTERNAL_ERROR;
@@ -195,8 +205,13 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
     // Ipopt solve at a time in the process, whichever solver object runs it.
     static std::mutex ipopt_mutex;
     const std::lock_guard<std::mutex> lock(ipopt_mutex);
+    if (deadline_.Expired()) {
+      result.status = RelaxationStatus::kIterationLimit;
+      result.x = Eigen::VectorXd::Zero(problem.num_variables());
+      return result;
+    }
     Ipopt::SmartPtr<QpTnlp> tnlp = new QpTnlp(reduced.problem, reduced.lower, reduced.upper,
-                                              warm_start != nullptr ? &reduced_start : nullptr);
+                                              warm_start != nullptr ? &reduced_start : nullptr, deadline_);
     Ipopt::ApplicationReturnStatus status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
     Miqp widened;  // outlives the retry's TNLP, which refers to it
     if (status == Ipopt::Not_Enough_Degrees_Of_Freedom) {
@@ -209,7 +224,8 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
           widened.row_upper(i) += 0.5 * kRowTolerance;
         }
       }
-      tnlp = new QpTnlp(widened, reduced.lower, reduced.upper, warm_start != nullptr ? &reduced_start : nullptr);
+      tnlp = new QpTnlp(widened, reduced.lower, reduced.upper, warm_start != nullptr ? &reduced_start : nullptr,
+                        deadline_);
       status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
     }
     const Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app_->Statistics();
@@ -236,6 +252,7 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
         break;
       case Ipopt::Maximum_Iterations_Exceeded:
       case Ipopt::Maximum_CpuTime_Exceeded:
+      case Ipopt::User_Requested_Stop:  // the deadline (intermediate_callback)
         result.status = RelaxationStatus::kIterationLimit;
         break;
       default:
@@ -250,11 +267,14 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
     app_->Options()->SetNumericValue("max_cpu_time", limit);
   }
 
+  void SetDeadline(const Deadline& deadline) override { deadline_ = deadline; }
+
   std::string Name() const override { return "ipopt"; }
 
  private:
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
   double max_cpu_time_s_;
+  Deadline deadline_;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "planner/base/deadline.h"
 #include "planner/miqp/miqp.h"
 
 namespace mfp {
@@ -41,6 +42,10 @@ class RelaxationSolver {
                                  const Eigen::VectorXd* warm_start) = 0;
   // Caps the time of the next solves (the branch-and-bound passes its remaining time).
   virtual void SetTimeLimit(double seconds) = 0;
+  // The next solves stop, with status kIterationLimit, at their first check (every
+  // iteration) after the deadline passes or its stop flag is set: a time limit holds
+  // inside one solve, not only between solves. Solvers that cannot check ignore it.
+  virtual void SetDeadline(const Deadline& /*deadline*/) {}
   // For the next Solve only: it may stop, with status kCutoff, once it proves that the
   // relaxation's optimum is at least this objective (a node that cannot beat the
   // incumbent need not be solved to the end). Solvers that cannot prove it ignore it.

@@ -17,7 +17,7 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
                          const Eigen::VectorXd* warm_start) override {
     RelaxationResult result = primary_->Solve(problem, lower, upper, warm_start);
     if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible ||
-        result.status == RelaxationStatus::kCutoff) {
+        result.status == RelaxationStatus::kCutoff || deadline_.Expired()) {
       return result;
     }
     return fallback_->Solve(problem, lower, upper, warm_start);
@@ -26,6 +26,11 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   void SetTimeLimit(double seconds) override {
     primary_->SetTimeLimit(seconds);
     fallback_->SetTimeLimit(seconds);
+  }
+  void SetDeadline(const Deadline& deadline) override {
+    deadline_ = deadline;
+    primary_->SetDeadline(deadline);
+    fallback_->SetDeadline(deadline);
   }
 
   void SetCutoff(double objective) override {  // the fallback solves to the end
@@ -38,6 +43,7 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
  private:
   std::unique_ptr<RelaxationSolver> primary_;
   std::unique_ptr<RelaxationSolver> fallback_;
+  Deadline deadline_;
 };
 
 }  // namespace

@@ -45,6 +45,7 @@ class Search {
         opt_(options),
         rounding_(rounding),
         start_(Clock::now()),
+        deadline_(options.deadline.Within(options.time_limit_s)),
         pseudo_(problem.num_variables()) {
     group_of_.assign(p_.num_variables(), -1);
     for (size_t g = 0; g < p_.sos1_groups.size(); ++g) {
@@ -57,7 +58,7 @@ class Search {
     open_.push_back(std::move(root));
     const int workers = static_cast<int>(solvers_.size());
     while (!open_.empty()) {
-      if (Elapsed() >= opt_.time_limit_s) {
+      if (deadline_.Expired()) {
         hit_time_limit_ = true;
         break;
       }
@@ -258,7 +259,8 @@ class Search {
 
   RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                              const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
-    solver.SetTimeLimit(std::max(1e-3, opt_.time_limit_s - Elapsed()));
+    solver.SetTimeLimit(std::max(1e-3, std::min(opt_.time_limit_s, deadline_.RemainingSeconds())));
+    solver.SetDeadline(deadline_);
     if (opt_.early_cutoff) solver.SetCutoff(cutoff);
     if (opt_.relaxation_tolerance > 0.0) solver.SetRelativeTolerance(opt_.relaxation_tolerance);
     return solver.Solve(p_, lower, upper, warm);
@@ -431,7 +433,7 @@ class Search {
                             pseudo_.Count(c.var, true) >= opt_.reliability;
       double score = c.score;
       if (!reliable && trials < opt_.strong_branching_candidates &&
-          since_better < opt_.strong_branching_lookahead && Elapsed() < opt_.time_limit_s) {
+          since_better < opt_.strong_branching_lookahead && !deadline_.Expired()) {
         ++trials;
         double gain[2];
         StrongBranchGains(c.var, x, rel.objective, *lower, *upper, gain);
@@ -515,7 +517,7 @@ class Search {
     // Each proposal is a QP with the integers fixed: solved a round of workers at a time.
     const int workers = static_cast<int>(solvers_.size());
     for (size_t first = 0; first < proposals.size(); first += workers) {
-      if (Elapsed() >= opt_.time_limit_s) return;
+      if (deadline_.Expired()) return;
       const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
       std::vector<RelaxationResult> results(count);
       ForEachInParallel(count, [&](int k) {
@@ -576,6 +578,11 @@ class Search {
 
   BranchAndBoundResult Finish() {
     result_.solve_time_s = Elapsed();
+    // A relaxation the deadline cut short left its subtree unresolved: that is the time
+    // limit, not a solver failure.
+    if (deadline_.Expired() && (root_failed_ || unresolved_bound_ < kInfinity || !open_.empty())) {
+      hit_time_limit_ = true;
+    }
     const double open_bound = UnexploredBound();
     if (HasIncumbent()) {
       result_.bound = std::min(result_.objective, std::max(result_.bound, open_bound));
@@ -595,7 +602,7 @@ class Search {
                                     unresolved_bound_ == kInfinity)) {
       result_.status = SolveStatus::kInfeasible;
       result_.bound = kInfinity;
-    } else if (root_failed_) {
+    } else if (root_failed_ && !hit_time_limit_) {
       result_.status = SolveStatus::kInternalError;
     } else {
       result_.status = SolveStatus::kNoSolution;
@@ -609,6 +616,7 @@ class Search {
   const BranchAndBoundOptions& opt_;
   const RoundingHeuristic& rounding_;
   const Clock::time_point start_;
+  const Deadline deadline_;
   PseudoCosts pseudo_;
   std::vector<int> group_of_;
   std::vector<Node> open_;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include "planner/base/deadline.h"
 #include "planner/miqp/miqp.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/base/solve_status.h"
@@ -34,6 +35,10 @@ struct BranchAndBoundResult;
 
 struct BranchAndBoundOptions {
   double time_limit_s = 10.0;
+  // The caller's deadline (a whole plan's limit, a stop flag): the search ends at the
+  // sooner of it and time_limit_s from its start, checked between nodes and inside
+  // every relaxation solve (RelaxationSolver::SetDeadline).
+  Deadline deadline;
   int max_nodes = 20000;
   double relative_gap = 1e-4;      // stop when (incumbent - bound) <= relative_gap * max(1, |incumbent|)
   double absolute_gap = 1e-6;

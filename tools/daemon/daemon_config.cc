@@ -30,7 +30,7 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
 
 }  // namespace
 
-DaemonConfig LoadDaemonConfig(const std::string& path) {
+static DaemonConfig LoadDaemonConfigUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   YamlContext ctx{path, ""};
   if (!root.IsMap()) throw InputError(path + ": expected a mapping at the top level");
@@ -59,6 +59,10 @@ DaemonConfig LoadDaemonConfig(const std::string& path) {
   config.planner.default_time_limit_s = config.limits.default_time_limit_s;
   config.planner.default_max_steps = config.limits.default_max_steps;
   return config;
+}
+
+DaemonConfig LoadDaemonConfig(const std::string& path) {
+  return GuardYaml(path, [&] { return LoadDaemonConfigUnguarded(path); });
 }
 
 }  // namespace mfp

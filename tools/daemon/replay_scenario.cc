@@ -55,7 +55,7 @@ ScenarioRequest ReadRequest(const YAML::Node& node, const YamlContext& ctx) {
 
 }  // namespace
 
-ReplayScenario LoadReplayScenario(const std::string& path) {
+static ReplayScenario LoadReplayScenarioUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RejectUnknownKeys(root, ctx, {"description", "terrain", "map", "map_at_s", "requests", "malformed"});
@@ -140,6 +140,10 @@ std::vector<uint8_t> MalformedPayload(const std::string& kind, const std::string
   std::string known;
   for (const std::string& k : MalformedKinds()) known += (known.empty() ? "" : ", ") + k;
   throw InputError("malformed payload kind '" + kind + "': expected one of " + known);
+}
+
+ReplayScenario LoadReplayScenario(const std::string& path) {
+  return GuardYaml(path, [&] { return LoadReplayScenarioUnguarded(path); });
 }
 
 }  // namespace mfp

@@ -1,0 +1,122 @@
+// Deadlines and stop flags hold inside a solve: the interior point QP and Ipopt stop at
+// their next iteration, the search at its next node, the planner with the best so far.
+#include "planner/base/deadline.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+
+#include "planner/search/branch_and_bound.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/qp/interior_point_qp.h"
+#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/ipopt_relaxation_solver.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "planner/io/robot_loader.h"
+#include "planner/io/scenario_yaml.h"
+
+namespace mfp {
+namespace {
+
+TEST(Deadline, NeverAfterWithinAndStop) {
+  EXPECT_FALSE(Deadline().Expired());
+  EXPECT_EQ(Deadline().RemainingSeconds(), std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(Deadline::After(0.0).Expired());
+  EXPECT_FALSE(Deadline::After(100.0).Expired());
+  EXPECT_LE(Deadline::After(100.0).Within(1.0).RemainingSeconds(), 1.0);
+  EXPECT_LE(Deadline().Within(2.0).RemainingSeconds(), 2.0);
+  EXPECT_LE(Deadline::After(1.0).Within(100.0).RemainingSeconds(), 1.0);
+  std::atomic<bool> stop{false};
+  const Deadline d = Deadline::After(100.0).WithStop(&stop).Within(50.0);
+  EXPECT_FALSE(d.Expired());
+  stop = true;
+  EXPECT_TRUE(d.Expired());
+  EXPECT_TRUE(d.Stopped());
+  EXPECT_EQ(d.RemainingSeconds(), 0.0);
+}
+
+// n variables, each pulled to a target outside a shared budget row: many iterations.
+Miqp Qp(int n) {
+  MiqpBuilder b;
+  LinExpr sum;
+  for (int j = 0; j < n; ++j) {
+    const int x = b.AddVariable("x" + std::to_string(j), -1, 1, j % 2 == 0);
+    b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(0.3 + 0.01 * j), 1.0);
+    sum += LinExpr::Var(x);
+  }
+  b.AddRow("budget", sum, -kInfinity, 0.5);
+  return b.Build();
+}
+
+TEST(Deadline, EverySolverStopsAtItsNextIterationWhenStopped) {
+  const Miqp p = Qp(20);
+  std::atomic<bool> stop{true};
+  const Deadline stopped = Deadline().WithStop(&stop);
+  InteriorPointOptions options;
+  options.deadline = stopped;
+  const RelaxationResult direct = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, options);
+  EXPECT_EQ(direct.status, RelaxationStatus::kIterationLimit);
+  EXPECT_EQ(direct.iterations, 0);
+  for (RelaxationBackend backend : {RelaxationBackend::kIpopt, RelaxationBackend::kInteriorPointWithIpoptFallback}) {
+    const auto solver = MakeRelaxationSolver(backend);
+    solver->SetDeadline(stopped);
+    const RelaxationResult r = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+    EXPECT_EQ(r.status, RelaxationStatus::kIterationLimit) << solver->Name();
+    stop = false;  // the same solver solves once the flag is down
+    EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).status, RelaxationStatus::kSolved)
+        << solver->Name();
+    stop = true;
+  }
+}
+
+TEST(Deadline, SearchStopsWhenTheFlagIsSetDuringIt) {
+  // The flag goes up inside the root's rounding, mid-search: no node after the root is
+  // solved and the result says time_limit, keeping the rounding's incumbent.
+  const Miqp p = Qp(16);
+  std::atomic<bool> stop{false};
+  BranchAndBoundOptions options;
+  options.time_limit_s = 3600.0;
+  options.deadline = Deadline().WithStop(&stop);
+  const RoundingHeuristic raise = [&stop](const Eigen::VectorXd&) {
+    stop = true;
+    return std::vector<Eigen::VectorXd>{};
+  };
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
+  const BranchAndBoundResult r = SolveBranchAndBound(p, *solver, options, raise);
+  EXPECT_TRUE(stop);
+  EXPECT_EQ(r.nodes, 1);
+  EXPECT_TRUE(r.status == SolveStatus::kTimeLimit || r.status == SolveStatus::kNoSolution)
+      << ToString(r.status);
+  // Without the flag the same search goes on past the root.
+  std::atomic<bool> never{false};
+  options.deadline = Deadline().WithStop(&never);
+  EXPECT_GT(SolveBranchAndBound(p, *solver, options).nodes, 1);
+}
+
+TEST(Deadline, APlanStopsAtTheFlagAndKeepsWhatItHas) {
+  // A stop flag raised after the first window (from the progress callback, as a daemon's
+  // SIGTERM handler would from its own thread): the plan returns at once, with the first
+  // window's steps and status time_limit saying it was stopped.
+  const Scenario s = LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_flat.yaml");
+  const RobotModel robot = LoadRobot(s.robot_path);
+  const std::vector<ConvexRegion> regions = ScenarioRegions(s, robot, nullptr);
+  PlanRequest request = ScenarioRequest(s, robot, regions);
+  std::atomic<bool> stop{false};
+  request.deadline = Deadline().WithStop(&stop);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(s.options.relaxation_solver, 1);
+  int windows = 0;
+  const Plan plan = PlanFootsteps(robot, regions, request, s.options, solvers.workers(),
+                                  [&](const PlanProgress& p) {
+                                    windows = p.window;
+                                    stop = true;
+                                  });
+  EXPECT_EQ(windows, 1);
+  EXPECT_EQ(plan.status, SolveStatus::kTimeLimit);
+  EXPECT_NE(plan.message.find("stopped"), std::string::npos) << plan.message;
+  EXPECT_GT(plan.footsteps.size(), static_cast<size_t>(robot.num_legs()));
+  EXPECT_FALSE(plan.reaches_goal);
+}
+
+}  // namespace
+}  // namespace mfp
