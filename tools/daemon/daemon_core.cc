@@ -507,7 +507,8 @@ void DaemonCore::ReplyStatus(const QueuedRequest& request, SolveStatus status,
     std::lock_guard<std::mutex> lock(mutex_);
     if (status == SolveStatus::kDropped) ++counters_.dropped_requests;
   }
-  Log("request " + std::to_string(request.request_id) + " " + ToString(status) + ": " + why);
+  Log("request " + std::to_string(request.request_id) + " answered " + ToString(status) + " (" +
+      why + ")");
   Reply(StatusReply(status, why, request.request_id, request.robot_name, clock_(), 0));
 }
 
