@@ -8,6 +8,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -19,6 +21,8 @@
 #include "mfp/region_set_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/check.h"
+#include "test_temp_path.h"
+#include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
 #include "tools/daemon/daemon_setup.h"
@@ -599,6 +603,35 @@ TEST(DaemonRunnerTest, StopDuringAMapExtractionReturnsPromptlyAndAnswersEveryReq
   std::lock_guard<std::mutex> lock(collector.mutex);
   EXPECT_EQ(collector.replies.size(), 2u);
   EXPECT_EQ(collector.by_status[plan_t::STATUS_DROPPED], 2);
+}
+
+TEST(DaemonConfigTest, IntakeAndLcmBuffersComeFromTheConfig) {
+  const DaemonConfig config = LoadDaemonConfig(std::string(MFP_SOURCE_DIR) + "/config/daemon.yaml");
+  EXPECT_EQ(config.lcm_queue_capacity, 4096);
+  // 0 in the file: the largest accepted map and a MiB more.
+  EXPECT_EQ(config.lcm_recv_buf_bytes, config.limits.max_map_bytes + (1u << 20));
+  EXPECT_TRUE(config.limits.supersede_same_robot);
+  EXPECT_FALSE(config.limits.accept_empty_maps);
+  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667?ttl=0", 1000),
+            "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=1000");
+  EXPECT_EQ(WithReceiveBuffer("udpm://239.255.76.67:7667", 1000),
+            "udpm://239.255.76.67:7667?recv_buf_size=1000");
+  EXPECT_EQ(WithReceiveBuffer("udpm://h:1?recv_buf_size=5", 1000), "udpm://h:1?recv_buf_size=5");
+  EXPECT_EQ(WithReceiveBuffer("memq://", 1000), "memq://");
+
+  const std::string path = TestTempPath("daemon.yaml");
+  {
+    std::ofstream out(path);
+    out << "robots: [" << MFP_SOURCE_DIR << "/config/robots/hexapod.yaml]\n"
+        << "lcm_queue_capacity: 0\n";
+  }
+  try {
+    LoadDaemonConfig(path);
+    FAIL() << "lcm_queue_capacity: 0 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lcm_queue_capacity"), std::string::npos) << e.what();
+  }
+  std::remove(path.c_str());
 }
 
 // The live runner over memq://: bad payloads and invalid requests, then a valid one
