@@ -288,6 +288,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   struct Answer {
     int64_t latency_us;
     int8_t status;
+    double solve_time_s;
   };
   std::map<int64_t, std::vector<Answer>> answers;
   int resets = 0, cycles_walked = 0;
@@ -299,7 +300,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     std::lock_guard<std::mutex> lock(mutex);
     const auto sent = sent_us.find(p.request_id);
     if (sent == sent_us.end()) return;
-    answers[p.request_id].push_back({now - sent->second, p.status});
+    answers[p.request_id].push_back({now - sent->second, p.status, p.solve_time_s});
     const auto status = static_cast<SolveStatus>(p.status);
     if (p.request_id < walked_to) return;  // an older plan than the one walked on
     if (HasPlan(status) && p.num_steps >= 2 * n) {
@@ -343,7 +344,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   const int per_minute = static_cast<int>(std::lround(60.0 * rate_hz));
   auto next = Clock::now();
   int64_t first_of_minute = 1;
-  std::vector<double> all_latency_ms;
+  std::vector<double> all_latency_ms, all_solve_ms;
   std::map<std::string, int> all_statuses;
   auto report = [&](int64_t first, int64_t last, const std::string& label) {
     std::vector<double> latency_ms;
@@ -361,7 +362,10 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
         all_latency_ms.push_back(latency_ms.back());
         ++by_status[a.status];
         ++all_statuses[ToString(static_cast<SolveStatus>(a.status))];
-        if (HasPlan(static_cast<SolveStatus>(a.status))) ++planned;
+        if (HasPlan(static_cast<SolveStatus>(a.status))) {
+          ++planned;
+          all_solve_ms.push_back(1e3 * a.solve_time_s);
+        }
       }
     }
     std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9.1f\n", label.c_str(),
@@ -406,6 +410,9 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               Percentile(all_latency_ms, 0.5), Percentile(all_latency_ms, 0.9),
               Percentile(all_latency_ms, 0.99), Percentile(all_latency_ms, 1.0));
   for (const auto& [name, count] : all_statuses) std::printf(" %s %d", name.c_str(), count);
+  std::printf("\n   planner solve time of the plans: p50 %.1f ms, p90 %.1f ms, p99 %.1f ms (the rest of a reply's "
+              "latency is the wait for the plan before it)",
+              Percentile(all_solve_ms, 0.5), Percentile(all_solve_ms, 0.9), Percentile(all_solve_ms, 0.99));
   std::printf("\n   daemon counters: requests %lld, replies %lld, superseded %lld, dropped %lld, expired %lld, "
               "time-limit endings %lld, abandoned solves %lld, intake overflows %lld, publish failures %lld; "
               "gait cycles walked %d, furthest %.2f m from the start, course restarts %d\n",
