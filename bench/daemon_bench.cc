@@ -250,7 +250,7 @@ TerrainDescription StoneField(uint32_t seed) {
   for (int i = -11; i <= 11; ++i) {
     for (int j = -11; j <= 11; ++j) {
       const double x = 0.27 * i, y = 0.27 * j;
-      if (std::abs(x) < 0.6 && std::abs(y) < 0.6) continue;  // the pad
+      if (std::abs(x) < 0.5 && std::abs(y) < 0.5) continue;  // the pad (the next ring overlaps its edge)
       TerrainBox stone;
       stone.name = "stone";
       stone.center_world_m = Eigen::Vector3d(x, y, height(rng) - 0.05);
