@@ -8,6 +8,14 @@
 //     process's resident memory (VmRSS) before, during and after. Most of these are
 //     dropped (answered) by the newest-first queue: this measures that nothing grows
 //     with the number of requests, not 10,000 solves.
+//  3. Replanning soak (--soak-minutes N): a robot replanning as it walks, at --soak-rate
+//     (10 Hz) for N minutes, on the stepping stones and on a real-size seeded field of
+//     stones (--soak-map): each request starts from the stance the last plan reached
+//     after one gait cycle, 12 new footsteps towards the course's goal, time limit
+//     --soak-time-limit. Per minute: replies, p50/p90/p99/max reply latency (publish to
+//     receipt, every reply), drops, supersessions, time-limit endings, VmRSS.
+//  4. Burst (--burst N, 2000): N requests published at once; every one answered once, or
+//     counted.
 // Prints a table; timing is never a pass/fail criterion.
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -18,6 +26,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <random>
 #include <thread>
 
 #include "lcmtypes/lcm_transport.h"
@@ -27,7 +36,11 @@
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
 #include "terrain/octomap_io.h"
+#include "terrain/terrain_yaml.h"
 #include "terrain/voxelize.h"
+#include "terrain/terrain_catalogue.h"
+#include "planner/io/scenario_yaml.h"
+#include "planner/planning/footstep_planner.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
@@ -102,10 +115,8 @@ class ReplyLog {
   std::map<int64_t, Reply> replies_;
 };
 
-int Run(const std::string& config_path, int latency_requests, double rate_hz, int memory_requests,
-        double time_limit_s) {
-  DaemonConfig config = LoadDaemonConfig(config_path);
-  auto setup = std::make_shared<const DaemonSetup>(LoadDaemonSetup(config));
+int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requests, double rate_hz,
+               int memory_requests, double time_limit_s) {
   const RobotModel& hexapod = setup->robots.at("hexapod");
 
   // Flat ground, 4 m x 3 m, as an OctoMap through the daemon's own map pipeline.
@@ -122,7 +133,7 @@ int Run(const std::string& config_path, int latency_requests, double rate_hz, in
   map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
   map.num_bytes = static_cast<int32_t>(map.data.size());
 
-  LcmTransport transport("memq://");
+  LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
   DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
   core.SubscribeTo(transport);
   ReplyLog replies;
@@ -215,6 +226,270 @@ int Run(const std::string& config_path, int latency_requests, double rate_hz, in
   return 0;
 }
 
+terrain_map_t MapMessage(const TerrainDescription& terrain) {
+  terrain_map_t map{};
+  map.utime = NowUs();
+  map.frame = "world";
+  map.format = "bt";
+  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
+  map.num_bytes = static_cast<int32_t>(map.data.size());
+  return map;
+}
+
+// A real-size field, seeded: a 1.2 m start pad at the origin and stones of 0.21 m on a
+// 0.27 m grid (the stepping stones' spacing) over 6.2 m x 6.2 m, tops within +-3 cm.
+TerrainDescription StoneField(uint32_t seed) {
+  TerrainDescription terrain;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> height(-0.03, 0.03);
+  TerrainBox pad;
+  pad.name = "pad";
+  pad.center_world_m = Eigen::Vector3d(0, 0, -0.05);
+  pad.size_m = Eigen::Vector3d(1.2, 1.2, 0.1);
+  terrain.boxes.push_back(pad);
+  for (int i = -11; i <= 11; ++i) {
+    for (int j = -11; j <= 11; ++j) {
+      const double x = 0.27 * i, y = 0.27 * j;
+      if (std::abs(x) < 0.5 && std::abs(y) < 0.5) continue;  // the pad (the next ring overlaps its edge)
+      TerrainBox stone;
+      stone.name = "stone";
+      stone.center_world_m = Eigen::Vector3d(x, y, height(rng) - 0.05);
+      stone.size_m = Eigen::Vector3d(0.21, 0.21, 0.1);
+      terrain.boxes.push_back(stone);
+    }
+  }
+  return terrain;
+}
+
+struct SoakCourse {
+  std::string name;
+  TerrainDescription terrain;
+  double goal_x = 0, goal_y = 0, goal_yaw = 0;
+};
+
+// One soak: a fresh daemon, a walking robot, a table per minute.
+void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& course, double minutes,
+          double rate_hz, double time_limit_s) {
+  const RobotModel& robot = setup->robots.at(setup->config.default_robot);
+  const int n = robot.num_legs();
+  const terrain_map_t map = MapMessage(course.terrain);
+  const std::vector<ConvexRegion> regions = MakeOctomapMapFunction(*setup)(
+      std::string(map.data.begin(), map.data.end()), "bt", course.name);
+  const std::vector<Eigen::Vector3d> start = NominalStance(robot, regions, 0, 0, 0);
+
+  LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
+  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
+  core.SubscribeTo(transport);
+
+  std::mutex mutex;
+  std::vector<Eigen::Vector3d> feet = start;  // where the robot stands now
+  int64_t walked_to = 0;                      // newest request id whose plan moved the robot
+  std::map<int64_t, int64_t> sent_us;         // by request id
+  struct Answer {
+    int64_t latency_us;
+    int8_t status;
+    double solve_time_s;
+  };
+  std::map<int64_t, std::vector<Answer>> answers;
+  int resets = 0, cycles_walked = 0;
+  double furthest_m = 0;  // from the start, of the centre of the feet
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t p;
+    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
+    const int64_t now = NowUs();
+    std::lock_guard<std::mutex> lock(mutex);
+    const auto sent = sent_us.find(p.request_id);
+    if (sent == sent_us.end()) return;
+    answers[p.request_id].push_back({now - sent->second, p.status, p.solve_time_s});
+    const auto status = static_cast<SolveStatus>(p.status);
+    if (p.request_id < walked_to) return;  // an older plan than the one walked on
+    if (HasPlan(status) && p.num_steps >= 2 * n) {
+      // Walk one gait cycle of the plan: each leg to its first new footstep.
+      for (int k = n; k < 2 * n; ++k) {
+        const footstep_t& step = p.steps[static_cast<size_t>(k)];
+        if (step.leg >= 0 && step.leg < n)
+          feet[static_cast<size_t>(step.leg)] =
+              Eigen::Vector3d(step.position[0], step.position[1], step.position[2]);
+      }
+      walked_to = p.request_id;
+      ++cycles_walked;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (const auto& f : feet) centre += f / n;
+      furthest_m = std::max(furthest_m, std::hypot(centre.x(), centre.y()));
+      if (std::hypot(centre.x() - course.goal_x, centre.y() - course.goal_y) < 0.15) {
+        feet = start;  // arrived: walk the course again
+        ++resets;
+      }
+    } else if (status == SolveStatus::kInvalidStart || status == SolveStatus::kInfeasible) {
+      feet = start;  // lost: start again
+      walked_to = p.request_id;
+      ++resets;
+    }
+  });
+  DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+
+  std::printf("\n3. replanning soak on %s (%zu regions, %zu map bytes): %s, %.0f Hz for %.1f min, "
+              "%d new footsteps per request, time limit %.2f s\n",
+              course.name.c_str(), regions.size(), map.data.size(), robot.name.c_str(), rate_hz,
+              minutes, 2 * n, time_limit_s);
+  std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s\n", "minute", "sent", "plans",
+              "p50 ms", "p90 ms", "p99 ms", "max ms", "dropped", "supersed.", "time lim.",
+              "unanswer.", "VmRSS MiB");
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
+  const int total = static_cast<int>(std::lround(minutes * 60.0 * rate_hz));
+  const int per_minute = static_cast<int>(std::lround(60.0 * rate_hz));
+  auto next = Clock::now();
+  int64_t first_of_minute = 1;
+  std::vector<double> all_latency_ms, all_solve_ms;
+  std::map<std::string, int> all_statuses;
+  auto report = [&](int64_t first, int64_t last, const std::string& label) {
+    std::vector<double> latency_ms;
+    std::map<int, int> by_status;
+    int unanswered = 0, planned = 0;
+    std::lock_guard<std::mutex> lock(mutex);
+    for (int64_t id = first; id <= last; ++id) {
+      const auto found = answers.find(id);
+      if (found == answers.end()) {
+        ++unanswered;
+        continue;
+      }
+      for (const Answer& a : found->second) {
+        latency_ms.push_back(1e-3 * static_cast<double>(a.latency_us));
+        all_latency_ms.push_back(latency_ms.back());
+        ++by_status[a.status];
+        ++all_statuses[ToString(static_cast<SolveStatus>(a.status))];
+        if (HasPlan(static_cast<SolveStatus>(a.status))) {
+          ++planned;
+          all_solve_ms.push_back(1e3 * a.solve_time_s);
+        }
+      }
+    }
+    std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9.1f\n", label.c_str(),
+                static_cast<long long>(last - first + 1), planned, Percentile(latency_ms, 0.5),
+                Percentile(latency_ms, 0.9), Percentile(latency_ms, 0.99), Percentile(latency_ms, 1.0),
+                by_status[plan_t::STATUS_DROPPED], by_status[plan_t::STATUS_SUPERSEDED],
+                by_status[plan_t::STATUS_TIME_LIMIT], unanswered, RssMiB());
+    std::fflush(stdout);
+  };
+  for (int i = 1; i <= total; ++i) {
+    std::this_thread::sleep_until(next);
+    next += period;
+    plan_request_t request{};
+    request.request_id = i;
+    request.utime = NowUs();
+    request.num_legs = n;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      for (const auto& f : feet) request.start_feet.push_back({f.x(), f.y(), f.z()});
+      sent_us[i] = NowUs();
+    }
+    request.goal_x = course.goal_x;
+    request.goal_y = course.goal_y;
+    request.goal_yaw = course.goal_yaw;
+    request.max_steps = 2 * n;
+    request.time_limit_s = time_limit_s;
+    const auto bytes = Encode(request);
+    transport.Publish(kPlanRequestChannel, bytes.data(), bytes.size());
+    if (i % per_minute == 0 || i == total) {
+      // The minute's last requests get their time limit (and a little) to be answered.
+      std::this_thread::sleep_for(std::chrono::duration<double>(time_limit_s + 0.2));
+      next = Clock::now();
+      report(first_of_minute, i, std::to_string((i + per_minute - 1) / per_minute));
+      first_of_minute = i + 1;
+    }
+  }
+  runner.Stop();
+  while (transport.HandleTimeout(50) > 0) {
+  }
+  const DaemonCounters c = core.counters();
+  std::printf("   whole soak: reply latency p50 %.1f ms, p90 %.1f ms, p99 %.1f ms, max %.1f ms; replies by status:",
+              Percentile(all_latency_ms, 0.5), Percentile(all_latency_ms, 0.9),
+              Percentile(all_latency_ms, 0.99), Percentile(all_latency_ms, 1.0));
+  for (const auto& [name, count] : all_statuses) std::printf(" %s %d", name.c_str(), count);
+  std::printf("\n   planner solve time of the plans: p50 %.1f ms, p90 %.1f ms, p99 %.1f ms (the rest of a reply's "
+              "latency is the wait for the plan before it)",
+              Percentile(all_solve_ms, 0.5), Percentile(all_solve_ms, 0.9), Percentile(all_solve_ms, 0.99));
+  std::printf("\n   daemon counters: requests %lld, replies %lld, superseded %lld, dropped %lld, expired %lld, "
+              "time-limit endings %lld, abandoned solves %lld, intake overflows %lld, publish failures %lld; "
+              "gait cycles walked %d, furthest %.2f m from the start, course restarts %d\n",
+              static_cast<long long>(c.requests), static_cast<long long>(c.plans),
+              static_cast<long long>(c.superseded_requests), static_cast<long long>(c.dropped_requests),
+              static_cast<long long>(c.expired_requests), static_cast<long long>(c.time_limit_endings),
+              static_cast<long long>(c.abandoned_solves), static_cast<long long>(c.inbox_overflows),
+              static_cast<long long>(c.publish_failures), cycles_walked, furthest_m, resets);
+  std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
+              "at each minute's end so they are all in)\n", time_limit_s + 0.2);
+}
+
+// N requests published back to back: each answered exactly once, or counted.
+void Burst(const std::shared_ptr<const DaemonSetup>& setup, int count, double time_limit_s) {
+  const RobotModel& robot = setup->robots.at(setup->config.default_robot);
+  const SoakCourse flat{"flat", FlatTerrain()};
+  const terrain_map_t map = MapMessage(flat.terrain);
+  LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
+  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
+  core.SubscribeTo(transport);
+  std::mutex mutex;
+  std::map<int64_t, int> replies;
+  std::map<std::string, int> statuses;
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t p;
+    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
+    std::lock_guard<std::mutex> lock(mutex);
+    ++replies[p.request_id];
+    ++statuses[ToString(static_cast<SolveStatus>(p.status))];
+  });
+  DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  plan_request_t request{};
+  request.num_legs = robot.num_legs();
+  for (const LegModel& leg : robot.legs)
+    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
+  request.goal_x = 0.25;
+  request.max_steps = 12;
+  request.time_limit_s = time_limit_s;
+  const auto start = Clock::now();
+  for (int i = 1; i <= count; ++i) {
+    request.request_id = i;
+    request.utime = NowUs();
+    const auto bytes = Encode(request);
+    transport.Publish(kPlanRequestChannel, bytes.data(), bytes.size());
+  }
+  const double publish_s = std::chrono::duration<double>(Clock::now() - start).count();
+  for (int i = 0; i < 600; ++i) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (replies.size() >= static_cast<size_t>(count)) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const double answer_s = std::chrono::duration<double>(Clock::now() - start).count();
+  runner.Stop();
+  while (transport.HandleTimeout(50) > 0) {
+  }
+  const DaemonCounters c = core.counters();
+  std::lock_guard<std::mutex> lock(mutex);
+  int twice = 0;
+  for (const auto& entry : replies) twice += entry.second > 1 ? 1 : 0;
+  std::printf("\n4. burst: %d requests published at once (%.3f s to publish), LCM queue %d, intake %d\n",
+              count, publish_s, setup->config.lcm_queue_capacity, setup->config.limits.inbox_size);
+  std::printf("   answered %zu of %d (%d more than once) in %.2f s; by status:", replies.size(), count,
+              twice, answer_s);
+  for (const auto& [name, n] : statuses) std::printf(" %s %d", name.c_str(), n);
+  std::printf("\n   daemon counters: requests %lld, replies %lld, rejected messages %lld, superseded %lld, "
+              "dropped %lld, intake overflows %lld, publish failures %lld\n",
+              static_cast<long long>(c.requests), static_cast<long long>(c.plans),
+              static_cast<long long>(c.rejected_messages), static_cast<long long>(c.superseded_requests),
+              static_cast<long long>(c.dropped_requests), static_cast<long long>(c.inbox_overflows),
+              static_cast<long long>(c.publish_failures));
+}
+
 }  // namespace
 }  // namespace mfp
 
@@ -223,14 +498,46 @@ int main(int argc, char** argv) {
   std::string config = "config/daemon.yaml";
   int latency_requests = 100, memory_requests = 10000;
   double rate_hz = 10.0, time_limit_s = 2.0;
+  double soak_minutes = 0, soak_rate_hz = 10.0, soak_time_limit_s = 0.5;
+  std::string soak_map = "both";
+  std::string stones = "config/scenarios/hexapod_stepping_stones_90.yaml";
+  int burst = 0;
   app.add_option("--config", config, "daemon YAML")->capture_default_str();
   app.add_option("--requests", latency_requests, "requests in the latency phase")->capture_default_str();
   app.add_option("--rate", rate_hz, "request rate of the latency phase [Hz]")->capture_default_str();
   app.add_option("--memory-requests", memory_requests, "requests in the memory phase")->capture_default_str();
   app.add_option("--time-limit", time_limit_s, "per-request time limit [s]")->capture_default_str();
+  app.add_flag("--skip-classic", "skip phases 1 and 2");
+  app.add_option("--soak-minutes", soak_minutes, "replanning soak length per map [min]; 0 = none")
+      ->capture_default_str();
+  app.add_option("--soak-rate", soak_rate_hz, "replanning rate [Hz]")->capture_default_str();
+  app.add_option("--soak-time-limit", soak_time_limit_s, "replanning time limit [s]")->capture_default_str();
+  app.add_option("--soak-map", soak_map, "stones, field or both")
+      ->check(CLI::IsMember({"stones", "field", "both"}))
+      ->capture_default_str();
+  app.add_option("--stones", stones, "the stepping stones scenario of the soak")->capture_default_str();
+  app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
-    return mfp::Run(config, latency_requests, rate_hz, memory_requests, time_limit_s);
+    const mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);
+    auto setup = std::make_shared<const mfp::DaemonSetup>(mfp::LoadDaemonSetup(daemon_config));
+    if (app.count("--skip-classic") == 0)
+      mfp::RunClassic(setup, latency_requests, rate_hz, memory_requests, time_limit_s);
+    if (soak_minutes > 0) {
+      std::printf("(VmRSS is the whole bench process: daemon and client)\n");
+      if (soak_map != "field") {
+        const mfp::Scenario scenario = mfp::LoadScenario(stones);
+        mfp::SoakCourse course{"stepping stones (" + stones + ")", mfp::LoadTerrainDescription(stones),
+                               scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad};
+        mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s);
+      }
+      if (soak_map != "stones") {
+        mfp::SoakCourse course{"a 6.2 m x 6.2 m field of 504 stones (seed 19)", mfp::StoneField(19), 2.16, 0.0, 0.0};
+        mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s);
+      }
+    }
+    if (burst > 0) mfp::Burst(setup, burst, soak_time_limit_s);
+    return 0;
   } catch (const mfp::InputError& e) {
     std::fprintf(stderr, "mfp-daemon-bench: %s\n", e.what());
     return 2;

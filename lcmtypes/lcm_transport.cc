@@ -4,7 +4,15 @@
 
 namespace mfp {
 
-LcmTransport::LcmTransport(const std::string& url) : url_(url) {
+std::string WithReceiveBuffer(const std::string& url, size_t bytes) {
+  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
+  return url + (url.find('?') == std::string::npos ? "?" : "&") +
+         "recv_buf_size=" + std::to_string(bytes);
+}
+
+LcmTransport::LcmTransport(const std::string& url, int queue_capacity)
+    : url_(url), queue_capacity_(queue_capacity) {
+  MFP_CHECK(queue_capacity > 0);
   lcm_ = lcm_create(url.c_str());
   if (lcm_ == nullptr) throw InputError("lcm_url: LCM could not be created for '" + url + "'");
 }
@@ -25,6 +33,7 @@ void LcmTransport::Subscribe(const std::string& channel, RawHandler handler) {
   lcm_subscription_t* subscription = lcm_subscribe(lcm_, ("^" + channel + "$").c_str(),
                                                    &LcmTransport::OnMessage, slot.get());
   MFP_CHECK_MSG(subscription != nullptr, "lcm_subscribe failed for " + channel);
+  MFP_CHECK(lcm_subscription_set_queue_capacity(subscription, queue_capacity_) == 0);
 }
 
 int LcmTransport::HandleTimeout(int timeout_ms) { return lcm_handle_timeout(lcm_, timeout_ms); }

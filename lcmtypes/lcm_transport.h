@@ -12,10 +12,16 @@
 
 namespace mfp {
 
+// A udpm:// URL with the option recv_buf_size=BYTES (the socket receive buffer, which
+// must hold every fragment of the largest message); an option already in the URL and
+// any other provider are left as they are.
+std::string WithReceiveBuffer(const std::string& url, size_t bytes);
+
 class LcmTransport final : public Transport {
  public:
-  // Throws InputError when LCM cannot be created for the URL.
-  explicit LcmTransport(const std::string& url);
+  // Throws InputError when LCM cannot be created for the URL. queue_capacity: messages
+  // LCM keeps per subscribed channel before it discards (LCM's own default is 30).
+  explicit LcmTransport(const std::string& url, int queue_capacity = 30);
   ~LcmTransport() override;
   LcmTransport(const LcmTransport&) = delete;
   LcmTransport& operator=(const LcmTransport&) = delete;
@@ -30,6 +36,7 @@ class LcmTransport final : public Transport {
   static void OnMessage(const lcm_recv_buf_t* rbuf, const char* channel, void* user);
 
   std::string url_;
+  int queue_capacity_;
   lcm_t* lcm_ = nullptr;
   std::mutex publish_mutex_;
   // Handlers by channel; node-based so pointers given to LCM stay valid.

@@ -3,6 +3,8 @@
 // MFP_STATUS as a heartbeat. SIGINT/SIGTERM stop it (exit 0), SIGHUP reloads the config.
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
 #include "tools/daemon/timestamped_log.h"
+#include "tools/daemon/udp_counters.h"
 
 namespace {
 
@@ -51,7 +54,18 @@ int main(int argc, char** argv) {
   std::unique_ptr<mfp::LcmTransport> transport;
   try {
     setup = LoadSetup(config_path, url_override);
-    transport = std::make_unique<mfp::LcmTransport>(setup->config.lcm_url);
+    const std::string url =
+        mfp::WithReceiveBuffer(setup->config.lcm_url, setup->config.lcm_recv_buf_bytes);
+    transport = std::make_unique<mfp::LcmTransport>(url, setup->config.lcm_queue_capacity);
+    if (url.rfind("udpm://", 0) == 0) {
+      const int64_t rmem_max = mfp::ReadRmemMax();
+      if (rmem_max >= 0 && static_cast<size_t>(rmem_max) < setup->config.lcm_recv_buf_bytes)
+        Log("warning: the kernel caps socket receive buffers at " + std::to_string(rmem_max) +
+            " bytes (net.core.rmem_max), below lcm_recv_buf_bytes = " +
+            std::to_string(setup->config.lcm_recv_buf_bytes) +
+            ": large maps may be lost; raise it with sysctl -w net.core.rmem_max=" +
+            std::to_string(setup->config.lcm_recv_buf_bytes));
+    }
   } catch (const mfp::InputError& e) {
     Log(std::string("error: ") + e.what());
     return 2;
@@ -60,6 +74,13 @@ int main(int argc, char** argv) {
   mfp::DaemonCore core(setup, mfp::MakeOctomapMapFunction(*setup), mfp::MakeSolverPlanFunction(),
                        *transport, &mfp::WallUtime, &Log);
   core.SubscribeTo(*transport);
+  if (setup->config.lcm_url.rfind("udpm://", 0) == 0) {
+    const int64_t udp_errors_at_start = mfp::ReadUdpReceiveErrors();
+    core.SetUdpErrorSource([udp_errors_at_start] {
+      const int64_t now = mfp::ReadUdpReceiveErrors();
+      return now < 0 || udp_errors_at_start < 0 ? -1 : now - udp_errors_at_start;
+    });
+  }
   if (!setup->config.initial_map.empty()) {
     try {
       core.LoadMapFile(setup->config.initial_map);
@@ -80,15 +101,20 @@ int main(int argc, char** argv) {
     if (signal_number == SIGHUP) {
       try {
         auto reloaded = LoadSetup(config_path, url_override);
-        if (reloaded->config.lcm_url != setup->config.lcm_url)
-          Log("lcm_url changed in the config; it takes effect on restart");
+        if (reloaded->config.lcm_url != setup->config.lcm_url ||
+            reloaded->config.lcm_queue_capacity != setup->config.lcm_queue_capacity ||
+            reloaded->config.lcm_recv_buf_bytes != setup->config.lcm_recv_buf_bytes)
+          Log("lcm_url, lcm_queue_capacity or lcm_recv_buf_bytes changed in the config; "
+              "they take effect on restart");
         if (reloaded->config.initial_map != setup->config.initial_map)
           Log("initial_map changed in the config; it is read on restart");
         core.Reconfigure(reloaded, mfp::MakeOctomapMapFunction(*reloaded));
         runner.SetHeartbeatPeriod(reloaded->config.heartbeat_period_s);
         setup = reloaded;
         Log("SIGHUP: configuration reloaded from " + config_path);
-      } catch (const mfp::InputError& e) {
+      } catch (const std::exception& e) {
+        // InputError for bad files; anything else a reader let escape is no reason to
+        // drop a working configuration either.
         Log(std::string("SIGHUP: reload failed, keeping the previous configuration: ") + e.what());
       }
       continue;
@@ -99,6 +125,11 @@ int main(int argc, char** argv) {
   runner.Stop();
   const mfp::DaemonCounters c = core.counters();
   Log("stopped: requests " + std::to_string(c.requests) + ", plans " + std::to_string(c.plans) +
-      ", rejected messages " + std::to_string(c.rejected_messages));
-  return 0;
+      ", rejected messages " + std::to_string(c.rejected_messages) + ", dropped " +
+      std::to_string(c.dropped_requests) + ", abandoned solves " +
+      std::to_string(c.abandoned_solves));
+  // A plan or extraction abandoned by the stop may still run on its detached thread:
+  // leave without running destructors under it.
+  std::fflush(nullptr);
+  std::_Exit(0);
 }

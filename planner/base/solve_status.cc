@@ -17,6 +17,7 @@ std::string ToString(SolveStatus status) {
     case SolveStatus::kInternalError: return "internal_error";
     case SolveStatus::kNoSolution: return "no_solution";
     case SolveStatus::kDropped: return "dropped";
+    case SolveStatus::kSuperseded: return "superseded";
   }
   MFP_CHECK_MSG(false, "unknown SolveStatus " + std::to_string(static_cast<int>(status)));
 }

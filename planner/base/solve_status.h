@@ -16,7 +16,8 @@ enum class SolveStatus : int {
   kInvalidGoal = 7,      // goal off every region
   kInternalError = 8,    // a solver failed in a way that is not the input's fault
   kNoSolution = 9,       // limits hit before any feasible plan was found
-  kDropped = 10,         // request dropped from a full queue or superseded
+  kDropped = 10,         // request dropped from a full queue, or the daemon stopping
+  kSuperseded = 11,      // a newer request from the same client replaced it in the queue
 };
 
 // Lower-case name used in JSON ("optimal", "time_limit", ...).

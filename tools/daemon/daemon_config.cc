@@ -11,7 +11,8 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
   RejectUnknownKeys(node, ctx,
                     {"default_time_limit_s", "max_time_limit_s", "default_max_steps",
                      "max_steps", "queue_size", "max_request_bytes", "max_map_bytes",
-                     "start_height_tolerance_m"});
+                     "start_height_tolerance_m", "inbox_size", "reply_margin_s",
+                     "supersede_same_robot", "accept_empty_maps"});
   if (auto v = OptionalDouble(node, ctx, "max_time_limit_s", 0.01, 3600.0))
     limits->max_time_limit_s = *v;
   if (auto v = OptionalDouble(node, ctx, "default_time_limit_s", 0.01, limits->max_time_limit_s))
@@ -26,6 +27,10 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
     limits->max_map_bytes = static_cast<size_t>(*v);
   if (auto v = OptionalDouble(node, ctx, "start_height_tolerance_m", 0.0, 1.0))
     limits->start_height_tolerance_m = *v;
+  if (auto v = OptionalInt(node, ctx, "inbox_size", 1, 1000000)) limits->inbox_size = *v;
+  if (auto v = OptionalDouble(node, ctx, "reply_margin_s", 0.0, 1.0)) limits->reply_margin_s = *v;
+  if (auto v = OptionalBool(node, ctx, "supersede_same_robot")) limits->supersede_same_robot = *v;
+  if (auto v = OptionalBool(node, ctx, "accept_empty_maps")) limits->accept_empty_maps = *v;
 }
 
 }  // namespace
@@ -36,7 +41,8 @@ static DaemonConfig LoadDaemonConfigUnguarded(const std::string& path) {
   if (!root.IsMap()) throw InputError(path + ": expected a mapping at the top level");
   RejectUnknownKeys(root, ctx,
                     {"lcm_url", "robots", "default_robot", "initial_map",
-                     "heartbeat_period_s", "limits", "planner"});
+                     "heartbeat_period_s", "lcm_queue_capacity", "lcm_recv_buf_bytes", "limits",
+                     "planner"});
   DaemonConfig config;
   config.file = path;
   if (auto v = OptionalString(root, ctx, "lcm_url")) config.lcm_url = *v;
@@ -54,7 +60,12 @@ static DaemonConfig LoadDaemonConfigUnguarded(const std::string& path) {
     config.initial_map = ResolveRelative(path, *v);
   if (auto v = OptionalDouble(root, ctx, "heartbeat_period_s", 0.01, 1.0))
     config.heartbeat_period_s = *v;
+  if (auto v = OptionalInt(root, ctx, "lcm_queue_capacity", 1, 1000000))
+    config.lcm_queue_capacity = *v;
+  if (auto v = OptionalInt(root, ctx, "lcm_recv_buf_bytes", 0, 1 << 30))
+    config.lcm_recv_buf_bytes = static_cast<size_t>(*v);
   if (root["limits"]) ReadLimits(root["limits"], ctx.Child("limits"), &config.limits);
+  if (config.lcm_recv_buf_bytes == 0) config.lcm_recv_buf_bytes = config.limits.max_map_bytes + (1u << 20);
   if (root["planner"]) ReadPlannerOptions(root["planner"], ctx.Child("planner"), &config.planner);
   config.planner.default_time_limit_s = config.limits.default_time_limit_s;
   config.planner.default_max_steps = config.limits.default_max_steps;

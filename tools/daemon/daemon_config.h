@@ -24,6 +24,17 @@ struct DaemonLimits {
   size_t max_request_bytes = 64 * 1024;        // larger plan_request_t payloads are rejected
   size_t max_map_bytes = 64 * 1024 * 1024;     // larger terrain_map_t payloads are rejected
   double start_height_tolerance_m = 0.05;  // start foot to region surface, vertically [m]
+  // Messages received but not yet decoded (the intake queue between the LCM thread and
+  // the decoding thread); beyond it a request is answered dropped and counted.
+  int inbox_size = 4096;
+  // A request's deadline is its arrival plus its time limit; the planner gets what is
+  // left minus this margin, kept for the reply [s].
+  double reply_margin_s = 0.03;
+  // A newer request for the same robot replaces an older one still queued (answered
+  // superseded): the robot is the client.
+  bool supersede_same_robot = true;
+  // A map without regions replaces a map with regions only when true.
+  bool accept_empty_maps = false;
 };
 
 struct DaemonConfig {
@@ -33,6 +44,13 @@ struct DaemonConfig {
   std::string default_robot;             // robot name used when a request names none
   std::string initial_map;               // resolved path of a map to start with; "" = none
   double heartbeat_period_s = 0.5;       // MFP_STATUS period, at most 1 s [s]
+  // Messages LCM keeps per channel before it discards (LCM's default is 30): carries a
+  // burst of requests while the intake thread catches up.
+  int lcm_queue_capacity = 4096;
+  // udpm:// socket receive buffer [bytes]; 0 = limits.max_map_bytes + 1 MiB, so the
+  // largest accepted map fits (the kernel caps it at net.core.rmem_max; the daemon logs
+  // when it does).
+  size_t lcm_recv_buf_bytes = 0;
   DaemonLimits limits;
   PlannerOptions planner;
 };

@@ -8,6 +8,8 @@ DaemonRunner::DaemonRunner(DaemonCore& core, Transport& transport, double heartb
     : core_(core), transport_(transport), heartbeat_period_s_(heartbeat_period_s) {
   receive_thread_ = std::thread([this] { ReceiveLoop(); });
   work_thread_ = std::thread([this] { WorkLoop(); });
+  intake_thread_ = std::thread([this] { IntakeLoop(); });
+  map_thread_ = std::thread([this] { MapLoop(); });
   heartbeat_thread_ = std::thread([this] { HeartbeatLoop(); });
 }
 
@@ -23,6 +25,8 @@ void DaemonRunner::Stop() {
   core_.Stop();
   heartbeat_wake_.notify_all();
   work_thread_.join();
+  intake_thread_.join();
+  map_thread_.join();
   receive_thread_.join();
   heartbeat_thread_.join();
   core_.PublishStatus();
@@ -31,7 +35,7 @@ void DaemonRunner::Stop() {
 void DaemonRunner::ReceiveLoop() {
   while (!stop_) {
     // A short timeout bounds the time Stop() waits for this thread.
-    if (transport_.HandleTimeout(100) < 0 && !stop_) {
+    if (transport_.HandleTimeout(20) < 0 && !stop_) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
   }
@@ -39,6 +43,14 @@ void DaemonRunner::ReceiveLoop() {
 
 void DaemonRunner::WorkLoop() {
   while (!stop_) core_.WaitAndPlanNext(std::chrono::milliseconds(200));
+}
+
+void DaemonRunner::IntakeLoop() {
+  while (!stop_) core_.ProcessNextReceived(std::chrono::milliseconds(200));
+}
+
+void DaemonRunner::MapLoop() {
+  while (!stop_) core_.ProcessPendingMap(std::chrono::milliseconds(200));
 }
 
 void DaemonRunner::HeartbeatLoop() {

@@ -1,6 +1,9 @@
 #pragma once
-// Runs a DaemonCore live: a receive thread handles the transport, a worker thread plans
-// (so the heartbeat never waits for a solve), a heartbeat thread publishes status_t.
+// Runs a DaemonCore live: a receive thread handles the transport and only copies
+// messages into the core's intake queue, an intake thread decodes and validates them, a
+// map thread extracts regions, a worker thread plans (so neither receiving nor the
+// heartbeat ever waits for a solve or an extraction), a heartbeat thread publishes
+// status_t.
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
@@ -21,13 +24,16 @@ class DaemonRunner {
 
   void SetHeartbeatPeriod(double seconds);
 
-  // Stops the threads: answers queued requests as dropped, waits for a plan in progress
-  // to finish, publishes a last status. Idempotent.
+  // Stops the threads: answers queued and received requests as dropped, abandons a plan
+  // or extraction in progress (its request answered dropped), publishes a last status.
+  // Returns within a few tens of milliseconds. Idempotent.
   void Stop();
 
  private:
   void ReceiveLoop();
   void WorkLoop();
+  void IntakeLoop();
+  void MapLoop();
   void HeartbeatLoop();
 
   DaemonCore& core_;
@@ -38,6 +44,8 @@ class DaemonRunner {
   std::condition_variable heartbeat_wake_;
   std::thread receive_thread_;
   std::thread work_thread_;
+  std::thread intake_thread_;
+  std::thread map_thread_;
   std::thread heartbeat_thread_;
 };
 

@@ -23,6 +23,20 @@ std::optional<QueuedRequest> RequestQueue::PopNewest() {
   return newest;
 }
 
+std::vector<QueuedRequest> RequestQueue::RemoveRobot(const std::string& robot_name) {
+  std::vector<QueuedRequest> removed;
+  std::deque<QueuedRequest> kept;
+  for (QueuedRequest& r : entries_) {
+    if (r.robot_name == robot_name) {
+      removed.push_back(std::move(r));
+    } else {
+      kept.push_back(std::move(r));
+    }
+  }
+  entries_.swap(kept);
+  return removed;
+}
+
 std::deque<QueuedRequest> RequestQueue::SetCapacity(size_t capacity) {
   MFP_CHECK(capacity > 0);
   capacity_ = capacity;

@@ -5,6 +5,7 @@
 #include <deque>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "planner/planning/footstep_planner.h"
 
@@ -14,7 +15,7 @@ struct QueuedRequest {
   int64_t request_id = 0;
   std::string robot_name;
   PlanRequest request;
-  int64_t receive_utime = 0;  // [us]
+  int64_t receive_utime = 0;  // arrival: its deadline is this plus request.time_limit_s [us]
 };
 
 class RequestQueue {
@@ -25,6 +26,8 @@ class RequestQueue {
   std::optional<QueuedRequest> Push(QueuedRequest request);
   // Removes and returns the newest request; nullopt when empty.
   std::optional<QueuedRequest> PopNewest();
+  // Removes and returns every entry for this robot, oldest first.
+  std::vector<QueuedRequest> RemoveRobot(const std::string& robot_name);
   // Changes the capacity; returns the evicted oldest entries, if any.
   std::deque<QueuedRequest> SetCapacity(size_t capacity);
 

@@ -1,0 +1,168 @@
+#!/bin/bash
+# mfp-daemon under signals, over real LCM inside a private network namespace this script
+# makes (unshare -n, only lo, with a multicast route; never the host network):
+#  1. SIGHUP with a config that lists a robot YAML whose key is a sequence: the reload
+#     fails, is logged, and the daemon goes on with the previous configuration.
+#  2. SIGTERM while a map is being read (seconds of extraction): exit 0 within 0.5 s;
+#     requests sent meanwhile were answered (no_map) without waiting for the map.
+#  3. SIGTERM while a 20 s plan runs with a request queued behind it: exit 0 within
+#     0.5 s, both requests answered (dropped).
+# Replies are recorded with lcm-logger and checked with mfp-check-replies.
+#
+# usage: daemon_signals_test.sh SOURCE_DIR BUILD_DIR
+set -euo pipefail
+
+SOURCE_DIR=$(realpath "$1")
+BUILD_DIR=$(realpath "$2")
+DATA="$SOURCE_DIR/tests/data/daemon_signals"
+URL="udpm://239.255.76.67:7667?ttl=0"
+
+if [ "${3:-}" != "--in-namespace" ]; then
+  for tool in unshare ip lcm-logger lcm-logplayer; do
+    command -v "$tool" >/dev/null || { echo "FAIL: $tool not found (tools/debian-packages.txt)"; exit 1; }
+  done
+  if ! unshare -n true 2>/dev/null; then
+    echo "FAIL: cannot create a network namespace (unshare -n needs root or CAP_SYS_ADMIN);"
+    echo "      this test never falls back to the host network."
+    exit 1
+  fi
+  exec unshare -n "$0" "$SOURCE_DIR" "$BUILD_DIR" --in-namespace
+fi
+
+# --- inside the private namespace ---
+interfaces=$(ip -o link show | awk -F': ' '{print $2}' | sed 's/@.*//')
+[ "$interfaces" = "lo" ] || { echo "FAIL: expected only lo in the namespace, found: $interfaces"; exit 1; }
+ip link set lo up
+ip link set lo multicast on
+ip route add 224.0.0.0/4 dev lo
+
+WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_daemon_signals.XXXXXX")
+DAEMON_PID=""
+LOGGER_PID=""
+PLAYER_PID=""
+cleanup() {
+  [ -n "$DAEMON_PID" ] && kill -KILL "$DAEMON_PID" 2>/dev/null || true
+  [ -n "$LOGGER_PID" ] && kill -KILL "$LOGGER_PID" 2>/dev/null || true
+  [ -n "$PLAYER_PID" ] && kill -KILL "$PLAYER_PID" 2>/dev/null || true
+  rm -rf "$WORK"
+}
+trap cleanup EXIT
+
+LOG=""
+fail() {
+  echo "FAIL: $*"
+  [ -n "$LOG" ] && { echo "--- daemon log ---"; cat "$LOG" || true; }
+  exit 1
+}
+
+cp "$DATA"/*.yaml "$WORK/"
+"$BUILD_DIR/tools/mfp-terrain" "$WORK/fine_map.yaml" --out "$WORK/fine_map.bt" >/dev/null
+
+# The config: the hexapod alone (each tool derives it once: the test's main cost);
+# 4 n-step windows, which plan until their time limit; no supersession, so a second
+# request of the same robot stays queued behind the first.
+write_config() {  # extra robot files...
+  {
+    echo "lcm_url: \"$URL\""
+    echo "robots:"
+    echo "  - $SOURCE_DIR/config/robots/hexapod.yaml"
+    for extra in "$@"; do echo "  - $extra"; done
+    echo "default_robot: hexapod"
+    echo "limits:"
+    echo "  supersede_same_robot: false"
+    echo "planner:"
+    echo "  window: 24"
+  } >"$WORK/daemon.yaml"
+}
+
+start_daemon() {  # log file
+  LOG="$1"
+  "$BUILD_DIR/tools/mfp-daemon" --config "$WORK/daemon.yaml" 2>"$LOG" &
+  DAEMON_PID=$!
+  for _ in $(seq 1 300); do
+    grep -q "started:" "$LOG" && return 0
+    kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
+    sleep 0.1
+  done
+  fail "mfp-daemon did not start within 30 s"
+}
+
+start_logger() {  # log file
+  lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' --flush-interval=50 \
+    --force "$1" &
+  LOGGER_PID=$!
+}
+
+stop_logger() {
+  sleep 0.5
+  kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
+}
+
+wait_for_log() {  # pattern seconds
+  for _ in $(seq 1 $(( $2 * 20 ))); do
+    grep -q "$1" "$LOG" && return 0
+    sleep 0.05
+  done
+  fail "no '$1' in the daemon log within $2 s"
+}
+
+# SIGTERM, then the time to exit [ms] and its status.
+terminate() {
+  local t0 t1 status=0
+  t0=$(date +%s%N)
+  kill -TERM "$DAEMON_PID"
+  wait "$DAEMON_PID" || status=$?
+  t1=$(date +%s%N)
+  DAEMON_PID=""
+  EXIT_MS=$(( (t1 - t0) / 1000000 ))
+  [ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
+  echo "SIGTERM to exit: $EXIT_MS ms"
+}
+
+# --- 1 and 2: a failed reload, then SIGTERM during a map extraction ---
+write_config
+"$BUILD_DIR/tools/mfp-make-log" "$WORK/during_extraction.yaml" --config "$WORK/daemon.yaml" \
+  --out "$WORK/extraction.lcmlog"
+start_logger "$WORK/extraction_replies.lcmlog"
+start_daemon "$WORK/daemon1.log"
+write_config "$WORK/bad_robot.yaml"
+kill -HUP "$DAEMON_PID"
+wait_for_log "SIGHUP: reload failed, keeping the previous configuration" 20
+kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died on a failed reload"
+grep "SIGHUP: reload failed" "$LOG"
+write_config  # the good one again, for mfp-check-replies
+
+lcm-logplayer --lcm-url="$URL" "$WORK/extraction.lcmlog" &
+PLAYER_PID=$!
+wait "$PLAYER_PID"; PLAYER_PID=""
+wait_for_log "request 2 rejected (no_map)" 10
+sleep 0.3
+grep -q "map accepted" "$LOG" && fail "the map was read before SIGTERM: make fine_map.yaml slower"
+terminate
+[ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during a map extraction"
+grep -q "map extraction abandoned" "$LOG" || fail "no extraction in progress at SIGTERM"
+grep -q "request 1 rejected (no_map)" "$LOG" || fail "request 1 was not answered"
+grep -q "publish failed\|could not be published" "$LOG" && fail "a reply was not published"
+stop_logger
+
+# --- 3: SIGTERM during a plan, a request queued behind it ---
+write_config
+"$BUILD_DIR/tools/mfp-make-log" "$WORK/during_plan.yaml" --config "$WORK/daemon.yaml" \
+  --out "$WORK/plan.lcmlog"
+start_logger "$WORK/plan_replies.lcmlog"
+start_daemon "$WORK/daemon2.log"
+lcm-logplayer --lcm-url="$URL" "$WORK/plan.lcmlog" &
+PLAYER_PID=$!
+wait "$PLAYER_PID"; PLAYER_PID=""
+sleep 0.5
+grep -q "request 10 planned" "$LOG" && fail "the 20 s plan ended before SIGTERM"
+terminate
+[ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during a plan"
+grep -q "request 10 planned: dropped" "$LOG" || fail "the plan in progress was not answered"
+stop_logger
+"$BUILD_DIR/tools/mfp-check-replies" "$WORK/plan_replies.lcmlog" \
+  --scenario "$WORK/during_plan.yaml" --config "$WORK/daemon.yaml" \
+  || fail "replies to the stopped requests do not check"
+echo "--- daemon log ---"
+cat "$LOG"
+echo "PASS"
