@@ -17,6 +17,32 @@ struct LocalGrid {
   uint8_t At(int r, int c) const { return cells[static_cast<size_t>(r) * cols + c]; }
 };
 
+// How far (in cells) the side of a safe rectangle [x0, x1] x [y0, y1] (local centre
+// units) facing -x can move out while the strip it sweeps stays at least inset_cells
+// from every cell square outside the mask: for a cell square [a0, a1] x [b0, b1] at
+// distance dy across, the strip's end must keep sqrt(inset^2 - dy^2) along x. mask_at
+// answers in the side's own frame (mirrored or transposed), outside the grid = not in.
+template <typename MaskAt>
+double SideSlack(const MaskAt& mask_at, double x0, double y0, double y1, double inset_cells) {
+  double s = 1.0;
+  const int c_lo = static_cast<int>(std::floor(x0 - inset_cells - 2.0));
+  const int c_hi = static_cast<int>(std::ceil(x0 + inset_cells + 1.0));
+  const int r_lo = static_cast<int>(std::floor(y0 - inset_cells - 1.0));
+  const int r_hi = static_cast<int>(std::ceil(y1 + inset_cells + 1.0));
+  for (int r = r_lo; r <= r_hi; ++r) {
+    const double dy = std::max({0.0, (r - 0.5) - y1, y0 - (r + 0.5)});
+    if (dy >= inset_cells) continue;
+    const double h = std::sqrt(inset_cells * inset_cells - dy * dy);
+    for (int c = c_lo; c <= c_hi; ++c) {
+      if (mask_at(c, r)) continue;
+      const double a0 = c - 0.5, a1 = c + 0.5;
+      if (a0 - x0 >= h - 1e-12) continue;  // far enough on the rectangle's side
+      s = std::min(s, x0 - a1 - h);
+    }
+  }
+  return std::max(0.0, s);
+}
+
 }  // namespace
 
 double PrincipalAngleRad(const HeightMap& hm, const PlanarPatch& patch) {
@@ -117,9 +143,23 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   if (use_grid) {
     cover.min_rect_cells =
         std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / (res * res) - 1e-9)));
+    // Rectangles of complete dual squares end on cell centres; each side then moves out
+    // as far as its strip keeps the inset from every cell outside the patch, so regions
+    // lose less than the cell quantisation of the inset.
+    const double inset_cells = options.inset_m / res;
+    auto in_mask = [&](int c, int r) {
+      return r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c);
+    };
     for (const CellRect& rect : GreedyRectangleCover(dual.cells, dual.rows, dual.cols, cover)) {
-      const double x0 = rect.col0, x1 = rect.col0 + rect.cols;
-      const double y0 = rect.row0, y1 = rect.row0 + rect.rows;
+      double x0 = rect.col0, x1 = rect.col0 + rect.cols;
+      double y0 = rect.row0, y1 = rect.row0 + rect.rows;
+      if (inset_cells > 0.0) {
+        // -x, +x (mirrored), -y and +y (transposed), each with the sides moved so far.
+        x0 -= SideSlack(in_mask, x0, y0, y1, inset_cells);
+        x1 += SideSlack([&](int c, int r) { return in_mask(-c, r); }, -x1, y0, y1, inset_cells);
+        y0 -= SideSlack([&](int c, int r) { return in_mask(r, c); }, y0, x0, x1, inset_cells);
+        y1 += SideSlack([&](int c, int r) { return in_mask(r, -c); }, -y1, x0, x1, inset_cells);
+      }
       quads.push_back({to_world({x0, y0}), to_world({x1, y0}), to_world({x1, y1}),
                        to_world({x0, y1})});
     }
