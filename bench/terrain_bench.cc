@@ -4,7 +4,8 @@
 // true top surface, within a voxel in height) and the coverage of each walkable top face
 // (the face inset by foot radius + edge margin, where it has the clearance above it).
 // Coverage is printed against that walkable face, and (in brackets) against the part a
-// map can certify: the walkable face inset further by the map's edge uncertainty.
+// map can certify: the walkable face inset further by the map's edge uncertainty, with
+// that much room from any box above (walls) too.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -47,8 +48,8 @@ int main(int argc, char** argv) {
   if (large) {
     mfp::MapNoise noise;
     noise.seed = 7;
-    noise.jitter_fraction = 0.05;
-    noise.hole_fraction = 0.02;
+    noise.jitter_fraction = 0.03;
+    noise.hole_fraction = 0.01;
     noise.outliers = 20;
     maps.push_back({"corridor_8cm_scan", mfp::CorridorTerrain(7.0, 0.08, noise)});
     maps.push_back({"building_40x15_8cm", mfp::BuildingFloorTerrain()});
@@ -78,6 +79,7 @@ int main(int argc, char** argv) {
     cov.height_tolerance_m = res;
     const std::vector<mfp::FaceCoverage> walkable = mfp::TopFaceCoverage(result.regions, named.terrain, cov);
     cov.inset_m = margin + options.edge_uncertainty_voxels * res;
+    cov.disk_radius_m = cov.inset_m;
     const std::vector<mfp::FaceCoverage> certifiable = mfp::TopFaceCoverage(result.regions, named.terrain, cov);
     std::string cov_text;
     int shown = 0;

@@ -91,6 +91,46 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 }  // namespace
 
+int FillSingleCellNoise(HeightMap* hm) {
+  const double res = hm->resolution_m;
+  const std::vector<float> in = hm->height_m;
+  int changed = 0;
+  for (int r = 1; r + 1 < hm->rows; ++r) {
+    for (int c = 1; c + 1 < hm->cols; ++c) {
+      // The most common neighbour height and how many of the 8 have it.
+      float h0 = std::numeric_limits<float>::quiet_NaN();
+      int best = 0, present = 0;
+      for (int k = 0; k < 9; ++k) {
+        if (k == 4) continue;
+        const float h = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
+        if (std::isnan(h)) continue;
+        ++present;
+        int same = 0;
+        for (int j = 0; j < 9; ++j) {
+          if (j == 4) continue;
+          const float g = in[static_cast<size_t>(hm->Index(r + j / 3 - 1, c + j % 3 - 1))];
+          same += !std::isnan(g) && std::abs(g - h) < 0.01 * res;
+        }
+        if (same > best) {
+          best = same;
+          h0 = h;
+        }
+      }
+      float& h = hm->height_m[static_cast<size_t>(hm->Index(r, c))];
+      if (std::isnan(h)) {
+        if (best == 8) {  // a one-cell hole in a level surface
+          h = h0;
+          ++changed;
+        }
+      } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
+        h = h0;  // one voxel off a level neighbourhood
+        ++changed;
+      }
+    }
+  }
+  return changed;
+}
+
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
   MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
   SurfaceLayers out;
@@ -224,6 +264,12 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     for (int k : sheets[s]) out.layers[layer].height_m[cand_col[k]] = cand_height[k];
   }
   if (out.layers.empty()) out.layers.push_back(empty);
+  if (options.fill_single_cell_noise) {
+    for (HeightMap& layer : out.layers) {
+      // Twice: a hole beside a displaced cell is filled once that cell is back.
+      for (int pass = 0; pass < 2; ++pass) out.noise_cells_filled += FillSingleCellNoise(&layer);
+    }
+  }
   return out;
 }
 

@@ -25,6 +25,7 @@ struct SurfaceLayerOptions {
   double step_gate_m = 0.0;           // neighbouring surfaces closer than this join a sheet [m]
   bool require_seen_from_above = true;  // applies only when the map stores free space
   bool drop_isolated_voxels = true;
+  bool fill_single_cell_noise = true;   // FillSingleCellNoise on every layer
   size_t max_cells = kDefaultMaxHeightMapCells;
 };
 
@@ -34,7 +35,15 @@ struct SurfaceLayers {
   int no_room_above = 0;          // surfaces with an occupied voxel within the clearance
   int not_seen_from_above = 0;    // surfaces whose top voxel is not known free
   int isolated_voxels = 0;        // single voxels with no occupied neighbour, ignored
+  int noise_cells_filled = 0;     // cells FillSingleCellNoise changed
 };
+
+// Scan noise on a level surface, undone: a cell whose 8 neighbours all have one height
+// and that is empty (a missed voxel) gets that height; a cell exactly one voxel above or
+// below a neighbourhood of which at least 7 of 8 agree is set to their height. Only holes
+// with all 8 neighbours present are filled, so no surface grows past its edge. Returns the
+// number of cells changed.
+int FillSingleCellNoise(HeightMap* height_map);
 
 // Throws InputError as BuildHeightMap does (bad resolution or leaves, too many cells).
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options);

@@ -183,6 +183,7 @@ std::vector<FaceCoverage> TopFaceCoverage(const std::vector<ConvexRegion>& regio
   std::vector<FaceCoverage> out;
   const double step = std::max(0.002, terrain.resolution_m / 4);
   for (size_t b = 0; b < terrain.boxes.size(); ++b) {
+    if (!options.only_face.empty() && terrain.boxes[b].name != options.only_face) continue;
     TerrainDescription one;
     one.boxes = {terrain.boxes[b]};
     const std::vector<ConvexRegion> face = TopFaceRegions(one, options.inset_m, options.max_slope_rad);

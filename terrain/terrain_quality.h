@@ -69,6 +69,7 @@ struct CoverageOptions {
   double clearance_m = 1e9;      // room needed above a face point (no box within) [m]
   double max_slope_rad = 0.45;
   double height_tolerance_m = 0.0;  // a region covers a point when its plane is this close
+  std::string only_face;            // when set, only the box of this name is measured
 };
 
 // The same with the walkable part and room above stated: floors under tables and bridges
