@@ -46,11 +46,15 @@ Scenario LoadScenario(const std::string& path) {
   if (!root["terrain"]) throw InputError(ctx.Child("terrain").Where() + ": missing (boxes, regions or map)");
   const YAML::Node terrain = root["terrain"];
   const YamlContext tctx = ctx.Child("terrain");
-  RejectUnknownKeys(terrain, tctx, {"resolution", "boxes", "regions", "map", "source"});
+  RejectUnknownKeys(terrain, tctx,
+                    {"resolution", "boxes", "regions", "map", "source", "scan", "noise", "edge_margin"});
+  s.edge_margin_m = OptionalDouble(terrain, tctx, "edge_margin", 0.0, 0.5);
   if (terrain["boxes"]) {
     YAML::Node boxes_only;
     boxes_only["boxes"] = terrain["boxes"];
     if (terrain["resolution"]) boxes_only["resolution"] = terrain["resolution"];
+    if (terrain["scan"]) boxes_only["scan"] = terrain["scan"];
+    if (terrain["noise"]) boxes_only["noise"] = terrain["noise"];
     s.terrain = ParseTerrainDescription(boxes_only, tctx);
   }
   if (const auto source = OptionalString(terrain, tctx, "source")) {
@@ -95,13 +99,17 @@ Scenario LoadScenario(const std::string& path) {
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
                                           std::string* note) {
   if (!scenario.listed_regions.empty()) return scenario.listed_regions;
-  if (!scenario.map_path.empty()) return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad);
-  if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
-    return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
-  }
+  // Surfaces need room above them for the robot: its stance height plus a margin.
+  const double clearance_m = robot.stance_height_m + scenario.options.body_clearance_margin_m;
   RegionExtractorOptions options;
   options.foot_radius_m = robot.foot_radius_m;
   options.max_slope_rad = robot.max_slope_rad;
+  options.clearance_m = clearance_m;
+  if (scenario.edge_margin_m) options.edge_margin_m = *scenario.edge_margin_m;
+  if (!scenario.map_path.empty()) return ExtractRegions(LoadMapFile(scenario.map_path), options).regions;
+  if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
+    return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
+  }
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
   if (note != nullptr) *note = result.message;
   return std::move(result.regions);

@@ -147,8 +147,9 @@ void WriteTerrainMap(const TerrainDescription& terrain, const std::string& out_p
 }
 
 std::vector<ConvexRegion> RegionsFromMapFile(const std::string& path, double foot_radius_m,
-                                             double max_slope_rad) {
+                                             double max_slope_rad, double clearance_m) {
   RegionExtractorOptions options;
+  options.clearance_m = clearance_m;
   options.foot_radius_m = foot_radius_m;
   options.max_slope_rad = max_slope_rad;
   return ExtractRegions(LoadMapFile(path), options).regions;

@@ -164,7 +164,13 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
 
 RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terrain,
                                                  const RegionExtractorOptions& options) {
-  return ExtractRegions(MakeTerrainMap(terrain), options);
+  RegionExtractorOptions own = options;
+  if (terrain.scan.sensors_world_m.empty() && !terrain.noise.Any()) {
+    // A plain voxelisation marks a voxel occupied when its centre is inside a box, so a
+    // true edge lies within half a voxel of the occupied cells' faces.
+    own.edge_uncertainty_voxels = std::min(own.edge_uncertainty_voxels, 0.5);
+  }
+  return ExtractRegions(MakeTerrainMap(terrain), own);
 }
 
 }  // namespace mfp

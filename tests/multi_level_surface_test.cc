@@ -75,7 +75,9 @@ TEST(MultiLevelSurfaceTest, FloorUnderATableAndTreadsUnderAnOverhang) {
     for (const char* face : {"floor", "ground", "tread1", "tread2", "table", "overhang"}) {
       bool has = false;
       for (const TerrainBox& b : t.boxes) has = has || b.name == face;
-      if (has) EXPECT_GE(FaceCoverageOf(result.regions, t, face, 0.4, 0.01), 0.85) << face;
+      if (has) {
+        EXPECT_GE(FaceCoverageOf(result.regions, t, face, 0.4, 0.01), 0.85) << face;
+      }
     }
   }
 }
