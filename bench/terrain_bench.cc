@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -83,9 +84,20 @@ int main(int argc, char** argv) {
     const std::vector<mfp::FaceCoverage> certifiable = mfp::TopFaceCoverage(result.regions, named.terrain, cov);
     std::string cov_text;
     int shown = 0;
+    // Faces a scan never saw from above (higher than every sensor: a ceiling's top) are
+    // not walkable in that map, and faces with no certifiable part (a wall's top narrower
+    // than two insets) cannot be covered.
+    double highest_sensor = -INFINITY;
+    for (const Eigen::Vector3d& p : named.terrain.scan.sensors_world_m) highest_sensor = std::max(highest_sensor, p.z());
     for (const mfp::FaceCoverage& c : walkable) {
       double cert = -1.0;
       for (const mfp::FaceCoverage& d : certifiable) cert = d.box == c.box ? d.coverage : cert;
+      const mfp::TerrainBox& box = named.terrain.boxes[static_cast<size_t>(c.box)];
+      if (cert < 0.0) continue;
+      if (!named.terrain.scan.sensors_world_m.empty() &&
+          box.center_world_m.z() + 0.5 * box.size_m.z() > highest_sensor) {
+        continue;
+      }
       all_ok = all_ok && cert >= 0.85;
       if (cert < 0.85) std::printf("  %s: face %s covers %.0f%% of its certifiable part\n", named.name.c_str(),
                                    c.name.c_str(), 100.0 * cert);
