@@ -22,9 +22,9 @@ OccupancyMap FromOcTree(const octomap::OcTree& tree) {
   OccupancyMap map;
   map.resolution_m = tree.getResolution();
   for (auto it = tree.begin_leafs(), end = tree.end_leafs(); it != end; ++it) {
-    if (!tree.isNodeOccupied(*it)) continue;
     const octomap::point3d c = it.getCoordinate();
-    map.leaves.push_back({Eigen::Vector3d(c.x(), c.y(), c.z()), it.getSize()});
+    const OccupiedLeaf leaf{Eigen::Vector3d(c.x(), c.y(), c.z()), it.getSize()};
+    (tree.isNodeOccupied(*it) ? map.leaves : map.free_leaves).push_back(leaf);
   }
   return map;
 }
@@ -35,7 +35,8 @@ std::unique_ptr<octomap::OcTree> ToOcTree(const OccupancyMap& map) {
   }
   auto tree = std::make_unique<octomap::OcTree>(map.resolution_m);
   const double limit_m = OctreeHalfExtentM(map.resolution_m) - map.resolution_m;
-  for (const OccupiedLeaf& leaf : map.leaves) {
+  // Free leaves first, so a voxel listed as both ends up occupied.
+  auto set_leaf = [&](const OccupiedLeaf& leaf, bool occupied) {
     if (!leaf.center_world_m.allFinite() || leaf.center_world_m.cwiseAbs().maxCoeff() > limit_m) {
       throw InputError("map leaf outside the octree's range of +-" + std::to_string(limit_m) + " m");
     }
@@ -48,11 +49,14 @@ std::unique_ptr<octomap::OcTree> ToOcTree(const OccupancyMap& map) {
         for (int k = 0; k < n; ++k) {
           const Eigen::Vector3d c = corner + map.resolution_m * Eigen::Vector3d(i, j, k);
           tree->setNodeValue(octomap::point3d(c.x(), c.y(), c.z()),
-                             tree->getClampingThresMaxLog(), true);
+                             occupied ? tree->getClampingThresMaxLog() : tree->getClampingThresMinLog(),
+                             true);
         }
       }
     }
-  }
+  };
+  for (const OccupiedLeaf& leaf : map.free_leaves) set_leaf(leaf, false);
+  for (const OccupiedLeaf& leaf : map.leaves) set_leaf(leaf, true);
   tree->updateInnerOccupancy();
   tree->prune();
   return tree;
@@ -144,8 +148,9 @@ void WriteTerrainMap(const TerrainDescription& terrain, const std::string& out_p
 
 std::vector<ConvexRegion> RegionsFromMapFile(const std::string& path, double foot_radius_m,
                                              double max_slope_rad, const Deadline& deadline,
-                                             std::string* note) {
+                                             std::string* note, double clearance_m) {
   RegionExtractorOptions options;
+  options.clearance_m = clearance_m;
   options.foot_radius_m = foot_radius_m;
   options.max_slope_rad = max_slope_rad;
   options.deadline = deadline;

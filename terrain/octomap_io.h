@@ -3,6 +3,7 @@
 // them) to and from the plain OccupancyMap. The only header of the terrain code whose
 // implementation includes OctoMap; nothing OctoMap leaks through this interface.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,11 +36,13 @@ void WriteOccupancyMap(const OccupancyMap& map, const std::string& out_path);
 std::vector<uint8_t> OccupancyMapBytes(const OccupancyMap& map, bool binary);
 
 // Loads a map file and extracts its regions with the default options and the given foot
-// radius and slope limit, until the deadline. Throws InputError as LoadMapFile and
-// ExtractRegions do. `note` (optional) receives the extractor's message.
+// radius, slope limit and clearance (free space a surface needs above it; infinity: the
+// highest surface of each column), until the deadline. Throws InputError as LoadMapFile
+// and ExtractRegions do. `note` (optional) receives the extractor's message.
 std::vector<ConvexRegion> RegionsFromMapFile(const std::string& path, double foot_radius_m,
                                              double max_slope_rad,
                                              const Deadline& deadline = Deadline(),
-                                             std::string* note = nullptr);
+                                             std::string* note = nullptr,
+                                             double clearance_m = std::numeric_limits<double>::infinity());
 
 }  // namespace mfp

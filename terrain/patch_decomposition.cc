@@ -1,6 +1,7 @@
 #include "terrain/patch_decomposition.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "planner/base/check.h"
@@ -16,6 +17,67 @@ struct LocalGrid {
   uint8_t& At(int r, int c) { return cells[static_cast<size_t>(r) * cols + c]; }
   uint8_t At(int r, int c) const { return cells[static_cast<size_t>(r) * cols + c]; }
 };
+
+// How far (in cells) the side of a safe rectangle [x0, x1] x [y0, y1] (local centre
+// units) facing -x can move out while the strip it sweeps stays at least inset_cells
+// from every cell square outside the mask: for a cell square [a0, a1] x [b0, b1] at
+// distance dy across, the strip's end must keep sqrt(inset^2 - dy^2) along x. mask_at
+// answers in the side's own frame (mirrored or transposed), outside the grid = not in.
+template <typename MaskAt>
+double SideSlack(const MaskAt& mask_at, double x0, double y0, double y1, double inset_cells) {
+  double s = 1.0;
+  const int c_lo = static_cast<int>(std::floor(x0 - inset_cells - 2.0));
+  const int c_hi = static_cast<int>(std::ceil(x0 + inset_cells + 1.0));
+  const int r_lo = static_cast<int>(std::floor(y0 - inset_cells - 1.0));
+  const int r_hi = static_cast<int>(std::ceil(y1 + inset_cells + 1.0));
+  for (int r = r_lo; r <= r_hi; ++r) {
+    const double dy = std::max({0.0, (r - 0.5) - y1, y0 - (r + 0.5)});
+    if (dy >= inset_cells) continue;
+    const double h = std::sqrt(inset_cells * inset_cells - dy * dy);
+    for (int c = c_lo; c <= c_hi; ++c) {
+      if (mask_at(c, r)) continue;
+      const double a0 = c - 0.5, a1 = c + 0.5;
+      if (a0 - x0 >= h - 1e-12) continue;  // far enough on the rectangle's side
+      s = std::min(s, x0 - a1 - h);
+    }
+  }
+  return std::max(0.0, s);
+}
+
+double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+bool Inside(const std::array<Eigen::Vector2d, 4>& poly, const Eigen::Vector2d& p) {  // counter-clockwise
+  for (int i = 0; i < 4; ++i) {
+    if (Cross(poly[(i + 1) % 4] - poly[i], p - poly[i]) < 0.0) return false;
+  }
+  return true;
+}
+
+// Distance between two convex quadrilaterals (counter-clockwise); 0 when they overlap.
+double QuadDistance(const std::array<Eigen::Vector2d, 4>& p, const std::array<Eigen::Vector2d, 4>& q) {
+  for (int i = 0; i < 4; ++i) {
+    if (Inside(p, q[i]) || Inside(q, p[i])) return 0.0;
+  }
+  double d = INFINITY;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % 4];
+    for (int j = 0; j < 4; ++j) {
+      const Eigen::Vector2d &c = q[j], &e = q[(j + 1) % 4];
+      const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, e - a);
+      const double d3 = Cross(e - c, a - c), d4 = Cross(e - c, b - c);
+      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return 0.0;
+      d = std::min({d, PointSegmentDistance(a, c, e), PointSegmentDistance(b, c, e),
+                    PointSegmentDistance(c, a, b), PointSegmentDistance(e, a, b)});
+    }
+  }
+  return d;
+}
 
 }  // namespace
 
@@ -117,9 +179,23 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   if (use_grid) {
     cover.min_rect_cells =
         std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / (res * res) - 1e-9)));
+    // Rectangles of complete dual squares end on cell centres; each side then moves out
+    // as far as its strip keeps the inset from every cell outside the patch, so regions
+    // lose less than the cell quantisation of the inset.
+    const double inset_cells = options.inset_m / res;
+    auto in_mask = [&](int c, int r) {
+      return r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c);
+    };
     for (const CellRect& rect : GreedyRectangleCover(dual.cells, dual.rows, dual.cols, cover)) {
-      const double x0 = rect.col0, x1 = rect.col0 + rect.cols;
-      const double y0 = rect.row0, y1 = rect.row0 + rect.rows;
+      double x0 = rect.col0, x1 = rect.col0 + rect.cols;
+      double y0 = rect.row0, y1 = rect.row0 + rect.rows;
+      if (inset_cells > 0.0) {
+        // -x, +x (mirrored), -y and +y (transposed), each with the sides moved so far.
+        x0 -= SideSlack(in_mask, x0, y0, y1, inset_cells);
+        x1 += SideSlack([&](int c, int r) { return in_mask(-c, r); }, -x1, y0, y1, inset_cells);
+        y0 -= SideSlack([&](int c, int r) { return in_mask(r, c); }, y0, x0, x1, inset_cells);
+        y1 += SideSlack([&](int c, int r) { return in_mask(r, -c); }, -y1, x0, x1, inset_cells);
+      }
       quads.push_back({to_world({x0, y0}), to_world({x1, y0}), to_world({x1, y1}),
                        to_world({x0, y1})});
     }
@@ -167,13 +243,71 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
       rotated.At(b, a) = inside;
     }
   }
+  // Cells outside the patch near it: holes, and a ring around the bounding box.
+  const double inset_cells = options.inset_m / res;
+  std::vector<Eigen::Vector2i> outside;
+  const int ring = static_cast<int>(std::ceil(inset_cells)) + 2;
+  for (int r = -ring; r < mask.rows + ring; ++r) {
+    for (int c = -ring; c < mask.cols + ring; ++c) {
+      if (r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c)) continue;
+      outside.emplace_back(r, c);
+    }
+  }
   const double cell_area_m2 = step * step * res * res;
   cover.min_rect_cells =
       std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / cell_area_m2 - 1e-9)));
   for (const CellRect& rect :
        GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
-    const double a0 = rect.col0, a1 = rect.col0 + rect.cols;
-    const double b0 = rect.row0, b1 = rect.row0 + rect.rows;
+    double a0 = rect.col0, a1 = rect.col0 + rect.cols;
+    double b0 = rect.row0, b1 = rect.row0 + rect.rows;
+    // Each side moves out (in rotated-grid steps, up to one cell) while the rectangle keeps
+    // the inset from every cell square outside the patch: an exact test, by bisection.
+    auto safe = [&](double u0, double u1, double v0, double v1) {
+      const std::array<Eigen::Vector2d, 4> quad = {corner(u0, v0), corner(u1, v0), corner(u1, v1), corner(u0, v1)};
+      double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+      for (const Eigen::Vector2d& p : quad) {
+        xmin = std::min(xmin, p.x());
+        xmax = std::max(xmax, p.x());
+        ymin = std::min(ymin, p.y());
+        ymax = std::max(ymax, p.y());
+      }
+      for (const Eigen::Vector2i& rc : outside) {
+        const int r = rc.x(), c = rc.y();
+        if (r < ymin - inset_cells - 1 || r > ymax + inset_cells + 1 || c < xmin - inset_cells - 1 ||
+            c > xmax + inset_cells + 1) {
+          continue;
+        }
+        {
+          // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
+          const Eigen::Vector2d centre(c, r);
+          const double a = (centre.dot(eu) - umin) / step, bb = (centre.dot(ev) - vmin) / step;
+          const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+          if (centre_dist >= inset_cells + 0.7072) continue;
+          if (centre_dist < inset_cells - 0.7072) return false;
+          const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
+                                                       Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
+          if (QuadDistance(quad, cell) < inset_cells - 1e-9) return false;
+        }
+      }
+      return true;
+    };
+    if (inset_cells > 0.0 && safe(a0, a1, b0, b1)) {
+      const double most = 1.0 / step;  // one cell, in rotated-grid steps
+      auto grow = [&](double* side, double sign) {
+        double lo = 0.0, hi = most;
+        const double base = *side;
+        for (int it = 0; it < 8; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          *side = base + sign * mid;
+          (safe(a0, a1, b0, b1) ? lo : hi) = mid;
+        }
+        *side = base + sign * lo;
+      };
+      grow(&a0, -1.0);
+      grow(&a1, 1.0);
+      grow(&b0, -1.0);
+      grow(&b1, 1.0);
+    }
     quads.push_back({to_world(corner(a0, b0)), to_world(corner(a1, b0)),
                      to_world(corner(a1, b1)), to_world(corner(a0, b1))});
   }

@@ -8,7 +8,8 @@
 #include "planner/base/check.h"
 #include "terrain/patch_decomposition.h"
 #include "terrain/plane_segmentation.h"
-#include "terrain/voxelize.h"
+#include "terrain/map_simulation.h"
+#include "terrain/surface_layers.h"
 
 namespace mfp {
 namespace {
@@ -30,6 +31,11 @@ void RequireRange(const char* field, double value, double lo, double hi, bool op
 
 void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("foot_radius_m", o.foot_radius_m, 0.0, 1.0, false);
+  RequireRange("edge_margin_m", o.edge_margin_m, 0.0, 1.0, false);
+  RequireRange("edge_uncertainty_voxels", o.edge_uncertainty_voxels, 0.0, 10.0, false);
+  if (!(o.clearance_m > 0.0)) {
+    throw InputError("region extractor option clearance_m must be > 0 m (infinity: highest surfaces only)");
+  }
   RequireRange("max_slope_rad", o.max_slope_rad, 0.0, M_PI / 2, true);
   RequireRange("min_region_area_m2", o.min_region_area_m2, 0.0, 100.0, false);
   RequireRange("grow_tolerance_voxels", o.grow_tolerance_voxels, 0.0, 10.0, true);
@@ -50,16 +56,30 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   const Clock::time_point start = Clock::now();
   RegionExtractionResult result;
   RegionExtractionStats& stats = result.stats;
-  result.height_map = BuildHeightMap(map, options.max_height_map_cells);
-  const HeightMap& hm = result.height_map;
+  const double res_in = map.resolution_m;
+  SurfaceLayerOptions layer_options;
+  layer_options.clearance_m = options.clearance_m;
+  layer_options.require_seen_from_above = options.require_seen_from_above;
+  layer_options.max_cells = options.max_height_map_cells;
+  // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
+  layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
+                                  ? res_in * (options.grow_tolerance_voxels + std::tan(options.max_slope_rad)) * (1.0 + 1e-3)
+                                  : 0.0;
+  SurfaceLayers layers = BuildSurfaceLayers(map, layer_options);
+  result.layers = std::move(layers.layers);
+  result.height_map = result.layers.front();
+  stats.layers = static_cast<int>(result.layers.size());
+  stats.no_room_above = layers.no_room_above;
+  stats.not_seen_from_above = layers.not_seen_from_above;
+  stats.isolated_voxels = layers.isolated_voxels;
   stats.height_map_s = SecondsSince(start);
   if (map.leaves.empty()) {
     result.message = "the map has no occupied voxels, so it has no regions";
     stats.total_s = SecondsSince(start);
     return result;
   }
-  for (float h : hm.height_m) stats.surface_cells += std::isnan(h) ? 0 : 1;
-  const double res = hm.resolution_m;
+  stats.surface_cells = layers.candidates;
+  const double res = result.height_map.resolution_m;
 
   Clock::time_point t = Clock::now();
   // The fit window is at least a foot wide (and at least 3 cells).
@@ -76,11 +96,13 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
         << std::max(0.5 * options.foot_radius_m, 1e-3) << " m or more suit this foot)";
     throw InputError(msg.str());
   }
-  const SurfaceAnalysis surface =
-      AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
-                     options.max_slope_rad, options.deadline);
+  std::vector<SurfaceAnalysis> surfaces;
+  for (const HeightMap& hm : result.layers) {
+    surfaces.push_back(AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
+                                      options.max_slope_rad, options.deadline));
+  }
   stats.analysis_s = SecondsSince(t);
-  if (surface.stopped) {
+  if (std::any_of(surfaces.begin(), surfaces.end(), [](const SurfaceAnalysis& s) { return s.stopped; })) {
     result.stopped = true;
     result.message = "time limit reached during the surface fit: no regions";
     stats.total_s = SecondsSince(start);
@@ -93,23 +115,32 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   seg.grow_tolerance_m = options.grow_tolerance_voxels * res * (1.0 + 1e-3);
   seg.max_residual_m = options.max_residual_voxels * res;
   seg.max_seed_roughness_m = options.seed_roughness_voxels * res;
-  std::vector<PlanarPatch> patches = SegmentPlanarPatches(hm, surface, seg);
+  struct LayerPatch {
+    int layer;
+    PlanarPatch patch;
+  };
+  std::vector<LayerPatch> patches;
+  for (size_t l = 0; l < result.layers.size(); ++l) {
+    for (PlanarPatch& p : SegmentPlanarPatches(result.layers[l], surfaces[l], seg)) {
+      patches.push_back({static_cast<int>(l), std::move(p)});
+    }
+  }
   stats.segmentation_s = SecondsSince(t);
   stats.patches = static_cast<int>(patches.size());
 
   t = Clock::now();
-  std::stable_sort(patches.begin(), patches.end(), [](const PlanarPatch& a, const PlanarPatch& b) {
-    return a.cells.size() > b.cells.size();
+  std::stable_sort(patches.begin(), patches.end(), [](const LayerPatch& a, const LayerPatch& b) {
+    return a.patch.cells.size() > b.patch.cells.size();
   });
   const double foot_area_m2 = M_PI * options.foot_radius_m * options.foot_radius_m;
   PatchDecompositionOptions dec;
-  dec.inset_m = options.foot_radius_m;
+  dec.inset_m = options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * res;
   dec.axis_snap_rad = options.axis_snap_rad;
   dec.cover.target_coverage = options.target_coverage;
   dec.cover.max_rects = options.max_regions_per_patch;
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
   int patches_done = 0;
-  for (const PlanarPatch& patch : patches) {
+  for (const LayerPatch& layer_patch : patches) {
     if (options.deadline.Expired()) {
       result.stopped = true;
       result.message = "time limit reached after " + std::to_string(patches_done) + " of " +
@@ -117,6 +148,8 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
       break;
     }
     ++patches_done;
+    const PlanarPatch& patch = layer_patch.patch;
+    const HeightMap& hm = result.layers[static_cast<size_t>(layer_patch.layer)];
     const double slope = patch.SlopeRad();
     if (slope > options.max_slope_rad) {
       ++stats.patches_too_steep;
@@ -138,6 +171,7 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
       for (const Eigen::Vector2d& xy : quad) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
       result.regions.push_back(MakeRegionFromPolygon(static_cast<int>(result.regions.size()),
                                                      vertices, plane_tolerance_m));
+      result.region_layer.push_back(layer_patch.layer);
     }
   }
   stats.decomposition_s = SecondsSince(t);
@@ -155,7 +189,13 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
 
 RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terrain,
                                                  const RegionExtractorOptions& options) {
-  return ExtractRegions(VoxelizeTerrain(terrain), options);
+  RegionExtractorOptions own = options;
+  if (terrain.scan.sensors_world_m.empty() && !terrain.noise.Any()) {
+    // A plain voxelisation marks a voxel occupied when its centre is inside a box, so a
+    // true edge lies within half a voxel of the occupied cells' faces.
+    own.edge_uncertainty_voxels = std::min(own.edge_uncertainty_voxels, 0.5);
+  }
+  return ExtractRegions(MakeTerrainMap(terrain), own);
 }
 
 }  // namespace mfp

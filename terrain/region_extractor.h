@@ -1,10 +1,12 @@
 #pragma once
 // From an occupancy map to the planner's safe regions (the paper's "obstacle-free convex
-// regions"): height map of top surfaces -> local plane fits -> planar patches -> each patch
-// inset by the foot radius and covered by large rectangles (in the patch's principal
-// frame) that hold only walkable surface -> ConvexRegion (edges plus the plane as two
-// inequalities, a tolerance from the voxel size apart). Plain Eigen; one entry point with
-// Options / Result types.
+// regions"): surfaces with room above them, stacked into single-valued layers
+// (surface_layers.h) -> per layer, local plane fits -> planar patches -> each patch inset
+// by the foot radius, the map's edge uncertainty and an edge margin, and covered by large
+// rectangles (in the patch's principal frame) that hold only walkable surface ->
+// ConvexRegion (edges plus the plane as two inequalities, a tolerance from the voxel size
+// apart). Plain Eigen; one entry point with Options / Result types.
+#include <limits>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -18,6 +20,16 @@ namespace mfp {
 
 struct RegionExtractorOptions {
   double foot_radius_m = 0.01;     // regions hold foot centres whose whole disk is on the patch [m]
+  // Real surface kept around the foot's disk, beyond the foot radius [m].
+  double edge_margin_m = 0.01;
+  // How far inside the outermost occupied voxel the true edge may lie, in voxels: a
+  // sensor marks a voxel occupied when any point of it is hit, so up to one voxel.
+  double edge_uncertainty_voxels = 1.0;
+  // Free space a surface needs above it [m] (the robot's stance height plus a margin,
+  // from the planner). Infinity: only the highest surface of each column.
+  double clearance_m = std::numeric_limits<double>::infinity();
+  // In maps that store free space, a surface must have been seen from above.
+  bool require_seen_from_above = true;
   double max_slope_rad = 0.45;     // steeper patches are rejected [rad]
   double min_region_area_m2 = 0.0016;  // smaller regions (of foot centres) are dropped [m^2]
   // Tolerances in voxels (multiples of the map resolution), since the voxel size is
@@ -42,7 +54,11 @@ struct RegionExtractorOptions {
 };
 
 struct RegionExtractionStats {
-  int surface_cells = 0;       // height map cells with a surface
+  int surface_cells = 0;       // surfaces in all layers
+  int layers = 0;              // single-valued surface layers (1 without overlapping levels)
+  int no_room_above = 0;       // surfaces rejected: occupied voxel within the clearance
+  int not_seen_from_above = 0; // surfaces rejected: top voxel not known free
+  int isolated_voxels = 0;     // single outlier voxels ignored
   int patches = 0;             // planar patches found
   int patches_too_steep = 0;   // rejected: slope above max_slope_rad
   int patches_too_small = 0;   // rejected: smaller than a foot, or nothing left after the inset
@@ -56,18 +72,24 @@ struct RegionExtractionStats {
 struct RegionExtractionResult {
   std::vector<ConvexRegion> regions;  // ids 0, 1, ... in order
   RegionExtractionStats stats;
-  HeightMap height_map;               // for display (mfp-regions --svg)
+  HeightMap height_map;               // layer 0, for display
+  std::vector<HeightMap> layers;      // every surface layer (mfp-regions --svg shows them apart)
+  std::vector<int> region_layer;      // per region, the layer it lies on
   std::string message;                // why there are no regions, when there are none
   bool stopped = false;               // the deadline ended it early (message says where)
 };
 
-// Throws InputError on options out of range (foot radius not in [0, 1] m, max slope not in
-// (0, pi/2), tolerances not positive) and on maps BuildHeightMap rejects.
+// Every region point f keeps a disk of radius foot_radius_m + edge_margin_m on the map's
+// surface cells shrunk by edge_uncertainty_voxels. Throws InputError on options out of
+// range (foot radius not in [0, 1] m, max slope not in (0, pi/2), tolerances not
+// positive, clearance not > 0) and on maps BuildHeightMap rejects.
 RegionExtractionResult ExtractRegions(const OccupancyMap& map,
                                       const RegionExtractorOptions& options);
 
-// Voxelises a box description at its resolution and extracts its regions: what a
-// scenario with a `terrain:` block plans on.
+// Makes the map of a box description (MakeTerrainMap: voxelised, or scanned from its
+// sensors, with its noise) and extracts its regions: what a scenario with a `terrain:`
+// block plans on. A plain voxelisation (no scan, no noise) is known to put true edges
+// within half a voxel of its cells, so its edge uncertainty is at most 0.5 voxels.
 RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terrain,
                                                  const RegionExtractorOptions& options);
 

@@ -17,9 +17,29 @@ struct TerrainBox {
   Eigen::Vector3d rpy_rad = Eigen::Vector3d::Zero();      // roll, pitch, yaw (extrinsic X, Y, Z)
 };
 
+// How a map is made from the boxes as a real one is: rays cast from sensor positions
+// mark the voxel they first hit occupied and the voxels they pass through free. With no
+// sensors the map is the plain voxelisation (every voxel whose centre is inside a box
+// occupied, no free space known).
+struct SensorScan {
+  std::vector<Eigen::Vector3d> sensors_world_m;  // ray origins [m, world]
+  double max_range_m = 6.0;                      // rays end here when they hit nothing [m]
+};
+
+// Scan noise, applied to the map's top surfaces after it is made (seeded, repeatable).
+struct MapNoise {
+  unsigned seed = 1;
+  double jitter_fraction = 0.0;  // top voxels moved up or down by one voxel
+  double hole_fraction = 0.0;    // top voxels missing (neither occupied nor free)
+  int outliers = 0;              // isolated occupied voxels in open space
+  bool Any() const { return jitter_fraction > 0.0 || hole_fraction > 0.0 || outliers > 0; }
+};
+
 struct TerrainDescription {
   std::vector<TerrainBox> boxes;
   double resolution_m = 0.02;  // voxel size when the description is turned into a map
+  SensorScan scan;             // no sensors: plain voxelisation
+  MapNoise noise;              // none by default
 };
 
 // Rotation of a box: R = Rz(yaw) Ry(pitch) Rx(roll).

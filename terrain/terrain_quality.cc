@@ -48,7 +48,89 @@ std::vector<Eigen::Vector3d> SampleRegion(const ConvexRegion& region, int per_ed
   return pts;
 }
 
+// The vertical extent [z_bottom, z_top] of a box over (x, y); false when it misses.
+bool VerticalExtent(const TerrainBox& box, const Eigen::Matrix3d& R, double x_m, double y_m,
+                    double* z_bottom, double* z_top) {
+  const double top = BoxTopAt(box, R, x_m, y_m);
+  if (std::isnan(top)) return false;
+  // The exit of the downward ray: the entry of the upward ray from below.
+  const double z_start = box.center_world_m.z() - box.size_m.norm() - 1.0;
+  const Eigen::Vector3d o = R.transpose() * (Eigen::Vector3d(x_m, y_m, z_start) - box.center_world_m);
+  const Eigen::Vector3d d = R.transpose() * Eigen::Vector3d(0, 0, 1);
+  double t_in = -std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const double h = 0.5 * box.size_m(a);
+    if (std::abs(d(a)) < 1e-12) continue;
+    const double t0 = (-h - o(a)) / d(a), t1 = (h - o(a)) / d(a);
+    t_in = std::max(t_in, std::min(t0, t1));
+  }
+  *z_top = top;
+  *z_bottom = z_start + t_in;
+  return true;
+}
+
+// True when some box holds a point of the vertical segment (z_lo, z_hi] over (x, y).
+bool Occupied(const TerrainDescription& terrain, double x_m, double y_m, double z_lo, double z_hi) {
+  for (const TerrainBox& box : terrain.boxes) {
+    double bottom, top;
+    if (VerticalExtent(box, BoxRotation(box), x_m, y_m, &bottom, &top) && top > z_lo && bottom < z_hi) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
+
+double TrueSurfaceBelow(const TerrainDescription& terrain, double x_m, double y_m, double z_from_m) {
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (const TerrainBox& box : terrain.boxes) {
+    double bottom, top;
+    if (!VerticalExtent(box, BoxRotation(box), x_m, y_m, &bottom, &top)) continue;
+    if (bottom < z_from_m && top > z_from_m) return std::numeric_limits<double>::quiet_NaN();
+    if (top <= z_from_m && !(best >= top)) best = top;
+  }
+  return best;
+}
+
+bool OnTrueTopSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double radius_m,
+                      double height_tolerance_m, const Eigen::Vector3d& normal_world) {
+  const Eigen::Vector3d nrm = normal_world.normalized();
+  auto plane_z = [&](double x, double y) {
+    return p.z() - (nrm.x() * (x - p.x()) + nrm.y() * (y - p.y())) / nrm.z();
+  };
+  const int rings = radius_m > 0.0 ? 2 : 0;
+  for (int ring = 0; ring <= rings; ++ring) {
+    const double r = rings > 0 ? radius_m * ring / rings : 0.0;
+    const int count = ring == 0 ? 1 : 8 * ring;
+    for (int k = 0; k < count; ++k) {
+      const double a = 2 * M_PI * k / count;
+      const double x = p.x() + r * std::cos(a), y = p.y() + r * std::sin(a);
+      const double z = plane_z(x, y);
+      const double below = TrueSurfaceBelow(terrain, x, y, z + height_tolerance_m);
+      if (!(below >= z - height_tolerance_m)) return false;
+    }
+  }
+  return true;
+}
+
+RegionSoundness MeasureSoundness(const std::vector<ConvexRegion>& regions,
+                                 const TerrainDescription& terrain, double radius_m,
+                                 double height_tolerance_m) {
+  RegionSoundness out;
+  for (const ConvexRegion& region : regions) {
+    for (const Eigen::Vector3d& p : SampleRegion(region, 8)) {
+      ++out.samples;
+      if (OnTrueTopSurface(terrain, p, radius_m, height_tolerance_m, region.normal_world)) {
+        ++out.sound;
+      } else {
+        out.worst_point = p;
+      }
+    }
+  }
+  out.fraction = out.samples > 0 ? double(out.sound) / out.samples : 1.0;
+  return out;
+}
 
 double TrueTopHeight(const TerrainDescription& terrain, double x_m, double y_m) {
   double best = std::numeric_limits<double>::quiet_NaN();
@@ -85,12 +167,26 @@ std::vector<FaceCoverage> TopFaceCoverage(const std::vector<ConvexRegion>& regio
                                           const TerrainDescription& terrain,
                                           double foot_radius_m, double max_slope_rad,
                                           double height_tolerance_m) {
+  CoverageOptions options;
+  options.inset_m = foot_radius_m;
+  options.disk_radius_m = foot_radius_m;
+  options.max_slope_rad = max_slope_rad;
+  options.height_tolerance_m = height_tolerance_m;
+  return TopFaceCoverage(regions, terrain, options);
+}
+
+std::vector<FaceCoverage> TopFaceCoverage(const std::vector<ConvexRegion>& regions,
+                                          const TerrainDescription& terrain,
+                                          const CoverageOptions& options) {
+  const double foot_radius_m = options.disk_radius_m;
+  const double height_tolerance_m = options.height_tolerance_m;
   std::vector<FaceCoverage> out;
   const double step = std::max(0.002, terrain.resolution_m / 4);
   for (size_t b = 0; b < terrain.boxes.size(); ++b) {
+    if (!options.only_face.empty() && terrain.boxes[b].name != options.only_face) continue;
     TerrainDescription one;
     one.boxes = {terrain.boxes[b]};
-    const std::vector<ConvexRegion> face = TopFaceRegions(one, foot_radius_m, max_slope_rad);
+    const std::vector<ConvexRegion> face = TopFaceRegions(one, options.inset_m, options.max_slope_rad);
     if (face.empty()) continue;
     const ConvexRegion& f = face.front();
     FaceCoverage cov;
@@ -111,14 +207,14 @@ std::vector<FaceCoverage> TopFaceCoverage(const std::vector<ConvexRegion>& regio
         }
         if (!inside) continue;
         const double z = f.HeightAt(x, y);
-        // Visible: nothing higher here or within a foot radius (a foot disk fits).
+        // Visible: no box within the clearance above here or within the disk.
         bool free = true;
         for (int k = 0; k <= 8 && free; ++k) {
           const double a = k * M_PI / 4;
           const double r = k == 8 ? 0.0 : foot_radius_m;
           const double px = x + r * std::cos(a), py = y + r * std::sin(a);
-          const double top = TrueTopHeight(terrain, px, py);
-          free = !(top > f.HeightAt(px, py) + 1e-6);
+          const double fz = f.HeightAt(px, py);
+          free = !Occupied(terrain, px, py, fz + 1e-6, fz + options.clearance_m);
         }
         if (!free) continue;
         ++visible;

@@ -22,7 +22,8 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx, doub
 }  // namespace
 
 TerrainDescription ParseTerrainDescription(const YAML::Node& terrain_node, const YamlContext& ctx) {
-  RejectUnknownKeys(terrain_node, ctx, {"resolution", "boxes"});
+  // edge_margin and source are region-extraction settings of scenarios (scenario_yaml.h).
+  RejectUnknownKeys(terrain_node, ctx, {"resolution", "boxes", "scan", "noise", "edge_margin", "source"});
   TerrainDescription terrain;
   if (auto res = OptionalDouble(terrain_node, ctx, "resolution", 0.001, 1.0)) {
     terrain.resolution_m = *res;
@@ -48,6 +49,27 @@ TerrainDescription ParseTerrainDescription(const YAML::Node& terrain_node, const
     box.size_m = ReadVector3(node["size"], box_ctx.Child("size"), 1e-3, 2 * kMaxCoordinateM);
     if (node["rpy"]) box.rpy_rad = ReadVector3(node["rpy"], box_ctx.Child("rpy"), -2 * M_PI, 2 * M_PI);
     terrain.boxes.push_back(box);
+  }
+  if (const YAML::Node scan = terrain_node["scan"]) {
+    const YamlContext sctx = ctx.Child("scan");
+    RejectUnknownKeys(scan, sctx, {"sensors", "max_range"});
+    const YAML::Node sensors = scan["sensors"];
+    if (!sensors || !sensors.IsSequence() || sensors.size() == 0 || sensors.size() > 1000) {
+      throw InputError(sctx.Child("sensors").Where() + ": expected a list of 1 to 1000 [x, y, z] sensor positions");
+    }
+    for (size_t i = 0; i < sensors.size(); ++i) {
+      terrain.scan.sensors_world_m.push_back(
+          ReadVector3(sensors[i], sctx.Child("sensors").Index(i), -kMaxCoordinateM, kMaxCoordinateM));
+    }
+    if (auto range = OptionalDouble(scan, sctx, "max_range", 0.01, 100.0)) terrain.scan.max_range_m = *range;
+  }
+  if (const YAML::Node noise = terrain_node["noise"]) {
+    const YamlContext nctx = ctx.Child("noise");
+    RejectUnknownKeys(noise, nctx, {"seed", "jitter", "holes", "outliers"});
+    terrain.noise.seed = static_cast<unsigned>(OptionalInt(noise, nctx, "seed", 0, 1 << 30).value_or(1));
+    terrain.noise.jitter_fraction = OptionalDouble(noise, nctx, "jitter", 0.0, 1.0).value_or(0.0);
+    terrain.noise.hole_fraction = OptionalDouble(noise, nctx, "holes", 0.0, 1.0).value_or(0.0);
+    terrain.noise.outliers = OptionalInt(noise, nctx, "outliers", 0, 1000000).value_or(0);
   }
   return terrain;
 }

@@ -44,6 +44,12 @@ int main(int argc, char** argv) {
                  "seconds for loading and extraction; when they run out, the regions of the "
                  "patches done so far (largest first) and a line saying so")
       ->check(CLI::Range(1e-3, 3600.0));
+  app.add_option("--clearance", options.clearance_m,
+                 "free space a surface needs above it [m] (the robot's stance height plus a margin; "
+                 "default: only the highest surface of each column)")
+      ->check(CLI::Range(0.001, 1000.0));
+  app.add_option("--edge-margin", options.edge_margin_m, "real surface kept around a foot [m]")
+      ->check(CLI::Range(0.0, 1.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -54,7 +60,7 @@ int main(int argc, char** argv) {
     const mfp::OccupancyMap map = mfp::LoadMapFile(map_path);
     const mfp::RegionExtractionResult result = mfp::ExtractRegions(map, options);
     if (!json_path.empty()) mfp::WriteTextOutput(json_path, mfp::RegionsToJson(result.regions).dump(2) + "\n");
-    if (!svg_path.empty()) mfp::WriteTextOutput(svg_path, mfp::RegionsSvg(result.height_map, result.regions));
+    if (!svg_path.empty()) mfp::WriteTextOutput(svg_path, mfp::RegionsSvg(result.layers, result.regions, result.region_layer));
     if (region_id >= 0 || app.count("--region") > 0) {
       if (region_id < 0 || region_id >= static_cast<int>(result.regions.size())) {
         throw mfp::InputError("--region " + std::to_string(region_id) + ": the map has " +
@@ -74,17 +80,20 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (json_path == "-") return 0;  // stdout holds the JSON only
-    std::printf("%s: %zu occupied leaves at %.3f m, %d surface cells, %d planar patches "
+    std::printf("%s: %zu occupied leaves (%zu free) at %.3f m, %d surface cells on %d levels "
+                "(%d without room above, %d not seen from above, %d outlier voxels), %d planar patches "
                 "(%d too steep, %d too small), %zu regions in %.1f ms\n",
-                map_path.c_str(), map.leaves.size(), map.resolution_m, result.stats.surface_cells,
-                result.stats.patches, result.stats.patches_too_steep,
-                result.stats.patches_too_small, result.regions.size(), 1e3 * result.stats.total_s);
+                map_path.c_str(), map.leaves.size(), map.free_leaves.size(), map.resolution_m,
+                result.stats.surface_cells, result.stats.layers, result.stats.no_room_above,
+                result.stats.not_seen_from_above, result.stats.isolated_voxels, result.stats.patches,
+                result.stats.patches_too_steep, result.stats.patches_too_small, result.regions.size(),
+                1e3 * result.stats.total_s);
     if (result.regions.empty() || result.stopped) std::printf("%s\n", result.message.c_str());
     if (result.regions.empty()) return 0;
-    std::printf("%4s %10s %9s %9s %8s\n", "id", "area_m2", "slope_deg", "height_m", "vertices");
+    std::printf("%4s %10s %9s %9s %8s %6s\n", "id", "area_m2", "slope_deg", "height_m", "vertices", "level");
     for (const mfp::ConvexRegion& r : result.regions) {
-      std::printf("%4d %10.4f %9.2f %9.3f %8zu\n", r.id, r.area_m2, r.SlopeRad() * 180.0 / M_PI,
-                  Centroid(r).z(), r.vertices_world_m.size());
+      std::printf("%4d %10.4f %9.2f %9.3f %8zu %6d\n", r.id, r.area_m2, r.SlopeRad() * 180.0 / M_PI,
+                  Centroid(r).z(), r.vertices_world_m.size(), result.region_layer[static_cast<size_t>(r.id)]);
     }
   } catch (const mfp::InputError& e) {
     std::fprintf(stderr, "mfp-regions: %s\n", e.what());

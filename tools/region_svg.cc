@@ -61,3 +61,39 @@ std::string RegionsSvg(const HeightMap& hm, const std::vector<ConvexRegion>& reg
 }
 
 }  // namespace mfp
+
+namespace mfp {
+
+std::string RegionsSvg(const std::vector<HeightMap>& levels, const std::vector<ConvexRegion>& regions,
+                       const std::vector<int>& region_layer) {
+  if (levels.size() <= 1) return RegionsSvg(levels.empty() ? HeightMap() : levels.front(), regions);
+  // One nested picture per level, side by side (nested <svg> elements keep their own
+  // coordinates).
+  std::ostringstream body;
+  double x = 0.0, height = 0.0;
+  for (size_t level = 0; level < levels.size(); ++level) {
+    std::vector<ConvexRegion> on_level;
+    for (size_t i = 0; i < regions.size() && i < region_layer.size(); ++i) {
+      if (region_layer[i] == static_cast<int>(level)) on_level.push_back(regions[i]);
+    }
+    std::string panel = RegionsSvg(levels[level], on_level);
+    const size_t w0 = panel.find("width=\"") + 7;
+    const double w = std::stod(panel.substr(w0));
+    const size_t h0 = panel.find("height=\"") + 8;
+    height = std::max(height, std::stod(panel.substr(h0)));
+    std::ostringstream open;
+    open << "<svg x=\"" << x << "\" ";
+    panel.replace(0, 5, open.str());
+    const std::string tag = "<text x=\"8\" y=\"18\" font-size=\"14\">";
+    const size_t label = panel.rfind(tag);
+    if (label != std::string::npos) panel.insert(label + tag.size(), "level " + std::to_string(level) + ": ");
+    body << panel;
+    x += w + 20.0;
+  }
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << x << "\" height=\"" << height
+      << "\" viewBox=\"0 0 " << x << " " << height << "\">\n" << body.str() << "</svg>\n";
+  return svg.str();
+}
+
+}  // namespace mfp

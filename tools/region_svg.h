@@ -1,6 +1,8 @@
 #pragma once
 // SVG picture of a terrain's regions: the height map shaded by height (darker = lower)
-// and each region's outline with its id. For mfp-regions --svg.
+// and each region's outline with its id. For mfp-regions --svg. With several surface
+// levels (floors under tables, ground under bridges), one panel per level, side by side,
+// each with the regions on that level.
 #include <string>
 #include <vector>
 
@@ -10,5 +12,9 @@
 namespace mfp {
 
 std::string RegionsSvg(const HeightMap& height_map, const std::vector<ConvexRegion>& regions);
+
+// region_layer[i]: the level of regions[i] (RegionExtractionResult::region_layer).
+std::string RegionsSvg(const std::vector<HeightMap>& levels, const std::vector<ConvexRegion>& regions,
+                       const std::vector<int>& region_layer);
 
 }  // namespace mfp

@@ -32,7 +32,8 @@ say "configuring and building in $build ($jobs jobs)"
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 # The whole build log stays in build/build.log; errors, warnings and linker failures
 # (a missing library shows as 'cannot find -lNAME') are shown here.
-cmake --build "$build" -j"$jobs" >"$build/build.log" 2>&1 || true
+built=0
+cmake --build "$build" -j"$jobs" >"$build/build.log" 2>&1 && built=1
 grep -E "error|warning:|Error|cannot find|undefined reference" "$build/build.log" || true
-test -x "$build/tools/mfp-plan" || { echo "mfp setup: build failed (no $build/tools/mfp-plan; full log: $build/build.log)" >&2; exit 1; }
+((built)) && test -x "$build/tools/mfp-plan" || { echo "mfp setup: build failed (full log: $build/build.log)" >&2; exit 1; }
 say "built"

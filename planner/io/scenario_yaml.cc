@@ -46,11 +46,15 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
   if (!root["terrain"]) throw InputError(ctx.Child("terrain").Where() + ": missing (boxes, regions or map)");
   const YAML::Node terrain = root["terrain"];
   const YamlContext tctx = ctx.Child("terrain");
-  RejectUnknownKeys(terrain, tctx, {"resolution", "boxes", "regions", "map", "source"});
+  RejectUnknownKeys(terrain, tctx,
+                    {"resolution", "boxes", "regions", "map", "source", "scan", "noise", "edge_margin"});
+  s.edge_margin_m = OptionalDouble(terrain, tctx, "edge_margin", 0.0, 0.5);
   if (terrain["boxes"]) {
     YAML::Node boxes_only;
     boxes_only["boxes"] = terrain["boxes"];
     if (terrain["resolution"]) boxes_only["resolution"] = terrain["resolution"];
+    if (terrain["scan"]) boxes_only["scan"] = terrain["scan"];
+    if (terrain["noise"]) boxes_only["noise"] = terrain["noise"];
     s.terrain = ParseTerrainDescription(boxes_only, tctx);
   }
   if (const auto source = OptionalString(terrain, tctx, "source")) {
@@ -116,16 +120,22 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
                                           std::string* note, const Deadline& deadline) {
   if (!scenario.listed_regions.empty()) return scenario.listed_regions;
+  // Surfaces need room above them for the robot: its stance height plus a margin.
+  const double clearance_m = robot.stance_height_m + scenario.options.body_clearance_margin_m;
+  RegionExtractorOptions options;
+  options.foot_radius_m = robot.foot_radius_m;
+  options.max_slope_rad = robot.max_slope_rad;
+  options.clearance_m = clearance_m;
+  options.deadline = deadline;
+  if (scenario.edge_margin_m) options.edge_margin_m = *scenario.edge_margin_m;
   if (!scenario.map_path.empty()) {
-    return RegionsFromMapFile(scenario.map_path, robot.foot_radius_m, robot.max_slope_rad, deadline, note);
+    RegionExtractionResult from_map = ExtractRegions(LoadMapFile(scenario.map_path), options);
+    if (note != nullptr) *note = from_map.message;
+    return std::move(from_map.regions);
   }
   if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
     return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
   }
-  RegionExtractorOptions options;
-  options.foot_radius_m = robot.foot_radius_m;
-  options.max_slope_rad = robot.max_slope_rad;
-  options.deadline = deadline;
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
   if (note != nullptr) *note = result.message;
   return std::move(result.regions);

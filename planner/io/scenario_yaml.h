@@ -3,6 +3,7 @@
 // optional planner settings. The terrain is one of: boxes (a course description whose
 // top faces are the regions, also turned into maps by mfp-terrain), explicit convex
 // regions (polygons on planes, for users with regions from elsewhere), or a map file.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,9 @@ struct Scenario {
   BoxRegionSource boxes_source = BoxRegionSource::kExtracted;
   std::vector<ConvexRegion> listed_regions;  // explicit regions, when given
   std::string map_path;                      // map file, when given
+  // Real surface kept around each foot beyond its radius (terrain: edge_margin) [m];
+  // unset: the extractor's default (RegionExtractorOptions::edge_margin_m).
+  std::optional<double> edge_margin_m;
   Pose2D start, goal;
   int max_steps = 0;        // 0: planner default
   int window_steps = 0;     // 0: planner default

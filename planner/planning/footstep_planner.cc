@@ -9,6 +9,9 @@
 #include "planner/planning/goal.h"
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
+#include "planner/base/check.h"
+#include "planner/planning/relax_and_fix.h"
+#include "terrain/region_reachability.h"
 
 namespace mfp {
 namespace {
@@ -28,6 +31,24 @@ SolveStatus Combine(SolveStatus a, SolveStatus b) {
     return s == SolveStatus::kOptimal ? 0 : s == SolveStatus::kFeasible ? 1 : 2;
   };
   return rank(a) >= rank(b) ? a : b;
+}
+
+
+// Largest horizontal move of one foot in one step [m]: on each axis d_lim about the
+// previous nominal spot plus how far the previous foot may lie from that spot (l_bnd, or
+// the start stance's own offset, whichever is larger), as a Euclidean length.
+double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
+  const int n = robot.num_legs();
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector3d& f : request.start_feet_world_m) centre += f.head<2>();
+  centre /= n;
+  double offset = robot.l_bnd_m;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector2d d = request.start_feet_world_m[k].head<2>() -
+                              NominalFootXY(robot, k, centre.x(), centre.y(), request.start_yaw_rad);
+    offset = std::max(offset, d.cwiseAbs().maxCoeff());
+  }
+  return std::sqrt(2.0) * (robot.d_lim_m + offset);
 }
 
 }  // namespace
@@ -104,6 +125,15 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   const int window = WindowSteps(robot, request, options);
   const double time_limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
 
+  // Only regions the start stance can reach (chains of steps within dz_max) enter the
+  // MIQPs, and each window sees only those its steps can reach.
+  const double step_xy = StepReachXY(robot, request);
+  std::vector<ConvexRegion> usable;
+  for (int i : ReachableRegionIndices(regions, request.start_feet_world_m, step_xy, robot.dz_max_m,
+                                      options.start_tolerance_m)) {
+    usable.push_back(regions[static_cast<size_t>(i)]);
+  }
+
   // ---- receding windows ----
   Plan plan;
   plan.status = SolveStatus::kOptimal;
@@ -148,6 +178,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     problem.gait_phase = phase;
     problem.start_yaw_rad = yaw;
     problem.num_new_steps = steps;
+    problem.regions.clear();
+    for (int i : WindowRegionIndices(usable, stance, (steps + n - 1) / n, step_xy, robot.dz_max_m)) {
+      problem.regions.push_back(usable[static_cast<size_t>(i)]);
+    }
     if (plan.windows > 0) {
       problem.history_feet_world_m = history;
       problem.start_step_yaw_rad = stance_yaw;

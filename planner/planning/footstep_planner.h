@@ -46,6 +46,9 @@ struct PlannerOptions {
   double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot
   double goal_yaw_tolerance_rad = 0.15;  // final body yaw within this of the goal yaw
   double start_tolerance_m = 0.02;       // a start foot may be this far off its region
+  // Region extraction for this robot keeps surfaces with the stance height plus this much
+  // free space above them (RegionExtractorOptions::clearance_m) [m].
+  double body_clearance_margin_m = 0.1;
   RelaxationBackend relaxation_solver = RelaxationBackend::kInteriorPointWithIpoptFallback;
   // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
   // are solved this many at a time. Callers make the solvers (MakeRelaxationSolvers).

@@ -1,6 +1,7 @@
 #include "tools/daemon/map_regions.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
@@ -13,10 +14,15 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
   RegionExtractorOptions options;
   options.foot_radius_m = 0.0;
   options.max_slope_rad = 1.5;
+  // Surfaces keep the room the tallest robot needs above them.
+  options.clearance_m = 0.0;
+  const double margin_m = PlannerOptions().body_clearance_margin_m;
   for (const auto& entry : setup.robots) {
+    options.clearance_m = std::max(options.clearance_m, entry.second.stance_height_m + margin_m);
     options.foot_radius_m = std::max(options.foot_radius_m, entry.second.foot_radius_m);
     options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
   }
+  if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
   return [options](const std::string& bytes, const std::string& /*format*/,
                    const std::string& what) {
     const std::vector<uint8_t> data(bytes.begin(), bytes.end());
