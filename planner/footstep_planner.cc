@@ -84,14 +84,9 @@ double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vecto
   return std::atan2(sin_sum, cos_sum);
 }
 
-double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& footsteps) {
-  const int n = robot.num_legs();
-  MFP_CHECK(static_cast<int>(footsteps.size()) >= n);
-  std::vector<Eigen::Vector3d> feet(n);
-  for (size_t i = footsteps.size() - n; i < footsteps.size(); ++i) {
-    feet[footsteps[i].leg] = footsteps[i].position_world_m;
-  }
-  return EstimateStanceYaw(robot, feet);
+double FinalStanceYaw(const RobotModel& /*robot*/, const std::vector<Footstep>& footsteps) {
+  MFP_CHECK(!footsteps.empty());
+  return footsteps.back().yaw_rad;
 }
 
 FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
@@ -201,6 +196,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
            options.goal_yaw_tolerance_rad;
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
+  std::string polish_note;  // the first window whose polished plan was not used, and why
 
   while (!plan.reaches_goal && planned < max_steps &&
          (request.max_windows <= 0 || plan.windows < request.max_windows)) {
@@ -280,8 +276,12 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     plan.status = Combine(plan.status, result.status);
     plan.objective += result.objective;
     plan.bound += result.bound;
+    const PolishedWindow polished = PolishWindow(formulation, result.x, options.polish);
+    if (!polished.report.message.empty() && polish_note.empty()) {
+      polish_note = "window " + std::to_string(plan.windows) + ": " + polished.report.message;
+    }
     // Keep the untrimmed steps; trimmed ones (a suffix) leave the feet where they are.
-    const std::vector<Footstep> window_steps = formulation.ExtractFootsteps(result.x);
+    const std::vector<Footstep>& window_steps = polished.footsteps;
     int kept = 0;
     for (int i = n; i < formulation.num_steps(); ++i) {
       if (result.x(formulation.vars().trim[i]) < 0.5) kept = i - n + 1;
@@ -315,6 +315,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.distance_to_goal_m = (centre - Eigen::Vector2d(request.goal_x_m, request.goal_y_m)).norm();
       progress.elapsed_s = elapsed();
       progress.window_result = result;
+      progress.polish = polished.report;
       on_progress(progress);
     }
     if (kept == 0 && !plan.reaches_goal) {
@@ -328,6 +329,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                        ? "goal not reached within " + std::to_string(request.max_windows) + " window(s)"
                        : "goal not reached within " + std::to_string(max_steps) + " steps";
   }
+  if (!polish_note.empty()) plan.message += (plan.message.empty() ? "" : "; ") + polish_note;
   plan.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
   plan.solve_time_s = elapsed();
   return plan;

@@ -365,6 +365,22 @@ void MiqpFormulation::Build() {
     }
   }
 
+  // ---- a configuration whose first step is trimmed does not turn: t_bn => theta_b = theta_b-1 ----
+  // With trimming as a suffix, the yaw of the last configuration is then the yaw of the
+  // last step taken, which is the body yaw the plan reports, the goal test checks and the
+  // goal cost weighs. Without it a trimmed last configuration could turn to the goal yaw
+  // on paper while the steps the robot takes end at another yaw.
+  if (options_.trimmed_configurations_hold_yaw) {
+    for (int blk = 1; blk < B; ++blk) {
+      const int t = vars_.trim[blk * n];
+      if (t < 0) continue;
+      const double M = robot.max_yaw_change_rad;
+      const LinExpr turn = theta(blk) - theta(blk - 1);
+      b.AddRow(StepName("hold_yaw_up", blk), turn + LinExpr::Var(t, M), -kInfinity, M);
+      b.AddRow(StepName("hold_yaw_dn", blk), turn - LinExpr::Var(t, M), -M, kInfinity);
+    }
+  }
+
   // ---- safe regions: sum_r H_ir = 1, H_ir => A_r f_i <= b_r ----
   const int R = static_cast<int>(problem_.regions.size());
   vars_.region.assign(N, std::vector<int>(R, -1));

@@ -17,7 +17,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "reduced_cost_fixing", "early_cutoff", "relax_and_fix", "relax_and_fix_time_share",
                      "relax_and_fix_min_configurations", "relax_and_fix_region_hull",
                      "relax_and_fix_stage_tolerance", "snap_yaw_segments",
-                     "relax_and_fix_two_paths", "relax_and_fix_stage_rounding"});
+                     "relax_and_fix_two_paths", "relax_and_fix_stage_rounding", "polish", "polish_time_limit",
+                     "trimmed_configurations_hold_yaw"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.threads = OptionalInt(node, ctx, "threads", 1, 64).value_or(o.threads);
@@ -33,6 +34,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   o.relax_and_fix_stage_rounding =
       OptionalBool(node, ctx, "relax_and_fix_stage_rounding").value_or(o.relax_and_fix_stage_rounding);
   o.snap_yaw_segments = OptionalBool(node, ctx, "snap_yaw_segments").value_or(o.snap_yaw_segments);
+  o.polish.enabled = OptionalBool(node, ctx, "polish").value_or(o.polish.enabled);
+  o.polish.time_limit_s = OptionalDouble(node, ctx, "polish_time_limit", 1e-4, 3600).value_or(o.polish.time_limit_s);
   o.relax_and_fix_stage_tolerance = OptionalDouble(node, ctx, "relax_and_fix_stage_tolerance", 0.0, 1e-3)
                                         .value_or(o.relax_and_fix_stage_tolerance);
   o.default_window_steps = OptionalInt(node, ctx, "window", 1, 1000).value_or(o.default_window_steps);
@@ -50,6 +53,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   }
   FormulationOptions& f = o.formulation;
   f.yaw_segment_rad = OptionalDouble(node, ctx, "yaw_segment", 0.02, M_PI).value_or(f.yaw_segment_rad);
+  f.trimmed_configurations_hold_yaw =
+      OptionalBool(node, ctx, "trimmed_configurations_hold_yaw").value_or(f.trimmed_configurations_hold_yaw);
   f.yaw_margin_rad = OptionalDouble(node, ctx, "yaw_margin", 0, M_PI).value_or(f.yaw_margin_rad);
   if (const auto enc = OptionalString(node, ctx, "region_encoding")) {
     if (*enc == "big_m") {
