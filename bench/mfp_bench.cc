@@ -89,14 +89,14 @@ void PrintRow(const Row& r) {
 void PrintPolisherTables() {
   if (g_polished.empty()) return;
   std::printf("\nPolisher per window (first run; exact sin/cos with the window's integer assignment fixed)\n");
-  std::printf("%-34s %6s %9s %9s %7s %12s %12s %10s %10s %-8s\n", "instance", "window", "solve_s", "polish_s",
-              "ratio", "obj_miqp", "obj_polish", "exc_miqp_m", "exc_pol_m", "used");
+  std::printf("%-34s %6s %9s %9s %7s %12s %12s %10s %10s %-8s %s\n", "instance", "window", "solve_s", "polish_s",
+              "ratio", "obj_miqp", "obj_polish", "exc_miqp_m", "exc_pol_m", "used", "stops");
   for (const Row& r : g_polished) {
     for (size_t w = 0; w < r.windows.size(); ++w) {
       const auto& [solve_s, p] = r.windows[w];
-      std::printf("%-34s %6zu %9.4f %9.4f %7.3f %12.4f %12.4f %10.2e %10.2e %-8s\n", r.name.c_str(), w + 1, solve_s,
+      std::printf("%-34s %6zu %9.4f %9.4f %7.3f %12.4f %12.4f %10.2e %10.2e %-8s %s\n", r.name.c_str(), w + 1, solve_s,
                   p.time_s, p.time_s / std::max(solve_s, 1e-9), p.objective_before, p.objective_after, p.excess_before,
-                  p.excess_after, !p.attempted ? "off" : p.accepted ? "yes" : "fallback");
+                  p.excess_after, !p.attempted ? "off" : p.accepted ? "yes" : "fallback", p.stops.c_str());
     }
   }
   std::printf("\nPolisher per instance (sums over windows; box_exc_m: the plan's largest box excess, exact R(yaw))\n");

@@ -14,12 +14,14 @@ namespace {
 
 struct Callbacks {
   const NonlinearProgram* program;
+  int evaluations = 0;
   Eigen::VectorXd x, grad, values;
   Eigen::MatrixXd jacobian;
 };
 
 double Objective(unsigned n, const double* x, double* grad, void* data) {
   Callbacks& cb = *static_cast<Callbacks*>(data);
+  ++cb.evaluations;
   cb.x = Eigen::Map<const Eigen::VectorXd>(x, n);
   const double f = cb.program->objective(cb.x, grad != nullptr ? &cb.grad : nullptr);
   if (grad != nullptr) Eigen::Map<Eigen::VectorXd>(grad, n) = cb.grad;
@@ -44,11 +46,11 @@ NonlinearSolveResult SolveNonlinearProgram(const NonlinearProgram& program, cons
   const int n = static_cast<int>(program.start.size());
   MFP_CHECK(n > 0 && program.lower.size() == n && program.upper.size() == n && program.objective);
   NonlinearSolveResult out;
-  Callbacks cb{&program, {}, Eigen::VectorXd(n), {}, {}};
+  Callbacks cb{&program, 0, {}, Eigen::VectorXd(n), {}, {}};
   std::vector<double> x(program.start.data(), program.start.data() + n);
   for (int j = 0; j < n; ++j) x[j] = std::clamp(x[j], program.lower(j), program.upper(j));
   try {
-    nlopt::opt opt(options.method == NonlinearMethod::kSqp ? nlopt::LD_SLSQP : nlopt::LD_CCSAQ, static_cast<unsigned>(n));
+    nlopt::opt opt(nlopt::LD_SLSQP, static_cast<unsigned>(n));
     opt.set_lower_bounds(std::vector<double>(program.lower.data(), program.lower.data() + n));
     opt.set_upper_bounds(std::vector<double>(program.upper.data(), program.upper.data() + n));
     opt.set_min_objective(Objective, &cb);
@@ -59,7 +61,6 @@ NonlinearSolveResult SolveNonlinearProgram(const NonlinearProgram& program, cons
     opt.set_xtol_rel(options.relative_tolerance);
     opt.set_maxeval(options.max_evaluations);
     opt.set_maxtime(options.time_limit_s);
-    if (std::isfinite(options.stop_value)) opt.set_stopval(options.stop_value);
     double f = 0.0;
     const nlopt::result r = opt.optimize(x, f);
     out.converged = r == nlopt::SUCCESS || r == nlopt::FTOL_REACHED || r == nlopt::XTOL_REACHED ||
@@ -78,6 +79,7 @@ NonlinearSolveResult SolveNonlinearProgram(const NonlinearProgram& program, cons
   } catch (const std::exception& e) {
     out.message = std::string("failed: ") + e.what();
   }
+  out.evaluations = cb.evaluations;
   out.x = Eigen::Map<const Eigen::VectorXd>(x.data(), n);
   out.objective = program.objective(out.x, nullptr);
   return out;

@@ -5,7 +5,6 @@
 // confined to nlopt_program_solver.cc.
 #include <Eigen/Core>
 #include <functional>
-#include <limits>
 #include <string>
 
 namespace mfp {
@@ -19,25 +18,17 @@ struct NonlinearProgram {
   std::function<void(const Eigen::VectorXd& x, Eigen::VectorXd* values, Eigen::MatrixXd* jacobian)> inequalities;
 };
 
-enum class NonlinearMethod {
-  kSqp,   // sequential quadratic programming (NLopt LD_SLSQP): fast near a solution
-  kCcsa,  // conservative convex separable approximations (NLopt LD_CCSAQ): slower, but
-          // each step stays where its approximations hold, so it rarely stalls outside
-          // the constraints
-};
-
 struct NonlinearSolveOptions {
-  NonlinearMethod method = NonlinearMethod::kSqp;
   double time_limit_s = 0.5;
   double relative_tolerance = 1e-10;  // on f and on x between iterations
   int max_evaluations = 2000;
-  double stop_value = -std::numeric_limits<double>::infinity();  // stop once f(x) <= this
 };
 
 struct NonlinearSolveResult {
   bool converged = false;   // the solver stopped at a point it reports as a local optimum
   Eigen::VectorXd x;        // its last (best) point; check feasibility yourself
   double objective = 0.0;
+  int evaluations = 0;      // of the objective
   std::string message;      // the solver's stop reason, for messages
 };
 

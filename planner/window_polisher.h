@@ -15,7 +15,9 @@
 //   trimming        a trimmed step stays where its leg stood (f_i = f_i-n, by substitution)
 // p_i is the centre of contacts of the n latest footsteps (paper eq. 2). The boxes are
 // tightened by margin_m so that the solver's own tolerance leaves the plan inside them.
-// It starts from the MIQP's solution. The result is used only when every constraint holds
+// It starts from the MIQP's solution (NLopt's SLSQP behind nonlinear_program.h, with a
+// Gauss-Newton feasibility projection when SLSQP stops outside the constraints). The
+// result is used only when every constraint holds
 // within feasibility_tolerance_m (rad for yaw rows); otherwise the caller keeps the
 // MIQP's plan and says why (PolishReport::message).
 #include <Eigen/Core>
@@ -32,6 +34,9 @@ struct PolishOptions {
   double time_limit_s = 0.5;              // per window
   double margin_m = 1e-7;                 // boxes, heights and region faces tightened by this
   double feasibility_tolerance_m = 1e-6;  // largest violation of an accepted polished plan
+  // The solver first sees only the inequalities within this of their bound at the MIQP's
+  // point [m, or rad for yaw rows]; the others are checked after, and added when violated.
+  double active_slack = 0.02;
 };
 
 struct PolishReport {
@@ -43,6 +48,7 @@ struct PolishReport {
   double excess_before = 0.0;       // largest constraint violation of the MIQP's plan, exact trigonometry
   double excess_after = 0.0;        // the same for the polished point
   std::string message;              // why the polished point was not used; empty when accepted
+  std::string stops;                // how each solver phase stopped ("cost: target reached, ...")
 };
 
 struct PolishedWindow {
