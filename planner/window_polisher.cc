@@ -356,7 +356,11 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
     nlp.inequalities = [&](const Eigen::VectorXd& z, Eigen::VectorXd* values, Eigen::MatrixXd* jacobian) {
       program.Inequalities(z, values, jacobian);
     };
-    solve.time_limit_s = time_left();
+    // Half of the time left, and a bounded number of evaluations (the scenarios' windows
+    // take up to about 60; a run that oscillates for hundreds rarely ends better): the
+    // projection after it needs time too.
+    solve.time_limit_s = 0.5 * time_left();
+    solve.max_evaluations = 300;
     return SolveNonlinearProgram(nlp, solve);
   };
   auto feasible = [&](const Eigen::VectorXd& x) { return program.MaxViolation(x) <= options.feasibility_tolerance_m; };
