@@ -335,6 +335,13 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
   const auto start_time = std::chrono::steady_clock::now();
   report.attempted = true;
   WindowProgram program(formulation, miqp_x, options.margin_m);
+  if (program.start().size() == 0) {
+    // Every step trimmed and every configuration holding the start yaw: the window keeps
+    // the start stance, nothing to solve.
+    report.attempted = false;
+    out.footsteps = formulation.ExtractFootsteps(miqp_x);
+    return out;
+  }
   report.excess_before = program.MaxViolation(program.start());
   NonlinearSolveOptions solve;
   auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count(); };

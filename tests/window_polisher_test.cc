@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "planner/footstep_planner.h"
+#include "planner/miqp_formulation.h"
+#include "planner/window_polisher.h"
 #include "planner/plan_validation.h"
 #include "planner/relaxation_solver_factory.h"
 #include "planner/robot_loader.h"
@@ -85,6 +87,25 @@ TEST(WindowPolisher, ReportsEachWindowAndFallsBackWithAMessageWhenOutOfTime) {
   EXPECT_FALSE(reports[0].accepted);
   EXPECT_NE(kept.message.find("kept the MIQP's plan"), std::string::npos) << kept.message;
   EXPECT_GT(LargestBoxExcess(c, kept), 1e-5);
+}
+
+TEST(WindowPolisher, AWindowThatTrimsEveryStepHasNothingToSolve) {
+  // Every step trimmed: each configuration holds the start yaw and every foot stays, so
+  // the polisher has no variable; it returns the MIQP's footsteps (once it aborted).
+  const Course c = LoadCourse("littledog_flat.yaml");
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(formulation.miqp().num_variables());
+  for (int i = formulation.num_legs(); i < formulation.num_steps(); ++i) {
+    x(formulation.vars().trim[i]) = 1.0;
+    x(formulation.vars().region[i][0]) = 1.0;
+  }
+  const PolishedWindow polished = PolishWindow(formulation, x, PolishOptions{});
+  EXPECT_FALSE(polished.report.attempted);
+  ASSERT_EQ(static_cast<int>(polished.footsteps.size()), formulation.num_steps());
+  for (int i = formulation.num_legs(); i < formulation.num_steps(); ++i) {
+    EXPECT_EQ(polished.footsteps[i].position_world_m, formulation.ExtractFootsteps(x)[i].position_world_m);
+  }
 }
 
 TEST(BodyYaw, ATurnedGoalIsReachedOnlyByTheYawTheFinalFootstepsReport) {
