@@ -276,7 +276,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     plan.status = Combine(plan.status, result.status);
     plan.objective += result.objective;
     plan.bound += result.bound;
-    const PolishedWindow polished = PolishWindow(formulation, result.x, options.polish);
+    // The polisher's time comes out of the plan's: at most what is left of it.
+    PolishOptions polish = options.polish;
+    polish.time_limit_s = std::min(polish.time_limit_s, std::max(1e-3, time_limit - elapsed()));
+    const PolishedWindow polished = PolishWindow(formulation, result.x, polish);
     if (!polished.report.message.empty() && polish_note.empty()) {
       polish_note = "window " + std::to_string(plan.windows) + ": " + polished.report.message;
     }

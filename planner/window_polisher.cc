@@ -377,6 +377,8 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
   // step shrinks the violation quadratically (a millimetre, then about 1e-8 m).
   auto project = [&](Eigen::VectorXd x) {
     const int n = static_cast<int>(x.size());
+    // The interior point wants lower < upper for every variable.
+    if ((program.lower().array() >= program.upper().array()).any()) return x;
     Miqp qp;
     qp.Q.resize(n, n);
     qp.Q.setIdentity();
