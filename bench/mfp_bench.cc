@@ -50,7 +50,14 @@ struct Row {
   // first held a plan within 0.5 % of its final objective [s] (median over the runs).
   double root_gap = -1.0;
   double within_s = -1.0;
+  // The polisher's account of each window of the first run, and the plan's largest
+  // reference/reachability box excess under exact R(yaw) [m].
+  std::vector<std::pair<double, mfp::PolishReport>> windows;  // (window solve time [s], report)
+  double box_excess_m = 0.0;
 };
+
+// Polisher rows, printed after the main tables.
+std::vector<Row> g_polished;
 
 // The acceptance: an objective within 0.5 % of the best one.
 constexpr double kAcceptance = 0.005;
@@ -75,6 +82,39 @@ void PrintRow(const Row& r) {
     std::printf(" %9.2e %9.3f\n", r.root_gap, r.within_s);
   } else {
     std::printf(" %9s %9s\n", "-", "-");
+  }
+  std::fflush(stdout);
+}
+
+void PrintPolisherTables() {
+  if (g_polished.empty()) return;
+  std::printf("\nPolisher per window (first run; exact sin/cos with the window's integer assignment fixed)\n");
+  std::printf("%-34s %6s %9s %9s %7s %12s %12s %10s %10s %-8s %s\n", "instance", "window", "solve_s", "polish_s",
+              "ratio", "obj_miqp", "obj_polish", "exc_miqp_m", "exc_pol_m", "used", "stops");
+  for (const Row& r : g_polished) {
+    for (size_t w = 0; w < r.windows.size(); ++w) {
+      const auto& [solve_s, p] = r.windows[w];
+      std::printf("%-34s %6zu %9.4f %9.4f %7.3f %12.4f %12.4f %10.2e %10.2e %-8s %s\n", r.name.c_str(), w + 1, solve_s,
+                  p.time_s, p.time_s / std::max(solve_s, 1e-9), p.objective_before, p.objective_after, p.excess_before,
+                  p.excess_after, !p.attempted ? "off" : p.accepted ? "yes" : "fallback", p.stops.c_str());
+    }
+  }
+  std::printf("\nPolisher per instance (sums over windows; box_exc_m: the plan's largest box excess, exact R(yaw))\n");
+  std::printf("%-34s %7s %9s %9s %7s %9s %12s %12s %10s %9s\n", "instance", "windows", "solve_s", "polish_s", "ratio",
+              "max_ratio", "obj_miqp", "obj_polish", "box_exc_m", "fallbacks");
+  for (const Row& r : g_polished) {
+    double solve = 0.0, polish = 0.0, max_ratio = 0.0, before = 0.0, after = 0.0;
+    int fallbacks = 0;
+    for (const auto& [solve_s, p] : r.windows) {
+      solve += solve_s;
+      polish += p.time_s;
+      max_ratio = std::max(max_ratio, p.time_s / std::max(solve_s, 1e-9));
+      before += p.objective_before;
+      after += p.objective_after;
+      fallbacks += p.attempted && !p.accepted ? 1 : 0;
+    }
+    std::printf("%-34s %7zu %9.4f %9.4f %7.3f %9.3f %12.4f %12.4f %10.2e %9d\n", r.name.c_str(), r.windows.size(), solve,
+                polish, polish / std::max(solve, 1e-9), max_ratio, before, after, r.box_excess_m, fallbacks);
   }
   std::fflush(stdout);
 }
@@ -105,6 +145,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   double worst_objective = -mfp::kInfinity;
   mfp::Plan plan;
   Eigen::VectorXd first_window_x;  // the first window's MIQP solution, first run
+  std::vector<std::pair<double, mfp::PolishReport>> windows;
   double root_bound = -mfp::kInfinity;
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
@@ -117,6 +158,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     };
     mfp::Plan run = mfp::PlanFootsteps(robot, regions, request, options, solvers.workers(),
                                        [&](const mfp::PlanProgress& p) {
+                                         if (k == 0) windows.emplace_back(p.window_result.solve_time_s, p.polish);
                                          if (p.window != 1) return;
                                          if (k == 0) {
                                            first_window_x = p.window_result.x;
@@ -152,8 +194,10 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     row.within_s = within_times[within_times.size() / 2];
   }
   row.reaches_goal = plan.reaches_goal;
-  mfp::ValidationTolerances tol;
-  tol.rotation_m = mfp::RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
+  row.windows = windows;
+  const mfp::ExactExcess excess = mfp::MeasureExactExcess(robot, regions, plan);
+  row.box_excess_m = std::max({0.0, excess.reference_box_m, excess.reachability_box_m});
+  const mfp::ValidationTolerances tol;  // exact trigonometry
   row.violations = static_cast<int>(
       mfp::ValidatePlan(robot, regions, plan,
                         {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
@@ -225,8 +269,10 @@ int main(int argc, char** argv) {
           request.window_steps = steps;
           request.time_limit_s = time_limit;
           request.max_windows = 1;  // one MIQP, as in Table I
-          PrintRow(Run(robot_name + "_stones_" + std::to_string(steps), scenario, robot, regions, request, instances_dir, repeat,
-                       /*measure_fixed_qp=*/true));
+          const Row row = Run(robot_name + "_stones_" + std::to_string(steps), scenario, robot, regions, request,
+                              instances_dir, repeat, /*measure_fixed_qp=*/true);
+          PrintRow(row);
+          g_polished.push_back(row);
         }
       }
     }
@@ -244,10 +290,13 @@ int main(int argc, char** argv) {
         const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot);
         mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
         if (request.time_limit_s <= 0) request.time_limit_s = time_limit;
-        PrintRow(Run(std::filesystem::path(file).stem().string(), scenario, robot, regions, request, "", repeat,
-                     /*measure_fixed_qp=*/false));
+        const Row row = Run(std::filesystem::path(file).stem().string(), scenario, robot, regions, request, "", repeat,
+                            /*measure_fixed_qp=*/false);
+        PrintRow(row);
+        g_polished.push_back(row);
       }
     }
+    PrintPolisherTables();
   } catch (const mfp::InputError& e) {
     std::cerr << "mfp-bench: " << e.what() << "\n";
     return 2;

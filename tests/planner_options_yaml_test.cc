@@ -45,7 +45,8 @@ TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {
       "clip_yaw_to_reach: false\nreduced_cost_fixing: false\nearly_cutoff: false\nrelax_and_fix: false\n"
       "relax_and_fix_time_share: 0.5\nrelax_and_fix_min_configurations: 6\nrelax_and_fix_region_hull: false\n"
       "relax_and_fix_stage_tolerance: 0\nsnap_yaw_segments: false\n"
-      "relax_and_fix_two_paths: false\nrelax_and_fix_stage_rounding: true\n");
+      "relax_and_fix_two_paths: false\nrelax_and_fix_stage_rounding: true\n"
+      "polish: false\npolish_time_limit: 0.25\ntrimmed_configurations_hold_yaw: false\n");
   EXPECT_FALSE(o.formulation.clip_yaw_to_reach);
   EXPECT_FALSE(o.branch_and_bound.reduced_cost_fixing);
   EXPECT_FALSE(o.branch_and_bound.early_cutoff);
@@ -57,6 +58,10 @@ TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {
   EXPECT_FALSE(o.snap_yaw_segments);
   EXPECT_FALSE(o.relax_and_fix.two_paths);
   EXPECT_TRUE(o.relax_and_fix.stage_rounding);
+  EXPECT_FALSE(o.polish.enabled);
+  EXPECT_DOUBLE_EQ(o.polish.time_limit_s, 0.25);
+  EXPECT_FALSE(o.formulation.trimmed_configurations_hold_yaw);
+  EXPECT_NE(ErrorOf("polish_time_limit: 0\n").find("polish_time_limit"), std::string::npos);
   EXPECT_NE(ErrorOf("relax_and_fix_stage_tolerance: 0.1\n").find("relax_and_fix_stage_tolerance"), std::string::npos);
   EXPECT_NE(ErrorOf("relax_and_fix_time_share: 0\n").find("relax_and_fix_time_share"), std::string::npos);
   EXPECT_NE(ErrorOf("relax_and_fix_min_configurations: 1\n").find("relax_and_fix_min_configurations"),

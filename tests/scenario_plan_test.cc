@@ -47,12 +47,16 @@ TEST_P(ScenarioPlan, ReachesTheGoalAndEveryConstraintHolds) {
   EXPECT_GT(static_cast<int>(plan.footsteps.size()), n) << "no step planned";
   EXPECT_LE(static_cast<int>(plan.footsteps.size()) - n, request.max_steps > 0 ? request.max_steps : 12 * n);
 
-  ValidationTolerances tol;
-  tol.rotation_m = RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
+  // Exact trigonometry, no slack for the MIQP's chords: the polisher met every box.
+  const ValidationTolerances tol;
   const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
                       scenario.options.goal_tolerance_m, scenario.options.goal_yaw_tolerance_rad};
   const std::vector<std::string> violations = ValidatePlan(robot, regions, plan, goal, tol);
   for (const std::string& v : violations) ADD_FAILURE() << v;
+  const ExactExcess excess = MeasureExactExcess(robot, regions, plan);
+  EXPECT_LE(excess.reference_box_m, 1e-6);
+  EXPECT_LE(excess.reachability_box_m, 1e-6);
+  EXPECT_TRUE(plan.message.empty()) << plan.message;  // no window fell back to the MIQP's plan
   // The start stance is the first n footsteps, each leg once, in gait order.
   for (int i = 0; i < n; ++i) EXPECT_EQ(plan.footsteps[i].leg, robot.gait[i]);
   // The last n footsteps are the final stance: each leg exactly once.
@@ -90,8 +94,7 @@ TEST(ScenarioPlanWorkers, TwoWorkersProveTheSameFirstWindowOptimum) {
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.relaxation_solver, options.threads);
   const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, options, solvers.workers());
   ASSERT_TRUE(plan.reaches_goal) << plan.message;
-  ValidationTolerances tol;
-  tol.rotation_m = RotationTolerance(c.robot, options.formulation.yaw_segment_rad);
+  const ValidationTolerances tol;
   const GoalSpec goal{c.scenario.goal.x_m, c.scenario.goal.y_m, c.scenario.goal.yaw_rad, options.goal_tolerance_m,
                       options.goal_yaw_tolerance_rad};
   for (const std::string& v : ValidatePlan(c.robot, c.regions, plan, goal, tol)) ADD_FAILURE() << v;

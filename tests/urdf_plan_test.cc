@@ -37,8 +37,8 @@ TEST_P(UrdfPlan, WalksAndTurnsOnFlatGround) {
   const Plan plan = PlanFootsteps(robot, regions, request, options, *solver);
   ASSERT_TRUE(HasPlan(plan.status)) << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
-  ValidationTolerances tol;
-  tol.rotation_m = RotationTolerance(robot, options.formulation.yaw_segment_rad);
+  EXPECT_TRUE(plan.message.empty()) << plan.message;  // no window kept the MIQP's plan
+  const ValidationTolerances tol;  // exact trigonometry
   for (const std::string& v : ValidatePlan(robot, regions, plan, {0.4, 0.0, 0.3}, tol)) ADD_FAILURE() << v;
 }
 

@@ -56,7 +56,8 @@ int main(int argc, char** argv) {
   int max_steps = 0, window = 0;
   double time_limit = 0.0;
   int threads = 0;
-  bool validate = false, quiet = false;
+  bool validate = false, quiet = false, no_polish = false;
+  double polish_time_limit = 0.0;
   std::string relaxation_solver;
   app.add_option("--scenario", scenario_path, "scenario YAML (robot, terrain, start, goal)");
   app.add_option("--robot", robot_path, "robot YAML (or URDF)");
@@ -74,6 +75,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   app.add_flag("--validate", validate, "re-check the plan constraint by constraint; exit 3 on a violation");
   app.add_flag("--quiet", quiet, "no progress lines");
+  app.add_flag("--no-polish", no_polish, "keep each window's MIQP plan (sin/cos by chords) instead of solving it again with exact sin/cos");
+  app.add_option("--polish-time-limit", polish_time_limit, "time limit of the exact-trigonometry polisher per window [s]")
+      ->check(CLI::Range(1e-4, 3600.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -133,6 +137,8 @@ int main(int argc, char** argv) {
     request.deadline = run_deadline;
 
     if (threads > 0) options.threads = threads;
+    if (no_polish) options.polish.enabled = false;
+    if (polish_time_limit > 0) options.polish.time_limit_s = polish_time_limit;
     const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);
     if (!mps_path.empty()) {
       // The first window's MIQP, exactly as the planner builds it.
@@ -189,8 +195,16 @@ int main(int argc, char** argv) {
       return kExitBadInput;
     }
     if (validate && mfp::HasPlan(plan.status)) {
-      mfp::ValidationTolerances tol;
-      tol.rotation_m = mfp::RotationTolerance(robot, options.formulation.yaw_segment_rad);
+      // Exact trigonometry: no slack for the chords of the MIQP's sin/cos.
+      const mfp::ValidationTolerances tol;
+      const mfp::ExactExcess excess = mfp::MeasureExactExcess(robot, regions, plan);
+      std::ostringstream line;
+      line.precision(3);
+      line << "largest excess with exact R(yaw): reference box " << std::max(0.0, excess.reference_box_m)
+           << " m, reachability box " << std::max(0.0, excess.reachability_box_m) << " m, region "
+           << std::max(0.0, excess.region_m) << " m, height " << std::max(0.0, excess.height_m) << " m, yaw change "
+           << std::max(0.0, excess.yaw_change_rad) << " rad";
+      log(line.str());
       const auto errors = mfp::ValidatePlan(robot, regions, plan,
                                             {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
                                              options.goal_tolerance_m, options.goal_yaw_tolerance_rad},

@@ -37,6 +37,10 @@ struct FormulationOptions {
   // out. Same plans (the yaw change rows imply the range); the relaxation of sin/cos is
   // tighter for the first configurations, whose range is narrow.
   bool clip_yaw_to_reach = true;
+  // A configuration whose first step is trimmed keeps the yaw of the one before
+  // (AddTrimmedConfigurationsHoldYaw): the goal cost then weighs the yaw of the last step
+  // taken, the plan's final body yaw.
+  bool trimmed_configurations_hold_yaw = true;
 };
 
 struct FootstepProblem {

@@ -104,6 +104,9 @@ void MiqpFormulation::Build() {
   for (int i = n_; i < num_steps_; ++i) AddStepLimits(e, robot, i, &b);
   const std::vector<double> max_move_xy = MaxMovesXY(e, robot, num_steps_);
   AddTrimming(e, robot, max_move_xy, num_steps_, options_.monotone_trimming, &b, &vars_);
+  if (options_.trimmed_configurations_hold_yaw) {
+    AddTrimmedConfigurationsHoldYaw(e, robot, num_configurations_, vars_, &b);
+  }
   RegionChoiceRows regions = AddRegionChoice(e, problem_, options_, box, max_move_xy, num_steps_, &b, &vars_);
   region_rows_ = std::move(regions.rows);
   infeasible_reason_ = std::move(regions.infeasible_reason);

@@ -24,4 +24,17 @@ void AddTrimming(const StepExpressions& e, const RobotModel& robot, const std::v
   }
 }
 
+void AddTrimmedConfigurationsHoldYaw(const StepExpressions& e, const RobotModel& robot, int num_configurations,
+                                     const FootstepVariables& vars, MiqpBuilder* b) {
+  const int n = e.num_legs();
+  const double M = robot.max_yaw_change_rad;
+  for (int cfg = 1; cfg < num_configurations; ++cfg) {
+    const int t = vars.trim[static_cast<size_t>(cfg * n)];
+    if (t < 0) continue;
+    const LinExpr turn = e.Yaw(cfg) - e.Yaw(cfg - 1);
+    b->AddRow(StepName("hold_yaw_up", cfg), turn + LinExpr::Var(t, M), -kInfinity, M);
+    b->AddRow(StepName("hold_yaw_dn", cfg), turn - LinExpr::Var(t, M), -M, kInfinity);
+  }
+}
+
 }  // namespace mfp

@@ -16,4 +16,13 @@ namespace mfp {
 void AddTrimming(const StepExpressions& e, const RobotModel& robot, const std::vector<double>& max_move_xy,
                  int num_steps, bool monotone, MiqpBuilder* b, FootstepVariables* vars);
 
+// A configuration whose first step is trimmed does not turn: t_(cfg n) => theta_cfg =
+// theta_(cfg-1), written |theta_cfg - theta_(cfg-1)| <= max_yaw_change (1 - t_(cfg n)).
+// With trimming as a suffix the last configuration's yaw is then the yaw of the last step
+// taken: the body yaw the plan reports, the goal test checks and the goal cost weighs.
+// Without it a trimmed configuration could turn to the goal yaw on paper while the steps
+// the robot takes end at another yaw. Needs AddTrimming's variables.
+void AddTrimmedConfigurationsHoldYaw(const StepExpressions& e, const RobotModel& robot, int num_configurations,
+                                     const FootstepVariables& vars, MiqpBuilder* b);
+
 }  // namespace mfp

@@ -45,6 +45,7 @@ const std::vector<Field<FormulationOptions>> kFormulationFields = {
     {"prune_unreachable_regions", &FormulationOptions::prune_unreachable_regions},
     {"monotone_trimming", &FormulationOptions::monotone_trimming},
     {"clip_yaw_to_reach", &FormulationOptions::clip_yaw_to_reach},
+    {"trimmed_configurations_hold_yaw", &FormulationOptions::trimmed_configurations_hold_yaw},
 };
 
 const std::vector<Field<BranchAndBoundOptions>> kSearchFields = {
@@ -59,6 +60,11 @@ const std::vector<Field<BranchAndBoundOptions>> kSearchFields = {
     {"reliability", &BranchAndBoundOptions::reliability, 0, 1000},
     {"strong_branching_candidates", &BranchAndBoundOptions::strong_branching_candidates, 0, 10000},
     {"strong_branching_lookahead", &BranchAndBoundOptions::strong_branching_lookahead, 1, 10000},
+};
+
+const std::vector<Field<PolishOptions>> kPolishFields = {
+    {"polish", &PolishOptions::enabled},
+    {"polish_time_limit", &PolishOptions::time_limit_s, 1e-4, 3600},
 };
 
 // Flat keys with the relax_and_fix prefix, as scenario files have always named them.
@@ -133,6 +139,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   AddKeys(kFormulationFields, &keys);
   AddKeys(kSearchFields, &keys);
   AddKeys(kRelaxAndFixFields, &keys);
+  AddKeys(kPolishFields, &keys);
   for (const char* key : {kRegionEncoding.key, kYawEncoding.key, kNodeSelection.key, kBranching.key}) keys.push_back(key);
   keys.push_back(kRelaxationSolverKey);
   RejectUnknownKeys(node, ctx, keys);
@@ -142,6 +149,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   ReadFields(node, ctx, kFormulationFields, &o.formulation);
   ReadFields(node, ctx, kSearchFields, &o.branch_and_bound);
   ReadFields(node, ctx, kRelaxAndFixFields, &o.relax_and_fix);
+  ReadFields(node, ctx, kPolishFields, &o.polish);
   ReadEnum(node, ctx, kRegionEncoding, &o.formulation);
   ReadEnum(node, ctx, kYawEncoding, &o.formulation);
   ReadEnum(node, ctx, kNodeSelection, &o.branch_and_bound);

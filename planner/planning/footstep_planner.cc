@@ -82,14 +82,9 @@ double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vecto
   return std::atan2(sin_sum, cos_sum);
 }
 
-double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& footsteps) {
-  const int n = robot.num_legs();
-  MFP_CHECK(static_cast<int>(footsteps.size()) >= n);
-  std::vector<Eigen::Vector3d> feet(n);
-  for (size_t i = footsteps.size() - n; i < footsteps.size(); ++i) {
-    feet[footsteps[i].leg] = footsteps[i].position_world_m;
-  }
-  return EstimateStanceYaw(robot, feet);
+double FinalStanceYaw(const RobotModel& /*robot*/, const std::vector<Footstep>& footsteps) {
+  MFP_CHECK(!footsteps.empty());
+  return footsteps.back().yaw_rad;
 }
 
 FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
@@ -161,6 +156,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     return WithinGoal(DistancesToGoal(robot, steps, goal), goal);
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
+  std::string polish_note;  // the first window whose polished plan was not used, and why
 
   while (!plan.reaches_goal && planned < max_steps &&
          (request.max_windows <= 0 || plan.windows < request.max_windows)) {
@@ -247,8 +243,15 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     plan.status = Combine(plan.status, result.status);
     plan.objective += result.objective;
     plan.bound += result.bound;
+    // The polisher's time comes out of the plan's: at most what is left of it.
+    PolishOptions polish = options.polish;
+    polish.time_limit_s = std::min(polish.time_limit_s, std::max(1e-3, time_limit - elapsed()));
+    const PolishedWindow polished = PolishWindow(formulation, result.x, polish);
+    if (!polished.report.message.empty() && polish_note.empty()) {
+      polish_note = "window " + std::to_string(plan.windows) + ": " + polished.report.message;
+    }
     // Keep the untrimmed steps; trimmed ones (a suffix) leave the feet where they are.
-    const std::vector<Footstep> window_steps = formulation.ExtractFootsteps(result.x);
+    const std::vector<Footstep>& window_steps = polished.footsteps;
     int kept = 0;
     for (int i = n; i < formulation.num_steps(); ++i) {
       if (result.x(formulation.vars().trim[i]) < 0.5) kept = i - n + 1;
@@ -282,6 +285,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.distance_to_goal_m = (centre - Eigen::Vector2d(request.goal_x_m, request.goal_y_m)).norm();
       progress.elapsed_s = elapsed();
       progress.window_result = result;
+      progress.polish = polished.report;
       on_progress(progress);
     }
     if (kept == 0 && !plan.reaches_goal) {
@@ -295,6 +299,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                        ? "goal not reached within " + std::to_string(request.max_windows) + " window(s)"
                        : "goal not reached within " + std::to_string(max_steps) + " steps";
   }
+  if (!polish_note.empty()) plan.message += (plan.message.empty() ? "" : "; ") + polish_note;
   plan.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
   plan.solve_time_s = elapsed();
   return plan;

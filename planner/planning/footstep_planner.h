@@ -6,13 +6,15 @@
 #include <functional>
 #include <vector>
 
-#include "planner/search/branch_and_bound.h"
+#include "planner/base/deadline.h"
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
 #include "planner/planning/relax_and_fix.h"
+#include "planner/planning/window_polisher.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/robot_model.h"
+#include "planner/search/branch_and_bound.h"
 #include "terrain/convex_region.h"
 
 namespace mfp {
@@ -61,6 +63,10 @@ struct PlannerOptions {
   // The seed of each window's search; its stage search options and time limit are set
   // from branch_and_bound and the window's time.
   RelaxAndFixOptions relax_and_fix;
+  // Each window's plan solved again with exact sin/cos and its integer assignment fixed
+  // (planner/window_polisher.h); when that fails the window keeps the MIQP's plan and
+  // the plan's message says so.
+  PolishOptions polish;
 };
 
 struct PlanProgress {
@@ -69,6 +75,7 @@ struct PlanProgress {
   double distance_to_goal_m = 0.0;
   double elapsed_s = 0.0;
   BranchAndBoundResult window_result;
+  PolishReport polish;     // the polisher's account of this window
 };
 
 // Nominal stance of the robot at a body pose, feet on the highest region below each
@@ -86,9 +93,9 @@ double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vecto
 FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                    const PlanRequest& request, const PlannerOptions& options);
 
-// Body yaw of the final stance of a footstep list (its last n footsteps, one per leg),
-// from the feet themselves [rad]. Goal checks use it: a plan's per-step yaw is the
-// configuration's planning variable, not where the feet put the body.
+// Body yaw of the final configuration of a footstep list [rad]: the yaw its last
+// footstep reports, which is the yaw that footstep's reference box was met with (one
+// definition for the goal test, the goal cost and the validator; README, plan JSON).
 double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& footsteps);
 
 // Plans a whole route. Bad requests come back as statuses (kInvalidRequest,

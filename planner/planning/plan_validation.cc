@@ -15,6 +15,60 @@ double RotationTolerance(const RobotModel& robot, double yaw_segment_rad) {
   return reach * yaw_segment_rad * yaw_segment_rad / 4.0;
 }
 
+namespace {
+
+// How far step i (i >= n) is beyond each of its limits [m, rad]; <= 0 where it holds.
+// region_missing: its region id names no region.
+struct StepExcess {
+  double region = 0.0, reference = 0.0, reachability = 0.0, height = 0.0, yaw_change = 0.0;
+  bool region_missing = false;
+};
+
+StepExcess ExcessOfStep(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                        const std::vector<Footstep>& steps, int i) {
+  const int n = robot.num_legs();
+  auto pos = [&](int j) -> Eigen::Vector3d {
+    while (j < 0) j += n;  // before the plan: the start stance
+    return steps[j].position_world_m;
+  };
+  // r_nom,j: the centre of contacts of the n latest footsteps ending at j plus the leg's
+  // offset turned by the exact R(yaw) of the yaw step j reports.
+  auto nominal = [&](int j) -> Eigen::Vector2d {
+    const Eigen::Vector2d p =
+        CentreOfContacts<Eigen::Vector2d>(j, n, [&](int k) { return Eigen::Vector2d(pos(k).head<2>()); });
+    return NominalFootXY(robot, steps[std::max(j, 0)].leg, p.x(), p.y(), steps[std::max(j, 0)].yaw_rad);
+  };
+  StepExcess e;
+  const Eigen::Vector3d f = steps[i].position_world_m;
+  const ConvexRegion* region = nullptr;
+  for (const ConvexRegion& r : regions) {
+    if (r.id == steps[i].region_id) region = &r;
+  }
+  e.region_missing = region == nullptr;
+  e.region = region == nullptr ? 0.0 : RegionViolation(*region, f);
+  e.reference = (f.head<2>() - nominal(i)).cwiseAbs().maxCoeff() - robot.l_bnd_m;
+  e.reachability = (f.head<2>() - nominal(i - n)).cwiseAbs().maxCoeff() - robot.d_lim_m;
+  e.height = std::abs(f.z() - pos(i - n).z()) - robot.dz_max_m;
+  e.yaw_change = std::abs(steps[i].yaw_rad - steps[i - 1].yaw_rad) - robot.max_yaw_change_rad;
+  return e;
+}
+
+}  // namespace
+
+ExactExcess MeasureExactExcess(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const Plan& plan) {
+  ExactExcess out;
+  const int n = robot.num_legs();
+  for (int i = n; i < static_cast<int>(plan.footsteps.size()); ++i) {
+    const StepExcess e = ExcessOfStep(robot, regions, plan.footsteps, i);
+    out.region_m = std::max(out.region_m, e.region);
+    out.reference_box_m = std::max(out.reference_box_m, e.reference);
+    out.reachability_box_m = std::max(out.reachability_box_m, e.reachability);
+    out.height_m = std::max(out.height_m, e.height);
+    out.yaw_change_rad = std::max(out.yaw_change_rad, e.yaw_change);
+  }
+  return out;
+}
+
 std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                       const Plan& plan, const GoalSpec& goal,
                                       const ValidationTolerances& tol) {
@@ -32,18 +86,6 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
     errors.push_back("plan has " + std::to_string(N) + " footsteps, fewer than the " + std::to_string(n) + " of a stance");
     return errors;
   }
-  auto pos = [&](int j) -> Eigen::Vector3d {
-    while (j < 0) j += n;  // before the plan: the start stance
-    return steps[j].position_world_m;
-  };
-  auto yaw_of = [&](int j) { return steps[std::max(j, 0)].yaw_rad; };
-  // The formulation's step expressions with exact sin/cos: centre of contacts (eq. 2) and
-  // nominal foot (eq. 3).
-  auto nominal = [&](int i) -> Eigen::Vector2d {
-    const Eigen::Vector2d p =
-        CentreOfContacts<Eigen::Vector2d>(i, n, [&](int j) { return Eigen::Vector2d(pos(j).head<2>()); });
-    return NominalFootXY(robot, steps[std::max(i, 0)].leg, p.x(), p.y(), yaw_of(i));
-  };
   for (int i = 0; i < N; ++i) {
     if (steps[i].leg != robot.gait[i % n]) report(i, "leg out of gait order (expected " + std::to_string(robot.gait[i % n]) + ")", 0);
     if (steps[i].index != i) report(i, "index field is " + std::to_string(steps[i].index), 0);
@@ -51,27 +93,18 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
   }
   if (!errors.empty()) return errors;
   for (int i = n; i < N; ++i) {
-    const Eigen::Vector3d f = steps[i].position_world_m;
-    // Safe region.
-    const ConvexRegion* region = nullptr;
-    for (const ConvexRegion& r : regions) {
-      if (r.id == steps[i].region_id) region = &r;
-    }
-    if (region == nullptr) {
+    const StepExcess e = ExcessOfStep(robot, regions, steps, i);
+    if (e.region_missing) {
       report(i, "region id " + std::to_string(steps[i].region_id) + " does not exist", 0);
-    } else if (RegionViolation(*region, f) > tol.position_m) {
-      report(i, "outside region " + std::to_string(region->id), RegionViolation(*region, f));
+    } else if (e.region > tol.position_m) {
+      report(i, "outside region " + std::to_string(steps[i].region_id), e.region);
     }
     // Reference box about r_nom,i and reachability box about r_nom,i-n.
-    const Eigen::Vector2d ref = (f.head<2>() - nominal(i)).cwiseAbs();
-    const Eigen::Vector2d reach = (f.head<2>() - nominal(i - n)).cwiseAbs();
     const double box_tol = tol.position_m + tol.rotation_m;
-    if (ref.maxCoeff() > robot.l_bnd_m + box_tol) report(i, "reference box l_bnd", ref.maxCoeff() - robot.l_bnd_m);
-    if (reach.maxCoeff() > robot.d_lim_m + box_tol) report(i, "reachability box d_lim", reach.maxCoeff() - robot.d_lim_m);
-    const double dz = std::abs(f.z() - pos(i - n).z());
-    if (dz > robot.dz_max_m + tol.position_m) report(i, "height change dz_max", dz - robot.dz_max_m);
-    const double dyaw = std::abs(steps[i].yaw_rad - steps[i - 1].yaw_rad);
-    if (dyaw > robot.max_yaw_change_rad + tol.yaw_rad) report(i, "yaw change", dyaw - robot.max_yaw_change_rad);
+    if (e.reference > box_tol) report(i, "reference box l_bnd", e.reference);
+    if (e.reachability > box_tol) report(i, "reachability box d_lim", e.reachability);
+    if (e.height > tol.position_m) report(i, "height change dz_max", e.height);
+    if (e.yaw_change > tol.yaw_rad) report(i, "yaw change", e.yaw_change);
   }
   if (plan.reaches_goal) {
     const GoalDistances d = DistancesToGoal(robot, steps, goal);

@@ -1,0 +1,457 @@
+#include "planner/planning/window_polisher.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+#include "planner/base/check.h"
+#include "planner/qp/interior_point_qp.h"
+#include "planner/qp/nonlinear_program.h"
+
+namespace mfp {
+namespace {
+
+// c + sum coef * x[var] over the polisher's variables.
+struct Affine {
+  double constant = 0.0;
+  std::vector<std::pair<int, double>> terms;
+  void Add(const Affine& other, double scale) {
+    constant += scale * other.constant;
+    for (const auto& [var, coef] : other.terms) terms.emplace_back(var, scale * coef);
+  }
+  double At(const Eigen::VectorXd& x) const {
+    double v = constant;
+    for (const auto& [var, coef] : terms) v += coef * x(var);
+    return v;
+  }
+};
+
+// One two-sided row: lower <= lin(x) - (R(yaw) o)_axis <= upper. yaw_var < 0: the yaw is
+// the constant fixed_yaw; has_offset false: no rotation term.
+struct Row {
+  Affine lin;
+  bool has_offset = false;
+  int yaw_var = -1;
+  double fixed_yaw = 0.0;
+  Eigen::Vector2d offset = Eigen::Vector2d::Zero();
+  int axis = 0;
+  double lower = 0.0, upper = 0.0;
+  double tighten = 0.0;  // lower + tighten <= value <= upper - tighten in the solve
+
+  double Value(const Eigen::VectorXd& x) const {
+    double v = lin.At(x);
+    if (has_offset) {
+      const double yaw = yaw_var >= 0 ? x(yaw_var) : fixed_yaw;
+      const double c = std::cos(yaw), s = std::sin(yaw);
+      v -= axis == 0 ? c * offset.x() - s * offset.y() : s * offset.x() + c * offset.y();
+    }
+    return v;
+  }
+  // d value / d yaw (only with has_offset and yaw_var >= 0).
+  double YawDerivative(const Eigen::VectorXd& x) const {
+    const double c = std::cos(x(yaw_var)), s = std::sin(x(yaw_var));
+    return axis == 0 ? s * offset.x() + c * offset.y() : -(c * offset.x() - s * offset.y());
+  }
+  double Violation(const Eigen::VectorXd& x) const {
+    const double v = Value(x);
+    return std::max({0.0, v - upper, lower - v});
+  }
+};
+
+class WindowProgram {
+ public:
+  WindowProgram(const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x, double margin_m)
+      : f_(formulation), miqp_x_(miqp_x) {
+    const FootstepProblem& problem = f_.problem();
+    const RobotModel& robot = *problem.robot;
+    const FootstepVariables& v = f_.vars();
+    const Miqp& miqp = f_.miqp();
+    const int n = f_.num_legs(), N = f_.num_steps(), B = f_.num_configurations();
+    trimmed_.assign(N, false);
+    for (int i = n; i < N; ++i) trimmed_[i] = miqp_x(v.trim[i]) > 0.5;
+    // Variables: (x, y, z) of each untrimmed new step, theta of each configuration but the start.
+    step_var_.assign(N, -1);
+    std::vector<double> start, lower, upper;
+    auto add_var = [&](double x0, double lo, double hi) {
+      start.push_back(x0);
+      lower.push_back(lo);
+      upper.push_back(hi);
+      return static_cast<int>(start.size()) - 1;
+    };
+    for (int i = n; i < N; ++i) {
+      if (trimmed_[i]) continue;
+      const int xs[3] = {v.x[i], v.y[i], v.z[i]};
+      step_var_[i] = add_var(miqp_x(xs[0]), miqp.var_lower(xs[0]), miqp.var_upper(xs[0]));
+      for (int axis = 1; axis < 3; ++axis) add_var(miqp_x(xs[axis]), miqp.var_lower(xs[axis]), miqp.var_upper(xs[axis]));
+    }
+    // theta_var_[blk] < 0: the configuration's yaw is the start yaw. A configuration whose
+    // first step is trimmed keeps the yaw of the one before when the formulation says so.
+    theta_var_.assign(B, -1);
+    for (int blk = 1; blk < B; ++blk) {
+      const int t = v.theta[blk];
+      if (f_.options().trimmed_configurations_hold_yaw && trimmed_[blk * n]) {
+        theta_var_[blk] = theta_var_[blk - 1];
+      } else {
+        theta_var_[blk] = add_var(miqp_x(t), miqp.var_lower(t), miqp.var_upper(t));
+      }
+    }
+    start_ = Eigen::Map<Eigen::VectorXd>(start.data(), static_cast<Eigen::Index>(start.size()));
+    lower_ = Eigen::Map<Eigen::VectorXd>(lower.data(), static_cast<Eigen::Index>(lower.size()));
+    upper_ = Eigen::Map<Eigen::VectorXd>(upper.data(), static_cast<Eigen::Index>(upper.size()));
+
+    auto yaw_row = [&](int step, Row* row) {
+      const int blk = step / n;
+      if (blk == 0) {
+        row->fixed_yaw = problem.start_step_yaw_rad.empty() ? problem.start_yaw_rad : problem.start_step_yaw_rad[step];
+      } else {
+        row->yaw_var = theta_var_[blk];
+        row->fixed_yaw = problem.start_yaw_rad;
+      }
+    };
+    auto coc = [&](int i, int axis) {
+      Affine sum;
+      for (int j = i - n + 1; j <= i; ++j) sum.Add(Pos(j, axis), 1.0 / n);
+      return sum;
+    };
+    auto add_row = [&](Row row, double tighten) {
+      if (row.lin.terms.empty() && !(row.has_offset && row.yaw_var >= 0)) return;  // a constant: nothing to solve
+      row.tighten = tighten;
+      const int r = static_cast<int>(rows_.size());
+      if (std::isfinite(row.upper)) sides_.emplace_back(r, true);
+      if (std::isfinite(row.lower)) sides_.emplace_back(r, false);
+      rows_.push_back(std::move(row));
+    };
+    for (int i = n; i < N; ++i) {
+      const Eigen::Vector2d o = robot.legs[f_.LegOfStep(i)].nominal_offset_body_m;
+      for (int axis = 0; axis < 2; ++axis) {
+        Row ref;
+        ref.lin = Pos(i, axis);
+        ref.lin.Add(coc(i, axis), -1.0);
+        ref.has_offset = true;
+        ref.offset = o;
+        ref.axis = axis;
+        yaw_row(i, &ref);
+        ref.lower = -robot.l_bnd_m;
+        ref.upper = robot.l_bnd_m;
+        add_row(ref, margin_m);
+        Row reach;
+        reach.lin = Pos(i, axis);
+        reach.lin.Add(coc(i - n, axis), -1.0);
+        reach.has_offset = true;
+        reach.offset = o;
+        reach.axis = axis;
+        yaw_row(i - n, &reach);
+        reach.lower = -robot.d_lim_m;
+        reach.upper = robot.d_lim_m;
+        add_row(reach, margin_m);
+      }
+      Row dz;
+      dz.lin = Pos(i, 2);
+      dz.lin.Add(Pos(i - n, 2), -1.0);
+      dz.lower = -robot.dz_max_m;
+      dz.upper = robot.dz_max_m;
+      add_row(dz, margin_m);
+      if (!trimmed_[i]) {  // a trimmed step stands on its leg's previous foot, already in its region
+        const ConvexRegion& region = problem.regions[ChosenRegion(i)];
+        for (int k = 0; k < region.A.rows(); ++k) {
+          Row face;
+          for (int axis = 0; axis < 3; ++axis) face.lin.Add(Pos(i, axis), region.A(k, axis));
+          face.lower = -kInfinity;
+          face.upper = region.b(k);
+          add_row(face, margin_m);
+        }
+      }
+    }
+    for (int blk = 1; blk < B; ++blk) {
+      if (theta_var_[blk] == theta_var_[blk - 1] || theta_var_[blk] < 0) continue;  // held: no turn
+      Row turn;
+      turn.lin.terms.emplace_back(theta_var_[blk], 1.0);
+      if (theta_var_[blk - 1] < 0) {
+        turn.lin.constant = -problem.start_yaw_rad;
+      } else {
+        turn.lin.terms.emplace_back(theta_var_[blk - 1], -1.0);
+      }
+      turn.lower = -robot.max_yaw_change_rad;
+      turn.upper = robot.max_yaw_change_rad;
+      add_row(turn, 1e-9);
+    }
+    // The MIQP's objective on a full MIQP point: positions, centres of contacts, yaw and
+    // its sin and cos follow the polisher's variables; the rest stays at the MIQP's values.
+    for (int i = n; i < N; ++i) {
+      const int xs[3] = {v.x[i], v.y[i], v.z[i]};
+      for (int axis = 0; axis < 3; ++axis) full_map_.emplace_back(xs[axis], Pos(i, axis));
+      full_map_.emplace_back(v.px[i], coc(i, 0));
+      full_map_.emplace_back(v.py[i], coc(i, 1));
+    }
+  }
+
+  const Eigen::VectorXd& start() const { return start_; }
+  const Eigen::VectorXd& lower() const { return lower_; }
+  const Eigen::VectorXd& upper() const { return upper_; }
+  int num_inequalities() const { return static_cast<int>(selected_.size()); }
+
+  // Adds to the inequalities the solver sees those within `slack` of their bound at x.
+  // Far ones (the opposite sides of the boxes, most region faces) cannot become active
+  // in the small moves of a polish, and SLSQP's time per iteration grows with their
+  // number; MaxViolation still checks every one.
+  void SelectNear(const Eigen::VectorXd& x, double slack) {
+    std::vector<bool> in(sides_.size(), false);
+    for (int k : selected_) in[k] = true;
+    for (int k = 0; k < static_cast<int>(sides_.size()); ++k) {
+      if (!in[k] && SideValue(x, k) > -slack) selected_.push_back(k);
+    }
+    std::sort(selected_.begin(), selected_.end());
+  }
+
+  Eigen::VectorXd FullPoint(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd full = miqp_x_;
+    for (const auto& [index, expr] : full_map_) full(index) = expr.At(x);
+    const FootstepVariables& v = f_.vars();
+    for (int blk = 1; blk < f_.num_configurations(); ++blk) {
+      const double t = Yaw(x, blk);
+      full(v.theta[blk]) = t;
+      full(v.s[blk]) = std::sin(t);
+      full(v.c[blk]) = std::cos(t);
+    }
+    return full;
+  }
+
+  double Objective(const Eigen::VectorXd& x, Eigen::VectorXd* grad) const {
+    const Miqp& miqp = f_.miqp();
+    const Eigen::VectorXd full = FullPoint(x);
+    if (grad != nullptr) {
+      const Eigen::VectorXd g = miqp.Q * full + miqp.c;
+      grad->setZero(x.size());
+      for (const auto& [index, expr] : full_map_) {
+        for (const auto& [var, coef] : expr.terms) (*grad)(var) += coef * g(index);
+      }
+      const FootstepVariables& v = f_.vars();
+      for (int blk = 1; blk < f_.num_configurations(); ++blk) {
+        if (theta_var_[blk] < 0) continue;
+        const double t = x(theta_var_[blk]);
+        (*grad)(theta_var_[blk]) += g(v.theta[blk]) + std::cos(t) * g(v.s[blk]) - std::sin(t) * g(v.c[blk]);
+      }
+    }
+    return miqp.Objective(full);
+  }
+
+  // Each selected finite side of a row as one inequality: value - (upper - tighten) <= 0
+  // or (lower + tighten) - value <= 0.
+  void Inequalities(const Eigen::VectorXd& x, Eigen::VectorXd* values, Eigen::MatrixXd* jacobian) const {
+    const int m = num_inequalities();
+    values->resize(m);
+    if (jacobian != nullptr) jacobian->setZero(m, x.size());
+    for (int k = 0; k < m; ++k) {
+      const int side = selected_[k];
+      (*values)(k) = SideValue(x, side);
+      if (jacobian == nullptr) continue;
+      const Row& row = rows_[sides_[side].first];
+      const double sign = sides_[side].second ? 1.0 : -1.0;
+      for (const auto& [var, coef] : row.lin.terms) (*jacobian)(k, var) += sign * coef;
+      if (row.has_offset && row.yaw_var >= 0) (*jacobian)(k, row.yaw_var) += sign * row.YawDerivative(x);
+    }
+  }
+
+  // Largest violation of the untightened constraints and the variable bounds.
+  double MaxViolation(const Eigen::VectorXd& x) const {
+    double worst = 0.0;
+    for (const Row& row : rows_) worst = std::max(worst, row.Violation(x));
+    for (int j = 0; j < x.size(); ++j) worst = std::max({worst, lower_(j) - x(j), x(j) - upper_(j)});
+    return worst;
+  }
+
+  std::vector<Footstep> Footsteps(const Eigen::VectorXd& x) const {
+    std::vector<Footstep> steps = f_.ExtractFootsteps(miqp_x_);
+    for (int i = f_.num_legs(); i < f_.num_steps(); ++i) {
+      for (int axis = 0; axis < 3; ++axis) steps[i].position_world_m(axis) = Pos(i, axis).At(x);
+      steps[i].yaw_rad = Yaw(x, i / f_.num_legs());
+    }
+    return steps;
+  }
+
+ private:
+  double SideValue(const Eigen::VectorXd& x, int side) const {
+    const Row& row = rows_[sides_[side].first];
+    return sides_[side].second ? row.Value(x) - (row.upper - row.tighten) : (row.lower + row.tighten) - row.Value(x);
+  }
+
+  // Yaw of configuration blk >= 1.
+  double Yaw(const Eigen::VectorXd& x, int blk) const {
+    return theta_var_[blk] >= 0 ? x(theta_var_[blk]) : f_.problem().start_yaw_rad;
+  }
+
+  // Position of step j on one axis. Before the window: the history (or the start stance
+  // when there is none), as in the formulation; a trimmed step is its leg's previous foot.
+  Affine Pos(int j, int axis) const {
+    const FootstepProblem& problem = f_.problem();
+    const int n = f_.num_legs();
+    while (j >= n && trimmed_[j]) j -= n;
+    Affine a;
+    if (j < 0 && !problem.history_feet_world_m.empty()) {
+      a.constant = problem.history_feet_world_m[j + n](axis);
+    } else if (j < n) {
+      while (j < 0) j += n;
+      a.constant = problem.start_feet_world_m[j](axis);
+    } else {
+      a.terms.emplace_back(step_var_[j] + axis, 1.0);
+    }
+    return a;
+  }
+
+  int ChosenRegion(int i) const {
+    int best = -1;
+    for (size_t r = 0; r < f_.problem().regions.size(); ++r) {
+      const int h = f_.vars().region[i][r];
+      if (h >= 0 && (best < 0 || miqp_x_(h) > miqp_x_(f_.vars().region[i][best]))) best = static_cast<int>(r);
+    }
+    MFP_CHECK(best >= 0);
+    return best;
+  }
+
+  const MiqpFormulation& f_;
+  const Eigen::VectorXd& miqp_x_;
+  std::vector<bool> trimmed_;
+  std::vector<int> step_var_, theta_var_;
+  Eigen::VectorXd start_, lower_, upper_;
+  std::vector<Row> rows_;
+  std::vector<std::pair<int, bool>> sides_;  // (row, upper side?) of each inequality
+  std::vector<int> selected_;                // the sides the solver sees (SelectNear)
+  std::vector<std::pair<int, Affine>> full_map_;
+};
+
+}  // namespace
+
+PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x,
+                            const PolishOptions& options) {
+  PolishedWindow out;
+  PolishReport& report = out.report;
+  report.objective_before = report.objective_after = formulation.miqp().Objective(miqp_x);
+  if (!options.enabled || formulation.num_configurations() < 2) {
+    out.footsteps = formulation.ExtractFootsteps(miqp_x);
+    return out;
+  }
+  const auto start_time = std::chrono::steady_clock::now();
+  report.attempted = true;
+  WindowProgram program(formulation, miqp_x, options.margin_m);
+  if (program.start().size() == 0) {
+    // Every step trimmed and every configuration holding the start yaw: the window keeps
+    // the start stance, nothing to solve.
+    report.attempted = false;
+    out.footsteps = formulation.ExtractFootsteps(miqp_x);
+    return out;
+  }
+  report.excess_before = program.MaxViolation(program.start());
+  NonlinearSolveOptions solve;
+  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count(); };
+  auto time_left = [&] { return std::max(1e-6, options.time_limit_s - seconds()); };
+  // The window's cost, scaled to about 1 at the start (SLSQP's stopping tests and merit
+  // function weigh it against violations of a micrometre), by SLSQP from a given point.
+  const double scale = 1.0 / std::max(1.0, std::abs(report.objective_before));
+  auto minimise_cost = [&](const Eigen::VectorXd& from) {
+    NonlinearProgram nlp;
+    nlp.start = from;
+    nlp.lower = program.lower();
+    nlp.upper = program.upper();
+    nlp.objective = [&](const Eigen::VectorXd& z, Eigen::VectorXd* grad) {
+      const double f = program.Objective(z, grad);
+      if (grad != nullptr) *grad *= scale;
+      return scale * f;
+    };
+    nlp.num_inequalities = program.num_inequalities();
+    nlp.inequalities = [&](const Eigen::VectorXd& z, Eigen::VectorXd* values, Eigen::MatrixXd* jacobian) {
+      program.Inequalities(z, values, jacobian);
+    };
+    // Half of the time left, and a bounded number of evaluations (the scenarios' windows
+    // take up to about 60; a run that oscillates for hundreds rarely ends better): the
+    // projection after it needs time too.
+    solve.time_limit_s = 0.5 * time_left();
+    solve.max_evaluations = 300;
+    return SolveNonlinearProgram(nlp, solve);
+  };
+  auto feasible = [&](const Eigen::VectorXd& x) { return program.MaxViolation(x) <= options.feasibility_tolerance_m; };
+  // Feasibility projection: Gauss-Newton steps onto the constraints, each the nearest
+  // point (Euclidean in metres and radians) to the current one that meets the rows
+  // linearised there, by mfp's interior point. Only sin and cos are nonlinear, so each
+  // step shrinks the violation quadratically (a millimetre, then about 1e-8 m).
+  auto project = [&](Eigen::VectorXd x) {
+    const int n = static_cast<int>(x.size());
+    // The interior point wants lower < upper for every variable.
+    if ((program.lower().array() >= program.upper().array()).any()) return x;
+    Miqp qp;
+    qp.Q.resize(n, n);
+    qp.Q.setIdentity();
+    qp.Q *= 2.0;
+    qp.var_lower = program.lower();
+    qp.var_upper = program.upper();
+    qp.is_integer.assign(n, false);
+    qp.var_names.assign(n, "x");
+    for (int iteration = 0; iteration < 8 && seconds() < options.time_limit_s; ++iteration) {
+      Eigen::VectorXd g;
+      Eigen::MatrixXd jacobian;
+      program.Inequalities(x, &g, &jacobian);
+      if (g.size() == 0 || g.maxCoeff() <= 0.0) break;
+      qp.c = -2.0 * x;
+      qp.constant = x.squaredNorm();
+      qp.A = jacobian.sparseView();
+      qp.row_upper = jacobian * x - g;
+      qp.row_lower = Eigen::VectorXd::Constant(g.size(), -kInfinity);
+      qp.row_names.assign(g.size(), "g");
+      const RelaxationResult r = SolveQpInteriorPoint(qp, qp.var_lower, qp.var_upper, &x, InteriorPointOptions{});
+      if (r.x.size() != n || !r.x.allFinite()) break;
+      x = r.x.cwiseMax(program.lower()).cwiseMin(program.upper());
+    }
+    return x;
+  };
+  std::string stop;
+  auto attempt = [&]() {
+    NonlinearSolveResult result = minimise_cost(program.start());
+    stop += std::string(stop.empty() ? "" : "; ") + "cost: " + result.message + " (" +
+            std::to_string(result.evaluations) + " evaluations)";
+    if (!feasible(result.x) && seconds() < options.time_limit_s) {
+      // SLSQP can stop outside the constraints (it stalls when started outside them, as
+      // from some MIQP points of the URDF-only robots of tests/urdf_plan_test.cc, and its
+      // objective test can end it before the constraints are met). Then: the projection
+      // of its point, SLSQP again from there (inside), and a projection of that.
+      const Eigen::VectorXd inside = project(result.x);
+      stop += ", projected";
+      if (feasible(inside) && seconds() < options.time_limit_s) {
+        result = minimise_cost(inside);
+        stop += ", cost: " + result.message + " (" + std::to_string(result.evaluations) + " evaluations)";
+        if (!feasible(result.x)) result.x = project(result.x);
+        if (!feasible(result.x)) result.x = inside;
+      } else {
+        result.x = inside;
+      }
+    }
+    return result;
+  };
+  // The inequalities near the MIQP's point first; when the result violates any, the
+  // solve is repeated with all of them.
+  program.SelectNear(program.start(), options.active_slack);
+  NonlinearSolveResult result = attempt();
+  if (!feasible(result.x) && seconds() < options.time_limit_s) {
+    program.SelectNear(program.start(), kInfinity);
+    result = attempt();
+  }
+  result.message = stop;
+  report.stops = stop;
+  report.excess_after = program.MaxViolation(result.x);
+  report.time_s = seconds();
+  if (report.excess_after <= options.feasibility_tolerance_m) {
+    report.accepted = true;
+    report.objective_after = program.Objective(result.x, nullptr);
+    out.footsteps = program.Footsteps(result.x);
+  } else {
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "polisher (" << result.message << ") left a violation of " << report.excess_after
+        << "; kept the MIQP's plan, whose exact-trigonometry violation is " << report.excess_before;
+    report.message = msg.str();
+    out.footsteps = formulation.ExtractFootsteps(miqp_x);
+  }
+  return out;
+}
+
+}  // namespace mfp

@@ -1,0 +1,64 @@
+#pragma once
+// The polisher: one window's plan solved again with exact sin and cos.
+//
+// The MIQP meets the reference and reachability boxes with a piecewise-linear chord for
+// the sin and cos of each configuration's yaw, so its footsteps can lie outside the
+// boxes once R(yaw) is exact (millimetres on the stepping stones). With the integer
+// assignment of the MIQP's solution fixed (each step's region, which steps are
+// trimmed), the polisher minimises the same cost over the footstep positions and the
+// configurations' yaws with every constraint written with exact trigonometry:
+//   reference box   |f_i - p_i - R(theta_b(i)) o_leg(i)|_inf <= l_bnd
+//   reachability    |f_i - p_i-n - R(theta_b(i-n)) o_leg(i)|_inf <= d_lim
+//   height change   |z_i - z_i-n| <= dz_max
+//   yaw change      |theta_b - theta_b-1| <= max_yaw_change, theta_b within its MIQP bounds
+//   regions         A_r f_i <= b_r for the region the MIQP chose for step i
+//   trimming        a trimmed step stays where its leg stood (f_i = f_i-n, by substitution)
+// p_i is the centre of contacts of the n latest footsteps (paper eq. 2). The boxes are
+// tightened by margin_m so that the solver's own tolerance leaves the plan inside them.
+// It starts from the MIQP's solution (NLopt's SLSQP behind nonlinear_program.h, with a
+// Gauss-Newton feasibility projection when SLSQP stops outside the constraints). The
+// result is used only when every constraint holds
+// within feasibility_tolerance_m (rad for yaw rows); otherwise the caller keeps the
+// MIQP's plan and says why (PolishReport::message).
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/formulation/plan.h"
+
+namespace mfp {
+
+struct PolishOptions {
+  bool enabled = true;
+  double time_limit_s = 0.5;              // per window
+  double margin_m = 1e-7;                 // boxes, heights and region faces tightened by this
+  double feasibility_tolerance_m = 1e-6;  // largest violation of an accepted polished plan
+  // The solver first sees only the inequalities within this of their bound at the MIQP's
+  // point [m, or rad for yaw rows]; the others are checked after, and added when violated.
+  double active_slack = 0.02;
+};
+
+struct PolishReport {
+  bool attempted = false;
+  bool accepted = false;            // the polished footsteps replaced the MIQP's
+  double time_s = 0.0;
+  double objective_before = 0.0;    // the MIQP solution's objective (chords)
+  double objective_after = 0.0;     // the polished plan's objective (exact); = before when not accepted
+  double excess_before = 0.0;       // largest constraint violation of the MIQP's plan, exact trigonometry
+  double excess_after = 0.0;        // the same for the polished point
+  std::string message;              // why the polished point was not used; empty when accepted
+  std::string stops;                // how each solver phase stopped ("cost: target reached, ...")
+};
+
+struct PolishedWindow {
+  std::vector<Footstep> footsteps;  // as MiqpFormulation::ExtractFootsteps, start stance included
+  PolishReport report;
+};
+
+// miqp_x: a solution of formulation.miqp() (integer variables integral). With
+// options.enabled false, the MIQP's footsteps and a report with attempted = false.
+PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x,
+                            const PolishOptions& options);
+
+}  // namespace mfp
