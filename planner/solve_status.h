@@ -17,6 +17,13 @@ enum class SolveStatus : int {
   kInternalError = 8,    // a solver failed in a way that is not the input's fault
   kNoSolution = 9,       // limits hit before any feasible plan was found
   kDropped = 10,         // request dropped from a full queue or superseded
+  // Added by issue 17 (the contract is extended, not renumbered):
+  kPartial = 11,         // a valid plan that stops short of the goal (step budget, time
+                         // limit or no further window found); safe to execute, message says
+                         // how far it got and why
+  kNoRoute = 12,         // no route: the regions' graph under the robot's reach and height
+                         // limits does not connect the start to the goal; message names
+                         // where the route breaks
 };
 
 // Lower-case name used in JSON ("optimal", "time_limit", ...).
