@@ -69,28 +69,41 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
     if (!seen[i]) fail("no_plan", "start stance lacks a leg");
   }
   if (!v.valid) return v;
+  // Configuration after each footstep; the start stance's for the first n.
+  std::vector<Pose2D> configs;
+  {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const auto& q : feet) c += q.head<2>();
+    c /= n;
+    for (int k = 0; k < n; ++k) configs.push_back({c.x(), c.y(), footsteps[k].yaw_rad});
+  }
   for (size_t k = n; k < footsteps.size(); ++k) {
     const Footstep& f = footsteps[k];
     const Eigen::Vector3d& p = f.position_world_m;
-    if (!FootOnTrueSurface(terrain, p, edge_margin_m, robot.max_slope_rad, tol.height_m)) {
+    if (!FootOnTrueSurface(terrain, p, edge_margin_m - tol.numeric_m, robot.max_slope_rad, tol.height_m)) {
       fail("off_surface", "step " + std::to_string(k) + " leg " + robot.legs[f.leg].name + " at " + Fmt(p));
     }
     if (std::abs(p.z() - feet[f.leg].z()) > robot.dz_max_m + tol.height_m) {
       fail("height_change", "step " + std::to_string(k) + " changes height by " +
                                 std::to_string(p.z() - feet[f.leg].z()) + " m");
     }
+    // Reach as the robot model states it (the paper's eq. 3-4): the new foot within the
+    // d_lim square about its nominal spot in the configuration n steps back, and within the l_bnd square about its nominal spot
+    // in the configuration it makes. Squares on world axes, centres the mean of the feet.
+    const Pose2D before = configs[k - n];
     feet[f.leg] = p;
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     for (const auto& q : feet) centre += q.head<2>();
     centre /= n;
-    const Eigen::Rotation2Dd rot(f.yaw_rad);
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector2d off = rot.inverse() * (feet[i].head<2>() - centre) - robot.legs[i].nominal_offset_body_m;
-      if (off.cwiseAbs().maxCoeff() > robot.d_lim_m + tol.reach_m) {
-        fail("reach", "after step " + std::to_string(k) + " leg " + robot.legs[i].name + " is " +
-                          std::to_string(off.cwiseAbs().maxCoeff()) + " m from its nominal spot (d_lim " +
-                          std::to_string(robot.d_lim_m) + ")");
-      }
+    configs.push_back({centre.x(), centre.y(), f.yaw_rad});
+    const Eigen::Vector2d o = robot.legs[f.leg].nominal_offset_body_m;
+    const double reach = (p.head<2>() - NominalFootXY(robot, f.leg, before.x_m, before.y_m, before.yaw_rad))
+                             .cwiseAbs().maxCoeff();
+    const double ref = (p.head<2>() - (centre + Eigen::Rotation2Dd(f.yaw_rad) * o)).cwiseAbs().maxCoeff();
+    if (reach > robot.d_lim_m + tol.reach_m || ref > robot.l_bnd_m + tol.reach_m) {
+      fail("reach", "step " + std::to_string(k) + " leg " + robot.legs[f.leg].name + " is " + std::to_string(reach) +
+                        " m from its nominal spot n steps back (d_lim " + std::to_string(robot.d_lim_m) + "), " +
+                        std::to_string(ref) + " m from its own (l_bnd " + std::to_string(robot.l_bnd_m) + ")");
     }
   }
   // Goal: every final foot near its goal spot, final yaw near the goal yaw.

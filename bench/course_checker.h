@@ -18,6 +18,7 @@ struct CourseCheckTolerances {
   double reach_m = 0.02;     // beyond d_lim (yaw segments, rounding)
   double goal_m = 0.07;      // final feet from their goal spots (planner's 0.05 + slack)
   double goal_yaw_rad = 0.2; // final body yaw (planner's 0.15 + slack)
+  double numeric_m = 1e-3;   // the solver's feasibility tolerance on region edges
 };
 
 // True when a foot centred at p stands on the top face of some box, at least margin_m

@@ -7,6 +7,7 @@
 
 #include "planner/check.h"
 #include "planner/relax_and_fix.h"
+#include "planner/route_guide.h"
 
 namespace mfp {
 namespace {
@@ -137,7 +138,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       !std::isfinite(request.time_limit_s)) {
     return Rejected(SolveStatus::kInvalidRequest, "start yaw, goal pose and time limit must be finite numbers");
   }
-  const int max_steps = MaxSteps(robot, request, options);
+  int max_steps = MaxSteps(robot, request, options);
   const int window = WindowSteps(robot, request, options);
   const double time_limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
   if (request.max_steps < 0 || max_steps > 100000 || request.window_steps < 0 || window > 1000 ||
@@ -167,6 +168,25 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     msg << "goal (" << request.goal_x_m << ", " << request.goal_y_m << ") m is " << goal_distance
         << " m from the nearest region; the robot's feet reach " << reach + robot.l_bnd_m << " m from its centre";
     return Rejected(SolveStatus::kInvalidGoal, msg.str());
+  }
+
+  // ---- route guidance: no route, or a body route that sets the step budget ----
+  RouteGuide guide;
+  const bool guided = options.route_guidance && request.max_windows == 0;
+  if (guided) {
+    guide = PlanRoute(robot, regions, request.start_feet_world_m, {request.goal_x_m, request.goal_y_m},
+                      request.goal_yaw_rad, options.goal_tolerance_m, options.start_tolerance_m);
+    if (!guide.connected) {
+      Plan rejected = Rejected(SolveStatus::kNoRoute, guide.broken);
+      rejected.solve_time_s = elapsed();
+      return rejected;
+    }
+    if (request.max_steps == 0 && options.default_max_steps == 0) {
+      // Enough configurations to walk the route three times over at d_lim per
+      // configuration; the time limit bounds the work.
+      const int configurations = static_cast<int>(std::ceil(3.0 * guide.length_m / robot.d_lim_m)) + 4;
+      max_steps = std::min(100000, std::max(max_steps, configurations * n));
+    }
   }
 
   // ---- receding windows ----
@@ -217,6 +237,19 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     problem.gait_phase = phase;
     problem.start_yaw_rad = yaw;
     problem.num_new_steps = steps;
+    const double lookahead = options.local_goal_lookahead_m < 0 ? 2.0 * reach : options.local_goal_lookahead_m;
+    if (guided && lookahead > 0.0) {
+      // The window's goal term pulls toward a point of the route ahead of the stance.
+      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
+      centre /= n;
+      const double s = RouteProgress(guide, centre) + lookahead;
+      if (s < guide.length_m) {
+        const Eigen::Vector2d local = RoutePoint(guide, s);
+        problem.goal_x_m = local.x();
+        problem.goal_y_m = local.y();
+      }
+    }
     if (plan.windows > 0) {
       problem.history_feet_world_m = history;
       problem.start_step_yaw_rad = stance_yaw;
@@ -327,6 +360,18 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     plan.message = planned < max_steps && request.max_windows > 0
                        ? "goal not reached within " + std::to_string(request.max_windows) + " window(s)"
                        : "goal not reached within " + std::to_string(max_steps) + " steps";
+  }
+  if (!plan.reaches_goal && HasPlan(plan.status) && planned > 0 && request.max_windows == 0) {
+    // Every accepted step satisfies the constraints: the robot can walk this far safely.
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
+    centre /= n;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "partial plan: " << planned << " steps, stopped "
+        << (centre - Eigen::Vector2d(request.goal_x_m, request.goal_y_m)).norm() << " m from the goal: " << plan.message;
+    plan.message = msg.str();
+    plan.status = SolveStatus::kPartial;
   }
   plan.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
   plan.solve_time_s = elapsed();

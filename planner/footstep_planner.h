@@ -69,6 +69,15 @@ struct PlannerOptions {
   // The search's rounding heuristic inside relax-and-fix's stages
   // (RelaxAndFixOptions::stage_rounding).
   bool relax_and_fix_stage_rounding = false;
+  // Route guidance (planner/route_guide.h): before the windows, a graph over the regions
+  // answers 'no route' (SolveStatus::kNoRoute) when it does not connect start and goal,
+  // and the route's length sets the default step budget. Only for whole plans
+  // (PlanRequest::max_windows == 0).
+  bool route_guidance = true;
+  // Each window's goal term follows the route: a local goal this many metres of route
+  // ahead of the current stance (0: the goal itself; negative: twice the robot's largest
+  // nominal foot distance L_leg, about one window's walk).
+  double local_goal_lookahead_m = -1.0;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };
