@@ -61,13 +61,15 @@ struct Gen {
     }
     return out;
   }
-  double MaxGap() { return std::max(0.04, 2 * (0.6 * robot.d_lim_m - margin) - 0.01); }
+  // Gaps a foot can step across while every route pose keeps a spot within 0.9 l_bnd.
+  double MaxGap() { return std::max(0.01, 2 * (0.9 * robot.l_bnd_m - margin) - 0.005); }
+  double MinGap() { return std::min(0.04, 0.5 * MaxGap()); }
 
   // Stepping stones along each track over along-coordinates [s0, s1] of a segment.
   void Stones(double x0, double y0, double h, double s0, double s1) {
     const double w = 2 * margin + U(0.03, 0.1);
     for (const auto& [t, width] : Tracks(w)) {
-      double s = s0 + U(0.04, MaxGap());
+      double s = s0 + U(MinGap(), MaxGap());
       while (s < s1) {
         double len = U(2 * margin + 0.03, std::max(2 * margin + 0.04, 0.25 * footprint));
         len = std::min(len, s1 - s);
@@ -75,7 +77,7 @@ struct Gen {
         const double jitter = U(-0.3, 0.3) * (width - 2 * margin) / 2 * 0.3;
         const Eigen::Vector2d c = At(x0, y0, h, s + len / 2, t + jitter);
         Box(c.x(), c.y(), U(0.0, 0.5 * dz), len, width, h);
-        s += len + U(0.04, MaxGap());
+        s += len + U(MinGap(), MaxGap());
       }
     }
   }
@@ -87,10 +89,11 @@ struct Gen {
 };
 
 // Every pose along the route has, for every leg, a spot on the true surface within
-// 0.6 d_lim (body frame) of the nominal foot.
+// 0.9 l_bnd (body frame) of the nominal foot: the planner's reference box (l_bnd) about
+// the configuration's nominal spot, and consecutive poses 0.5 d_lim apart, within reach.
 bool RouteHolds(const RobotModel& robot, const TerrainDescription& terrain, const std::vector<Pose2D>& route,
                 double margin) {
-  const double half = 0.6 * robot.d_lim_m;
+  const double half = 0.9 * robot.l_bnd_m;
   const double step = half / 3;
   std::vector<Pose2D> poses;
   for (size_t k = 0; k + 1 < route.size(); ++k) {
@@ -203,7 +206,7 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
           g.boxes = kept;
           exists = false;
         }
-        g.Platform({end + P + g.U(0.04, g.MaxGap()), 0});
+        g.Platform({end + P + g.U(g.MinGap(), g.MaxGap()), 0});
         const double gx = g.boxes.back().center_world_m.x();
         route = {{0, 0, 0}, {gx, 0, 0}};
         break;
@@ -211,11 +214,11 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
       case CourseKind::kStonesTurn: {
         g.Platform({0, 0});
         g.Stones(0, 0, 0, P, P + len);
-        const double cx = P + len + g.U(0.04, g.MaxGap()) + P;
+        const double cx = P + len + g.U(g.MinGap(), g.MaxGap()) + P;
         g.Platform({cx, 0});
         const double len2 = g.U(2.0, 3.5) * reach_r + 0.3;
         g.Stones(cx, 0, M_PI / 2, P, P + len2);
-        const double gy = P + len2 + g.U(0.04, g.MaxGap()) + P;
+        const double gy = P + len2 + g.U(g.MinGap(), g.MaxGap()) + P;
         g.Platform({cx, gy});
         route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
         break;
@@ -223,14 +226,14 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
       case CourseKind::kGaps:
       case CourseKind::kCutGaps: {
         g.Platform({0, 0});
-        double s = P + g.U(0.04, g.MaxGap());
+        double s = P + g.U(g.MinGap(), g.MaxGap());
         const double end = P + len;
         const int cut_slab = kind == CourseKind::kCutGaps ? 1 : -1;
         int k = 0;
         while (s < end) {
           const double l = std::min(end - s, g.U(0.1, 0.35) + 2 * g.margin);
           g.Slab(0, 0, 0, s, s + l, 0.0);
-          s += l + (k == cut_slab ? cut : g.U(0.04, g.MaxGap()));
+          s += l + (k == cut_slab ? cut : g.U(g.MinGap(), g.MaxGap()));
           ++k;
         }
         exists = kind != CourseKind::kCutGaps || k < 2;  // the cut follows slab 1

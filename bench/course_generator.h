@@ -2,7 +2,7 @@
 // Seeded procedural courses for the planner benchmark (mfp-bench --courses) and its
 // regression test. A course is a box terrain built along a route of body poses that the
 // robot's reach can follow (every nominal foot of every route pose has a spot on a true
-// top face, at least `edge_margin_m` inside its edges, within 0.7 d_lim; neighbouring
+// top face, at least `edge_margin_m` inside its edges, within 0.9 l_bnd; neighbouring
 // surfaces differ in height by at most 0.6 dz_max), or one whose every route is cut (a gap
 // wider than any step can cross). The generator therefore knows the truth: route_exists.
 #include <cstdint>

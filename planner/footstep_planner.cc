@@ -222,6 +222,55 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
 
+  // Adaptive horizons: a window that is infeasible, finds no plan in its time, or cannot
+  // improve on standing still is planned again from the stance before the previous
+  // window with a longer horizon (up to max_horizon), so that the steps that led into a
+  // dead end can change. A success resets the horizon.
+  struct Snapshot {
+    std::vector<Eigen::Vector3d> stance, history;
+    std::vector<double> stance_yaw;
+    int phase = 0, planned = 0;
+    double yaw = 0.0, objective = 0.0, bound = 0.0;
+    size_t footsteps = 0;
+  };
+  std::vector<Snapshot> snapshots;
+  int horizon = window;
+  const int max_horizon = guided ? std::min(1000, options.max_horizon_windows * window) : window;
+  auto snapshot = [&] {
+    return Snapshot{stance, history, stance_yaw, phase, planned, yaw, plan.objective, plan.bound, plan.footsteps.size()};
+  };
+  auto restore = [&](const Snapshot& s) {
+    stance = s.stance;
+    history = s.history;
+    stance_yaw = s.stance_yaw;
+    phase = s.phase;
+    planned = s.planned;
+    yaw = s.yaw;
+    plan.objective = s.objective;
+    plan.bound = s.bound;
+    plan.footsteps.resize(s.footsteps);
+    plan.reaches_goal = goal_reached(plan.footsteps);
+  };
+  // Called on a failed window: true when it is worth planning again with a longer look.
+  int last_failure = -1;  // steps planned where a window last failed
+  auto retry_longer = [&](const std::string& why) {
+    if (horizon >= max_horizon || time_limit - elapsed() <= 0.0 || plan.horizon_retries >= 50) return false;
+    const bool new_failure = planned > last_failure;
+    last_failure = std::max(last_failure, planned);
+    if (new_failure && snapshots.size() >= 2) {
+      snapshots.pop_back();  // the failed window's own start
+      restore(snapshots.back());
+      snapshots.pop_back();  // taken again when the window is planned
+    } else if (!snapshots.empty()) {
+      restore(snapshots.back());
+      snapshots.pop_back();
+    }
+    horizon = std::min(max_horizon, 2 * horizon);
+    ++plan.horizon_retries;
+    plan.message = why;
+    return true;
+  };
+
   while (!plan.reaches_goal && planned < max_steps &&
          (request.max_windows <= 0 || plan.windows < request.max_windows)) {
     const double remaining_time = time_limit - elapsed();
@@ -230,7 +279,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       plan.message = "time limit reached after " + std::to_string(planned) + " steps";
       break;
     }
-    const int steps = std::min(window, max_steps - planned);
+    snapshots.push_back(snapshot());
+    const int steps = std::min(horizon, max_steps - planned);
     const int windows_left = (max_steps - planned + window - 1) / window;
     FootstepProblem problem = FirstWindowProblem(robot, regions, request, options);
     problem.start_feet_world_m = stance;
@@ -300,11 +350,16 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
     plan.nodes += result.nodes;
     plan.relaxations += result.relaxations;
+    if (!HasPlan(result.status) &&
+        retry_longer("window " + std::to_string(plan.windows) + ": " + ToString(result.status))) {
+      continue;
+    }
     if (!HasPlan(result.status)) {
       if (plan.windows == 1) {
         plan.status = result.status;
       } else {
-        plan.status = result.status == SolveStatus::kInfeasible ? plan.status : result.status;
+        plan.status = guided ? plan.status
+                             : result.status == SolveStatus::kInfeasible ? plan.status : result.status;
       }
       plan.message = "window " + std::to_string(plan.windows) + ": " + ToString(result.status) +
                      " after " + std::to_string(result.nodes) + " nodes";
@@ -349,6 +404,14 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.elapsed_s = elapsed();
       progress.window_result = result;
       on_progress(progress);
+    }
+    if (kept == 0 && !plan.reaches_goal &&
+        retry_longer("window " + std::to_string(plan.windows) + " found no step that improves on standing still")) {
+      continue;
+    }
+    if (kept > 0) {
+      if (planned > last_failure) horizon = window;  // past the dead end: back to short windows
+      plan.message.clear();  // a retry's reason, now overcome
     }
     if (kept == 0 && !plan.reaches_goal) {
       plan.message = "the planner stopped short of the goal: window " + std::to_string(plan.windows) +

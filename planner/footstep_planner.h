@@ -78,6 +78,9 @@ struct PlannerOptions {
   // ahead of the current stance (0: the goal itself; negative: twice the robot's largest
   // nominal foot distance L_leg, about one window's walk).
   double local_goal_lookahead_m = -1.0;
+  // Adaptive horizons: a failed window is planned again, backing up one window, with up
+  // to this many times the default window's steps (1: no retries). Only with route guidance.
+  int max_horizon_windows = 2;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
 };

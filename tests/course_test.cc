@@ -1,0 +1,96 @@
+// Generated courses (bench/course_generator.h) judged by the independent checker
+// (bench/course_checker.h): a small seeded set as a regression test; the 200-course run
+// is the benchmark (mfp-bench --courses 200). Plans on the boxes' true top faces inset by
+// the edge margin, so that the test follows the planner and not the map pipeline.
+#include <gtest/gtest.h>
+
+#include "bench/course_checker.h"
+#include "bench/course_generator.h"
+#include "planner/footstep_planner.h"
+#include "planner/relaxation_solver_factory.h"
+#include "planner/robot_loader.h"
+
+namespace mfp {
+namespace {
+
+struct Outcome {
+  Plan plan;
+  CourseVerdict verdict;
+};
+
+Outcome PlanCourse(const Course& course, const RobotModel& robot) {
+  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+  Scenario scenario;
+  scenario.robot_path = course.robot_path;
+  scenario.terrain = course.terrain;
+  scenario.start = course.start;
+  scenario.goal = course.goal;
+  scenario.time_limit_s = 20.0;
+  const PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+  Outcome out;
+  out.plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
+  out.verdict = CheckPlanOnCourse(course.terrain, robot, out.plan.footsteps, course.goal, course.edge_margin_m);
+  return out;
+}
+
+std::string RobotPath(const std::string& name) { return std::string(MFP_SOURCE_DIR) + "/config/robots/" + name + ".yaml"; }
+
+TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
+  for (const std::string name : {"littledog", "hexapod", "octopod"}) {
+    const RobotModel robot = LoadRobot(RobotPath(name));
+    for (CourseKind kind : {CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal}) {
+      const Course course = GenerateCourse(robot, RobotPath(name), kind, 7);
+      ASSERT_FALSE(course.route_exists);
+      const Outcome out = PlanCourse(course, robot);
+      EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << course.name << ": " << out.plan.message;
+      EXPECT_NE(out.plan.message.find("no route"), std::string::npos) << out.plan.message;
+      EXPECT_LT(out.plan.solve_time_s, 2.0) << course.name;
+    }
+  }
+}
+
+// Courses that failed before route guidance and adaptive horizons (step budget of 12 n,
+// a window walking into a dead end, the wall across the route).
+TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
+  struct Case {
+    std::string robot;
+    CourseKind kind;
+    uint64_t seed;
+  };
+  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kStones, 1},
+                                         {"littledog", CourseKind::kGaps, 7},
+                                         {"littledog", CourseKind::kDetour, 22}}) {
+    const RobotModel robot = LoadRobot(RobotPath(c.robot));
+    const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
+    ASSERT_TRUE(course.route_exists);
+    const Outcome out = PlanCourse(course, robot);
+    EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
+    EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
+  }
+}
+
+TEST(CourseTest, CheckerRejectsAFootOffTheTrueSurface) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kStones, 1);
+  const Outcome out = PlanCourse(course, robot);
+  ASSERT_TRUE(out.verdict.valid);
+  std::vector<Footstep> moved = out.plan.footsteps;
+  // Push one foot of the middle of the plan 3 cm sideways past its stone's edge margin.
+  Footstep& f = moved[moved.size() / 2];
+  bool off = false;
+  for (double dy : {0.03, 0.06, 0.1, -0.03, -0.06, -0.1}) {
+    const Eigen::Vector3d p = f.position_world_m + Eigen::Vector3d(0, dy, 0);
+    if (!FootOnTrueSurface(course.terrain, p, course.edge_margin_m, robot.max_slope_rad, 0.025)) {
+      f.position_world_m = p;
+      off = true;
+      break;
+    }
+  }
+  ASSERT_TRUE(off);
+  const CourseVerdict v = CheckPlanOnCourse(course.terrain, robot, moved, course.goal, course.edge_margin_m);
+  EXPECT_FALSE(v.valid);
+}
+
+}  // namespace
+}  // namespace mfp
