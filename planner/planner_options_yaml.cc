@@ -17,7 +17,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
                      "reduced_cost_fixing", "early_cutoff", "relax_and_fix", "relax_and_fix_time_share",
                      "relax_and_fix_min_configurations", "relax_and_fix_region_hull",
                      "relax_and_fix_stage_tolerance", "snap_yaw_segments",
-                     "relax_and_fix_two_paths", "relax_and_fix_stage_rounding"});
+                     "relax_and_fix_two_paths", "relax_and_fix_stage_rounding", "route_guidance",
+                     "local_goal_lookahead", "max_horizon_windows"});
   PlannerOptions& o = *options;
   o.default_max_steps = OptionalInt(node, ctx, "max_steps", 1, 100000).value_or(o.default_max_steps);
   o.threads = OptionalInt(node, ctx, "threads", 1, 64).value_or(o.threads);
@@ -32,6 +33,10 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   o.relax_and_fix_two_paths = OptionalBool(node, ctx, "relax_and_fix_two_paths").value_or(o.relax_and_fix_two_paths);
   o.relax_and_fix_stage_rounding =
       OptionalBool(node, ctx, "relax_and_fix_stage_rounding").value_or(o.relax_and_fix_stage_rounding);
+  o.route_guidance = OptionalBool(node, ctx, "route_guidance").value_or(o.route_guidance);
+  o.local_goal_lookahead_m =
+      OptionalDouble(node, ctx, "local_goal_lookahead", -1.0, 1000.0).value_or(o.local_goal_lookahead_m);
+  o.max_horizon_windows = OptionalInt(node, ctx, "max_horizon_windows", 1, 100).value_or(o.max_horizon_windows);
   o.snap_yaw_segments = OptionalBool(node, ctx, "snap_yaw_segments").value_or(o.snap_yaw_segments);
   o.relax_and_fix_stage_tolerance = OptionalDouble(node, ctx, "relax_and_fix_stage_tolerance", 0.0, 1e-3)
                                         .value_or(o.relax_and_fix_stage_tolerance);

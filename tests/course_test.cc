@@ -58,8 +58,8 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
     CourseKind kind;
     uint64_t seed;
   };
-  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kStones, 1},
-                                         {"littledog", CourseKind::kGaps, 7},
+  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 7},
+                                         {"littledog", CourseKind::kTilted, 13},
                                          {"littledog", CourseKind::kDetour, 22}}) {
     const RobotModel robot = LoadRobot(RobotPath(c.robot));
     const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
@@ -70,26 +70,24 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
   }
 }
 
-TEST(CourseTest, CheckerRejectsAFootOffTheTrueSurface) {
+TEST(CourseTest, CheckerRejectsFeetOffTheTrueSurfaceAndOutOfReach) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
-  const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kStones, 1);
+  const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kGaps, 7);
   const Outcome out = PlanCourse(course, robot);
   ASSERT_TRUE(out.verdict.valid);
-  std::vector<Footstep> moved = out.plan.footsteps;
-  // Push one foot of the middle of the plan 3 cm sideways past its stone's edge margin.
-  Footstep& f = moved[moved.size() / 2];
-  bool off = false;
-  for (double dy : {0.03, 0.06, 0.1, -0.03, -0.06, -0.1}) {
-    const Eigen::Vector3d p = f.position_world_m + Eigen::Vector3d(0, dy, 0);
-    if (!FootOnTrueSurface(course.terrain, p, course.edge_margin_m, robot.max_slope_rad, 0.025)) {
-      f.position_world_m = p;
-      off = true;
-      break;
-    }
-  }
-  ASSERT_TRUE(off);
-  const CourseVerdict v = CheckPlanOnCourse(course.terrain, robot, moved, course.goal, course.edge_margin_m);
+  const size_t k = out.plan.footsteps.size() / 2;
+  std::vector<Footstep> floating = out.plan.footsteps;
+  floating[k].position_world_m.z() += 0.1;  // 10 cm above the true surface
+  CourseVerdict v = CheckPlanOnCourse(course.terrain, robot, floating, course.goal, course.edge_margin_m);
   EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.cause, "off_surface");
+  std::vector<Footstep> stretched = out.plan.footsteps;
+  stretched[k].position_world_m.y() += 3 * robot.d_lim_m;  // beyond the reach box
+  v = CheckPlanOnCourse(course.terrain, robot, stretched, course.goal, course.edge_margin_m);
+  EXPECT_FALSE(v.valid);
+  bool reach = false;
+  for (const auto& e : v.violations) reach = reach || e.rfind("reach", 0) == 0;
+  EXPECT_TRUE(reach);
 }
 
 }  // namespace
