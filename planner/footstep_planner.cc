@@ -424,7 +424,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                        ? "goal not reached within " + std::to_string(request.max_windows) + " window(s)"
                        : "goal not reached within " + std::to_string(max_steps) + " steps";
   }
-  if (!plan.reaches_goal && HasPlan(plan.status) && planned > 0 && request.max_windows == 0) {
+  if (!plan.reaches_goal && HasPlan(plan.status) && request.max_windows == 0) {
     // Every accepted step satisfies the constraints: the robot can walk this far safely.
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
