@@ -26,6 +26,7 @@
 #include "planner/planning/plan_validation.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
+#include "bench/course_bench.h"
 
 namespace {
 
@@ -252,8 +253,33 @@ int main(int argc, char** argv) {
   app.add_option("--repeat", repeat, "runs per instance; the time printed is their median")->check(CLI::Range(1, 1000));
   app.add_flag("--table-only", table_only, "only the single MIQPs of Table I");
   app.add_flag("--scenarios-only", scenarios_only, "only the scenarios");
+  int courses = 0;
+  uint64_t course_seed = 1;
+  double course_time_limit = 15.0;
+  std::string write_courses;
+  app.add_option("--courses", courses, "plan N generated courses (4, 6 and 8 legs) and judge them against their boxes")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--course-seed", course_seed, "seed of the first generated course (course i uses seed + i)");
+  app.add_option("--course-time-limit", course_time_limit, "time limit per generated course [s]")
+      ->check(CLI::Range(0.01, 3600.0));
+  bool course_top_faces = false;
+  app.add_flag("--course-top-faces", course_top_faces,
+               "generated courses: plan on the boxes' true top faces inset by the edge margin, not extracted regions");
+  app.add_option("--write-courses", write_courses, "write each generated course as a scenario YAML here");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (courses > 0) {
+      mfp::CourseBenchOptions o;
+      o.courses = courses;
+      o.seed = course_seed;
+      o.time_limit_s = course_time_limit;
+      o.robots_dir = std::string(MFP_SOURCE_DIR) + "/config/robots";
+      o.write_dir = write_courses;
+      o.top_face_regions = course_top_faces;
+      o.adjust = [&](mfp::Scenario* s) { ApplyOverrides(overrides, s); };
+      mfp::RunCourseBench(o);
+      return 0;
+    }
     if (!instances_dir.empty()) std::filesystem::create_directories(instances_dir);
     if (!scenarios_only) {
       PrintHeader("Single MIQPs on the 13-region stepping stones (seed paper Table I: 12/24/36 steps, 312/552/828 "

@@ -69,8 +69,10 @@ TEST(LcmTypesTest, StatusConstantsMirrorSolveStatus) {
   EXPECT_EQ(+plan_t::STATUS_NO_SOLUTION, static_cast<int>(SolveStatus::kNoSolution));
   EXPECT_EQ(+plan_t::STATUS_DROPPED, static_cast<int>(SolveStatus::kDropped));
   EXPECT_EQ(+plan_t::STATUS_SUPERSEDED, static_cast<int>(SolveStatus::kSuperseded));
+  EXPECT_EQ(+plan_t::STATUS_PARTIAL, static_cast<int>(SolveStatus::kPartial));
+  EXPECT_EQ(+plan_t::STATUS_NO_ROUTE, static_cast<int>(SolveStatus::kNoRoute));
   // Every SolveStatus has a constant: the last one is the highest value.
-  EXPECT_EQ(ToString(static_cast<SolveStatus>(+plan_t::STATUS_SUPERSEDED)), "superseded");
+  EXPECT_EQ(ToString(static_cast<SolveStatus>(+plan_t::STATUS_NO_ROUTE)), "no_route");
 }
 
 TEST(LcmTypesTest, WireWalkersMatchTheGeneratedEncoders) {

@@ -1,5 +1,7 @@
 // mfp-plan: plans footsteps for one request from a scenario file or from flags.
-// Exit codes: 0 a plan reaching the goal, 2 bad input, 3 no plan reaching the goal.
+// Exit codes: 0 a plan reaching the goal, 2 bad input, 3 no plan reaching the goal (status
+// no_route: no route exists, the message names where it breaks; partial: a valid plan
+// that stops short, the message says how far it got and why).
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -212,6 +214,9 @@ int main(int argc, char** argv) {
       for (const std::string& e : errors) std::cerr << kProgram << ": violation: " << e << "\n";
       if (!errors.empty()) return kExitNoPlan;
       log("validated: every constraint holds");
+    }
+    if (plan.status == mfp::SolveStatus::kNoRoute || plan.status == mfp::SolveStatus::kPartial) {
+      std::cerr << kProgram << ": " << plan.message << "\n";
     }
     return plan.reaches_goal ? kExitReached : kExitNoPlan;
   } catch (const mfp::InputError& e) {

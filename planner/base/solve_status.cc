@@ -18,13 +18,15 @@ std::string ToString(SolveStatus status) {
     case SolveStatus::kNoSolution: return "no_solution";
     case SolveStatus::kDropped: return "dropped";
     case SolveStatus::kSuperseded: return "superseded";
+    case SolveStatus::kPartial: return "partial";
+    case SolveStatus::kNoRoute: return "no_route";
   }
   MFP_CHECK_MSG(false, "unknown SolveStatus " + std::to_string(static_cast<int>(status)));
 }
 
 bool HasPlan(SolveStatus status) {
   return status == SolveStatus::kOptimal || status == SolveStatus::kFeasible ||
-         status == SolveStatus::kTimeLimit;
+         status == SolveStatus::kTimeLimit || status == SolveStatus::kPartial;
 }
 
 }  // namespace mfp

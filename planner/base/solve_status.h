@@ -18,6 +18,12 @@ enum class SolveStatus : int {
   kNoSolution = 9,       // limits hit before any feasible plan was found
   kDropped = 10,         // request dropped from a full queue, or the daemon stopping
   kSuperseded = 11,      // a newer request from the same client replaced it in the queue
+  kPartial = 12,         // a valid plan that stops short of the goal (step budget, time
+                         // limit or no further window found); safe to execute, message says
+                         // how far it got and why
+  kNoRoute = 13,         // no route: the regions' graph under the robot's reach and height
+                         // limits does not connect the start to the goal; message names
+                         // where the route breaks
 };
 
 // Lower-case name used in JSON ("optimal", "time_limit", ...).

@@ -29,6 +29,7 @@ struct Plan {
   int relaxations = 0;         // continuous QPs solved over all windows
   int integer_variables = 0;   // in the first window's MIQP
   int windows = 0;
+  int horizon_retries = 0;     // windows planned again with a longer horizon (adaptive horizons)
   // footsteps[0 .. n-1] are the start stance (in gait order); the last n are the final
   // stance, one per leg.
   std::vector<Footstep> footsteps;

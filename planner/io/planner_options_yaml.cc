@@ -37,6 +37,9 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"start_tolerance", &PlannerOptions::start_tolerance_m, 0, 1},
     {"threads", &PlannerOptions::threads, 1, 64},
     {"snap_yaw_segments", &PlannerOptions::snap_yaw_segments},
+    {"route_guidance", &PlannerOptions::route_guidance},
+    {"local_goal_lookahead", &PlannerOptions::local_goal_lookahead_m, -1.0, 1000.0},
+    {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
 };
 
 const std::vector<Field<FormulationOptions>> kFormulationFields = {

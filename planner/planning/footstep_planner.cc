@@ -9,9 +9,8 @@
 #include "planner/planning/goal.h"
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
-#include "planner/base/check.h"
-#include "planner/planning/relax_and_fix.h"
 #include "terrain/region_reachability.h"
+#include "planner/planning/route_guide.h"
 
 namespace mfp {
 namespace {
@@ -116,7 +115,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   if (const RequestCheck check = CheckPlanRequest(robot, regions, request, options); !check.ok()) {
     return Rejected(check.status, check.message);
   }
-  const int max_steps = MaxSteps(robot, request, options);
+  int max_steps = MaxSteps(robot, request, options);
   const int window = WindowSteps(robot, request, options);
   const double time_limit = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
 
@@ -127,6 +126,25 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   for (int i : ReachableRegionIndices(regions, request.start_feet_world_m, step_xy, robot.dz_max_m,
                                       options.start_tolerance_m)) {
     usable.push_back(regions[static_cast<size_t>(i)]);
+  }
+
+  // ---- route guidance: no route, or a body route that sets the step budget ----
+  RouteGuide guide;
+  const bool guided = options.route_guidance && request.max_windows == 0;
+  if (guided) {
+    guide = PlanRoute(robot, regions, request.start_feet_world_m, {request.goal_x_m, request.goal_y_m},
+                      request.goal_yaw_rad, options.goal_tolerance_m, options.start_tolerance_m);
+    if (!guide.connected) {
+      Plan rejected = Rejected(SolveStatus::kNoRoute, guide.broken);
+      rejected.solve_time_s = elapsed();
+      return rejected;
+    }
+    if (request.max_steps == 0 && options.default_max_steps == 0) {
+      // Enough configurations to walk the route three times over at d_lim per
+      // configuration; the time limit bounds the work.
+      const int configurations = static_cast<int>(std::ceil(3.0 * guide.length_m / robot.d_lim_m)) + 4;
+      max_steps = std::min(100000, std::max(max_steps, configurations * n));
+    }
   }
 
   // ---- receding windows ----
@@ -158,6 +176,55 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   plan.reaches_goal = goal_reached(plan.footsteps);
   std::string polish_note;  // the first window whose polished plan was not used, and why
 
+  // Adaptive horizons: a window that is infeasible, finds no plan in its time, or cannot
+  // improve on standing still is planned again from the stance before the previous
+  // window with a longer horizon (up to max_horizon), so that the steps that led into a
+  // dead end can change. A success resets the horizon.
+  struct Snapshot {
+    std::vector<Eigen::Vector3d> stance, history;
+    std::vector<double> stance_yaw;
+    int phase = 0, planned = 0;
+    double yaw = 0.0, objective = 0.0, bound = 0.0;
+    size_t footsteps = 0;
+  };
+  std::vector<Snapshot> snapshots;
+  int horizon = window;
+  const int max_horizon = guided ? std::min(1000, options.max_horizon_windows * window) : window;
+  auto snapshot = [&] {
+    return Snapshot{stance, history, stance_yaw, phase, planned, yaw, plan.objective, plan.bound, plan.footsteps.size()};
+  };
+  auto restore = [&](const Snapshot& s) {
+    stance = s.stance;
+    history = s.history;
+    stance_yaw = s.stance_yaw;
+    phase = s.phase;
+    planned = s.planned;
+    yaw = s.yaw;
+    plan.objective = s.objective;
+    plan.bound = s.bound;
+    plan.footsteps.resize(s.footsteps);
+    plan.reaches_goal = goal_reached(plan.footsteps);
+  };
+  // Called on a failed window: true when it is worth planning again with a longer look.
+  int last_failure = -1;  // steps planned where a window last failed
+  auto retry_longer = [&](const std::string& why) {
+    if (horizon >= max_horizon || time_limit - elapsed() <= 0.0 || plan.horizon_retries >= 50) return false;
+    const bool new_failure = planned > last_failure;
+    last_failure = std::max(last_failure, planned);
+    if (new_failure && snapshots.size() >= 2) {
+      snapshots.pop_back();  // the failed window's own start
+      restore(snapshots.back());
+      snapshots.pop_back();  // taken again when the window is planned
+    } else if (!snapshots.empty()) {
+      restore(snapshots.back());
+      snapshots.pop_back();
+    }
+    horizon = std::min(max_horizon, 2 * horizon);
+    ++plan.horizon_retries;
+    plan.message = why;
+    return true;
+  };
+
   while (!plan.reaches_goal && planned < max_steps &&
          (request.max_windows <= 0 || plan.windows < request.max_windows)) {
     const double remaining_time = std::min(time_limit - elapsed(), request.deadline.RemainingSeconds());
@@ -167,7 +234,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                      std::to_string(planned) + " steps";
       break;
     }
-    const int steps = std::min(window, max_steps - planned);
+    snapshots.push_back(snapshot());
+    const int steps = std::min(horizon, max_steps - planned);
     const int windows_left = (max_steps - planned + window - 1) / window;
     FootstepProblem problem = FirstWindowProblem(robot, regions, request, options);
     problem.start_feet_world_m = stance;
@@ -177,6 +245,19 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     problem.regions.clear();
     for (int i : WindowRegionIndices(usable, stance, (steps + n - 1) / n, step_xy, robot.dz_max_m)) {
       problem.regions.push_back(usable[static_cast<size_t>(i)]);
+    }
+    const double lookahead = options.local_goal_lookahead_m < 0 ? 2.0 * LegReach(robot) : options.local_goal_lookahead_m;
+    if (guided && lookahead > 0.0) {
+      // The window's goal term pulls toward a point of the route ahead of the stance.
+      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+      for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
+      centre /= n;
+      const double s = RouteProgress(guide, centre) + lookahead;
+      if (s < guide.length_m) {
+        const Eigen::Vector2d local = RoutePoint(guide, s);
+        problem.goal_x_m = local.x();
+        problem.goal_y_m = local.y();
+      }
     }
     if (plan.windows > 0) {
       problem.history_feet_world_m = history;
@@ -227,14 +308,19 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
     plan.nodes += result.nodes;
     plan.relaxations += result.relaxations;
+    if (!HasPlan(result.status) &&
+        retry_longer("window " + std::to_string(plan.windows) + ": " + ToString(result.status))) {
+      continue;
+    }
     if (!HasPlan(result.status)) {
       if (plan.windows == 1) {
         plan.status = result.status;
       } else {
-        plan.status = result.status == SolveStatus::kInfeasible ? plan.status : result.status;
-        // A later window cut by its time share before its first plan: the plan so far
-        // stands, ended by the time limit.
-        if (result.status == SolveStatus::kNoSolution) plan.status = SolveStatus::kTimeLimit;
+        plan.status = guided ? plan.status
+                             : result.status == SolveStatus::kInfeasible ? plan.status : result.status;
+        // Unguided, a later window cut by its time share before its first plan: the plan
+        // so far stands, ended by the time limit.
+        if (!guided && result.status == SolveStatus::kNoSolution) plan.status = SolveStatus::kTimeLimit;
       }
       plan.message = "window " + std::to_string(plan.windows) + ": " + ToString(result.status) +
                      " after " + std::to_string(result.nodes) + " nodes";
@@ -288,6 +374,14 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.polish = polished.report;
       on_progress(progress);
     }
+    if (kept == 0 && !plan.reaches_goal &&
+        retry_longer("window " + std::to_string(plan.windows) + " found no step that improves on standing still")) {
+      continue;
+    }
+    if (kept > 0) {
+      if (planned > last_failure) horizon = window;  // past the dead end: back to short windows
+      plan.message.clear();  // a retry's reason, now overcome
+    }
     if (kept == 0 && !plan.reaches_goal) {
       plan.message = "the planner stopped short of the goal: window " + std::to_string(plan.windows) +
                      " found no step that improves on standing still";
@@ -300,6 +394,18 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                        : "goal not reached within " + std::to_string(max_steps) + " steps";
   }
   if (!polish_note.empty()) plan.message += (plan.message.empty() ? "" : "; ") + polish_note;
+  if (!plan.reaches_goal && HasPlan(plan.status) && request.max_windows == 0) {
+    // Every accepted step satisfies the constraints: the robot can walk this far safely.
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
+    centre /= n;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "partial plan: " << planned << " steps, stopped "
+        << (centre - Eigen::Vector2d(request.goal_x_m, request.goal_y_m)).norm() << " m from the goal: " << plan.message;
+    plan.message = msg.str();
+    plan.status = SolveStatus::kPartial;
+  }
   plan.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
   plan.solve_time_s = elapsed();
   return plan;

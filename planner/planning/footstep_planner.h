@@ -58,6 +58,18 @@ struct PlannerOptions {
   // A relaxed yaw that one segment alone represents (on a breakpoint, as the goal yaw
   // is) is set to that segment before branching (MiqpFormulation::SnapYawToOneSegment).
   bool snap_yaw_segments = true;
+  // Route guidance (planner/route_guide.h): before the windows, a graph over the regions
+  // answers 'no route' (SolveStatus::kNoRoute) when it does not connect start and goal,
+  // and the route's length sets the default step budget. Only for whole plans
+  // (PlanRequest::max_windows == 0).
+  bool route_guidance = true;
+  // Each window's goal term follows the route: a local goal this many metres of route
+  // ahead of the current stance (0: the goal itself; negative: twice the robot's largest
+  // nominal foot distance L_leg, about one window's walk).
+  double local_goal_lookahead_m = -1.0;
+  // Adaptive horizons: a failed window is planned again, backing up one window, with up
+  // to this many times the default window's steps (1: no retries). Only with route guidance.
+  int max_horizon_windows = 2;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
   // The seed of each window's search; its stage search options and time limit are set

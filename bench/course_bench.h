@@ -1,0 +1,28 @@
+#pragma once
+// mfp-bench --courses N: generated courses planned end to end and judged by the
+// independent checker; prints one row per course and a summary table.
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "planner/io/scenario_yaml.h"
+
+namespace mfp {
+
+struct CourseBenchOptions {
+  int courses = 200;
+  uint64_t seed = 1;
+  double time_limit_s = 15.0;      // per plan
+  std::string robots_dir;          // config/robots
+  // Regions the planner gets: the map pipeline (voxelised boxes, as on the robot), or the
+  // boxes' exact top faces inset by the checker's edge margin (perfect perception: separates
+  // planning failures from perception ones).
+  bool top_face_regions = false;
+  std::string write_dir;           // write each course's scenario YAML here ("" = no)
+  std::function<void(Scenario*)> adjust;  // --set overrides
+};
+
+// Returns the number of courses where a route exists that did not plan validly to the goal.
+int RunCourseBench(const CourseBenchOptions& options);
+
+}  // namespace mfp

@@ -1,0 +1,123 @@
+#include "bench/course_checker.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <sstream>
+
+#include "planner/planning/footstep_planner.h"
+
+namespace mfp {
+
+namespace {
+
+bool InsideBox(const TerrainBox& box, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = BoxRotation(box).transpose() * (p - box.center_world_m);
+  return std::abs(q.x()) < box.size_m.x() / 2 && std::abs(q.y()) < box.size_m.y() / 2 &&
+         std::abs(q.z()) < box.size_m.z() / 2;
+}
+
+std::string Fmt(const Eigen::Vector3d& p) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
+  return s.str();
+}
+
+}  // namespace
+
+bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
+                       double max_slope_rad, double height_tol_m) {
+  bool on_face = false;
+  for (const TerrainBox& box : terrain.boxes) {
+    const Eigen::Matrix3d r = BoxRotation(box);
+    if (r(2, 2) < std::cos(max_slope_rad)) continue;  // local +z is the top face only when it points up enough
+    const Eigen::Vector3d q = r.transpose() * (p - box.center_world_m);
+    if (std::abs(q.z() - box.size_m.z() / 2) > height_tol_m) continue;
+    if (std::abs(q.x()) > box.size_m.x() / 2 - margin_m || std::abs(q.y()) > box.size_m.y() / 2 - margin_m) continue;
+    on_face = true;
+    break;
+  }
+  if (!on_face) return false;
+  const Eigen::Vector3d above = p + Eigen::Vector3d(0, 0, height_tol_m + 1e-3);
+  for (const TerrainBox& box : terrain.boxes) {
+    if (InsideBox(box, above)) return false;
+  }
+  return true;
+}
+
+CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotModel& robot,
+                                const std::vector<Footstep>& footsteps, const Pose2D& goal,
+                                double edge_margin_m, const CourseCheckTolerances& tol) {
+  CourseVerdict v;
+  const int n = robot.num_legs();
+  auto fail = [&](const std::string& cause, const std::string& what) {
+    if (v.valid) v.cause = cause;
+    v.valid = false;
+    v.violations.push_back(cause + ": " + what);
+  };
+  if (static_cast<int>(footsteps.size()) < n) {
+    fail("no_plan", "fewer footsteps than legs");
+    return v;
+  }
+  std::vector<Eigen::Vector3d> feet(n, Eigen::Vector3d::Zero());
+  std::vector<bool> seen(n, false);
+  for (int k = 0; k < n; ++k) {
+    feet[footsteps[k].leg] = footsteps[k].position_world_m;
+    seen[footsteps[k].leg] = true;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!seen[i]) fail("no_plan", "start stance lacks a leg");
+  }
+  if (!v.valid) return v;
+  // Configuration after each footstep; the start stance's for the first n.
+  std::vector<Pose2D> configs;
+  {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const auto& q : feet) c += q.head<2>();
+    c /= n;
+    for (int k = 0; k < n; ++k) configs.push_back({c.x(), c.y(), footsteps[k].yaw_rad});
+  }
+  for (size_t k = n; k < footsteps.size(); ++k) {
+    const Footstep& f = footsteps[k];
+    const Eigen::Vector3d& p = f.position_world_m;
+    if (!FootOnTrueSurface(terrain, p, edge_margin_m - tol.numeric_m, robot.max_slope_rad, tol.height_m)) {
+      fail("off_surface", "step " + std::to_string(k) + " leg " + robot.legs[f.leg].name + " at " + Fmt(p));
+    }
+    if (std::abs(p.z() - feet[f.leg].z()) > robot.dz_max_m + tol.height_m) {
+      fail("height_change", "step " + std::to_string(k) + " changes height by " +
+                                std::to_string(p.z() - feet[f.leg].z()) + " m");
+    }
+    // Reach as the robot model states it (the paper's eq. 3-4): the new foot within the
+    // d_lim square about its nominal spot in the configuration n steps back, and within the l_bnd square about its nominal spot
+    // in the configuration it makes. Squares on world axes, centres the mean of the feet.
+    const Pose2D before = configs[k - n];
+    feet[f.leg] = p;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const auto& q : feet) centre += q.head<2>();
+    centre /= n;
+    configs.push_back({centre.x(), centre.y(), f.yaw_rad});
+    const Eigen::Vector2d o = robot.legs[f.leg].nominal_offset_body_m;
+    const double reach = (p.head<2>() - NominalFootXY(robot, f.leg, before.x_m, before.y_m, before.yaw_rad))
+                             .cwiseAbs().maxCoeff();
+    const double ref = (p.head<2>() - (centre + Eigen::Rotation2Dd(f.yaw_rad) * o)).cwiseAbs().maxCoeff();
+    if (reach > robot.d_lim_m + tol.reach_m || ref > robot.l_bnd_m + tol.reach_m) {
+      fail("reach", "step " + std::to_string(k) + " leg " + robot.legs[f.leg].name + " is " + std::to_string(reach) +
+                        " m from its nominal spot n steps back (d_lim " + std::to_string(robot.d_lim_m) + "), " +
+                        std::to_string(ref) + " m from its own (l_bnd " + std::to_string(robot.l_bnd_m) + ")");
+    }
+  }
+  // Goal: every final foot near its goal spot, final yaw near the goal yaw.
+  std::vector<Footstep> final_stance;
+  for (int i = 0; i < n; ++i) final_stance.push_back(Footstep{0, i, feet[i], 0.0, -1});
+  const double yaw = FinalStanceYaw(robot, final_stance);
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d spot = NominalFootXY(robot, i, goal.x_m, goal.y_m, goal.yaw_rad);
+    worst = std::max(worst, (feet[i].head<2>() - spot).norm());
+  }
+  const double yaw_error = std::abs(std::remainder(yaw - goal.yaw_rad, 2 * M_PI));
+  v.reaches_goal = worst <= tol.goal_m && yaw_error <= tol.goal_yaw_rad;
+  return v;
+}
+
+}  // namespace mfp

@@ -1,0 +1,42 @@
+#pragma once
+// An independent judge of a plan on a generated course: it looks at the true boxes the
+// course was built from, never at the regions mfp extracted, and at the robot model's
+// reach limits, never at the planner's formulation.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "planner/formulation/plan.h"
+#include "planner/robot/robot_model.h"
+#include "planner/io/scenario_yaml.h"
+#include "terrain/terrain_description.h"
+
+namespace mfp {
+
+struct CourseCheckTolerances {
+  double height_m = 0.025;   // foot height against the true top face (a voxel and a bit)
+  double reach_m = 0.02;     // beyond d_lim (yaw segments, rounding)
+  double goal_m = 0.07;      // final feet from their goal spots (planner's 0.05 + slack)
+  double goal_yaw_rad = 0.2; // final body yaw (planner's 0.15 + slack)
+  double numeric_m = 1e-3;   // the solver's feasibility tolerance on region edges
+};
+
+// True when a foot centred at p stands on the top face of some box, at least margin_m
+// inside that face's edges, the face no steeper than max_slope_rad, and no other box's
+// solid above the foot there.
+bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
+                       double max_slope_rad, double height_tol_m);
+
+struct CourseVerdict {
+  bool valid = true;          // every footstep on true surface, in reach, height change in range
+  bool reaches_goal = false;  // final stance at the goal
+  std::string cause;          // first failure: "off_surface", "reach", "height_change", "goal"
+  std::vector<std::string> violations;
+};
+
+// footsteps: the plan's list (the first n the start stance, in any leg order).
+CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotModel& robot,
+                                const std::vector<Footstep>& footsteps, const Pose2D& goal,
+                                double edge_margin_m, const CourseCheckTolerances& tol = {});
+
+}  // namespace mfp

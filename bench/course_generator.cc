@@ -1,0 +1,357 @@
+#include "bench/course_generator.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "bench/course_checker.h"
+
+namespace mfp {
+
+namespace {
+
+constexpr double kThick = 0.1;  // slab thickness [m]
+
+struct Gen {
+  const RobotModel& robot;
+  std::mt19937_64 rng;
+  double margin, reach, footprint, dz;
+  std::vector<TerrainBox> boxes;
+  int count = 0;
+
+  double U(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+
+  // A box whose top face is centred at (x, y, top) in a frame turned by heading.
+  void Box(double x, double y, double top, double along, double across, double heading, double roll = 0,
+           double pitch = 0, double thick = kThick) {
+    TerrainBox b;
+    b.name = "b" + std::to_string(count++);
+    const Eigen::Matrix3d r = (Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+                                  .toRotationMatrix();
+    b.center_world_m = Eigen::Vector3d(x, y, top) - r * Eigen::Vector3d(0, 0, thick / 2);
+    b.size_m = Eigen::Vector3d(along, across, thick);
+    b.rpy_rad = Eigen::Vector3d(roll, pitch, heading);
+    boxes.push_back(b);
+  }
+  // A point at along-coordinate s and lateral t on a segment from (x0, y0) with heading h.
+  static Eigen::Vector2d At(double x0, double y0, double h, double s, double t) {
+    return Eigen::Vector2d(x0 + s * std::cos(h) - t * std::sin(h), y0 + s * std::sin(h) + t * std::cos(h));
+  }
+  void Platform(const Eigen::Vector2d& c, double top = 0.0) { Box(c.x(), c.y(), top, 2 * footprint, 2 * footprint, 0); }
+
+  // Foot tracks: the legs' lateral offsets for a body heading along the route, merged
+  // where stones of width w would touch. Returns (centre, width) pairs.
+  std::vector<std::pair<double, double>> Tracks(double w) {
+    std::vector<double> ys;
+    for (const auto& leg : robot.legs) ys.push_back(leg.nominal_offset_body_m.y());
+    std::sort(ys.begin(), ys.end());
+    std::vector<std::pair<double, double>> out;
+    double lo = ys[0], hi = ys[0];
+    for (size_t i = 1; i <= ys.size(); ++i) {
+      if (i < ys.size() && ys[i] - hi < w + 0.05) {
+        hi = ys[i];
+        continue;
+      }
+      out.push_back({(lo + hi) / 2, hi - lo + w});
+      if (i < ys.size()) lo = hi = ys[i];
+    }
+    return out;
+  }
+  // Gaps a foot can step across while every route pose keeps a spot within 0.9 l_bnd.
+  double MaxGap() { return std::max(0.01, 2 * (0.9 * robot.l_bnd_m - margin) - 0.005); }
+  double MinGap() { return std::min(0.04, 0.5 * MaxGap()); }
+
+  // Stepping stones along each track over along-coordinates [s0, s1] of a segment.
+  void Stones(double x0, double y0, double h, double s0, double s1) {
+    const double w = 2 * margin + U(0.03, 0.1);
+    for (const auto& [t, width] : Tracks(w)) {
+      double s = s0 + U(MinGap(), MaxGap());
+      while (s < s1) {
+        double len = U(2 * margin + 0.03, std::max(2 * margin + 0.04, 0.25 * footprint));
+        len = std::min(len, s1 - s);
+        if (len < 2 * margin + 0.02) break;
+        const double jitter = U(-0.3, 0.3) * (width - 2 * margin) / 2 * 0.3;
+        const Eigen::Vector2d c = At(x0, y0, h, s + len / 2, t + jitter);
+        Box(c.x(), c.y(), U(0.0, 0.5 * dz), len, width, h);
+        s += len + U(MinGap(), MaxGap());
+      }
+    }
+  }
+  // A slab of the route's width over [s0, s1].
+  void Slab(double x0, double y0, double h, double s0, double s1, double top, double roll = 0, double pitch = 0) {
+    const Eigen::Vector2d c = At(x0, y0, h, (s0 + s1) / 2, 0);
+    Box(c.x(), c.y(), top, s1 - s0, 2 * footprint, h, roll, pitch);
+  }
+};
+
+// Every pose along the route has, for every leg, a spot on the true surface within
+// 0.9 l_bnd (body frame) of the nominal foot: the planner's reference box (l_bnd) about
+// the configuration's nominal spot, and consecutive poses 0.5 d_lim apart, within reach.
+bool RouteHolds(const RobotModel& robot, const TerrainDescription& terrain, const std::vector<Pose2D>& route,
+                double margin) {
+  const double half = 0.9 * robot.l_bnd_m;
+  const double step = half / 3;
+  std::vector<Pose2D> poses;
+  for (size_t k = 0; k + 1 < route.size(); ++k) {
+    const Pose2D& a = route[k];
+    const Pose2D& b = route[k + 1];
+    const double d = std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+    const double dyaw = std::abs(std::remainder(b.yaw_rad - a.yaw_rad, 2 * M_PI));
+    const int m = std::max(1, static_cast<int>(std::ceil(std::max(d / (0.5 * robot.d_lim_m),
+                                                                  dyaw / (0.5 * robot.max_yaw_change_rad)))));
+    for (int j = 0; j < m; ++j) {
+      const double u = static_cast<double>(j) / m;
+      poses.push_back({a.x_m + u * (b.x_m - a.x_m), a.y_m + u * (b.y_m - a.y_m),
+                       a.yaw_rad + u * std::remainder(b.yaw_rad - a.yaw_rad, 2 * M_PI)});
+    }
+  }
+  poses.push_back(route.back());
+  for (const Pose2D& pose : poses) {
+    const Eigen::Rotation2Dd rot(pose.yaw_rad);
+    for (int i = 0; i < robot.num_legs(); ++i) {
+      const Eigen::Vector2d nom = NominalFootXY(robot, i, pose.x_m, pose.y_m, pose.yaw_rad);
+      bool found = false;
+      for (double dx = -half; dx <= half + 1e-9 && !found; dx += step) {
+        for (double dy = -half; dy <= half + 1e-9 && !found; dy += step) {
+          const Eigen::Vector2d p = nom + rot * Eigen::Vector2d(dx, dy);
+          for (const TerrainBox& box : terrain.boxes) {
+            const Eigen::Matrix3d r = BoxRotation(box);
+            if (r(2, 2) < 0.5) continue;
+            // Height of the box's top plane at p; only boxes whose top face lies over p count.
+            const Eigen::Vector3d n = r.col(2);
+            const Eigen::Vector3d ctop = box.center_world_m + n * box.size_m.z() / 2;
+            const double z = ctop.z() - (n.x() * (p.x() - ctop.x()) + n.y() * (p.y() - ctop.y())) / n.z();
+            const Eigen::Vector3d q = r.transpose() * (Eigen::Vector3d(p.x(), p.y(), z) - box.center_world_m);
+            if (std::abs(q.x()) > box.size_m.x() / 2 - margin || std::abs(q.y()) > box.size_m.y() / 2 - margin) continue;
+            if (FootOnTrueSurface(terrain, Eigen::Vector3d(p.x(), p.y(), z), margin, robot.max_slope_rad, 1e-4)) {
+              found = true;
+              break;
+            }
+          }
+        }
+      }
+      if (!found) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+double MaxFootTravel(const RobotModel& robot) {
+  const int n = robot.num_legs();
+  return (2 * std::sqrt(2.0) + 1.0) * robot.d_lim_m * n / std::max(1, n - 1);
+}
+
+const std::vector<CourseKind>& AllCourseKinds() {
+  static const std::vector<CourseKind> kinds = {
+      CourseKind::kStones, CourseKind::kStonesTurn, CourseKind::kGaps,   CourseKind::kStairs,
+      CourseKind::kTilted, CourseKind::kRough,      CourseKind::kBeams,  CourseKind::kDetour,
+      CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal};
+  return kinds;
+}
+
+std::string ToString(CourseKind kind) {
+  switch (kind) {
+    case CourseKind::kStones: return "stones";
+    case CourseKind::kStonesTurn: return "stones_turn";
+    case CourseKind::kGaps: return "gaps";
+    case CourseKind::kStairs: return "stairs";
+    case CourseKind::kTilted: return "tilted";
+    case CourseKind::kRough: return "rough_turn";
+    case CourseKind::kBeams: return "beams";
+    case CourseKind::kDetour: return "wall_detour";
+    case CourseKind::kCutStones: return "cut_stones";
+    case CourseKind::kCutGaps: return "cut_gaps";
+    case CourseKind::kWalledGoal: return "raised_goal";
+  }
+  return "?";
+}
+
+Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed) {
+  Course course;
+  course.kind = kind;
+  course.robot_path = robot_path;
+  course.name = robot.name + "_" + ToString(kind) + "_" + std::to_string(seed);
+  course.edge_margin_m = robot.foot_radius_m + kCourseEdgeMargin;
+  double reach_r = 0.0;
+  for (const auto& leg : robot.legs) reach_r = std::max(reach_r, leg.nominal_offset_body_m.norm());
+  const double footprint = reach_r + 0.7 * robot.d_lim_m + course.edge_margin_m + 0.02;
+  const double cut = 1.5 * MaxFootTravel(robot) + 0.1;
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    Gen g{robot, std::mt19937_64(seed * 1000003ULL + attempt), course.edge_margin_m, MaxFootTravel(robot), footprint,
+          robot.dz_max_m, {}};
+    const double P = footprint;
+    const double len = g.U(2.0, 4.0) * reach_r + 0.3;  // the hard section
+    std::vector<Pose2D> route;
+    bool exists = true;
+    switch (kind) {
+      case CourseKind::kStones:
+      case CourseKind::kCutStones: {
+        g.Platform({0, 0});
+        g.Stones(0, 0, 0, P, P + len);
+        double end = P + len;
+        if (kind == CourseKind::kCutStones) {
+          // Remove every stone in a band across the route; the goal side keeps the rest.
+          const double c0 = P + g.U(0.3, 0.6) * len;
+          std::vector<TerrainBox> kept;
+          for (const TerrainBox& b : g.boxes) {
+            const double bx0 = b.center_world_m.x() - b.size_m.x() / 2, bx1 = b.center_world_m.x() + b.size_m.x() / 2;
+            if (bx1 < c0 || bx0 > c0 + cut) kept.push_back(b);
+          }
+          g.boxes = kept;
+          exists = false;
+        }
+        g.Platform({end + P + g.U(g.MinGap(), g.MaxGap()), 0});
+        const double gx = g.boxes.back().center_world_m.x();
+        route = {{0, 0, 0}, {gx, 0, 0}};
+        break;
+      }
+      case CourseKind::kStonesTurn: {
+        g.Platform({0, 0});
+        g.Stones(0, 0, 0, P, P + len);
+        const double cx = P + len + g.U(g.MinGap(), g.MaxGap()) + P;
+        g.Platform({cx, 0});
+        const double len2 = g.U(2.0, 3.5) * reach_r + 0.3;
+        g.Stones(cx, 0, M_PI / 2, P, P + len2);
+        const double gy = P + len2 + g.U(g.MinGap(), g.MaxGap()) + P;
+        g.Platform({cx, gy});
+        route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
+        break;
+      }
+      case CourseKind::kGaps:
+      case CourseKind::kCutGaps: {
+        g.Platform({0, 0});
+        double s = P + g.U(g.MinGap(), g.MaxGap());
+        const double end = P + len;
+        const int cut_slab = kind == CourseKind::kCutGaps ? 1 : -1;
+        int k = 0;
+        while (s < end) {
+          const double l = std::min(end - s, g.U(0.1, 0.35) + 2 * g.margin);
+          g.Slab(0, 0, 0, s, s + l, 0.0);
+          s += l + (k == cut_slab ? cut : g.U(g.MinGap(), g.MaxGap()));
+          ++k;
+        }
+        exists = kind != CourseKind::kCutGaps || k < 2;  // the cut follows slab 1
+        g.Platform({s + P, 0});
+        route = {{0, 0, 0}, {s + P, 0, 0}};
+        break;
+      }
+      case CourseKind::kStairs: {
+        g.Platform({0, 0});
+        double s = P, top = 0.0;
+        const int n = 2 + static_cast<int>(g.U(0, 3));
+        for (int k = 0; k < 2 * n; ++k) {
+          const double rise = g.U(0.3, 0.6) * robot.dz_max_m * (k < n ? 1 : -1);
+          const double l = g.U(std::max(0.1, robot.d_lim_m), 0.3) + 2 * g.margin;
+          top += rise;
+          g.Slab(0, 0, 0, s, s + l, top);
+          s += l;
+        }
+        g.Platform({s + P, 0}, top);
+        route = {{0, 0, 0}, {s + P, 0, 0}};
+        break;
+      }
+      case CourseKind::kTilted: {
+        g.Platform({0, 0});
+        double s = P + 0.04;
+        const double end = P + len;
+        while (s < end) {
+          const double l = g.U(0.2, 0.4);
+          // Tilt so that the top face varies in height by at most 0.5 dz_max over its extent.
+          const double a = std::min(0.5 * robot.max_slope_rad, std::asin(std::min(1.0, 0.5 * robot.dz_max_m / l)));
+          const double b = std::min(0.5 * robot.max_slope_rad, std::asin(std::min(1.0, 0.5 * robot.dz_max_m / (2 * P))));
+          g.Slab(0, 0, 0, s, s + l, 0.0, g.U(-b, b), g.U(-a, a));
+          s += l + 0.04;
+        }
+        g.Platform({s + P, 0});
+        route = {{0, 0, 0}, {s + P, 0, 0}};
+        break;
+      }
+      case CourseKind::kRough: {
+        // An L-shaped field of abutting cells of random height; start and goal platforms flat.
+        g.Platform({0, 0});
+        const double c = g.U(std::max(0.06, 2 * g.margin + 0.03), std::max(0.08, 0.3 * reach_r));
+        const double cx = P + len + P;  // corner
+        const double len2 = g.U(2.0, 3.0) * reach_r + 0.3;
+        const double gy = P + len2 + P;
+        for (double x = P; x < cx + P - 1e-9; x += c) {
+          for (double y = -P; y < P - 1e-9; y += c) g.Box(x + c / 2, y + c / 2, g.U(0, 0.5 * robot.dz_max_m), c, c, 0);
+        }
+        for (double x = cx - P; x < cx + P - 1e-9; x += c) {
+          for (double y = P; y < gy - P - 1e-9; y += c) g.Box(x + c / 2, y + c / 2, g.U(0, 0.5 * robot.dz_max_m), c, c, 0);
+        }
+        g.Platform({cx, gy});
+        route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
+        break;
+      }
+      case CourseKind::kBeams: {
+        g.Platform({0, 0});
+        const double w = 2 * g.margin + g.U(0.02, 0.05);
+        const double top = g.U(0.0, 0.5 * robot.dz_max_m);
+        for (const auto& [t, width] : g.Tracks(w)) {
+          const double s0 = P, s1 = P + len;
+          const Eigen::Vector2d c = Gen::At(0, 0, 0, (s0 + s1) / 2, t);
+          g.Box(c.x(), c.y(), top, s1 - s0, width, 0);
+        }
+        g.Platform({P + len + P, 0});
+        route = {{0, 0, 0}, {P + len + P, 0, 0}};
+        break;
+      }
+      case CourseKind::kDetour: {
+        const double dx = 2 * P + cut;
+        const double ytop = P + g.U(0.1, 0.5);
+        g.Platform({0, 0});
+        g.Platform({dx, 0});
+        g.Box(0, (P + ytop) / 2, 0, 2 * P, ytop - P, 0);                   // up from the start
+        g.Box(dx / 2, ytop + P, 0, dx + 2 * P, 2 * P, 0);                  // across
+        g.Box(dx, (P + ytop) / 2, 0, 2 * P, ytop - P, 0);                  // down to the goal
+        const double pocket = 0.3 * cut;
+        g.Box(P + pocket / 2, 0, 0, pocket, 2 * P, 0);                     // dead-end pocket toward the goal
+        g.Box(P + 0.65 * cut, 0, 0.5, 0.5 * cut, 2 * P, 0, 0, 0, 0.6);     // the wall
+        route = {{0, 0, 0}, {0, ytop + P, 0}, {dx, ytop + P, 0}, {dx, 0, 0}};
+        break;
+      }
+      case CourseKind::kWalledGoal: {
+        g.Platform({0, 0});
+        g.Slab(0, 0, 0, P, P + len, 0.0);
+        g.Platform({P + len + P, 0}, 4 * robot.dz_max_m);
+        route = {{0, 0, 0}, {P + len + P, 0, 0}};
+        exists = false;
+        break;
+      }
+    }
+    course.terrain.boxes = g.boxes;
+    course.terrain.resolution_m = 0.02;
+    course.start = route.front();
+    course.goal = route.back();
+    course.route_exists = exists;
+    course.route = exists ? route : std::vector<Pose2D>{};
+    if (!exists || RouteHolds(robot, course.terrain, route, course.edge_margin_m)) return course;
+  }
+  throw std::runtime_error("GenerateCourse: no valid " + ToString(kind) + " course for seed " + std::to_string(seed));
+}
+
+std::string CourseToScenarioYaml(const Course& course, double time_limit_s) {
+  std::ostringstream out;
+  out.precision(6);
+  out << "# Generated by mfp-bench --courses (bench/course_generator.cc): " << ToString(course.kind)
+      << ", route " << (course.route_exists ? "exists" : "cut") << "\n";
+  out << "name: " << course.name << "\nrobot: " << course.robot_path << "\nterrain:\n  resolution: "
+      << course.terrain.resolution_m << "\n  boxes:\n";
+  for (const TerrainBox& b : course.terrain.boxes) {
+    out << "    - {name: " << b.name << ", center: [" << b.center_world_m.x() << ", " << b.center_world_m.y() << ", "
+        << b.center_world_m.z() << "], size: [" << b.size_m.x() << ", " << b.size_m.y() << ", " << b.size_m.z()
+        << "], rpy: [" << b.rpy_rad.x() << ", " << b.rpy_rad.y() << ", " << b.rpy_rad.z() << "]}\n";
+  }
+  out << "start: [" << course.start.x_m << ", " << course.start.y_m << ", " << course.start.yaw_rad << "]\n";
+  out << "goal: [" << course.goal.x_m << ", " << course.goal.y_m << ", " << course.goal.yaw_rad << "]\n";
+  out << "time_limit: " << time_limit_s << "\n";
+  return out.str();
+}
+
+}  // namespace mfp

@@ -1,0 +1,60 @@
+#pragma once
+// Seeded procedural courses for the planner benchmark (mfp-bench --courses) and its
+// regression test. A course is a box terrain built along a route of body poses that the
+// robot's reach can follow (every nominal foot of every route pose has a spot on a true
+// top face, at least `edge_margin_m` inside its edges, within 0.9 l_bnd; neighbouring
+// surfaces differ in height by at most 0.6 dz_max), or one whose every route is cut (a gap
+// wider than any step can cross). The generator therefore knows the truth: route_exists.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "planner/robot/robot_model.h"
+#include "planner/io/scenario_yaml.h"
+#include "terrain/terrain_description.h"
+
+namespace mfp {
+
+enum class CourseKind {
+  kStones,      // stepping stones of random size, spacing and height along the foot tracks
+  kStonesTurn,  // stones, a corner platform, stones after a 90 degree turn
+  kGaps,        // ground slabs with gaps to step across
+  kStairs,      // steps up, then down
+  kTilted,      // tilted blocks
+  kRough,       // an uneven field of abutting blocks of random height, with a 90 degree turn
+  kBeams,       // one narrow beam under each foot track
+  kDetour,      // a wall across the straight route, a corridor around it, a dead-end pocket
+  kCutStones,   // stones cut by a gap no step can cross (no route)
+  kCutGaps,     // ground cut by such a gap (no route)
+  kWalledGoal,  // the goal platform out of reach of everything (no route)
+};
+
+const std::vector<CourseKind>& AllCourseKinds();
+std::string ToString(CourseKind kind);
+
+struct Course {
+  std::string name;
+  CourseKind kind = CourseKind::kStones;
+  std::string robot_path;
+  TerrainDescription terrain;
+  Pose2D start, goal;
+  bool route_exists = true;
+  // Surface a foot's centre needs around it on a true top face [m] (foot radius + edge margin).
+  double edge_margin_m = 0.0;
+  std::vector<Pose2D> route;  // body poses the course was built along (empty for cut parts)
+};
+
+// Longest horizontal foot travel of one step that the planner's model allows: a foot
+// stays within the d_lim square about its nominal spot, and the centre of contacts moves
+// with the foot by 1/n of its travel [m]. Route checks and cut widths use it.
+double MaxFootTravel(const RobotModel& robot);
+
+// Edge margin beyond the foot radius that generated courses leave and the checker demands [m].
+constexpr double kCourseEdgeMargin = 0.01;
+
+Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed);
+
+// The course as a scenario YAML (config/scenarios format; robot path written as given).
+std::string CourseToScenarioYaml(const Course& course, double time_limit_s);
+
+}  // namespace mfp

@@ -1,0 +1,214 @@
+#include "planner/planning/route_guide.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <sstream>
+
+namespace mfp {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double PointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
+bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  if (poly.size() < 3) return false;
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Eigen::Vector2d& a = poly[k];
+    const Eigen::Vector2d& b = poly[(k + 1) % poly.size()];
+    if ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x() < -1e-12) return false;
+  }
+  return true;
+}
+
+double PolygonPointDistance(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  if (InsidePolygon(poly, p)) return 0.0;
+  double d = kInf;
+  for (size_t k = 0; k < poly.size(); ++k) d = std::min(d, PointSegment(p, poly[k], poly[(k + 1) % poly.size()]));
+  return d;
+}
+
+Eigen::Vector2d ClosestPoint(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
+  if (InsidePolygon(poly, p)) return p;
+  Eigen::Vector2d best = poly.front();
+  double best_d = kInf;
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Eigen::Vector2d a = poly[k], d = poly[(k + 1) % poly.size()] - a;
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const Eigen::Vector2d q = a + t * d;
+    if ((q - p).norm() < best_d) {
+      best_d = (q - p).norm();
+      best = q;
+    }
+  }
+  return best;
+}
+
+double PolygonDistance(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b) {
+  double d = kInf;
+  for (const auto& p : a) d = std::min(d, PolygonPointDistance(b, p));
+  for (const auto& p : b) d = std::min(d, PolygonPointDistance(a, p));
+  return d;
+}
+
+struct Node {
+  std::vector<Eigen::Vector2d> poly;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double zmin = kInf, zmax = -kInf;
+};
+
+}  // namespace
+
+double MaxStepSpan(const RobotModel& robot) { return std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m); }
+
+RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                     const std::vector<Eigen::Vector3d>& start_feet, const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
+                     double goal_tolerance_m, double start_tolerance_m) {
+  RouteGuide guide;
+  const int m = static_cast<int>(regions.size());
+  const int n = robot.num_legs();
+  std::vector<Node> nodes(m);
+  for (int r = 0; r < m; ++r) {
+    for (const Eigen::Vector3d& v : regions[r].vertices_world_m) {
+      nodes[r].poly.push_back(v.head<2>());
+      nodes[r].centre += v.head<2>();
+      nodes[r].zmin = std::min(nodes[r].zmin, v.z());
+      nodes[r].zmax = std::max(nodes[r].zmax, v.z());
+    }
+    if (!nodes[r].poly.empty()) nodes[r].centre /= static_cast<double>(nodes[r].poly.size());
+  }
+  const double span = MaxStepSpan(robot);
+  std::vector<std::vector<std::pair<int, double>>> edges(m);
+  for (int a = 0; a < m; ++a) {
+    for (int b = a + 1; b < m; ++b) {
+      const double dz = std::max({0.0, nodes[a].zmin - nodes[b].zmax, nodes[b].zmin - nodes[a].zmax});
+      if (dz > robot.dz_max_m) continue;
+      if (PolygonDistance(nodes[a].poly, nodes[b].poly) > span) continue;
+      const double w = (nodes[a].centre - nodes[b].centre).norm();
+      edges[a].push_back({b, w});
+      edges[b].push_back({a, w});
+    }
+  }
+  // Multi-source Dijkstra from every region under a start foot.
+  std::vector<double> dist(m, kInf);
+  std::vector<int> parent(m, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int i = 0; i < n; ++i) {
+    for (int r = 0; r < m; ++r) {
+      if (RegionContains(regions[r], start_feet[i], start_tolerance_m) && dist[r] > 0) {
+        dist[r] = 0;
+        queue.push({0.0, r});
+      }
+    }
+  }
+  while (!queue.empty()) {
+    const auto [d, r] = queue.top();
+    queue.pop();
+    if (d > dist[r]) continue;
+    for (const auto& [s, w] : edges[r]) {
+      if (d + w < dist[s]) {
+        dist[s] = d + w;
+        parent[s] = r;
+        queue.push({d + w, s});
+      }
+    }
+  }
+  // Every leg needs a reachable region at its goal spot.
+  int goal_region = -1;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector2d spot = goal_xy + Eigen::Rotation2Dd(goal_yaw_rad) * robot.legs[i].nominal_offset_body_m;
+    int best = -1;
+    bool any = false;
+    for (int r = 0; r < m; ++r) {
+      if (PolygonPointDistance(nodes[r].poly, spot) > goal_tolerance_m) continue;
+      any = true;
+      if (dist[r] < kInf && (best < 0 || dist[r] < dist[best])) best = r;
+    }
+    if (best < 0) {
+      // Where it breaks: the reachable region nearest to this leg's goal spot.
+      int near = -1;
+      double near_d = kInf;
+      for (int r = 0; r < m; ++r) {
+        if (dist[r] == kInf) continue;
+        const double dd = PolygonPointDistance(nodes[r].poly, spot);
+        if (dd < near_d) {
+          near_d = dd;
+          near = r;
+        }
+      }
+      std::ostringstream msg;
+      msg.precision(3);
+      msg << "no route: leg '" << robot.legs[i].name << "' cannot reach its goal spot (" << spot.x() << ", "
+          << spot.y() << ")";
+      if (!any) msg << ", which lies on no region";
+      if (near >= 0) {
+        msg << "; the regions reachable from the start end at region " << regions[near].id << " near ("
+            << nodes[near].centre.x() << ", " << nodes[near].centre.y() << "), " << near_d
+            << " m from that spot; beyond it every region is more than " << span
+            << " m (one step) away or more than " << robot.dz_max_m << " m (dz_max) higher or lower";
+      }
+      guide.broken = msg.str();
+      return guide;
+    }
+    if (goal_region < 0 || dist[best] > dist[goal_region]) goal_region = best;
+  }
+  guide.connected = true;
+  // Body route: start centre, the region centres of the longest legs' path, goal.
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  for (const auto& f : start_feet) start += f.head<2>();
+  start /= n;
+  std::vector<int> path;
+  for (int r = goal_region; r >= 0; r = parent[r]) path.push_back(r);
+  std::reverse(path.begin(), path.end());
+  guide.route.push_back(start);
+  for (size_t k = 1; k < path.size(); ++k) {
+    // Where the route crosses from one region to the next, then the next one's centre.
+    const Node& a = nodes[path[k - 1]];
+    const Node& b = nodes[path[k]];
+    guide.route.push_back(0.5 * (ClosestPoint(a.poly, b.centre) + ClosestPoint(b.poly, a.centre)));
+    guide.route.push_back(b.centre);
+  }
+  guide.route.push_back(goal_xy);
+  for (size_t k = 1; k < guide.route.size(); ++k) guide.length_m += (guide.route[k] - guide.route[k - 1]).norm();
+  return guide;
+}
+
+Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m) {
+  if (guide.route.empty()) return Eigen::Vector2d::Zero();
+  double s = std::max(0.0, s_m);
+  for (size_t k = 1; k < guide.route.size(); ++k) {
+    const double len = (guide.route[k] - guide.route[k - 1]).norm();
+    if (s <= len && len > 0) return guide.route[k - 1] + (s / len) * (guide.route[k] - guide.route[k - 1]);
+    s -= len;
+  }
+  return guide.route.back();
+}
+
+double RouteProgress(const RouteGuide& guide, const Eigen::Vector2d& p) {
+  double best = kInf, best_s = 0.0, s = 0.0;
+  for (size_t k = 1; k < guide.route.size(); ++k) {
+    const Eigen::Vector2d a = guide.route[k - 1], b = guide.route[k];
+    const Eigen::Vector2d d = b - a;
+    const double len = d.norm();
+    const double t = len > 0 ? std::clamp((p - a).dot(d) / (len * len), 0.0, 1.0) : 0.0;
+    const double e = (a + t * d - p).norm();
+    if (e < best) {
+      best = e;
+      best_s = s + t * len;
+    }
+    s += len;
+  }
+  return best_s;
+}
+
+}  // namespace mfp

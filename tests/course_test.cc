@@ -1,0 +1,94 @@
+// Generated courses (bench/course_generator.h) judged by the independent checker
+// (bench/course_checker.h): a small seeded set as a regression test; the 200-course run
+// is the benchmark (mfp-bench --courses 200). Plans on the boxes' true top faces inset by
+// the edge margin, so that the test follows the planner and not the map pipeline.
+#include <gtest/gtest.h>
+
+#include "bench/course_checker.h"
+#include "bench/course_generator.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "planner/io/robot_loader.h"
+
+namespace mfp {
+namespace {
+
+struct Outcome {
+  Plan plan;
+  CourseVerdict verdict;
+};
+
+Outcome PlanCourse(const Course& course, const RobotModel& robot) {
+  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+  Scenario scenario;
+  scenario.robot_path = course.robot_path;
+  scenario.terrain = course.terrain;
+  scenario.start = course.start;
+  scenario.goal = course.goal;
+  scenario.time_limit_s = 20.0;
+  const PlanRequest request = ScenarioRequest(scenario, robot, regions);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+  Outcome out;
+  out.plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
+  out.verdict = CheckPlanOnCourse(course.terrain, robot, out.plan.footsteps, course.goal, course.edge_margin_m);
+  return out;
+}
+
+std::string RobotPath(const std::string& name) { return std::string(MFP_SOURCE_DIR) + "/config/robots/" + name + ".yaml"; }
+
+TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
+  for (const std::string name : {"littledog", "hexapod", "octopod"}) {
+    const RobotModel robot = LoadRobot(RobotPath(name));
+    for (CourseKind kind : {CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal}) {
+      const Course course = GenerateCourse(robot, RobotPath(name), kind, 7);
+      ASSERT_FALSE(course.route_exists);
+      const Outcome out = PlanCourse(course, robot);
+      EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << course.name << ": " << out.plan.message;
+      EXPECT_NE(out.plan.message.find("no route"), std::string::npos) << out.plan.message;
+      EXPECT_LT(out.plan.solve_time_s, 2.0) << course.name;
+    }
+  }
+}
+
+// Courses that failed before route guidance and adaptive horizons (step budget of 12 n,
+// a window walking into a dead end, the wall across the route).
+TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
+  struct Case {
+    std::string robot;
+    CourseKind kind;
+    uint64_t seed;
+  };
+  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 7},
+                                         {"littledog", CourseKind::kTilted, 13},
+                                         {"littledog", CourseKind::kDetour, 22}}) {
+    const RobotModel robot = LoadRobot(RobotPath(c.robot));
+    const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
+    ASSERT_TRUE(course.route_exists);
+    const Outcome out = PlanCourse(course, robot);
+    EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
+    EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
+  }
+}
+
+TEST(CourseTest, CheckerRejectsFeetOffTheTrueSurfaceAndOutOfReach) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kGaps, 7);
+  const Outcome out = PlanCourse(course, robot);
+  ASSERT_TRUE(out.verdict.valid);
+  const size_t k = out.plan.footsteps.size() / 2;
+  std::vector<Footstep> floating = out.plan.footsteps;
+  floating[k].position_world_m.z() += 0.1;  // 10 cm above the true surface
+  CourseVerdict v = CheckPlanOnCourse(course.terrain, robot, floating, course.goal, course.edge_margin_m);
+  EXPECT_FALSE(v.valid);
+  EXPECT_EQ(v.cause, "off_surface");
+  std::vector<Footstep> stretched = out.plan.footsteps;
+  stretched[k].position_world_m.y() += 3 * robot.d_lim_m;  // beyond the reach box
+  v = CheckPlanOnCourse(course.terrain, robot, stretched, course.goal, course.edge_margin_m);
+  EXPECT_FALSE(v.valid);
+  bool reach = false;
+  for (const auto& e : v.violations) reach = reach || e.rfind("reach", 0) == 0;
+  EXPECT_TRUE(reach);
+}
+
+}  // namespace
+}  // namespace mfp
