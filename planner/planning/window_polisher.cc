@@ -377,14 +377,16 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
   // step shrinks the violation quadratically (a millimetre, then about 1e-8 m).
   auto project = [&](Eigen::VectorXd x) {
     const int n = static_cast<int>(x.size());
-    // The interior point wants lower < upper for every variable.
-    if ((program.lower().array() >= program.upper().array()).any()) return x;
+    // The interior point wants lower < upper for every variable: a fixed variable (its
+    // bounds meet) gets 1e-9 of room, far inside the 1e-6 feasibility tolerance.
+    const Eigen::VectorXd var_upper = program.upper().cwiseMax(program.lower().array().matrix() +
+                                                                Eigen::VectorXd::Constant(x.size(), 1e-9));
     Miqp qp;
     qp.Q.resize(n, n);
     qp.Q.setIdentity();
     qp.Q *= 2.0;
     qp.var_lower = program.lower();
-    qp.var_upper = program.upper();
+    qp.var_upper = var_upper;
     qp.is_integer.assign(n, false);
     qp.var_names.assign(n, "x");
     for (int iteration = 0; iteration < 8 && seconds() < options.time_limit_s; ++iteration) {

@@ -1,5 +1,7 @@
 #include "tools/daemon/daemon_core.h"
 
+#include <atomic>
+
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -7,6 +9,7 @@
 #include "lcmtypes/message_guard.h"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
+#include "planner/base/deadline.h"
 #include "tools/daemon/abandonable_task.h"
 #include "tools/daemon/message_conversion.h"
 #include "tools/daemon/request_validation.h"
@@ -405,10 +408,15 @@ bool DaemonCore::PlanNext() {
   } else {
     PlanRequest request = next->request;
     request.time_limit_s = remaining_s - margin_s;
+    // The planner checks this flag inside its solves: set when the core stops waiting
+    // (a stop, or the deadline passed), so an abandoned plan ends at its next check
+    // instead of running on. The task holds the flag, so it outlives the core's wait.
+    auto cancel = std::make_shared<std::atomic<bool>>(false);
+    request.deadline = Deadline::After(remaining_s - margin_s).WithStop(cancel.get());
     // The task owns what it reads (setup and regions by shared pointer), so a plan left
     // running after its deadline or a stop touches nothing of the core's.
     AbandonableTask<Plan> task([plan_function = plan_function_, setup, regions,
-                                robot = &robot->second, request] {
+                                robot = &robot->second, request, cancel] {
       return plan_function(*robot, *regions, request, setup->config.planner);
     });
     const auto deadline = std::chrono::steady_clock::now() +
@@ -416,6 +424,7 @@ bool DaemonCore::PlanNext() {
                               std::chrono::duration<double>(remaining_s));
     try {
       std::optional<Plan> result = task.Wait(deadline, stopped_);
+      if (!result) cancel->store(true);
       if (result) {
         plan = std::move(*result);
       } else if (stopped_) {
