@@ -252,8 +252,13 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       Eigen::Vector2d centre = Eigen::Vector2d::Zero();
       for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
       centre /= n;
-      const double s = RouteProgress(guide, centre) + lookahead;
-      if (s < guide.length_m) {
+      const double progress = RouteProgress(guide, centre);
+      const double s = progress + lookahead;
+      // Only where the route detours: where what is left of it is barely longer than the
+      // straight line to the goal, the goal itself pulls the same way.
+      const double straight_m = (Eigen::Vector2d(request.goal_x_m, request.goal_y_m) - centre).norm();
+      const bool detour = guide.length_m - progress > options.local_goal_detour_ratio * straight_m;
+      if (detour && s < guide.length_m) {
         const Eigen::Vector2d local = RoutePoint(guide, s);
         problem.goal_x_m = local.x();
         problem.goal_y_m = local.y();
