@@ -75,7 +75,10 @@ timed() {  # timed NAME COMMAND...: runs a step, prints its time, fails the chec
     tail -n 25 "$log" | sed 's/^/    /'
     local why
     # The most telling line first: a missing library, then a compile error, then any failure.
-    why="$(grep -m1 -E 'cannot find -l' "$log" || grep -m1 -E 'error:|Error|FAILED|failed' "$log")"
+    why="$(grep -m1 -E 'cannot find -l' "$log" ||
+           { grep -q 'The following tests FAILED' "$log" &&
+             echo "tests failed:$(sed -n '/The following tests FAILED/,$p' "$log" | grep -E '^\s+[0-9]+ - ' | sed -E 's/^\s+[0-9]+ - / /; s/ \(.*//' | tr '\n' ',')"; } ||
+           grep -m1 -E 'error:|FAILED|failed' "$log")"
     why="$(cut -c1-200 <<<"$why")"
     fail "${why:-exit $code, see $log}"
   fi
@@ -112,7 +115,22 @@ for m in proc sys dev dev/pts; do
   mounted+=("$root/$m")
 done
 
-in_root() { chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 CI="${CI:-}" "$@"; }
+# The machine's own way out to the package registries (its CA bundle, proxies, pip
+# index), as a user's machine has its own: the zoo test installs a PyPI package, and a
+# network that inspects TLS needs its CA. Nothing of mfp's is carried in.
+net_env=()
+if [ -s /etc/ssl/certs/ca-certificates.crt ]; then
+  cp /etc/ssl/certs/ca-certificates.crt "$root/etc/host-ca-bundle.crt"
+  net_env+=(SSL_CERT_FILE=/etc/host-ca-bundle.crt PIP_CERT=/etc/host-ca-bundle.crt
+            REQUESTS_CA_BUNDLE=/etc/host-ca-bundle.crt)
+fi
+for v in http_proxy https_proxy no_proxy HTTP_PROXY HTTPS_PROXY NO_PROXY PIP_INDEX_URL PIP_DEFAULT_TIMEOUT; do
+  [ -n "${!v:-}" ] && net_env+=("$v=${!v}")
+done
+in_root() {
+  chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 CI="${CI:-}" \
+    "${net_env[@]}" "$@"
+}
 timed demo in_root bash -c 'cd /mfp && tools/demo.sh'
 timed test in_root bash -c 'cd /mfp && tools/test.sh'
 step_name="done"
