@@ -81,7 +81,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
           o.top_face_regions ? TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad)
                              : ScenarioRegions(scenario, robot);
       const PlanRequest request = ScenarioRequest(scenario, robot, regions);
-      const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+      const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
       plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
     } catch (const std::exception& e) {
       plan.status = SolveStatus::kInternalError;

@@ -150,7 +150,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   double root_bound = -mfp::kInfinity;
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
-        mfp::MakeRelaxationSolvers(scenario.options.relaxation_solver, scenario.options.threads);
+        mfp::MakeRelaxationSolvers(scenario.options.solvers);
     // Each better plan of the first window, (time [s], objective).
     std::vector<std::pair<double, double>> incumbents;
     mfp::PlannerOptions options = scenario.options;
@@ -211,7 +211,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     const mfp::MiqpFormulation formulation(mfp::FirstWindowProblem(robot, regions, request, scenario.options),
                                            scenario.options.formulation);
     if (fixed_qp) {
-      row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.relaxation_solver);
+      row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.solvers.backend);
     }
     if (!instances_dir.empty()) {
       mfp::WriteMpsFile(formulation.miqp(), name, instances_dir + "/" + name + ".mps");

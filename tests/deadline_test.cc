@@ -105,7 +105,7 @@ TEST(Deadline, APlanStopsAtTheFlagAndKeepsWhatItHas) {
   PlanRequest request = ScenarioRequest(s, robot, regions);
   std::atomic<bool> stop{false};
   request.deadline = Deadline().WithStop(&stop);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(s.options.relaxation_solver, 1);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(s.options.solvers.backend, 1);
   int windows = 0;
   const Plan plan = PlanFootsteps(robot, regions, request, s.options, solvers.workers(),
                                   [&](const PlanProgress& p) {

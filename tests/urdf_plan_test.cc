@@ -33,7 +33,7 @@ TEST_P(UrdfPlan, WalksAndTurnsOnFlatGround) {
   request.goal_yaw_rad = 0.3;
   request.time_limit_s = 120.0;
   const PlannerOptions options;
-  const auto solver = MakeRelaxationSolver(options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(options.solvers.backend);
   const Plan plan = PlanFootsteps(robot, regions, request, options, *solver);
   ASSERT_TRUE(HasPlan(plan.status)) << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;

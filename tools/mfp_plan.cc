@@ -131,17 +131,17 @@ int main(int argc, char** argv) {
         std::to_string(regions.size()) + " regions");
 
     mfp::PlannerOptions& options = scenario.options;
-    if (!relaxation_solver.empty()) options.relaxation_solver = mfp::ParseRelaxationBackend(relaxation_solver);
+    if (!relaxation_solver.empty()) options.solvers.backend = mfp::ParseRelaxationBackend(relaxation_solver);
     mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
     if (max_steps > 0) request.max_steps = max_steps;
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
     request.deadline = run_deadline;
 
-    if (threads > 0) options.threads = threads;
+    if (threads > 0) options.solvers.threads = threads;
     if (no_polish) options.polish.enabled = false;
     if (polish_time_limit > 0) options.polish.time_limit_s = polish_time_limit;
-    const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);
+    const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.solvers);
     if (!mps_path.empty()) {
       // The first window's MIQP, exactly as the planner builds it.
       const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, options);

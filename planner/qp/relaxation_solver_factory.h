@@ -1,5 +1,5 @@
 #pragma once
-// Choosing the relaxation backend by name (config, flags).
+// Making the branch-and-bound's relaxation solvers: which backend, how many workers.
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +19,15 @@ enum class RelaxationBackend {
 RelaxationBackend ParseRelaxationBackend(const std::string& name);
 std::string ToString(RelaxationBackend backend);
 
+// The solvers a plan uses, set by the `planner:` keys `relaxation_solver` and `threads`
+// (planner/io/planner_options_yaml.cc) and mfp-plan's --relaxation-solver, --threads.
+struct RelaxationSolverOptions {
+  RelaxationBackend backend = RelaxationBackend::kInteriorPointWithIpoptFallback;
+  // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
+  // are solved this many at a time.
+  int threads = 1;
+};
+
 std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend);
 
 // One solver per branch-and-bound worker; workers() is what PlanFootsteps takes.
@@ -27,5 +36,7 @@ struct RelaxationSolverSet {
   std::vector<RelaxationSolver*> workers() const;
 };
 RelaxationSolverSet MakeRelaxationSolvers(RelaxationBackend backend, int count);
+// options.threads solvers of options.backend.
+RelaxationSolverSet MakeRelaxationSolvers(const RelaxationSolverOptions& options);
 
 }  // namespace mfp
