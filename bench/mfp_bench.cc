@@ -24,6 +24,7 @@
 #include "planner/io/planner_options_yaml.h"
 #include "planner/io/plan_json.h"
 #include "planner/planning/plan_validation.h"
+#include "planner/planning/request_check.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
 #include "bench/course_bench.h"
@@ -207,7 +208,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
           .size());
   // The first window's MIQP: its fixed-assignment QP time and its export.
   const bool fixed_qp = measure_fixed_qp && first_window_x.size() > 0;
-  if (fixed_qp || !instances_dir.empty()) {
+  if ((fixed_qp || !instances_dir.empty()) && mfp::CheckPlanRequest(robot, regions, request, scenario.options).ok()) {
     const mfp::MiqpFormulation formulation(mfp::FirstWindowProblem(robot, regions, request, scenario.options),
                                            scenario.options.formulation);
     if (fixed_qp) {

@@ -17,6 +17,7 @@
 #include "planner/miqp/mps_writer.h"
 #include "planner/io/plan_json.h"
 #include "planner/planning/plan_validation.h"
+#include "planner/planning/request_check.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
 #include "tools/text_output.h"
@@ -142,7 +143,9 @@ int main(int argc, char** argv) {
     if (no_polish) options.polish.enabled = false;
     if (polish_time_limit > 0) options.polish.time_limit_s = polish_time_limit;
     const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.solvers);
-    if (!mps_path.empty()) {
+    // A rejected request (bad start, goal, sizes) exports nothing: PlanFootsteps below
+    // answers it with its status and message (exit 2).
+    if (!mps_path.empty() && mfp::CheckPlanRequest(robot, regions, request, options).ok()) {
       // The first window's MIQP, exactly as the planner builds it.
       const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, options);
       const mfp::MiqpFormulation formulation(problem, options.formulation);
