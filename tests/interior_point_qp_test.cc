@@ -5,7 +5,6 @@
 
 #include <random>
 
-#include "planner/qp/fixed_variable_reduction.h"
 #include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/miqp/miqp_builder.h"
 #include "planner/qp/relaxation_solver_factory.h"
@@ -186,17 +185,14 @@ TEST(InteriorPointQp, InfeasibleRowsAreReportedNotSolved) {
   EXPECT_EQ(r.status, RelaxationStatus::kInfeasible);
 }
 
-TEST(InteriorPointQp, FixedVariablesAreRemovedAndDegenerateNodesFallBackToIpopt) {
+TEST(InteriorPointQp, DegenerateNodesFallBackToIpopt) {
   // Fixing x = 1 in the projection problem leaves y <= 1 and min (y - 1)^2 + 1: the
   // optimum y = 1 sits on the row with a zero multiplier (no strict complementarity).
   // mfp's interior point may not converge on such a degenerate node; it must then say
   // so (never a wrong "solved"), and the default backend hands the node to Ipopt.
   const Miqp p = Projection();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  lo(0) = up(0) = 1.0;
-  const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
-  EXPECT_EQ(reduced.free_index.size(), 1u);
-  EXPECT_NEAR(reduced.problem.row_upper(0), 1.0, 1e-15);  // x + y <= 2 becomes y <= 1
+  lo(0) = up(0) = 1.0;  // the reduction leaves y <= 1 (fixed_variable_reduction_test.cc)
   const RelaxationResult own = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
   if (own.status == RelaxationStatus::kSolved) {
     EXPECT_NEAR(own.objective, 1.0, 1e-6);
@@ -213,7 +209,7 @@ TEST(InteriorPointQp, FixedVariablesAreRemovedAndDegenerateNodesFallBackToIpopt)
   EXPECT_NEAR(r.objective, 1.0, 1e-6);
 }
 
-TEST(InteriorPointQp, RowsTheBoxAlreadyKeepsAreLeftOut) {
+TEST(InteriorPointQp, SolvesANodeWhoseOnlyRowLeftBinds) {
   // y in [0, 2], x fixed to 1 by the node. Of the rows
   //   big_m:  y + 2x <= 5       -> y <= 3: the box keeps it, dropped
   //   loose:  y - x >= -5       -> y >= -4: dropped
@@ -229,11 +225,7 @@ TEST(InteriorPointQp, RowsTheBoxAlreadyKeepsAreLeftOut) {
   b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.0), 1.0);
   const Miqp p = b.Build();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  lo(x) = up(x) = 1.0;
-  const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
-  ASSERT_EQ(reduced.problem.num_rows(), 1);
-  EXPECT_EQ(reduced.problem.row_lower(0), -kInfinity);
-  EXPECT_NEAR(reduced.problem.row_upper(0), 1.5, 1e-15);
+  lo(x) = up(x) = 1.0;  // the reduction keeps only cap's upper side (fixed_variable_reduction_test.cc)
   const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
   EXPECT_NEAR(r.x(y), 1.5, 1e-6);
