@@ -300,8 +300,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         RelaxAndFixOptions rf = options.relax_and_fix;
         rf.stage = bnb;
         // Stage searches are small (nodes_per_stage): strong branching would cost them more
-        // than it saves, and their plans came out worse (littledog 24: the first plan
-        // within 0.5 % at 30 s instead of 0.28 s).
+        // than it saves, and their plans came out worse (docs/measurements.md).
         if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
         rf.time_limit_s = rf.time_share * bnb.time_limit_s;
         const RelaxAndFixResult r = rf.two_paths ? RelaxAndFixTwoPaths(formulation, solvers, rf)

@@ -10,7 +10,8 @@ namespace mfp {
 
 enum class RelaxationBackend {
   // mfp's sparse interior-point method (interior_point_qp.h); a node it cannot resolve
-  // within its iteration limit is handed to Ipopt. The default: ~20x faster per node.
+  // within its iteration limit is handed to Ipopt. The default: far faster per node
+  // (docs/measurements.md).
   kInteriorPointWithIpoptFallback,
   kIpopt,  // Ipopt alone
 };
