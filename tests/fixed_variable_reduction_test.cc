@@ -5,20 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "planner/miqp/miqp_builder.h"
+#include "tests/test_qps.h"
 
 namespace mfp {
 namespace {
-
-// min (x - 2)^2 + (y - 1)^2  s.t.  x + y <= 2, x, y in [-5, 5].
-Miqp Projection() {
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", -5, 5, false), y = b.AddVariable("y", -5, 5, false);
-  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(2), 1.0);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(1), 1.0);
-  b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 2.0);
-  return b.Build();
-}
 
 TEST(FixedVariableReduction, AFixedVariableMovesIntoTheRowBoundsAndTheObjective) {
   // x = 1: x + y <= 2 becomes y <= 1, and (x - 2)^2 becomes the constant 1.
@@ -43,21 +33,10 @@ TEST(FixedVariableReduction, AFixedVariableMovesIntoTheRowBoundsAndTheObjective)
 }
 
 TEST(FixedVariableReduction, RowsTheBoxAlreadyKeepsAreLeftOut) {
-  // y in [0, 2], x fixed to 1. Of the rows
-  //   big_m:  y + 2x <= 5       -> y <= 3: the box keeps it, dropped
-  //   loose:  y - x >= -5       -> y >= -4: dropped
-  //   range:  0.5 <= y + x <= 10 -> -0.5 <= y <= 9: both sides kept by the box, dropped
-  //   cap:    -3 <= y + x <= 2.5 -> y <= 1.5 binds; its lower side y >= -4 is left out
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", 0, 1, true), y = b.AddVariable("y", 0, 2, false);
-  b.AddRow("big_m", LinExpr::Var(y) + LinExpr::Var(x, 2.0), -kInfinity, 5.0);
-  b.AddRow("loose", LinExpr::Var(y) - LinExpr::Var(x), -5.0, kInfinity);
-  b.AddRow("range", LinExpr::Var(y) + LinExpr::Var(x), 0.5, 10.0);
-  b.AddRow("cap", LinExpr::Var(y) + LinExpr::Var(x), -3.0, 2.5);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.0), 1.0);
-  const Miqp p = b.Build();
+  // x fixed to 1: big_m, loose and range are kept by y's box; of cap only y <= 1.5 is left.
+  const Miqp p = RowsTheBoxMostlyKeeps();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  lo(x) = up(x) = 1.0;
+  lo(0) = up(0) = 1.0;
   const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
   ASSERT_EQ(reduced.problem.num_rows(), 1);
   EXPECT_EQ(reduced.problem.row_lower(0), -kInfinity);
