@@ -72,9 +72,7 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
   // Configuration after each footstep; the start stance's for the first n.
   std::vector<Pose2D> configs;
   {
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (const auto& q : feet) c += q.head<2>();
-    c /= n;
+    const Eigen::Vector2d c = StanceCentreXY(feet);
     for (int k = 0; k < n; ++k) configs.push_back({c.x(), c.y(), footsteps[k].yaw_rad});
   }
   for (size_t k = n; k < footsteps.size(); ++k) {
@@ -92,9 +90,7 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
     // in the configuration it makes. Squares on world axes, centres the mean of the feet.
     const Pose2D before = configs[k - n];
     feet[f.leg] = p;
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (const auto& q : feet) centre += q.head<2>();
-    centre /= n;
+    const Eigen::Vector2d centre = StanceCentreXY(feet);
     configs.push_back({centre.x(), centre.y(), f.yaw_rad});
     const Eigen::Vector2d o = robot.legs[f.leg].nominal_offset_body_m;
     const double reach = (p.head<2>() - NominalFootXY(robot, f.leg, before.x_m, before.y_m, before.yaw_rad))
