@@ -10,9 +10,9 @@
 
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
+#include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "planner/io/robot_loader.h"
 
 namespace mfp {
 

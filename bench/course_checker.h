@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "planner/formulation/plan.h"
-#include "planner/robot/robot_model.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/terrain_description.h"
 #include "terrain/terrain_quality.h"  // FootOnTrueSurface: the foot test against the boxes
 

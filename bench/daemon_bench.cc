@@ -36,18 +36,18 @@
 #include "mfp/plan_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
-#include "terrain/octomap_io.h"
-#include "terrain/terrain_yaml.h"
-#include "terrain/voxelize.h"
-#include "terrain/terrain_catalogue.h"
 #include "planner/io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
+#include "terrain/octomap_io.h"
+#include "terrain/terrain_catalogue.h"
+#include "terrain/terrain_yaml.h"
+#include "terrain/voxelize.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
 #include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
+#include "tools/daemon/solver_plan_function.h"
 
 namespace mfp {
 namespace {

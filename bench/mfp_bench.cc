@@ -16,18 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "bench/course_bench.h"
 #include "planner/base/check.h"
-#include "planner/planning/footstep_planner.h"
-#include "planner/qp/relaxation_solver_factory.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/miqp/mps_writer.h"
-#include "planner/io/planner_options_yaml.h"
 #include "planner/io/plan_json.h"
-#include "planner/planning/plan_validation.h"
-#include "planner/planning/request_check.h"
+#include "planner/io/planner_options_yaml.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
-#include "bench/course_bench.h"
+#include "planner/miqp/mps_writer.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/planning/request_check.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace {
 

@@ -5,10 +5,10 @@
 
 #include <random>
 
-#include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/miqp/miqp_builder.h"
-#include "tests/test_qps.h"
+#include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tests/test_qps.h"
 
 namespace mfp {
 namespace {

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "planner/planning/footstep_planner.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/planning/window_polisher.h"
-#include "planner/planning/plan_validation.h"
-#include "planner/qp/relaxation_solver_factory.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/planning/window_polisher.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
 namespace {

@@ -11,18 +11,18 @@
 #include <sstream>
 
 #include "planner/base/check.h"
-#include "planner/planning/footstep_planner.h"
-#include "planner/qp/relaxation_solver_factory.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/miqp/mps_writer.h"
 #include "planner/io/plan_json.h"
-#include "planner/planning/plan_validation.h"
-#include "planner/planning/request_check.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
-#include "tools/text_output.h"
-#include "tools/plan_svg.h"
+#include "planner/miqp/mps_writer.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/planning/request_check.h"
+#include "planner/qp/relaxation_solver_factory.h"
 #include "tools/daemon/timestamped_log.h"
+#include "tools/plan_svg.h"
+#include "tools/text_output.h"
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include "planner/planning/goal.h"
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
-#include "terrain/region_reachability.h"
 #include "planner/planning/route_guide.h"
+#include "terrain/region_reachability.h"
 
 namespace mfp {
 namespace {

@@ -17,9 +17,9 @@
 #include <optional>
 #include <vector>
 
-#include "planner/search/branch_and_bound.h"
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/qp/relaxation_solver.h"
+#include "planner/search/branch_and_bound.h"
 
 namespace mfp {
 
