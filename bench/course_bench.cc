@@ -10,9 +10,9 @@
 
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
+#include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "planner/io/robot_loader.h"
 
 namespace mfp {
 
@@ -81,7 +81,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
           o.top_face_regions ? TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad)
                              : ScenarioRegions(scenario, robot);
       const PlanRequest request = ScenarioRequest(scenario, robot, regions);
-      const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+      const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
       plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
     } catch (const std::exception& e) {
       plan.status = SolveStatus::kInternalError;

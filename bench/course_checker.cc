@@ -10,12 +10,6 @@ namespace mfp {
 
 namespace {
 
-bool InsideBox(const TerrainBox& box, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d q = BoxRotation(box).transpose() * (p - box.center_world_m);
-  return std::abs(q.x()) < box.size_m.x() / 2 && std::abs(q.y()) < box.size_m.y() / 2 &&
-         std::abs(q.z()) < box.size_m.z() / 2;
-}
-
 std::string Fmt(const Eigen::Vector3d& p) {
   std::ostringstream s;
   s.precision(3);
@@ -24,26 +18,6 @@ std::string Fmt(const Eigen::Vector3d& p) {
 }
 
 }  // namespace
-
-bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
-                       double max_slope_rad, double height_tol_m) {
-  bool on_face = false;
-  for (const TerrainBox& box : terrain.boxes) {
-    const Eigen::Matrix3d r = BoxRotation(box);
-    if (r(2, 2) < std::cos(max_slope_rad)) continue;  // local +z is the top face only when it points up enough
-    const Eigen::Vector3d q = r.transpose() * (p - box.center_world_m);
-    if (std::abs(q.z() - box.size_m.z() / 2) > height_tol_m) continue;
-    if (std::abs(q.x()) > box.size_m.x() / 2 - margin_m || std::abs(q.y()) > box.size_m.y() / 2 - margin_m) continue;
-    on_face = true;
-    break;
-  }
-  if (!on_face) return false;
-  const Eigen::Vector3d above = p + Eigen::Vector3d(0, 0, height_tol_m + 1e-3);
-  for (const TerrainBox& box : terrain.boxes) {
-    if (InsideBox(box, above)) return false;
-  }
-  return true;
-}
 
 CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotModel& robot,
                                 const std::vector<Footstep>& footsteps, const Pose2D& goal,
@@ -72,9 +46,7 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
   // Configuration after each footstep; the start stance's for the first n.
   std::vector<Pose2D> configs;
   {
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (const auto& q : feet) c += q.head<2>();
-    c /= n;
+    const Eigen::Vector2d c = StanceCentreXY(feet);
     for (int k = 0; k < n; ++k) configs.push_back({c.x(), c.y(), footsteps[k].yaw_rad});
   }
   for (size_t k = n; k < footsteps.size(); ++k) {
@@ -92,9 +64,7 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
     // in the configuration it makes. Squares on world axes, centres the mean of the feet.
     const Pose2D before = configs[k - n];
     feet[f.leg] = p;
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (const auto& q : feet) centre += q.head<2>();
-    centre /= n;
+    const Eigen::Vector2d centre = StanceCentreXY(feet);
     configs.push_back({centre.x(), centre.y(), f.yaw_rad});
     const Eigen::Vector2d o = robot.legs[f.leg].nominal_offset_body_m;
     const double reach = (p.head<2>() - NominalFootXY(robot, f.leg, before.x_m, before.y_m, before.yaw_rad))

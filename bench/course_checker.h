@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "planner/formulation/plan.h"
-#include "planner/robot/robot_model.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/terrain_description.h"
+#include "terrain/terrain_quality.h"  // FootOnTrueSurface: the foot test against the boxes
 
 namespace mfp {
 
@@ -20,12 +21,6 @@ struct CourseCheckTolerances {
   double goal_yaw_rad = 0.2; // final body yaw (planner's 0.15 + slack)
   double numeric_m = 1e-3;   // the solver's feasibility tolerance on region edges
 };
-
-// True when a foot centred at p stands on the top face of some box, at least margin_m
-// inside that face's edges, the face no steeper than max_slope_rad, and no other box's
-// solid above the foot there.
-bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
-                       double max_slope_rad, double height_tol_m);
 
 struct CourseVerdict {
   bool valid = true;          // every footstep on true surface, in reach, height change in range

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "planner/robot/robot_model.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/terrain_description.h"
 
 namespace mfp {

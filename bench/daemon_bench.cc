@@ -24,6 +24,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <random>
@@ -35,18 +36,18 @@
 #include "mfp/plan_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
-#include "terrain/octomap_io.h"
-#include "terrain/terrain_yaml.h"
-#include "terrain/voxelize.h"
-#include "terrain/terrain_catalogue.h"
 #include "planner/io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
+#include "terrain/octomap_io.h"
+#include "terrain/terrain_catalogue.h"
+#include "terrain/terrain_yaml.h"
+#include "terrain/voxelize.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_runner.h"
 #include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
+#include "tools/daemon/solver_plan_function.h"
 
 namespace mfp {
 namespace {
@@ -115,6 +116,43 @@ class ReplyLog {
   std::map<int64_t, Reply> replies_;
 };
 
+terrain_map_t MapMessage(const TerrainDescription& terrain) {
+  terrain_map_t map{};
+  map.utime = NowUs();
+  map.frame = "world";
+  map.format = "bt";
+  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
+  map.num_bytes = static_cast<int32_t>(map.data.size());
+  return map;
+}
+
+// Each plan_t on MFP_PLAN that decodes, handed to on_plan (on the transport's thread).
+void SubscribePlans(Transport& transport, const std::function<void(const plan_t&)>& on_plan) {
+  transport.Subscribe(kPlanChannel, [on_plan](const RawMessage& raw) {
+    plan_t p;
+    if (DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) on_plan(p);
+  });
+}
+
+// Publishes the map and waits until the daemon has read it.
+void PublishMapAndWait(Transport& transport, const DaemonCore& core, const terrain_map_t& map) {
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+
+// The robot's nominal stance at the origin; 12 new footsteps towards a goal 0.25 m ahead.
+plan_request_t NominalStartRequest(const RobotModel& robot, double time_limit_s) {
+  plan_request_t request{};
+  request.num_legs = robot.num_legs();
+  for (const LegModel& leg : robot.legs)
+    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
+  request.goal_x = 0.25;
+  request.max_steps = 12;
+  request.time_limit_s = time_limit_s;
+  return request;
+}
+
 int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requests, double rate_hz,
                int memory_requests, double time_limit_s) {
   const RobotModel& hexapod = setup->robots.at("hexapod");
@@ -126,35 +164,18 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
   ground.center_world_m = Eigen::Vector3d(1.0, 0.0, -0.05);
   ground.size_m = Eigen::Vector3d(4.0, 3.0, 0.1);
   terrain.boxes.push_back(ground);
-  terrain_map_t map{};
-  map.utime = NowUs();
-  map.frame = "world";
-  map.format = "bt";
-  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
-  map.num_bytes = static_cast<int32_t>(map.data.size());
+  const terrain_map_t map = MapMessage(terrain);
 
   LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
   DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
   core.SubscribeTo(transport);
   ReplyLog replies;
-  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
-    plan_t p;
-    if (DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) replies.Add(p);
-  });
+  SubscribePlans(transport, [&](const plan_t& p) { replies.Add(p); });
   const double rss_start = RssMiB();
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  PublishMapAndWait(transport, core, map);
 
-  // Nominal hexapod stance at the origin; 12 new footsteps towards a goal 0.25 m ahead.
-  plan_request_t request{};
-  request.num_legs = hexapod.num_legs();
-  for (const LegModel& leg : hexapod.legs)
-    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
-  request.goal_x = 0.25;
-  request.max_steps = 12;
-  request.time_limit_s = time_limit_s;
+  plan_request_t request = NominalStartRequest(hexapod, time_limit_s);
 
   // 1. Latency at rate_hz.
   std::map<int64_t, int64_t> sent_us;
@@ -226,16 +247,6 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
   return 0;
 }
 
-terrain_map_t MapMessage(const TerrainDescription& terrain) {
-  terrain_map_t map{};
-  map.utime = NowUs();
-  map.frame = "world";
-  map.format = "bt";
-  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
-  map.num_bytes = static_cast<int32_t>(map.data.size());
-  return map;
-}
-
 // A real-size field, seeded: a 1.2 m start pad at the origin and stones of 0.21 m on a
 // 0.27 m grid (the stepping stones' spacing) over 6.2 m x 6.2 m, tops within +-3 cm.
 TerrainDescription StoneField(uint32_t seed) {
@@ -293,9 +304,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   std::map<int64_t, std::vector<Answer>> answers;
   int resets = 0, cycles_walked = 0;
   double furthest_m = 0;  // from the start, of the centre of the feet
-  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
-    plan_t p;
-    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
+  SubscribePlans(transport, [&](const plan_t& p) {
     const int64_t now = NowUs();
     std::lock_guard<std::mutex> lock(mutex);
     const auto sent = sent_us.find(p.request_id);
@@ -327,9 +336,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     }
   });
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  PublishMapAndWait(transport, core, map);
 
   std::printf("\n3. replanning soak on %s (%zu regions, %zu map bytes): %s, %.0f Hz for %.1f min, "
               "%d new footsteps per request, time limit %.2f s\n",
@@ -436,24 +443,14 @@ void Burst(const std::shared_ptr<const DaemonSetup>& setup, int count, double ti
   std::mutex mutex;
   std::map<int64_t, int> replies;
   std::map<std::string, int> statuses;
-  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
-    plan_t p;
-    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
+  SubscribePlans(transport, [&](const plan_t& p) {
     std::lock_guard<std::mutex> lock(mutex);
     ++replies[p.request_id];
     ++statuses[ToString(static_cast<SolveStatus>(p.status))];
   });
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  plan_request_t request{};
-  request.num_legs = robot.num_legs();
-  for (const LegModel& leg : robot.legs)
-    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
-  request.goal_x = 0.25;
-  request.max_steps = 12;
-  request.time_limit_s = time_limit_s;
+  PublishMapAndWait(transport, core, map);
+  plan_request_t request = NominalStartRequest(robot, time_limit_s);
   const auto start = Clock::now();
   for (int i = 1; i <= count; ++i) {
     request.request_id = i;

@@ -16,17 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "bench/course_bench.h"
 #include "planner/base/check.h"
-#include "planner/planning/footstep_planner.h"
-#include "planner/qp/relaxation_solver_factory.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/miqp/mps_writer.h"
-#include "planner/io/planner_options_yaml.h"
 #include "planner/io/plan_json.h"
-#include "planner/planning/plan_validation.h"
+#include "planner/io/planner_options_yaml.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
-#include "bench/course_bench.h"
+#include "planner/miqp/mps_writer.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/planning/request_check.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace {
 
@@ -150,7 +151,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   double root_bound = -mfp::kInfinity;
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
-        mfp::MakeRelaxationSolvers(scenario.options.relaxation_solver, scenario.options.threads);
+        mfp::MakeRelaxationSolvers(scenario.options.solvers);
     // Each better plan of the first window, (time [s], objective).
     std::vector<std::pair<double, double>> incumbents;
     mfp::PlannerOptions options = scenario.options;
@@ -207,11 +208,11 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
           .size());
   // The first window's MIQP: its fixed-assignment QP time and its export.
   const bool fixed_qp = measure_fixed_qp && first_window_x.size() > 0;
-  if (fixed_qp || !instances_dir.empty()) {
+  if ((fixed_qp || !instances_dir.empty()) && mfp::CheckPlanRequest(robot, regions, request, scenario.options).ok()) {
     const mfp::MiqpFormulation formulation(mfp::FirstWindowProblem(robot, regions, request, scenario.options),
                                            scenario.options.formulation);
     if (fixed_qp) {
-      row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.relaxation_solver);
+      row.fixed_qp_s = FixedAssignmentQpTime(formulation.miqp(), first_window_x, scenario.options.solvers.backend);
     }
     if (!instances_dir.empty()) {
       mfp::WriteMpsFile(formulation.miqp(), name, instances_dir + "/" + name + ".mps");

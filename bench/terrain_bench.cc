@@ -9,13 +9,12 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "planner/base/check.h"
 #include "planner/base/check.h"
 #include "terrain/map_simulation.h"
 #include "terrain/octomap_io.h"

@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "terrain/map_simulation.h"
 #include "terrain/patch_decomposition.h"
 #include "terrain/plane_segmentation.h"
-#include "terrain/map_simulation.h"
 #include "terrain/surface_layers.h"
 
 namespace mfp {

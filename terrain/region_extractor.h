@@ -6,8 +6,8 @@
 // rectangles (in the patch's principal frame) that hold only walkable surface ->
 // ConvexRegion (edges plus the plane as two inequalities, a tolerance from the voxel size
 // apart). Plain Eigen; one entry point with Options / Result types.
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 

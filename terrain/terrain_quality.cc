@@ -28,6 +28,12 @@ double BoxTopAt(const TerrainBox& box, const Eigen::Matrix3d& R, double x_m, dou
   return z_start - t_in;
 }
 
+bool InsideBox(const TerrainBox& box, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d q = BoxRotation(box).transpose() * (p - box.center_world_m);
+  return std::abs(q.x()) < box.size_m.x() / 2 && std::abs(q.y()) < box.size_m.y() / 2 &&
+         std::abs(q.z()) < box.size_m.z() / 2;
+}
+
 // Points on a region: vertices, edge points and an interior grid (by barycentric fans).
 std::vector<Eigen::Vector3d> SampleRegion(const ConvexRegion& region, int per_edge) {
   std::vector<Eigen::Vector3d> pts;
@@ -110,6 +116,26 @@ bool OnTrueTopSurface(const TerrainDescription& terrain, const Eigen::Vector3d& 
       const double below = TrueSurfaceBelow(terrain, x, y, z + height_tolerance_m);
       if (!(below >= z - height_tolerance_m)) return false;
     }
+  }
+  return true;
+}
+
+bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
+                       double max_slope_rad, double height_tol_m) {
+  bool on_face = false;
+  for (const TerrainBox& box : terrain.boxes) {
+    const Eigen::Matrix3d r = BoxRotation(box);
+    if (r(2, 2) < std::cos(max_slope_rad)) continue;  // local +z is the top face only when it points up enough
+    const Eigen::Vector3d q = r.transpose() * (p - box.center_world_m);
+    if (std::abs(q.z() - box.size_m.z() / 2) > height_tol_m) continue;
+    if (std::abs(q.x()) > box.size_m.x() / 2 - margin_m || std::abs(q.y()) > box.size_m.y() / 2 - margin_m) continue;
+    on_face = true;
+    break;
+  }
+  if (!on_face) return false;
+  const Eigen::Vector3d above = p + Eigen::Vector3d(0, 0, height_tol_m + 1e-3);
+  for (const TerrainBox& box : terrain.boxes) {
+    if (InsideBox(box, above)) return false;
   }
   return true;
 }

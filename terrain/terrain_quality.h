@@ -28,6 +28,13 @@ bool OnTrueTopSurface(const TerrainDescription& terrain, const Eigen::Vector3d& 
                       double radius_m, double height_tolerance_m,
                       const Eigen::Vector3d& normal_world = Eigen::Vector3d::UnitZ());
 
+// The truth test for a planned foot on a course of boxes (bench/course_checker.h, the
+// course generator): true when a foot centred at p stands on the top face of one box, at
+// least margin_m inside that face's edges, the face no steeper than max_slope_rad, within
+// height_tol_m of it, and no box's solid just above the foot.
+bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
+                       double max_slope_rad, double height_tol_m);
+
 struct RegionSoundness {
   int samples = 0;        // points sampled on the regions (vertices, edges, interior)
   int sound = 0;          // of them, passing OnTrueTopSurface

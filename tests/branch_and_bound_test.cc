@@ -11,9 +11,9 @@
 #include <thread>
 #include <vector>
 
+#include "planner/miqp/miqp_builder.h"
 #include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/qp/ipopt_relaxation_solver.h"
-#include "planner/miqp/miqp_builder.h"
 
 namespace mfp {
 namespace {

@@ -6,9 +6,9 @@
 
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
+#include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "planner/io/robot_loader.h"
 
 namespace mfp {
 namespace {
@@ -27,7 +27,7 @@ Outcome PlanCourse(const Course& course, const RobotModel& robot) {
   scenario.goal = course.goal;
   scenario.time_limit_s = 20.0;
   const PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
   Outcome out;
   out.plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
   out.verdict = CheckPlanOnCourse(course.terrain, robot, out.plan.footsteps, course.goal, course.edge_margin_m);

@@ -6,15 +6,15 @@
 
 #include <atomic>
 
-#include "planner/search/branch_and_bound.h"
+#include "planner/io/robot_loader.h"
+#include "planner/io/scenario_yaml.h"
+#include "planner/miqp/miqp_builder.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/interior_point_qp.h"
 #include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/qp/ipopt_relaxation_solver.h"
-#include "planner/miqp/miqp_builder.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "planner/search/branch_and_bound.h"
 
 namespace mfp {
 namespace {
@@ -105,7 +105,7 @@ TEST(Deadline, APlanStopsAtTheFlagAndKeepsWhatItHas) {
   PlanRequest request = ScenarioRequest(s, robot, regions);
   std::atomic<bool> stop{false};
   request.deadline = Deadline().WithStop(&stop);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(s.options.relaxation_solver, 1);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(s.options.solvers.backend, 1);
   int windows = 0;
   const Plan plan = PlanFootsteps(robot, regions, request, s.options, solvers.workers(),
                                   [&](const PlanProgress& p) {

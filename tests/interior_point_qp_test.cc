@@ -5,25 +5,13 @@
 
 #include <random>
 
-#include "planner/qp/fixed_variable_reduction.h"
-#include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/miqp/miqp_builder.h"
+#include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tests/test_qps.h"
 
 namespace mfp {
 namespace {
-
-// min (x - 2)^2 + (y - 1)^2  s.t.  x + y <= 2, x, y in [-5, 5].
-// The unconstrained optimum (2, 1) violates x + y <= 2; projecting it onto x + y = 2
-// gives (1.5, 0.5) with cost 0.25 + 0.25 = 0.5.
-Miqp Projection() {
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", -5, 5, false), y = b.AddVariable("y", -5, 5, false);
-  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(2), 1.0);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(1), 1.0);
-  b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 2.0);
-  return b.Build();
-}
 
 TEST(InteriorPointQp, ProjectionOntoAHalfPlane) {
   const Miqp p = Projection();
@@ -186,17 +174,14 @@ TEST(InteriorPointQp, InfeasibleRowsAreReportedNotSolved) {
   EXPECT_EQ(r.status, RelaxationStatus::kInfeasible);
 }
 
-TEST(InteriorPointQp, FixedVariablesAreRemovedAndDegenerateNodesFallBackToIpopt) {
+TEST(InteriorPointQp, DegenerateNodesFallBackToIpopt) {
   // Fixing x = 1 in the projection problem leaves y <= 1 and min (y - 1)^2 + 1: the
   // optimum y = 1 sits on the row with a zero multiplier (no strict complementarity).
   // mfp's interior point may not converge on such a degenerate node; it must then say
   // so (never a wrong "solved"), and the default backend hands the node to Ipopt.
   const Miqp p = Projection();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  lo(0) = up(0) = 1.0;
-  const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
-  EXPECT_EQ(reduced.free_index.size(), 1u);
-  EXPECT_NEAR(reduced.problem.row_upper(0), 1.0, 1e-15);  // x + y <= 2 becomes y <= 1
+  lo(0) = up(0) = 1.0;  // the reduction leaves y <= 1 (fixed_variable_reduction_test.cc)
   const RelaxationResult own = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
   if (own.status == RelaxationStatus::kSolved) {
     EXPECT_NEAR(own.objective, 1.0, 1e-6);
@@ -213,30 +198,15 @@ TEST(InteriorPointQp, FixedVariablesAreRemovedAndDegenerateNodesFallBackToIpopt)
   EXPECT_NEAR(r.objective, 1.0, 1e-6);
 }
 
-TEST(InteriorPointQp, RowsTheBoxAlreadyKeepsAreLeftOut) {
-  // y in [0, 2], x fixed to 1 by the node. Of the rows
-  //   big_m:  y + 2x <= 5       -> y <= 3: the box keeps it, dropped
-  //   loose:  y - x >= -5       -> y >= -4: dropped
-  //   range:  0.5 <= y + x <= 10 -> -0.5 <= y <= 9: both sides kept by the box, dropped
-  //   cap:    -3 <= y + x <= 2.5 -> y <= 1.5 binds; its lower side y >= -4 is left out
-  // only cap's upper side reaches the solver, and min (y - 2)^2 ends on it at y = 1.5.
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", 0, 1, true), y = b.AddVariable("y", 0, 2, false);
-  b.AddRow("big_m", LinExpr::Var(y) + LinExpr::Var(x, 2.0), -kInfinity, 5.0);
-  b.AddRow("loose", LinExpr::Var(y) - LinExpr::Var(x), -5.0, kInfinity);
-  b.AddRow("range", LinExpr::Var(y) + LinExpr::Var(x), 0.5, 10.0);
-  b.AddRow("cap", LinExpr::Var(y) + LinExpr::Var(x), -3.0, 2.5);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.0), 1.0);
-  const Miqp p = b.Build();
+TEST(InteriorPointQp, SolvesANodeWhoseOnlyRowLeftBinds) {
+  // x fixed to 1 by the node: only cap's upper side reaches the solver (the reduction,
+  // fixed_variable_reduction_test.cc), and min (y - 2)^2 ends on it at y = 1.5.
+  const Miqp p = RowsTheBoxMostlyKeeps();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
-  lo(x) = up(x) = 1.0;
-  const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
-  ASSERT_EQ(reduced.problem.num_rows(), 1);
-  EXPECT_EQ(reduced.problem.row_lower(0), -kInfinity);
-  EXPECT_NEAR(reduced.problem.row_upper(0), 1.5, 1e-15);
+  lo(0) = up(0) = 1.0;
   const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
-  EXPECT_NEAR(r.x(y), 1.5, 1e-6);
+  EXPECT_NEAR(r.x(1), 1.5, 1e-6);
   EXPECT_NEAR(r.objective, 0.25, 1e-6);
 }
 

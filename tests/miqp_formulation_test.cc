@@ -405,16 +405,19 @@ TEST_F(FormulationTest, YawOnABreakpointSnapsToOneSegment) {
   EXPECT_EQ(snapped, x);
 }
 
-TEST_F(FormulationTest, RejectsMalformedProblems) {
+// User input is checked before it reaches the formulation (request_check_test.cc); a
+// malformed problem here is the planner's own bug and aborts with file and line.
+using FormulationDeathTest = FormulationTest;
+TEST_F(FormulationDeathTest, MalformedProblemsAreProgrammerErrors) {
   FootstepProblem p = problem_;
   p.start_feet_world_m.pop_back();
-  EXPECT_THROW(MiqpFormulation(p, FormulationOptions()), InputError);
+  EXPECT_DEATH(MiqpFormulation(p, FormulationOptions()), "start stance has");
   p = problem_;
   p.goal_x_m = std::nan("");
-  EXPECT_THROW(MiqpFormulation(p, FormulationOptions()), InputError);
+  EXPECT_DEATH(MiqpFormulation(p, FormulationOptions()), "isfinite");
   p = problem_;
   p.regions.clear();
-  EXPECT_THROW(MiqpFormulation(p, FormulationOptions()), InputError);
+  EXPECT_DEATH(MiqpFormulation(p, FormulationOptions()), "regions");
 }
 
 }  // namespace

@@ -9,10 +9,10 @@
 #include <map>
 #include <sstream>
 
-#include "planner/search/branch_and_bound.h"
-#include "planner/qp/ipm_relaxation_solver.h"
-#include "planner/miqp/miqp_builder.h"
 #include "planner/formulation/miqp_formulation.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/search/branch_and_bound.h"
 #include "tests/test_robots.h"
 
 namespace mfp {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "planner/base/check.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
 namespace {
@@ -30,7 +31,7 @@ TEST(PlannerOptionsYaml, SearchOptionsReachTheBranchAndBound) {
   const PlannerOptions o = Read(
       "threads: 2\nbranching: reliability\nnode_selection: plunging\nrelative_gap: 0.005\n"
       "reliability: 3\nstrong_branching_candidates: 5\nstrong_branching_lookahead: 2\nplunge_fraction: 0.25\n");
-  EXPECT_EQ(o.threads, 2);
+  EXPECT_EQ(o.solvers.threads, 2);
   EXPECT_EQ(o.branch_and_bound.branching, BranchingRule::kReliability);
   EXPECT_EQ(o.branch_and_bound.node_selection, NodeSelection::kBestBoundWithPlunging);
   EXPECT_DOUBLE_EQ(o.branch_and_bound.relative_gap, 0.005);
@@ -38,6 +39,16 @@ TEST(PlannerOptionsYaml, SearchOptionsReachTheBranchAndBound) {
   EXPECT_EQ(o.branch_and_bound.strong_branching_candidates, 5);
   EXPECT_EQ(o.branch_and_bound.strong_branching_lookahead, 2);
   EXPECT_DOUBLE_EQ(o.branch_and_bound.plunge_fraction, 0.25);
+}
+
+TEST(PlannerOptionsYaml, SolverKeysReachTheSolverOptions) {
+  const PlannerOptions o = Read("relaxation_solver: ipopt\nthreads: 3\n");
+  EXPECT_EQ(o.solvers.backend, RelaxationBackend::kIpopt);
+  EXPECT_EQ(o.solvers.threads, 3);
+  EXPECT_EQ(MakeRelaxationSolvers(o.solvers).workers().size(), 3u);
+  const std::string bad = ErrorOf("relaxation_solver: gurobi\n");
+  EXPECT_NE(bad.find("relaxation_solver"), std::string::npos);
+  EXPECT_NE(bad.find("ipm, ipopt"), std::string::npos);  // lists what is allowed
 }
 
 TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {
@@ -71,7 +82,7 @@ TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {
 TEST(PlannerOptionsYaml, DefaultsStayWhenAbsent) {
   const PlannerOptions defaults;
   const PlannerOptions o = Read("max_steps: 10\n");
-  EXPECT_EQ(o.threads, defaults.threads);
+  EXPECT_EQ(o.solvers.threads, defaults.solvers.threads);
   EXPECT_EQ(o.branch_and_bound.branching, defaults.branch_and_bound.branching);
   EXPECT_EQ(o.default_max_steps, 10);
 }

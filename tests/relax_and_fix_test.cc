@@ -19,7 +19,7 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   c.request.window_steps = 24;
   const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
                                     c.scenario.options.formulation);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 1);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.solvers.backend, 1);
   RelaxAndFixOptions rf;
   rf.stage = c.scenario.options.branch_and_bound;
   rf.time_limit_s = 300.0;
@@ -76,7 +76,7 @@ TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   // plan is never worse than that one, and it is a plan.
   rf.hull_for_later_steps = true;
   const RelaxAndFixResult one = RelaxAndFix(formulation, solvers.workers(), rf);
-  const RelaxationSolverSet two_workers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, 2);
+  const RelaxationSolverSet two_workers = MakeRelaxationSolvers(c.scenario.options.solvers.backend, 2);
   const RelaxAndFixResult two = RelaxAndFixTwoPaths(formulation, two_workers.workers(), rf);
   ASSERT_TRUE(one.x.has_value());
   ASSERT_TRUE(two.x.has_value());

@@ -6,14 +6,14 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "planner/search/branch_and_bound.h"
-#include "planner/planning/footstep_planner.h"
 #include "planner/formulation/miqp_formulation.h"
+#include "planner/io/robot_loader.h"
+#include "planner/io/scenario_yaml.h"
+#include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/relax_and_fix.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "planner/search/branch_and_bound.h"
 #include "tests/test_scenarios.h"
 
 namespace mfp {
@@ -38,7 +38,7 @@ TEST_P(ScenarioPlan, ReachesTheGoalAndEveryConstraintHolds) {
   PlanRequest request = ScenarioRequest(scenario, robot, regions);
   // Generous, so that a slow machine changes the time taken, not the outcome.
   request.time_limit_s = 300.0;
-  const auto solver = MakeRelaxationSolver(scenario.options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(scenario.options.solvers.backend);
   const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
@@ -82,7 +82,7 @@ TEST(ScenarioPlanWorkers, TwoWorkersProveTheSameFirstWindowOptimum) {
   bnb.time_limit_s = 300.0;
   double objective[2];
   for (int threads = 1; threads <= 2; ++threads) {
-    const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.relaxation_solver, threads);
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.solvers.backend, threads);
     const BranchAndBoundResult r = SolveBranchAndBound(formulation.miqp(), solvers.workers(), bnb);
     ASSERT_EQ(ToString(r.status), "optimal") << threads << " workers";
     objective[threads - 1] = r.objective;
@@ -90,8 +90,8 @@ TEST(ScenarioPlanWorkers, TwoWorkersProveTheSameFirstWindowOptimum) {
   EXPECT_NEAR(objective[1], objective[0], 2 * bnb.relative_gap * std::abs(objective[0]));
 
   PlannerOptions options = c.scenario.options;
-  options.threads = 2;
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.relaxation_solver, options.threads);
+  options.solvers.threads = 2;
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
   const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, options, solvers.workers());
   ASSERT_TRUE(plan.reaches_goal) << plan.message;
   const ValidationTolerances tol;
@@ -106,7 +106,7 @@ TEST(ScenarioPlanFormulation, YawSegmentsOutOfReachLeaveTheOptimumAlone) {
   Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
   BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
   bnb.time_limit_s = 300.0;
-  const auto solver = MakeRelaxationSolver(c.scenario.options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(c.scenario.options.solvers.backend);
   double objective[2];
   int integers[2];
   for (int clip = 0; clip < 2; ++clip) {
@@ -126,7 +126,7 @@ TEST(ScenarioPlanWindows, MaxWindowsOneSolvesExactlyTheFirstWindow) {
   Course c = LoadCourse("littledog_stepping_stones_45.yaml");
   c.request.time_limit_s = 300.0;
   c.request.max_windows = 1;
-  const auto solver = MakeRelaxationSolver(c.scenario.options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(c.scenario.options.solvers.backend);
   const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, c.scenario.options, *solver);
   ASSERT_TRUE(HasPlan(plan.status)) << plan.message;
   EXPECT_EQ(plan.windows, 1);

@@ -2,10 +2,10 @@
 // 4, 6 and 8 legs, and for a robot whose feet are collision spheres with no foot links.
 #include <gtest/gtest.h>
 
+#include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "planner/io/robot_loader.h"
 #include "terrain/terrain_description.h"
 
 namespace mfp {
@@ -33,7 +33,7 @@ TEST_P(UrdfPlan, WalksAndTurnsOnFlatGround) {
   request.goal_yaw_rad = 0.3;
   request.time_limit_s = 120.0;
   const PlannerOptions options;
-  const auto solver = MakeRelaxationSolver(options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(options.solvers.backend);
   const Plan plan = PlanFootsteps(robot, regions, request, options, *solver);
   ASSERT_TRUE(HasPlan(plan.status)) << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "planner/base/check.h"
-#include "planner/robot/robot_derivation.h"
 #include "planner/io/robot_loader.h"
+#include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
 #include "tests/test_temp_path.h"
 

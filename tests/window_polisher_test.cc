@@ -4,13 +4,13 @@
 
 #include <cmath>
 
-#include "planner/planning/footstep_planner.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/planning/window_polisher.h"
-#include "planner/planning/plan_validation.h"
-#include "planner/qp/relaxation_solver_factory.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/planning/window_polisher.h"
+#include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
 namespace {
@@ -33,7 +33,7 @@ Course LoadCourse(const std::string& file_name) {
 }
 
 Plan PlanCourse(const Course& c, const PlannerOptions& options) {
-  const auto solver = MakeRelaxationSolver(options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(options.solvers.backend);
   return PlanFootsteps(c.robot, c.regions, c.request, options, *solver);
 }
 
@@ -67,7 +67,7 @@ TEST(WindowPolisher, ReportsEachWindowAndFallsBackWithAMessageWhenOutOfTime) {
   c.request.max_steps = 8;
   PlannerOptions options = c.scenario.options;
   std::vector<PolishReport> reports;
-  const auto solver = MakeRelaxationSolver(options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(options.solvers.backend);
   const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, options, *solver,
                                   [&](const PlanProgress& p) { reports.push_back(p.polish); });
   ASSERT_EQ(reports.size(), 1u);

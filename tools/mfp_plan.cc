@@ -11,17 +11,18 @@
 #include <sstream>
 
 #include "planner/base/check.h"
-#include "planner/planning/footstep_planner.h"
-#include "planner/qp/relaxation_solver_factory.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/miqp/mps_writer.h"
 #include "planner/io/plan_json.h"
-#include "planner/planning/plan_validation.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
-#include "tools/text_output.h"
-#include "tools/plan_svg.h"
+#include "planner/miqp/mps_writer.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/planning/request_check.h"
+#include "planner/qp/relaxation_solver_factory.h"
 #include "tools/daemon/timestamped_log.h"
+#include "tools/plan_svg.h"
+#include "tools/text_output.h"
 
 namespace {
 
@@ -131,18 +132,20 @@ int main(int argc, char** argv) {
         std::to_string(regions.size()) + " regions");
 
     mfp::PlannerOptions& options = scenario.options;
-    if (!relaxation_solver.empty()) options.relaxation_solver = mfp::ParseRelaxationBackend(relaxation_solver);
+    if (!relaxation_solver.empty()) options.solvers.backend = mfp::ParseRelaxationBackend(relaxation_solver);
     mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
     if (max_steps > 0) request.max_steps = max_steps;
     if (window > 0) request.window_steps = window;
     if (time_limit > 0) request.time_limit_s = time_limit;
     request.deadline = run_deadline;
 
-    if (threads > 0) options.threads = threads;
+    if (threads > 0) options.solvers.threads = threads;
     if (no_polish) options.polish.enabled = false;
     if (polish_time_limit > 0) options.polish.time_limit_s = polish_time_limit;
-    const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.relaxation_solver, options.threads);
-    if (!mps_path.empty()) {
+    const mfp::RelaxationSolverSet solvers = mfp::MakeRelaxationSolvers(options.solvers);
+    // A rejected request (bad start, goal, sizes) exports nothing: PlanFootsteps below
+    // answers it with its status and message (exit 2).
+    if (!mps_path.empty() && mfp::CheckPlanRequest(robot, regions, request, options).ok()) {
       // The first window's MIQP, exactly as the planner builds it.
       const mfp::FootstepProblem problem = mfp::FirstWindowProblem(robot, regions, request, options);
       const mfp::MiqpFormulation formulation(problem, options.formulation);

@@ -13,8 +13,8 @@
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/region_json.h"
-#include "tools/text_output.h"
 #include "tools/region_svg.h"
+#include "tools/text_output.h"
 
 namespace {
 

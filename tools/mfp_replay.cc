@@ -14,8 +14,8 @@
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/map_regions.h"
+#include "tools/daemon/solver_plan_function.h"
 #include "tools/daemon/timestamped_log.h"
 
 namespace mfp {

@@ -14,9 +14,9 @@
 
 #include "planner/base/check.h"
 #include "planner/base/format.h"
-#include "tools/text_output.h"
 #include "planner/io/robot_json.h"
 #include "planner/io/robot_loader.h"
+#include "tools/text_output.h"
 
 namespace {
 

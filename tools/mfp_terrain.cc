@@ -15,7 +15,6 @@
 #include <nlohmann/json.hpp>
 
 #include "planner/base/check.h"
-#include "planner/base/check.h"
 #include "terrain/map_simulation.h"
 #include "terrain/octomap_io.h"
 #include "terrain/terrain_quality.h"

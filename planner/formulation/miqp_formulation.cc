@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <tuple>
 
 #include "planner/base/check.h"
@@ -47,34 +46,22 @@ MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const Formulati
   MFP_CHECK(problem_.robot != nullptr);
   const RobotModel& robot = *problem_.robot;
   n_ = robot.num_legs();
-  if (static_cast<int>(problem_.start_feet_world_m.size()) != n_) {
-    throw InputError("start stance has " + std::to_string(problem_.start_feet_world_m.size()) +
-                     " feet, robot '" + robot.name + "' has " + std::to_string(n_) + " legs");
-  }
-  for (const Eigen::Vector3d& f : problem_.start_feet_world_m) {
-    if (!f.allFinite()) throw InputError("start stance has a non-finite foot position");
-  }
-  if (!std::isfinite(problem_.start_yaw_rad) || !std::isfinite(problem_.goal_x_m) ||
-      !std::isfinite(problem_.goal_y_m) || !std::isfinite(problem_.goal_yaw_rad)) {
-    throw InputError("start yaw and goal pose must be finite numbers");
-  }
-  if (!problem_.history_feet_world_m.empty() &&
-      static_cast<int>(problem_.history_feet_world_m.size()) != n_) {
-    throw InputError("history must hold one foot per leg");
-  }
-  if (!problem_.start_step_yaw_rad.empty() &&
-      static_cast<int>(problem_.start_step_yaw_rad.size()) != n_) {
-    throw InputError("start step yaws must hold one yaw per leg");
-  }
-  if (problem_.num_new_steps < 1) {
-    throw InputError("number of new steps must be >= 1, got " +
-                     std::to_string(problem_.num_new_steps));
-  }
-  if (problem_.regions.empty()) throw InputError("no terrain regions to step on");
-  if (!(options_.yaw_segment_rad > 0.01 && options_.yaw_segment_rad <= M_PI) ||
-      !(options_.yaw_margin_rad >= 0.0 && options_.yaw_margin_rad <= M_PI)) {
-    throw InputError("yaw_segment must be in (0.01, pi] rad and yaw_margin in [0, pi] rad");
-  }
+  // Programmer errors only: user input reaches the formulation through CheckPlanRequest
+  // (planner/planning/request_check.h), which names each problem to the user; what is
+  // left to check here is what the planner builds (windows, histories) and the options'
+  // ranges, which the planner: reader enforces.
+  MFP_CHECK_MSG(static_cast<int>(problem_.start_feet_world_m.size()) == n_,
+                "start stance has " + std::to_string(problem_.start_feet_world_m.size()) + " feet, robot '" +
+                    robot.name + "' has " + std::to_string(n_) + " legs");
+  for (const Eigen::Vector3d& f : problem_.start_feet_world_m) MFP_CHECK(f.allFinite());
+  MFP_CHECK(std::isfinite(problem_.start_yaw_rad) && std::isfinite(problem_.goal_x_m) &&
+            std::isfinite(problem_.goal_y_m) && std::isfinite(problem_.goal_yaw_rad));
+  MFP_CHECK(problem_.history_feet_world_m.empty() || static_cast<int>(problem_.history_feet_world_m.size()) == n_);
+  MFP_CHECK(problem_.start_step_yaw_rad.empty() || static_cast<int>(problem_.start_step_yaw_rad.size()) == n_);
+  MFP_CHECK(problem_.num_new_steps >= 1);
+  MFP_CHECK(!problem_.regions.empty());
+  MFP_CHECK(options_.yaw_segment_rad > 0.01 && options_.yaw_segment_rad <= M_PI);
+  MFP_CHECK(options_.yaw_margin_rad >= 0.0 && options_.yaw_margin_rad <= M_PI);
   num_steps_ = n_ + problem_.num_new_steps;
   num_configurations_ = (num_steps_ + n_ - 1) / n_;
   // Goal yaw unwrapped to within pi of the start so the yaw range is the short way round.

@@ -35,12 +35,15 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"goal_tolerance", &PlannerOptions::goal_tolerance_m, 1e-4, 10},
     {"goal_yaw_tolerance", &PlannerOptions::goal_yaw_tolerance_rad, 1e-4, M_PI},
     {"start_tolerance", &PlannerOptions::start_tolerance_m, 0, 1},
-    {"threads", &PlannerOptions::threads, 1, 64},
     {"snap_yaw_segments", &PlannerOptions::snap_yaw_segments},
     {"route_guidance", &PlannerOptions::route_guidance},
     {"local_goal_lookahead", &PlannerOptions::local_goal_lookahead_m, -1.0, 1000.0},
     {"local_goal_detour_ratio", &PlannerOptions::local_goal_detour_ratio, 1.0, 100.0},
     {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
+};
+
+const std::vector<Field<RelaxationSolverOptions>> kSolverFields = {
+    {"threads", &RelaxationSolverOptions::threads, 1, 64},
 };
 
 const std::vector<Field<FormulationOptions>> kFormulationFields = {
@@ -140,6 +143,7 @@ void ReadEnum(const YAML::Node& node, const YamlContext& ctx, const EnumField<S,
 void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerOptions* options) {
   std::vector<std::string> keys;
   AddKeys(kPlannerFields, &keys);
+  AddKeys(kSolverFields, &keys);
   AddKeys(kFormulationFields, &keys);
   AddKeys(kSearchFields, &keys);
   AddKeys(kRelaxAndFixFields, &keys);
@@ -150,6 +154,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
 
   PlannerOptions& o = *options;
   ReadFields(node, ctx, kPlannerFields, &o);
+  ReadFields(node, ctx, kSolverFields, &o.solvers);
   ReadFields(node, ctx, kFormulationFields, &o.formulation);
   ReadFields(node, ctx, kSearchFields, &o.branch_and_bound);
   ReadFields(node, ctx, kRelaxAndFixFields, &o.relax_and_fix);
@@ -160,7 +165,7 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   ReadEnum(node, ctx, kBranching, &o.branch_and_bound);
   if (const auto backend = OptionalString(node, ctx, kRelaxationSolverKey)) {
     try {
-      o.relaxation_solver = ParseRelaxationBackend(*backend);
+      o.solvers.backend = ParseRelaxationBackend(*backend);
     } catch (const InputError& e) {
       throw InputError(ctx.Child(kRelaxationSolverKey).Where() + ": " + e.what());
     }

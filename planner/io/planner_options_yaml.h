@@ -2,8 +2,8 @@
 // The `planner:` block shared by scenario files and the daemon's config.
 #include <yaml-cpp/yaml.h>
 
-#include "planner/planning/footstep_planner.h"
 #include "planner/base/yaml_fields.h"
+#include "planner/planning/footstep_planner.h"
 
 namespace mfp {
 

@@ -8,8 +8,8 @@
 
 #include "planner/base/check.h"
 #include "planner/base/format.h"
-#include "planner/robot/urdf_reader.h"
 #include "planner/base/yaml_fields.h"
+#include "planner/robot/urdf_reader.h"
 
 namespace mfp {
 namespace {

@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "planner/base/check.h"
-#include "planner/io/planner_options_yaml.h"
 #include "planner/base/yaml_fields.h"
+#include "planner/io/planner_options_yaml.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/terrain_yaml.h"

@@ -9,8 +9,8 @@
 #include "planner/planning/goal.h"
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
-#include "terrain/region_reachability.h"
 #include "planner/planning/route_guide.h"
+#include "terrain/region_reachability.h"
 
 namespace mfp {
 namespace {
@@ -38,9 +38,7 @@ SolveStatus Combine(SolveStatus a, SolveStatus b) {
 // the start stance's own offset, whichever is larger), as a Euclidean length.
 double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
   const int n = robot.num_legs();
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector3d& f : request.start_feet_world_m) centre += f.head<2>();
-  centre /= n;
+  const Eigen::Vector2d centre = StanceCentreXY(request.start_feet_world_m);
   double offset = robot.l_bnd_m;
   for (int k = 0; k < n; ++k) {
     const Eigen::Vector2d d = request.start_feet_world_m[k].head<2>() -
@@ -66,9 +64,7 @@ std::vector<Eigen::Vector3d> NominalStance(const RobotModel& robot,
 
 double EstimateStanceYaw(const RobotModel& robot, const std::vector<Eigen::Vector3d>& feet) {
   MFP_CHECK(static_cast<int>(feet.size()) == robot.num_legs());
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-  for (const Eigen::Vector3d& f : feet) centre += f.head<2>();
-  centre /= static_cast<double>(feet.size());
+  const Eigen::Vector2d centre = StanceCentreXY(feet);
   const Eigen::Vector2d mean_offset = MeanNominalOffset(robot);
   // 2-D Procrustes: the rotation maximising sum (R o_k) . (f_k - centre).
   double sin_sum = 0.0, cos_sum = 0.0;
@@ -249,9 +245,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     const double lookahead = options.local_goal_lookahead_m < 0 ? 2.0 * LegReach(robot) : options.local_goal_lookahead_m;
     if (guided && lookahead > 0.0) {
       // The window's goal term pulls toward a point of the route ahead of the stance.
-      Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-      for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
-      centre /= n;
+      const Eigen::Vector2d centre = StanceCentreXY(stance);
       const double progress = RouteProgress(guide, centre);
       const double s = progress + lookahead;
       // Only where the route detours: where what is left of it is barely longer than the
@@ -300,8 +294,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         RelaxAndFixOptions rf = options.relax_and_fix;
         rf.stage = bnb;
         // Stage searches are small (nodes_per_stage): strong branching would cost them more
-        // than it saves, and their plans came out worse (littledog 24: the first plan
-        // within 0.5 % at 30 s instead of 0.28 s).
+        // than it saves, and their plans came out worse (docs/measurements.md).
         if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
         rf.time_limit_s = rf.time_share * bnb.time_limit_s;
         const RelaxAndFixResult r = rf.two_paths ? RelaxAndFixTwoPaths(formulation, solvers, rf)
@@ -368,12 +361,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       PlanProgress progress;
       progress.window = plan.windows;
       progress.steps_planned = planned;
-      const Eigen::Vector2d centre = [&] {
-        Eigen::Vector2d c = Eigen::Vector2d::Zero();
-        for (const Eigen::Vector3d& f : stance) c += f.head<2>();
-        return Eigen::Vector2d(c / n);
-      }();
-      progress.distance_to_goal_m = (centre - Eigen::Vector2d(request.goal_x_m, request.goal_y_m)).norm();
+      progress.distance_to_goal_m = (StanceCentreXY(stance) - Eigen::Vector2d(request.goal_x_m, request.goal_y_m)).norm();
       progress.elapsed_s = elapsed();
       progress.window_result = result;
       progress.polish = polished.report;
@@ -401,9 +389,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   if (!polish_note.empty()) plan.message += (plan.message.empty() ? "" : "; ") + polish_note;
   if (!plan.reaches_goal && HasPlan(plan.status) && request.max_windows == 0) {
     // Every accepted step satisfies the constraints: the robot can walk this far safely.
-    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-    for (const Eigen::Vector3d& f : stance) centre += f.head<2>();
-    centre /= n;
+    const Eigen::Vector2d centre = StanceCentreXY(stance);
     std::ostringstream msg;
     msg.precision(3);
     msg << "partial plan: " << planned << " steps, stopped "

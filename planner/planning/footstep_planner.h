@@ -51,10 +51,10 @@ struct PlannerOptions {
   // Region extraction for this robot keeps surfaces with the stance height plus this much
   // free space above them (RegionExtractorOptions::clearance_m) [m].
   double body_clearance_margin_m = 0.1;
-  RelaxationBackend relaxation_solver = RelaxationBackend::kInteriorPointWithIpoptFallback;
-  // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
-  // are solved this many at a time. Callers make the solvers (MakeRelaxationSolvers).
-  int threads = 1;
+  // Which relaxation solvers and how many workers. PlanFootsteps does not read it: callers
+  // make the solvers from it (MakeRelaxationSolvers) and pass them in; it rides here so
+  // that one `planner:` block configures a whole plan.
+  RelaxationSolverOptions solvers;
   // A relaxed yaw that one segment alone represents (on a breakpoint, as the goal yaw
   // is) is set to that segment before branching (MiqpFormulation::SnapYawToOneSegment).
   bool snap_yaw_segments = true;
@@ -115,7 +115,7 @@ double FinalStanceYaw(const RobotModel& robot, const std::vector<Footstep>& foot
 
 // Plans a whole route. Bad requests come back as statuses (kInvalidRequest,
 // kInvalidStart, kInvalidGoal, kNoMap) with a message naming the problem.
-// solvers: one per branch-and-bound worker (at least one; see PlannerOptions::threads).
+// solvers: one per branch-and-bound worker (at least one; see RelaxationSolverOptions::threads).
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                    const PlanRequest& request, const PlannerOptions& options,
                    const std::vector<RelaxationSolver*>& solvers,

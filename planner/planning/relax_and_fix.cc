@@ -122,8 +122,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     if (!final_stage) bnb.relaxation_tolerance = std::max(bnb.relaxation_tolerance, options.stage_relaxation_tolerance);
     // A stage may take half of what is left: the later stages are the larger searches
     // (more of the plan's cost is decided there), so an even split starved them and their
-    // searches stopped at a poor incumbent (littledog 36 at a 1.5 s limit: 908.59 against
-    // 673.39 with half).
+    // searches stopped at a poor incumbent (docs/measurements.md).
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);

@@ -17,15 +17,16 @@
 #include <optional>
 #include <vector>
 
-#include "planner/search/branch_and_bound.h"
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/qp/relaxation_solver.h"
+#include "planner/search/branch_and_bound.h"
 
 namespace mfp {
 
-// Defaults measured with the Table I instances (docs/measurements.md): lookahead 0 gave the best plans
-// in the least time (lookahead 1 and 2 made each stage a bigger search that ended at its
-// node limit with worse choices), and a stage gap of 0.5 % the same plans as 1e-4 sooner.
+// Defaults chosen on the Table I instances (docs/measurements.md): no lookahead (keeping
+// later configurations integer makes each stage a bigger search that ends at its node
+// limit with worse choices), and a stage gap coarser than the search's, which gives the
+// same plans sooner.
 struct RelaxAndFixOptions {
   int lookahead_configurations = 0;          // configurations kept integer beyond the one being fixed
   int nodes_per_stage = 100;         // branch-and-bound nodes per stage
@@ -82,9 +83,8 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
 // stage QPs at the solver's own accuracy, and the better plan (stages, nodes and
 // relaxations are summed; completed_by_rounding is the better plan's). A stage's choice
 // can turn on differences within its QPs' tolerance, so one path can end far from the
-// other (littledog 36: 673.39 on one, 1503.82 on the stage searches shared by two
-// workers); two paths make such a turn matter less, and the first path is the
-// one-worker run. With one solver: RelaxAndFix.
+// other (docs/measurements.md); two paths make such a turn matter less, and the first
+// path is the one-worker run, so two workers plan no worse than one. With one solver: RelaxAndFix.
 RelaxAndFixResult RelaxAndFixTwoPaths(const MiqpFormulation& formulation,
                                       const std::vector<RelaxationSolver*>& solvers,
                                       const RelaxAndFixOptions& options);

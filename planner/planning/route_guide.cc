@@ -164,9 +164,7 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   }
   guide.connected = true;
   // Body route: start centre, the region centres of the longest legs' path, goal.
-  Eigen::Vector2d start = Eigen::Vector2d::Zero();
-  for (const auto& f : start_feet) start += f.head<2>();
-  start /= n;
+  const Eigen::Vector2d start = StanceCentreXY(start_feet);
   std::vector<int> path;
   for (int r = goal_region; r >= 0; r = parent[r]) path.push_back(r);
   std::reverse(path.begin(), path.end());

@@ -157,7 +157,8 @@ struct KktAssembly {
     }
     const int entries = lower_outer[n];
     // 2. The elimination order, per QP: one order for the whole MIQP, restricted to each
-    //    node's free variables, had 23-34 % more fill-in, which cost more than the AMD.
+    //    node's free variables, had more fill-in, which cost more than the AMD
+    //    (docs/measurements.md).
     const std::vector<double> ones(entries, 1.0);
     const Eigen::Map<const SpMat> lower(n, n, entries, lower_outer.data(), lower_inner.data(), ones.data());
     const std::vector<int> order = MinimumDegreeOrder(SpMat(lower));

@@ -30,10 +30,10 @@ struct InteriorPointOptions {
   // Warm start: x from the given point (pulled this share of the way to its box's
   // middle), the elastic variables, slacks and duals set so that every slack-dual product
   // starts at warm_start_complementarity (a centred point), slacks at least
-  // warm_start_min_slack. Measured against the cold start (slacks >= 1, duals 1 and half
-  // the penalty): 21-29 % fewer iterations per node QP (docs/measurements.md). Products from 30 to 300
-  // take about as many iterations; 100 happened to send littledog 36's relax-and-fix down
-  // a worse path, 80-95 and 105-120 did not (docs/measurements.md).
+  // warm_start_min_slack. A cold start (slacks >= 1, duals 1 and half the penalty) leaves
+  // products of the order of the penalty for every solve to bring down; the centred start
+  // takes fewer iterations per node QP. The product's value was chosen on Table I
+  // (docs/measurements.md).
   double warm_start_pull = 0.01;
   double warm_start_complementarity = 110.0;
   double warm_start_min_slack = 1e-3;

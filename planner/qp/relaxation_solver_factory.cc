@@ -76,4 +76,8 @@ RelaxationSolverSet MakeRelaxationSolvers(RelaxationBackend backend, int count) 
   return set;
 }
 
+RelaxationSolverSet MakeRelaxationSolvers(const RelaxationSolverOptions& options) {
+  return MakeRelaxationSolvers(options.backend, options.threads);
+}
+
 }  // namespace mfp

@@ -1,5 +1,5 @@
 #pragma once
-// Choosing the relaxation backend by name (config, flags).
+// Making the branch-and-bound's relaxation solvers: which backend, how many workers.
 #include <memory>
 #include <string>
 #include <vector>
@@ -10,7 +10,8 @@ namespace mfp {
 
 enum class RelaxationBackend {
   // mfp's sparse interior-point method (interior_point_qp.h); a node it cannot resolve
-  // within its iteration limit is handed to Ipopt. The default: ~20x faster per node.
+  // within its iteration limit is handed to Ipopt. The default: far faster per node
+  // (docs/measurements.md).
   kInteriorPointWithIpoptFallback,
   kIpopt,  // Ipopt alone
 };
@@ -18,6 +19,15 @@ enum class RelaxationBackend {
 // "ipm" or "ipopt"; throws InputError naming the allowed values otherwise.
 RelaxationBackend ParseRelaxationBackend(const std::string& name);
 std::string ToString(RelaxationBackend backend);
+
+// The solvers a plan uses, set by the `planner:` keys `relaxation_solver` and `threads`
+// (planner/io/planner_options_yaml.cc) and mfp-plan's --relaxation-solver, --threads.
+struct RelaxationSolverOptions {
+  RelaxationBackend backend = RelaxationBackend::kInteriorPointWithIpoptFallback;
+  // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations
+  // are solved this many at a time.
+  int threads = 1;
+};
 
 std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend);
 
@@ -27,5 +37,7 @@ struct RelaxationSolverSet {
   std::vector<RelaxationSolver*> workers() const;
 };
 RelaxationSolverSet MakeRelaxationSolvers(RelaxationBackend backend, int count);
+// options.threads solvers of options.backend.
+RelaxationSolverSet MakeRelaxationSolvers(const RelaxationSolverOptions& options);
 
 }  // namespace mfp

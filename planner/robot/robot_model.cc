@@ -67,6 +67,13 @@ void ValidateRobotModel(const RobotModel& robot) {
   }
 }
 
+Eigen::Vector2d StanceCentreXY(const std::vector<Eigen::Vector3d>& feet_world_m) {
+  MFP_CHECK(!feet_world_m.empty());
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector3d& f : feet_world_m) centre += f.head<2>();
+  return centre / static_cast<double>(feet_world_m.size());
+}
+
 Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, double y_m, double yaw_rad) {
   MFP_CHECK(leg >= 0 && leg < robot.num_legs());
   const Eigen::Vector2d o = robot.legs[leg].nominal_offset_body_m;

@@ -55,6 +55,10 @@ void ValidateRobotModel(const RobotModel& robot);
 // (x, y) plus the leg's nominal offset rotated by yaw [m, world].
 Eigen::Vector2d NominalFootXY(const RobotModel& robot, int leg, double x_m, double y_m, double yaw_rad);
 
+// Centre of contacts of a stance in plan view: the mean of its feet's (x, y) (the paper's
+// eq. 2 for the n feet standing) [m, world]. At least one foot.
+Eigen::Vector2d StanceCentreXY(const std::vector<Eigen::Vector3d>& feet_world_m);
+
 // Farthest nominal foot from the centre of contacts, max over legs of |o_leg| [m].
 double LegReach(const RobotModel& robot);
 

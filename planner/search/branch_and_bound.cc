@@ -6,8 +6,8 @@
 #include <thread>
 #include <vector>
 
-#include "planner/search/bound_propagation.h"
 #include "planner/base/check.h"
+#include "planner/search/bound_propagation.h"
 #include "planner/search/pseudo_costs.h"
 
 namespace mfp {

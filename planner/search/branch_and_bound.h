@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "planner/base/deadline.h"
+#include "planner/base/solve_status.h"
 #include "planner/miqp/miqp.h"
 #include "planner/qp/relaxation_solver.h"
-#include "planner/base/solve_status.h"
 
 namespace mfp {
 

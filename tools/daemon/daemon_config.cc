@@ -1,8 +1,8 @@
 #include "tools/daemon/daemon_config.h"
 
 #include "planner/base/check.h"
-#include "planner/io/planner_options_yaml.h"
 #include "planner/base/yaml_fields.h"
+#include "planner/io/planner_options_yaml.h"
 
 namespace mfp {
 namespace {

@@ -9,14 +9,14 @@
 // tests drive it directly. Thread-safe. Never prints: log lines go to the LogSink.
 #include <atomic>
 #include <chrono>
-#include <deque>
-#include <optional>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 

@@ -9,7 +9,7 @@ PlanFunction MakeSolverPlanFunction() {
             const PlanRequest& request, const PlannerOptions& options) {
     // One solver per plan: plans run one at a time and solver set-up is cheap next to
     // a solve; no state leaks from one request into the next.
-    const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.relaxation_solver, options.threads);
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
     return PlanFootsteps(robot, regions, request, options, solvers.workers());
   };
 }

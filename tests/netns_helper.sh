@@ -1,0 +1,39 @@
+# Sourced by the tests that run mfp-daemon over real LCM multicast. They must never send
+# multicast on the host network, so they run inside a private network namespace:
+#
+#   source "$SOURCE_DIR/tests/netns_helper.sh"
+#   mfp_enter_private_namespace "$@"     # the script's own arguments, unchanged
+#
+# Outside the namespace it checks the tools, then runs the calling script again under
+# `unshare -n` with the same arguments plus the marker --in-namespace (the marker is what
+# stops the next run from doing the same again). Inside (the last argument is the
+# marker) it refuses to go on unless lo is the only interface, and sets lo up with
+# multicast and a route for 224.0.0.0/4. It fails loudly, never skips, when the
+# namespace cannot be made (unshare -n needs root or CAP_SYS_ADMIN).
+
+MFP_NAMESPACE_MARKER="--in-namespace"
+
+mfp_enter_private_namespace() {
+  local last="${!#}"
+  if [ "$#" -eq 0 ] || [ "$last" != "$MFP_NAMESPACE_MARKER" ]; then
+    local tool
+    for tool in unshare ip lcm-logger lcm-logplayer; do
+      command -v "$tool" >/dev/null || { echo "FAIL: $tool not found (tools/debian-packages.txt)"; exit 1; }
+    done
+    if ! unshare -n true 2>/dev/null; then
+      echo "FAIL: cannot create a network namespace (unshare -n needs root or CAP_SYS_ADMIN);"
+      echo "      this test never falls back to the host network."
+      exit 1
+    fi
+    exec unshare -n "$0" "$@" "$MFP_NAMESPACE_MARKER"
+  fi
+  local interfaces
+  interfaces=$(ip -o link show | awk -F': ' '{print $2}' | sed 's/@.*//')
+  if [ "$interfaces" != "lo" ]; then
+    echo "FAIL: expected only lo in the namespace, found: $interfaces"
+    exit 1
+  fi
+  ip link set lo up
+  ip link set lo multicast on
+  ip route add 224.0.0.0/4 dev lo
+}

@@ -1,0 +1,37 @@
+#pragma once
+// Small QPs solved by hand, shared by the relaxation solver tests.
+#include "planner/miqp/miqp_builder.h"
+
+namespace mfp {
+
+// min (x - 2)^2 + (y - 1)^2  s.t.  x + y <= 2, x, y in [-5, 5].
+// The unconstrained optimum (2, 1) violates x + y <= 2; projecting it onto x + y = 2
+// gives (1.5, 0.5) with cost 0.25 + 0.25 = 0.5.
+inline Miqp Projection() {
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", -5, 5, false), y = b.AddVariable("y", -5, 5, false);
+  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(2), 1.0);
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(1), 1.0);
+  b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 2.0);
+  return b.Build();
+}
+
+// min (y - 2)^2 over x in {0, 1} (variable 0), y in [0, 2] (variable 1), with rows that a
+// node fixing x = 1 makes redundant or one-sided:
+//   big_m:  y + 2x <= 5       -> y <= 3: the box keeps it
+//   loose:  y - x >= -5       -> y >= -4: the box keeps it
+//   range:  0.5 <= y + x <= 10 -> -0.5 <= y <= 9: the box keeps both sides
+//   cap:    -3 <= y + x <= 2.5 -> y <= 1.5 binds; its lower side y >= -4 does not
+// At x = 1 the optimum is y = 1.5 with cost 0.25.
+inline Miqp RowsTheBoxMostlyKeeps() {
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", 0, 1, true), y = b.AddVariable("y", 0, 2, false);
+  b.AddRow("big_m", LinExpr::Var(y) + LinExpr::Var(x, 2.0), -kInfinity, 5.0);
+  b.AddRow("loose", LinExpr::Var(y) - LinExpr::Var(x), -5.0, kInfinity);
+  b.AddRow("range", LinExpr::Var(y) + LinExpr::Var(x), 0.5, 10.0);
+  b.AddRow("cap", LinExpr::Var(y) + LinExpr::Var(x), -3.0, 2.5);
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.0), 1.0);
+  return b.Build();
+}
+
+}  // namespace mfp
