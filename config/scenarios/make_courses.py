@@ -106,17 +106,17 @@ write("hexapod_flat", "hexapod walks 1.5 m across flat ground", "hexapod",
       [box("ground", 0.75, 0.0, 0.0, 3.5, 2.0)], [0, 0, 0], [1.5, 0.0, 0.0], 120)
 
 # Quadruped (LittleDog geometry): feet rows at y = +-0.06 m, body spans 0.2 m. Its 6.5 cm
-# stones at 5 mm voxels leave foot centres 1.5 cm x 3.5 cm (inset 1 cm foot + 1 cm margin
-# + 2.5 mm half-voxel uncertainty per side), smaller than the extractor's default
+# stones at 4 mm voxels leave foot centres about 2 cm x 3.5 cm (inset 1 cm foot + 1 cm
+# margin + 2 mm half-voxel uncertainty per side), smaller than the extractor's default
 # smallest region (16 cm^2): those courses keep regions down to 2 cm^2.
 dog_stones = stepping_stones(
     scale=0.25, rows=[(0.06, [0.2, 0.29, 0.38, 0.47, 0.56, 0.65], 0.065, [0.02, 0.04, 0.01, 0.03, 0.05, 0.02]),
                       (-0.06, [0.215, 0.32, 0.425, 0.53, 0.635], 0.08, [0.03, 0.01, 0.04, 0.02, 0.04])],
     width=0.08, start_end=0.14, goal_start=0.71, goal_end=1.05)
 write("littledog_stepping_stones_45", "quadruped on 13-region stepping stones, goal 0.9 m ahead turned 45 degrees",
-      "littledog", dog_stones, [0, 0, 0], [0.9, 0.0, math.pi / 4], 96, resolution=0.005, min_region_area=0.0002)
+      "littledog", dog_stones, [0, 0, 0], [0.9, 0.0, math.pi / 4], 96, resolution=0.004, min_region_area=0.0002)
 write("littledog_stepping_stones_90", "quadruped on 13-region stepping stones, goal 0.9 m ahead turned 90 degrees",
-      "littledog", dog_stones, [0, 0, 0], [0.9, 0.0, math.pi / 2], 96, resolution=0.005, min_region_area=0.0002)
+      "littledog", dog_stones, [0, 0, 0], [0.9, 0.0, math.pi / 2], 96, resolution=0.004, min_region_area=0.0002)
 write("littledog_tilted", "quadruped on a course of tilted panels, goal 0.8 m ahead", "littledog",
       tilted(0.25, [(0.01, 6 * deg, 0), (0.02, -6 * deg, 3 * deg), (0.015, 5 * deg, -4 * deg)], 0.14, 0.6, 0.95),
       [0, 0, 0], [0.8, 0.0, 0.0], 96, resolution=0.005)
