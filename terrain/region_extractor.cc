@@ -143,6 +143,7 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   dec.axis_snap_rad = options.axis_snap_rad;
   dec.cover.target_coverage = options.target_coverage;
   dec.cover.max_rects = options.max_regions_per_patch;
+  dec.cover.grow_over_covered = options.overlapping_regions;
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
   int patches_done = 0;
   for (const LayerPatch& layer_patch : patches) {

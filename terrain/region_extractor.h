@@ -47,6 +47,11 @@ struct RegionExtractorOptions {
   double plane_tolerance_voxels = 0.5;  // half-thickness of each region's plane slab
   double target_coverage = 0.97;        // stop covering a patch once this fraction is covered
   int max_regions_per_patch = 24;
+  // Rectangles of one patch may overlap (each grown over cells others cover). Off: they
+  // only share sides, so a foothold inside a patch has one region, not several equivalent
+  // ones for the branch-and-bound to tell apart (ANYmal C down the scanned corridor:
+  // 1.6 s with all 17 windows proven, against 33 s with 3 windows at the node cap).
+  bool overlapping_regions = false;
   int max_regions = 256;                // the largest patches are kept first
   double axis_snap_rad = 0.05;          // a patch within this of the grid axes uses the grid
   size_t max_height_map_cells = kDefaultMaxHeightMapCells;
