@@ -196,8 +196,13 @@ OctreeStreamInfo CheckOctreeStream(const uint8_t* data, size_t size, const std::
       in.SkipLine();  // OctoMap skips unknown header lines too
     }
   }
-  if (info.id != "OcTree") {
-    in.Fail("tree type (id) is '" + info.id + "'; only OcTree maps are supported");
+  // A binary (.bt) file holds only the occupancy bits of each node, whatever tree wrote
+  // it: colour and time stamps are not in it, so those trees read as plain OcTrees.
+  const bool occupancy_only = info.kind == OctreeFileKind::kBinary &&
+                              (info.id == "ColorOcTree" || info.id == "OcTreeStamped");
+  if (info.id != "OcTree" && !occupancy_only) {
+    in.Fail("tree type (id) is '" + info.id + "'; only OcTree maps are supported (and .bt files of a "
+            "ColorOcTree or OcTreeStamped, whose binary data is the same)");
   }
   if (!have_res || !std::isfinite(info.resolution_m) ||
       info.resolution_m < limits.min_resolution_m || info.resolution_m > limits.max_resolution_m) {

@@ -6,6 +6,7 @@
 
 #include "planner/base/check.h"
 #include "terrain/convex_hull_2d.h"
+#include "terrain/surface_layers.h"
 
 namespace mfp {
 namespace {
@@ -19,23 +20,25 @@ struct LocalGrid {
 };
 
 // How far (in cells) the side of a safe rectangle [x0, x1] x [y0, y1] (local centre
-// units) facing -x can move out while the strip it sweeps stays at least inset_cells
-// from every cell square outside the mask: for a cell square [a0, a1] x [b0, b1] at
-// distance dy across, the strip's end must keep sqrt(inset^2 - dy^2) along x. mask_at
-// answers in the side's own frame (mirrored or transposed), outside the grid = not in.
-template <typename MaskAt>
-double SideSlack(const MaskAt& mask_at, double x0, double y0, double y1, double inset_cells) {
+// units) facing -x can move out while the strip it sweeps stays at least each outside
+// cell's inset from that cell's square: for a cell square [a0, a1] x [b0, b1] at
+// distance dy across, the strip's end must keep sqrt(inset^2 - dy^2) along x. inset_at
+// answers in the side's own frame (mirrored or transposed): the cell's inset in cells,
+// negative for a patch cell; max_inset_cells bounds them all.
+template <typename InsetAt>
+double SideSlack(const InsetAt& inset_at, double x0, double y0, double y1, double max_inset_cells) {
   double s = 1.0;
-  const int c_lo = static_cast<int>(std::floor(x0 - inset_cells - 2.0));
-  const int c_hi = static_cast<int>(std::ceil(x0 + inset_cells + 1.0));
-  const int r_lo = static_cast<int>(std::floor(y0 - inset_cells - 1.0));
-  const int r_hi = static_cast<int>(std::ceil(y1 + inset_cells + 1.0));
+  const int c_lo = static_cast<int>(std::floor(x0 - max_inset_cells - 2.0));
+  const int c_hi = static_cast<int>(std::ceil(x0 + max_inset_cells + 1.0));
+  const int r_lo = static_cast<int>(std::floor(y0 - max_inset_cells - 1.0));
+  const int r_hi = static_cast<int>(std::ceil(y1 + max_inset_cells + 1.0));
   for (int r = r_lo; r <= r_hi; ++r) {
     const double dy = std::max({0.0, (r - 0.5) - y1, y0 - (r + 0.5)});
-    if (dy >= inset_cells) continue;
-    const double h = std::sqrt(inset_cells * inset_cells - dy * dy);
+    if (dy >= max_inset_cells) continue;
     for (int c = c_lo; c <= c_hi; ++c) {
-      if (mask_at(c, r)) continue;
+      const double inset_cells = inset_at(c, r);
+      if (inset_cells < 0.0 || dy >= inset_cells) continue;
+      const double h = std::sqrt(inset_cells * inset_cells - dy * dy);
       const double a0 = c - 0.5, a1 = c + 0.5;
       if (a0 - x0 >= h - 1e-12) continue;  // far enough on the rectangle's side
       s = std::min(s, x0 - a1 - h);
@@ -118,13 +121,25 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   std::vector<Quad2d> quads;
   if (patch.cells.empty()) return quads;
   const double res = hm.resolution_m;
-  // Offsets of the cells whose squares come closer than the inset to a cell centre.
-  std::vector<Eigen::Vector2i> offsets;
-  const int reach = static_cast<int>(std::ceil(options.inset_m / res + 0.5));
+  const double base_cells = options.inset_m / res;
+  const double drop_cells = options.drop_inset_m / res;
+  // A riser with no uncertainty is kept strictly off (by 0.1 um): a foot disk touching a
+  // wall is not on free surface.
+  const double riser_cells = (options.riser_inset_m > 0.0 ? options.riser_inset_m : 1e-7) / res;
+  const double max_inset_cells = base_cells + std::max(drop_cells, riser_cells);
+  // Offsets of the cells whose squares come closer than the largest inset to a cell
+  // centre, with that distance [cells].
+  struct Offset {
+    int dr, dc;
+    double dist_cells;
+  };
+  std::vector<Offset> offsets;
+  const int reach = static_cast<int>(std::ceil(max_inset_cells + 0.5));
   for (int dr = -reach; dr <= reach; ++dr) {
     for (int dc = -reach; dc <= reach; ++dc) {
       const double ex = std::max(std::abs(dc) - 0.5, 0.0), ey = std::max(std::abs(dr) - 0.5, 0.0);
-      if (res * std::sqrt(ex * ex + ey * ey) < options.inset_m - 1e-12) offsets.emplace_back(dr, dc);
+      const double d = std::sqrt(ex * ex + ey * ey);
+      if (d < max_inset_cells - 1e-12 / res) offsets.push_back({dr, dc, d});
     }
   }
   // Patch mask over its bounding box.
@@ -142,14 +157,51 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   mask.cols = cmax - cmin + 1;
   mask.cells.assign(static_cast<size_t>(mask.rows) * mask.cols, 0);
   for (int cell : patch.cells) mask.At(cell / hm.cols - rmin, cell % hm.cols - cmin) = 1;
+  auto in_mask = [&](int r, int c) {
+    return r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c);
+  };
+  // Each outside cell's inset [cells] over the bounding box plus a ring (-1: a patch
+  // cell): the edge uncertainty is added where the patch may end inside its boundary
+  // cell next to it - every neighbour unless material rises there (solid_beside).
+  const int ring = static_cast<int>(std::ceil(max_inset_cells)) + 2;
+  const int ext_rows = mask.rows + 2 * ring, ext_cols = mask.cols + 2 * ring;
+  std::vector<double> inset_grid(static_cast<size_t>(ext_rows) * ext_cols, base_cells);
+  for (int r = -ring; r < mask.rows + ring; ++r) {
+    for (int c = -ring; c < mask.cols + ring; ++c) {
+      double& inset = inset_grid[static_cast<size_t>(r + ring) * ext_cols + (c + ring)];
+      if (in_mask(r, c)) {
+        inset = -1.0;
+        continue;
+      }
+      bool next_to_patch = false, drop = false;
+      for (int dr = -1; dr <= 1 && !drop; ++dr) {
+        for (int dc = -1; dc <= 1 && !drop; ++dc) {
+          if ((dr == 0 && dc == 0) || !in_mask(r + dr, c + dc)) continue;
+          next_to_patch = true;
+          // From the patch cell (r + dr, c + dc), this cell is neighbour (-dr, -dc).
+          const int p = hm.Index(rmin + r + dr, cmin + c + dc);
+          drop = options.solid_beside == nullptr ||
+                 !((*options.solid_beside)[static_cast<size_t>(p)] & (1u << NeighbourBit(-dr, -dc)));
+        }
+      }
+      if (next_to_patch) inset += drop ? drop_cells : riser_cells;
+      // A cell asking no inset (point feet, no margin) still keeps regions off its
+      // interior: the side and rotated-rectangle tests below need a positive inset.
+      inset = std::max(inset, 1e-6);
+    }
+  }
+  auto inset_at = [&](int r, int c) {
+    if (r < -ring || r >= mask.rows + ring || c < -ring || c >= mask.cols + ring) return max_inset_cells;
+    return inset_grid[static_cast<size_t>(r + ring) * ext_cols + (c + ring)];
+  };
   // Eroded mask: cells whose centre holds a whole foot disk.
   LocalGrid eroded = mask;
   for (int r = 0; r < mask.rows; ++r) {
     for (int c = 0; c < mask.cols; ++c) {
       if (!mask.At(r, c)) continue;
-      for (const Eigen::Vector2i& o : offsets) {
-        const int rr = r + o.x(), cc = c + o.y();
-        if (rr < 0 || rr >= mask.rows || cc < 0 || cc >= mask.cols || !mask.At(rr, cc)) {
+      for (const Offset& o : offsets) {
+        const double inset = inset_at(r + o.dr, c + o.dc);
+        if (inset >= 0.0 && res * o.dist_cells < res * inset - 1e-12) {
           eroded.At(r, c) = 0;
           break;
         }
@@ -182,19 +234,16 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
     // Rectangles of complete dual squares end on cell centres; each side then moves out
     // as far as its strip keeps the inset from every cell outside the patch, so regions
     // lose less than the cell quantisation of the inset.
-    const double inset_cells = options.inset_m / res;
-    auto in_mask = [&](int c, int r) {
-      return r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c);
-    };
+    auto inset_xy = [&](int c, int r) { return inset_at(r, c); };
     for (const CellRect& rect : GreedyRectangleCover(dual.cells, dual.rows, dual.cols, cover)) {
       double x0 = rect.col0, x1 = rect.col0 + rect.cols;
       double y0 = rect.row0, y1 = rect.row0 + rect.rows;
-      if (inset_cells > 0.0) {
+      if (max_inset_cells > 0.0) {
         // -x, +x (mirrored), -y and +y (transposed), each with the sides moved so far.
-        x0 -= SideSlack(in_mask, x0, y0, y1, inset_cells);
-        x1 += SideSlack([&](int c, int r) { return in_mask(-c, r); }, -x1, y0, y1, inset_cells);
-        y0 -= SideSlack([&](int c, int r) { return in_mask(r, c); }, y0, x0, x1, inset_cells);
-        y1 += SideSlack([&](int c, int r) { return in_mask(r, -c); }, -y1, x0, x1, inset_cells);
+        x0 -= SideSlack(inset_xy, x0, y0, y1, max_inset_cells);
+        x1 += SideSlack([&](int c, int r) { return inset_xy(-c, r); }, -x1, y0, y1, max_inset_cells);
+        y0 -= SideSlack([&](int c, int r) { return inset_xy(r, c); }, y0, x0, x1, max_inset_cells);
+        y1 += SideSlack([&](int c, int r) { return inset_xy(r, -c); }, -y1, x0, x1, max_inset_cells);
       }
       quads.push_back({to_world({x0, y0}), to_world({x1, y0}), to_world({x1, y1}),
                        to_world({x0, y1})});
@@ -243,14 +292,18 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
       rotated.At(b, a) = inside;
     }
   }
-  // Cells outside the patch near it: holes, and a ring around the bounding box.
-  const double inset_cells = options.inset_m / res;
-  std::vector<Eigen::Vector2i> outside;
-  const int ring = static_cast<int>(std::ceil(inset_cells)) + 2;
+  // Cells outside the patch near it (holes, and a ring around the bounding box), with
+  // their insets.
+  const double inset_cells = max_inset_cells;
+  struct Outside {
+    int r, c;
+    double inset_cells;
+  };
+  std::vector<Outside> outside;
   for (int r = -ring; r < mask.rows + ring; ++r) {
     for (int c = -ring; c < mask.cols + ring; ++c) {
-      if (r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c)) continue;
-      outside.emplace_back(r, c);
+      if (in_mask(r, c)) continue;
+      outside.push_back({r, c, inset_at(r, c)});
     }
   }
   const double cell_area_m2 = step * step * res * res;
@@ -271,13 +324,14 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
         ymin = std::min(ymin, p.y());
         ymax = std::max(ymax, p.y());
       }
-      for (const Eigen::Vector2i& rc : outside) {
-        const int r = rc.x(), c = rc.y();
+      for (const Outside& out : outside) {
+        const int r = out.r, c = out.c;
         if (r < ymin - inset_cells - 1 || r > ymax + inset_cells + 1 || c < xmin - inset_cells - 1 ||
             c > xmax + inset_cells + 1) {
           continue;
         }
         {
+          const double inset_cells = out.inset_cells;
           // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
           const Eigen::Vector2d centre(c, r);
           const double a = (centre.dot(eu) - umin) / step, bb = (centre.dot(ev) - vmin) / step;

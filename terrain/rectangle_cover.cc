@@ -89,7 +89,7 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
          static_cast<double>(total - left) < options.target_coverage * static_cast<double>(total)) {
     CellRect rect = LargestRectangle(uncovered, rows, cols);
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;
-    GrowInside(mask, rows, cols, &rect);
+    if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
     for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
       for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
         uint8_t& u = uncovered[static_cast<size_t>(r) * cols + c];

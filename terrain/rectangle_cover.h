@@ -19,6 +19,9 @@ struct RectangleCoverOptions {
   double target_coverage = 0.97;  // stop once this fraction of the mask is covered
   int min_rect_cells = 1;         // stop when the largest new rectangle is smaller
   int max_rects = 16;             // and never return more than this
+  // Grow each rectangle over cells already covered (overlapping rectangles); false: the
+  // rectangles only share sides, so a point lies in one of them but on a shared side.
+  bool grow_over_covered = true;
 };
 
 // mask is row-major rows x cols, non-zero = inside.

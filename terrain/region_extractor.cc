@@ -33,6 +33,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("foot_radius_m", o.foot_radius_m, 0.0, 1.0, false);
   RequireRange("edge_margin_m", o.edge_margin_m, 0.0, 1.0, false);
   RequireRange("edge_uncertainty_voxels", o.edge_uncertainty_voxels, 0.0, 10.0, false);
+  RequireRange("riser_uncertainty_voxels", o.riser_uncertainty_voxels, 0.0, 10.0, false);
   if (!(o.clearance_m > 0.0)) {
     throw InputError("region extractor option clearance_m must be > 0 m (infinity: highest surfaces only)");
   }
@@ -134,10 +135,15 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   });
   const double foot_area_m2 = M_PI * options.foot_radius_m * options.foot_radius_m;
   PatchDecompositionOptions dec;
-  dec.inset_m = options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * res;
+  dec.inset_m = options.foot_radius_m + options.edge_margin_m;
+  // The true edge may lie inside the outermost occupied voxel only where the surface has
+  // no material rising beside it (a drop or unseen space), not at a wall or a riser.
+  dec.drop_inset_m = options.edge_uncertainty_voxels * res;
+  dec.riser_inset_m = options.riser_uncertainty_voxels * res;
   dec.axis_snap_rad = options.axis_snap_rad;
   dec.cover.target_coverage = options.target_coverage;
   dec.cover.max_rects = options.max_regions_per_patch;
+  dec.cover.grow_over_covered = options.overlapping_regions;
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
   int patches_done = 0;
   for (const LayerPatch& layer_patch : patches) {
@@ -163,6 +169,7 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
     }
     // Region area on the plane = projected area / cos(slope).
     dec.min_area_xy_m2 = options.min_region_area_m2 * cos_slope;
+    dec.solid_beside = &layers.solid_beside[static_cast<size_t>(layer_patch.layer)];
     const std::vector<Quad2d> quads = DecomposePatch(hm, patch, dec);
     if (quads.empty()) ++stats.patches_too_small;
     for (const Quad2d& quad : quads) {
@@ -194,6 +201,10 @@ RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terra
     // A plain voxelisation marks a voxel occupied when its centre is inside a box, so a
     // true edge lies within half a voxel of the occupied cells' faces.
     own.edge_uncertainty_voxels = std::min(own.edge_uncertainty_voxels, 0.5);
+  } else if (!terrain.scan.sensors_world_m.empty()) {
+    // Occupancy from rays: a voxel any ray hits is occupied, so a wall reaching into a
+    // surface's top voxel would have occupied the voxel above it.
+    own.riser_uncertainty_voxels = 0.0;
   }
   return ExtractRegions(MakeTerrainMap(terrain), own);
 }

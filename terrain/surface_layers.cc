@@ -82,6 +82,14 @@ Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) 
   return cols;
 }
 
+// True when voxels [z_lo, z_hi) of column c are all occupied (runs are merged).
+bool ColumnCovers(const Columns& cols, int c, long long z_lo, long long z_hi) {
+  for (const Interval* it = cols.begin(c); it != cols.end(c); ++it) {
+    if (it->lo <= z_lo && it->hi >= z_hi) return true;
+  }
+  return false;
+}
+
 bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
   for (const Interval* it = cols.begin(c); it != cols.end(c); ++it) {
     if (it->lo < z_hi && it->hi > z_lo) return true;
@@ -140,6 +148,7 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   const int cells = grid.rows * grid.cols;
   if (cells == 0) {
     out.layers.push_back(grid);
+    out.solid_beside.emplace_back();
     return out;
   }
   const Columns occ = ColumnsOf(map.leaves, grid);
@@ -269,6 +278,31 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
       // Twice: a hole beside a displaced cell is filled once that cell is back.
       for (int pass = 0; pass < 2; ++pass) out.noise_cells_filled += FillSingleCellNoise(&layer);
     }
+  }
+  // Material rising beside each surface cell, from the final (noise-repaired) heights.
+  for (const HeightMap& layer : out.layers) {
+    std::vector<uint8_t> bits(static_cast<size_t>(cells), 0);
+    for (int r = 0; r < grid.rows; ++r) {
+      for (int c = 0; c < grid.cols; ++c) {
+        const float h = layer.height_m[static_cast<size_t>(grid.Index(r, c))];
+        if (std::isnan(h)) continue;
+        const long long top_voxel = std::llround(h / res) - 1;
+        uint8_t b = 0;
+        for (int dr = -1; dr <= 1; ++dr) {
+          for (int dc = -1; dc <= 1; ++dc) {
+            if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
+            const int n = grid.Index(r + dr, c + dc);
+            if (ColumnCovers(occ, n, top_voxel + 1, top_voxel + 2) &&
+                (ColumnCovers(occ, n, top_voxel, top_voxel + 1) ||
+                 ColumnCovers(occ, n, top_voxel + 2, top_voxel + 3))) {
+              b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
+            }
+          }
+        }
+        bits[static_cast<size_t>(grid.Index(r, c))] = b;
+      }
+    }
+    out.solid_beside.push_back(std::move(bits));
   }
   return out;
 }

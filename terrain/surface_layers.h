@@ -10,6 +10,7 @@
 // the same grid, no two sheets of a layer sharing a column - so the height-map pipeline
 // runs on each layer. Plain Eigen.
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -29,8 +30,24 @@ struct SurfaceLayerOptions {
   size_t max_cells = kDefaultMaxHeightMapCells;
 };
 
+// Bit of neighbour (row + dr, col + dc), dr, dc in {-1, 0, 1} and not both 0, in a
+// SurfaceLayers::solid_beside entry.
+inline int NeighbourBit(int dr, int dc) {
+  const int k = (dr + 1) * 3 + (dc + 1);
+  return k < 4 ? k : k - 1;
+}
+
 struct SurfaceLayers {
   std::vector<HeightMap> layers;  // layer 0 holds the largest sheets; all share one grid
+  // Per layer and cell, one bit per neighbour column (NeighbourBit): set when material
+  // rises beside the cell's surface from its level - the neighbour column is occupied in
+  // the voxel above the cell's top voxel and in the one above that or the top voxel's
+  // own level (a wall, a riser, a higher step). There the surface does not end inside
+  // its top voxel: it runs on to the material beside it, unless a gap narrower than a
+  // voxel separates them, which no map of this resolution can show anyway. Where the
+  // bit is clear (a drop, unknown space, the map's border) the true edge may lie
+  // anywhere inside the top voxel.
+  std::vector<std::vector<uint8_t>> solid_beside;
   int candidates = 0;             // surfaces that passed every test
   int no_room_above = 0;          // surfaces with an occupied voxel within the clearance
   int not_seen_from_above = 0;    // surfaces whose top voxel is not known free

@@ -23,7 +23,7 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx, doub
 
 TerrainDescription ParseTerrainDescription(const YAML::Node& terrain_node, const YamlContext& ctx) {
   // edge_margin and source are region-extraction settings of scenarios (scenario_yaml.h).
-  RejectUnknownKeys(terrain_node, ctx, {"resolution", "boxes", "scan", "noise", "edge_margin", "source"});
+  RejectUnknownKeys(terrain_node, ctx, {"resolution", "boxes", "scan", "noise", "edge_margin", "min_region_area", "overlapping_regions", "source"});
   TerrainDescription terrain;
   if (auto res = OptionalDouble(terrain_node, ctx, "resolution", 0.001, 1.0)) {
     terrain.resolution_m = *res;

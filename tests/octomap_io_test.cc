@@ -61,6 +61,23 @@ TEST(OctomapIoTest, BinaryAndFullFilesRoundTripToTheSameRegions) {
   std::filesystem::remove(path);
 }
 
+TEST(OctomapIoTest, ColorOcTreeBinaryReadsAsOcTree) {
+  // Public sample maps (OctoMap's fr_078_tidyup.bt) are colour trees saved as .bt: the
+  // binary data is occupancy only, so only the header's id differs from an OcTree's.
+  std::vector<uint8_t> bytes = OccupancyMapBytes(VoxelizeTerrain(StepTerrain()), true);
+  std::string text(bytes.begin(), bytes.end());
+  const size_t id = text.find("id OcTree\n");
+  ASSERT_NE(id, std::string::npos);
+  const OccupancyMap plain = LoadMapBytes(bytes, "plain");
+  for (const std::string tree : {"ColorOcTree", "OcTreeStamped"}) {
+    std::string renamed = text;
+    renamed.replace(id, std::strlen("id OcTree\n"), "id " + tree + "\n");
+    const OccupancyMap map = LoadMapBytes(Bytes(renamed), tree);
+    EXPECT_EQ(map.leaves.size(), plain.leaves.size()) << tree;
+    EXPECT_EQ(map.free_leaves.size(), plain.free_leaves.size()) << tree;
+  }
+}
+
 TEST(OctomapIoTest, MissingFileAndBadExtensionAreInputErrors) {
   EXPECT_THROW(LoadMapFile("/nonexistent/map.bt"), InputError);
   EXPECT_THROW(WriteTerrainMap(FlatTerrain(), TestTempPath("map.png")), InputError);
@@ -148,8 +165,13 @@ TEST(OctomapIoTest, HugeDeclaredSizesAreRejectedBeforeReading) {
 TEST(OctomapIoTest, HeaderProblemsNameTheField) {
   EXPECT_NE(ErrorOf({}).find("empty"), std::string::npos);
   EXPECT_NE(ErrorOf(Bytes("hello\n")).find("first line"), std::string::npos);
-  EXPECT_NE(ErrorOf(Bytes("# Octomap OcTree binary file\nid ColorOcTree\nsize 1\nres 0.1\ndata\n"))
+  // A full (.ot) colour tree stores colours in its data: refused. Its .bt holds only
+  // occupancy, the same encoding as an OcTree's (ColorOcTreeBinaryReadsAsOcTree).
+  EXPECT_NE(ErrorOf(Bytes("# Octomap OcTree file\nid ColorOcTree\nsize 1\nres 0.1\ndata\n"))
                 .find("ColorOcTree"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Bytes("# Octomap OcTree binary file\nid CountingOcTree\nsize 1\nres 0.1\ndata\n"))
+                .find("CountingOcTree"),
             std::string::npos);
   EXPECT_NE(ErrorOf(Bytes("# Octomap OcTree binary file\nid OcTree\nsize 1\nres -3\ndata\n"))
                 .find("'res'"),

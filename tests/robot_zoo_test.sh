@@ -4,7 +4,8 @@
 # (mfp-plan --validate): a flat walk to a goal 1.5 body lengths ahead turned 0.3 rad, and
 # a step up onto a block of half the derived dz_max; then every footstep is judged against
 # the boxes the world was built from (mfp plans on regions extracted from their voxel
-# map). Robots with planar legs must be refused with a message that names them.
+# map). Robots with planar legs must be refused with a message that names them. ANYmal C
+# also walks 6 m down the scanned corridor of config/scenarios/long/.
 #
 # The package is installed with pip into a cached virtual environment
 # (MFP_ZOO_VENV, default ~/.cache/mfp/zoo-venv); meshes are not needed, only the URDFs.
@@ -144,6 +145,29 @@ while read -r name urdf; do
     echo "ok: $name refused: $(head -c 160 "$WORK/$name.robot")"
   fi
 done <<<"$PLANAR"
+
+# ANYmal C walks 6 m down the scanned corridor (8 cm voxels, doors, ceiling, noise) of
+# config/scenarios/long/: the goal reached, every constraint kept, and every footstep on
+# the true floor with its foot radius + the 1 cm edge margin around it (mfp-terrain).
+corridor="$SOURCE_DIR/config/scenarios/long/littledog_corridor_scan.yaml"
+anymal="$ROBOTS/anymal_c_simple_description/urdf/anymal.urdf"
+sed -e "s#^robot: .*#robot: $anymal#" -e "s#^name: .*#name: anymal_c_corridor_scan#" "$corridor" \
+  >"$WORK/anymal_c_corridor.yaml"
+log="$WORK/anymal_c_corridor.log"
+if ! "$BUILD_DIR/tools/mfp-plan" --scenario "$WORK/anymal_c_corridor.yaml" --validate --time-limit 120 \
+     --json "$WORK/anymal_c_corridor.plan.json" >"$log" 2>&1; then
+  fail "anymal_c corridor: mfp-plan exit $?: $(tail -3 "$log" | tr '\n' ' ')"
+elif ! grep -q '"reaches_goal": *true' "$WORK/anymal_c_corridor.plan.json"; then
+  fail "anymal_c corridor: the plan does not reach the goal: $(grep -o 'status .*' "$log" | tail -1)"
+else
+  radius=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["foot_radius"] + 0.01)' "$WORK/anymal_c.json")
+  if ! checked=$("$BUILD_DIR/tools/mfp-terrain" "$WORK/anymal_c_corridor.yaml" \
+                 --check-plan "$WORK/anymal_c_corridor.plan.json" --radius "$radius" 2>&1); then
+    fail "anymal_c corridor: against the true floor: $checked"
+  else
+    echo "ok: anymal_c corridor: $(grep -o 'status .*' "$log" | tail -1 | cut -c1-110); $(echo "$checked" | tail -1)"
+  fi
+fi
 
 [ "$failures" = 0 ] || { echo "zoo: $failures failures"; exit 1; }
 echo "zoo: all robots passed"

@@ -47,8 +47,11 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
   const YAML::Node terrain = root["terrain"];
   const YamlContext tctx = ctx.Child("terrain");
   RejectUnknownKeys(terrain, tctx,
-                    {"resolution", "boxes", "regions", "map", "source", "scan", "noise", "edge_margin"});
+                    {"resolution", "boxes", "regions", "map", "source", "scan", "noise", "edge_margin", "min_region_area",
+                     "overlapping_regions"});
   s.edge_margin_m = OptionalDouble(terrain, tctx, "edge_margin", 0.0, 0.5);
+  s.min_region_area_m2 = OptionalDouble(terrain, tctx, "min_region_area", 0.0, 100.0);
+  s.overlapping_regions = OptionalBool(terrain, tctx, "overlapping_regions");
   if (terrain["boxes"]) {
     YAML::Node boxes_only;
     boxes_only["boxes"] = terrain["boxes"];
@@ -128,6 +131,8 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
   options.clearance_m = clearance_m;
   options.deadline = deadline;
   if (scenario.edge_margin_m) options.edge_margin_m = *scenario.edge_margin_m;
+  if (scenario.min_region_area_m2) options.min_region_area_m2 = *scenario.min_region_area_m2;
+  if (scenario.overlapping_regions) options.overlapping_regions = *scenario.overlapping_regions;
   if (!scenario.map_path.empty()) {
     RegionExtractionResult from_map = ExtractRegions(LoadMapFile(scenario.map_path), options);
     if (note != nullptr) *note = from_map.message;

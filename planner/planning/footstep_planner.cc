@@ -365,6 +365,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.elapsed_s = elapsed();
       progress.window_result = result;
       progress.polish = polished.report;
+      progress.regions = static_cast<int>(problem.regions.size());
       on_progress(progress);
     }
     if (kept == 0 && !plan.reaches_goal &&
