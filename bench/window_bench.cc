@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
                 robot.name.c_str(), robot.num_legs(), regions.size(), extract_s);
     std::printf("%6s %8s %8s %9s %9s  %s\n", "window", "regions", "nodes", "time_s", "gap", "status");
     const mfp::RelaxationSolverSet solvers =
-        mfp::MakeRelaxationSolvers(scenario.options.relaxation_solver, scenario.options.threads);
+        mfp::MakeRelaxationSolvers(scenario.options.solvers);
     int max_regions = 0;
     double slowest_s = 0.0;
     const mfp::Plan plan = mfp::PlanFootsteps(
