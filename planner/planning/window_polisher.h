@@ -37,11 +37,21 @@ struct PolishOptions {
   // The solver first sees only the inequalities within this of their bound at the MIQP's
   // point [m, or rad for yaw rows]; the others are checked after, and added when violated.
   double active_slack = 0.02;
+  // Method: sequential QP on mfp's sparse interior point first (sequential_qp); NLopt's
+  // SLSQP when that ends outside the constraints (slsqp_fallback), or alone.
+  bool sequential_qp = true;
+  bool slsqp_fallback = true;
+  double sqp_trust_rad = 0.05;        // first trust region of the yaws per round
+  double sqp_min_trust_rad = 1e-3;    // rounds stop once a failing round shrinks it below this
+  int sqp_max_rounds = 6;
+  double sqp_relative_gain = 1e-6;    // rounds stop once one gains less than this x |cost|
 };
 
 struct PolishReport {
   bool attempted = false;
   bool accepted = false;            // the polished footsteps replaced the MIQP's
+  bool exact = false;               // the footsteps used meet every constraint with exact sin/cos
+                                    // (polished, or the MIQP's when its chords happen to fit)
   double time_s = 0.0;
   double objective_before = 0.0;    // the MIQP solution's objective (chords)
   double objective_after = 0.0;     // the polished plan's objective (exact); = before when not accepted
@@ -55,6 +65,12 @@ struct PolishedWindow {
   std::vector<Footstep> footsteps;  // as MiqpFormulation::ExtractFootsteps, start stance included
   PolishReport report;
 };
+
+// A bound on |(R_chords(theta) - R(theta)) o|_inf over every yaw of the formulation's
+// grid and every leg's nominal offset o [m]: the reference and reachability boxes of a
+// formulation built with l_bnd and d_lim shrunk by this hold with exact trigonometry at
+// every solution of its MIQP (a sound inner approximation).
+double ChordErrorBound(const MiqpFormulation& formulation);
 
 // miqp_x: a solution of formulation.miqp() (integer variables integral). With
 // options.enabled false, the MIQP's footsteps and a report with attempted = false.
