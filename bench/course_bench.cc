@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -95,7 +94,6 @@ int RunCourseBench(const CourseBenchOptions& o) {
       const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
       plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(), [&](const PlanProgress& p) {
         ++windows;
-        if (std::getenv("MFP_POLISH_TRACE")) std::fprintf(stderr, "w%d solve %.4f polish %.4f exact %d obj %.4f -> %.4f: %s\n", p.window, p.window_result.solve_time_s, p.polish.time_s, p.polish.exact, p.polish.objective_before, p.polish.objective_after, p.polish.stops.c_str());
         if (!p.polish.exact) ++inexact;
         polish_s += p.polish.time_s;
         solve_sum += p.window_result.solve_time_s;
