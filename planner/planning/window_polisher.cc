@@ -406,14 +406,21 @@ struct SequentialQpResult {
 };
 
 // One QP of the sequential method at xk: the cost, every selected side linearised at xk,
-// each yaw within `trust` of xk's. trust 0 holds the yaws: the rows are then linear in
+// each yaw within `trust` of xk's; *predicted (may be null): the cost's decrease the QP
+// promises, relative to the cost at xk. trust 0 holds the yaws: the rows are then linear in
 // the footsteps and exact (R(yaw) is a constant matrix), so the QP's solution meets the
 // exact constraints up to the interior point's tolerance. Returns xk when the solve fails.
 Eigen::VectorXd QpStep(const WindowProgram& program, const Eigen::VectorXd& xk, double trust,
-                       const Deadline& deadline, int* iterations) {
+                       const Deadline& deadline, int* iterations, double* predicted) {
   const int nv = static_cast<int>(xk.size());
   Miqp qp;
   program.QuadraticModel(xk, &qp.Q, &qp.c, &qp.constant);
+  // The cost scaled to about 1 at xk: the interior point's elastic rows (penalty 1e6 per
+  // unit of violation) then hold exactly, as every dual stays far below the penalty.
+  const double scale = 1.0 / std::max(1.0, std::abs(program.Objective(xk, nullptr)));
+  qp.Q *= scale;
+  qp.c *= scale;
+  qp.constant *= scale;
   program.LinearisedSides(xk, &qp.A, &qp.row_upper);
   qp.row_lower = Eigen::VectorXd::Constant(qp.A.rows(), -kInfinity);
   qp.var_lower = program.lower();
@@ -436,6 +443,8 @@ Eigen::VectorXd QpStep(const WindowProgram& program, const Eigen::VectorXd& xk, 
   ipm.tolerance = 1e-10;
   const RelaxationResult r = SolveQpInteriorPoint(qp, qp.var_lower, qp.var_upper, &xk, ipm);
   *iterations += r.iterations;
+  // The model's decrease from xk, relative to the cost at xk (the model is exact at xk).
+  if (predicted != nullptr) *predicted = r.status == RelaxationStatus::kSolved ? scale * program.Objective(xk, nullptr) - r.objective : kInfinity;
   if (r.x.size() != nv || !r.x.allFinite() || r.status == RelaxationStatus::kFailed) return xk;
   Eigen::VectorXd x = r.x.cwiseMax(program.lower()).cwiseMin(program.upper());
   if (trust == 0.0) {
@@ -444,10 +453,13 @@ Eigen::VectorXd QpStep(const WindowProgram& program, const Eigen::VectorXd& xk, 
   return x;
 }
 
-// Sequential convex programming with the integer assignment fixed: first the footsteps
-// alone for the MIQP's yaws (a QP, exact), then rounds of a QP with the yaws free within a
-// trust region and sin/cos linearised, each followed by the footsteps-alone QP at the new
-// yaws, kept when the exact cost falls. Every accepted iterate is exact-feasible, so the
+// Sequential convex programming with the integer assignment fixed. Each round: a QP with
+// the yaws free within a trust region and sin/cos linearised at the current point, then
+// the footsteps-alone QP at the yaws it chose (exact: R(yaw) is then constant); the
+// round's point is kept when it is exact and, after the first, cheaper. Rounds stop when
+// the model promises or the round wins less than sqp_relative_gain of the cost; a round
+// that ends outside the constraints shrinks the trust region. When no round gives an
+// exact point, the footsteps alone at the MIQP's yaws. Every kept point is exact, so the
 // method can stop at any round with a usable plan.
 SequentialQpResult PolishBySequentialQp(WindowProgram& program, const PolishOptions& options,
                                         double time_limit_s) {
@@ -457,36 +469,40 @@ SequentialQpResult PolishBySequentialQp(WindowProgram& program, const PolishOpti
   program.SelectNear(program.start(), kInfinity);
   int qps = 0, iterations = 0;
   auto feasible = [&](const Eigen::VectorXd& x) { return program.MaxViolation(x) <= options.feasibility_tolerance_m; };
-  auto step = [&](const Eigen::VectorXd& xk, double trust) {
+  auto step = [&](const Eigen::VectorXd& xk, double trust, double* predicted) {
     ++qps;
-    return QpStep(program, xk, trust, deadline, &iterations);
+    return QpStep(program, xk, trust, deadline, &iterations, predicted);
   };
   SequentialQpResult out;
-  out.x = step(program.start(), 0.0);
-  std::string how = "held yaws";
-  if (!feasible(out.x) && !deadline.Expired()) {
-    // The MIQP's yaws admit no exact footsteps: let the yaws move first.
-    out.x = step(step(program.start(), options.sqp_trust_rad), 0.0);
-    how = "moved yaws";
-  }
+  out.x = program.start();
+  bool exact = false;
+  double best = kInfinity, trust = options.sqp_trust_rad;
   int rounds = 0;
-  if (feasible(out.x) && !program.YawVariables().empty()) {
-    double best = program.Objective(out.x, nullptr);
-    double trust = options.sqp_trust_rad;
-    while (rounds < options.sqp_max_rounds && trust >= options.sqp_min_trust_rad && !deadline.Expired()) {
-      ++rounds;
-      const Eigen::VectorXd trial = step(step(out.x, trust), 0.0);
-      const double value = program.Objective(trial, nullptr);
-      if (!feasible(trial)) {  // the linearised step went too far from the circle
-        trust *= 0.25;
-        continue;
-      }
-      if (value >= best) break;
-      const double gain = best - value;
-      out.x = trial;
-      best = value;
-      if (gain <= options.sqp_relative_gain * std::max(1.0, std::abs(best))) break;
+  std::string how = "yaws moved";
+  const bool has_yaws = !program.YawVariables().empty();
+  while (has_yaws && rounds < options.sqp_max_rounds && trust >= options.sqp_min_trust_rad && !deadline.Expired()) {
+    ++rounds;
+    double predicted = kInfinity;
+    const Eigen::VectorXd moved = step(out.x, trust, &predicted);
+    // The model (exact cost, linearised rows) promises too little to pay for a round.
+    if (exact && predicted <= options.sqp_relative_gain) break;
+    const Eigen::VectorXd trial = step(moved, 0.0, nullptr);
+    if (!feasible(trial)) {  // the linearised step went too far from the circle
+      trust *= 0.25;
+      continue;
     }
+    const double value = program.Objective(trial, nullptr);
+    if (exact && value >= best) break;
+    const double gain = best - value;
+    out.x = trial;
+    best = value;
+    exact = true;
+    if (gain <= options.sqp_relative_gain * std::max(1.0, std::abs(best))) break;
+  }
+  if (!exact && !deadline.Expired()) {
+    // No yaw to move, or no round made the footsteps exact: the MIQP's yaws held.
+    out.x = step(program.start(), 0.0, nullptr);
+    how = "yaws held";
   }
   std::ostringstream msg;
   msg.precision(3);
