@@ -339,7 +339,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     // A window the polisher cannot make exact is planned again within the chords' error
     // (exact_window.h); when that finds no plan the plan ends before this window.
     ExactReplan replan;
-    if (polish.enabled && !polished.report.exact) {
+    if (!polished.report.message.empty() && !polish.replan_when_inexact && polish_note.empty()) {
+      polish_note = "window " + std::to_string(plan.windows) + ": " + polished.report.message;
+    }
+    if (polish.enabled && polish.replan_when_inexact && !polished.report.exact) {
       bnb.deadline = request.deadline.Within(time_limit - elapsed());
       const double polish_s = polished.report.time_s;
       replan = ReplanWithinChordError(formulation, solvers, bnb, polish);
@@ -396,6 +399,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.elapsed_s = elapsed();
       progress.window_result = result;
       progress.polish = polished.report;
+      progress.replanned = replan.planned;
       on_progress(progress);
     }
     if (kept == 0 && !plan.reaches_goal &&

@@ -91,6 +91,7 @@ struct PlanProgress {
   double elapsed_s = 0.0;
   BranchAndBoundResult window_result;
   PolishReport polish;     // the polisher's account of this window
+  bool replanned = false;  // planned again within the chords' error (exact_window.h)
 };
 
 // Nominal stance of the robot at a body pose, feet on the highest region below each

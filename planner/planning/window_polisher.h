@@ -45,6 +45,10 @@ struct PolishOptions {
   double sqp_min_trust_rad = 1e-3;    // rounds stop once a failing round shrinks it below this
   int sqp_max_rounds = 6;
   double sqp_relative_gain = 1e-6;    // rounds stop once one gains less than this x |cost|
+  // The planner's answer to a window the polisher cannot make exact: plan it again with
+  // the boxes shrunk by the chords' error (exact_window.h). false: keep the MIQP's plan
+  // and say so in the plan's message.
+  bool replan_when_inexact = true;
 };
 
 struct PolishReport {
