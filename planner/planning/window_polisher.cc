@@ -696,6 +696,18 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
     program.SelectNear(program.start(), kInfinity);
     result = attempt();
   }
+  if (seconds() < options.time_limit_s) {
+    // SLSQP's and the projection's points meet the rows only to their tolerances (up to
+    // the accepted 1e-6): the footsteps-alone QP at their yaws lands inside the margin.
+    program.SelectNear(program.start(), kInfinity);
+    int iterations = 0;
+    const Eigen::VectorXd inside =
+        QpStep(program, result.x, 0.0, Deadline::After(options.time_limit_s - seconds()), &iterations, nullptr);
+    if (program.MaxViolation(inside) < program.MaxViolation(result.x)) {
+      result.x = inside;
+      stop += ", footsteps QP";
+    }
+  }
   if (feasible(result.x)) {
     report.stops = stop;
     Accept(program, result.x, seconds(), &out);
