@@ -15,9 +15,11 @@
 //   trimming        a trimmed step stays where its leg stood (f_i = f_i-n, by substitution)
 // p_i is the centre of contacts of the n latest footsteps (paper eq. 2). The boxes are
 // tightened by margin_m so that the solver's own tolerance leaves the plan inside them.
-// It starts from the MIQP's solution (NLopt's SLSQP behind nonlinear_program.h, with a
-// Gauss-Newton feasibility projection when SLSQP stops outside the constraints). The
-// result is used only when every constraint holds
+// It starts from the MIQP's solution: first a sequential QP on mfp's sparse interior
+// point (rounds of a trust-region QP with sin/cos linearised, each followed by the exact
+// QP of the footsteps alone at the yaws it chose); where that ends outside the
+// constraints, NLopt's SLSQP behind nonlinear_program.h, with a Gauss-Newton feasibility
+// projection when SLSQP stops outside them. The result is used only when every constraint holds
 // within feasibility_tolerance_m (rad for yaw rows); otherwise the caller keeps the
 // MIQP's plan and says why (PolishReport::message).
 #include <Eigen/Core>
