@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "bench/course_generator.h"
 #include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
+#include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
@@ -44,12 +46,18 @@ int RunCourseBench(const CourseBenchOptions& o) {
   std::printf("\nGenerated courses (seed %llu, %d courses, %.0f s per plan, regions: %s)\n",
               static_cast<unsigned long long>(o.seed), o.courses, o.time_limit_s,
               o.top_face_regions ? "true top faces inset by the edge margin" : "extracted from the voxelised boxes");
-  std::printf("%-32s %-6s %-14s %6s %8s %6s %-9s %s\n", "course", "route", "status", "steps", "time_s", "goal",
-              "verdict", "cause");
+  std::printf("%-32s %-6s %-14s %6s %8s %6s %-9s %10s %5s %6s %6s %8s %8s %s\n", "course", "route", "status", "steps",
+              "time_s", "goal", "verdict", "exact_exc", "wins", "inexact", "replan", "polish_s", "max_pol", "cause");
   int generator_gave_up = 0;
   int with_route = 0, with_route_ok = 0, without_route = 0, no_route_fast = 0;
   std::vector<double> times, steps_ok;
   std::map<std::string, int> causes;
+  // Exact trigonometry (issue 18): the largest reference/reachability excess of any plan
+  // under exact R(yaw), windows whose footsteps are not exact, goal claims whose final
+  // body yaw misses the goal's.
+  double worst_excess = -kInfinity;
+  int inexact_windows = 0, replanned_windows = 0, windows_all = 0, false_yaw_claims = 0;
+  double polish_sum = 0.0, solve_sum = 0.0;
   for (int i = 0; i < o.courses; ++i) {
     const int r = i % static_cast<int>(robots.size());
     const CourseKind kind = kinds[(i / robots.size()) % kinds.size()];
@@ -76,13 +84,22 @@ int RunCourseBench(const CourseBenchOptions& o) {
     const RobotModel& robot = robots[r];
     Plan plan;
     std::string cause;
+    std::vector<ConvexRegion> regions;
+    int windows = 0, inexact = 0, replanned = 0;
+    double polish_s = 0.0, max_polish_ratio = 0.0;
     try {
-      const std::vector<ConvexRegion> regions =
-          o.top_face_regions ? TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad)
-                             : ScenarioRegions(scenario, robot);
+      regions = o.top_face_regions ? TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad)
+                                   : ScenarioRegions(scenario, robot);
       const PlanRequest request = ScenarioRequest(scenario, robot, regions);
       const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
-      plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
+      plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(), [&](const PlanProgress& p) {
+        ++windows;
+        if (!p.polish.exact) ++inexact;
+        if (p.replanned) ++replanned;
+        polish_s += p.polish.time_s;
+        solve_sum += p.window_result.solve_time_s;
+        max_polish_ratio = std::max(max_polish_ratio, p.polish.time_s / std::max(p.window_result.solve_time_s, 1e-9));
+      });
     } catch (const std::exception& e) {
       plan.status = SolveStatus::kInternalError;
       plan.message = e.what();
@@ -124,9 +141,24 @@ int RunCourseBench(const CourseBenchOptions& o) {
       verdict = ok ? "ok" : "FAIL";
     }
     if (!cause.empty()) ++causes[cause];
-    std::printf("%-32s %-6s %-14s %6d %8.2f %6s %-9s %s %s\n", course.name.c_str(), course.route_exists ? "yes" : "cut",
-                ToString(plan.status).c_str(), steps, time_s, plan.reaches_goal ? "yes" : "no", verdict.c_str(),
-                cause.c_str(), cause.empty() ? "" : ("(" + plan.message + ")").c_str());
+    double excess = -kInfinity;
+    if (steps > 0) {
+      const ExactExcess e = MeasureExactExcess(robot, regions, plan);
+      excess = std::max(e.reference_box_m, e.reachability_box_m);
+      worst_excess = std::max(worst_excess, excess);
+    }
+    if (plan.reaches_goal) {
+      const double miss = std::remainder(FinalStanceYaw(robot, plan.footsteps) - course.goal.yaw_rad, 2.0 * M_PI);
+      if (std::abs(miss) > GoalSpec{}.yaw_tolerance_rad) ++false_yaw_claims;
+    }
+    windows_all += windows;
+    inexact_windows += inexact;
+    replanned_windows += replanned;
+    polish_sum += polish_s;
+    std::printf("%-32s %-6s %-14s %6d %8.2f %6s %-9s %10.2e %5d %6d %6d %8.4f %8.3f %s %s\n", course.name.c_str(),
+                course.route_exists ? "yes" : "cut", ToString(plan.status).c_str(), steps, time_s,
+                plan.reaches_goal ? "yes" : "no", verdict.c_str(), steps > 0 ? excess : 0.0, windows, inexact, replanned, polish_s,
+                max_polish_ratio, cause.c_str(), cause.empty() ? "" : ("(" + plan.message + ")").c_str());
     std::fflush(stdout);
   }
   std::printf("\nSummary\n");
@@ -137,6 +169,11 @@ int RunCourseBench(const CourseBenchOptions& o) {
               Quantile(times, 0.9));
   std::printf("  steps (valid plans): median %.0f, 90th percentile %.0f\n", Quantile(steps_ok, 0.5),
               Quantile(steps_ok, 0.9));
+  std::printf("  exact trigonometry: largest reference/reachability excess %.2e m; %d of %d windows not exact; "
+              "%d re-planned within the chords' error; %d goal claims whose final yaw misses the goal's\n",
+              worst_excess, inexact_windows, windows_all, replanned_windows, false_yaw_claims);
+  std::printf("  polisher: %.3f s over all windows against %.3f s of search (%.1f %%)\n", polish_sum, solve_sum,
+              100.0 * polish_sum / std::max(solve_sum, 1e-9));
   if (generator_gave_up > 0) std::printf("  generator gave up on %d courses (not counted)\n", generator_gave_up);
   std::printf("  failures by cause:");
   if (causes.empty()) std::printf(" none");

@@ -24,8 +24,7 @@ TEST(PlanValidation, CatchesEachKindOfViolation) {
   const Plan plan = PlanFootsteps(robot, regions, request, scenario.options, *solver);
   ASSERT_TRUE(HasPlan(plan.status));
   ASSERT_EQ(plan.footsteps.size(), 12u);
-  ValidationTolerances tol;
-  tol.rotation_m = RotationTolerance(robot, scenario.options.formulation.yaw_segment_rad);
+  const ValidationTolerances tol;  // exact trigonometry
   const GoalSpec goal{scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad};
   ASSERT_TRUE(ValidatePlan(robot, regions, plan, goal, tol).empty());
   auto expect_violation = [&](const Plan& bad, const std::string& what) {

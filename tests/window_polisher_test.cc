@@ -7,6 +7,7 @@
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/planning/exact_window.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/window_polisher.h"
@@ -77,16 +78,79 @@ TEST(WindowPolisher, ReportsEachWindowAndFallsBackWithAMessageWhenOutOfTime) {
   EXPECT_LE(reports[0].excess_after, 1e-6);
   EXPECT_GT(reports[0].time_s, 0.0);
 
-  // No time to polish: the window keeps the MIQP's plan and the plan says so.
+  // No time to polish: the window is planned again with boxes shrunk by the chords'
+  // error, whose footsteps are exact without the polisher, and the plan says so.
   options.polish.time_limit_s = 1e-9;
+  reports.clear();
+  const Plan replanned = PlanFootsteps(c.robot, c.regions, c.request, options, *solver,
+                                       [&](const PlanProgress& p) { reports.push_back(p.polish); });
+  ASSERT_TRUE(HasPlan(replanned.status)) << replanned.message;
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_TRUE(reports[0].exact);
+  EXPECT_NE(replanned.message.find("re-planned with l_bnd and d_lim shrunk"), std::string::npos) << replanned.message;
+  EXPECT_LE(LargestBoxExcess(c, replanned), 1e-6);
+
+  // ... and with the re-plan turned off, the window keeps the MIQP's plan and says so.
+  options.polish.replan_when_inexact = false;
   reports.clear();
   const Plan kept = PlanFootsteps(c.robot, c.regions, c.request, options, *solver,
                                   [&](const PlanProgress& p) { reports.push_back(p.polish); });
   ASSERT_TRUE(HasPlan(kept.status));
   ASSERT_EQ(reports.size(), 1u);
   EXPECT_FALSE(reports[0].accepted);
+  EXPECT_FALSE(reports[0].exact);
   EXPECT_NE(kept.message.find("kept the MIQP's plan"), std::string::npos) << kept.message;
   EXPECT_GT(LargestBoxExcess(c, kept), 1e-5);
+}
+
+TEST(WindowPolisher, ChordErrorBoundCoversEveryYawOfTheGrid) {
+  // |(R_chords(theta) - R(theta)) o|_inf over a fine sweep of every segment and every
+  // leg: within the bound, and the bound not more than 2x the worst seen.
+  const Course c = LoadCourse("hexapod_stepping_stones_90.yaml");
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  const double bound = ChordErrorBound(formulation);
+  const std::vector<double>& bp = formulation.yaw_breakpoints();
+  ASSERT_GE(bp.size(), 2u);
+  double worst = 0.0;
+  for (size_t k = 0; k + 1 < bp.size(); ++k) {
+    const Chord s = ChordOf(true, bp[k], bp[k + 1]), co = ChordOf(false, bp[k], bp[k + 1]);
+    for (int j = 0; j <= 1000; ++j) {
+      const double t = bp[k] + (bp[k + 1] - bp[k]) * j / 1000.0;
+      const double ds = s.At(t) - std::sin(t), dc = co.At(t) - std::cos(t);
+      for (const LegModel& leg : c.robot.legs) {
+        const Eigen::Vector2d o = leg.nominal_offset_body_m;
+        worst = std::max({worst, std::abs(dc * o.x() - ds * o.y()), std::abs(ds * o.x() + dc * o.y())});
+      }
+    }
+  }
+  EXPECT_LE(worst, bound);
+  EXPECT_GT(worst, 0.5 * bound);
+}
+
+TEST(WindowPolisher, AWindowPlannedWithinTheChordErrorIsExactWithoutThePolisher) {
+  // The first window of the hexapod stones, planned with l_bnd and d_lim shrunk by
+  // ChordErrorBound: the MIQP's own footsteps (chords, no polish) meet the true boxes
+  // with exact R(yaw); the same window's unshrunk MIQP footsteps do not.
+  const Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
+  const PlannerOptions& options = c.scenario.options;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
+  const auto solver = MakeRelaxationSolver(options.relaxation_solver);
+  BranchAndBoundOptions bnb = options.branch_and_bound;
+  bnb.time_limit_s = 60.0;
+  PolishOptions no_polish;
+  no_polish.enabled = false;
+  const ExactReplan replan = ReplanWithinChordError(formulation, {solver.get()}, bnb, no_polish);
+  ASSERT_TRUE(replan.planned) << replan.note;
+  EXPECT_NEAR(replan.shrink_m, ChordErrorBound(formulation), 1e-5);
+  Plan shrunk;
+  shrunk.footsteps = replan.formulation->ExtractFootsteps(replan.result.x);
+  EXPECT_LE(LargestBoxExcess(c, shrunk), 0.0);
+  const BranchAndBoundResult plain = SolveBranchAndBound(formulation.miqp(), *solver, bnb);
+  ASSERT_TRUE(HasPlan(plain.status));
+  Plan chords;
+  chords.footsteps = formulation.ExtractFootsteps(plain.x);
+  EXPECT_GT(LargestBoxExcess(c, chords), 1e-4);
 }
 
 TEST(WindowPolisher, AWindowThatTrimsEveryStepHasNothingToSolve) {

@@ -146,10 +146,8 @@ int Run(const std::string& log_path, const std::string& scenario_path, const std
         goal.yaw_rad = r.goal.z();
         goal.tolerance_m = setup.config.planner.goal_tolerance_m;
         goal.yaw_tolerance_rad = setup.config.planner.goal_yaw_tolerance_rad;
-        ValidationTolerances tolerances;
-        tolerances.rotation_m =
-            RotationTolerance(robot->second, setup.config.planner.formulation.yaw_segment_rad);
-        for (const std::string& issue : ValidatePlan(robot->second, regions, plan, goal, tolerances))
+        // Exact trigonometry, as mfp-plan --validate: each footstep's own yaw, no slack for chords.
+        for (const std::string& issue : ValidatePlan(robot->second, regions, plan, goal, ValidationTolerances{}))
           problems.push_back(issue);
       }
     } else if (ToString(status) != r.expect) {

@@ -72,6 +72,9 @@ const std::vector<Field<BranchAndBoundOptions>> kSearchFields = {
 const std::vector<Field<PolishOptions>> kPolishFields = {
     {"polish", &PolishOptions::enabled},
     {"polish_time_limit", &PolishOptions::time_limit_s, 1e-4, 3600},
+    {"polish_sequential_qp", &PolishOptions::sequential_qp},
+    {"polish_slsqp_fallback", &PolishOptions::slsqp_fallback},
+    {"polish_replan_inexact", &PolishOptions::replan_when_inexact},
 };
 
 // Flat keys with the relax_and_fix prefix, as scenario files have always named them.

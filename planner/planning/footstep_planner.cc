@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "planner/base/check.h"
+#include "planner/planning/exact_window.h"
 #include "planner/planning/goal.h"
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
@@ -303,7 +304,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       }
       return proposals;
     };
-    const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+    BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
     plan.nodes += result.nodes;
     plan.relaxations += result.relaxations;
     if (!HasPlan(result.status) &&
@@ -324,21 +325,44 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                      " after " + std::to_string(result.nodes) + " nodes";
       break;
     }
-    plan.status = Combine(plan.status, result.status);
-    plan.objective += result.objective;
-    plan.bound += result.bound;
     // The polisher's time comes out of the plan's: at most what is left of it.
     PolishOptions polish = options.polish;
     polish.time_limit_s = std::min(polish.time_limit_s, std::max(1e-3, time_limit - elapsed()));
-    const PolishedWindow polished = PolishWindow(formulation, result.x, polish);
-    if (!polished.report.message.empty() && polish_note.empty()) {
+    PolishedWindow polished = PolishWindow(formulation, result.x, polish);
+    // A window the polisher cannot make exact is planned again within the chords' error
+    // (exact_window.h); when that finds no plan the plan ends before this window.
+    ExactReplan replan;
+    if (!polished.report.message.empty() && !polish.replan_when_inexact && polish_note.empty()) {
       polish_note = "window " + std::to_string(plan.windows) + ": " + polished.report.message;
     }
+    if (polish.enabled && polish.replan_when_inexact && !polished.report.exact) {
+      bnb.deadline = request.deadline.Within(time_limit - elapsed());
+      const double polish_s = polished.report.time_s;
+      replan = ReplanWithinChordError(formulation, solvers, bnb, polish);
+      if (polish_note.empty()) polish_note = "window " + std::to_string(plan.windows) + ": " + replan.note;
+      if (!replan.planned) {
+        if (plan.windows == 1) {
+          plan.status = replan.result.status == SolveStatus::kNoSolution ? SolveStatus::kNoSolution : SolveStatus::kInfeasible;
+        }
+        plan.message = "window " + std::to_string(plan.windows) + ": the polisher could not make it exact (" +
+                       polished.report.message + "), " + replan.note;
+        break;
+      }
+      plan.nodes += replan.result.nodes;
+      plan.relaxations += replan.result.relaxations;
+      result = replan.result;
+      polished = std::move(replan.polished);
+      polished.report.time_s += polish_s;  // both polishes
+    }
+    const MiqpFormulation& used = replan.planned ? *replan.formulation : formulation;
+    plan.status = Combine(plan.status, result.status);
+    plan.objective += result.objective;
+    plan.bound += result.bound;
     // Keep the untrimmed steps; trimmed ones (a suffix) leave the feet where they are.
     const std::vector<Footstep>& window_steps = polished.footsteps;
     int kept = 0;
-    for (int i = n; i < formulation.num_steps(); ++i) {
-      if (result.x(formulation.vars().trim[i]) < 0.5) kept = i - n + 1;
+    for (int i = n; i < used.num_steps(); ++i) {
+      if (result.x(used.vars().trim[i]) < 0.5) kept = i - n + 1;
     }
     for (int i = n; i < n + kept; ++i) {
       Footstep f = window_steps[i];
@@ -366,6 +390,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.window_result = result;
       progress.polish = polished.report;
       progress.regions = static_cast<int>(problem.regions.size());
+      progress.replanned = replan.planned;
       on_progress(progress);
     }
     if (kept == 0 && !plan.reaches_goal &&

@@ -8,13 +8,6 @@
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {
-double RotationTolerance(const RobotModel& robot, double yaw_segment_rad) {
-  const double reach = LegReach(robot);
-  // Distance between a point of the chord (linear in yaw) and the arc point of the same
-  // yaw is below w^2/4 for segments up to pi/2; scaled by the offset length.
-  return reach * yaw_segment_rad * yaw_segment_rad / 4.0;
-}
-
 namespace {
 
 // How far step i (i >= n) is beyond each of its limits [m, rad]; <= 0 where it holds.
@@ -100,7 +93,7 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
       report(i, "outside region " + std::to_string(steps[i].region_id), e.region);
     }
     // Reference box about r_nom,i and reachability box about r_nom,i-n.
-    const double box_tol = tol.position_m + tol.rotation_m;
+    const double box_tol = tol.position_m;
     if (e.reference > box_tol) report(i, "reference box l_bnd", e.reference);
     if (e.reachability > box_tol) report(i, "reachability box d_lim", e.reachability);
     if (e.height > tol.position_m) report(i, "height change dz_max", e.height);

@@ -1,6 +1,7 @@
 #pragma once
 // Independent check of a finished plan against the paper's constraints, recomputed from
-// the footsteps alone with exact sin/cos. Used by tests and by mfp-plan --validate.
+// the footsteps alone with exact sin/cos. Used by tests, mfp-plan --validate and
+// mfp-check-replies (the daemon's replies).
 #include <string>
 #include <vector>
 
@@ -12,15 +13,10 @@
 namespace mfp {
 
 struct ValidationTolerances {
-  double position_m = 1e-4;   // region faces, boxes, heights
-  // Extra slack on the reference and reachability boxes for the piecewise-linear
-  // sin/cos: the chord of a yaw segment of width w is off the circle by up to ~w^2/8.
-  double rotation_m = 0.0;
+  double position_m = 1e-4;   // region faces, boxes, heights (no slack for sin/cos chords:
+                              // every plan is checked with exact trigonometry)
   double yaw_rad = 1e-5;
 };
-
-// Slack on the boxes implied by yaw segments of the given width for this robot.
-double RotationTolerance(const RobotModel& robot, double yaw_segment_rad);
 
 // Largest excess of a plan's footsteps over each limit, recomputed from the footsteps
 // alone with the exact R(yaw) of each step's reported yaw and the centre of contacts of

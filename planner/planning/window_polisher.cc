@@ -6,6 +6,8 @@
 #include <sstream>
 #include <utility>
 
+#include <Eigen/Sparse>
+
 #include "planner/base/check.h"
 #include "planner/qp/interior_point_qp.h"
 #include "planner/qp/nonlinear_program.h"
@@ -205,6 +207,8 @@ class WindowProgram {
     std::sort(selected_.begin(), selected_.end());
   }
 
+  void ClearSelection() { selected_.clear(); }
+
   Eigen::VectorXd FullPoint(const Eigen::VectorXd& x) const {
     Eigen::VectorXd full = miqp_x_;
     for (const auto& [index, expr] : full_map_) full(index) = expr.At(x);
@@ -260,6 +264,81 @@ class WindowProgram {
     for (const Row& row : rows_) worst = std::max(worst, row.Violation(x));
     for (int j = 0; j < x.size(); ++j) worst = std::max({worst, lower_(j) - x(j), x(j) - upper_(j)});
     return worst;
+  }
+
+  // The cost as a quadratic in x, with the sin and cos of each yaw linearised at xk
+  // (the formulation's cost weighs theta, not s and c, so this is the exact cost; the
+  // linearisation keeps it right should a cost on s or c appear). 0.5 x'Qx + c'x + constant.
+  void QuadraticModel(const Eigen::VectorXd& xk, Eigen::SparseMatrix<double>* Q, Eigen::VectorXd* c,
+                      double* constant) const {
+    const Miqp& miqp = f_.miqp();
+    const FootstepVariables& v = f_.vars();
+    // full(x) = M x + m0 around xk.
+    Eigen::VectorXd m0 = miqp_x_;
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (const auto& [index, expr] : full_map_) {
+      m0(index) = expr.constant;
+      for (const auto& [var, coef] : expr.terms) triplets.emplace_back(index, var, coef);
+    }
+    for (int blk = 1; blk < f_.num_configurations(); ++blk) {
+      const int var = theta_var_[blk];
+      const double t = Yaw(xk, blk), sn = std::sin(t), cs = std::cos(t);
+      if (var < 0) {
+        m0(v.theta[blk]) = t;
+        m0(v.s[blk]) = sn;
+        m0(v.c[blk]) = cs;
+        continue;
+      }
+      m0(v.theta[blk]) = 0.0;
+      triplets.emplace_back(v.theta[blk], var, 1.0);
+      m0(v.s[blk]) = sn - cs * t;
+      triplets.emplace_back(v.s[blk], var, cs);
+      m0(v.c[blk]) = cs + sn * t;
+      triplets.emplace_back(v.c[blk], var, -sn);
+    }
+    Eigen::SparseMatrix<double> M(miqp.num_variables(), xk.size());
+    M.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::SparseMatrix<double> QM = miqp.Q * M;
+    Eigen::SparseMatrix<double> reduced = Eigen::SparseMatrix<double>(M.transpose()) * QM;
+    *Q = 0.5 * (reduced + Eigen::SparseMatrix<double>(reduced.transpose()));
+    const Eigen::VectorXd Qm0 = miqp.Q * m0;
+    *c = M.transpose() * (Qm0 + miqp.c);
+    *constant = 0.5 * m0.dot(Qm0) + miqp.c.dot(m0) + miqp.constant;
+  }
+
+  // The selected sides linearised at xk as sparse rows: J x <= J xk - g(xk).
+  void LinearisedSides(const Eigen::VectorXd& xk, Eigen::SparseMatrix<double, Eigen::RowMajor>* J,
+                       Eigen::VectorXd* upper) const {
+    const int m = num_inequalities();
+    std::vector<Eigen::Triplet<double>> triplets;
+    upper->resize(m);
+    for (int k = 0; k < m; ++k) {
+      const int side = selected_[k];
+      const Row& row = rows_[sides_[side].first];
+      const double sign = sides_[side].second ? 1.0 : -1.0;
+      double jx = 0.0;
+      for (const auto& [var, coef] : row.lin.terms) {
+        triplets.emplace_back(k, var, sign * coef);
+        jx += sign * coef * xk(var);
+      }
+      if (row.has_offset && row.yaw_var >= 0) {
+        const double d = sign * row.YawDerivative(xk);
+        triplets.emplace_back(k, row.yaw_var, d);
+        jx += d * xk(row.yaw_var);
+      }
+      (*upper)(k) = jx - SideValue(xk, side);
+    }
+    J->resize(m, xk.size());
+    J->setFromTriplets(triplets.begin(), triplets.end());  // sums repeated (row, var) terms
+  }
+
+  // The yaw variables (each configuration's that is not held or fixed), once each.
+  std::vector<int> YawVariables() const {
+    std::vector<int> out;
+    for (int var : theta_var_) {
+      if (var >= 0 && (out.empty() || out.back() != var)) out.push_back(var);
+    }
+    return out;
   }
 
   std::vector<Footstep> Footsteps(const Eigen::VectorXd& x) const {
@@ -321,7 +400,172 @@ class WindowProgram {
   std::vector<std::pair<int, Affine>> full_map_;
 };
 
+struct SequentialQpResult {
+  Eigen::VectorXd x;
+  std::string stops;
+};
+
+// One QP of the sequential method at xk: the cost, every selected side linearised at xk,
+// each yaw within `trust` of xk's; *predicted (may be null): the cost's decrease the QP
+// promises, relative to the cost at xk. trust 0 holds the yaws: the rows are then linear in
+// the footsteps and exact (R(yaw) is a constant matrix), so the QP's solution meets the
+// exact constraints up to the interior point's tolerance. Returns xk when the solve fails.
+Eigen::VectorXd QpStep(const WindowProgram& program, const Eigen::VectorXd& xk, double trust,
+                       const Deadline& deadline, int* iterations, double* predicted) {
+  const int nv = static_cast<int>(xk.size());
+  Miqp qp;
+  program.QuadraticModel(xk, &qp.Q, &qp.c, &qp.constant);
+  // The cost scaled to about 1 at xk: the interior point's elastic rows (penalty 1e6 per
+  // unit of violation) then hold exactly, as every dual stays far below the penalty.
+  const double scale = 1.0 / std::max(1.0, std::abs(program.Objective(xk, nullptr)));
+  qp.Q *= scale;
+  qp.c *= scale;
+  qp.constant *= scale;
+  program.LinearisedSides(xk, &qp.A, &qp.row_upper);
+  qp.row_lower = Eigen::VectorXd::Constant(qp.A.rows(), -kInfinity);
+  qp.var_lower = program.lower();
+  qp.var_upper = program.upper();
+  const std::vector<int> yaws = program.YawVariables();
+  for (int var : yaws) {
+    qp.var_lower(var) = std::max(qp.var_lower(var), xk(var) - trust);
+    qp.var_upper(var) = std::min(qp.var_upper(var), xk(var) + trust);
+  }
+  // The interior point wants lower < upper: a held variable gets 1e-9 of room (its row
+  // terms move by at most 1e-9 x the offset, far inside the margin).
+  qp.var_upper = qp.var_upper.cwiseMax(qp.var_lower + Eigen::VectorXd::Constant(nv, 1e-9));
+  qp.is_integer.assign(nv, false);
+  qp.var_names.assign(nv, "x");
+  qp.row_names.assign(qp.A.rows(), "g");
+  InteriorPointOptions ipm;
+  ipm.deadline = deadline;
+  // Tighter than the search's 1e-8: the rows' residual at convergence must sit well inside
+  // the boxes' 1e-7 margin.
+  ipm.tolerance = 1e-10;
+  const RelaxationResult r = SolveQpInteriorPoint(qp, qp.var_lower, qp.var_upper, &xk, ipm);
+  *iterations += r.iterations;
+  // The model's decrease from xk, relative to the cost at xk (the model is exact at xk).
+  if (predicted != nullptr) *predicted = r.status == RelaxationStatus::kSolved ? scale * program.Objective(xk, nullptr) - r.objective : kInfinity;
+  if (r.x.size() != nv || !r.x.allFinite() || r.status == RelaxationStatus::kFailed) return xk;
+  Eigen::VectorXd x = r.x.cwiseMax(program.lower()).cwiseMin(program.upper());
+  if (trust == 0.0) {
+    for (int var : yaws) x(var) = xk(var);
+  }
+  return x;
+}
+
+// Sequential convex programming with the integer assignment fixed. Each round: a QP with
+// the yaws free within a trust region and sin/cos linearised at the current point, then
+// the footsteps-alone QP at the yaws it chose (exact: R(yaw) is then constant); the
+// round's point is kept when it is exact and, after the first, cheaper. Rounds stop when
+// the model promises or the round wins less than sqp_relative_gain of the cost; a round
+// that ends outside the constraints shrinks the trust region. When no round gives an
+// exact point, the footsteps alone at the MIQP's yaws. Every kept point is exact, so the
+// method can stop at any round with a usable plan.
+SequentialQpResult PolishBySequentialQp(WindowProgram& program, const PolishOptions& options,
+                                        double time_limit_s) {
+  const auto start_time = std::chrono::steady_clock::now();
+  const Deadline deadline = Deadline::After(time_limit_s);
+  // Every side: the interior point is sparse, so far rows cost little.
+  program.SelectNear(program.start(), kInfinity);
+  int qps = 0, iterations = 0;
+  auto feasible = [&](const Eigen::VectorXd& x) { return program.MaxViolation(x) <= options.feasibility_tolerance_m; };
+  auto step = [&](const Eigen::VectorXd& xk, double trust, double* predicted) {
+    ++qps;
+    return QpStep(program, xk, trust, deadline, &iterations, predicted);
+  };
+  SequentialQpResult out;
+  out.x = program.start();
+  bool exact = false;
+  double best = kInfinity, trust = options.sqp_trust_rad;
+  int rounds = 0;
+  std::string how = "yaws moved";
+  const bool has_yaws = !program.YawVariables().empty();
+  while (has_yaws && rounds < options.sqp_max_rounds && trust >= options.sqp_min_trust_rad && !deadline.Expired()) {
+    ++rounds;
+    double predicted = kInfinity;
+    const Eigen::VectorXd moved = step(out.x, trust, &predicted);
+    // The model (exact cost, linearised rows) promises too little to pay for a round.
+    if (exact && predicted <= options.sqp_relative_gain) break;
+    const Eigen::VectorXd trial = step(moved, 0.0, nullptr);
+    if (!feasible(trial)) {  // the linearised step went too far from the circle
+      trust *= 0.25;
+      continue;
+    }
+    const double value = program.Objective(trial, nullptr);
+    if (exact && value >= best) break;
+    const double gain = best - value;
+    out.x = trial;
+    best = value;
+    exact = true;
+    if (gain <= options.sqp_relative_gain * std::max(1.0, std::abs(best))) break;
+  }
+  if (!exact && !deadline.Expired()) {
+    // No yaw to move, or no round made the footsteps exact: the MIQP's yaws held.
+    out.x = step(program.start(), 0.0, nullptr);
+    how = "yaws held";
+  }
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << "sequential QP: " << how << ", " << rounds << " rounds, " << qps << " QPs (" << iterations
+      << " interior-point iterations), "
+      << std::chrono::duration<double>(std::chrono::steady_clock::now() - start_time).count() << " s"
+      << (feasible(out.x) ? "" : ", not exact");
+  out.stops = msg.str();
+  program.ClearSelection();
+  return out;
+}
+
+void Accept(const WindowProgram& program, const Eigen::VectorXd& x, double time_s, PolishedWindow* out) {
+  PolishReport& report = out->report;
+  report.accepted = true;
+  report.exact = true;
+  report.time_s = time_s;
+  report.excess_after = program.MaxViolation(x);
+  report.objective_after = program.Objective(x, nullptr);
+  out->footsteps = program.Footsteps(x);
+}
+
+// The polished point is not exact: the MIQP's footsteps stay. They are exact anyway when
+// the chords happen to fit (or the window was planned with boxes tightened by the chords'
+// error, see ChordErrorBound), and then there is nothing to report.
+void Reject(const WindowProgram& program, const Eigen::VectorXd& x, double time_s, const std::string& stops,
+            const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x, const PolishOptions& options,
+            PolishedWindow* out) {
+  PolishReport& report = out->report;
+  report.stops = stops;
+  report.time_s = time_s;
+  report.excess_after = program.MaxViolation(x);
+  report.exact = report.excess_before <= options.feasibility_tolerance_m;
+  if (!report.exact) {
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "polisher (" << stops << ") left a violation of " << report.excess_after
+        << "; kept the MIQP's plan, whose exact-trigonometry violation is " << report.excess_before;
+    report.message = msg.str();
+  }
+  out->footsteps = formulation.ExtractFootsteps(miqp_x);
+}
+
 }  // namespace
+
+double ChordErrorBound(const MiqpFormulation& formulation) {
+  const std::vector<double>& bp = formulation.yaw_breakpoints();
+  double width = 0.0;
+  for (size_t k = 1; k < bp.size(); ++k) width = std::max(width, bp[k] - bp[k - 1]);
+  // The chord point at fraction t of a segment of width h, against the arc's point at
+  // the same yaw (segment centred on 0): (cos(h/2) - cos(phi), (2t - 1) sin(h/2) - sin(phi)),
+  // phi = (2t - 1) h / 2. Its largest length over a fine grid of t, plus the grid's
+  // possible miss (the length's slope is below 1, the step below 1e-4 rad).
+  double worst = 0.0;
+  const int samples = 4096;
+  for (int k = 0; k <= samples; ++k) {
+    const double u = 2.0 * k / samples - 1.0, phi = 0.5 * u * width;
+    worst = std::max(worst, std::hypot(std::cos(0.5 * width) - std::cos(phi), u * std::sin(0.5 * width) - std::sin(phi)));
+  }
+  double offset = 0.0;
+  for (const LegModel& leg : formulation.problem().robot->legs) offset = std::max(offset, leg.nominal_offset_body_m.norm());
+  return (worst + width / samples) * offset;
+}
 
 PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x,
                             const PolishOptions& options) {
@@ -339,6 +583,7 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
     // Every step trimmed and every configuration holding the start yaw: the window keeps
     // the start stance, nothing to solve.
     report.attempted = false;
+    report.exact = true;
     out.footsteps = formulation.ExtractFootsteps(miqp_x);
     return out;
   }
@@ -407,6 +652,20 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
     return x;
   };
   std::string stop;
+  if (options.sequential_qp) {
+    const SequentialQpResult sqp = PolishBySequentialQp(program, options, time_left());
+    stop = sqp.stops;
+    if (feasible(sqp.x)) {
+      report.stops = stop;
+      Accept(program, sqp.x, seconds(), &out);
+      return out;
+    }
+    if (!options.slsqp_fallback) {
+      Reject(program, sqp.x, seconds(), stop, formulation, miqp_x, options, &out);
+      return out;
+    }
+    stop += "; ";
+  }
   auto attempt = [&]() {
     NonlinearSolveResult result = minimise_cost(program.start());
     stop += std::string(stop.empty() ? "" : "; ") + "cost: " + result.message + " (" +
@@ -437,21 +696,23 @@ PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::Vec
     program.SelectNear(program.start(), kInfinity);
     result = attempt();
   }
-  result.message = stop;
-  report.stops = stop;
-  report.excess_after = program.MaxViolation(result.x);
-  report.time_s = seconds();
-  if (report.excess_after <= options.feasibility_tolerance_m) {
-    report.accepted = true;
-    report.objective_after = program.Objective(result.x, nullptr);
-    out.footsteps = program.Footsteps(result.x);
+  if (seconds() < options.time_limit_s) {
+    // SLSQP's and the projection's points meet the rows only to their tolerances (up to
+    // the accepted 1e-6): the footsteps-alone QP at their yaws lands inside the margin.
+    program.SelectNear(program.start(), kInfinity);
+    int iterations = 0;
+    const Eigen::VectorXd inside =
+        QpStep(program, result.x, 0.0, Deadline::After(options.time_limit_s - seconds()), &iterations, nullptr);
+    if (program.MaxViolation(inside) < program.MaxViolation(result.x)) {
+      result.x = inside;
+      stop += ", footsteps QP";
+    }
+  }
+  if (feasible(result.x)) {
+    report.stops = stop;
+    Accept(program, result.x, seconds(), &out);
   } else {
-    std::ostringstream msg;
-    msg.precision(3);
-    msg << "polisher (" << result.message << ") left a violation of " << report.excess_after
-        << "; kept the MIQP's plan, whose exact-trigonometry violation is " << report.excess_before;
-    report.message = msg.str();
-    out.footsteps = formulation.ExtractFootsteps(miqp_x);
+    Reject(program, result.x, seconds(), stop, formulation, miqp_x, options, &out);
   }
   return out;
 }

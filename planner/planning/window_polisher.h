@@ -15,9 +15,11 @@
 //   trimming        a trimmed step stays where its leg stood (f_i = f_i-n, by substitution)
 // p_i is the centre of contacts of the n latest footsteps (paper eq. 2). The boxes are
 // tightened by margin_m so that the solver's own tolerance leaves the plan inside them.
-// It starts from the MIQP's solution (NLopt's SLSQP behind nonlinear_program.h, with a
-// Gauss-Newton feasibility projection when SLSQP stops outside the constraints). The
-// result is used only when every constraint holds
+// It starts from the MIQP's solution: first a sequential QP on mfp's sparse interior
+// point (rounds of a trust-region QP with sin/cos linearised, each followed by the exact
+// QP of the footsteps alone at the yaws it chose); where that ends outside the
+// constraints, NLopt's SLSQP behind nonlinear_program.h, with a Gauss-Newton feasibility
+// projection when SLSQP stops outside them. The result is used only when every constraint holds
 // within feasibility_tolerance_m (rad for yaw rows); otherwise the caller keeps the
 // MIQP's plan and says why (PolishReport::message).
 #include <Eigen/Core>
@@ -37,11 +39,25 @@ struct PolishOptions {
   // The solver first sees only the inequalities within this of their bound at the MIQP's
   // point [m, or rad for yaw rows]; the others are checked after, and added when violated.
   double active_slack = 0.02;
+  // Method: sequential QP on mfp's sparse interior point first (sequential_qp); NLopt's
+  // SLSQP when that ends outside the constraints (slsqp_fallback), or alone.
+  bool sequential_qp = true;
+  bool slsqp_fallback = true;
+  double sqp_trust_rad = 0.05;        // first trust region of the yaws per round
+  double sqp_min_trust_rad = 1e-3;    // rounds stop once a failing round shrinks it below this
+  int sqp_max_rounds = 6;
+  double sqp_relative_gain = 1e-6;    // rounds stop once one gains less than this x |cost|
+  // The planner's answer to a window the polisher cannot make exact: plan it again with
+  // the boxes shrunk by the chords' error (exact_window.h). false: keep the MIQP's plan
+  // and say so in the plan's message.
+  bool replan_when_inexact = true;
 };
 
 struct PolishReport {
   bool attempted = false;
   bool accepted = false;            // the polished footsteps replaced the MIQP's
+  bool exact = false;               // the footsteps used meet every constraint with exact sin/cos
+                                    // (polished, or the MIQP's when its chords happen to fit)
   double time_s = 0.0;
   double objective_before = 0.0;    // the MIQP solution's objective (chords)
   double objective_after = 0.0;     // the polished plan's objective (exact); = before when not accepted
@@ -55,6 +71,12 @@ struct PolishedWindow {
   std::vector<Footstep> footsteps;  // as MiqpFormulation::ExtractFootsteps, start stance included
   PolishReport report;
 };
+
+// A bound on |(R_chords(theta) - R(theta)) o|_inf over every yaw of the formulation's
+// grid and every leg's nominal offset o [m]: the reference and reachability boxes of a
+// formulation built with l_bnd and d_lim shrunk by this hold with exact trigonometry at
+// every solution of its MIQP (a sound inner approximation).
+double ChordErrorBound(const MiqpFormulation& formulation);
 
 // miqp_x: a solution of formulation.miqp() (integer variables integral). With
 // options.enabled false, the MIQP's footsteps and a report with attempted = false.
