@@ -87,7 +87,7 @@ TEST(CourseTest, AWindowThePolisherCannotMakeExactIsReplannedExactly) {
   scenario.goal = course.goal;
   scenario.time_limit_s = 6.0;
   PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
   auto plan_with = [&](bool replan, int* inexact) {
     PlannerOptions options = scenario.options;
     options.polish.replan_when_inexact = replan;

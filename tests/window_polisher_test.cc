@@ -135,7 +135,7 @@ TEST(WindowPolisher, AWindowPlannedWithinTheChordErrorIsExactWithoutThePolisher)
   const Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
   const PlannerOptions& options = c.scenario.options;
   const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
-  const auto solver = MakeRelaxationSolver(options.relaxation_solver);
+  const auto solver = MakeRelaxationSolver(options.solvers.backend);
   BranchAndBoundOptions bnb = options.branch_and_bound;
   bnb.time_limit_s = 60.0;
   PolishOptions no_polish;
