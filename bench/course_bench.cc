@@ -61,6 +61,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
       ++generator_gave_up;
       continue;
     }
+    if (!o.only.empty() && course.name.find(o.only) == std::string::npos) continue;
     if (!o.write_dir.empty()) {
       std::ofstream(o.write_dir + "/" + course.name + ".yaml") << CourseToScenarioYaml(course, o.time_limit_s);
     }
@@ -82,7 +83,13 @@ int RunCourseBench(const CourseBenchOptions& o) {
                              : ScenarioRegions(scenario, robot);
       const PlanRequest request = ScenarioRequest(scenario, robot, regions);
       const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.relaxation_solver, 1);
-      plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
+      auto progress = [&](const PlanProgress& p) {
+        std::printf("    window %d: %d steps, %.3f m to the goal, %.2f s, %s after %lld nodes\n", p.window,
+                    p.steps_planned, p.distance_to_goal_m, p.elapsed_s, ToString(p.window_result.status).c_str(),
+                    static_cast<long long>(p.window_result.nodes));
+      };
+      plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(),
+                           o.verbose ? std::function<void(const PlanProgress&)>(progress) : nullptr);
     } catch (const std::exception& e) {
       plan.status = SolveStatus::kInternalError;
       plan.message = e.what();
