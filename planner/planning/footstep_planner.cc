@@ -144,6 +144,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       rejected.solve_time_s = elapsed();
       return rejected;
     }
+    if (options.stance_route) {
+      FollowStanceRoute(robot, usable, request.start_feet_world_m, request.start_yaw_rad,
+                        {request.goal_x_m, request.goal_y_m}, request.goal_yaw_rad, &guide);
+    }
     if (request.max_steps == 0 && options.default_max_steps == 0) {
       // Enough configurations to walk the route three times over at d_lim per
       // configuration; the time limit bounds the work.
@@ -251,7 +255,11 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     for (int i : WindowRegionIndices(usable, stance, (steps + n - 1) / n, step_xy, robot.dz_max_m)) {
       problem.regions.push_back(usable[static_cast<size_t>(i)]);
     }
-    const double lookahead = options.local_goal_lookahead_m < 0 ? 2.0 * LegReach(robot) : options.local_goal_lookahead_m;
+    // Default: about one window's walk. A route over stance poses is followed closely (two
+    // steps of d_lim per leg); one through region centres more loosely.
+    const double lookahead = options.local_goal_lookahead_m >= 0 ? options.local_goal_lookahead_m
+                             : guide.from_stances            ? 2.0 * robot.d_lim_m
+                                                             : 2.0 * LegReach(robot);
     if (guided && lookahead > 0.0) {
       // The window's goal term pulls toward a point of the route ahead of the stance.
       Eigen::Vector2d centre = Eigen::Vector2d::Zero();
