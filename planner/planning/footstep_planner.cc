@@ -400,6 +400,30 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         retry_longer("window " + std::to_string(plan.windows) + " found no step that improves on standing still")) {
       continue;
     }
+    // A window whose steps only shuffle the feet (none moved a tenth of d_lim from where
+    // it stood one and two windows ago) is stuck as surely as one that keeps none: the
+    // next windows would repeat it until the step budget ends.
+    if (guided && kept > 0 && !plan.reaches_goal && snapshots.size() >= 2) {
+      // Where each leg stood after the first `count` footsteps (the last n cover every leg).
+      auto feet_after = [&](size_t count) {
+        std::vector<Eigen::Vector3d> feet(n);
+        for (size_t k = count - n; k < count; ++k) feet[plan.footsteps[k].leg] = plan.footsteps[k].position_world_m;
+        return feet;
+      };
+      const std::vector<Eigen::Vector3d> now = feet_after(plan.footsteps.size());
+      double moved = 0.0;
+      for (size_t back = 1; back <= 2; ++back) {
+        const std::vector<Eigen::Vector3d> before = feet_after(snapshots[snapshots.size() - back].footsteps);
+        for (int leg = 0; leg < n; ++leg) moved = std::max(moved, (now[leg] - before[leg]).norm());
+      }
+      if (moved < 0.1 * robot.d_lim_m) {
+        const std::string why = "window " + std::to_string(plan.windows) + " only shuffled the feet (none moved " +
+                                std::to_string(0.1 * robot.d_lim_m) + " m in two windows)";
+        if (retry_longer(why)) continue;
+        plan.message = "the planner stopped short of the goal: " + why;
+        break;
+      }
+    }
     if (kept > 0) {
       if (planned > last_failure) horizon = window;  // past the dead end: back to short windows
       plan.message.clear();  // a retry's reason, now overcome

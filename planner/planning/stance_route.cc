@@ -31,18 +31,18 @@ double PolygonDistance(const ConvexRegion& r, const Eigen::Vector2d& p) {
   return inside ? 0.0 : d;
 }
 
-// Cells of a raster where some region lies within `radius` (a foot's reference box meets
-// support there).
+// Cells of a raster: 2 where a region holds the point, 1 where one lies within `radius`
+// (a foot's reference box meets support there), 0 elsewhere.
 struct SupportRaster {
   Eigen::Vector2d origin;
   double res = 0.02;
   int nx = 0, ny = 0;
   std::vector<uint8_t> cells;
-  bool At(const Eigen::Vector2d& p) const {
+  int At(const Eigen::Vector2d& p) const {
     const int i = static_cast<int>(std::floor((p.x() - origin.x()) / res));
     const int j = static_cast<int>(std::floor((p.y() - origin.y()) / res));
-    if (i < 0 || j < 0 || i >= nx || j >= ny) return false;
-    return cells[static_cast<size_t>(j) * nx + i] != 0;
+    if (i < 0 || j < 0 || i >= nx || j >= ny) return 0;
+    return cells[static_cast<size_t>(j) * nx + i];
   }
 };
 
@@ -67,9 +67,14 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
         uint8_t& c = s.cells[static_cast<size_t>(j) * s.nx + i];
-        if (c) continue;
+        if (c == 2) continue;
         const Eigen::Vector2d p = lo + res * Eigen::Vector2d(i + 0.5, j + 0.5);
-        if (PolygonDistance(r, p) <= radius) c = 1;
+        const double d = PolygonDistance(r, p);
+        if (d <= 0.0) {
+          c = 2;
+        } else if (d <= radius) {
+          c = 1;
+        }
       }
     }
   }
@@ -122,18 +127,21 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
   cell_of(goal_xy, &gi, &gj);
   const int sh = heading_of(start_yaw_rad), gh = heading_of(goal_yaw_rad);
   const size_t start = id(si, sj, sh);
-  // 0 unknown, 1 usable, 2 not.
+  // Per pose: 0 unknown, 1 every nominal foot on a region, 2 every reference box meets
+  // one (usable, at a higher cost: such poses leave no room), 3 not usable.
   std::vector<uint8_t> usable(states, 0);
-  auto is_usable = [&](int i, int j, int h) {
+  auto pose_class = [&](int i, int j, int h) {
     uint8_t& u = usable[id(i, j, h)];
     if (u == 0) {
       const Eigen::Vector2d c = centre_of(i, j);
       const double yaw = h * 2 * M_PI / H;
-      bool ok = true;
-      for (int leg = 0; leg < n && ok; ++leg) ok = support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw));
-      u = ok ? 1 : 2;
+      int worst = 2;
+      for (int leg = 0; leg < n && worst > 0; ++leg) {
+        worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
+      }
+      u = static_cast<uint8_t>(3 - worst);
     }
-    return u == 1;
+    return u;
   };
   const double turn_cost = options.turn_cost_m;
   std::vector<double> dist(states, kInf);
@@ -159,7 +167,9 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
     auto relax = [&](int i2, int j2, int h2, double w) {
       const size_t t = id(i2, j2, h2);
       const bool endpoint = (i2 == gi && j2 == gj && h2 == gh);
-      if (!endpoint && !is_usable(i2, j2, h2)) return;
+      const uint8_t c = endpoint ? 1 : pose_class(i2, j2, h2);
+      if (c == 3) return;
+      if (c == 2) w *= options.tight_cost_factor;
       if (dist[s] + w < dist[t]) {
         dist[t] = dist[s] + w;
         parent[t] = s;

@@ -6,8 +6,9 @@
 // body pose (x, y on a grid, yaw one of a few headings) is usable when every leg's
 // nominal foot lies within l_bnd of some region, i.e. the leg's reference box meets
 // support; A* over usable poses (moves to the 8 neighbouring cells, or a turn by one
-// heading) gives a route the windows can follow. Heights are not judged here (the
-// region graph and the MIQP do that). No I/O.
+// heading) gives a route the windows can follow, dearer through poses where a nominal
+// foot is off every region. Heights are not judged here (the region graph and the MIQP
+// do that). No I/O.
 #include <Eigen/Core>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct StanceRouteOptions {
   int headings = 8;               // yaw candidates, evenly spaced over a full turn
   long max_cells = 300000;        // body grid cells (x, y) at most
   double turn_cost_m = 0.05;      // cost of turning by one heading, as distance [m]
+  // Cost factor of moving through a pose where some nominal foot is off every region
+  // (only its reference box meets one): the route keeps room where it can.
+  double tight_cost_factor = 3.0;
 };
 
 struct StanceRoute {
