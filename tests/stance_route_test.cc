@@ -1,10 +1,8 @@
-// The route over stance poses (planner/planning/stance_route.h) and the snap of accepted
-// feet into their regions (planner/planning/stance_snap.h), on layouts built by hand.
+// The route over stance poses (planner/planning/stance_route.h), on layouts built by hand.
 #include <gtest/gtest.h>
 
 #include "planner/io/robot_loader.h"
 #include "planner/planning/stance_route.h"
-#include "planner/planning/stance_snap.h"
 
 namespace mfp {
 namespace {
@@ -55,17 +53,6 @@ TEST(StanceRoute, FindsNoneWhereOnlySingleFeetFit) {
   const std::vector<ConvexRegion> regions = {Rect(0, -0.2, -0.2, 0.2, 0.2), Rect(1, 0.2, -0.01, 1.0, 0.01),
                                              Rect(2, 1.0, -0.2, 1.4, 0.2)};
   EXPECT_FALSE(PlanStanceRoute(robot, regions, {0, 0}, 0.0, {1.2, 0}, 0.0).found);
-}
-
-TEST(StanceSnap, MovesAFootJustOutsideItsRegionJustInside) {
-  const ConvexRegion r = Rect(0, 0.0, 0.0, 0.3, 0.3, 0.1);
-  const Eigen::Vector3d outside(0.3 + 2e-8, 0.15, 0.1 + 1e-9);
-  const Eigen::Vector3d q = SnapIntoRegion(r, outside, 1e-6);
-  EXPECT_LE((r.A * q - r.b).maxCoeff(), 1e-12);  // every row met (the plane exactly)
-  EXPECT_LE(q.x(), 0.3 - 1e-6 + 1e-12);
-  EXPECT_LT((q - outside).norm(), 1e-5);          // a hair, not a jump
-  const Eigen::Vector3d inside(0.1, 0.2, 0.1);
-  EXPECT_LT((SnapIntoRegion(r, inside, 1e-6) - inside).norm(), 1e-12);
 }
 
 }  // namespace

@@ -11,16 +11,11 @@
 #include "planner/planning/request_check.h"
 #include "terrain/region_reachability.h"
 #include "planner/planning/route_guide.h"
-#include "planner/planning/stance_snap.h"
 
 namespace mfp {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// How far inside its region an accepted foot is put [m]: above the relaxation solver's
-// feasibility tolerance, far below anything the robot or the checker can tell.
-constexpr double kStanceInsideM = 1e-6;
 
 Plan Rejected(SolveStatus status, const std::string& message) {
   Plan plan;
@@ -363,10 +358,6 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     for (int i = n; i < n + kept; ++i) {
       Footstep f = window_steps[i];
       f.index = static_cast<int>(plan.footsteps.size());
-      // A hair inside its region, so that the next window can keep the foot there.
-      if (const ConvexRegion* r = RegionWithId(regions, f.region_id)) {
-        f.position_world_m = SnapIntoRegion(*r, f.position_world_m, kStanceInsideM);
-      }
       plan.footsteps.push_back(f);
     }
     planned += kept;
