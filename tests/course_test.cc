@@ -66,7 +66,10 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
                                          {"littledog", CourseKind::kStairs, 10},
                                          {"hexapod", CourseKind::kBeams, 20},
                                          // A 90 degree turn: the checker took the final yaw as 0.
-                                         {"littledog", CourseKind::kStonesTurn, 4}}) {
+                                         {"littledog", CourseKind::kStonesTurn, 4},
+                                         // The route through region centres led six feet into
+                                         // the dead-end pocket; the stance route does not.
+                                         {"hexapod", CourseKind::kDetour, 23}}) {
     const RobotModel robot = LoadRobot(RobotPath(c.robot));
     const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
     ASSERT_TRUE(course.route_exists);
