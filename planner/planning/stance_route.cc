@@ -144,8 +144,11 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
     return u;
   };
   const double turn_cost = options.turn_cost_m;
-  std::vector<double> dist(states, kInf);
-  std::vector<size_t> parent(states, SIZE_MAX);
+  // float and 32-bit parents: at most 8 x 300,000 states, 8 bytes each.
+  constexpr uint32_t kNone = UINT32_MAX;
+  if (states >= kNone) return out;  // more headings than any caller asks for
+  std::vector<float> dist(states, std::numeric_limits<float>::infinity());
+  std::vector<uint32_t> parent(states, kNone);
   using Item = std::pair<double, size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
   auto heuristic = [&](int i, int j) { return (centre_of(i, j) - centre_of(gi, gj)).norm(); };
@@ -158,7 +161,7 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
     const int h = static_cast<int>(s % H);
     const size_t cellid = s / H;
     const int i = static_cast<int>(cellid % nx), j = static_cast<int>(cellid / nx);
-    if (f > dist[s] + heuristic(i, j) + 1e-12) continue;
+    if (f > dist[s] + heuristic(i, j) + 1e-6) continue;
     // Any heading at the goal cell: the windows turn to the goal yaw there.
     if (i == gi && j == gj) {
       reached = s;
@@ -171,8 +174,8 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
       if (c == 3) return;
       if (c == 2) w *= options.tight_cost_factor;
       if (dist[s] + w < dist[t]) {
-        dist[t] = dist[s] + w;
-        parent[t] = s;
+        dist[t] = static_cast<float>(dist[s] + w);
+        parent[t] = static_cast<uint32_t>(s);
         open.push({dist[t] + heuristic(i2, j2), t});
       }
     };
@@ -189,7 +192,7 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
   }
   if (reached == SIZE_MAX) return out;
   std::vector<Eigen::Vector2d> cells;
-  for (size_t s = reached; s != SIZE_MAX; s = parent[s]) {
+  for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
     const size_t c = s / H;
     const Eigen::Vector2d p = centre_of(static_cast<int>(c % nx), static_cast<int>(c / nx));
     if (cells.empty() || (cells.back() - p).norm() > 1e-12) cells.push_back(p);
