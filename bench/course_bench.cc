@@ -69,6 +69,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
       ++generator_gave_up;
       continue;
     }
+    if (!o.only.empty() && course.name.find(o.only) == std::string::npos) continue;
     if (!o.write_dir.empty()) {
       std::ofstream(o.write_dir + "/" + course.name + ".yaml") << CourseToScenarioYaml(course, o.time_limit_s);
     }
@@ -99,6 +100,11 @@ int RunCourseBench(const CourseBenchOptions& o) {
         polish_s += p.polish.time_s;
         solve_sum += p.window_result.solve_time_s;
         max_polish_ratio = std::max(max_polish_ratio, p.polish.time_s / std::max(p.window_result.solve_time_s, 1e-9));
+        if (o.verbose) {
+          std::printf("    window %d: %d steps, %.3f m to the goal, %.2f s, %s after %lld nodes\n", p.window,
+                      p.steps_planned, p.distance_to_goal_m, p.elapsed_s, ToString(p.window_result.status).c_str(),
+                      static_cast<long long>(p.window_result.nodes));
+        }
       });
     } catch (const std::exception& e) {
       plan.status = SolveStatus::kInternalError;

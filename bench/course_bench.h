@@ -19,6 +19,8 @@ struct CourseBenchOptions {
   // planning failures from perception ones).
   bool top_face_regions = false;
   std::string write_dir;           // write each course's scenario YAML here ("" = no)
+  std::string only;                // plan only courses whose name contains this ("" = all)
+  bool verbose = false;            // print each accepted window (steps, distance, nodes)
   std::function<void(Scenario*)> adjust;  // --set overrides
 };
 

@@ -77,9 +77,8 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
     }
   }
   // Goal: every final foot near its goal spot, final yaw near the goal yaw.
-  std::vector<Footstep> final_stance;
-  for (int i = 0; i < n; ++i) final_stance.push_back(Footstep{0, i, feet[i], 0.0, -1});
-  const double yaw = FinalStanceYaw(robot, final_stance);
+  // The final yaw from where the feet stand (not the plan's own account of it).
+  const double yaw = EstimateStanceYaw(robot, feet);
   double worst = 0.0;
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d spot = NominalFootXY(robot, i, goal.x_m, goal.y_m, goal.yaw_rad);

@@ -267,6 +267,10 @@ int main(int argc, char** argv) {
   app.add_flag("--course-top-faces", course_top_faces,
                "generated courses: plan on the boxes' true top faces inset by the edge margin, not extracted regions");
   app.add_option("--write-courses", write_courses, "write each generated course as a scenario YAML here");
+  std::string course_only;
+  bool course_verbose = false;
+  app.add_option("--course-only", course_only, "generated courses: plan only those whose name contains this text");
+  app.add_flag("--course-verbose", course_verbose, "generated courses: print each accepted window");
   CLI11_PARSE(app, argc, argv);
   try {
     if (courses > 0) {
@@ -277,6 +281,8 @@ int main(int argc, char** argv) {
       o.robots_dir = std::string(MFP_SOURCE_DIR) + "/config/robots";
       o.write_dir = write_courses;
       o.top_face_regions = course_top_faces;
+      o.only = course_only;
+      o.verbose = course_verbose;
       o.adjust = [&](mfp::Scenario* s) { ApplyOverrides(overrides, s); };
       mfp::RunCourseBench(o);
       return 0;

@@ -18,7 +18,9 @@ TEST(BoundPropagation, TightensAndDetectsInfeasibility) {
   const PropagationResult r = PropagateBounds(p, &lo, &up);
   EXPECT_FALSE(r.infeasible);
   EXPECT_EQ(up(0), 0.0);
-  EXPECT_NEAR(up(1), 1.0, 1e-12);
+  // Derived continuous bounds are kept the tolerance (1e-7, relative) outward.
+  EXPECT_GE(up(1), 1.0);
+  EXPECT_NEAR(up(1), 1.0, 1e-6);
   // With y >= 1.5 nothing fits.
   lo = p.var_lower;
   up = p.var_upper;
@@ -40,7 +42,25 @@ TEST(BoundPropagation, ATinyCoefficientBoundsNothing) {
   EXPECT_FALSE(r.infeasible);
   EXPECT_EQ(lo(x), -1.0);
   EXPECT_EQ(up(x), 1.0);
-  EXPECT_NEAR(up(y), 0.3, 1e-9);
+  EXPECT_GE(up(y), 0.3);  // kept the tolerance outward
+  EXPECT_NEAR(up(y), 0.3, 1e-6);
+}
+
+TEST(BoundPropagation, KeepsAPointThatMeetsTheRowsExactly) {
+  // 3 x <= 0.3 and x >= 0.1 (a foot on its region's edge, held there by a trimmed step):
+  // x = 0.1 meets both, but 0.3 / 3 rounds to 0.09999999999999999. A bound derived that
+  // way cut the point off, and the relaxation with x fixed at 0.1 became infeasible.
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", 0, 1, false);
+  b.AddRow("edge", LinExpr::Var(x, 3.0), -kInfinity, 0.3);
+  b.AddRow("held", LinExpr::Var(x), 0.1, kInfinity);
+  const Miqp p = b.Build();
+  Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
+  const PropagationResult r = PropagateBounds(p, &lo, &up);
+  EXPECT_FALSE(r.infeasible);
+  EXPECT_LE(lo(x), 0.1);
+  EXPECT_GE(up(x), 0.1);
+  EXPECT_LT(up(x), 0.1 + 1e-6);
 }
 
 }  // namespace

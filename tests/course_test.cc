@@ -61,7 +61,16 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
   };
   for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 7},
                                          {"littledog", CourseKind::kTilted, 13},
-                                         {"littledog", CourseKind::kDetour, 22}}) {
+                                         {"littledog", CourseKind::kDetour, 22},
+                                         // Bound propagation cut off a foot held on its region's
+                                         // edge: windows proven infeasible at the root.
+                                         {"littledog", CourseKind::kStairs, 10},
+                                         {"hexapod", CourseKind::kBeams, 20},
+                                         // A 90 degree turn: the checker took the final yaw as 0.
+                                         {"littledog", CourseKind::kStonesTurn, 4},
+                                         // The route through region centres led six feet into
+                                         // the dead-end pocket; the stance route does not.
+                                         {"hexapod", CourseKind::kDetour, 23}}) {
     const RobotModel robot = LoadRobot(RobotPath(c.robot));
     const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
     ASSERT_TRUE(course.route_exists);
@@ -129,6 +138,24 @@ TEST(CourseTest, CheckerRejectsFeetOffTheTrueSurfaceAndOutOfReach) {
   bool reach = false;
   for (const auto& e : v.violations) reach = reach || e.rfind("reach", 0) == 0;
   EXPECT_TRUE(reach);
+}
+
+TEST(CourseTest, CheckerJudgesTheFinalYawFromTheFeet) {
+  // The goal of a course with a 90 degree turn faces +y: a stance at the goal spots reaches
+  // it, the same stance turned back to yaw 0 does not.
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kStonesTurn, 4);
+  ASSERT_NEAR(course.goal.yaw_rad, M_PI / 2, 1e-9);
+  auto stance_at = [&](double yaw) {
+    std::vector<Footstep> feet;
+    for (int leg = 0; leg < robot.num_legs(); ++leg) {
+      const Eigen::Vector2d xy = NominalFootXY(robot, leg, course.goal.x_m, course.goal.y_m, yaw);
+      feet.push_back(Footstep{leg, leg, Eigen::Vector3d(xy.x(), xy.y(), 0.0), 0.0, -1});
+    }
+    return feet;
+  };
+  EXPECT_TRUE(CheckPlanOnCourse(course.terrain, robot, stance_at(M_PI / 2), course.goal, course.edge_margin_m).reaches_goal);
+  EXPECT_FALSE(CheckPlanOnCourse(course.terrain, robot, stance_at(0.0), course.goal, course.edge_margin_m).reaches_goal);
 }
 
 }  // namespace

@@ -39,6 +39,7 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"route_guidance", &PlannerOptions::route_guidance},
     {"local_goal_lookahead", &PlannerOptions::local_goal_lookahead_m, -1.0, 1000.0},
     {"local_goal_detour_ratio", &PlannerOptions::local_goal_detour_ratio, 1.0, 100.0},
+    {"stance_route", &PlannerOptions::stance_route},
     {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
 };
 

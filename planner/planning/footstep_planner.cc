@@ -136,6 +136,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       rejected.solve_time_s = elapsed();
       return rejected;
     }
+    if (options.stance_route) {
+      FollowStanceRoute(robot, usable, request.start_feet_world_m, request.start_yaw_rad,
+                        {request.goal_x_m, request.goal_y_m}, request.goal_yaw_rad, &guide);
+    }
     if (request.max_steps == 0 && options.default_max_steps == 0) {
       // Enough configurations to walk the route three times over at d_lim per
       // configuration; the time limit bounds the work.
@@ -243,7 +247,11 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     for (int i : WindowRegionIndices(usable, stance, (steps + n - 1) / n, step_xy, robot.dz_max_m)) {
       problem.regions.push_back(usable[static_cast<size_t>(i)]);
     }
-    const double lookahead = options.local_goal_lookahead_m < 0 ? 2.0 * LegReach(robot) : options.local_goal_lookahead_m;
+    // Default: about one window's walk. A route over stance poses is followed closely (two
+    // steps of d_lim per leg); one through region centres more loosely.
+    const double lookahead = options.local_goal_lookahead_m >= 0 ? options.local_goal_lookahead_m
+                             : guide.from_stances            ? 2.0 * robot.d_lim_m
+                                                             : 2.0 * LegReach(robot);
     if (guided && lookahead > 0.0) {
       // The window's goal term pulls toward a point of the route ahead of the stance.
       const Eigen::Vector2d centre = StanceCentreXY(stance);
@@ -396,6 +404,30 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     if (kept == 0 && !plan.reaches_goal &&
         retry_longer("window " + std::to_string(plan.windows) + " found no step that improves on standing still")) {
       continue;
+    }
+    // A window whose steps only shuffle the feet (none moved a tenth of d_lim from where
+    // it stood one and two windows ago) is stuck as surely as one that keeps none: the
+    // next windows would repeat it until the step budget ends.
+    if (guided && kept > 0 && !plan.reaches_goal && snapshots.size() >= 2) {
+      // Where each leg stood after the first `count` footsteps (the last n cover every leg).
+      auto feet_after = [&](size_t count) {
+        std::vector<Eigen::Vector3d> feet(n);
+        for (size_t k = count - n; k < count; ++k) feet[plan.footsteps[k].leg] = plan.footsteps[k].position_world_m;
+        return feet;
+      };
+      const std::vector<Eigen::Vector3d> now = feet_after(plan.footsteps.size());
+      double moved = 0.0;
+      for (size_t back = 1; back <= 2; ++back) {
+        const std::vector<Eigen::Vector3d> before = feet_after(snapshots[snapshots.size() - back].footsteps);
+        for (int leg = 0; leg < n; ++leg) moved = std::max(moved, (now[leg] - before[leg]).norm());
+      }
+      if (moved < 0.1 * robot.d_lim_m) {
+        const std::string why = "window " + std::to_string(plan.windows) + " only shuffled the feet (none moved " +
+                                std::to_string(0.1 * robot.d_lim_m) + " m in two windows)";
+        if (retry_longer(why)) continue;
+        plan.message = "the planner stopped short of the goal: " + why;
+        break;
+      }
     }
     if (kept > 0) {
       if (planned > last_failure) horizon = window;  // past the dead end: back to short windows

@@ -64,12 +64,17 @@ struct PlannerOptions {
   // (PlanRequest::max_windows == 0).
   bool route_guidance = true;
   // Each window's goal term follows the route: a local goal this many metres of route
-  // ahead of the current stance (0: the goal itself; negative: twice the robot's largest
-  // nominal foot distance L_leg, about one window's walk), while the route left is longer
+  // ahead of the current stance (0: the goal itself; negative: about one window's walk,
+  // 2 d_lim on a stance route, else twice the largest nominal foot distance L_leg), while the route left is longer
   // than local_goal_detour_ratio times the straight line to the goal (a detour: round a
   // wall, out of a pocket); on a nearly straight route the goal itself pulls the same way.
   double local_goal_lookahead_m = -1.0;
   double local_goal_detour_ratio = 1.1;
+  // The route the local goals follow comes from a search over stance poses where every
+  // leg's reference box meets a region (planner/planning/stance_route.h), not from the
+  // region graph's centres, which cut corners a whole body cannot. The region graph
+  // still decides 'no route'; where the stance search finds nothing its route is kept.
+  bool stance_route = true;
   // Adaptive horizons: a failed window is planned again, backing up one window, with up
   // to this many times the default window's steps (1: no retries). Only with route guidance.
   int max_horizon_windows = 2;

@@ -6,6 +6,8 @@
 #include <queue>
 #include <sstream>
 
+#include "planner/planning/stance_route.h"
+
 namespace mfp {
 
 namespace {
@@ -179,6 +181,20 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   guide.route.push_back(goal_xy);
   for (size_t k = 1; k < guide.route.size(); ++k) guide.length_m += (guide.route[k] - guide.route[k - 1]).norm();
   return guide;
+}
+
+void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                       const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide) {
+  if (!guide->connected || start_feet.empty()) return;
+  Eigen::Vector2d start = Eigen::Vector2d::Zero();
+  for (const auto& f : start_feet) start += f.head<2>();
+  start /= static_cast<double>(start_feet.size());
+  const StanceRoute stances = PlanStanceRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad);
+  if (!stances.found) return;
+  guide->route = stances.route;
+  guide->length_m = stances.length_m;
+  guide->from_stances = true;
 }
 
 Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m) {

@@ -23,6 +23,7 @@ struct RouteGuide {
   // passes through the centres of the regions a foot path crosses.
   std::vector<Eigen::Vector2d> route;
   double length_m = 0.0;
+  bool from_stances = false;  // route from the stance search (FollowStanceRoute)
 };
 
 // Longest horizontal distance between two regions that one step can bridge: each axis of
@@ -34,6 +35,13 @@ double MaxStepSpan(const RobotModel& robot);
 RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                      const std::vector<Eigen::Vector3d>& start_feet, const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
                      double goal_tolerance_m, double start_tolerance_m);
+
+// Replaces a connected guide's route by a route over stance poses (stance_route.h) from
+// the start stance's centre and yaw to the goal, when that search finds one.
+// start_feet: leg order.
+void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                       const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide);
 
 // The point of the route at arc length s (clamped to the route) [m].
 Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m);

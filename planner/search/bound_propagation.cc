@@ -79,6 +79,12 @@ PropagationResult PropagateBounds(const Miqp& p, Eigen::VectorXd* lower_ptr, Eig
         if (p.is_integer[j]) {
           new_l = std::ceil(new_l - 1e-6);
           new_u = std::floor(new_u + 1e-6);
+        } else {
+          // A derived bound is only as exact as the activity sums behind it: kept a
+          // tolerance outward, so that rounding cannot cut off a point that meets the rows
+          // exactly (a foot standing on its region's edge, held there by a trimmed step).
+          new_l -= tolerance * (1.0 + std::abs(new_l));
+          new_u += tolerance * (1.0 + std::abs(new_u));
         }
         const double range = std::isfinite(u - l) ? u - l : 1.0;
         if (new_l > new_u) {

@@ -1,0 +1,209 @@
+#include "planner/planning/stance_route.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+
+namespace mfp {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double PointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
+// Distance in plan view from p to a region's polygon (0 inside; vertices counter-clockwise).
+double PolygonDistance(const ConvexRegion& r, const Eigen::Vector2d& p) {
+  const auto& v = r.vertices_world_m;
+  bool inside = v.size() >= 3;
+  double d = kInf;
+  for (size_t k = 0; k < v.size(); ++k) {
+    const Eigen::Vector2d a = v[k].head<2>(), b = v[(k + 1) % v.size()].head<2>();
+    if ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x() < -1e-12) inside = false;
+    d = std::min(d, PointSegment(p, a, b));
+  }
+  return inside ? 0.0 : d;
+}
+
+// Cells of a raster: 2 where a region holds the point, 1 where one lies within `radius`
+// (a foot's reference box meets support there), 0 elsewhere.
+struct SupportRaster {
+  Eigen::Vector2d origin;
+  double res = 0.02;
+  int nx = 0, ny = 0;
+  std::vector<uint8_t> cells;
+  int At(const Eigen::Vector2d& p) const {
+    const int i = static_cast<int>(std::floor((p.x() - origin.x()) / res));
+    const int j = static_cast<int>(std::floor((p.y() - origin.y()) / res));
+    if (i < 0 || j < 0 || i >= nx || j >= ny) return 0;
+    return cells[static_cast<size_t>(j) * nx + i];
+  }
+};
+
+SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& lo,
+                                const Eigen::Vector2d& hi, double res, double radius) {
+  SupportRaster s;
+  s.origin = lo;
+  s.res = res;
+  s.nx = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / res)));
+  s.ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / res)));
+  s.cells.assign(static_cast<size_t>(s.nx) * s.ny, 0);
+  for (const ConvexRegion& r : regions) {
+    Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = -rlo;
+    for (const Eigen::Vector3d& v : r.vertices_world_m) {
+      rlo = rlo.cwiseMin(v.head<2>());
+      rhi = rhi.cwiseMax(v.head<2>());
+    }
+    const int i0 = std::max(0, static_cast<int>(std::floor((rlo.x() - radius - lo.x()) / res)));
+    const int i1 = std::min(s.nx - 1, static_cast<int>(std::floor((rhi.x() + radius - lo.x()) / res)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((rlo.y() - radius - lo.y()) / res)));
+    const int j1 = std::min(s.ny - 1, static_cast<int>(std::floor((rhi.y() + radius - lo.y()) / res)));
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        uint8_t& c = s.cells[static_cast<size_t>(j) * s.nx + i];
+        if (c == 2) continue;
+        const Eigen::Vector2d p = lo + res * Eigen::Vector2d(i + 0.5, j + 0.5);
+        const double d = PolygonDistance(r, p);
+        if (d <= 0.0) {
+          c = 2;
+        } else if (d <= radius) {
+          c = 1;
+        }
+      }
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                            double goal_yaw_rad, const StanceRouteOptions& options) {
+  StanceRoute out;
+  const int n = robot.num_legs();
+  const int H = std::max(1, options.headings);
+  double reach = 0.0;
+  for (const auto& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
+  // Body grid over the regions (a body stands at most reach + l_bnd beyond its feet).
+  Eigen::Vector2d lo = start_xy.cwiseMin(goal_xy), hi = start_xy.cwiseMax(goal_xy);
+  for (const ConvexRegion& r : regions) {
+    for (const Eigen::Vector3d& v : r.vertices_world_m) {
+      lo = lo.cwiseMin(v.head<2>());
+      hi = hi.cwiseMax(v.head<2>());
+    }
+  }
+  const double pad = reach + robot.l_bnd_m;
+  lo -= Eigen::Vector2d::Constant(pad);
+  hi += Eigen::Vector2d::Constant(pad);
+  double cell = options.cell_m;
+  const double area = (hi - lo).prod();
+  if (area / (cell * cell) > static_cast<double>(options.max_cells)) cell = std::sqrt(area / options.max_cells);
+  const int nx = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / cell)));
+  const int ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
+  // Support within l_bnd of a foot; the raster finer than the body grid.
+  const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
+  const SupportRaster support = MakeSupportRaster(regions, lo, hi, res, robot.l_bnd_m);
+
+  auto heading_of = [&](double yaw) {
+    const double u = std::remainder(yaw, 2 * M_PI);
+    return ((static_cast<int>(std::lround(u / (2 * M_PI / H))) % H) + H) % H;
+  };
+  auto cell_of = [&](const Eigen::Vector2d& p, int* i, int* j) {
+    *i = std::clamp(static_cast<int>(std::floor((p.x() - lo.x()) / cell)), 0, nx - 1);
+    *j = std::clamp(static_cast<int>(std::floor((p.y() - lo.y()) / cell)), 0, ny - 1);
+  };
+  auto centre_of = [&](int i, int j) { return Eigen::Vector2d(lo + cell * Eigen::Vector2d(i + 0.5, j + 0.5)); };
+  const size_t states = static_cast<size_t>(nx) * ny * H;
+  auto id = [&](int i, int j, int h) { return (static_cast<size_t>(j) * nx + i) * H + h; };
+  int si, sj, gi, gj;
+  cell_of(start_xy, &si, &sj);
+  cell_of(goal_xy, &gi, &gj);
+  const int sh = heading_of(start_yaw_rad), gh = heading_of(goal_yaw_rad);
+  const size_t start = id(si, sj, sh);
+  // Per pose: 0 unknown, 1 every nominal foot on a region, 2 every reference box meets
+  // one (usable, at a higher cost: such poses leave no room), 3 not usable.
+  std::vector<uint8_t> usable(states, 0);
+  auto pose_class = [&](int i, int j, int h) {
+    uint8_t& u = usable[id(i, j, h)];
+    if (u == 0) {
+      const Eigen::Vector2d c = centre_of(i, j);
+      const double yaw = h * 2 * M_PI / H;
+      int worst = 2;
+      for (int leg = 0; leg < n && worst > 0; ++leg) {
+        worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
+      }
+      u = static_cast<uint8_t>(3 - worst);
+    }
+    return u;
+  };
+  const double turn_cost = options.turn_cost_m;
+  // float and 32-bit parents: at most 8 x 300,000 states, 8 bytes each.
+  constexpr uint32_t kNone = UINT32_MAX;
+  if (states >= kNone) return out;  // more headings than any caller asks for
+  std::vector<float> dist(states, std::numeric_limits<float>::infinity());
+  std::vector<uint32_t> parent(states, kNone);
+  using Item = std::pair<double, size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  auto heuristic = [&](int i, int j) { return (centre_of(i, j) - centre_of(gi, gj)).norm(); };
+  dist[start] = 0.0;
+  open.push({heuristic(si, sj), start});
+  size_t reached = SIZE_MAX;
+  while (!open.empty()) {
+    const auto [f, s] = open.top();
+    open.pop();
+    const int h = static_cast<int>(s % H);
+    const size_t cellid = s / H;
+    const int i = static_cast<int>(cellid % nx), j = static_cast<int>(cellid / nx);
+    if (f > dist[s] + heuristic(i, j) + 1e-6) continue;
+    // Any heading at the goal cell: the windows turn to the goal yaw there.
+    if (i == gi && j == gj) {
+      reached = s;
+      break;
+    }
+    auto relax = [&](int i2, int j2, int h2, double w) {
+      const size_t t = id(i2, j2, h2);
+      const bool endpoint = (i2 == gi && j2 == gj && h2 == gh);
+      const uint8_t c = endpoint ? 1 : pose_class(i2, j2, h2);
+      if (c == 3) return;
+      if (c == 2) w *= options.tight_cost_factor;
+      if (dist[s] + w < dist[t]) {
+        dist[t] = static_cast<float>(dist[s] + w);
+        parent[t] = static_cast<uint32_t>(s);
+        open.push({dist[t] + heuristic(i2, j2), t});
+      }
+    };
+    for (int di = -1; di <= 1; ++di) {
+      for (int dj = -1; dj <= 1; ++dj) {
+        if (di == 0 && dj == 0) continue;
+        const int i2 = i + di, j2 = j + dj;
+        if (i2 < 0 || j2 < 0 || i2 >= nx || j2 >= ny) continue;
+        relax(i2, j2, h, cell * std::sqrt(static_cast<double>(di * di + dj * dj)));
+      }
+    }
+    relax(i, j, (h + 1) % H, turn_cost);
+    relax(i, j, (h + H - 1) % H, turn_cost);
+  }
+  if (reached == SIZE_MAX) return out;
+  std::vector<Eigen::Vector2d> cells;
+  for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
+    const size_t c = s / H;
+    const Eigen::Vector2d p = centre_of(static_cast<int>(c % nx), static_cast<int>(c / nx));
+    if (cells.empty() || (cells.back() - p).norm() > 1e-12) cells.push_back(p);
+  }
+  std::reverse(cells.begin(), cells.end());
+  out.route.push_back(start_xy);
+  for (size_t k = 1; k + 1 < cells.size(); ++k) out.route.push_back(cells[k]);
+  out.route.push_back(goal_xy);
+  for (size_t k = 1; k < out.route.size(); ++k) out.length_m += (out.route[k] - out.route[k - 1]).norm();
+  out.found = true;
+  return out;
+}
+
+}  // namespace mfp

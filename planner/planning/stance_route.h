@@ -1,0 +1,42 @@
+#pragma once
+// A body route from a search over stance poses, for the windows' local goals. The region
+// graph (route_guide.h) proves that a route exists or not, foot by foot; it does not see
+// that all n feet must stand at once, and its route through region centres cuts corners a
+// whole body cannot (the wall detour: feet left hanging over a dead-end pocket). Here a
+// body pose (x, y on a grid, yaw one of a few headings) is usable when every leg's
+// nominal foot lies within l_bnd of some region, i.e. the leg's reference box meets
+// support; A* over usable poses (moves to the 8 neighbouring cells, or a turn by one
+// heading) gives a route the windows can follow, dearer through poses where a nominal
+// foot is off every region. Heights are not judged here (the region graph and the MIQP
+// do that). No I/O.
+#include <Eigen/Core>
+#include <vector>
+
+#include "planner/robot/robot_model.h"
+#include "terrain/convex_region.h"
+
+namespace mfp {
+
+struct StanceRouteOptions {
+  double cell_m = 0.04;           // body grid; grown on large maps to stay within max_cells
+  int headings = 8;               // yaw candidates, evenly spaced over a full turn
+  long max_cells = 300000;        // body grid cells (x, y) at most
+  double turn_cost_m = 0.05;      // cost of turning by one heading, as distance [m]
+  // Cost factor of moving through a pose where some nominal foot is off every region
+  // (only its reference box meets one): the route keeps room where it can.
+  double tight_cost_factor = 3.0;
+};
+
+struct StanceRoute {
+  bool found = false;
+  std::vector<Eigen::Vector2d> route;  // body positions from start to goal [m, world]
+  double length_m = 0.0;
+};
+
+// start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
+// support around them (the start stance may be off nominal).
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+
+}  // namespace mfp

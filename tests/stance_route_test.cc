@@ -1,0 +1,59 @@
+// The route over stance poses (planner/planning/stance_route.h), on layouts built by hand.
+#include <gtest/gtest.h>
+
+#include "planner/io/robot_loader.h"
+#include "planner/planning/stance_route.h"
+
+namespace mfp {
+namespace {
+
+ConvexRegion Rect(int id, double x0, double y0, double x1, double y1, double z = 0.0) {
+  return MakeRegionFromPolygon(id, {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, 0.0);
+}
+
+RobotModel Littledog() { return LoadRobot(std::string(MFP_SOURCE_DIR) + "/config/robots/littledog.yaml"); }
+
+// Every foot of the pose has a region within l_bnd of its nominal spot at some heading.
+bool Supported(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& p) {
+  for (int h = 0; h < 8; ++h) {
+    bool all = true;
+    for (int leg = 0; leg < robot.num_legs() && all; ++leg) {
+      const Eigen::Vector2d foot = NominalFootXY(robot, leg, p.x(), p.y(), h * M_PI / 4);
+      bool near = false;
+      for (const ConvexRegion& r : regions) {
+        const Eigen::Vector2d lo = r.vertices_world_m[0].head<2>(), hi = r.vertices_world_m[2].head<2>();
+        near = near || (foot - foot.cwiseMax(lo).cwiseMin(hi)).norm() <= robot.l_bnd_m + 0.03;
+      }
+      all = near;
+    }
+    if (all) return true;
+  }
+  return false;
+}
+
+TEST(StanceRoute, GoesRoundAWallWithEveryFootSupported) {
+  // Start and goal pads 1 m apart with nothing between them; a corridor over the top.
+  const RobotModel robot = Littledog();
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.2, -0.2, 0.2, 0.2), Rect(1, 0.8, -0.2, 1.2, 0.2),
+                                             Rect(2, -0.2, 0.2, 1.2, 0.6)};
+  const StanceRoute s = PlanStanceRoute(robot, regions, {0, 0}, 0.0, {1, 0}, 0.0);
+  ASSERT_TRUE(s.found);
+  double top = -1.0;
+  for (const Eigen::Vector2d& p : s.route) {
+    top = std::max(top, p.y());
+    EXPECT_TRUE(Supported(robot, regions, p)) << p.transpose();
+  }
+  EXPECT_GT(top, 0.2);       // up into the corridor, not across the gap
+  EXPECT_GT(s.length_m, 1.2);
+}
+
+TEST(StanceRoute, FindsNoneWhereOnlySingleFeetFit) {
+  // A beam 2 cm wide: each foot could step along it, but no stance has all four on it.
+  const RobotModel robot = Littledog();
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.2, -0.2, 0.2, 0.2), Rect(1, 0.2, -0.01, 1.0, 0.01),
+                                             Rect(2, 1.0, -0.2, 1.4, 0.2)};
+  EXPECT_FALSE(PlanStanceRoute(robot, regions, {0, 0}, 0.0, {1.2, 0}, 0.0).found);
+}
+
+}  // namespace
+}  // namespace mfp
