@@ -127,6 +127,15 @@ int RunCourseBench(const CourseBenchOptions& o) {
     std::printf("%-32s %-6s %-14s %6d %8.2f %6s %-9s %s %s\n", course.name.c_str(), course.route_exists ? "yes" : "cut",
                 ToString(plan.status).c_str(), steps, time_s, plan.reaches_goal ? "yes" : "no", verdict.c_str(),
                 cause.c_str(), cause.empty() ? "" : ("(" + plan.message + ")").c_str());
+    if (o.print_windows) {
+      for (size_t w = 0; w < plan.window_records.size(); ++w) {
+        const WindowRecord& r = plan.window_records[w];
+        std::printf("    window %3zu: %3d steps %4d regions %5d binaries  %-11s %5d nodes %5d QPs  kept %3d  "
+                    "limit %5.2f s  build %5.3f  heuristic %5.2f  search %5.2f  polish %5.3f s\n",
+                    w + 1, r.new_steps, r.regions, r.integer_variables, ToString(r.status).c_str(), r.nodes,
+                    r.relaxations, r.kept_steps, r.time_limit_s, r.build_s, r.heuristic_s, r.search_s, r.polish_s);
+      }
+    }
     std::fflush(stdout);
   }
   std::printf("\nSummary\n");

@@ -18,6 +18,7 @@ struct CourseBenchOptions {
   // boxes' exact top faces inset by the checker's edge margin (perfect perception: separates
   // planning failures from perception ones).
   bool top_face_regions = false;
+  bool print_windows = false;      // one line per window solved under each course's row
   std::string write_dir;           // write each course's scenario YAML here ("" = no)
   std::function<void(Scenario*)> adjust;  // --set overrides
 };
