@@ -50,7 +50,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
   int with_route = 0, with_route_ok = 0, without_route = 0, no_route_fast = 0;
   std::vector<double> times, steps_ok;
   std::map<std::string, int> causes;
-  for (int i = 0; i < o.courses; ++i) {
+  for (int i = o.first; i < o.courses; ++i) {
     const int r = i % static_cast<int>(robots.size());
     const CourseKind kind = kinds[(i / robots.size()) % kinds.size()];
     Course course;

@@ -11,6 +11,7 @@ namespace mfp {
 
 struct CourseBenchOptions {
   int courses = 200;
+  int first = 0;                   // skip the courses before this index (their seeds stay seed + i)
   uint64_t seed = 1;
   double time_limit_s = 15.0;      // per plan
   std::string robots_dir;          // config/robots

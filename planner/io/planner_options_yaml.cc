@@ -43,6 +43,7 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
     {"window_time_slack", &PlannerOptions::window_time_slack, 0.0, 1000.0},
     {"anytime_windows", &PlannerOptions::anytime_windows},
+    {"anytime_window_cap", &PlannerOptions::anytime_window_cap, 1.0, 1000.0},
 };
 
 const std::vector<Field<FormulationOptions>> kFormulationFields = {

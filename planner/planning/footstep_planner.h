@@ -82,6 +82,10 @@ struct PlannerOptions {
   // A guided window's time share ends its search only once it has a plan; before that it
   // runs on to the plan's own limit (BranchAndBoundOptions::time_limit_needs_incumbent).
   bool anytime_windows = true;
+  // ... but for at most this many times its share: a window that finds no plan in that
+  // (often an infeasible one the search cannot prove so) must not take the time the
+  // retries and later windows need.
+  double anytime_window_cap = 4.0;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
   // The seed of each window's search; its stage search options and time limit are set
