@@ -106,10 +106,11 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
                         std::to_string(ref) + " m from its own (l_bnd " + std::to_string(robot.l_bnd_m) + ")");
     }
   }
-  // Goal: every final foot near its goal spot, final yaw near the goal yaw.
-  std::vector<Footstep> final_stance;
-  for (int i = 0; i < n; ++i) final_stance.push_back(Footstep{0, i, feet[i], 0.0, -1});
-  const double yaw = FinalStanceYaw(robot, final_stance);
+  // Goal: every final foot near its goal spot, final yaw near the goal yaw. The yaw is
+  // the one the final feet show (best fit of the nominal offsets), not the plan's own
+  // claim: FinalStanceYaw reads the last footstep's yaw, and a stance rebuilt here with
+  // yaw 0 made every goal facing elsewhere (the 90 degree turns) look missed.
+  const double yaw = EstimateStanceYaw(robot, feet);
   double worst = 0.0;
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector2d spot = NominalFootXY(robot, i, goal.x_m, goal.y_m, goal.yaw_rad);
