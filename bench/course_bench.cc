@@ -131,9 +131,10 @@ int RunCourseBench(const CourseBenchOptions& o) {
       for (size_t w = 0; w < plan.window_records.size(); ++w) {
         const WindowRecord& r = plan.window_records[w];
         std::printf("    window %3zu: %3d steps %4d regions %5d binaries  %-11s %5d nodes %5d QPs  kept %3d  "
-                    "limit %5.2f s  build %5.3f  heuristic %5.2f  search %5.2f  polish %5.3f s\n",
+                    "limit %5.2f s  build %5.3f  heuristic %5.2f  search %5.2f  polish %5.3f s%s\n",
                     w + 1, r.new_steps, r.regions, r.integer_variables, ToString(r.status).c_str(), r.nodes,
-                    r.relaxations, r.kept_steps, r.time_limit_s, r.build_s, r.heuristic_s, r.search_s, r.polish_s);
+                    r.relaxations, r.kept_steps, r.time_limit_s, r.build_s, r.heuristic_s, r.search_s, r.polish_s,
+                    r.kept_steps > 0 && !r.polished ? " (MIQP's steps kept)" : "");
       }
     }
     std::fflush(stdout);

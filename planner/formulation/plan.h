@@ -31,6 +31,7 @@ struct WindowRecord {
   double heuristic_s = 0.0;    // relax-and-fix seeding (inside the search's root)
   double search_s = 0.0;       // the whole search, heuristics included
   double polish_s = 0.0;       // exact-trigonometry polish
+  bool polished = false;       // the polished steps replaced the MIQP's
 };
 
 struct Plan {

@@ -386,6 +386,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     const auto polish_start = Clock::now();
     const PolishedWindow polished = PolishWindow(formulation, result.x, polish);
     plan.window_records.back().polish_s = std::chrono::duration<double>(Clock::now() - polish_start).count();
+    plan.window_records.back().polished = polished.report.accepted;
     if (!polished.report.message.empty() && polish_note.empty()) {
       polish_note = "window " + std::to_string(plan.windows) + ": " + polished.report.message;
     }
