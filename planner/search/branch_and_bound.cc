@@ -265,7 +265,8 @@ class Search {
   RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                              const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
     const Deadline& deadline = Active();
-    solver.SetTimeLimit(std::max(1e-3, deadline.RemainingSeconds()));
+    // (Without a caller's deadline the anytime search has none: a finite number for the solver.)
+    solver.SetTimeLimit(std::clamp(deadline.RemainingSeconds(), 1e-3, 1e6));
     solver.SetDeadline(deadline);
     if (opt_.early_cutoff) solver.SetCutoff(cutoff);
     if (opt_.relaxation_tolerance > 0.0) solver.SetRelativeTolerance(opt_.relaxation_tolerance);
