@@ -58,7 +58,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
   double worst_excess = -kInfinity;
   int inexact_windows = 0, replanned_windows = 0, windows_all = 0, false_yaw_claims = 0;
   double polish_sum = 0.0, solve_sum = 0.0;
-  for (int i = 0; i < o.courses; ++i) {
+  for (int i = o.first; i < o.courses; ++i) {
     const int r = i % static_cast<int>(robots.size());
     const CourseKind kind = kinds[(i / robots.size()) % kinds.size()];
     Course course;
@@ -165,6 +165,16 @@ int RunCourseBench(const CourseBenchOptions& o) {
                 course.route_exists ? "yes" : "cut", ToString(plan.status).c_str(), steps, time_s,
                 plan.reaches_goal ? "yes" : "no", verdict.c_str(), steps > 0 ? excess : 0.0, windows, inexact, replanned, polish_s,
                 max_polish_ratio, cause.c_str(), cause.empty() ? "" : ("(" + plan.message + ")").c_str());
+    if (o.print_windows) {
+      for (size_t w = 0; w < plan.window_records.size(); ++w) {
+        const WindowRecord& r = plan.window_records[w];
+        std::printf("    window %3zu: %3d steps %4d regions %5d binaries  %-11s %5d nodes %5d QPs  kept %3d  "
+                    "limit %5.2f s  build %5.3f  heuristic %5.2f  search %5.2f  polish %5.3f s%s\n",
+                    w + 1, r.new_steps, r.regions, r.integer_variables, ToString(r.status).c_str(), r.nodes,
+                    r.relaxations, r.kept_steps, r.time_limit_s, r.build_s, r.heuristic_s, r.search_s, r.polish_s,
+                    r.kept_steps > 0 && !r.polished ? " (MIQP's steps kept)" : "");
+      }
+    }
     std::fflush(stdout);
   }
   std::printf("\nSummary\n");

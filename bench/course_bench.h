@@ -11,6 +11,7 @@ namespace mfp {
 
 struct CourseBenchOptions {
   int courses = 200;
+  int first = 0;                   // skip the courses before this index (their seeds stay seed + i)
   uint64_t seed = 1;
   double time_limit_s = 15.0;      // per plan
   std::string robots_dir;          // config/robots
@@ -18,6 +19,7 @@ struct CourseBenchOptions {
   // boxes' exact top faces inset by the checker's edge margin (perfect perception: separates
   // planning failures from perception ones).
   bool top_face_regions = false;
+  bool print_windows = false;      // one line per window solved under each course's row
   std::string write_dir;           // write each course's scenario YAML here ("" = no)
   std::string only;                // plan only courses whose name contains this ("" = all)
   bool verbose = false;            // print each accepted window (steps, distance, nodes)

@@ -76,8 +76,10 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
                         std::to_string(ref) + " m from its own (l_bnd " + std::to_string(robot.l_bnd_m) + ")");
     }
   }
-  // Goal: every final foot near its goal spot, final yaw near the goal yaw.
-  // The final yaw from where the feet stand (not the plan's own account of it).
+  // Goal: every final foot near its goal spot, final yaw near the goal yaw. The yaw is
+  // the one the final feet show (best fit of the nominal offsets), not the plan's own
+  // claim: FinalStanceYaw reads the last footstep's yaw, and a stance rebuilt here with
+  // yaw 0 made every goal facing elsewhere (the 90 degree turns) look missed.
   const double yaw = EstimateStanceYaw(robot, feet);
   double worst = 0.0;
   for (int i = 0; i < n; ++i) {

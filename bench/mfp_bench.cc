@@ -266,6 +266,10 @@ int main(int argc, char** argv) {
   bool course_top_faces = false;
   app.add_flag("--course-top-faces", course_top_faces,
                "generated courses: plan on the boxes' true top faces inset by the edge margin, not extracted regions");
+  int course_first = 0;
+  app.add_option("--course-first", course_first, "generated courses: start at this index (to re-run one course of a sample)");
+  bool course_windows = false;
+  app.add_flag("--course-windows", course_windows, "generated courses: one line per window (size, binaries, nodes, time)");
   app.add_option("--write-courses", write_courses, "write each generated course as a scenario YAML here");
   std::string course_only;
   bool course_verbose = false;
@@ -283,6 +287,8 @@ int main(int argc, char** argv) {
       o.top_face_regions = course_top_faces;
       o.only = course_only;
       o.verbose = course_verbose;
+      o.print_windows = course_windows;
+      o.first = course_first;
       o.adjust = [&](mfp::Scenario* s) { ApplyOverrides(overrides, s); };
       mfp::RunCourseBench(o);
       return 0;

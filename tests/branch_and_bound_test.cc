@@ -328,6 +328,26 @@ TEST(BranchAndBound, TimeLimitWithoutIncumbentSaysSo) {
   EXPECT_EQ(r.x.size(), 0);
 }
 
+TEST(BranchAndBound, AnytimeSearchRunsPastItsTimeLimitToItsFirstIncumbent) {
+  // time_limit_needs_incumbent: the time limit alone (0 s) does not end a search that
+  // has no plan yet; it goes on to its first incumbent, then stops (the caller's
+  // deadline, 60 s here, is far off). Without the flag the same search has none.
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.time_limit_s = 0.0;
+  options.time_limit_needs_incumbent = true;
+  options.deadline = Deadline::After(60.0);
+  options.rounding_heuristic = false;  // the incumbent must come from the tree
+  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  EXPECT_TRUE(HasPlan(r.status)) << ToString(r.status);
+  ASSERT_EQ(r.x.size(), Knapsack().problem.num_variables());
+  EXPECT_LE(Knapsack().problem.MaxViolation(r.x), 1e-6);
+  EXPECT_LE(r.bound, r.objective);
+  // An expired caller's deadline still ends it, plan or not.
+  options.deadline = Deadline::After(0.0);
+  EXPECT_EQ(SolveBranchAndBound(Knapsack().problem, *solver, options).status, SolveStatus::kNoSolution);
+}
+
 TEST(BranchAndBound, ExtraRoundingProposalsAreUsed) {
   // A proposal of the optimum itself makes the root's incumbent optimal at once.
   const auto solver = MakeIpoptRelaxationSolver();

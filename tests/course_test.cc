@@ -59,6 +59,10 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
     CourseKind kind;
     uint64_t seed;
   };
+  // Stepping stones that ran out of time: the interior point stalled on boxes one ulp
+  // wide and Ipopt solved those nodes at 25 times the cost, early windows spent half the
+  // remaining time each (littledog 1, hexapod 2; seed 1 of mfp-bench --courses). The
+  // turn (littledog 4) reached its goal facing 90 degrees, which the checker misread.
   for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 7},
                                          {"littledog", CourseKind::kTilted, 13},
                                          {"littledog", CourseKind::kDetour, 22},
@@ -70,7 +74,11 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
                                          {"littledog", CourseKind::kStonesTurn, 4},
                                          // The route through region centres led six feet into
                                          // the dead-end pocket; the stance route does not.
-                                         {"hexapod", CourseKind::kDetour, 23}}) {
+                                         {"hexapod", CourseKind::kDetour, 23},
+                                         // Windows out of time: near-fixed boxes sent a fifth of
+                                         // the node QPs to Ipopt.
+                                         {"littledog", CourseKind::kStones, 1},
+                                         {"hexapod", CourseKind::kStones, 2}}) {
     const RobotModel robot = LoadRobot(RobotPath(c.robot));
     const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
     ASSERT_TRUE(course.route_exists);

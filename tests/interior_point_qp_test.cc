@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "planner/miqp/miqp_builder.h"
+#include "planner/qp/fixed_variable_reduction.h"
 #include "planner/qp/ipm_relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "tests/test_qps.h"
@@ -172,6 +174,28 @@ TEST(InteriorPointQp, InfeasibleRowsAreReportedNotSolved) {
   const Miqp p = b.Build();
   const RelaxationResult r = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, InteriorPointOptions());
   EXPECT_EQ(r.status, RelaxationStatus::kInfeasible);
+}
+
+TEST(InteriorPointQp, ABoxNarrowerThanRoundingErrorIsAFixedVariable) {
+  // Bound propagation can leave a variable a box one ulp wide. Kept free, its bound
+  // duals grew without limit and the interior point hit its iteration limit (every
+  // such node then went to Ipopt). Treated as fixed, the node solves at once:
+  // x = 0.3 leaves min (y - 1)^2 + 1.7^2 with y <= 1.7, so y = 1 and the cost is 2.89.
+  const Miqp p = Projection();
+  Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
+  lo(0) = 0.3;
+  up(0) = std::nextafter(0.3, 1.0);
+  const ReducedQp reduced = ReduceFixedVariables(p, lo, up, 1e-9);
+  EXPECT_EQ(reduced.free_index.size(), 1u);
+  EXPECT_GE(reduced.fixed_x(0), lo(0));
+  EXPECT_LE(reduced.fixed_x(0), up(0));
+  const Eigen::VectorXd warm = Eigen::Vector2d(0.3, 0.9);
+  for (const Eigen::VectorXd* start : {static_cast<const Eigen::VectorXd*>(nullptr), &warm}) {
+    const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, start);
+    ASSERT_EQ(r.status, RelaxationStatus::kSolved);
+    EXPECT_NEAR(r.x(1), 1.0, 1e-4);
+    EXPECT_NEAR(r.objective, 1.7 * 1.7, 1e-6);
+  }
 }
 
 TEST(InteriorPointQp, SolvesANodeWhoseOnlyRowLeftBinds) {

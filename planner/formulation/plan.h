@@ -16,6 +16,24 @@ struct Footstep {
   int region_id = -1;                                       // ConvexRegion::id it stands in
 };
 
+// One window's account (PlanFootsteps fills one per MIQP solved, retries included): what
+// entered its MIQP and where its time went. For benchmarks and logs.
+struct WindowRecord {
+  int new_steps = 0;          // footsteps the window plans
+  int regions = 0;            // regions in its MIQP
+  int integer_variables = 0;  // binaries of its MIQP
+  SolveStatus status = SolveStatus::kInternalError;  // the window's search result
+  int nodes = 0;
+  int relaxations = 0;
+  int kept_steps = 0;          // steps accepted from it (0 on a failure or a retry)
+  double time_limit_s = 0.0;   // the search's share of the plan's time
+  double build_s = 0.0;        // formulating the MIQP
+  double heuristic_s = 0.0;    // relax-and-fix seeding (inside the search's root)
+  double search_s = 0.0;       // the whole search, heuristics included
+  double polish_s = 0.0;       // exact-trigonometry polish
+  bool polished = false;       // the polished steps replaced the MIQP's
+};
+
 struct Plan {
   SolveStatus status = SolveStatus::kInternalError;
   std::string message;        // human-readable detail for non-optimal outcomes
@@ -33,6 +51,7 @@ struct Plan {
   // footsteps[0 .. n-1] are the start stance (in gait order); the last n are the final
   // stance, one per leg.
   std::vector<Footstep> footsteps;
+  std::vector<WindowRecord> window_records;  // one per window solved, in order
 };
 
 }  // namespace mfp

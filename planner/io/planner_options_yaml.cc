@@ -41,6 +41,9 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"local_goal_detour_ratio", &PlannerOptions::local_goal_detour_ratio, 1.0, 100.0},
     {"stance_route", &PlannerOptions::stance_route},
     {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
+    {"window_time_slack", &PlannerOptions::window_time_slack, 0.0, 1000.0},
+    {"anytime_windows", &PlannerOptions::anytime_windows},
+    {"anytime_window_cap", &PlannerOptions::anytime_window_cap, 1.0, 1000.0},
 };
 
 const std::vector<Field<RelaxationSolverOptions>> kSolverFields = {

@@ -11,6 +11,7 @@
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
 #include "planner/planning/route_guide.h"
+#include "planner/planning/window_budget.h"
 #include "terrain/region_reachability.h"
 
 namespace mfp {
@@ -176,6 +177,13 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
   std::string polish_note;  // the first window whose polished plan was not used, and why
+  auto stance_centre = [&] {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector3d& f : stance) c += f.head<2>();
+    return Eigen::Vector2d(c / n);
+  };
+  const double start_progress = guided ? RouteProgress(guide, stance_centre()) : 0.0;
+  int accepted_windows = 0;  // windows whose steps were kept, for the time budget
 
   // Adaptive horizons: a window that is infeasible, finds no plan in its time, or cannot
   // improve on standing still is planned again from the stance before the previous
@@ -271,7 +279,13 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       problem.history_feet_world_m = history;
       problem.start_step_yaw_rad = stance_yaw;
     }
+    WindowRecord record;
+    record.new_steps = steps;
+    record.regions = static_cast<int>(problem.regions.size());
+    const auto build_start = Clock::now();
     const MiqpFormulation formulation(problem, options.formulation);
+    record.build_s = std::chrono::duration<double>(Clock::now() - build_start).count();
+    record.integer_variables = formulation.miqp().num_integer();
     if (plan.windows == 0) {
       plan.integer_variables = formulation.miqp().num_integer();
       plan.objective_offset = formulation.miqp().constant;
@@ -286,8 +300,24 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     // Each window gets its share of the remaining time, and at least half of it when
     // few windows are left (later windows are usually shorter, near the goal).
     bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time);
-    // No window runs past the whole plan's limit, whatever it is given.
-    bnb.deadline = request.deadline.Within(time_limit - elapsed());
+    if (guided && options.window_time_slack > 0.0) {
+      // Under guidance: a share from the windows the route still needs.
+      WindowBudgetInput budget;
+      budget.remaining_s = remaining_time;
+      const double progress = RouteProgress(guide, stance_centre());
+      budget.route_left_m = guide.length_m - progress;
+      budget.route_covered_m = progress - start_progress;
+      budget.accepted_windows = accepted_windows;
+      budget.prior_advance_m = robot.d_lim_m * std::max(1, window / n);
+      budget.slack = options.window_time_slack;
+      bnb.time_limit_s = WindowTimeShare(budget);
+    }
+    bnb.time_limit_needs_incumbent = guided && options.anytime_windows;
+    // No window runs past the whole plan's limit, whatever it is given, nor, running on
+    // to its first plan, past anytime_window_cap shares.
+    bnb.deadline = request.deadline.Within(
+        bnb.time_limit_needs_incumbent ? std::min(time_limit - elapsed(), options.anytime_window_cap * bnb.time_limit_s)
+                                       : time_limit - elapsed());
     if (options.snap_yaw_segments) {
       bnb.equivalent_point = [&formulation](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                             Eigen::VectorXd* x) {
@@ -300,8 +330,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
       if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
         seeded = true;
+        const auto rf_start = Clock::now();
         RelaxAndFixOptions rf = options.relax_and_fix;
         rf.stage = bnb;
+        rf.stage.time_limit_needs_incumbent = false;  // a stage out of time is completed by rounding
         // Stage searches are small (nodes_per_stage): strong branching would cost them more
         // than it saves, and their plans came out worse (docs/measurements.md).
         if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
@@ -309,10 +341,18 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
         const RelaxAndFixResult r = rf.two_paths ? RelaxAndFixTwoPaths(formulation, solvers, rf)
                                                  : RelaxAndFix(formulation, solvers, rf);
         if (r.x) proposals.push_back(*r.x);
+        record.heuristic_s = std::chrono::duration<double>(Clock::now() - rf_start).count();
       }
       return proposals;
     };
+    const auto search_start = Clock::now();
     BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+    record.search_s = std::chrono::duration<double>(Clock::now() - search_start).count();
+    record.time_limit_s = bnb.time_limit_s;
+    record.status = result.status;
+    record.nodes = result.nodes;
+    record.relaxations = result.relaxations;
+    plan.window_records.push_back(record);
     plan.nodes += result.nodes;
     plan.relaxations += result.relaxations;
     if (!HasPlan(result.status) &&
@@ -336,7 +376,15 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     // The polisher's time comes out of the plan's: at most what is left of it.
     PolishOptions polish = options.polish;
     polish.time_limit_s = std::min(polish.time_limit_s, std::max(1e-3, time_limit - elapsed()));
+    // Under guidance no more than the window's own share (at least 50 ms): the polisher
+    // took 0.2-0.4 s of 0.3 s shares on octopod stones; a window it cannot polish in
+    // time is planned again within the chords' error (below).
+    if (guided && options.window_time_slack > 0.0) {
+      polish.time_limit_s = std::min(polish.time_limit_s, std::max(0.05, bnb.time_limit_s));
+    }
+    const auto polish_start = Clock::now();
     PolishedWindow polished = PolishWindow(formulation, result.x, polish);
+    plan.window_records.back().polish_s = std::chrono::duration<double>(Clock::now() - polish_start).count();
     // A window the polisher cannot make exact is planned again within the chords' error
     // (exact_window.h); when that finds no plan the plan ends before this window.
     ExactReplan replan;
@@ -362,6 +410,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       polished = std::move(replan.polished);
       polished.report.time_s += polish_s;  // both polishes
     }
+    plan.window_records.back().polished = polished.report.accepted;
     const MiqpFormulation& used = replan.planned ? *replan.formulation : formulation;
     plan.status = Combine(plan.status, result.status);
     plan.objective += result.objective;
@@ -378,6 +427,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       plan.footsteps.push_back(f);
     }
     planned += kept;
+    if (kept > 0) ++accepted_windows;
+    plan.window_records.back().kept_steps = kept;
     phase = (phase + kept) % n;
     const int size = static_cast<int>(plan.footsteps.size());
     for (int i = 0; i < n; ++i) {

@@ -78,6 +78,19 @@ struct PlannerOptions {
   // Adaptive horizons: a failed window is planned again, backing up one window, with up
   // to this many times the default window's steps (1: no retries). Only with route guidance.
   int max_horizon_windows = 2;
+  // Time budget of each window under route guidance (planner/window_budget.h): this many
+  // fair shares of the remaining time, the fair share from the route left over the route
+  // covered per window so far (0: the old rule, the larger of an even split over the step
+  // budget's windows and half the remaining time, which let early windows spend the
+  // time on proofs that later windows needed to reach the goal).
+  double window_time_slack = 2.0;
+  // A guided window's time share ends its search only once it has a plan; before that it
+  // runs on to the plan's own limit (BranchAndBoundOptions::time_limit_needs_incumbent).
+  bool anytime_windows = true;
+  // ... but for at most this many times its share: a window that finds no plan in that
+  // (often an infeasible one the search cannot prove so) must not take the time the
+  // retries and later windows need.
+  double anytime_window_cap = 4.0;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
   // The seed of each window's search; its stage search options and time limit are set

@@ -20,6 +20,10 @@ Eigen::VectorXd ReducedQp::Restrict(const Eigen::VectorXd& full_x) const {
   return r;
 }
 
+namespace {
+constexpr double kFixedWidth = 1e-12;  // relative to the bounds' magnitude
+}  // namespace
+
 ReducedQp ReduceFixedVariables(const Miqp& p, const Eigen::VectorXd& lower,
                                const Eigen::VectorXd& upper, double row_tolerance) {
   const int n = p.num_variables();
@@ -28,11 +32,16 @@ ReducedQp ReduceFixedVariables(const Miqp& p, const Eigen::VectorXd& lower,
   r.fixed_x = Eigen::VectorXd::Zero(n);
   std::vector<int> reduced_of(n, -1);
   for (int j = 0; j < n; ++j) {
-    if (lower(j) < upper(j)) {
+    // A box narrower than rounding error (bound propagation leaves boxes of 1e-18 from
+    // rows that pin a variable) is a fixed variable: kept free, its bound duals grow
+    // without limit and the interior point never converges (then Ipopt solved it, at
+    // 25 times the cost: 85 % of the plan time on generated stepping stones).
+    const double width = kFixedWidth * (1.0 + std::max(std::abs(lower(j)), std::abs(upper(j))));
+    if (lower(j) < upper(j) - width) {
       reduced_of[j] = static_cast<int>(r.free_index.size());
       r.free_index.push_back(j);
     } else {
-      r.fixed_x(j) = lower(j);
+      r.fixed_x(j) = lower(j) < upper(j) ? 0.5 * (lower(j) + upper(j)) : lower(j);
     }
   }
   const int nf = static_cast<int>(r.free_index.size());

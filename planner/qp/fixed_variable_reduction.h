@@ -1,5 +1,6 @@
 #pragma once
-// Removes the variables a branch-and-bound node has fixed (lower == upper) from a QP,
+// Removes the variables a branch-and-bound node has fixed (lower == upper, or within
+// 1e-12 relative: fixed at the middle) from a QP,
 // moving their contribution into the objective and the row bounds. Rows left without a
 // free variable are checked directly. Solvers get a smaller problem, and none of them
 // sees a constant row (Ipopt 3.11 returns a wrong "optimal" point on such rows).

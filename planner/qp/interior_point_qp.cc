@@ -295,8 +295,15 @@ void WarmStart(const InequalityForm& f, const Eigen::VectorXd& lower, const Eige
   for (int j = 0; j < n; ++j) {
     const double mid = 0.5 * (lower(j) + upper(j));
     (*w)(j) = (1.0 - opt.warm_start_pull) * std::clamp(x0(j), lower(j), upper(j)) + opt.warm_start_pull * mid;
-    (*s)(2 * E + 2 * j) = upper(j) - (*w)(j);
-    (*s)(2 * E + 2 * j + 1) = (*w)(j) - lower(j);
+    // Bound slacks strictly positive: on a box narrower than the rounding error of its
+    // ends (bound propagation leaves such boxes) the pulled point can land on a bound,
+    // and a zero slack made the duals infinite and the whole solve NaN (then Ipopt
+    // solved it, 25 times slower). The slacks need not equal the distances exactly: the
+    // primal residual carries the difference.
+    const double floor = std::max(std::min(min_slack, 0.25 * (upper(j) - lower(j))),
+                                  1e-9 * (1.0 + std::max(std::abs(lower(j)), std::abs(upper(j)))));
+    (*s)(2 * E + 2 * j) = std::max(upper(j) - (*w)(j), floor);
+    (*s)(2 * E + 2 * j + 1) = std::max((*w)(j) - lower(j), floor);
     (*z)(2 * E + 2 * j) = mu0 / (*s)(2 * E + 2 * j);
     (*z)(2 * E + 2 * j + 1) = mu0 / (*s)(2 * E + 2 * j + 1);
   }

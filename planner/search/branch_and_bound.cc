@@ -46,6 +46,7 @@ class Search {
         rounding_(rounding),
         start_(Clock::now()),
         deadline_(options.deadline.Within(options.time_limit_s)),
+        hard_deadline_(options.time_limit_needs_incumbent ? options.deadline : deadline_),
         pseudo_(problem.num_variables()) {
     group_of_.assign(p_.num_variables(), -1);
     for (size_t g = 0; g < p_.sos1_groups.size(); ++g) {
@@ -58,7 +59,7 @@ class Search {
     open_.push_back(std::move(root));
     const int workers = static_cast<int>(solvers_.size());
     while (!open_.empty()) {
-      if (deadline_.Expired()) {
+      if (Active().Expired()) {
         hit_time_limit_ = true;
         break;
       }
@@ -242,6 +243,10 @@ class Search {
   }
 
  private:
+  // The deadline in force: the time limit's, or before the first incumbent under
+  // time_limit_needs_incumbent the caller's alone.
+  const Deadline& Active() const { return !HasIncumbent() ? hard_deadline_ : deadline_; }
+
   double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
   bool HasIncumbent() const { return result_.x.size() > 0; }
 
@@ -259,8 +264,10 @@ class Search {
 
   RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                              const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
-    solver.SetTimeLimit(std::max(1e-3, std::min(opt_.time_limit_s, deadline_.RemainingSeconds())));
-    solver.SetDeadline(deadline_);
+    const Deadline& deadline = Active();
+    // (Without a caller's deadline the anytime search has none: a finite number for the solver.)
+    solver.SetTimeLimit(std::clamp(deadline.RemainingSeconds(), 1e-3, 1e6));
+    solver.SetDeadline(deadline);
     if (opt_.early_cutoff) solver.SetCutoff(cutoff);
     if (opt_.relaxation_tolerance > 0.0) solver.SetRelativeTolerance(opt_.relaxation_tolerance);
     return solver.Solve(p_, lower, upper, warm);
@@ -433,7 +440,7 @@ class Search {
                             pseudo_.Count(c.var, true) >= opt_.reliability;
       double score = c.score;
       if (!reliable && trials < opt_.strong_branching_candidates &&
-          since_better < opt_.strong_branching_lookahead && !deadline_.Expired()) {
+          since_better < opt_.strong_branching_lookahead && !Active().Expired()) {
         ++trials;
         double gain[2];
         StrongBranchGains(c.var, x, rel.objective, *lower, *upper, gain);
@@ -517,7 +524,7 @@ class Search {
     // Each proposal is a QP with the integers fixed: solved a round of workers at a time.
     const int workers = static_cast<int>(solvers_.size());
     for (size_t first = 0; first < proposals.size(); first += workers) {
-      if (deadline_.Expired()) return;
+      if (Active().Expired()) return;
       const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
       std::vector<RelaxationResult> results(count);
       ForEachInParallel(count, [&](int k) {
@@ -580,7 +587,7 @@ class Search {
     result_.solve_time_s = Elapsed();
     // A relaxation the deadline cut short left its subtree unresolved: that is the time
     // limit, not a solver failure.
-    if (deadline_.Expired() && (root_failed_ || unresolved_bound_ < kInfinity || !open_.empty())) {
+    if (Active().Expired() && (root_failed_ || unresolved_bound_ < kInfinity || !open_.empty())) {
       hit_time_limit_ = true;
     }
     const double open_bound = UnexploredBound();
@@ -616,7 +623,8 @@ class Search {
   const BranchAndBoundOptions& opt_;
   const RoundingHeuristic& rounding_;
   const Clock::time_point start_;
-  const Deadline deadline_;
+  const Deadline deadline_;       // time_limit_s from the start, or the caller's deadline if sooner
+  const Deadline hard_deadline_;  // the caller's deadline alone under time_limit_needs_incumbent
   PseudoCosts pseudo_;
   std::vector<int> group_of_;
   std::vector<Node> open_;

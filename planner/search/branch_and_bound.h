@@ -39,6 +39,10 @@ struct BranchAndBoundOptions {
   // sooner of it and time_limit_s from its start, checked between nodes and inside
   // every relaxation solve (RelaxationSolver::SetDeadline).
   Deadline deadline;
+  // Anytime windows: when set, time_limit_s ends the search only once it holds an
+  // incumbent; before its first one it runs on until the deadline (or max_nodes), so a
+  // search given too short a share ends with a plan rather than none.
+  bool time_limit_needs_incumbent = false;
   int max_nodes = 20000;
   double relative_gap = 1e-4;      // stop when (incumbent - bound) <= relative_gap * max(1, |incumbent|)
   double absolute_gap = 1e-6;
