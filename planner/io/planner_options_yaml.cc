@@ -41,6 +41,8 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"local_goal_lookahead", &PlannerOptions::local_goal_lookahead_m, -1.0, 1000.0},
     {"local_goal_detour_ratio", &PlannerOptions::local_goal_detour_ratio, 1.0, 100.0},
     {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
+    {"warm_start_match", &PlannerOptions::warm_start_match_m, 0, 1},
+    {"replan_time", &PlannerOptions::replan_time_s, 0, 3600},
 };
 
 const std::vector<Field<FormulationOptions>> kFormulationFields = {

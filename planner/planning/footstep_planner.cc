@@ -11,6 +11,7 @@
 #include "planner/planning/request_check.h"
 #include "terrain/region_reachability.h"
 #include "planner/planning/route_guide.h"
+#include "planner/planning/warm_start.h"
 
 namespace mfp {
 namespace {
@@ -293,8 +294,15 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     bool seeded = !options.relax_and_fix.enabled ||
                   formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
+    // The first window of a replanning request starts from the client's previous plan.
+    const WarmStart warm_start = plan.windows == 1 && !request.warm_start.empty()
+                                     ? WarmStartFrom(formulation, request.warm_start, options.warm_start_match_m)
+                                     : WarmStart{};
+    std::vector<Eigen::VectorXd> warm = warm_start.proposals;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
+      proposals.insert(proposals.end(), warm.begin(), warm.end());
+      warm.clear();  // offered once, at the root
       if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
         seeded = true;
         RelaxAndFixOptions rf = options.relax_and_fix;
@@ -310,7 +318,22 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       }
       return proposals;
     };
-    const BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+    bool replan = warm_start.stance_matched && options.replan_time_s > 0.0;
+    if (replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
+    BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+    if (replan && !HasPlan(result.status)) {  // no plan in the budget: the full search
+      bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time) - result.solve_time_s;
+      const BranchAndBoundResult first = result;
+      result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+      result.nodes += first.nodes;
+      result.relaxations += first.relaxations;
+      replan = false;
+    }
+    // Cut short by the replanning budget, not by the request's time: a plan, unproven.
+    if (replan && result.status == SolveStatus::kTimeLimit && request.deadline.RemainingSeconds() > 0.0 &&
+        time_limit - elapsed() > 0.0) {
+      result.status = SolveStatus::kFeasible;
+    }
     plan.nodes += result.nodes;
     plan.relaxations += result.relaxations;
     if (!HasPlan(result.status) &&

@@ -36,6 +36,10 @@ struct PlanRequest {
   Deadline deadline;
   int max_windows = 0;     // MIQPs solved at most; 0 = as many as the route needs. 1 = exactly
                            // the single MIQP of FirstWindowProblem (benchmarks of Table I)
+  // Optional: the footsteps of this client's previous plan (Plan::footsteps) on the same
+  // map. When the start stance lies on it, its steps ahead seed the first window's search
+  // (planner/planning/warm_start.h), and PlannerOptions::replan_time bounds that search.
+  std::vector<Footstep> warm_start;
 };
 
 struct PlannerOptions {
@@ -73,6 +77,16 @@ struct PlannerOptions {
   // Adaptive horizons: a failed window is planned again, backing up one window, with up
   // to this many times the default window's steps (1: no retries). Only with route guidance.
   int max_horizon_windows = 2;
+  // PlanRequest::warm_start is used when every start foot lies within this of a footstep
+  // of the previous plan [m] (a robot's feet land near, not on, the planned spots).
+  double warm_start_match_m = 0.05;
+  // The first window of a robot standing on its previous plan (PlanRequest::warm_start
+  // matched: a robot replanning as it walks) searches at most this long [s] (0: its share
+  // of the plan's time, like any window): it needs its answer within its cycle, and asks
+  // again from the plan it got, so each replan's search starts from the last one's plan.
+  // A search cut short answers its best plan with status feasible and its proven gap;
+  // one without a plan by then goes on as the full search.
+  double replan_time_s = 0.0;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
   // The seed of each window's search; its stage search options and time limit are set

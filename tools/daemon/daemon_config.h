@@ -35,6 +35,10 @@ struct DaemonLimits {
   bool supersede_same_robot = true;
   // A map without regions replaces a map with regions only when true.
   bool accept_empty_maps = false;
+  // A robot's request is planned from the plan last sent for that robot on the same map
+  // (PlanRequest::warm_start): a robot replanning as it walks gets its answer from the
+  // plan it is walking on. Same problem, same optimum; a shorter search.
+  bool warm_start_replans = true;
 };
 
 struct DaemonConfig {
