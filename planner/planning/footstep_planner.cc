@@ -387,6 +387,14 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     yaw = plan.footsteps.back().yaw_rad;
     plan.reaches_goal = goal_reached(plan.footsteps);
+    if (request.on_plan_so_far && kept > 0) {
+      Plan so_far = plan;
+      so_far.status = plan.reaches_goal ? plan.status : SolveStatus::kPartial;
+      so_far.message = "the plan so far: " + std::to_string(planned) + " steps";
+      so_far.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
+      so_far.solve_time_s = elapsed();
+      request.on_plan_so_far(so_far);
+    }
     if (on_progress) {
       PlanProgress progress;
       progress.window = plan.windows;

@@ -40,6 +40,10 @@ struct PlanRequest {
   // map. When the start stance lies on it, its steps ahead seed the first window's search
   // (planner/planning/warm_start.h), and PlannerOptions::replan_time bounds that search.
   std::vector<Footstep> warm_start;
+  // Optional: called after each accepted window with the plan so far (every step in it
+  // valid; status partial unless it reaches the goal), so a caller whose deadline comes
+  // first (a daemon's watchdog) can answer with it. Called on the planning thread.
+  std::function<void(const Plan&)> on_plan_so_far;
 };
 
 struct PlannerOptions {

@@ -421,6 +421,16 @@ bool DaemonCore::PlanNext() {
     // instead of running on. The task holds the flag, so it outlives the core's wait.
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     request.deadline = Deadline::After(remaining_s - margin_s).WithStop(cancel.get());
+    // The plan accepted so far (window by window): the watchdog's answer at the deadline.
+    struct SoFar {
+      std::mutex mutex;
+      std::optional<Plan> plan;
+    };
+    auto so_far = std::make_shared<SoFar>();
+    request.on_plan_so_far = [so_far](const Plan& p) {
+      std::lock_guard<std::mutex> lock(so_far->mutex);
+      so_far->plan = p;
+    };
     // The task owns what it reads (setup and regions by shared pointer), so a plan left
     // running after its deadline or a stop touches nothing of the core's.
     AbandonableTask<Plan> task([plan_function = plan_function_, setup, regions,
@@ -440,9 +450,22 @@ bool DaemonCore::PlanNext() {
         plan.message = "dropped: the daemon is stopping; the plan in progress was abandoned";
         abandoned = true;
       } else {
-        plan.status = SolveStatus::kTimeLimit;
-        plan.message = "the planner had no plan by the deadline (" + Seconds(limit_s) +
-                       " s from arrival, " + Seconds(waited_s) + " s of it queued)";
+        const std::string why = " by the deadline (" + Seconds(limit_s) + " s from arrival, " +
+                                Seconds(waited_s) + " s of it queued)";
+        {
+          std::lock_guard<std::mutex> lock(so_far->mutex);
+          if (so_far->plan) plan = *so_far->plan;
+        }
+        if (plan.footsteps.empty()) {
+          plan.status = SolveStatus::kTimeLimit;
+          plan.message = "the planner had no plan" + why;
+        } else {
+          // Anytime: the windows accepted so far, each step valid. Counted as a time-limit ending.
+          plan.message = "the planner had not finished" + why + "; " + plan.message;
+          plan.solve_time_s = 1e-6 * static_cast<double>(clock_() - next->receive_utime);
+          std::lock_guard<std::mutex> lock(mutex_);
+          ++counters_.time_limit_endings;
+        }
         abandoned = true;
       }
     } catch (const InputError& e) {
