@@ -483,6 +483,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               static_cast<long long>(c.publish_failures), cycles_walked, furthest_m, arrivals, turns, resets);
   std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
               "at each minute's end so they are all in)\n", time_limit_s + 0.2);
+  std::fflush(stdout);
 }
 
 // N requests published back to back: each answered exactly once, or counted.
@@ -579,11 +580,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--stones", stones, "the stepping stones scenario of the soak")->capture_default_str();
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
-  app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_replans: false)");
+  app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
   CLI11_PARSE(app, argc, argv);
   try {
     mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);
-    if (app.count("--soak-cold") > 0) daemon_config.limits.warm_start_replans = false;
+    if (app.count("--soak-cold") > 0) daemon_config.limits.warm_start_plans = 0;
     auto setup = std::make_shared<const mfp::DaemonSetup>(mfp::LoadDaemonSetup(daemon_config));
     if (app.count("--skip-classic") == 0)
       mfp::RunClassic(setup, latency_requests, rate_hz, memory_requests, time_limit_s);

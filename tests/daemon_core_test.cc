@@ -477,7 +477,7 @@ TEST_F(DaemonCoreTest, AtTheDeadlineTheReplyCarriesThePlanSoFar) {
 TEST_F(DaemonCoreTest, ARobotsNextRequestStartsFromThePlanLastSentToIt) {
   std::mutex mutex;
   std::vector<size_t> warm_sizes;
-  std::vector<Footstep> last_warm;
+  std::vector<std::vector<Footstep>> last_warm;
   Make(4, [&](const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
               const PlannerOptions& options) {
     std::lock_guard<std::mutex> lock(mutex);
@@ -501,8 +501,17 @@ TEST_F(DaemonCoreTest, ARobotsNextRequestStartsFromThePlanLastSentToIt) {
     ASSERT_EQ(warm_sizes.size(), 3u);
     EXPECT_EQ(warm_sizes[0], 0u);  // nothing sent to the hexapod yet
     EXPECT_EQ(warm_sizes[1], 0u);  // nor to the little dog: plans are per robot
-    ASSERT_EQ(warm_sizes[2], 6u);  // the hexapod's first plan
-    EXPECT_DOUBLE_EQ(last_warm[0].position_world_m.z(), 0.001);
+    ASSERT_EQ(warm_sizes[2], 1u);  // the hexapod's first plan
+    ASSERT_EQ(last_warm[0].size(), 6u);
+    EXPECT_DOUBLE_EQ(last_warm[0][0].position_world_m.z(), 0.001);
+  }
+  Send(Request(Hexapod(), 5));
+  ASSERT_TRUE(core_->PlanNext());
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    ASSERT_EQ(warm_sizes.back(), 2u);  // its last plans, newest first
+    EXPECT_DOUBLE_EQ(last_warm[0][0].position_world_m.z(), 0.003);
+    EXPECT_DOUBLE_EQ(last_warm[1][0].position_world_m.z(), 0.001);
   }
   SendMap("flat");  // a new map: the old plans stood on the old one
   Send(Request(Hexapod(), 4));

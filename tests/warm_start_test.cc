@@ -79,7 +79,7 @@ TEST_F(WarmStartTest, TheStepsAheadOfTheRobotBecomeProposals) {
 TEST_F(WarmStartTest, AWarmStartedSearchFindsTheSameOptimum) {
   const Plan cold = PlanFootsteps(c_.robot, c_.regions, replan_, c_.scenario.options, *solver_);
   PlanRequest warm_request = replan_;
-  warm_request.warm_start = first_.footsteps;
+  warm_request.warm_start = {first_.footsteps};
   PlannerOptions options = c_.scenario.options;
   options.replan_time_s = 0.0;  // the whole search: same problem, same optimum
   const Plan warm = PlanFootsteps(c_.robot, c_.regions, warm_request, options, *solver_);
@@ -91,7 +91,7 @@ TEST_F(WarmStartTest, AWarmStartedSearchFindsTheSameOptimum) {
 
 TEST_F(WarmStartTest, ABoundedReplanAnswersAValidPlan) {
   PlanRequest warm_request = replan_;
-  warm_request.warm_start = first_.footsteps;
+  warm_request.warm_start = {first_.footsteps};
   PlannerOptions options = c_.scenario.options;
   options.replan_time_s = 1e-3;  // far too short to prove anything: the warm plan is the answer
   const Plan plan = PlanFootsteps(c_.robot, c_.regions, warm_request, options, *solver_);

@@ -295,10 +295,24 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     bool seeded = !options.relax_and_fix.enabled ||
                   formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
     // The first window of a replanning request starts from the client's previous plan.
-    const WarmStart warm_start = plan.windows == 1 && !request.warm_start.empty()
-                                     ? WarmStartFrom(formulation, request.warm_start, options.warm_start_match_m)
-                                     : WarmStart{};
-    std::vector<Eigen::VectorXd> warm = warm_start.proposals;
+    WarmStart warm_start;
+    for (const std::vector<Footstep>& previous : plan.windows == 1 ? request.warm_start
+                                                                    : std::vector<std::vector<Footstep>>{}) {
+      WarmStart w = WarmStartFrom(formulation, previous, options.warm_start_match_m);
+      warm_start.stance_matched = warm_start.stance_matched || w.stance_matched;
+      for (Eigen::VectorXd& x : w.proposals) warm_start.proposals.push_back(std::move(x));
+    }
+    bool replan = warm_start.stance_matched && options.replan_time_s > 0.0;
+    // A bounded replan solves the previous plan's assignment first (a few milliseconds,
+    // not cut by the budget): the search then starts with it, and it is the answer when
+    // the budget ends before the search has a plan of its own.
+    std::optional<Eigen::VectorXd> warm_plan;
+    if (replan && !warm_start.proposals.empty()) {
+      warm_plan = SolveWarmStart(formulation, warm_start.proposals, *solvers.front(), bnb.deadline,
+                                 bnb.feasibility_tolerance);
+    }
+    std::vector<Eigen::VectorXd> warm =
+        warm_plan ? std::vector<Eigen::VectorXd>{*warm_plan} : warm_start.proposals;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
       proposals.insert(proposals.end(), warm.begin(), warm.end());
@@ -318,9 +332,14 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       }
       return proposals;
     };
-    bool replan = warm_start.stance_matched && options.replan_time_s > 0.0;
     if (replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
     BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+    if (replan && !HasPlan(result.status) && warm_plan) {  // the budget ended before the root was done
+      result.status = SolveStatus::kFeasible;
+      result.x = *warm_plan;
+      result.objective = formulation.miqp().Objective(*warm_plan);
+      result.bound = std::min(result.bound, result.objective);
+    }
     if (replan && !HasPlan(result.status)) {  // no plan in the budget: the full search
       bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time) - result.solve_time_s;
       const BranchAndBoundResult first = result;

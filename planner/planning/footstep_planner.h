@@ -36,10 +36,11 @@ struct PlanRequest {
   Deadline deadline;
   int max_windows = 0;     // MIQPs solved at most; 0 = as many as the route needs. 1 = exactly
                            // the single MIQP of FirstWindowProblem (benchmarks of Table I)
-  // Optional: the footsteps of this client's previous plan (Plan::footsteps) on the same
-  // map. When the start stance lies on it, its steps ahead seed the first window's search
-  // (planner/planning/warm_start.h), and PlannerOptions::replan_time bounds that search.
-  std::vector<Footstep> warm_start;
+  // Optional: the footsteps of this client's previous plans (Plan::footsteps, newest
+  // first) on the same map. When the start stance lies on one, its steps ahead seed the
+  // first window's search (planner/planning/warm_start.h), and
+  // PlannerOptions::replan_time bounds that search.
+  std::vector<std::vector<Footstep>> warm_start;
   // Optional: called after each accepted window with the plan so far (every step in it
   // valid; status partial unless it reaches the goal), so a caller whose deadline comes
   // first (a daemon's watchdog) can answer with it. Called on the planning thread.

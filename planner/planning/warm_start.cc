@@ -1,5 +1,7 @@
 #include "planner/planning/warm_start.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace mfp {
@@ -73,7 +75,44 @@ WarmStart WarmStartFrom(const MiqpFormulation& formulation, const std::vector<Fo
     if (point(vars.trim[i + 1]) < 0.5) point(vars.trim[i]) = 0.0;
   }
   warm.proposals = formulation.RoundAlongPlan(point);
+  // And with the last configuration trimmed, in case its steps fit no longer.
+  const int last = formulation.num_steps() - n;
+  if (last > n && point(vars.trim[last]) < 0.5) {
+    for (int i = last; i < formulation.num_steps(); ++i) point(vars.trim[i]) = 1.0;
+    for (Eigen::VectorXd& x : formulation.RoundAlongPlan(point)) warm.proposals.push_back(std::move(x));
+  }
   return warm;
+}
+
+std::optional<Eigen::VectorXd> SolveWarmStart(const MiqpFormulation& formulation,
+                                              const std::vector<Eigen::VectorXd>& proposals,
+                                              RelaxationSolver& solver, const Deadline& deadline,
+                                              double feasibility_tolerance) {
+  const Miqp& miqp = formulation.miqp();
+  std::optional<Eigen::VectorXd> best;
+  double best_objective = std::numeric_limits<double>::infinity();
+  solver.SetDeadline(deadline);
+  solver.SetTimeLimit(std::max(1e-3, std::min(1.0, deadline.RemainingSeconds())));
+  solver.SetCutoff(std::numeric_limits<double>::infinity());
+  for (const Eigen::VectorXd& proposal : proposals) {
+    Eigen::VectorXd lower = miqp.var_lower, upper = miqp.var_upper;
+    for (int j = 0; j < miqp.num_variables(); ++j) {
+      if (!miqp.is_integer[j]) continue;
+      lower(j) = upper(j) = std::clamp(std::round(proposal(j)), miqp.var_lower(j), miqp.var_upper(j));
+    }
+    RelaxationResult r = solver.Solve(miqp, lower, upper, nullptr);
+    if (r.status != RelaxationStatus::kSolved) continue;
+    for (int j = 0; j < miqp.num_variables(); ++j) {
+      if (miqp.is_integer[j]) r.x(j) = std::round(r.x(j));
+    }
+    if (miqp.MaxViolation(r.x) > feasibility_tolerance || formulation.CountUntrimmedSteps(r.x) == 0) continue;
+    const double objective = miqp.Objective(r.x);
+    if (objective < best_objective) {
+      best_objective = objective;
+      best = std::move(r.x);
+    }
+  }
+  return best;
 }
 
 }  // namespace mfp

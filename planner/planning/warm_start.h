@@ -11,7 +11,11 @@
 // rows by the search like any rounding, and a plan that no longer fits (the map changed,
 // the robot slipped, the goal moved) simply proposes nothing.
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
+
+#include "planner/base/deadline.h"
+#include "planner/qp/relaxation_solver.h"
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
@@ -32,10 +36,20 @@ struct WarmStart {
 // nearest footstep of the previous plan (the later one on ties); when every leg matches
 // within match_tolerance_m, the new steps of each leg follow that leg's next footsteps
 // of the previous plan, and past its end repeat the leg's last step (its displacement
-// and yaw change), those extrapolated steps proposed trimmed too. Proposals come from
-// MiqpFormulation::RoundAlongPlan of a point with the feet and yaws so placed; none when
-// no step of the previous plan is ahead of the robot.
+// and yaw change), those extrapolated steps proposed trimmed too, and the last
+// configuration proposed trimmed. Proposals come from MiqpFormulation::RoundAlongPlan of
+// a point with the feet and yaws so placed; none when no step of the previous plan is
+// ahead of the robot.
 WarmStart WarmStartFrom(const MiqpFormulation& formulation, const std::vector<Footstep>& previous,
                         double match_tolerance_m);
+
+// The best plan among the proposals that takes a step: each one's QP with its integers
+// fixed, solved by solver (deadline: the caller's; these QPs take milliseconds). nullopt
+// when none is feasible (rows and bounds within feasibility_tolerance) or every feasible
+// one stands still (a replan that stands still is left to the full search).
+std::optional<Eigen::VectorXd> SolveWarmStart(const MiqpFormulation& formulation,
+                                              const std::vector<Eigen::VectorXd>& proposals,
+                                              RelaxationSolver& solver, const Deadline& deadline,
+                                              double feasibility_tolerance);
 
 }  // namespace mfp

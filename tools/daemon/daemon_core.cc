@@ -377,7 +377,7 @@ bool DaemonCore::PlanNext() {
   std::shared_ptr<const DaemonSetup> setup;
   std::shared_ptr<const std::vector<ConvexRegion>> regions;
   int64_t map_utime = 0;
-  std::vector<Footstep> warm_start;
+  std::vector<std::vector<Footstep>> warm_start;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (stopped_) return false;
@@ -387,7 +387,7 @@ bool DaemonCore::PlanNext() {
     regions = regions_;
     map_utime = map_utime_;
     planning_ = true;
-    if (setup->config.limits.warm_start_replans) {
+    if (setup->config.limits.warm_start_plans > 0) {
       // Also for a new goal: the plan's steps are then only a proposal the search weighs.
       const auto last = last_plans_.find(next->robot_name);
       if (last != last_plans_.end()) warm_start = last->second;
@@ -487,7 +487,11 @@ bool DaemonCore::PlanNext() {
     if (plan.status == SolveStatus::kDropped) ++counters_.dropped_requests;
     if (abandoned) ++counters_.abandoned_solves;
     // Only a plan on the map still current: a map that arrived meanwhile cleared the rest.
-    if (HasPlan(plan.status) && regions == regions_) last_plans_[next->robot_name] = plan.footsteps;
+    if (HasPlan(plan.status) && regions == regions_ && setup->config.limits.warm_start_plans > 0) {
+      std::vector<std::vector<Footstep>>& plans = last_plans_[next->robot_name];
+      plans.insert(plans.begin(), plan.footsteps);
+      plans.resize(std::min(plans.size(), static_cast<size_t>(setup->config.limits.warm_start_plans)));
+    }
   }
   Log("request " + std::to_string(next->request_id) + " planned: " + ToString(plan.status) +
       ", " + std::to_string(plan.footsteps.size()) + " footsteps, " + Seconds(plan.solve_time_s) +
