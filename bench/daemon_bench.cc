@@ -242,8 +242,10 @@ terrain_map_t MapMessage(const TerrainDescription& terrain) {
   return map;
 }
 
-// A real-size field, seeded: a 1.2 m start pad at the origin and stones of 0.21 m on a
-// 0.27 m grid (the stepping stones' spacing) over 6.2 m x 6.2 m, tops within +-3 cm.
+// A real-size field, seeded: a 1.2 m start pad at the origin and 200 stones of 0.21 m on
+// a 0.27 m grid (the stepping stones' spacing) over 4.1 m x 4.1 m, tops within +-3 cm:
+// every stone one of the extractor's regions (it keeps 256 at most). The goal, 1.485 m
+// ahead, puts every foot of the nominal stance on a stone.
 TerrainDescription StoneField(uint32_t seed) {
   TerrainDescription terrain;
   std::mt19937 rng(seed);
@@ -253,10 +255,12 @@ TerrainDescription StoneField(uint32_t seed) {
   pad.center_world_m = Eigen::Vector3d(0, 0, -0.05);
   pad.size_m = Eigen::Vector3d(1.2, 1.2, 0.1);
   terrain.boxes.push_back(pad);
-  for (int i = -11; i <= 11; ++i) {
-    for (int j = -11; j <= 11; ++j) {
+  for (int i = -7; i <= 7; ++i) {
+    for (int j = -7; j <= 7; ++j) {
       const double x = 0.27 * i, y = 0.27 * j;
-      if (std::abs(x) < 0.5 && std::abs(y) < 0.5) continue;  // the pad (the next ring overlaps its edge)
+      // Not on the pad: a stone overlapping its edge (the ring at 0.54 m) cuts the pad's
+      // region where the hind feet of the start stance stand.
+      if (std::abs(x) < 0.75 && std::abs(y) < 0.75) continue;
       TerrainBox stone;
       stone.name = "stone";
       stone.center_world_m = Eigen::Vector3d(x, y, height(rng) - 0.05);
@@ -308,6 +312,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   std::map<int64_t, std::vector<Answer>> answers;
   int resets = 0, cycles_walked = 0, arrivals = 0, turns = 0;
   bool stuck_here = false;  // turned back stuck, not walked since
+  std::string first_refusal;  // the first reply without a plan (other than superseded)
   double furthest_m = 0;  // from the start, of the centre of the feet
   // The robot patrols: at the goal it turns back for its start spot (keeping the goal's
   // heading), and so on.
@@ -331,6 +336,8 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     if (sent == sent_us.end()) return;
     answers[p.request_id].push_back({now - sent->second, p.status, p.solve_time_s, p.nodes, p.gap});
     const auto status = static_cast<SolveStatus>(p.status);
+    if (!HasPlan(status) && status != SolveStatus::kSuperseded && first_refusal.empty())
+      first_refusal = "request " + std::to_string(p.request_id) + ": " + ToString(status) + ": " + p.message;
     if (sent_stance[p.request_id] != stance_version) return;  // planned from where the robot was
     if (HasPlan(status) && p.num_steps >= 2 * n) {
       followed = p.steps;
@@ -481,6 +488,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               static_cast<long long>(c.expired_requests), static_cast<long long>(c.time_limit_endings),
               static_cast<long long>(c.abandoned_solves), static_cast<long long>(c.inbox_overflows),
               static_cast<long long>(c.publish_failures), cycles_walked, furthest_m, arrivals, turns, resets);
+  if (!first_refusal.empty()) std::printf("   first reply without a plan: %s\n", first_refusal.c_str());
   std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
               "at each minute's end so they are all in)\n", time_limit_s + 0.2);
   std::fflush(stdout);
@@ -597,7 +605,7 @@ int main(int argc, char** argv) {
         mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
       if (soak_map != "stones") {
-        mfp::SoakCourse course{"a 6.2 m x 6.2 m field of 504 stones (seed 19)", mfp::StoneField(19), 2.16, 0.0, 0.0};
+        mfp::SoakCourse course{"a 4.1 m x 4.1 m field of 200 stones (seed 19)", mfp::StoneField(19), 1.485, 0.0, 0.0};
         mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
     }
