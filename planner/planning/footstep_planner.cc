@@ -340,7 +340,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       result.objective = formulation.miqp().Objective(*warm_plan);
       result.bound = std::min(result.bound, result.objective);
     }
-    if (replan && !HasPlan(result.status)) {  // no plan in the budget: the full search
+    if (replan && !HasPlan(result.status) && result.status != SolveStatus::kInfeasible) {
+      // No plan in the budget (and none proven impossible): the full search.
       bnb.time_limit_s = std::max(remaining_time / windows_left, 0.5 * remaining_time) - result.solve_time_s;
       const BranchAndBoundResult first = result;
       result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
