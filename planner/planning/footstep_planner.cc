@@ -304,15 +304,16 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     bool replan = warm_start.stance_matched && options.replan_time_s > 0.0;
     // A bounded replan solves the previous plan's assignment first (a few milliseconds,
-    // not cut by the budget): the search then starts with it, and it is the answer when
-    // the budget ends before the search has a plan of its own.
+    // not cut by the budget): it is the answer when the bounded search finds nothing
+    // better. The search does not start from it: with an incumbent from its root the
+    // search goes best-bound at once and, cut short, never dives to a better plan (the
+    // robot kept the first plan it got), so it dives for its own first.
     std::optional<Eigen::VectorXd> warm_plan;
     if (replan && !warm_start.proposals.empty()) {
       warm_plan = SolveWarmStart(formulation, warm_start.proposals, *solvers.front(), bnb.deadline,
                                  bnb.feasibility_tolerance);
     }
-    std::vector<Eigen::VectorXd> warm =
-        warm_plan ? std::vector<Eigen::VectorXd>{*warm_plan} : warm_start.proposals;
+    std::vector<Eigen::VectorXd> warm = replan ? std::vector<Eigen::VectorXd>{} : warm_start.proposals;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
       proposals.insert(proposals.end(), warm.begin(), warm.end());
@@ -334,7 +335,8 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     };
     if (replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
     BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
-    if (replan && !HasPlan(result.status) && warm_plan) {  // the budget ended before the root was done
+    if (replan && warm_plan &&
+        (!HasPlan(result.status) || formulation.miqp().Objective(*warm_plan) < result.objective)) {
       result.status = SolveStatus::kFeasible;
       result.x = *warm_plan;
       result.objective = formulation.miqp().Objective(*warm_plan);
