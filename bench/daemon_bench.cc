@@ -10,10 +10,15 @@
 //     with the number of requests, not 10,000 solves.
 //  3. Replanning soak (--soak-minutes N): a robot replanning as it walks, at --soak-rate
 //     (10 Hz) for N minutes, on the stepping stones and on a real-size seeded field of
-//     stones (--soak-map): each request starts from the stance the last plan reached
-//     after one gait cycle, 12 new footsteps towards the course's goal, time limit
-//     --soak-time-limit. Per minute: replies, p50/p90/p99/max reply latency (publish to
-//     receipt, every reply), drops, supersessions, time-limit endings, VmRSS.
+//     stones (--soak-map). The robot walks one gait cycle of the plan it follows every
+//     --soak-cycle s (0.5), its feet landing within 3 mm of the planned spots (seeded),
+//     and follows a reply planned from the stance it still stands in; each request starts
+//     from its current stance, 12 new footsteps towards the goal, time limit
+//     --soak-time-limit. It patrols: at the goal (or stuck) it turns back for its start
+//     spot; lost (invalid start, infeasible, no route) it starts again. Per minute:
+//     replies, p50/p90/p99/max reply latency (publish to receipt, every reply), drops,
+//     supersessions, time-limit endings, VmRSS; then the planner's own solve times, nodes
+//     and proven gaps. --soak-cold plans every request from scratch.
 //  4. Burst (--burst N, 2000): N requests published at once; every one answered once, or
 //     counted.
 // Prints a table; timing is never a pass/fail criterion.
@@ -23,8 +28,8 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <mutex>
 #include <random>
@@ -116,43 +121,6 @@ class ReplyLog {
   std::map<int64_t, Reply> replies_;
 };
 
-terrain_map_t MapMessage(const TerrainDescription& terrain) {
-  terrain_map_t map{};
-  map.utime = NowUs();
-  map.frame = "world";
-  map.format = "bt";
-  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
-  map.num_bytes = static_cast<int32_t>(map.data.size());
-  return map;
-}
-
-// Each plan_t on MFP_PLAN that decodes, handed to on_plan (on the transport's thread).
-void SubscribePlans(Transport& transport, const std::function<void(const plan_t&)>& on_plan) {
-  transport.Subscribe(kPlanChannel, [on_plan](const RawMessage& raw) {
-    plan_t p;
-    if (DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) on_plan(p);
-  });
-}
-
-// Publishes the map and waits until the daemon has read it.
-void PublishMapAndWait(Transport& transport, const DaemonCore& core, const terrain_map_t& map) {
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-}
-
-// The robot's nominal stance at the origin; 12 new footsteps towards a goal 0.25 m ahead.
-plan_request_t NominalStartRequest(const RobotModel& robot, double time_limit_s) {
-  plan_request_t request{};
-  request.num_legs = robot.num_legs();
-  for (const LegModel& leg : robot.legs)
-    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
-  request.goal_x = 0.25;
-  request.max_steps = 12;
-  request.time_limit_s = time_limit_s;
-  return request;
-}
-
 int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requests, double rate_hz,
                int memory_requests, double time_limit_s) {
   const RobotModel& hexapod = setup->robots.at("hexapod");
@@ -164,18 +132,35 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
   ground.center_world_m = Eigen::Vector3d(1.0, 0.0, -0.05);
   ground.size_m = Eigen::Vector3d(4.0, 3.0, 0.1);
   terrain.boxes.push_back(ground);
-  const terrain_map_t map = MapMessage(terrain);
+  terrain_map_t map{};
+  map.utime = NowUs();
+  map.frame = "world";
+  map.format = "bt";
+  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
+  map.num_bytes = static_cast<int32_t>(map.data.size());
 
   LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
   DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
   core.SubscribeTo(transport);
   ReplyLog replies;
-  SubscribePlans(transport, [&](const plan_t& p) { replies.Add(p); });
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t p;
+    if (DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) replies.Add(p);
+  });
   const double rss_start = RssMiB();
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  PublishMapAndWait(transport, core, map);
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
 
-  plan_request_t request = NominalStartRequest(hexapod, time_limit_s);
+  // Nominal hexapod stance at the origin; 12 new footsteps towards a goal 0.25 m ahead.
+  plan_request_t request{};
+  request.num_legs = hexapod.num_legs();
+  for (const LegModel& leg : hexapod.legs)
+    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
+  request.goal_x = 0.25;
+  request.max_steps = 12;
+  request.time_limit_s = time_limit_s;
 
   // 1. Latency at rate_hz.
   std::map<int64_t, int64_t> sent_us;
@@ -247,8 +232,20 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
   return 0;
 }
 
-// A real-size field, seeded: a 1.2 m start pad at the origin and stones of 0.21 m on a
-// 0.27 m grid (the stepping stones' spacing) over 6.2 m x 6.2 m, tops within +-3 cm.
+terrain_map_t MapMessage(const TerrainDescription& terrain) {
+  terrain_map_t map{};
+  map.utime = NowUs();
+  map.frame = "world";
+  map.format = "bt";
+  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
+  map.num_bytes = static_cast<int32_t>(map.data.size());
+  return map;
+}
+
+// A real-size field, seeded: a 1.2 m start pad at the origin and 200 stones of 0.21 m on
+// a 0.27 m grid (the stepping stones' spacing) over 4.1 m x 4.1 m, tops within +-3 cm:
+// every stone one of the extractor's regions (it keeps 256 at most). The goal, 1.485 m
+// ahead, puts every foot of the nominal stance on a stone.
 TerrainDescription StoneField(uint32_t seed) {
   TerrainDescription terrain;
   std::mt19937 rng(seed);
@@ -258,10 +255,12 @@ TerrainDescription StoneField(uint32_t seed) {
   pad.center_world_m = Eigen::Vector3d(0, 0, -0.05);
   pad.size_m = Eigen::Vector3d(1.2, 1.2, 0.1);
   terrain.boxes.push_back(pad);
-  for (int i = -11; i <= 11; ++i) {
-    for (int j = -11; j <= 11; ++j) {
+  for (int i = -7; i <= 7; ++i) {
+    for (int j = -7; j <= 7; ++j) {
       const double x = 0.27 * i, y = 0.27 * j;
-      if (std::abs(x) < 0.5 && std::abs(y) < 0.5) continue;  // the pad (the next ring overlaps its edge)
+      // Not on the pad: a stone overlapping its edge (the ring at 0.54 m) cuts the pad's
+      // region where the hind feet of the start stance stand.
+      if (std::abs(x) < 0.75 && std::abs(y) < 0.75) continue;
       TerrainBox stone;
       stone.name = "stone";
       stone.center_world_m = Eigen::Vector3d(x, y, height(rng) - 0.05);
@@ -280,7 +279,7 @@ struct SoakCourse {
 
 // One soak: a fresh daemon, a walking robot, a table per minute.
 void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& course, double minutes,
-          double rate_hz, double time_limit_s) {
+          double rate_hz, double time_limit_s, double cycle_s) {
   const RobotModel& robot = setup->robots.at(setup->config.default_robot);
   const int n = robot.num_legs();
   const terrain_map_t map = MapMessage(course.terrain);
@@ -293,65 +292,117 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   core.SubscribeTo(transport);
 
   std::mutex mutex;
+  // The robot: it walks the gait cycles of the plan it follows, one every cycle_s, and
+  // asks for a new plan from the stance it stands in at the request rate. A reply is
+  // followed when its request was sent from the stance the robot still stands in (a plan
+  // from an older stance starts where the robot no longer is).
   std::vector<Eigen::Vector3d> feet = start;  // where the robot stands now
-  int64_t walked_to = 0;                      // newest request id whose plan moved the robot
+  int stance_version = 0;                     // +1 at each gait cycle walked or reset
   std::map<int64_t, int64_t> sent_us;         // by request id
+  std::map<int64_t, int> sent_stance;         // stance_version of each request
+  std::vector<footstep_t> followed;           // steps of the plan the robot follows
+  int next_cycle = 1;                         // its next gait cycle to walk (0 is the start)
   struct Answer {
     int64_t latency_us;
     int8_t status;
     double solve_time_s;
+    int nodes;
+    double gap;
   };
   std::map<int64_t, std::vector<Answer>> answers;
-  int resets = 0, cycles_walked = 0;
+  int resets = 0, cycles_walked = 0, arrivals = 0, turns = 0;
+  bool stuck_here = false;  // turned back stuck, not walked since
+  std::string first_refusal;  // the first reply without a plan (other than superseded)
   double furthest_m = 0;  // from the start, of the centre of the feet
-  SubscribePlans(transport, [&](const plan_t& p) {
+  // The robot patrols: at the goal it turns back for its start spot (keeping the goal's
+  // heading), and so on.
+  double goal_x = course.goal_x, goal_y = course.goal_y;
+  const double goal_yaw = course.goal_yaw;
+  auto turn_back = [&] {
+    const bool outward = goal_x == course.goal_x && goal_y == course.goal_y;
+    goal_x = outward ? 0.0 : course.goal_x;
+    goal_y = outward ? 0.0 : course.goal_y;
+    followed.clear();
+  };
+  // Feet land near, not on, the planned spots: a seeded error of up to 3 mm per axis.
+  std::mt19937 landing_rng(19);
+  std::uniform_real_distribution<double> landing_error(-0.003, 0.003);
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t p;
+    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
     const int64_t now = NowUs();
     std::lock_guard<std::mutex> lock(mutex);
     const auto sent = sent_us.find(p.request_id);
     if (sent == sent_us.end()) return;
-    answers[p.request_id].push_back({now - sent->second, p.status, p.solve_time_s});
+    answers[p.request_id].push_back({now - sent->second, p.status, p.solve_time_s, p.nodes, p.gap});
     const auto status = static_cast<SolveStatus>(p.status);
-    if (p.request_id < walked_to) return;  // an older plan than the one walked on
+    if (!HasPlan(status) && status != SolveStatus::kSuperseded && first_refusal.empty())
+      first_refusal = "request " + std::to_string(p.request_id) + ": " + ToString(status) + ": " + p.message;
+    if (sent_stance[p.request_id] != stance_version) return;  // planned from where the robot was
     if (HasPlan(status) && p.num_steps >= 2 * n) {
-      // Walk one gait cycle of the plan: each leg to its first new footstep.
-      for (int k = n; k < 2 * n; ++k) {
-        const footstep_t& step = p.steps[static_cast<size_t>(k)];
-        if (step.leg >= 0 && step.leg < n)
-          feet[static_cast<size_t>(step.leg)] =
-              Eigen::Vector3d(step.position[0], step.position[1], step.position[2]);
-      }
-      walked_to = p.request_id;
-      ++cycles_walked;
-      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (const auto& f : feet) centre += f / n;
-      furthest_m = std::max(furthest_m, std::hypot(centre.x(), centre.y()));
-      if (std::hypot(centre.x() - course.goal_x, centre.y() - course.goal_y) < 0.15) {
-        feet = start;  // arrived: walk the course again
-        ++resets;
-      }
-    } else if (status == SolveStatus::kInvalidStart || status == SolveStatus::kInfeasible) {
+      followed = p.steps;
+      next_cycle = 1;
+    } else if (HasPlan(status) && p.reaches_goal) {
+      turn_back();  // standing at the goal
+      ++arrivals;
+    } else if (HasPlan(status) && !stuck_here) {
+      turn_back();  // stuck short of the goal without a step to take
+      stuck_here = true;
+      ++turns;
+    } else if (HasPlan(status) || status == SolveStatus::kInvalidStart || status == SolveStatus::kInfeasible ||
+               status == SolveStatus::kNoRoute) {
+      // Lost, or stuck both ways: start again.
+      stuck_here = false;
       feet = start;  // lost: start again
-      walked_to = p.request_id;
+      goal_x = course.goal_x;
+      goal_y = course.goal_y;
+      followed.clear();
+      ++stance_version;
       ++resets;
     }
   });
+  // Walks the next gait cycle of the followed plan, if it has one. Under the mutex.
+  auto walk_cycle = [&] {
+    if (static_cast<int>(followed.size()) < (next_cycle + 1) * n) return;
+    for (int k = next_cycle * n; k < (next_cycle + 1) * n; ++k) {
+      const footstep_t& step = followed[static_cast<size_t>(k)];
+      if (step.leg >= 0 && step.leg < n)
+        feet[static_cast<size_t>(step.leg)] =
+            Eigen::Vector3d(step.position[0] + landing_error(landing_rng),
+                            step.position[1] + landing_error(landing_rng), step.position[2]);
+    }
+    ++next_cycle;
+    ++stance_version;
+    stuck_here = false;
+    ++cycles_walked;
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const auto& f : feet) centre += f / n;
+    furthest_m = std::max(furthest_m, std::hypot(centre.x(), centre.y()));
+    if (std::hypot(centre.x() - goal_x, centre.y() - goal_y) < 0.1) {
+      turn_back();  // arrived: back to the other end, from where the robot stands
+      ++arrivals;
+    }
+  };
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  PublishMapAndWait(transport, core, map);
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
 
   std::printf("\n3. replanning soak on %s (%zu regions, %zu map bytes): %s, %.0f Hz for %.1f min, "
-              "%d new footsteps per request, time limit %.2f s\n",
+              "%d new footsteps per request, time limit %.2f s, a gait cycle walked every %.2f s\n",
               course.name.c_str(), regions.size(), map.data.size(), robot.name.c_str(), rate_hz,
-              minutes, 2 * n, time_limit_s);
+              minutes, 2 * n, time_limit_s, cycle_s);
   std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s\n", "minute", "sent", "plans",
               "p50 ms", "p90 ms", "p99 ms", "max ms", "dropped", "supersed.", "time lim.",
               "unanswer.", "VmRSS MiB");
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
   const int total = static_cast<int>(std::lround(minutes * 60.0 * rate_hz));
+  const int requests_per_cycle = std::max(1, static_cast<int>(std::lround(cycle_s * rate_hz)));
   const int per_minute = static_cast<int>(std::lround(60.0 * rate_hz));
   auto next = Clock::now();
   int64_t first_of_minute = 1;
-  std::vector<double> all_latency_ms, all_solve_ms;
+  std::vector<double> all_latency_ms, all_solve_ms, all_nodes, all_gaps;
   std::map<std::string, int> all_statuses;
   auto report = [&](int64_t first, int64_t last, const std::string& label) {
     std::vector<double> latency_ms;
@@ -372,6 +423,8 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
         if (HasPlan(static_cast<SolveStatus>(a.status))) {
           ++planned;
           all_solve_ms.push_back(1e3 * a.solve_time_s);
+          all_nodes.push_back(a.nodes);
+          all_gaps.push_back(100.0 * a.gap);
         }
       }
     }
@@ -391,12 +444,14 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     request.num_legs = n;
     {
       std::lock_guard<std::mutex> lock(mutex);
+      if (i > 1 && (i - 1) % requests_per_cycle == 0) walk_cycle();
       for (const auto& f : feet) request.start_feet.push_back({f.x(), f.y(), f.z()});
       sent_us[i] = NowUs();
+      sent_stance[i] = stance_version;
+      request.goal_x = goal_x;
+      request.goal_y = goal_y;
+      request.goal_yaw = goal_yaw;
     }
-    request.goal_x = course.goal_x;
-    request.goal_y = course.goal_y;
-    request.goal_yaw = course.goal_yaw;
     request.max_steps = 2 * n;
     request.time_limit_s = time_limit_s;
     const auto bytes = Encode(request);
@@ -417,19 +472,26 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               Percentile(all_latency_ms, 0.5), Percentile(all_latency_ms, 0.9),
               Percentile(all_latency_ms, 0.99), Percentile(all_latency_ms, 1.0));
   for (const auto& [name, count] : all_statuses) std::printf(" %s %d", name.c_str(), count);
-  std::printf("\n   planner solve time of the plans: p50 %.1f ms, p90 %.1f ms, p99 %.1f ms (the rest of a reply's "
-              "latency is the wait for the plan before it)",
-              Percentile(all_solve_ms, 0.5), Percentile(all_solve_ms, 0.9), Percentile(all_solve_ms, 0.99));
+  std::printf("\n   planner solve time of the plans: p50 %.1f ms, p90 %.1f ms, p99 %.1f ms, max %.1f ms; "
+              "branch-and-bound nodes p50 %.0f, p99 %.0f (the rest of a reply's latency is the wait for the "
+              "plan before it)",
+              Percentile(all_solve_ms, 0.5), Percentile(all_solve_ms, 0.9), Percentile(all_solve_ms, 0.99),
+              Percentile(all_solve_ms, 1.0), Percentile(all_nodes, 0.5), Percentile(all_nodes, 0.99));
+  std::printf("\n   proven gap of the plans (objective over the search's bound; 0 = proven optimal): p50 %.2f %%, "
+              "p90 %.2f %%, p99 %.2f %%",
+              Percentile(all_gaps, 0.5), Percentile(all_gaps, 0.9), Percentile(all_gaps, 0.99));
   std::printf("\n   daemon counters: requests %lld, replies %lld, superseded %lld, dropped %lld, expired %lld, "
               "time-limit endings %lld, abandoned solves %lld, intake overflows %lld, publish failures %lld; "
-              "gait cycles walked %d, furthest %.2f m from the start, course restarts %d\n",
+              "gait cycles walked %d, furthest %.2f m from the start, goals reached %d, turned back stuck %d, course restarts %d\n",
               static_cast<long long>(c.requests), static_cast<long long>(c.plans),
               static_cast<long long>(c.superseded_requests), static_cast<long long>(c.dropped_requests),
               static_cast<long long>(c.expired_requests), static_cast<long long>(c.time_limit_endings),
               static_cast<long long>(c.abandoned_solves), static_cast<long long>(c.inbox_overflows),
-              static_cast<long long>(c.publish_failures), cycles_walked, furthest_m, resets);
+              static_cast<long long>(c.publish_failures), cycles_walked, furthest_m, arrivals, turns, resets);
+  if (!first_refusal.empty()) std::printf("   first reply without a plan: %s\n", first_refusal.c_str());
   std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
               "at each minute's end so they are all in)\n", time_limit_s + 0.2);
+  std::fflush(stdout);
 }
 
 // N requests published back to back: each answered exactly once, or counted.
@@ -443,14 +505,24 @@ void Burst(const std::shared_ptr<const DaemonSetup>& setup, int count, double ti
   std::mutex mutex;
   std::map<int64_t, int> replies;
   std::map<std::string, int> statuses;
-  SubscribePlans(transport, [&](const plan_t& p) {
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t p;
+    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
     std::lock_guard<std::mutex> lock(mutex);
     ++replies[p.request_id];
     ++statuses[ToString(static_cast<SolveStatus>(p.status))];
   });
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  PublishMapAndWait(transport, core, map);
-  plan_request_t request = NominalStartRequest(robot, time_limit_s);
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  plan_request_t request{};
+  request.num_legs = robot.num_legs();
+  for (const LegModel& leg : robot.legs)
+    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
+  request.goal_x = 0.25;
+  request.max_steps = 12;
+  request.time_limit_s = time_limit_s;
   const auto start = Clock::now();
   for (int i = 1; i <= count; ++i) {
     request.request_id = i;
@@ -495,7 +567,7 @@ int main(int argc, char** argv) {
   std::string config = "config/daemon.yaml";
   int latency_requests = 100, memory_requests = 10000;
   double rate_hz = 10.0, time_limit_s = 2.0;
-  double soak_minutes = 0, soak_rate_hz = 10.0, soak_time_limit_s = 0.5;
+  double soak_minutes = 0, soak_rate_hz = 10.0, soak_time_limit_s = 0.5, soak_cycle_s = 0.5;
   std::string soak_map = "both";
   std::string stones = "config/scenarios/hexapod_stepping_stones_90.yaml";
   int burst = 0;
@@ -509,14 +581,18 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--soak-rate", soak_rate_hz, "replanning rate [Hz]")->capture_default_str();
   app.add_option("--soak-time-limit", soak_time_limit_s, "replanning time limit [s]")->capture_default_str();
+  app.add_option("--soak-cycle", soak_cycle_s, "the robot walks one gait cycle of its plan every this long [s]")
+      ->capture_default_str();
   app.add_option("--soak-map", soak_map, "stones, field or both")
       ->check(CLI::IsMember({"stones", "field", "both"}))
       ->capture_default_str();
   app.add_option("--stones", stones, "the stepping stones scenario of the soak")->capture_default_str();
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
+  app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
   CLI11_PARSE(app, argc, argv);
   try {
-    const mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);
+    mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);
+    if (app.count("--soak-cold") > 0) daemon_config.limits.warm_start_plans = 0;
     auto setup = std::make_shared<const mfp::DaemonSetup>(mfp::LoadDaemonSetup(daemon_config));
     if (app.count("--skip-classic") == 0)
       mfp::RunClassic(setup, latency_requests, rate_hz, memory_requests, time_limit_s);
@@ -526,11 +602,11 @@ int main(int argc, char** argv) {
         const mfp::Scenario scenario = mfp::LoadScenario(stones);
         mfp::SoakCourse course{"stepping stones (" + stones + ")", mfp::LoadTerrainDescription(stones),
                                scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad};
-        mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s);
+        mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
       if (soak_map != "stones") {
-        mfp::SoakCourse course{"a 6.2 m x 6.2 m field of 504 stones (seed 19)", mfp::StoneField(19), 2.16, 0.0, 0.0};
-        mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s);
+        mfp::SoakCourse course{"a 4.1 m x 4.1 m field of 200 stones (seed 19)", mfp::StoneField(19), 1.485, 0.0, 0.0};
+        mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
     }
     if (burst > 0) mfp::Burst(setup, burst, soak_time_limit_s);

@@ -435,6 +435,91 @@ TEST_F(DaemonCoreTest, AnOverrunningPlannerIsAnsweredAtTheDeadline) {
   EXPECT_EQ(core_->counters().abandoned_solves, 1);
 }
 
+// Accepts one window (the start stance and one gait cycle, moved 5 cm), then overruns.
+Plan OneWindowThenSleepyPlan(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                             const PlanRequest& request, const PlannerOptions& options) {
+  Plan so_far = FakePlan(robot, regions, request, options);
+  const int n = robot.num_legs();
+  for (int i = 0; i < n; ++i) {
+    Footstep f = so_far.footsteps[static_cast<size_t>(i)];
+    f.index = n + i;
+    f.position_world_m.x() += 0.05;
+    so_far.footsteps.push_back(f);
+  }
+  so_far.status = SolveStatus::kPartial;
+  so_far.reaches_goal = false;
+  so_far.message = "the plan so far: 6 steps";
+  request.on_plan_so_far(so_far);
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  return FakePlan(robot, regions, request, options);
+}
+
+TEST_F(DaemonCoreTest, AtTheDeadlineTheReplyCarriesThePlanSoFar) {
+  Make(4, OneWindowThenSleepyPlan);
+  SendMap("flat");
+  plan_request_t request = Request(Hexapod(), 1);
+  request.time_limit_s = 0.2;
+  Send(request);
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_TRUE(core_->PlanNext());
+  EXPECT_LT(SecondsSince(start), 1.0);
+  const auto replies = Replies();
+  ASSERT_EQ(replies.size(), 1u);
+  EXPECT_EQ(replies[0].status, +plan_t::STATUS_PARTIAL);
+  ASSERT_EQ(replies[0].num_steps, 2 * Hexapod().num_legs());
+  EXPECT_NEAR(replies[0].steps[6].position[0], Hexapod().legs[static_cast<size_t>(replies[0].steps[6].leg)]
+                                                       .nominal_offset_body_m.x() + 0.05, 1e-9);
+  EXPECT_NE(replies[0].message.find("had not finished by the deadline"), std::string::npos) << replies[0].message;
+  EXPECT_EQ(core_->counters().time_limit_endings, 1);
+  EXPECT_EQ(core_->counters().abandoned_solves, 1);
+}
+
+TEST_F(DaemonCoreTest, ARobotsNextRequestStartsFromThePlanLastSentToIt) {
+  std::mutex mutex;
+  std::vector<size_t> warm_sizes;
+  std::vector<std::vector<Footstep>> last_warm;
+  Make(4, [&](const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
+              const PlannerOptions& options) {
+    std::lock_guard<std::mutex> lock(mutex);
+    warm_sizes.push_back(request.warm_start.size());
+    last_warm = request.warm_start;
+    Plan plan = FakePlan(robot, regions, request, options);
+    plan.footsteps[0].position_world_m.z() = 0.001 * static_cast<double>(warm_sizes.size());  // tells plans apart
+    return plan;
+  });
+  SendMap("flat");
+  Send(Request(Hexapod(), 1));
+  ASSERT_TRUE(core_->PlanNext());
+  plan_request_t dog = Request(setup_->robots.at("littledog"), 2);
+  dog.robot = "littledog";
+  Send(dog);
+  ASSERT_TRUE(core_->PlanNext());
+  Send(Request(Hexapod(), 3));
+  ASSERT_TRUE(core_->PlanNext());
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    ASSERT_EQ(warm_sizes.size(), 3u);
+    EXPECT_EQ(warm_sizes[0], 0u);  // nothing sent to the hexapod yet
+    EXPECT_EQ(warm_sizes[1], 0u);  // nor to the little dog: plans are per robot
+    ASSERT_EQ(warm_sizes[2], 1u);  // the hexapod's first plan
+    ASSERT_EQ(last_warm[0].size(), 6u);
+    EXPECT_DOUBLE_EQ(last_warm[0][0].position_world_m.z(), 0.001);
+  }
+  Send(Request(Hexapod(), 5));
+  ASSERT_TRUE(core_->PlanNext());
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    ASSERT_EQ(warm_sizes.back(), 2u);  // its last plans, newest first
+    EXPECT_DOUBLE_EQ(last_warm[0][0].position_world_m.z(), 0.003);
+    EXPECT_DOUBLE_EQ(last_warm[1][0].position_world_m.z(), 0.001);
+  }
+  SendMap("flat");  // a new map: the old plans stood on the old one
+  Send(Request(Hexapod(), 4));
+  ASSERT_TRUE(core_->PlanNext());
+  std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_EQ(warm_sizes.back(), 0u);
+}
+
 TEST_F(DaemonCoreTest, StopDuringAPlanAnswersItAndEveryQueuedRequest) {
   Make(4, SleepyPlan);
   SendMap("flat");

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
+#include <thread>
 
 #include "planner/io/robot_loader.h"
 #include "planner/io/scenario_yaml.h"
@@ -68,6 +71,51 @@ TEST(Deadline, EverySolverStopsAtItsNextIterationWhenStopped) {
         << solver->Name();
     stop = true;
   }
+}
+
+// n variables in a chain of coupling rows: Ipopt iterates tens of times over it.
+Miqp ChainQp(int n) {
+  MiqpBuilder b;
+  std::vector<int> x;
+  for (int j = 0; j < n; ++j) {
+    x.push_back(b.AddVariable("x" + std::to_string(j), -10, 10, false));
+    b.AddSquaredCost(LinExpr::Var(x.back()) - LinExpr::Constant(std::sin(0.1 * j)), 1.0);
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    b.AddRow("chain" + std::to_string(j), LinExpr::Var(x[j]) - LinExpr::Var(x[j + 1]), -0.01, 0.01);
+  }
+  return b.Build();
+}
+
+TEST(Deadline, IpoptStopsInsideASolveAtItsIntermediateCallback) {
+  // The deadline passes while Ipopt iterates: its intermediate callback ends the solve
+  // after some iterations but before it converges (the check before a solve is not it:
+  // the solve has begun).
+  const Miqp p = ChainQp(4000);
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kIpopt);
+  const auto start = std::chrono::steady_clock::now();
+  const RelaxationResult full = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  const double full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(full.status, RelaxationStatus::kSolved);
+  ASSERT_GE(full.iterations, 8) << "the test needs a solve of several iterations";
+  // Stopped by a flag raised from another thread, as the daemon's SIGTERM handler does.
+  std::atomic<bool> stop{false};
+  solver->SetDeadline(Deadline().WithStop(&stop));
+  std::thread raise([&stop, full_s] {
+    std::this_thread::sleep_for(std::chrono::duration<double>(0.4 * full_s));
+    stop = true;
+  });
+  const RelaxationResult stopped = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  raise.join();
+  EXPECT_EQ(stopped.status, RelaxationStatus::kIterationLimit);
+  EXPECT_LT(stopped.iterations, full.iterations);
+  // A deadline (no flag) stops it the same way, and the solve had begun: the check
+  // before a solve passes (the deadline is half a solve away), so the stop is Ipopt's.
+  solver->SetDeadline(Deadline::After(0.5 * full_s));
+  const RelaxationResult timed = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  EXPECT_EQ(timed.status, RelaxationStatus::kIterationLimit);
+  EXPECT_GE(timed.iterations, 1);
+  EXPECT_LT(timed.iterations, full.iterations);
 }
 
 TEST(Deadline, SearchStopsWhenTheFlagIsSetDuringIt) {

@@ -44,6 +44,8 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"window_time_slack", &PlannerOptions::window_time_slack, 0.0, 1000.0},
     {"anytime_windows", &PlannerOptions::anytime_windows},
     {"anytime_window_cap", &PlannerOptions::anytime_window_cap, 1.0, 1000.0},
+    {"warm_start_match", &PlannerOptions::warm_start_match_m, 0, 1},
+    {"replan_time", &PlannerOptions::replan_time_s, 0, 3600},
 };
 
 const std::vector<Field<RelaxationSolverOptions>> kSolverFields = {

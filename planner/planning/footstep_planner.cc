@@ -11,6 +11,7 @@
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
 #include "planner/planning/route_guide.h"
+#include "planner/planning/warm_start.h"
 #include "planner/planning/window_budget.h"
 #include "terrain/region_reachability.h"
 
@@ -326,8 +327,30 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     bool seeded = !options.relax_and_fix.enabled ||
                   formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
+    // The first window of a replanning request starts from the client's previous plan.
+    WarmStart warm_start;
+    for (const std::vector<Footstep>& previous : plan.windows == 1 ? request.warm_start
+                                                                    : std::vector<std::vector<Footstep>>{}) {
+      WarmStart w = WarmStartFrom(formulation, previous, options.warm_start_match_m);
+      warm_start.stance_matched = warm_start.stance_matched || w.stance_matched;
+      for (Eigen::VectorXd& x : w.proposals) warm_start.proposals.push_back(std::move(x));
+    }
+    bool bounded_replan = warm_start.stance_matched && options.replan_time_s > 0.0;
+    // A bounded replan solves the previous plan's assignment first (a few milliseconds,
+    // not cut by the budget): it is the answer when the bounded search finds nothing
+    // better. The search does not start from it: with an incumbent from its root the
+    // search goes best-bound at once and, cut short, never dives to a better plan (the
+    // robot kept the first plan it got), so it dives for its own first.
+    std::optional<Eigen::VectorXd> warm_plan;
+    if (bounded_replan && !warm_start.proposals.empty()) {
+      warm_plan = SolveWarmStart(formulation, warm_start.proposals, *solvers.front(), bnb.deadline,
+                                 bnb.feasibility_tolerance);
+    }
+    std::vector<Eigen::VectorXd> warm = bounded_replan ? std::vector<Eigen::VectorXd>{} : warm_start.proposals;
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
+      proposals.insert(proposals.end(), warm.begin(), warm.end());
+      warm.clear();  // offered once, at the root
       if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
         seeded = true;
         const auto rf_start = Clock::now();
@@ -345,8 +368,31 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       }
       return proposals;
     };
+    const double window_time_limit_s = bnb.time_limit_s;
+    if (bounded_replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
     const auto search_start = Clock::now();
     BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+    if (bounded_replan && warm_plan &&
+        (!HasPlan(result.status) || formulation.miqp().Objective(*warm_plan) < result.objective)) {
+      result.status = SolveStatus::kFeasible;
+      result.x = *warm_plan;
+      result.objective = formulation.miqp().Objective(*warm_plan);
+      result.bound = std::min(result.bound, result.objective);
+    }
+    if (bounded_replan && !HasPlan(result.status) && result.status != SolveStatus::kInfeasible) {
+      // No plan in the budget (and none proven impossible): the full search.
+      bnb.time_limit_s = std::max(0.0, window_time_limit_s - result.solve_time_s);
+      const BranchAndBoundResult first = result;
+      result = SolveBranchAndBound(formulation.miqp(), solvers, bnb, rounding);
+      result.nodes += first.nodes;
+      result.relaxations += first.relaxations;
+      bounded_replan = false;
+    }
+    // Cut short by the replanning budget, not by the request's time: a plan, unproven.
+    if (bounded_replan && result.status == SolveStatus::kTimeLimit && request.deadline.RemainingSeconds() > 0.0 &&
+        time_limit - elapsed() > 0.0) {
+      result.status = SolveStatus::kFeasible;
+    }
     record.search_s = std::chrono::duration<double>(Clock::now() - search_start).count();
     record.time_limit_s = bnb.time_limit_s;
     record.status = result.status;
@@ -440,6 +486,14 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     yaw = plan.footsteps.back().yaw_rad;
     plan.reaches_goal = goal_reached(plan.footsteps);
+    if (request.on_plan_so_far && kept > 0) {
+      Plan so_far = plan;
+      so_far.status = plan.reaches_goal ? plan.status : SolveStatus::kPartial;
+      so_far.message = "the plan so far: " + std::to_string(planned) + " steps";
+      so_far.gap = (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
+      so_far.solve_time_s = elapsed();
+      request.on_plan_so_far(so_far);
+    }
     if (on_progress) {
       PlanProgress progress;
       progress.window = plan.windows;

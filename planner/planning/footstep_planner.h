@@ -36,6 +36,15 @@ struct PlanRequest {
   Deadline deadline;
   int max_windows = 0;     // MIQPs solved at most; 0 = as many as the route needs. 1 = exactly
                            // the single MIQP of FirstWindowProblem (benchmarks of Table I)
+  // Optional: the footsteps of this client's previous plans (Plan::footsteps, newest
+  // first) on the same map. When the start stance lies on one, its steps ahead seed the
+  // first window's search (planner/planning/warm_start.h), and
+  // PlannerOptions::replan_time bounds that search.
+  std::vector<std::vector<Footstep>> warm_start;
+  // Optional: called after each accepted window with the plan so far (every step in it
+  // valid; status partial unless it reaches the goal), so a caller whose deadline comes
+  // first (a daemon's watchdog) can answer with it. Called on the planning thread.
+  std::function<void(const Plan&)> on_plan_so_far;
 };
 
 struct PlannerOptions {
@@ -91,6 +100,16 @@ struct PlannerOptions {
   // (often an infeasible one the search cannot prove so) must not take the time the
   // retries and later windows need.
   double anytime_window_cap = 4.0;
+  // PlanRequest::warm_start is used when every start foot lies within this of a footstep
+  // of the previous plan [m] (a robot's feet land near, not on, the planned spots).
+  double warm_start_match_m = 0.05;
+  // The first window of a robot standing on its previous plan (PlanRequest::warm_start
+  // matched: a robot replanning as it walks) searches at most this long [s] (0: its share
+  // of the plan's time, like any window): it needs its answer within its cycle, and asks
+  // again from the plan it got, so each replan's search starts from the last one's plan.
+  // A search cut short answers its best plan with status feasible and its proven gap;
+  // one without a plan by then goes on as the full search.
+  double replan_time_s = 0.0;
   FormulationOptions formulation;
   BranchAndBoundOptions branch_and_bound;
   // The seed of each window's search; its stage search options and time limit are set

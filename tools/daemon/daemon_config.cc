@@ -12,7 +12,8 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
                     {"default_time_limit_s", "max_time_limit_s", "default_max_steps",
                      "max_steps", "queue_size", "max_request_bytes", "max_map_bytes",
                      "start_height_tolerance_m", "inbox_size", "reply_margin_s",
-                     "supersede_same_robot", "accept_empty_maps"});
+                     "supersede_same_robot", "accept_empty_maps",
+                     "warm_start_plans"});
   if (auto v = OptionalDouble(node, ctx, "max_time_limit_s", 0.01, 3600.0))
     limits->max_time_limit_s = *v;
   if (auto v = OptionalDouble(node, ctx, "default_time_limit_s", 0.01, limits->max_time_limit_s))
@@ -30,6 +31,7 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
   if (auto v = OptionalInt(node, ctx, "inbox_size", 1, 1000000)) limits->inbox_size = *v;
   if (auto v = OptionalDouble(node, ctx, "reply_margin_s", 0.0, 1.0)) limits->reply_margin_s = *v;
   if (auto v = OptionalBool(node, ctx, "supersede_same_robot")) limits->supersede_same_robot = *v;
+  if (auto v = OptionalInt(node, ctx, "warm_start_plans", 0, 100)) limits->warm_start_plans = *v;
   if (auto v = OptionalBool(node, ctx, "accept_empty_maps")) limits->accept_empty_maps = *v;
 }
 

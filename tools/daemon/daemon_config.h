@@ -35,6 +35,11 @@ struct DaemonLimits {
   bool supersede_same_robot = true;
   // A map without regions replaces a map with regions only when true.
   bool accept_empty_maps = false;
+  // A robot's request is planned from the plans last sent to that robot on the same map,
+  // this many of them (PlanRequest::warm_start; 0 = none): a robot replanning as it
+  // walks gets its answer from the plan it is walking on (the robot may follow an older
+  // reply than the newest sent).
+  int warm_start_plans = 4;
 };
 
 struct DaemonConfig {

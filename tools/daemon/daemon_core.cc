@@ -287,6 +287,7 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
       regions = std::make_shared<const std::vector<ConvexRegion>>(std::move(*extracted));
       regions_ = regions;
       map_utime_ = map_utime;
+      last_plans_.clear();
       map_receive_utime_ = now;
       ++counters_.maps;
     }
@@ -376,6 +377,7 @@ bool DaemonCore::PlanNext() {
   std::shared_ptr<const DaemonSetup> setup;
   std::shared_ptr<const std::vector<ConvexRegion>> regions;
   int64_t map_utime = 0;
+  std::vector<std::vector<Footstep>> warm_start;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (stopped_) return false;
@@ -385,6 +387,11 @@ bool DaemonCore::PlanNext() {
     regions = regions_;
     map_utime = map_utime_;
     planning_ = true;
+    if (setup->config.limits.warm_start_plans > 0) {
+      // Also for a new goal: the plan's steps are then only a proposal the search weighs.
+      const auto last = last_plans_.find(next->robot_name);
+      if (last != last_plans_.end()) warm_start = last->second;
+    }
   }
   // The deadline counts from the request's arrival: time spent queued is spent.
   const double limit_s = next->request.time_limit_s > 0 ? next->request.time_limit_s
@@ -408,11 +415,22 @@ bool DaemonCore::PlanNext() {
   } else {
     PlanRequest request = next->request;
     request.time_limit_s = remaining_s - margin_s;
+    request.warm_start = std::move(warm_start);
     // The planner checks this flag inside its solves: set when the core stops waiting
     // (a stop, or the deadline passed), so an abandoned plan ends at its next check
     // instead of running on. The task holds the flag, so it outlives the core's wait.
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     request.deadline = Deadline::After(remaining_s - margin_s).WithStop(cancel.get());
+    // The plan accepted so far (window by window): the watchdog's answer at the deadline.
+    struct SoFar {
+      std::mutex mutex;
+      std::optional<Plan> plan;
+    };
+    auto so_far = std::make_shared<SoFar>();
+    request.on_plan_so_far = [so_far](const Plan& p) {
+      std::lock_guard<std::mutex> lock(so_far->mutex);
+      so_far->plan = p;
+    };
     // The task owns what it reads (setup and regions by shared pointer), so a plan left
     // running after its deadline or a stop touches nothing of the core's.
     AbandonableTask<Plan> task([plan_function = plan_function_, setup, regions,
@@ -432,9 +450,22 @@ bool DaemonCore::PlanNext() {
         plan.message = "dropped: the daemon is stopping; the plan in progress was abandoned";
         abandoned = true;
       } else {
-        plan.status = SolveStatus::kTimeLimit;
-        plan.message = "the planner had no plan by the deadline (" + Seconds(limit_s) +
-                       " s from arrival, " + Seconds(waited_s) + " s of it queued)";
+        const std::string why = " by the deadline (" + Seconds(limit_s) + " s from arrival, " +
+                                Seconds(waited_s) + " s of it queued)";
+        {
+          std::lock_guard<std::mutex> lock(so_far->mutex);
+          if (so_far->plan) plan = *so_far->plan;
+        }
+        if (plan.footsteps.empty()) {
+          plan.status = SolveStatus::kTimeLimit;
+          plan.message = "the planner had no plan" + why;
+        } else {
+          // Anytime: the windows accepted so far, each step valid. Counted as a time-limit ending.
+          plan.message = "the planner had not finished" + why + "; " + plan.message;
+          plan.solve_time_s = 1e-6 * static_cast<double>(clock_() - next->receive_utime);
+          std::lock_guard<std::mutex> lock(mutex_);
+          ++counters_.time_limit_endings;
+        }
         abandoned = true;
       }
     } catch (const InputError& e) {
@@ -455,6 +486,12 @@ bool DaemonCore::PlanNext() {
     if (plan.status == SolveStatus::kTimeLimit) ++counters_.time_limit_endings;
     if (plan.status == SolveStatus::kDropped) ++counters_.dropped_requests;
     if (abandoned) ++counters_.abandoned_solves;
+    // Only a plan on the map still current: a map that arrived meanwhile cleared the rest.
+    if (HasPlan(plan.status) && regions == regions_ && setup->config.limits.warm_start_plans > 0) {
+      std::vector<std::vector<Footstep>>& plans = last_plans_[next->robot_name];
+      plans.insert(plans.begin(), plan.footsteps);
+      plans.resize(std::min(plans.size(), static_cast<size_t>(setup->config.limits.warm_start_plans)));
+    }
   }
   Log("request " + std::to_string(next->request_id) + " planned: " + ToString(plan.status) +
       ", " + std::to_string(plan.footsteps.size()) + " footsteps, " + Seconds(plan.solve_time_s) +
@@ -585,6 +622,7 @@ void DaemonCore::Reconfigure(std::shared_ptr<const DaemonSetup> setup, MapFuncti
     std::lock_guard<std::mutex> lock(mutex_);
     setup_ = std::move(setup);
     if (map_function) map_function_ = std::move(map_function);
+    last_plans_.clear();  // the robots may have changed
     evicted = queue_.SetCapacity(static_cast<size_t>(setup_->config.limits.queue_size));
   }
   for (const QueuedRequest& r : evicted)

@@ -176,6 +176,10 @@ class DaemonCore {
   int64_t map_receive_utime_ = 0;  // clock when it arrived
   RequestQueue queue_;
   DaemonCounters counters_;
+  // Footsteps of the plans last sent to each robot on the current map, newest first
+  // (cleared when the map or the config changes): the warm start of its next request
+  // (limits.warm_start_plans of them).
+  std::map<std::string, std::vector<std::vector<Footstep>>> last_plans_;
 };
 
 }  // namespace mfp
