@@ -15,24 +15,9 @@ DATA="$SOURCE_DIR/tests/data/daemon_large_map"
 URL="udpm://239.255.76.67:7667?ttl=0"
 BUFFER_BYTES=3145728  # 3 MiB: more than the map, within a common net.core.rmem_max (4 MiB)
 
-if [ "${3:-}" != "--in-namespace" ]; then
-  for tool in unshare ip lcm-logger lcm-logplayer; do
-    command -v "$tool" >/dev/null || { echo "FAIL: $tool not found (tools/debian-packages.txt)"; exit 1; }
-  done
-  if ! unshare -n true 2>/dev/null; then
-    echo "FAIL: cannot create a network namespace (unshare -n needs root or CAP_SYS_ADMIN);"
-    echo "      this test never falls back to the host network."
-    exit 1
-  fi
-  exec unshare -n "$0" "$SOURCE_DIR" "$BUILD_DIR" --in-namespace
-fi
-
-# --- inside the private namespace ---
-interfaces=$(ip -o link show | awk -F': ' '{print $2}' | sed 's/@.*//')
-[ "$interfaces" = "lo" ] || { echo "FAIL: expected only lo in the namespace, found: $interfaces"; exit 1; }
-ip link set lo up
-ip link set lo multicast on
-ip route add 224.0.0.0/4 dev lo
+# Runs this script again inside a private network namespace (tests/netns_helper.sh).
+source "$SOURCE_DIR/tests/netns_helper.sh"
+mfp_enter_private_namespace "$@"
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_daemon_large_map.XXXXXX")
 DAEMON_PID=""
