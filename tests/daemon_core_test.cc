@@ -255,9 +255,9 @@ TEST_F(DaemonCoreTest, BadRequestsGetAStatusThatNamesTheProblem) {
       {[&](plan_request_t* m) { m->time_limit_s = 1000; }, plan_t::STATUS_INVALID_REQUEST,
        "time_limit_s = 1000"},
       {[&](plan_request_t* m) { m->start_feet[3] = {5.0, 0.0, 0.0}; }, plan_t::STATUS_INVALID_START,
-       "leg 3 (hind)"},
+       "leg 3 ('hind')"},
       {[&](plan_request_t* m) { m->start_feet[1][2] = 0.3; }, plan_t::STATUS_INVALID_START,
-       "leg 1 (front_left)"},
+       "leg 1 ('front_left')"},
       {[&](plan_request_t* m) { m->goal_x = 40.0; }, plan_t::STATUS_INVALID_GOAL, "goal (40, 0)"},
   };
   for (size_t i = 0; i < cases.size(); ++i) {
@@ -715,6 +715,18 @@ TEST(DaemonConfigTest, IntakeAndLcmBuffersComeFromTheConfig) {
     FAIL() << "lcm_queue_capacity: 0 was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("lcm_queue_capacity"), std::string::npos) << e.what();
+  }
+  // A key that was removed says what replaced it.
+  {
+    std::ofstream out(path);
+    out << "robots: [" << MFP_SOURCE_DIR << "/config/robots/hexapod.yaml]\n"
+        << "limits:\n  start_height_tolerance_m: 0.05\n";
+  }
+  try {
+    LoadDaemonConfig(path);
+    FAIL() << "the removed key limits.start_height_tolerance_m was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("planner.start_tolerance"), std::string::npos) << e.what();
   }
   std::remove(path.c_str());
 }

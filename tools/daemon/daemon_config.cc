@@ -14,6 +14,11 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
                      "start_height_tolerance_m", "inbox_size", "reply_margin_s",
                      "supersede_same_robot", "accept_empty_maps",
                      "warm_start_plans"});
+  // Removed: one check of the start feet, the planner's (request_check.h).
+  if (node["start_height_tolerance_m"]) {
+    throw InputError(ctx.file + ": limits.start_height_tolerance_m was removed: start feet are checked "
+                     "once, by the planner, within planner.start_tolerance (metres, default 0.02) of a region");
+  }
   if (auto v = OptionalDouble(node, ctx, "max_time_limit_s", 0.01, 3600.0))
     limits->max_time_limit_s = *v;
   if (auto v = OptionalDouble(node, ctx, "default_time_limit_s", 0.01, limits->max_time_limit_s))
@@ -26,8 +31,6 @@ void ReadLimits(const YAML::Node& node, const YamlContext& ctx, DaemonLimits* li
     limits->max_request_bytes = static_cast<size_t>(*v);
   if (auto v = OptionalInt(node, ctx, "max_map_bytes", 64, 1024 * 1024 * 1024))
     limits->max_map_bytes = static_cast<size_t>(*v);
-  if (auto v = OptionalDouble(node, ctx, "start_height_tolerance_m", 0.0, 1.0))
-    limits->start_height_tolerance_m = *v;
   if (auto v = OptionalInt(node, ctx, "inbox_size", 1, 1000000)) limits->inbox_size = *v;
   if (auto v = OptionalDouble(node, ctx, "reply_margin_s", 0.0, 1.0)) limits->reply_margin_s = *v;
   if (auto v = OptionalBool(node, ctx, "supersede_same_robot")) limits->supersede_same_robot = *v;

@@ -23,7 +23,6 @@ struct DaemonLimits {
   int queue_size = 4;                  // requests waiting; the oldest is dropped beyond
   size_t max_request_bytes = 64 * 1024;        // larger plan_request_t payloads are rejected
   size_t max_map_bytes = 64 * 1024 * 1024;     // larger terrain_map_t payloads are rejected
-  double start_height_tolerance_m = 0.05;  // start foot to region surface, vertically [m]
   // Messages received but not yet decoded (the intake queue between the LCM thread and
   // the decoding thread); beyond it a request is answered dropped and counted.
   int inbox_size = 4096;

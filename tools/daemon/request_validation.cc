@@ -38,19 +38,6 @@ std::string FirstNonFinite(const plan_request_t& m) {
   return "";
 }
 
-// True when some region has the foot on its surface: inside its polygon within
-// horizontal_tol_m and within vertical_tol_m of its plane.
-bool FootOnSomeRegion(const std::vector<ConvexRegion>& regions, const Eigen::Vector3d& foot,
-                      double horizontal_tol_m, double vertical_tol_m) {
-  for (const ConvexRegion& region : regions) {
-    const double surface_z = region.HeightAt(foot.x(), foot.y());
-    if (!std::isfinite(surface_z) || std::abs(foot.z() - surface_z) > vertical_tol_m) continue;
-    const Eigen::Vector3d on_plane(foot.x(), foot.y(), surface_z);
-    if (RegionViolation(region, on_plane) <= horizontal_tol_m) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 ValidatedRequest ValidateRequest(const plan_request_t& m,
@@ -90,22 +77,11 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
   if (regions->empty())
     return Reject(SolveStatus::kNoMap, "the current terrain map has no safe regions", name);
 
+  // The start feet are checked once, by the planner's CheckPlanRequest below.
   PlanRequest request;
   for (int leg = 0; leg < m.num_legs; ++leg) {
     const auto& f = m.start_feet[static_cast<size_t>(leg)];
-    const Eigen::Vector3d foot(f[0], f[1], f[2]);
-    if (!FootOnSomeRegion(*regions, foot, options.start_tolerance_m,
-                          limits.start_height_tolerance_m)) {
-      return Reject(SolveStatus::kInvalidStart,
-                    "start foot of leg " + std::to_string(leg) + " (" +
-                        robot.legs[static_cast<size_t>(leg)].name + ") at (" + Number(foot.x()) +
-                        ", " + Number(foot.y()) + ", " + Number(foot.z()) +
-                        ") is off every region (tolerance " + Number(options.start_tolerance_m) +
-                        " m horizontal, " + Number(limits.start_height_tolerance_m) +
-                        " m vertical)",
-                    name);
-    }
-    request.start_feet_world_m.push_back(foot);
+    request.start_feet_world_m.emplace_back(f[0], f[1], f[2]);
   }
 
   request.start_yaw_rad = EstimateStanceYaw(robot, request.start_feet_world_m);
