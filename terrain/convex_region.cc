@@ -1,6 +1,7 @@
 #include "terrain/convex_region.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -125,6 +126,20 @@ ConvexRegion MakeRegionFromPolygon(int id, const std::vector<Eigen::Vector3d>& v
 double RegionViolation(const ConvexRegion& region, const Eigen::Vector3d& point_world_m) {
   if (region.b.size() == 0) return std::numeric_limits<double>::infinity();
   return (region.A * point_world_m - region.b).maxCoeff();
+}
+
+double PlanDistanceToRegion(const ConvexRegion& region, const Eigen::Vector2d& xy_m) {
+  const auto& v = region.vertices_world_m;
+  bool inside = v.size() >= 3;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < v.size(); ++k) {
+    const Eigen::Vector2d a = v[k].head<2>(), b = v[(k + 1) % v.size()].head<2>();
+    const Eigen::Vector2d e = b - a;
+    if (e.x() * (xy_m - a).y() - e.y() * (xy_m - a).x() < -1e-12) inside = false;
+    const double t = e.squaredNorm() > 0 ? std::clamp((xy_m - a).dot(e) / e.squaredNorm(), 0.0, 1.0) : 0.0;
+    best = std::min(best, (a + t * e - xy_m).norm());
+  }
+  return inside ? 0.0 : best;
 }
 
 bool RegionContains(const ConvexRegion& region, const Eigen::Vector3d& point_world_m,

@@ -41,6 +41,11 @@ bool RegionContains(const ConvexRegion& region, const Eigen::Vector3d& point_wor
 // Largest violation max_j (a_j . f - b_j), negative inside [m].
 double RegionViolation(const ConvexRegion& region, const Eigen::Vector3d& point_world_m);
 
+// Distance in plan view (x, y) from xy_m to the region's polygon, 0 inside or on its
+// boundary [m]. The polygon's vertices are counter-clockwise, as MakeRegionFromPolygon
+// leaves them.
+double PlanDistanceToRegion(const ConvexRegion& region, const Eigen::Vector2d& xy_m);
+
 // Index (into regions) of the highest region whose polygon contains (x, y) within
 // tolerance_m horizontally (the surface a foot would stand on), or -1 when none does.
 int FindRegionBelow(const std::vector<ConvexRegion>& regions, double x_m, double y_m,

@@ -9,30 +9,7 @@
 namespace mfp {
 namespace {
 
-double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
-
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-// Inside a counter-clockwise convex polygon (boundary included).
-bool InsidePolygon(const std::vector<Eigen::Vector3d>& poly, const Eigen::Vector2d& p) {
-  for (size_t i = 0; i < poly.size(); ++i) {
-    const Eigen::Vector2d a = poly[i].head<2>(), b = poly[(i + 1) % poly.size()].head<2>();
-    if (Cross(b - a, p - a) < -1e-12) return false;
-  }
-  return true;
-}
-
-double PointPolygonDistance(const ConvexRegion& r, const Eigen::Vector2d& p) {
-  const auto& v = r.vertices_world_m;
-  if (InsidePolygon(v, p)) return 0.0;
-  double d = std::numeric_limits<double>::infinity();
-  for (size_t i = 0; i < v.size(); ++i) d = std::min(d, PointSegmentDistance(p, v[i].head<2>(), v[(i + 1) % v.size()].head<2>()));
-  return d;
-}
 
 void HeightRange(const ConvexRegion& r, double* lo, double* hi) {
   *lo = std::numeric_limits<double>::infinity();
@@ -49,8 +26,8 @@ double RegionPlanarDistance(const ConvexRegion& a, const ConvexRegion& b) {
   const auto& va = a.vertices_world_m;
   const auto& vb = b.vertices_world_m;
   double d = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& p : va) d = std::min(d, PointPolygonDistance(b, p.head<2>()));
-  for (const Eigen::Vector3d& p : vb) d = std::min(d, PointPolygonDistance(a, p.head<2>()));
+  for (const Eigen::Vector3d& p : va) d = std::min(d, PlanDistanceToRegion(b, p.head<2>()));
+  for (const Eigen::Vector3d& p : vb) d = std::min(d, PlanDistanceToRegion(a, p.head<2>()));
   if (d == 0.0) return 0.0;
   // Edges crossing without a vertex inside (two overlapping rectangles in a cross).
   for (size_t i = 0; i < va.size(); ++i) {
@@ -120,7 +97,7 @@ std::vector<int> WindowRegionIndices(const std::vector<ConvexRegion>& regions,
     HeightRange(regions[i], &lo, &hi);
     for (const Eigen::Vector3d& f : start_feet_world_m) {
       if (lo <= f.z() + reach_z && hi >= f.z() - reach_z &&
-          PointPolygonDistance(regions[i], f.head<2>()) <= reach_xy) {
+          PlanDistanceToRegion(regions[i], f.head<2>()) <= reach_xy) {
         out.push_back(static_cast<int>(i));
         break;
       }

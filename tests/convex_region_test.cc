@@ -88,5 +88,15 @@ TEST(TerrainDescription, TopFacesOfBoxes) {
   EXPECT_TRUE(RegionContains(regions[1], face_centre, 1e-9));
 }
 
+TEST(ConvexRegion, PlanDistanceIsZeroInsideAndToTheNearestEdgeOrCornerOutside) {
+  // The unit square, given clockwise (MakeRegionFromPolygon turns it counter-clockwise).
+  const ConvexRegion r = MakeRegionFromPolygon(0, {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, 0.0);
+  EXPECT_EQ(PlanDistanceToRegion(r, Eigen::Vector2d(0.5, 0.5)), 0.0);
+  EXPECT_EQ(PlanDistanceToRegion(r, Eigen::Vector2d(1.0, 0.3)), 0.0);             // on an edge
+  EXPECT_NEAR(PlanDistanceToRegion(r, Eigen::Vector2d(2.0, 0.5)), 1.0, 1e-15);    // beside an edge
+  EXPECT_NEAR(PlanDistanceToRegion(r, Eigen::Vector2d(2.0, 2.0)), std::sqrt(2.0), 1e-15);  // past a corner
+  EXPECT_NEAR(PlanDistanceToRegion(r, Eigen::Vector2d(0.5, -0.25)), 0.25, 1e-15);
+}
+
 }  // namespace
 }  // namespace mfp

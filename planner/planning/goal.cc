@@ -9,20 +9,6 @@
 namespace mfp {
 namespace {
 
-// Distance in plan view from q to a region's polygon (0 inside).
-double PlanarDistance(const ConvexRegion& region, const Eigen::Vector2d& q) {
-  const auto& v = region.vertices_world_m;
-  bool inside = true;
-  double best = kInfinity;
-  for (size_t k = 0; k < v.size(); ++k) {
-    const Eigen::Vector2d a = v[k].head<2>(), b = v[(k + 1) % v.size()].head<2>();
-    const Eigen::Vector2d e = b - a;
-    if (e.x() * (q - a).y() - e.y() * (q - a).x() < 0) inside = false;
-    const double t = std::clamp((q - a).dot(e) / std::max(e.squaredNorm(), 1e-18), 0.0, 1.0);
-    best = std::min(best, (a + t * e - q).norm());
-  }
-  return inside ? 0.0 : best;
-}
 
 }  // namespace
 
@@ -48,7 +34,7 @@ bool WithinGoal(const GoalDistances& d, const GoalSpec& goal, double slack_m, do
 
 double DistanceToNearestRegion(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy) {
   double best = kInfinity;
-  for (const ConvexRegion& r : regions) best = std::min(best, PlanarDistance(r, xy));
+  for (const ConvexRegion& r : regions) best = std::min(best, PlanDistanceToRegion(r, xy));
   return best;
 }
 

@@ -11,25 +11,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double PointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
-// Distance in plan view from p to a region's polygon (0 inside; vertices counter-clockwise).
-double PolygonDistance(const ConvexRegion& r, const Eigen::Vector2d& p) {
-  const auto& v = r.vertices_world_m;
-  bool inside = v.size() >= 3;
-  double d = kInf;
-  for (size_t k = 0; k < v.size(); ++k) {
-    const Eigen::Vector2d a = v[k].head<2>(), b = v[(k + 1) % v.size()].head<2>();
-    if ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x() < -1e-12) inside = false;
-    d = std::min(d, PointSegment(p, a, b));
-  }
-  return inside ? 0.0 : d;
-}
 
 // Cells of a raster: 2 where a region holds the point, 1 where one lies within `radius`
 // (a foot's reference box meets support there), 0 elsewhere.
@@ -69,7 +50,7 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
         uint8_t& c = s.cells[static_cast<size_t>(j) * s.nx + i];
         if (c == 2) continue;
         const Eigen::Vector2d p = lo + res * Eigen::Vector2d(i + 0.5, j + 0.5);
-        const double d = PolygonDistance(r, p);
+        const double d = PlanDistanceToRegion(r, p);
         if (d <= 0.0) {
           c = 2;
         } else if (d <= radius) {
