@@ -93,6 +93,13 @@ std::vector<ConvexRegion> TopFaceRegions(const TerrainDescription& terrain, doub
       throw InputError(name + ": every size must be > 0 m");
     }
   }
+  // Each box's corners seen from above, to pass over boxes far from a face quickly.
+  std::vector<std::vector<Eigen::Vector2d>> footprints;
+  for (const TerrainBox& box : terrain.boxes) {
+    std::vector<Eigen::Vector2d> xy;
+    for (const Eigen::Vector3d& c : BoxCorners(box)) xy.push_back(c.head<2>());
+    footprints.push_back(std::move(xy));
+  }
   for (size_t i = 0; i < terrain.boxes.size(); ++i) {
     const TerrainBox& box = terrain.boxes[i];
     const Eigen::Matrix3d R = BoxRotation(box);
@@ -131,7 +138,7 @@ std::vector<ConvexRegion> TopFaceRegions(const TerrainDescription& terrain, doub
     // the face's own edge.
     std::vector<std::vector<Eigen::Vector2d>> pieces = {face.xy};
     for (size_t j = 0; j < terrain.boxes.size() && !pieces.empty(); ++j) {
-      if (j == i) continue;
+      if (j == i || !BoundsOverlap(face.xy, footprints[j], inset_m)) continue;
       const std::vector<Eigen::Vector2d> cover = PartAbove(terrain.boxes[j], face);
       if (cover.empty() || !BoundsOverlap(face.xy, cover, inset_m)) continue;
       std::vector<std::vector<Eigen::Vector2d>> next;
