@@ -5,6 +5,9 @@
 namespace mfp {
 namespace {
 
+// An overlap this small is rounding where a cut touches the polygon [m^2].
+constexpr double kTouchAreaM2 = 1e-10;
+
 // The part of a convex polygon where n . p <= c (Sutherland-Hodgman against one line).
 std::vector<Eigen::Vector2d> KeepBelow(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& n, double c) {
   std::vector<Eigen::Vector2d> out;
@@ -39,6 +42,16 @@ std::vector<std::vector<Eigen::Vector2d>> ConvexPolygonMinus(const std::vector<E
   MFP_CHECK(margin_m >= 0.0);
   // polygon \ cut = union over the cut's edges i of (outside edge i, inside edges 0..i-1):
   // disjoint, each an intersection of half-planes with the polygon, hence convex.
+  // A cut that only touches the polygon (an abutting box, a face already inset by the
+  // margin) leaves it whole rather than in strips along the cut's edges.
+  std::vector<Eigen::Vector2d> overlap = polygon;
+  for (size_t i = 0; i < cut.size() && overlap.size() >= 3; ++i) {
+    const Eigen::Vector2d e = cut[(i + 1) % cut.size()] - cut[i];
+    if (e.norm() <= 1e-12) continue;
+    const Eigen::Vector2d n = Eigen::Vector2d(e.y(), -e.x()).normalized();
+    overlap = KeepBelow(overlap, n, n.dot(cut[i]) + margin_m);
+  }
+  if (overlap.size() < 3 || PolygonArea2d(overlap) <= kTouchAreaM2) return {polygon};
   std::vector<std::vector<Eigen::Vector2d>> pieces;
   std::vector<Eigen::Vector2d> rest = polygon;  // polygon inside the edges seen so far
   for (size_t i = 0; i < cut.size() && rest.size() >= 3; ++i) {

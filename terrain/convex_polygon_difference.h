@@ -10,7 +10,8 @@ namespace mfp {
 // 3 vertices) grown by margin_m: each edge of `cut` moved outward by margin_m, so the
 // removed set contains every point within margin_m of `cut` (mitred corners remove a
 // little more, on the safe side). Pieces are convex, counter-clockwise and disjoint but
-// for shared edges; pieces with an area below min_area_m2 are dropped.
+// for shared edges; pieces with an area below min_area_m2 are dropped. A cut that only
+// touches the polygon (overlap of no area, up to rounding) leaves it whole, one piece.
 std::vector<std::vector<Eigen::Vector2d>> ConvexPolygonMinus(const std::vector<Eigen::Vector2d>& polygon,
                                                              const std::vector<Eigen::Vector2d>& cut,
                                                              double margin_m, double min_area_m2);

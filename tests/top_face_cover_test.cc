@@ -76,14 +76,16 @@ TEST(TopFaceRegions, ALowerCellLosesWhatAHigherOverlappingCellCovers) {
   EXPECT_NEAR(regions[FindRegionBelow(regions, -0.02, -0.02, 0.0)].HeightAt(-0.02, -0.02), 0.015, 1e-12);
 }
 
-TEST(TopFaceRegions, AFaceAtTheSameHeightOrBelowDoesNotCut) {
+// Abutting boxes, higher or not, only touch a face inset by the margin: it stays whole,
+// one region (the beams course: a narrower, higher beam at a platform's edge).
+TEST(TopFaceRegions, AFaceAtTheSameHeightOrBelowOrAbuttingDoesNotCut) {
   TerrainDescription terrain;
   terrain.boxes = {Box({0, 0, 0.0}, {0.2, 0.2, 0.1}), Box({0.2, 0, 0.0}, {0.2, 0.2, 0.1}),
-                   Box({0, 0.15, -0.03}, {0.2, 0.2, 0.1})};
+                   Box({0, 0.15, -0.03}, {0.2, 0.2, 0.1}), Box({0.4, -0.03, 0.05}, {0.2, 0.1, 0.1})};
   const std::vector<ConvexRegion> regions = TopFaceRegions(terrain, 0.02, 0.5);
   // The two abutting boxes keep whole faces (0.16 m squares); the lower one under the
   // first loses a strip up to 0.02 m beyond the first box (y from 0.07 to 0.12).
-  ASSERT_EQ(regions.size(), 3u);
+  ASSERT_EQ(regions.size(), 4u);
   EXPECT_NEAR(regions[0].area_m2, 0.16 * 0.16, 1e-9);
   EXPECT_NEAR(regions[1].area_m2, 0.16 * 0.16, 1e-9);
   EXPECT_NEAR(regions[2].area_m2, 0.16 * (0.23 - 0.12), 1e-9);
