@@ -49,8 +49,11 @@ Eigen::Matrix3d BoxRotation(const TerrainBox& box);
 std::vector<Eigen::Vector3d> BoxCorners(const TerrainBox& box);
 
 // Exact top-face regions: for each box, the face whose outward normal points most
-// upward, inset by inset_m, as a ConvexRegion with ids 0, 1, ... in box order. Boxes
-// whose top face is steeper than max_slope_rad or vanishes after the inset are skipped.
+// upward, inset by inset_m, minus the parts other boxes cover (where another box rises
+// above the face, grown by inset_m), as ConvexRegions with ids 0, 1, ... in box order.
+// An uncovered face is one region; a partly covered face is cut into several convex
+// pieces, a fully covered face gives none. Boxes whose top face is steeper than
+// max_slope_rad or vanishes after the inset are skipped.
 // Throws InputError on non-finite or non-positive sizes.
 std::vector<ConvexRegion> TopFaceRegions(const TerrainDescription& terrain, double inset_m,
                                          double max_slope_rad);

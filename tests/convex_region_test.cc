@@ -72,6 +72,7 @@ TEST(TerrainDescription, TopFacesOfBoxes) {
   tilted.size_m = {0.5, 0.5, 0.1};
   tilted.rpy_rad = {0.0, 0.2, 0.0};  // pitched 0.2 rad
   TerrainBox steep = tilted;
+  steep.center_world_m = {4, 0, 0};  // apart: in the tilted box it would stick out of its face
   steep.rpy_rad = {0.0, 0.8, 0.0};   // steeper than the 0.5 rad limit
   terrain.boxes = {flat, tilted, steep};
   const std::vector<ConvexRegion> regions = TopFaceRegions(terrain, 0.05, 0.5);

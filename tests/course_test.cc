@@ -88,6 +88,31 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
   }
 }
 
+// The rough field's two grids overlap at the turn; the regions of lower cells ran under
+// higher ones, and plans put a foot inside a higher cell (hexapod_rough_turn_83 step 148,
+// hexapod_rough_turn_182 step 294 of mfp-bench --courses 200 --course-top-faces). Every
+// vertex of every region, and its centre, is a foothold the checker accepts.
+TEST(CourseTest, TopFaceRegionsOfOverlappingRoughCellsAreFootholds) {
+  const RobotModel robot = LoadRobot(RobotPath("hexapod"));
+  for (uint64_t seed : {83, 182}) {
+    const Course course = GenerateCourse(robot, RobotPath("hexapod"), CourseKind::kRough, seed);
+    const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+    int off = 0;
+    for (const ConvexRegion& r : regions) {
+      std::vector<Eigen::Vector3d> points = r.vertices_world_m;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (const auto& v : r.vertices_world_m) centre += v / double(r.vertices_world_m.size());
+      points.push_back(centre);
+      for (const auto& p : points) {
+        const bool ok = FootOnTrueSurface(course.terrain, p, course.edge_margin_m - 1e-3, robot.max_slope_rad, 0.025);
+        EXPECT_TRUE(ok) << course.name << " region " << r.id << " point " << p.transpose();
+        off += ok ? 0 : 1;
+        if (off > 5) return;
+      }
+    }
+  }
+}
+
 // Windows the polisher cannot make exact (here: it is given no time, so every window whose
 // chords miss the exact boxes is one; on littledog_stones_turn_4 window 7 was one with the
 // polisher running, until the search changed): with the re-plan within the chords' error
