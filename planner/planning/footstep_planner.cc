@@ -443,9 +443,9 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       replan = ReplanWithinChordError(formulation, solvers, bnb, polish);
       if (polish_note.empty()) polish_note = "window " + std::to_string(plan.windows) + ": " + replan.note;
       if (!replan.planned) {
-        if (plan.windows == 1) {
-          plan.status = replan.result.status == SolveStatus::kNoSolution ? SolveStatus::kNoSolution : SolveStatus::kInfeasible;
-        }
+        // Infeasible within the shrunk boxes proves nothing about the true ones (an
+        // inexact plan exists): no exact plan found, never a claim of infeasibility.
+        if (plan.windows == 1) plan.status = SolveStatus::kNoSolution;
         plan.message = "window " + std::to_string(plan.windows) + ": the polisher could not make it exact (" +
                        polished.report.message + "), " + replan.note;
         break;
