@@ -73,13 +73,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
     if (!o.write_dir.empty()) {
       std::ofstream(o.write_dir + "/" + course.name + ".yaml") << CourseToScenarioYaml(course, o.time_limit_s);
     }
-    Scenario scenario;
-    scenario.name = course.name;
-    scenario.robot_path = robot_paths[r];
-    scenario.terrain = course.terrain;
-    scenario.start = course.start;
-    scenario.goal = course.goal;
-    scenario.time_limit_s = o.time_limit_s;
+    Scenario scenario = CourseScenario(course, o.time_limit_s);
     if (o.adjust) o.adjust(&scenario);
     const auto t0 = std::chrono::steady_clock::now();
     const RobotModel& robot = robots[r];
@@ -96,7 +90,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
       plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(), [&](const PlanProgress& p) {
         ++windows;
         if (!p.polish.exact) ++inexact;
-        if (p.replanned) ++replanned;
+        if (p.record.replanned) ++replanned;
         polish_s += p.polish.time_s;
         solve_sum += p.window_result.solve_time_s;
         max_polish_ratio = std::max(max_polish_ratio, p.polish.time_s / std::max(p.window_result.solve_time_s, 1e-9));

@@ -336,6 +336,17 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
   throw std::runtime_error("GenerateCourse: no valid " + ToString(kind) + " course for seed " + std::to_string(seed));
 }
 
+Scenario CourseScenario(const Course& course, double time_limit_s) {
+  Scenario scenario;
+  scenario.name = course.name;
+  scenario.robot_path = course.robot_path;
+  scenario.terrain = course.terrain;
+  scenario.start = course.start;
+  scenario.goal = course.goal;
+  scenario.time_limit_s = time_limit_s;
+  return scenario;
+}
+
 std::string CourseToScenarioYaml(const Course& course, double time_limit_s) {
   std::ostringstream out;
   out.precision(6);

@@ -54,7 +54,9 @@ constexpr double kCourseEdgeMargin = 0.01;
 
 Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed);
 
-// The course as a scenario YAML (config/scenarios format; robot path written as given).
+// The course as a scenario (its name, robot, boxes, start and goal; default planner
+// options), and as a scenario YAML (config/scenarios format; robot path written as given).
+Scenario CourseScenario(const Course& course, double time_limit_s);
 std::string CourseToScenarioYaml(const Course& course, double time_limit_s);
 
 }  // namespace mfp

@@ -43,10 +43,10 @@ int main(int argc, char** argv) {
     const mfp::Plan plan = mfp::PlanFootsteps(
         robot, regions, request, scenario.options, solvers.workers(), [&](const mfp::PlanProgress& p) {
           const mfp::BranchAndBoundResult& r = p.window_result;
-          std::printf("%6d %8d %8d %9.3f %9.2g  %s\n", p.window, p.regions, r.nodes,
+          std::printf("%6d %8d %8d %9.3f %9.2g  %s\n", p.window, p.record.regions, r.nodes,
                       r.solve_time_s, r.gap, mfp::ToString(r.status).c_str());
           std::fflush(stdout);
-          max_regions = std::max(max_regions, p.regions);
+          max_regions = std::max(max_regions, p.record.regions);
           slowest_s = std::max(slowest_s, r.solve_time_s);
         });
     std::printf("\n%s: %s, %s, %zu footsteps, %d windows, %.2f s; at most %d of %zu regions in one window, "

@@ -21,12 +21,7 @@ struct Outcome {
 
 Outcome PlanCourse(const Course& course, const RobotModel& robot) {
   const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
-  Scenario scenario;
-  scenario.robot_path = course.robot_path;
-  scenario.terrain = course.terrain;
-  scenario.start = course.start;
-  scenario.goal = course.goal;
-  scenario.time_limit_s = 20.0;
+  const Scenario scenario = CourseScenario(course, 20.0);
   const PlanRequest request = ScenarioRequest(scenario, robot, regions);
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
   Outcome out;
@@ -121,12 +116,7 @@ TEST(CourseTest, AWindowThePolisherCannotMakeExactIsReplannedExactly) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
   const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kStonesTurn, 4);
   const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
-  Scenario scenario;
-  scenario.robot_path = course.robot_path;
-  scenario.terrain = course.terrain;
-  scenario.start = course.start;
-  scenario.goal = course.goal;
-  scenario.time_limit_s = 6.0;
+  const Scenario scenario = CourseScenario(course, 6.0);
   PlanRequest request = ScenarioRequest(scenario, robot, regions);
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
   auto plan_with = [&](bool replan, int* inexact) {

@@ -32,6 +32,7 @@ struct WindowRecord {
   double search_s = 0.0;       // the whole search, heuristics included
   double polish_s = 0.0;       // exact-trigonometry polish
   bool polished = false;       // the polished steps replaced the MIQP's
+  bool replanned = false;      // planned again within the chords' error (exact_window.h)
 };
 
 struct Plan {

@@ -178,12 +178,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   };
   plan.reaches_goal = goal_reached(plan.footsteps);
   std::string polish_note;  // the first window whose polished plan was not used, and why
-  auto stance_centre = [&] {
-    Eigen::Vector2d c = Eigen::Vector2d::Zero();
-    for (const Eigen::Vector3d& f : stance) c += f.head<2>();
-    return Eigen::Vector2d(c / n);
-  };
-  const double start_progress = guided ? RouteProgress(guide, stance_centre()) : 0.0;
+  const double start_progress = guided ? RouteProgress(guide, StanceCentreXY(stance)) : 0.0;
   int accepted_windows = 0;  // windows whose steps were kept, for the time budget
 
   // Adaptive horizons: a window that is infeasible, finds no plan in its time, or cannot
@@ -305,7 +300,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       // Under guidance: a share from the windows the route still needs.
       WindowBudgetInput budget;
       budget.remaining_s = remaining_time;
-      const double progress = RouteProgress(guide, stance_centre());
+      const double progress = RouteProgress(guide, StanceCentreXY(stance));
       budget.route_left_m = guide.length_m - progress;
       budget.route_covered_m = progress - start_progress;
       budget.accepted_windows = accepted_windows;
@@ -457,6 +452,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       polished.report.time_s += polish_s;  // both polishes
     }
     plan.window_records.back().polished = polished.report.accepted;
+    plan.window_records.back().replanned = replan.planned;
     const MiqpFormulation& used = replan.planned ? *replan.formulation : formulation;
     plan.status = Combine(plan.status, result.status);
     plan.objective += result.objective;
@@ -502,8 +498,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       progress.elapsed_s = elapsed();
       progress.window_result = result;
       progress.polish = polished.report;
-      progress.regions = static_cast<int>(problem.regions.size());
-      progress.replanned = replan.planned;
+      progress.record = plan.window_records.back();
       on_progress(progress);
     }
     if (kept == 0 && !plan.reaches_goal &&

@@ -128,8 +128,7 @@ struct PlanProgress {
   double elapsed_s = 0.0;
   BranchAndBoundResult window_result;
   PolishReport polish;     // the polisher's account of this window
-  int regions = 0;         // regions in this window's MIQP (after the reachability filter)
-  bool replanned = false;  // planned again within the chords' error (exact_window.h)
+  WindowRecord record;     // this window's record (also in Plan::window_records)
 };
 
 // Nominal stance of the robot at a body pose, feet on the highest region below each
