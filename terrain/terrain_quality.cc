@@ -122,22 +122,22 @@ bool OnTrueTopSurface(const TerrainDescription& terrain, const Eigen::Vector3d& 
 
 bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
                        double max_slope_rad, double height_tol_m) {
-  bool on_face = false;
+  // The face under the foot centre: its slope and the plane the foot's disk lies on.
+  const TerrainBox* face = nullptr;
   for (const TerrainBox& box : terrain.boxes) {
     const Eigen::Matrix3d r = BoxRotation(box);
     if (r(2, 2) < std::cos(max_slope_rad)) continue;  // local +z is the top face only when it points up enough
     const Eigen::Vector3d q = r.transpose() * (p - box.center_world_m);
     if (std::abs(q.z() - box.size_m.z() / 2) > height_tol_m) continue;
-    if (std::abs(q.x()) > box.size_m.x() / 2 - margin_m || std::abs(q.y()) > box.size_m.y() / 2 - margin_m) continue;
-    on_face = true;
+    if (std::abs(q.x()) > box.size_m.x() / 2 || std::abs(q.y()) > box.size_m.y() / 2) continue;
+    face = &box;
     break;
   }
-  if (!on_face) return false;
-  const Eigen::Vector3d above = p + Eigen::Vector3d(0, 0, height_tol_m + 1e-3);
-  for (const TerrainBox& box : terrain.boxes) {
-    if (InsideBox(box, above)) return false;
-  }
-  return true;
+  if (face == nullptr) return false;
+  // The margin disk on real surface: abutting faces within the height tolerance are one
+  // surface (a foot may stand across the seam of two treads of one height); a drop or a
+  // gap within the margin fails.
+  return OnTrueTopSurface(terrain, p, margin_m, height_tol_m, BoxRotation(*face).col(2));
 }
 
 RegionSoundness MeasureSoundness(const std::vector<ConvexRegion>& regions,

@@ -29,9 +29,11 @@ bool OnTrueTopSurface(const TerrainDescription& terrain, const Eigen::Vector3d& 
                       const Eigen::Vector3d& normal_world = Eigen::Vector3d::UnitZ());
 
 // The truth test for a planned foot on a course of boxes (bench/course_checker.h, the
-// course generator): true when a foot centred at p stands on the top face of one box, at
-// least margin_m inside that face's edges, the face no steeper than max_slope_rad, within
-// height_tol_m of it, and no box's solid just above the foot.
+// course generator): true when a foot centred at p stands on the top face of a box no
+// steeper than max_slope_rad, within height_tol_m of it, and the disk of radius margin_m
+// about p on that face's plane lies on real top surface (OnTrueTopSurface): faces that
+// abut within height_tol_m of each other count as one surface, a drop, gap or solid
+// above within the margin fails.
 bool FootOnTrueSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double margin_m,
                        double max_slope_rad, double height_tol_m);
 

@@ -365,6 +365,30 @@ TEST(BranchAndBound, ExtraRoundingProposalsAreUsed) {
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
 }
 
+TEST(BranchAndBound, AStalledSearchEndsWithItsIncumbent) {
+  // The root's proposal {a, c} (value -8) is not optimal; the search finds -9 by
+  // branching. With a stall limit shorter than any node, the search ends right after the
+  // root with the proposal, as at its time limit; without it, it proves -9. (The root's
+  // own rounding, (1, 1, 1), weighs 6: infeasible.)
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  const RoundingHeuristic propose = [](const Eigen::VectorXd& relaxed) {
+    Eigen::VectorXd x = relaxed;
+    x << 1, 0, 1;
+    return std::vector<Eigen::VectorXd>{x};
+  };
+  const BranchAndBoundResult full = SolveBranchAndBound(Knapsack().problem, *solver, options, propose);
+  EXPECT_EQ(full.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(full.objective, -9.0, 1e-6);
+  EXPECT_GE(full.nodes, 3);
+  options.stall_time_fraction = 1e-12;  // of time_limit_s (10 s): 10 ps
+  const BranchAndBoundResult stalled = SolveBranchAndBound(Knapsack().problem, *solver, options, propose);
+  EXPECT_EQ(stalled.status, SolveStatus::kTimeLimit);
+  EXPECT_NEAR(stalled.objective, -8.0, 1e-6);
+  EXPECT_EQ(stalled.nodes, 1);
+  EXPECT_LE(stalled.bound, -8.0);
+}
+
 // min (x - 1)^2 with x <= 1 + a, x <= 1 + b, a + b = 1 (binaries): x = 1 whatever the
 // choice, so the relaxation's (a, b) = (0.5, 0.5) (the interior point's centre) is
 // fractional only in appearance: (1, 0) is just as good.

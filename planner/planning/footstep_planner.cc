@@ -11,6 +11,7 @@
 #include "planner/planning/relax_and_fix.h"
 #include "planner/planning/request_check.h"
 #include "planner/planning/route_guide.h"
+#include "planner/planning/route_proposals.h"
 #include "planner/planning/warm_start.h"
 #include "planner/planning/window_budget.h"
 #include "terrain/region_reachability.h"
@@ -309,6 +310,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       bnb.time_limit_s = WindowTimeShare(budget);
     }
     bnb.time_limit_needs_incumbent = guided && options.anytime_windows;
+    if (guided) bnb.stall_time_fraction = options.window_stall_fraction;
     // No window runs past the whole plan's limit, whatever it is given, nor, running on
     // to its first plan, past anytime_window_cap shares.
     bnb.deadline = request.deadline.Within(
@@ -342,6 +344,13 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                                  bnb.feasibility_tolerance);
     }
     std::vector<Eigen::VectorXd> warm = bounded_replan ? std::vector<Eigen::VectorXd>{} : warm_start.proposals;
+    // Plans that follow the route (route_proposals.h): on fields of many small regions
+    // the search's own first plans barely move the body.
+    if (guided && options.route_proposals) {
+      for (Eigen::VectorXd& x : RouteProposals(formulation, guide, RouteProgress(guide, StanceCentreXY(stance)))) {
+        warm.push_back(std::move(x));
+      }
+    }
     const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
       std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
       proposals.insert(proposals.end(), warm.begin(), warm.end());

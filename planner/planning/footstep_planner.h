@@ -74,16 +74,21 @@ struct PlannerOptions {
   bool route_guidance = true;
   // Each window's goal term follows the route: a local goal this many metres of route
   // ahead of the current stance (0: the goal itself; negative: about one window's walk,
-  // 2 d_lim on a stance route, else twice the largest nominal foot distance L_leg), while the route left is longer
-  // than local_goal_detour_ratio times the straight line to the goal (a detour: round a
-  // wall, out of a pocket); on a nearly straight route the goal itself pulls the same way.
+  // 2 d_lim on a stance route, else twice the largest nominal foot distance L_leg), while
+  // the route left is longer than local_goal_detour_ratio times the straight line to the
+  // goal. 1 (default): wherever the route bends at all. Larger values let the goal itself
+  // pull on nearly straight routes, but near a turn that pull cuts the corner: on an
+  // L-shaped field the windows stalled at the inner corner (docs/measurements.md).
   double local_goal_lookahead_m = -1.0;
-  double local_goal_detour_ratio = 1.1;
+  double local_goal_detour_ratio = 1.0;
   // The route the local goals follow comes from a search over stance poses where every
   // leg's reference box meets a region (planner/planning/stance_route.h), not from the
   // region graph's centres, which cut corners a whole body cannot. The region graph
   // still decides 'no route'; where the stance search finds nothing its route is kept.
   bool stance_route = true;
+  // Each guided window's search starts from plans that walk the route at a few speeds
+  // (planner/planning/route_proposals.h), solved as QPs with their regions fixed.
+  bool route_proposals = true;
   // Adaptive horizons: a failed window is planned again, backing up one window, with up
   // to this many times the default window's steps (1: no retries). Only with route guidance.
   int max_horizon_windows = 2;
@@ -100,6 +105,11 @@ struct PlannerOptions {
   // (often an infeasible one the search cannot prove so) must not take the time the
   // retries and later windows need.
   double anytime_window_cap = 4.0;
+  // A guided window's search ends once its plan has not improved for this fraction of
+  // its time share (BranchAndBoundOptions::stall_time_fraction; 0: off): on fields of
+  // many small regions the searches keep the route's plan and spend their whole shares
+  // on proofs they cannot finish, time the windows still to come need.
+  double window_stall_fraction = 0.25;
   // PlanRequest::warm_start is used when every start foot lies within this of a footstep
   // of the previous plan [m] (a robot's feet land near, not on, the planned spots).
   double warm_start_match_m = 0.05;

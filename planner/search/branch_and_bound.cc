@@ -59,7 +59,7 @@ class Search {
     open_.push_back(std::move(root));
     const int workers = static_cast<int>(solvers_.size());
     while (!open_.empty()) {
-      if (Active().Expired()) {
+      if (Active().Expired() || Stalled()) {
         hit_time_limit_ = true;
         break;
       }
@@ -249,6 +249,12 @@ class Search {
 
   double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
   bool HasIncumbent() const { return result_.x.size() > 0; }
+  // BranchAndBoundOptions::stall_time_fraction.
+  bool Stalled() const {
+    return opt_.stall_time_fraction > 0.0 && HasIncumbent() &&
+           std::chrono::duration<double>(Clock::now() - last_improvement_).count() >
+               opt_.stall_time_fraction * opt_.time_limit_s;
+  }
 
   // True when a subtree with this bound may still beat the incumbent by more than the gap.
   bool Improves(double bound) const { return bound < result_.objective - GapTolerance(); }
@@ -553,6 +559,7 @@ class Search {
     if (!HasIncumbent() || objective < result_.objective) {
       result_.x = std::move(x);
       result_.objective = objective;
+      last_improvement_ = Clock::now();
       if (opt_.on_incumbent) ReportProgress();
     }
   }
@@ -623,6 +630,7 @@ class Search {
   const BranchAndBoundOptions& opt_;
   const RoundingHeuristic& rounding_;
   const Clock::time_point start_;
+  Clock::time_point last_improvement_;  // when the incumbent last improved
   const Deadline deadline_;       // time_limit_s from the start, or the caller's deadline if sooner
   const Deadline hard_deadline_;  // the caller's deadline alone under time_limit_needs_incumbent
   PseudoCosts pseudo_;

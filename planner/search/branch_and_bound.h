@@ -43,6 +43,11 @@ struct BranchAndBoundOptions {
   // incumbent; before its first one it runs on until the deadline (or max_nodes), so a
   // search given too short a share ends with a plan rather than none.
   bool time_limit_needs_incumbent = false;
+  // Stall limit: with an incumbent, the search also ends (as at its time limit) once
+  // this fraction of time_limit_s has passed since the incumbent last improved (0: off).
+  // For receding windows whose proofs cannot finish in their share: the time a search
+  // spends not improving its plan is better spent on the next window.
+  double stall_time_fraction = 0.0;
   int max_nodes = 20000;
   double relative_gap = 1e-4;      // stop when (incumbent - bound) <= relative_gap * max(1, |incumbent|)
   double absolute_gap = 1e-6;
