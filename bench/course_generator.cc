@@ -20,6 +20,10 @@ struct Gen {
   double margin, reach, footprint, dz;
   std::vector<TerrainBox> boxes;
   int count = 0;
+  // The course's finest feature the map must resolve: the narrowest gap between
+  // footholds, and the least width a foothold keeps beyond its edge margins [m].
+  double finest_m = kCourseMaxResolution * kCourseVoxelsPerFeature;
+  void Feature(double size_m) { finest_m = std::min(finest_m, size_m); }
 
   double U(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
 
@@ -68,12 +72,15 @@ struct Gen {
   // Stepping stones along each track over along-coordinates [s0, s1] of a segment.
   void Stones(double x0, double y0, double h, double s0, double s1) {
     const double w = 2 * margin + U(0.03, 0.1);
+    Feature(MinGap());
+    Feature(w - 2 * margin);
     for (const auto& [t, width] : Tracks(w)) {
       double s = s0 + U(MinGap(), MaxGap());
       while (s < s1) {
         double len = U(2 * margin + 0.03, std::max(2 * margin + 0.04, 0.25 * footprint));
         len = std::min(len, s1 - s);
         if (len < 2 * margin + 0.02) break;
+        Feature(len - 2 * margin);
         const double jitter = U(-0.3, 0.3) * (width - 2 * margin) / 2 * 0.3;
         const Eigen::Vector2d c = At(x0, y0, h, s + len / 2, t + jitter);
         Box(c.x(), c.y(), U(0.0, 0.5 * dz), len, width, h);
@@ -233,6 +240,8 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
         while (s < end) {
           const double l = std::min(end - s, g.U(0.1, 0.35) + 2 * g.margin);
           g.Slab(0, 0, 0, s, s + l, 0.0);
+          g.Feature(g.MinGap());
+          g.Feature(l - 2 * g.margin);
           s += l + (k == cut_slab ? cut : g.U(g.MinGap(), g.MaxGap()));
           ++k;
         }
@@ -276,6 +285,7 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
         // An L-shaped field of abutting cells of random height; start and goal platforms flat.
         g.Platform({0, 0});
         const double c = g.U(std::max(0.06, 2 * g.margin + 0.03), std::max(0.08, 0.3 * reach_r));
+        g.Feature(c - 2 * g.margin);
         const double cx = P + len + P;  // corner
         const double len2 = g.U(2.0, 3.0) * reach_r + 0.3;
         const double gy = P + len2 + P;
@@ -293,6 +303,7 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
         g.Platform({0, 0});
         const double w = 2 * g.margin + g.U(0.02, 0.05);
         const double top = g.U(0.0, 0.5 * robot.dz_max_m);
+        g.Feature(w - 2 * g.margin);
         for (const auto& [t, width] : g.Tracks(w)) {
           const double s0 = P, s1 = P + len;
           const Eigen::Vector2d c = Gen::At(0, 0, 0, (s0 + s1) / 2, t);
@@ -326,7 +337,11 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
       }
     }
     course.terrain.boxes = g.boxes;
-    course.terrain.resolution_m = 0.02;
+    // The map resolves the course: its voxel at most a third of the finest feature (a
+    // gap of three voxels always leaves an empty column; a foothold keeps voxels beyond
+    // its margins), as a robot meant for such a course would map it.
+    course.terrain.resolution_m =
+        std::clamp(g.finest_m / kCourseVoxelsPerFeature, kCourseMinResolution, kCourseMaxResolution);
     course.start = route.front();
     course.goal = route.back();
     course.route_exists = exists;

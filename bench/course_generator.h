@@ -51,6 +51,13 @@ double MaxFootTravel(const RobotModel& robot);
 
 // Edge margin beyond the foot radius that generated courses leave and the checker demands [m].
 constexpr double kCourseEdgeMargin = 0.01;
+// Voxel size of a course's map (extracted regions): the finest feature (narrowest gap
+// between footholds, least width a foothold keeps beyond its margins) over
+// kCourseVoxelsPerFeature, within [kCourseMinResolution, kCourseMaxResolution] [m]. A map
+// coarser than a course's gaps shows no gap there: its regions run over it.
+constexpr double kCourseMaxResolution = 0.02;
+constexpr double kCourseMinResolution = 0.005;
+constexpr double kCourseVoxelsPerFeature = 3.0;
 
 Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed);
 
