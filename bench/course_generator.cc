@@ -337,9 +337,10 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
       }
     }
     course.terrain.boxes = g.boxes;
-    // The map resolves the course: its voxel at most a third of the finest feature (a
-    // gap of three voxels always leaves an empty column; a foothold keeps voxels beyond
-    // its margins), as a robot meant for such a course would map it.
+    // The map resolves the course: its voxel at most a sixth of the finest feature (a gap
+    // always shows empty columns; a foothold keeps room for its foot centres after the
+    // inset loses up to a voxel and a half of each edge to quantisation and the edge
+    // uncertainty), as a robot meant for such a course would map it.
     course.terrain.resolution_m =
         std::clamp(g.finest_m / kCourseVoxelsPerFeature, kCourseMinResolution, kCourseMaxResolution);
     course.start = route.front();

@@ -57,7 +57,7 @@ constexpr double kCourseEdgeMargin = 0.01;
 // coarser than a course's gaps shows no gap there: its regions run over it.
 constexpr double kCourseMaxResolution = 0.02;
 constexpr double kCourseMinResolution = 0.005;
-constexpr double kCourseVoxelsPerFeature = 3.0;
+constexpr double kCourseVoxelsPerFeature = 6.0;
 
 Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed);
 

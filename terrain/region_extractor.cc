@@ -39,6 +39,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   }
   RequireRange("max_slope_rad", o.max_slope_rad, 0.0, M_PI / 2, true);
   RequireRange("min_region_area_m2", o.min_region_area_m2, 0.0, 100.0, false);
+  RequireRange("min_region_area_voxels", o.min_region_area_voxels, 0.0, 1e6, false);
   RequireRange("grow_tolerance_voxels", o.grow_tolerance_voxels, 0.0, 10.0, true);
   RequireRange("max_residual_voxels", o.max_residual_voxels, 0.0, 10.0, true);
   RequireRange("seed_roughness_voxels", o.seed_roughness_voxels, 0.0, 10.0, true);
@@ -168,7 +169,10 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
       continue;
     }
     // Region area on the plane = projected area / cos(slope).
-    dec.min_area_xy_m2 = options.min_region_area_m2 * cos_slope;
+    const double min_area_m2 = options.min_region_area_voxels > 0.0
+                                   ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
+                                   : options.min_region_area_m2;
+    dec.min_area_xy_m2 = min_area_m2 * cos_slope;
     dec.solid_beside = &layers.solid_beside[static_cast<size_t>(layer_patch.layer)];
     const std::vector<Quad2d> quads = DecomposePatch(hm, patch, dec);
     if (quads.empty()) ++stats.patches_too_small;

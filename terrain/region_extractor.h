@@ -39,6 +39,11 @@ struct RegionExtractorOptions {
   bool require_seen_from_above = true;
   double max_slope_rad = 0.45;     // steeper patches are rejected [rad]
   double min_region_area_m2 = 0.0016;  // smaller regions (of foot centres) are dropped [m^2]
+  // ... but never more than this many voxels' area (0: min_region_area_m2 alone). Every
+  // region is inset by the foot, the margin and the edge uncertainty: however small, its
+  // foot centres are footholds, and on a fine map stepping stones with a few centimetres
+  // to spare keep their regions (the 16 cm^2 default alone dropped most of them).
+  double min_region_area_voxels = 1.0;
   // Tolerances in voxels (multiples of the map resolution), since the voxel size is
   // what limits how well a surface is known.
   double grow_tolerance_voxels = 1.0;   // a cell joins a patch within this of its plane

@@ -131,7 +131,10 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
   options.clearance_m = clearance_m;
   options.deadline = deadline;
   if (scenario.edge_margin_m) options.edge_margin_m = *scenario.edge_margin_m;
-  if (scenario.min_region_area_m2) options.min_region_area_m2 = *scenario.min_region_area_m2;
+  if (scenario.min_region_area_m2) {
+    options.min_region_area_m2 = *scenario.min_region_area_m2;  // exactly as given
+    options.min_region_area_voxels = 0.0;
+  }
   if (scenario.overlapping_regions) options.overlapping_regions = *scenario.overlapping_regions;
   if (!scenario.map_path.empty()) {
     RegionExtractionResult from_map = ExtractRegions(LoadMapFile(scenario.map_path), options);

@@ -34,9 +34,10 @@ struct Scenario {
   // Real surface kept around each foot beyond its radius (terrain: edge_margin) [m];
   // unset: the extractor's default (RegionExtractorOptions::edge_margin_m).
   std::optional<double> edge_margin_m;
-  // Smallest region of foot centres kept (terrain: min_region_area) [m^2]; unset: the
-  // extractor's default (RegionExtractorOptions::min_region_area_m2). Stones barely wider
-  // than a foot plus its edge margins need less than the default.
+  // Smallest region of foot centres kept (terrain: min_region_area) [m^2], exactly; unset:
+  // the extractor's default (RegionExtractorOptions::min_region_area_m2, or on fine maps
+  // min_region_area_voxels voxels). Stones barely wider than a foot plus its edge
+  // margins need less than the default.
   std::optional<double> min_region_area_m2;
   // Whether one patch's regions may overlap (terrain: overlapping_regions); unset: the
   // extractor's default (RegionExtractorOptions::overlapping_regions).

@@ -447,6 +447,9 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       replan = ReplanWithinChordError(formulation, solvers, bnb, polish);
       if (polish_note.empty()) polish_note = "window " + std::to_string(plan.windows) + ": " + replan.note;
       if (!replan.planned) {
+        // A longer look from the window before may find steps that can be made exact
+        // (small footholds leave the shrunk boxes no room where the chords' plan had some).
+        if (retry_longer("window " + std::to_string(plan.windows) + ": no exact plan (" + replan.note + ")")) continue;
         // Infeasible within the shrunk boxes proves nothing about the true ones (an
         // inexact plan exists): no exact plan found, never a claim of infeasibility.
         if (plan.windows == 1) plan.status = SolveStatus::kNoSolution;
