@@ -256,6 +256,9 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
         const int n = 2 + static_cast<int>(g.U(0, 3));
         for (int k = 0; k < 2 * n; ++k) {
           const double rise = g.U(0.3, 0.6) * robot.dz_max_m * (k < n ? 1 : -1);
+          // A riser of two voxels or fewer looks like a voxelised slope: the map sees the
+          // stairs as a ramp whose edge floats over the lower tread.
+          g.Feature(2 * std::abs(rise));
           const double l = g.U(std::max(0.1, robot.d_lim_m), 0.3) + 2 * g.margin;
           top += rise;
           g.Slab(0, 0, 0, s, s + l, top);
@@ -340,7 +343,8 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
     // The map resolves the course: its voxel at most a sixth of the finest feature (a gap
     // always shows empty columns; a foothold keeps room for its foot centres after the
     // inset loses up to a voxel and a half of each edge to quantisation and the edge
-    // uncertainty), as a robot meant for such a course would map it.
+    // uncertainty; a riser spans three voxels or more), as a robot meant for such a
+    // course would map it.
     course.terrain.resolution_m =
         std::clamp(g.finest_m / kCourseVoxelsPerFeature, kCourseMinResolution, kCourseMaxResolution);
     course.start = route.front();

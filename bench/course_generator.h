@@ -52,7 +52,8 @@ double MaxFootTravel(const RobotModel& robot);
 // Edge margin beyond the foot radius that generated courses leave and the checker demands [m].
 constexpr double kCourseEdgeMargin = 0.01;
 // Voxel size of a course's map (extracted regions): the finest feature (narrowest gap
-// between footholds, least width a foothold keeps beyond its margins) over
+// between footholds, least width a foothold keeps beyond its margins, twice a stair's
+// rise) over
 // kCourseVoxelsPerFeature, within [kCourseMinResolution, kCourseMaxResolution] [m]. A map
 // coarser than a course's gaps shows no gap there: its regions run over it.
 constexpr double kCourseMaxResolution = 0.02;
