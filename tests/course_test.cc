@@ -19,9 +19,12 @@ struct Outcome {
   CourseVerdict verdict;
 };
 
-Outcome PlanCourse(const Course& course, const RobotModel& robot) {
-  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+// Plans on the boxes' true top faces inset by the edge margin, or (from_map) on the
+// regions extracted from the course's voxel map, as mfp-plan does with a scenario.
+Outcome PlanCourse(const Course& course, const RobotModel& robot, bool from_map = false) {
   const Scenario scenario = CourseScenario(course, 20.0);
+  const std::vector<ConvexRegion> regions = from_map ? ScenarioRegions(scenario, robot)
+                                                     : TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
   const PlanRequest request = ScenarioRequest(scenario, robot, regions);
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
   Outcome out;
@@ -73,7 +76,12 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
                                          // Windows out of time: near-fixed boxes sent a fifth of
                                          // the node QPs to Ipopt.
                                          {"littledog", CourseKind::kStones, 1},
-                                         {"hexapod", CourseKind::kStones, 2}}) {
+                                         {"hexapod", CourseKind::kStones, 2},
+                                         // Uneven fields with a turn: windows of 300-500 region
+                                         // binaries kept plans that barely moved, and near the
+                                         // corner the goal's own pull stalled them.
+                                         {"hexapod", CourseKind::kRough, 116},
+                                         {"octopod", CourseKind::kRough, 18}}) {
     const RobotModel robot = LoadRobot(RobotPath(c.robot));
     const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
     ASSERT_TRUE(course.route_exists);
@@ -81,6 +89,53 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
     EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
     EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
   }
+}
+
+// On the course's own voxel map (the map pipeline, not the true faces): a 2 cm map showed
+// no 1.2 cm gap (littledog gaps 139: a foot 8 mm past the start platform's edge), merged
+// stair treads into a ramp (hexapod stairs 44: a foot 2.6 cm over the lower tread), and
+// dropped 2 x 2 cm footholds as too small (hexapod stones 2: 'no route'). The generated
+// map resolves each course's features; plans on it must be valid to the goal.
+TEST(CourseTest, PlansOnTheCoursesOwnMapsAreValidToTheGoal) {
+  struct Case {
+    std::string robot;
+    CourseKind kind;
+    uint64_t seed;
+  };
+  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 139},
+                                         {"hexapod", CourseKind::kStairs, 44},
+                                         {"hexapod", CourseKind::kStones, 2}}) {
+    const RobotModel robot = LoadRobot(RobotPath(c.robot));
+    const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
+    EXPECT_LT(course.terrain.resolution_m, kCourseMaxResolution) << course.name;
+    const Outcome out = PlanCourse(course, robot, /*from_map=*/true);
+    EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
+    EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
+  }
+}
+
+// Abutting faces within the height tolerance are one surface; a drop or a gap within the
+// margin is not.
+TEST(CourseTest, CheckerJudgesTheMarginOnTheUnionOfFaces) {
+  auto box = [](double x0, double x1, double top) {
+    TerrainBox b;
+    b.center_world_m = Eigen::Vector3d((x0 + x1) / 2, 0.0, top - 0.05);
+    b.size_m = Eigen::Vector3d(x1 - x0, 1.0, 0.1);
+    return b;
+  };
+  const double margin = 0.03, tol = 0.025, slope = 0.5;
+  TerrainDescription seam, small_step, drop, gap;
+  seam.boxes = {box(-1, 0, 0.0), box(0, 1, 0.0)};
+  small_step.boxes = {box(-1, 0, 0.0), box(0, 1, 0.01)};
+  drop.boxes = {box(-1, 0, 0.06), box(0, 1, 0.0)};
+  gap.boxes = {box(-1, 0, 0.0), box(0.02, 1, 0.0)};
+  EXPECT_TRUE(FootOnTrueSurface(seam, {0.005, 0.0, 0.0}, margin, slope, tol));
+  EXPECT_TRUE(FootOnTrueSurface(small_step, {0.005, 0.0, 0.01}, margin, slope, tol));
+  EXPECT_FALSE(FootOnTrueSurface(drop, {-0.01, 0.0, 0.06}, margin, slope, tol));  // 1 cm from a 6 cm drop
+  EXPECT_FALSE(FootOnTrueSurface(drop, {0.01, 0.0, 0.0}, margin, slope, tol));    // under the higher box's edge
+  EXPECT_TRUE(FootOnTrueSurface(drop, {0.05, 0.0, 0.0}, margin, slope, tol));
+  EXPECT_FALSE(FootOnTrueSurface(gap, {-0.01, 0.0, 0.0}, margin, slope, tol));    // 1 cm from a 2 cm gap
+  EXPECT_TRUE(FootOnTrueSurface(gap, {-0.04, 0.0, 0.0}, margin, slope, tol));
 }
 
 // The rough field's two grids overlap at the turn; the regions of lower cells ran under
