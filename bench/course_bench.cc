@@ -34,13 +34,12 @@ bool NoRouteAnswer(const Plan& plan) {
 }  // namespace
 
 int RunCourseBench(const CourseBenchOptions& o) {
-  const std::vector<std::string> robot_names = {"littledog", "hexapod", "octopod"};
-  std::vector<RobotModel> robots;
-  std::vector<std::string> robot_paths;
-  for (const auto& name : robot_names) {
-    robot_paths.push_back(o.robots_dir + "/" + name + ".yaml");
-    robots.push_back(LoadRobot(robot_paths.back()));
+  std::vector<std::string> robot_paths = o.robot_paths;
+  if (robot_paths.empty()) {
+    for (const std::string name : {"littledog", "hexapod", "octopod"}) robot_paths.push_back(o.robots_dir + "/" + name + ".yaml");
   }
+  std::vector<RobotModel> robots;
+  for (const std::string& path : robot_paths) robots.push_back(LoadRobot(path));
   if (!o.write_dir.empty()) std::filesystem::create_directories(o.write_dir);
   const auto& kinds = AllCourseKinds();
   std::printf("\nGenerated courses (seed %llu, %d courses, %.0f s per plan, regions: %s)\n",

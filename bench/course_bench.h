@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "planner/io/scenario_yaml.h"
 
@@ -15,6 +16,9 @@ struct CourseBenchOptions {
   uint64_t seed = 1;
   double time_limit_s = 15.0;      // per plan
   std::string robots_dir;          // config/robots
+  // Robot files (YAML or URDF) the courses cycle through; empty: robots_dir's littledog,
+  // hexapod and octopod.
+  std::vector<std::string> robot_paths;
   // Regions the planner gets: the map pipeline (voxelised boxes, as on the robot), or the
   // boxes' exact top faces inset by the checker's edge margin (perfect perception: separates
   // planning failures from perception ones).

@@ -275,6 +275,11 @@ int main(int argc, char** argv) {
   bool course_verbose = false;
   app.add_option("--course-only", course_only, "generated courses: plan only those whose name contains this text");
   app.add_flag("--course-verbose", course_verbose, "generated courses: print each accepted window");
+  std::vector<std::string> course_robots;
+  app.add_option("--course-robots", course_robots,
+                 "generated courses: robot files (YAML or URDF) to cycle through (default: config/robots' littledog, "
+                 "hexapod, octopod)")
+      ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
   try {
     if (courses > 0) {
@@ -283,6 +288,7 @@ int main(int argc, char** argv) {
       o.seed = course_seed;
       o.time_limit_s = course_time_limit;
       o.robots_dir = std::string(MFP_SOURCE_DIR) + "/config/robots";
+      o.robot_paths = course_robots;
       o.write_dir = write_courses;
       o.top_face_regions = course_top_faces;
       o.only = course_only;

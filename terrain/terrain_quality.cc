@@ -1,5 +1,6 @@
 #include "terrain/terrain_quality.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 
@@ -26,12 +27,6 @@ double BoxTopAt(const TerrainBox& box, const Eigen::Matrix3d& R, double x_m, dou
   }
   if (t_in > t_out) return std::numeric_limits<double>::quiet_NaN();
   return z_start - t_in;
-}
-
-bool InsideBox(const TerrainBox& box, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d q = BoxRotation(box).transpose() * (p - box.center_world_m);
-  return std::abs(q.x()) < box.size_m.x() / 2 && std::abs(q.y()) < box.size_m.y() / 2 &&
-         std::abs(q.z()) < box.size_m.z() / 2;
 }
 
 // Points on a region: vertices, edge points and an interior grid (by barycentric fans).
@@ -102,17 +97,19 @@ double TrueSurfaceBelow(const TerrainDescription& terrain, double x_m, double y_
 bool OnTrueTopSurface(const TerrainDescription& terrain, const Eigen::Vector3d& p, double radius_m,
                       double height_tolerance_m, const Eigen::Vector3d& normal_world) {
   const Eigen::Vector3d nrm = normal_world.normalized();
-  auto plane_z = [&](double x, double y) {
-    return p.z() - (nrm.x() * (x - p.x()) + nrm.y() * (y - p.y())) / nrm.z();
-  };
+  // The disk lies in the plane (a foot's margin is measured along the surface): an
+  // orthonormal pair spanning it. A horizontal disk projected onto a tilted plane would
+  // ask 1 / cos(slope) times the margin along the tilt.
+  const Eigen::Vector3d u = (Eigen::Vector3d::UnitX() - nrm.x() * nrm).normalized();
+  const Eigen::Vector3d v = nrm.cross(u);
   const int rings = radius_m > 0.0 ? 2 : 0;
   for (int ring = 0; ring <= rings; ++ring) {
     const double r = rings > 0 ? radius_m * ring / rings : 0.0;
     const int count = ring == 0 ? 1 : 8 * ring;
     for (int k = 0; k < count; ++k) {
       const double a = 2 * M_PI * k / count;
-      const double x = p.x() + r * std::cos(a), y = p.y() + r * std::sin(a);
-      const double z = plane_z(x, y);
+      const Eigen::Vector3d q = p + r * (std::cos(a) * u + std::sin(a) * v);
+      const double x = q.x(), y = q.y(), z = q.z();
       const double below = TrueSurfaceBelow(terrain, x, y, z + height_tolerance_m);
       if (!(below >= z - height_tolerance_m)) return false;
     }

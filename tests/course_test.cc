@@ -136,6 +136,17 @@ TEST(CourseTest, CheckerJudgesTheMarginOnTheUnionOfFaces) {
   EXPECT_TRUE(FootOnTrueSurface(drop, {0.05, 0.0, 0.0}, margin, slope, tol));
   EXPECT_FALSE(FootOnTrueSurface(gap, {-0.01, 0.0, 0.0}, margin, slope, tol));    // 1 cm from a 2 cm gap
   EXPECT_TRUE(FootOnTrueSurface(gap, {-0.04, 0.0, 0.0}, margin, slope, tol));
+  // On a face tilted by 0.3 rad the margin is measured along the face: a foot 1 mm more
+  // than the margin from the downhill edge (along the face) stands, 3 mm less does not.
+  TerrainDescription tilted;
+  tilted.boxes = {box(-0.2, 0.2, 0.0)};
+  tilted.boxes[0].rpy_rad = Eigen::Vector3d(0.0, 0.3, 0.0);
+  const Eigen::Matrix3d r = BoxRotation(tilted.boxes[0]);
+  auto on_face = [&](double along_m) {
+    return Eigen::Vector3d(tilted.boxes[0].center_world_m + r * Eigen::Vector3d(along_m, 0.0, 0.05));
+  };
+  EXPECT_TRUE(FootOnTrueSurface(tilted, on_face(0.2 - margin - 0.001), margin, slope, tol));
+  EXPECT_FALSE(FootOnTrueSurface(tilted, on_face(0.2 - margin + 0.003), margin, slope, tol));
 }
 
 // The rough field's two grids overlap at the turn; the regions of lower cells ran under

@@ -44,6 +44,7 @@ const std::vector<Field<PlannerOptions>> kPlannerFields = {
     {"max_horizon_windows", &PlannerOptions::max_horizon_windows, 1, 100},
     {"window_time_slack", &PlannerOptions::window_time_slack, 0.0, 1000.0},
     {"window_stall_fraction", &PlannerOptions::window_stall_fraction, 0.0, 1.0},
+    {"route_step_budget", &PlannerOptions::route_step_budget, 1.0, 1000.0},
     {"anytime_windows", &PlannerOptions::anytime_windows},
     {"anytime_window_cap", &PlannerOptions::anytime_window_cap, 1.0, 1000.0},
     {"warm_start_match", &PlannerOptions::warm_start_match_m, 0, 1},

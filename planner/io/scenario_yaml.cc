@@ -142,7 +142,9 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
     return std::move(from_map.regions);
   }
   if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
-    return TopFaceRegions(scenario.terrain, robot.foot_radius_m, robot.max_slope_rad);
+    // Inset like extracted regions: the foot and the edge margin (the faces are exact: no
+    // edge uncertainty).
+    return TopFaceRegions(scenario.terrain, robot.foot_radius_m + options.edge_margin_m, robot.max_slope_rad);
   }
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
   if (note != nullptr) *note = result.message;

@@ -144,9 +144,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                         {request.goal_x_m, request.goal_y_m}, request.goal_yaw_rad, &guide);
     }
     if (request.max_steps == 0 && options.default_max_steps == 0) {
-      // Enough configurations to walk the route three times over at d_lim per
-      // configuration; the time limit bounds the work.
-      const int configurations = static_cast<int>(std::ceil(3.0 * guide.length_m / robot.d_lim_m)) + 4;
+      // Enough configurations to walk the route route_step_budget times over at d_lim
+      // per configuration; the time limit bounds the work.
+      const int configurations =
+          static_cast<int>(std::ceil(options.route_step_budget * guide.length_m / robot.d_lim_m)) + 4;
       max_steps = std::min(100000, std::max(max_steps, configurations * n));
     }
   }

@@ -89,6 +89,10 @@ struct PlannerOptions {
   // Each guided window's search starts from plans that walk the route at a few speeds
   // (planner/planning/route_proposals.h), solved as QPs with their regions fixed.
   bool route_proposals = true;
+  // Default step budget under route guidance (no max_steps given): configurations for
+  // this many times the route's length at d_lim each. On uneven fields windows advance
+  // 0.3-0.6 d_lim per configuration: 3 ended zoo quadrupeds' plans 1.7 m short.
+  double route_step_budget = 6.0;
   // Adaptive horizons: a failed window is planned again, backing up one window, with up
   // to this many times the default window's steps (1: no retries). Only with route guidance.
   int max_horizon_windows = 2;
