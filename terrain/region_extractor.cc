@@ -177,7 +177,13 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
     const std::vector<Quad2d> quads = DecomposePatch(hm, patch, dec);
     if (quads.empty()) ++stats.patches_too_small;
     for (const Quad2d& quad : quads) {
-      if (static_cast<int>(result.regions.size()) >= options.max_regions) break;
+      if (static_cast<int>(result.regions.size()) >= options.max_regions) {
+        if (result.message.empty()) {
+          result.message = "kept the " + std::to_string(options.max_regions) +
+                           " regions of the largest planar patches (max_regions); smaller footholds are missing";
+        }
+        break;
+      }
       std::vector<Eigen::Vector3d> vertices;
       for (const Eigen::Vector2d& xy : quad) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
       result.regions.push_back(MakeRegionFromPolygon(static_cast<int>(result.regions.size()),

@@ -57,7 +57,10 @@ struct RegionExtractorOptions {
   // ones for the branch-and-bound to tell apart (ANYmal C down the scanned corridor:
   // 1.6 s with all 17 windows proven, against 33 s with 3 windows at the node cap).
   bool overlapping_regions = false;
-  int max_regions = 256;                // the largest patches are kept first
+  // At most this many regions, the largest patches first (a bound on the work of the
+  // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
+  // footholds the route needed: the planner answered 'no route' where one existed.
+  int max_regions = 4096;
   double axis_snap_rad = 0.05;          // a patch within this of the grid axes uses the grid
   size_t max_height_map_cells = kDefaultMaxHeightMapCells;
   // Most neighbour visits of the surface fit, (surface cells) * (2 w + 1)^2 with w the
