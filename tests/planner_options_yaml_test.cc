@@ -87,6 +87,19 @@ TEST(PlannerOptionsYaml, DefaultsStayWhenAbsent) {
   EXPECT_EQ(o.default_max_steps, 10);
 }
 
+TEST(PlannerOptionsYaml, RouteGuidanceKeysArrive) {
+  const PlannerOptions o = Read(
+      "route_proposals: false\nroute_proposal_speeds: [0.8, 0.4]\nroute_proposal_yaw_rate: 0.5\n"
+      "window_stall_fraction: 0.1\nroute_step_budget: 4\n");
+  EXPECT_FALSE(o.route_proposals);
+  EXPECT_EQ(o.route_proposal.advance_fractions, (std::vector<double>{0.8, 0.4}));
+  EXPECT_DOUBLE_EQ(o.route_proposal.yaw_rate_fraction, 0.5);
+  EXPECT_DOUBLE_EQ(o.window_stall_fraction, 0.1);
+  EXPECT_DOUBLE_EQ(o.route_step_budget, 4.0);
+  EXPECT_NE(ErrorOf("route_proposal_speeds: [0.5, 0]\n").find("route_proposal_speeds"), std::string::npos);
+  EXPECT_NE(ErrorOf("route_proposal_speeds: fast\n").find("route_proposal_speeds"), std::string::npos);
+}
+
 TEST(PlannerOptionsYaml, BadValuesNameTheKey) {
   EXPECT_NE(ErrorOf("threads: 0\n").find("threads"), std::string::npos);
   EXPECT_NE(ErrorOf("threads: 65\n").find("threads"), std::string::npos);

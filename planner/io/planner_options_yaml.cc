@@ -116,6 +116,11 @@ const EnumField<BranchAndBoundOptions, BranchingRule> kBranching = {
      {"group_order", BranchingRule::kGroupOrder},
      {"reliability", BranchingRule::kReliability}}};
 constexpr const char* kRelaxationSolverKey = "relaxation_solver";
+// Route proposals: the yaw rate as a flat key, the speeds as a list of fractions of d_lim.
+const std::vector<Field<RouteProposalOptions>> kRouteProposalFields = {
+    {"route_proposal_yaw_rate", &RouteProposalOptions::yaw_rate_fraction, 0.0, 1.0},
+};
+constexpr const char* kRouteProposalSpeedsKey = "route_proposal_speeds";
 
 template <class S>
 void AddKeys(const std::vector<Field<S>>& fields, std::vector<std::string>* keys) {
@@ -160,6 +165,8 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   AddKeys(kSearchFields, &keys);
   AddKeys(kRelaxAndFixFields, &keys);
   AddKeys(kPolishFields, &keys);
+  AddKeys(kRouteProposalFields, &keys);
+  keys.push_back(kRouteProposalSpeedsKey);
   for (const char* key : {kRegionEncoding.key, kYawEncoding.key, kNodeSelection.key, kBranching.key}) keys.push_back(key);
   keys.push_back(kRelaxationSolverKey);
   RejectUnknownKeys(node, ctx, keys);
@@ -171,6 +178,17 @@ void ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx, PlannerO
   ReadFields(node, ctx, kSearchFields, &o.branch_and_bound);
   ReadFields(node, ctx, kRelaxAndFixFields, &o.relax_and_fix);
   ReadFields(node, ctx, kPolishFields, &o.polish);
+  ReadFields(node, ctx, kRouteProposalFields, &o.route_proposal);
+  if (node[kRouteProposalSpeedsKey]) {
+    const YamlContext speeds_ctx = ctx.Child(kRouteProposalSpeedsKey);
+    std::vector<double> speeds = ReadNumbers(node[kRouteProposalSpeedsKey], speeds_ctx, -1);
+    for (double v : speeds) {
+      if (!(v > 0.0 && v <= 2.0)) {
+        throw InputError(speeds_ctx.Where() + ": each speed is a fraction of d_lim in (0, 2], got " + std::to_string(v));
+      }
+    }
+    o.route_proposal.advance_fractions = std::move(speeds);
+  }
   ReadEnum(node, ctx, kRegionEncoding, &o.formulation);
   ReadEnum(node, ctx, kYawEncoding, &o.formulation);
   ReadEnum(node, ctx, kNodeSelection, &o.branch_and_bound);

@@ -311,7 +311,6 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       bnb.time_limit_s = WindowTimeShare(budget);
     }
     bnb.time_limit_needs_incumbent = guided && options.anytime_windows;
-    if (guided) bnb.stall_time_fraction = options.window_stall_fraction;
     // No window runs past the whole plan's limit, whatever it is given, nor, running on
     // to its first plan, past anytime_window_cap shares.
     bnb.deadline = request.deadline.Within(
@@ -346,9 +345,12 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     std::vector<Eigen::VectorXd> warm = bounded_replan ? std::vector<Eigen::VectorXd>{} : warm_start.proposals;
     // Plans that follow the route (route_proposals.h): on fields of many small regions
-    // the search's own first plans barely move the body.
-    if (guided && options.route_proposals) {
-      for (Eigen::VectorXd& x : RouteProposals(formulation, guide, RouteProgress(guide, StanceCentreXY(stance)))) {
+    // the search's own first plans barely move the body; and a search that stalls ends.
+    // Not for a bounded replan: its search must dive for a plan of its own (above).
+    if (guided && !bounded_replan) bnb.stall_time_fraction = options.window_stall_fraction;
+    if (guided && !bounded_replan && options.route_proposals) {
+      for (Eigen::VectorXd& x : RouteProposals(formulation, guide, RouteProgress(guide, StanceCentreXY(stance)),
+                                                 options.route_proposal)) {
         warm.push_back(std::move(x));
       }
     }

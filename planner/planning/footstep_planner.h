@@ -10,6 +10,7 @@
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
 #include "planner/planning/relax_and_fix.h"
+#include "planner/planning/route_proposals.h"
 #include "planner/planning/window_polisher.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
@@ -89,6 +90,7 @@ struct PlannerOptions {
   // Each guided window's search starts from plans that walk the route at a few speeds
   // (planner/planning/route_proposals.h), solved as QPs with their regions fixed.
   bool route_proposals = true;
+  RouteProposalOptions route_proposal;
   // Default step budget under route guidance (no max_steps given): configurations for
   // this many times the route's length at d_lim each. On uneven fields windows advance
   // 0.3-0.6 d_lim per configuration: 3 ended zoo quadrupeds' plans 1.7 m short.

@@ -22,7 +22,9 @@
 namespace mfp {
 
 struct RouteProposalOptions {
-  // Body advance per configuration, as fractions of d_lim: the fastest that fits wins.
+  // Body advance per configuration, as fractions of d_lim. On an uneven field of cells the
+  // full speed rarely fits (a foot moved into its cell breaks the reach box) and 0.6
+  // mostly does; the search keeps the feasible proposal of least cost.
   std::vector<double> advance_fractions = {1.0, 0.6, 0.3};
   // Yaw turns toward its target by at most this fraction of max_yaw_change per configuration.
   double yaw_rate_fraction = 0.8;
