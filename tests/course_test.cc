@@ -9,6 +9,7 @@
 #include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
+#include "planner/planning/stance_route.h"
 #include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
@@ -81,7 +82,10 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
                                          // binaries kept plans that barely moved, and near the
                                          // corner the goal's own pull stalled them.
                                          {"hexapod", CourseKind::kRough, 116},
-                                         {"octopod", CourseKind::kRough, 18}}) {
+                                         {"octopod", CourseKind::kRough, 18},
+                                         // No stance had every reference box surely on a stone:
+                                         // the route through region centres zig-zagged.
+                                         {"octopod", CourseKind::kStonesTurn, 39}}) {
     const RobotModel robot = LoadRobot(RobotPath(c.robot));
     const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
     ASSERT_TRUE(course.route_exists);
@@ -112,6 +116,20 @@ TEST(CourseTest, PlansOnTheCoursesOwnMapsAreValidToTheGoal) {
     EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
     EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
   }
+}
+
+// The stance route of octopod stones with a turn (seed 39): no pose has every reference
+// box surely on a stone (its inscribed disk), so the search falls back to poses whose
+// boxes may meet one (their corners); the course was built so that they do.
+TEST(CourseTest, TheStanceRouteFallsBackToReferenceBoxCorners) {
+  const RobotModel robot = LoadRobot(RobotPath("octopod"));
+  const Course course = GenerateCourse(robot, RobotPath("octopod"), CourseKind::kStonesTurn, 39);
+  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+  const Eigen::Vector2d start(course.start.x_m, course.start.y_m), goal(course.goal.x_m, course.goal.y_m);
+  EXPECT_FALSE(PlanStanceRoute(robot, regions, start, course.start.yaw_rad, goal, course.goal.yaw_rad).found);
+  StanceRouteOptions loose;
+  loose.support_radius_l_bnd = std::sqrt(2.0);
+  EXPECT_TRUE(PlanStanceRoute(robot, regions, start, course.start.yaw_rad, goal, course.goal.yaw_rad, loose).found);
 }
 
 // Abutting faces within the height tolerance are one surface; a drop or a gap within the

@@ -90,7 +90,8 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
   const int ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
   // Support within l_bnd of a foot; the raster finer than the body grid.
   const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
-  const SupportRaster support = MakeSupportRaster(regions, lo, hi, res, robot.l_bnd_m);
+  const SupportRaster support =
+      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m);
 
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);

@@ -25,6 +25,10 @@ struct StanceRouteOptions {
   // Cost factor of moving through a pose where some nominal foot is off every region
   // (only its reference box meets one): the route keeps room where it can.
   double tight_cost_factor = 3.0;
+  // A pose is usable when each leg's nominal foot has a region within this many l_bnd:
+  // 1, the reference box's inscribed disk (the box surely meets the region); sqrt(2), its
+  // corners (the box may meet it).
+  double support_radius_l_bnd = 1.0;
 };
 
 struct StanceRoute {
