@@ -19,21 +19,8 @@ BUFFER_BYTES=3145728  # 3 MiB: more than the map, within a common net.core.rmem_
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
 
-WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_daemon_large_map.XXXXXX")
-DAEMON_PID=""
-LOGGER_PID=""
-cleanup() {
-  [ -n "$DAEMON_PID" ] && kill -KILL "$DAEMON_PID" 2>/dev/null || true
-  [ -n "$LOGGER_PID" ] && kill -KILL "$LOGGER_PID" 2>/dev/null || true
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
+mfp_test_workspace mfp_daemon_large_map
 LOG="$WORK/daemon.log"
-fail() {
-  echo "FAIL: $*"
-  [ -f "$LOG" ] && { echo "--- daemon log ---"; cat "$LOG" || true; }
-  exit 1
-}
 
 # The map: stones of 0.21 m on a 0.27 m grid around a 1.2 m pad, tops within 3 cm, at
 # 1 cm resolution, written as .ot (occupancy values: larger than .bt).

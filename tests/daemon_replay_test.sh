@@ -18,21 +18,8 @@ URL="udpm://239.255.76.67:7667?ttl=0"
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
 
-WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_daemon_replay.XXXXXX")
-DAEMON_PID=""
-LOGGER_PID=""
-cleanup() {
-  [ -n "$DAEMON_PID" ] && kill -KILL "$DAEMON_PID" 2>/dev/null || true
-  [ -n "$LOGGER_PID" ] && kill -KILL "$LOGGER_PID" 2>/dev/null || true
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
-
-fail() {
-  echo "FAIL: $*"
-  echo "--- daemon log ---"; cat "$WORK/daemon.log" || true
-  exit 1
-}
+mfp_test_workspace mfp_daemon_replay
+LOG="$WORK/daemon.log"
 
 "$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
 

@@ -21,24 +21,7 @@ URL="udpm://239.255.76.67:7667?ttl=0"
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
 
-WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_daemon_signals.XXXXXX")
-DAEMON_PID=""
-LOGGER_PID=""
-PLAYER_PID=""
-cleanup() {
-  [ -n "$DAEMON_PID" ] && kill -KILL "$DAEMON_PID" 2>/dev/null || true
-  [ -n "$LOGGER_PID" ] && kill -KILL "$LOGGER_PID" 2>/dev/null || true
-  [ -n "$PLAYER_PID" ] && kill -KILL "$PLAYER_PID" 2>/dev/null || true
-  rm -rf "$WORK"
-}
-trap cleanup EXIT
-
-LOG=""
-fail() {
-  echo "FAIL: $*"
-  [ -n "$LOG" ] && { echo "--- daemon log ---"; cat "$LOG" || true; }
-  exit 1
-}
+mfp_test_workspace mfp_daemon_signals
 
 cp "$DATA"/*.yaml "$WORK/"
 "$BUILD_DIR/tools/mfp-terrain" "$WORK/fine_map.yaml" --out "$WORK/fine_map.bt" >/dev/null

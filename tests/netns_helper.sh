@@ -10,6 +10,12 @@
 # marker) it refuses to go on unless lo is the only interface, and sets lo up with
 # multicast and a route for 224.0.0.0/4. It fails loudly, never skips, when the
 # namespace cannot be made (unshare -n needs root or CAP_SYS_ADMIN).
+#
+# Inside, `mfp_test_workspace NAME` gives the script what each of them needs: WORK, a
+# fresh folder; DAEMON_PID, LOGGER_PID, PLAYER_PID, the background processes it starts
+# (killed on exit; set one back to "" once it has been waited for); fail MESSAGE, which
+# prints the message and the daemon log the script names in LOG, then exits 1. On exit
+# the processes are killed and WORK removed.
 
 MFP_NAMESPACE_MARKER="--in-namespace"
 
@@ -36,4 +42,27 @@ mfp_enter_private_namespace() {
   ip link set lo up
   ip link set lo multicast on
   ip route add 224.0.0.0/4 dev lo
+}
+
+mfp_test_workspace() {  # NAME: the work folder's prefix
+  WORK=$(mktemp -d "${TMPDIR:-/tmp}/$1.XXXXXX")
+  DAEMON_PID=""
+  LOGGER_PID=""
+  PLAYER_PID=""
+  LOG=""
+  trap mfp_test_cleanup EXIT
+}
+
+mfp_test_cleanup() {
+  local pid
+  for pid in "$DAEMON_PID" "$LOGGER_PID" "$PLAYER_PID"; do
+    [ -n "$pid" ] && kill -KILL "$pid" 2>/dev/null || true
+  done
+  rm -rf "$WORK"
+}
+
+fail() {
+  echo "FAIL: $*"
+  [ -n "$LOG" ] && [ -f "$LOG" ] && { echo "--- daemon log ---"; cat "$LOG" || true; }
+  exit 1
 }
