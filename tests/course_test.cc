@@ -36,6 +36,24 @@ Outcome PlanCourse(const Course& course, const RobotModel& robot, bool from_map 
 
 std::string RobotPath(const std::string& name) { return std::string(MFP_SOURCE_DIR) + "/config/robots/" + name + ".yaml"; }
 
+struct CourseCase {
+  std::string robot;
+  CourseKind kind;
+  uint64_t seed;
+};
+
+// The plan of a generated course with a route (PlanCourse) is valid and reaches the goal.
+// Returns the course.
+Course ExpectValidToTheGoal(const CourseCase& c, bool from_map) {
+  const RobotModel robot = LoadRobot(RobotPath(c.robot));
+  const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
+  EXPECT_TRUE(course.route_exists) << course.name;
+  const Outcome out = PlanCourse(course, robot, from_map);
+  EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
+  EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
+  return course;
+}
+
 TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
   for (const std::string name : {"littledog", "hexapod", "octopod"}) {
     const RobotModel robot = LoadRobot(RobotPath(name));
@@ -53,45 +71,35 @@ TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
 // Courses that failed before route guidance and adaptive horizons (step budget of 12 n,
 // a window walking into a dead end, the wall across the route).
 TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
-  struct Case {
-    std::string robot;
-    CourseKind kind;
-    uint64_t seed;
-  };
   // Stepping stones that ran out of time: the interior point stalled on boxes one ulp
   // wide and Ipopt solved those nodes at 25 times the cost, early windows spent half the
   // remaining time each (littledog 1, hexapod 2; seed 1 of mfp-bench --courses). The
   // turn (littledog 4) reached its goal facing 90 degrees, which the checker misread.
-  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 7},
-                                         {"littledog", CourseKind::kTilted, 13},
-                                         {"littledog", CourseKind::kDetour, 22},
-                                         // Bound propagation cut off a foot held on its region's
-                                         // edge: windows proven infeasible at the root.
-                                         {"littledog", CourseKind::kStairs, 10},
-                                         {"hexapod", CourseKind::kBeams, 20},
-                                         // A 90 degree turn: the checker took the final yaw as 0.
-                                         {"littledog", CourseKind::kStonesTurn, 4},
-                                         // The route through region centres led six feet into
-                                         // the dead-end pocket; the stance route does not.
-                                         {"hexapod", CourseKind::kDetour, 23},
-                                         // Windows out of time: near-fixed boxes sent a fifth of
-                                         // the node QPs to Ipopt.
-                                         {"littledog", CourseKind::kStones, 1},
-                                         {"hexapod", CourseKind::kStones, 2},
-                                         // Uneven fields with a turn: windows of 300-500 region
-                                         // binaries kept plans that barely moved, and near the
-                                         // corner the goal's own pull stalled them.
-                                         {"hexapod", CourseKind::kRough, 116},
-                                         {"octopod", CourseKind::kRough, 18},
-                                         // No stance had every reference box surely on a stone:
-                                         // the route through region centres zig-zagged.
-                                         {"octopod", CourseKind::kStonesTurn, 39}}) {
-    const RobotModel robot = LoadRobot(RobotPath(c.robot));
-    const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
-    ASSERT_TRUE(course.route_exists);
-    const Outcome out = PlanCourse(course, robot);
-    EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
-    EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
+  for (const CourseCase& c : std::vector<CourseCase>{{"littledog", CourseKind::kGaps, 7},
+                                                     {"littledog", CourseKind::kTilted, 13},
+                                                     {"littledog", CourseKind::kDetour, 22},
+                                                     // Bound propagation cut off a foot held on its region's
+                                                     // edge: windows proven infeasible at the root.
+                                                     {"littledog", CourseKind::kStairs, 10},
+                                                     {"hexapod", CourseKind::kBeams, 20},
+                                                     // A 90 degree turn: the checker took the final yaw as 0.
+                                                     {"littledog", CourseKind::kStonesTurn, 4},
+                                                     // The route through region centres led six feet into
+                                                     // the dead-end pocket; the stance route does not.
+                                                     {"hexapod", CourseKind::kDetour, 23},
+                                                     // Windows out of time: near-fixed boxes sent a fifth of
+                                                     // the node QPs to Ipopt.
+                                                     {"littledog", CourseKind::kStones, 1},
+                                                     {"hexapod", CourseKind::kStones, 2},
+                                                     // Uneven fields with a turn: windows of 300-500 region
+                                                     // binaries kept plans that barely moved, and near the
+                                                     // corner the goal's own pull stalled them.
+                                                     {"hexapod", CourseKind::kRough, 116},
+                                                     {"octopod", CourseKind::kRough, 18},
+                                                     // No stance had every reference box surely on a stone:
+                                                     // the route through region centres zig-zagged.
+                                                     {"octopod", CourseKind::kStonesTurn, 39}}) {
+    ExpectValidToTheGoal(c, /*from_map=*/false);
   }
 }
 
@@ -101,20 +109,11 @@ TEST(CourseTest, RegressionCoursesPlanValidlyToTheGoal) {
 // dropped 2 x 2 cm footholds as too small (hexapod stones 2: 'no route'). The generated
 // map resolves each course's features; plans on it must be valid to the goal.
 TEST(CourseTest, PlansOnTheCoursesOwnMapsAreValidToTheGoal) {
-  struct Case {
-    std::string robot;
-    CourseKind kind;
-    uint64_t seed;
-  };
-  for (const Case& c : std::vector<Case>{{"littledog", CourseKind::kGaps, 139},
-                                         {"hexapod", CourseKind::kStairs, 44},
-                                         {"hexapod", CourseKind::kStones, 2}}) {
-    const RobotModel robot = LoadRobot(RobotPath(c.robot));
-    const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
+  for (const CourseCase& c : std::vector<CourseCase>{{"littledog", CourseKind::kGaps, 139},
+                                                     {"hexapod", CourseKind::kStairs, 44},
+                                                     {"hexapod", CourseKind::kStones, 2}}) {
+    const Course course = ExpectValidToTheGoal(c, /*from_map=*/true);
     EXPECT_LT(course.terrain.resolution_m, kCourseMaxResolution) << course.name;
-    const Outcome out = PlanCourse(course, robot, /*from_map=*/true);
-    EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
-    EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
   }
 }
 
