@@ -146,8 +146,13 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   dec.cover.max_rects = options.max_regions_per_patch;
   dec.cover.grow_over_covered = options.overlapping_regions;
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
+  const double min_area_m2 = options.min_region_area_voxels > 0.0
+                                 ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
+                                 : options.min_region_area_m2;
   int patches_done = 0;
+  bool capped = false;  // max_regions reached: the patches left are not decomposed
   for (const LayerPatch& layer_patch : patches) {
+    if (capped) break;
     if (options.deadline.Expired()) {
       result.stopped = true;
       result.message = "time limit reached after " + std::to_string(patches_done) + " of " +
@@ -169,19 +174,13 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
       continue;
     }
     // Region area on the plane = projected area / cos(slope).
-    const double min_area_m2 = options.min_region_area_voxels > 0.0
-                                   ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
-                                   : options.min_region_area_m2;
     dec.min_area_xy_m2 = min_area_m2 * cos_slope;
     dec.solid_beside = &layers.solid_beside[static_cast<size_t>(layer_patch.layer)];
     const std::vector<Quad2d> quads = DecomposePatch(hm, patch, dec);
     if (quads.empty()) ++stats.patches_too_small;
     for (const Quad2d& quad : quads) {
       if (static_cast<int>(result.regions.size()) >= options.max_regions) {
-        if (result.message.empty()) {
-          result.message = "kept the " + std::to_string(options.max_regions) +
-                           " regions of the largest planar patches (max_regions); smaller footholds are missing";
-        }
+        capped = true;
         break;
       }
       std::vector<Eigen::Vector3d> vertices;
@@ -190,6 +189,10 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
                                                      vertices, plane_tolerance_m));
       result.region_layer.push_back(layer_patch.layer);
     }
+  }
+  if (capped) {
+    result.message = "kept the " + std::to_string(options.max_regions) +
+                     " regions of the largest planar patches (max_regions); smaller footholds are missing";
   }
   stats.decomposition_s = SecondsSince(t);
   stats.total_s = SecondsSince(start);

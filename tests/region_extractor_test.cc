@@ -112,6 +112,16 @@ TEST(RegionExtractorTest, SteppingStonesGiveOneRegionPerStoneAtItsHeight) {
   ExpectSoundAndCovering(t, result);
 }
 
+TEST(RegionExtractorTest, MaxRegionsKeepsTheLargestAndSaysSo) {
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.01;
+  options.max_regions = 5;
+  const RegionExtractionResult result = ExtractRegionsFromTerrain(SteppingStonesTerrain(), options);
+  EXPECT_EQ(result.regions.size(), 5u);
+  EXPECT_NE(result.message.find("max_regions"), std::string::npos) << result.message;
+  EXPECT_TRUE(Extract(SteppingStonesTerrain()).message.empty());  // all 12 kept: nothing to say
+}
+
 TEST(RegionExtractorTest, ThreeDegreeTiltIsOneTiltedRegion) {
   const TerrainDescription t = TiltTerrain(Deg(3), 0.0);
   const RegionExtractionResult result = Extract(t);
