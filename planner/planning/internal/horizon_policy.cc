@@ -1,0 +1,53 @@
+#include "planner/planning/internal/horizon_policy.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace mfp {
+
+HorizonPolicy::HorizonPolicy(const PlanContext& context)
+    : context_(context),
+      horizon_(context.window_steps),
+      max_horizon_(context.guided ? std::min(1000, context.options.max_horizon_windows * context.window_steps)
+                                  : context.window_steps) {}
+
+int HorizonPolicy::NextWindowSteps(const HorizonState& state) const {
+  return std::min(horizon_, context_.max_steps - state.planned);
+}
+
+bool HorizonPolicy::RetryLonger(const std::string& why, HorizonState* state) {
+  Plan& plan = state->plan;
+  if (horizon_ >= max_horizon_ || context_.TimeLeftSeconds() <= 0.0 || plan.horizon_retries >= 50) return false;
+  const bool new_failure = state->planned > last_failure_;
+  last_failure_ = std::max(last_failure_, state->planned);
+  state->BackUp(/*past_failed_window=*/new_failure);
+  horizon_ = std::min(max_horizon_, 2 * horizon_);
+  ++plan.horizon_retries;
+  plan.message = why;
+  return true;
+}
+
+std::optional<std::string> HorizonPolicy::Stuck(const HorizonState& state, int kept) const {
+  if (state.plan.reaches_goal) return std::nullopt;
+  if (kept == 0) return state.WindowName() + " found no step that improves on standing still";
+  if (!context_.guided || state.snapshots.size() < 2) return std::nullopt;
+  const int n = context_.robot.num_legs();
+  const std::vector<Eigen::Vector3d> now = state.FeetAfter(state.plan.footsteps.size());
+  double moved = 0.0;
+  for (size_t back = 1; back <= 2; ++back) {
+    const std::vector<Eigen::Vector3d> before = state.FeetAfter(state.snapshots[state.snapshots.size() - back].footsteps);
+    for (int leg = 0; leg < n; ++leg) moved = std::max(moved, (now[leg] - before[leg]).norm());
+  }
+  const double d_lim = context_.robot.d_lim_m;
+  if (!(moved < 0.1 * d_lim)) return std::nullopt;
+  return state.WindowName() + " only shuffled the feet (none moved " + std::to_string(0.1 * d_lim) +
+         " m in two windows)";
+}
+
+void HorizonPolicy::OnStepsKept(HorizonState* state, int kept) {
+  if (kept == 0) return;
+  if (state->planned > last_failure_) horizon_ = context_.window_steps;  // past the dead end
+  state->plan.message.clear();
+}
+
+}  // namespace mfp

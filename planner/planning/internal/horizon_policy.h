@@ -1,0 +1,44 @@
+#pragma once
+// The horizon's policy for retries, stalls and longer looks (adaptive horizons): a window
+// that is infeasible, finds no plan in its time, cannot be made exact, or cannot improve
+// on standing still (or only shuffles the feet) is planned again from the stance before
+// the previous window with a longer horizon (doubling up to max_horizon_windows default
+// windows, only under route guidance), so that the steps that led into a dead end can
+// change. A window that keeps steps past the dead end resets the horizon. Private to
+// planner/planning.
+#include <optional>
+#include <string>
+
+#include "planner/planning/internal/horizon_state.h"
+#include "planner/planning/internal/plan_context.h"
+
+namespace mfp {
+
+class HorizonPolicy {
+ public:
+  explicit HorizonPolicy(const PlanContext& context);
+
+  // New footsteps of the next window: the horizon, at most the steps left.
+  int NextWindowSteps(const HorizonState& state) const;
+  // On a failed window: true when it is worth planning again with a longer look; then
+  // the state is backed up, the horizon doubled, the retry counted and `why` made the
+  // plan's message. False (nothing changed) when the horizon is at its longest, the
+  // plan's time is up, or 50 retries were spent.
+  bool RetryLonger(const std::string& why, HorizonState* state);
+  // Why a window that was accepted leaves the horizon stuck short of the goal: it kept
+  // no step, or (guided) its steps only shuffle the feet, none moving a tenth of d_lim
+  // from where it stood one and two windows ago, which the next windows would repeat
+  // until the step budget ends. nullopt when it made progress or reached the goal.
+  std::optional<std::string> Stuck(const HorizonState& state, int kept) const;
+  // A window kept steps: past the last failure the horizon is back to short windows,
+  // and a retry's reason, now overcome, leaves the plan's message.
+  void OnStepsKept(HorizonState* state, int kept);
+
+ private:
+  const PlanContext& context_;
+  int horizon_ = 0;        // new footsteps of the next window
+  int max_horizon_ = 0;
+  int last_failure_ = -1;  // steps planned where a window last failed
+};
+
+}  // namespace mfp

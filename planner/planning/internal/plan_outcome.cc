@@ -1,0 +1,110 @@
+#include "planner/planning/internal/plan_outcome.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace mfp {
+namespace {
+
+double RelativeGap(const Plan& plan) {
+  return (plan.objective - plan.bound) / std::max(1.0, std::abs(plan.objective));
+}
+
+}  // namespace
+
+Plan Rejected(SolveStatus status, const std::string& message) {
+  Plan plan;
+  plan.status = status;
+  plan.message = message;
+  return plan;
+}
+
+void EndOnTimeLimit(const PlanContext& context, HorizonState* state) {
+  state->plan.status = SolveStatus::kTimeLimit;
+  state->plan.message = (context.request.deadline.Stopped() ? "stopped after " : "time limit reached after ") +
+                        std::to_string(state->planned) + " steps";
+}
+
+void EndOnInfeasibleWindow(const std::string& reason, HorizonState* state) {
+  Plan& plan = state->plan;
+  plan.status = plan.windows == 1 ? SolveStatus::kInfeasible : plan.status;
+  plan.message = reason;
+}
+
+void EndOnFailedSearch(const PlanContext& context, const BranchAndBoundResult& result, HorizonState* state) {
+  Plan& plan = state->plan;
+  if (plan.windows == 1) {
+    plan.status = result.status;
+  } else {
+    plan.status = context.guided                              ? plan.status
+                  : result.status == SolveStatus::kInfeasible ? plan.status
+                                                              : result.status;
+    // Unguided, a later window cut by its time share before its first plan: the plan
+    // so far stands, ended by the time limit.
+    if (!context.guided && result.status == SolveStatus::kNoSolution) plan.status = SolveStatus::kTimeLimit;
+  }
+  plan.message = state->WindowName() + ": " + ToString(result.status) + " after " + std::to_string(result.nodes) +
+                 " nodes";
+}
+
+void EndOnInexactWindow(const ExactWindow& exact, HorizonState* state) {
+  Plan& plan = state->plan;
+  if (plan.windows == 1) plan.status = SolveStatus::kNoSolution;
+  plan.message = state->WindowName() + ": the polisher could not make it exact (" + exact.polished.report.message +
+                 "), " + exact.replan.note;
+}
+
+void EndStuck(const std::string& why, HorizonState* state) {
+  state->plan.message = "the planner stopped short of the goal: " + why;
+}
+
+void ReportWindow(const PlanContext& context, const HorizonState& state, int kept, const ExactWindow& exact,
+                  const std::function<void(const PlanProgress&)>& on_progress) {
+  const Plan& plan = state.plan;
+  if (context.request.on_plan_so_far && kept > 0) {
+    Plan so_far = plan;
+    so_far.status = plan.reaches_goal ? plan.status : SolveStatus::kPartial;
+    so_far.message = "the plan so far: " + std::to_string(state.planned) + " steps";
+    so_far.gap = RelativeGap(plan);
+    so_far.solve_time_s = context.ElapsedSeconds();
+    context.request.on_plan_so_far(so_far);
+  }
+  if (on_progress) {
+    PlanProgress progress;
+    progress.window = plan.windows;
+    progress.steps_planned = state.planned;
+    progress.distance_to_goal_m = (StanceCentreXY(state.stance) - context.GoalXY()).norm();
+    progress.elapsed_s = context.ElapsedSeconds();
+    progress.window_result = exact.result;
+    progress.polish = exact.polished.report;
+    progress.record = plan.window_records.back();
+    on_progress(progress);
+  }
+}
+
+Plan FinishPlan(const PlanContext& context, HorizonState* state) {
+  Plan& plan = state->plan;
+  const PlanRequest& request = context.request;
+  if (!plan.reaches_goal && plan.message.empty() && HasPlan(plan.status)) {
+    plan.message = state->planned < context.max_steps && request.max_windows > 0
+                       ? "goal not reached within " + std::to_string(request.max_windows) + " window(s)"
+                       : "goal not reached within " + std::to_string(context.max_steps) + " steps";
+  }
+  if (!state->polish_note.empty()) plan.message += (plan.message.empty() ? "" : "; ") + state->polish_note;
+  if (!plan.reaches_goal && HasPlan(plan.status) && request.max_windows == 0) {
+    // Every accepted step satisfies the constraints: the robot can walk this far safely.
+    const Eigen::Vector2d centre = StanceCentreXY(state->stance);
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "partial plan: " << state->planned << " steps, stopped " << (centre - context.GoalXY()).norm()
+        << " m from the goal: " << plan.message;
+    plan.message = msg.str();
+    plan.status = SolveStatus::kPartial;
+  }
+  plan.gap = RelativeGap(plan);
+  plan.solve_time_s = context.ElapsedSeconds();
+  return std::move(plan);
+}
+
+}  // namespace mfp

@@ -1,0 +1,49 @@
+#include "planner/planning/internal/window_problem.h"
+
+#include "terrain/region_reachability.h"
+
+namespace mfp {
+
+std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& centre) {
+  const PlannerOptions& options = context.options;
+  const RouteGuide& guide = context.guide;
+  // Default: about one window's walk. A route over stance poses is followed closely (two
+  // steps of d_lim per leg); one through region centres more loosely.
+  const double lookahead = options.local_goal_lookahead_m >= 0 ? options.local_goal_lookahead_m
+                           : guide.from_stances            ? 2.0 * context.robot.d_lim_m
+                                                           : 2.0 * LegReach(context.robot);
+  if (!context.guided || !(lookahead > 0.0)) return std::nullopt;
+  const double progress = RouteProgress(guide, centre);
+  const double s = progress + lookahead;
+  // Only where the route detours: where what is left of it is barely longer than the
+  // straight line to the goal, the goal itself pulls the same way.
+  const double straight_m = (context.GoalXY() - centre).norm();
+  const bool detour = guide.length_m - progress > options.local_goal_detour_ratio * straight_m;
+  if (detour && s < guide.length_m) return RoutePoint(guide, s);
+  return std::nullopt;
+}
+
+FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps) {
+  const int n = context.robot.num_legs();
+  FootstepProblem problem = FirstWindowProblem(context.robot, context.regions, context.request, context.options);
+  problem.start_feet_world_m = state.stance;
+  problem.gait_phase = state.phase;
+  problem.start_yaw_rad = state.yaw;
+  problem.num_new_steps = steps;
+  problem.regions.clear();
+  for (int i : WindowRegionIndices(context.usable, state.stance, (steps + n - 1) / n, context.step_reach_m,
+                                   context.robot.dz_max_m)) {
+    problem.regions.push_back(context.usable[static_cast<size_t>(i)]);
+  }
+  if (const std::optional<Eigen::Vector2d> local = LocalGoal(context, StanceCentreXY(state.stance))) {
+    problem.goal_x_m = local->x();
+    problem.goal_y_m = local->y();
+  }
+  if (state.plan.windows > 0) {
+    problem.history_feet_world_m = state.history;
+    problem.start_step_yaw_rad = state.stance_yaw;
+  }
+  return problem;
+}
+
+}  // namespace mfp

@@ -1,0 +1,23 @@
+#pragma once
+// The MIQP problem of the next receding window, and the local goal that makes its goal
+// term follow the route. Private to planner/planning.
+#include <Eigen/Core>
+#include <optional>
+
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/planning/internal/horizon_state.h"
+#include "planner/planning/internal/plan_context.h"
+
+namespace mfp {
+
+// Under route guidance, the point of the route a lookahead ahead of the stance centre
+// that the window's goal term pulls toward (PlannerOptions::local_goal_lookahead_m),
+// while the route left detours (is longer than local_goal_detour_ratio times the straight
+// line to the goal) and that point is short of the route's end. nullopt: the goal itself.
+std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& stance_centre);
+
+// The window from the state's stance: `steps` new footsteps, the usable regions those
+// steps can reach, the local goal, and after the first window the feet's history.
+FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps);
+
+}  // namespace mfp

@@ -1,0 +1,169 @@
+#include "planner/planning/internal/window_search.h"
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "planner/planning/relax_and_fix.h"
+#include "planner/planning/route_proposals.h"
+#include "planner/planning/warm_start.h"
+#include "planner/planning/window_budget.h"
+
+namespace mfp {
+namespace {
+
+// The plans a window's search starts from.
+struct WindowSeeds {
+  std::vector<Eigen::VectorXd> proposals;   // offered once at the root
+  bool bounded_replan = false;              // a robot on its previous plan, replan_time_s > 0
+  std::optional<Eigen::VectorXd> warm_plan; // the previous plan's assignment solved (bounded replan)
+};
+
+WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formulation, const BranchAndBoundOptions& bnb,
+                       bool first_window, const Eigen::Vector2d& stance_centre) {
+  const PlannerOptions& options = context.options;
+  // The first window of a replanning request starts from the client's previous plan.
+  WarmStart warm_start;
+  for (const std::vector<Footstep>& previous : first_window ? context.request.warm_start
+                                                            : std::vector<std::vector<Footstep>>{}) {
+    WarmStart w = WarmStartFrom(formulation, previous, options.warm_start_match_m);
+    warm_start.stance_matched = warm_start.stance_matched || w.stance_matched;
+    for (Eigen::VectorXd& x : w.proposals) warm_start.proposals.push_back(std::move(x));
+  }
+  WindowSeeds seeds;
+  seeds.bounded_replan = warm_start.stance_matched && options.replan_time_s > 0.0;
+  // A bounded replan solves the previous plan's assignment first (a few milliseconds,
+  // not cut by the budget): it is the answer when the bounded search finds nothing
+  // better. The search does not start from it: with an incumbent from its root the
+  // search goes best-bound at once and, cut short, never dives to a better plan (the
+  // robot kept the first plan it got), so it dives for its own first.
+  if (seeds.bounded_replan && !warm_start.proposals.empty()) {
+    seeds.warm_plan = SolveWarmStart(formulation, warm_start.proposals, *context.solvers.front(), bnb.deadline,
+                                     bnb.feasibility_tolerance);
+  }
+  if (!seeds.bounded_replan) seeds.proposals = warm_start.proposals;
+  // Plans that follow the route (route_proposals.h): on fields of many small regions
+  // the search's own first plans barely move the body. Not for a bounded replan: its
+  // search must dive for a plan of its own (above).
+  if (context.guided && !seeds.bounded_replan && options.route_proposals) {
+    for (Eigen::VectorXd& x : RouteProposals(formulation, context.guide, RouteProgress(context.guide, stance_centre),
+                                             options.route_proposal)) {
+      seeds.proposals.push_back(std::move(x));
+    }
+  }
+  return seeds;
+}
+
+// One relax-and-fix plan for the search's root, its stages searched with the window's
+// options (bnb) for rf.time_share of its time.
+std::optional<Eigen::VectorXd> RelaxAndFixSeed(const PlanContext& context, const MiqpFormulation& formulation,
+                                               const BranchAndBoundOptions& bnb) {
+  RelaxAndFixOptions rf = context.options.relax_and_fix;
+  rf.stage = bnb;
+  rf.stage.time_limit_needs_incumbent = false;  // a stage out of time is completed by rounding
+  // Stage searches are small (nodes_per_stage): strong branching would cost them more
+  // than it saves, and their plans came out worse (docs/measurements.md).
+  if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
+  rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+  const RelaxAndFixResult r = rf.two_paths ? RelaxAndFixTwoPaths(formulation, context.solvers, rf)
+                                           : RelaxAndFix(formulation, context.solvers, rf);
+  return r.x;
+}
+
+}  // namespace
+
+BranchAndBoundOptions WindowSearchOptions(const PlanContext& context, const HorizonState& state, double remaining_s,
+                                          const MiqpFormulation& formulation) {
+  const PlannerOptions& options = context.options;
+  const int window = context.window_steps;
+  BranchAndBoundOptions bnb = options.branch_and_bound;
+  // Each window gets its share of the remaining time, and at least half of it when
+  // few windows are left (later windows are usually shorter, near the goal).
+  const int windows_left = (context.max_steps - state.planned + window - 1) / window;
+  bnb.time_limit_s = std::max(remaining_s / windows_left, 0.5 * remaining_s);
+  if (context.guided && options.window_time_slack > 0.0) {
+    // Under guidance: a share from the windows the route still needs.
+    WindowBudgetInput budget;
+    budget.remaining_s = remaining_s;
+    const double progress = RouteProgress(context.guide, StanceCentreXY(state.stance));
+    budget.route_left_m = context.guide.length_m - progress;
+    budget.route_covered_m = progress - state.start_progress_m;
+    budget.accepted_windows = state.accepted_windows;
+    budget.prior_advance_m = context.robot.d_lim_m * std::max(1, window / context.robot.num_legs());
+    budget.slack = options.window_time_slack;
+    bnb.time_limit_s = WindowTimeShare(budget);
+  }
+  bnb.time_limit_needs_incumbent = context.guided && options.anytime_windows;
+  // No window runs past the whole plan's limit, whatever it is given, nor, running on
+  // to its first plan, past anytime_window_cap shares.
+  const double time_left_s = context.TimeLeftSeconds();
+  bnb.deadline = context.request.deadline.Within(
+      bnb.time_limit_needs_incumbent ? std::min(time_left_s, options.anytime_window_cap * bnb.time_limit_s)
+                                     : time_left_s);
+  if (options.snap_yaw_segments) {
+    bnb.equivalent_point = [&formulation](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                          Eigen::VectorXd* x) {
+      return formulation.SnapYawToOneSegment(lower, upper, x);
+    };
+  }
+  return bnb;
+}
+
+WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& formulation, BranchAndBoundOptions bnb,
+                          bool first_window, const Eigen::Vector2d& stance_centre, WindowRecord* record) {
+  const PlannerOptions& options = context.options;
+  bool seeded = !options.relax_and_fix.enabled ||
+                formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
+  WindowSeeds seeds = SeedWindow(context, formulation, bnb, first_window, stance_centre);
+  bool bounded_replan = seeds.bounded_replan;
+  // A search that stalls ends (BranchAndBoundOptions::stall_time_fraction), except a
+  // bounded replan's, which must dive for a plan of its own.
+  if (context.guided && !bounded_replan) bnb.stall_time_fraction = options.window_stall_fraction;
+  const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) {
+    std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
+    proposals.insert(proposals.end(), seeds.proposals.begin(), seeds.proposals.end());
+    seeds.proposals.clear();  // offered once, at the root
+    if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
+      seeded = true;
+      const PlanClock::time_point rf_start = PlanClock::now();
+      if (std::optional<Eigen::VectorXd> x = RelaxAndFixSeed(context, formulation, bnb)) proposals.push_back(*x);
+      record->heuristic_s = SecondsSince(rf_start);
+    }
+    return proposals;
+  };
+  const double window_time_limit_s = bnb.time_limit_s;
+  if (bounded_replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
+  const PlanClock::time_point search_start = PlanClock::now();
+  BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), context.solvers, bnb, rounding);
+  const std::optional<Eigen::VectorXd>& warm_plan = seeds.warm_plan;
+  if (bounded_replan && warm_plan &&
+      (!HasPlan(result.status) || formulation.miqp().Objective(*warm_plan) < result.objective)) {
+    result.status = SolveStatus::kFeasible;
+    result.x = *warm_plan;
+    result.objective = formulation.miqp().Objective(*warm_plan);
+    result.bound = std::min(result.bound, result.objective);
+  }
+  if (bounded_replan && !HasPlan(result.status) && result.status != SolveStatus::kInfeasible) {
+    // No plan in the budget (and none proven impossible): the full search.
+    bnb.time_limit_s = std::max(0.0, window_time_limit_s - result.solve_time_s);
+    const BranchAndBoundResult first = result;
+    result = SolveBranchAndBound(formulation.miqp(), context.solvers, bnb, rounding);
+    result.nodes += first.nodes;
+    result.relaxations += first.relaxations;
+    bounded_replan = false;
+  }
+  // Cut short by the replanning budget, not by the request's time: a plan, unproven.
+  if (bounded_replan && result.status == SolveStatus::kTimeLimit &&
+      context.request.deadline.RemainingSeconds() > 0.0 && context.TimeLeftSeconds() > 0.0) {
+    result.status = SolveStatus::kFeasible;
+  }
+  record->search_s = SecondsSince(search_start);
+  record->time_limit_s = bnb.time_limit_s;
+  record->status = result.status;
+  record->nodes = result.nodes;
+  record->relaxations = result.relaxations;
+  return WindowSearch{std::move(result), std::move(bnb)};
+}
+
+}  // namespace mfp

@@ -1,0 +1,141 @@
+// The receding horizon's retries, stalls and longer looks (planner/planning/internal/
+// horizon_policy.h) on the state they back up (horizon_state.h), with a hexapod's plan
+// context on a flat field: the windows' steps are stand-ins appended to the state.
+#include "planner/planning/internal/horizon_policy.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "planner/planning/internal/horizon_state.h"
+#include "planner/planning/internal/plan_context.h"
+#include "tests/test_scenarios.h"
+
+namespace mfp {
+namespace {
+
+class HorizonPolicyTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { course_ = new Course(LoadCourse("hexapod_flat.yaml")); }
+  static void TearDownTestSuite() { delete course_; }
+
+  // A guided context whose longest look is max_horizon_windows default windows.
+  void SetUpContext(int max_horizon_windows) {
+    options_ = course_->scenario.options;
+    options_.max_horizon_windows = max_horizon_windows;
+    request_ = course_->request;
+    request_.max_steps = 200;
+    context_ = std::make_unique<PlanContext>(course_->robot, course_->regions, request_, options_, solvers_);
+    ASSERT_FALSE(SetUpPlan(context_.get()).has_value());
+    ASSERT_TRUE(context_->guided);
+    state_ = std::make_unique<HorizonState>(*context_);
+  }
+  int n() const { return course_->robot.num_legs(); }
+
+  // A window that keeps `steps` footsteps, each foot moved by dx_m from where it stood.
+  void KeepSteps(int steps, double dx_m) {
+    Plan& plan = state_->plan;
+    for (int k = 0; k < steps; ++k) {
+      Footstep f = plan.footsteps[plan.footsteps.size() - static_cast<size_t>(n())];
+      f.position_world_m.x() += dx_m;
+      f.index = static_cast<int>(plan.footsteps.size());
+      plan.footsteps.push_back(f);
+    }
+    state_->planned += steps;
+  }
+
+  static Course* course_;
+  PlannerOptions options_;
+  PlanRequest request_;
+  std::vector<RelaxationSolver*> solvers_;
+  std::unique_ptr<PlanContext> context_;
+  std::unique_ptr<HorizonState> state_;
+};
+Course* HorizonPolicyTest::course_ = nullptr;
+
+TEST_F(HorizonPolicyTest, ANewFailureBacksUpPastTheWindowBeforeWithTwiceTheHorizon) {
+  SetUpContext(2);
+  HorizonPolicy policy(*context_);
+  const int window = context_->window_steps;
+  EXPECT_EQ(policy.NextWindowSteps(*state_), window);
+  state_->TakeSnapshot();  // window 1 starts at the start stance
+  KeepSteps(n(), 0.1);
+  state_->TakeSnapshot();  // window 2 starts, and fails
+  ASSERT_TRUE(policy.RetryLonger("window 2: infeasible", state_.get()));
+  EXPECT_EQ(state_->planned, 0);
+  EXPECT_EQ(state_->plan.footsteps.size(), static_cast<size_t>(n()));
+  EXPECT_TRUE(state_->snapshots.empty());
+  EXPECT_EQ(policy.NextWindowSteps(*state_), 2 * window);
+  EXPECT_EQ(state_->plan.horizon_retries, 1);
+  EXPECT_EQ(state_->plan.message, "window 2: infeasible");
+
+  // At the longest look a failure is final: nothing changes.
+  state_->TakeSnapshot();
+  EXPECT_FALSE(policy.RetryLonger("window 3: infeasible", state_.get()));
+  EXPECT_EQ(state_->plan.horizon_retries, 1);
+  EXPECT_EQ(state_->snapshots.size(), 1u);
+}
+
+TEST_F(HorizonPolicyTest, AFailureWhereOneFailedBeforeBacksUpOnlyItsOwnWindow) {
+  SetUpContext(8);
+  HorizonPolicy policy(*context_);
+  const int window = context_->window_steps;
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.1);
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.1);
+  state_->TakeSnapshot();  // window 3 starts at 2 n steps, and fails
+  ASSERT_TRUE(policy.RetryLonger("window 3", state_.get()));
+  EXPECT_EQ(state_->planned, n());  // back to window 2's start
+  state_->TakeSnapshot();           // window 2 again, longer, fails where it failed before
+  ASSERT_TRUE(policy.RetryLonger("window 4", state_.get()));
+  EXPECT_EQ(state_->planned, n());  // its own start only
+  EXPECT_EQ(policy.NextWindowSteps(*state_), 4 * window);
+}
+
+TEST_F(HorizonPolicyTest, KeptStepsPastTheFailureRestoreTheDefaultWindow) {
+  SetUpContext(8);
+  HorizonPolicy policy(*context_);
+  const int window = context_->window_steps;
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.1);
+  state_->TakeSnapshot();
+  ASSERT_TRUE(policy.RetryLonger("window 2", state_.get()));  // failed at n steps
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.1);  // the longer look ends where the failure was
+  policy.OnStepsKept(state_.get(), n());
+  EXPECT_EQ(policy.NextWindowSteps(*state_), 2 * window);
+  EXPECT_TRUE(state_->plan.message.empty());
+  KeepSteps(1, 0.1);  // past it
+  policy.OnStepsKept(state_.get(), 1);
+  EXPECT_EQ(policy.NextWindowSteps(*state_), window);
+}
+
+TEST_F(HorizonPolicyTest, AWindowThatKeepsNoStepOrOnlyShufflesIsStuck) {
+  SetUpContext(2);
+  HorizonPolicy policy(*context_);
+  const double d_lim = course_->robot.d_lim_m;
+  state_->plan.windows = 1;
+  const std::optional<std::string> none = policy.Stuck(*state_, 0);
+  ASSERT_TRUE(none.has_value());
+  EXPECT_EQ(*none, "window 1 found no step that improves on standing still");
+
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.05 * d_lim);
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.04 * d_lim);  // 0.09 d_lim over two windows
+  state_->plan.windows = 2;
+  const std::optional<std::string> shuffled = policy.Stuck(*state_, n());
+  ASSERT_TRUE(shuffled.has_value());
+  EXPECT_NE(shuffled->find("window 2 only shuffled the feet"), std::string::npos) << *shuffled;
+
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.5 * d_lim);  // a window that walks
+  EXPECT_FALSE(policy.Stuck(*state_, n()).has_value());
+}
+
+}  // namespace
+}  // namespace mfp
