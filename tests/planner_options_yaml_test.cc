@@ -212,6 +212,14 @@ TEST(PlannerOptionsYaml, AKeyAndItsAliasTogetherAreRefusedNamingTheOneThatWins) 
   EXPECT_EQ(warnings.size(), 2u);
 }
 
+// The planner sets relax-and-fix's time and stage search for each window itself.
+TEST(PlannerOptionsYaml, RelaxAndFixMembersThePlannerSetsAreRefused) {
+  const std::string time = ErrorOf("relax_and_fix: {time_limit: 2}\n");
+  EXPECT_NE(time.find("planner.relax_and_fix.time_share"), std::string::npos) << time;
+  const std::string stage = ErrorOf("relax_and_fix: {stage: {max_nodes: 5}}\n");
+  EXPECT_NE(stage.find("planner.search"), std::string::npos) << stage;
+}
+
 TEST(PlannerOptionsYaml, UnknownKeysInSectionsFailWithASuggestion) {
   const std::string typo = ErrorOf("search: {max_node: 5}\n");
   EXPECT_NE(typo.find("planner.search"), std::string::npos) << typo;

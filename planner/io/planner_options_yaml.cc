@@ -1,7 +1,9 @@
 #include "planner/io/planner_options_yaml.h"
 
 #include <cmath>
+#include <utility>
 
+#include "planner/base/check.h"
 #include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {
@@ -238,8 +240,29 @@ const OptionTable<PlannerOptions>& PlannerOptionTable() {
   return table;
 }
 
+namespace {
+
+// Members of RelaxAndFixOptions the planner sets itself for each window (footstep_planner.cc):
+// a key for them would be replaced silently, so each is refused naming the key that wins.
+void RejectPlannerSetRelaxAndFixKeys(const YAML::Node& node, const YamlContext& ctx) {
+  const YAML::Node rf = node.IsMap() ? node["relax_and_fix"] : YAML::Node(YAML::NodeType::Undefined);
+  if (!rf || !rf.IsMap()) return;
+  const std::pair<const char*, const char*> kSetByPlanner[] = {
+      {"time_limit", "planner.relax_and_fix.time_share (of the window's time)"},
+      {"stage", "planner.search (the stages search with the window's search options)"}};
+  for (const auto& [key, winner] : kSetByPlanner) {
+    if (rf[key]) {
+      throw InputError(ctx.Child("relax_and_fix").Child(key).Where() + ": set by the planner from " + winner +
+                       ", which wins: write that");
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<std::string> ReadPlannerOptions(const YAML::Node& node, const YamlContext& ctx,
                                             PlannerOptions* options) {
+  RejectPlannerSetRelaxAndFixKeys(node, ctx);
   return ReadOptions(PlannerOptionTable(), node, ctx, options);
 }
 
