@@ -55,7 +55,7 @@ size_t EditDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-// " did you mean 'x'?" for the allowed key nearest to a typo, "" when none is near.
+// "; did you mean 'x'?" for the allowed key nearest to a typo, "" when none is near.
 std::string Suggestion(const std::string& key, const std::vector<std::string>& allowed) {
   std::string best;
   size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;
@@ -63,7 +63,7 @@ std::string Suggestion(const std::string& key, const std::vector<std::string>& a
     const size_t d = EditDistance(key, a);
     if (d < best_distance) best = a, best_distance = d;
   }
-  return best.empty() ? "" : " did you mean '" + best + "'?";
+  return best.empty() ? "" : "; did you mean '" + best + "'?";
 }
 
 }  // namespace

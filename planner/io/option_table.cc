@@ -26,15 +26,17 @@ std::set<std::string> ChildSections(const std::vector<std::string>& keys, const 
   return children;
 }
 
-// A key unknown in one section that another section holds: "polish.time_limit" for
-// `time_limit` under search, say.
+// The keys of other sections with this name: "planner.polish.time_limit" for `time_limit`
+// under search, say ("" when none).
 std::string ElsewhereHint(const std::string& name, const std::string& section,
                           const std::vector<std::string>& keys, const std::string& block_path) {
+  std::string hint;
   for (const std::string& key : keys) {
     const auto [s, n] = SplitKey(key);
-    if (n == name && s != section) return block_path.empty() ? key : block_path + "." + key;
+    if (n != name || s == section) continue;
+    hint += (hint.empty() ? "" : " or ") + (block_path.empty() ? key : block_path + "." + key);
   }
-  return "";
+  return hint;
 }
 
 void CheckMap(const YAML::Node& map, const YamlContext& block_ctx, const std::string& section,
