@@ -225,16 +225,25 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
 }  // namespace
 
 // Applies KEY=VALUE overrides to a scenario's planner options (the keys and checks of
-// the planner: block), so that one command measures one variant.
+// the planner: block; KEY may name a section, search.max_nodes), so that one command
+// measures one variant.
 void ApplyOverrides(const std::vector<std::string>& overrides, mfp::Scenario* scenario) {
   if (overrides.empty()) return;
   YAML::Node node;
   for (const std::string& kv : overrides) {
     const size_t eq = kv.find('=');
     if (eq == std::string::npos) throw mfp::InputError("--set " + kv + ": expected KEY=VALUE");
-    node[kv.substr(0, eq)] = YAML::Load(kv.substr(eq + 1));
+    const std::string key = kv.substr(0, eq);
+    const size_t dot = key.find('.');
+    if (dot == std::string::npos) {
+      node[key] = YAML::Load(kv.substr(eq + 1));
+    } else {
+      node[key.substr(0, dot)][key.substr(dot + 1)] = YAML::Load(kv.substr(eq + 1));
+    }
   }
-  mfp::ReadPlannerOptions(node, {"--set", ""}, &scenario->options);
+  for (const std::string& warning : mfp::ReadPlannerOptions(node, {"--set", ""}, &scenario->options)) {
+    std::cerr << "mfp-bench: warning: " << warning << "\n";
+  }
 }
 
 int main(int argc, char** argv) {
@@ -250,7 +259,7 @@ int main(int argc, char** argv) {
   app.add_option("--time-limit", time_limit, "time limit per instance [s]")->check(CLI::Range(0.01, 3600.0));
   app.add_option("--sizes", sizes, "single-MIQP sizes (new steps)");
   app.add_option("--write-instances", instances_dir, "write NAME.mps + NAME.json of each single MIQP here");
-  app.add_option("--set", overrides, "planner option KEY=VALUE, as in a scenario's planner: block (repeatable)");
+  app.add_option("--set", overrides, "planner option KEY=VALUE, as in a scenario's planner: block, e.g. search.max_nodes=100 (docs/options.md; repeatable)");
   app.add_option("--repeat", repeat, "runs per instance; the time printed is their median")->check(CLI::Range(1, 1000));
   app.add_flag("--table-only", table_only, "only the single MIQPs of Table I");
   app.add_flag("--scenarios-only", scenarios_only, "only the scenarios");

@@ -719,6 +719,13 @@ TEST(DaemonConfigTest, IntakeAndLcmBuffersComeFromTheConfig) {
   expect_refused("lcm_queue_capacity: 0\n", "lcm_queue_capacity");
   // A key that was removed says what replaced it.
   expect_refused("limits:\n  start_height_tolerance_m: 0.05\n", "planner.start_tolerance");
+  // The requests' defaults come from limits:, so the planner's keys of the same meaning,
+  // which they would silently replace, are refused naming the key that wins.
+  expect_refused("planner:\n  time_limit: 3\n", "limits.default_time_limit_s");
+  expect_refused("planner:\n  max_steps: 30\n", "limits.default_max_steps");
+  EXPECT_TRUE(config.warnings.empty());  // the shipped config uses the sections
+  EXPECT_EQ(config.planner.branch_and_bound.max_nodes, 20000);
+  EXPECT_DOUBLE_EQ(config.planner.default_time_limit_s, config.limits.default_time_limit_s);
   std::remove(path.c_str());
 }
 

@@ -28,6 +28,7 @@ void Log(const std::string& text) { mfp::LogLine(kProgram, text); }
 std::shared_ptr<const mfp::DaemonSetup> LoadSetup(const std::string& config_path,
                                                   const std::string& url_override) {
   mfp::DaemonConfig config = mfp::LoadDaemonConfig(config_path);
+  for (const std::string& warning : config.warnings) Log("warning: " + warning);
   if (!url_override.empty()) config.lcm_url = url_override;
   return std::make_shared<const mfp::DaemonSetup>(mfp::LoadDaemonSetup(config));
 }

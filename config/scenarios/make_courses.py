@@ -52,7 +52,9 @@ def write(name, description, robot, boxes, start, goal, max_steps, window=None, 
     if time_limit:
         lines.append(f"time_limit: {time_limit}")
     if planner:
-        lines.append("planner: {%s}" % ", ".join(f"{k}: {v}" for k, v in planner.items()))
+        # planner = {section: {key: value}} (docs/options.md)
+        lines.append("planner: {%s}" % ", ".join(
+            f"{section}: {{%s}}" % ", ".join(f"{k}: {v}" for k, v in keys.items()) for section, keys in planner.items()))
     os.makedirs(os.path.join(HERE, folder), exist_ok=True)
     with open(os.path.join(HERE, folder, name + ".yaml"), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -155,7 +157,7 @@ corridor_boxes, corridor_sensors = corridor(7.5)
 corridor_noise = dict(seed=3, jitter=0.03, holes=0.01, outliers=20)
 # Overlapping floor regions make optimality proofs long (each window's first plan is
 # within 0.05 % of its bound): a 0.1 % gap ends windows once their plan is that close.
-corridor_planner = dict(relative_gap=0.001)
+corridor_planner = dict(search=dict(relative_gap=0.001))
 write("hexapod_corridor_scan", "hexapod walks 6 m down a scanned corridor (8 cm voxels, ceiling, doors, noise)",
       "hexapod", corridor_boxes, [0.6, 0, 0], [6.6, 0.0, 0.0], 600, time_limit=300, resolution=0.08,
       scan=corridor_sensors, noise=corridor_noise, folder="long", planner=corridor_planner)

@@ -1,5 +1,6 @@
 #include "planner/base/yaml_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -37,6 +38,36 @@ YAML::Node LoadYamlFile(const std::string& path) {
   }
 }
 
+namespace {
+
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// "; did you mean 'x'?" for the allowed key nearest to a typo, "" when none is near.
+std::string Suggestion(const std::string& key, const std::vector<std::string>& allowed) {
+  std::string best;
+  size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;
+  for (const std::string& a : allowed) {
+    const size_t d = EditDistance(key, a);
+    if (d < best_distance) best = a, best_distance = d;
+  }
+  return best.empty() ? "" : "; did you mean '" + best + "'?";
+}
+
+}  // namespace
+
 void RejectUnknownKeys(const YAML::Node& map, const YamlContext& ctx,
                        const std::vector<std::string>& allowed) {
   if (!map.IsMap()) throw InputError(ctx.Where() + ": expected a mapping");
@@ -53,7 +84,8 @@ void RejectUnknownKeys(const YAML::Node& map, const YamlContext& ctx,
     if (!ok.count(key)) {
       std::string list;
       for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(ctx.Where() + ": unknown key '" + key + "' (allowed: " + list + ")");
+      throw InputError(ctx.Where() + ": unknown key '" + key + "'" + Suggestion(key, allowed) + " (allowed: " + list +
+                       ")");
     }
   }
 }

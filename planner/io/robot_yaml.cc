@@ -9,6 +9,7 @@
 #include "planner/base/check.h"
 #include "planner/base/format.h"
 #include "planner/base/yaml_fields.h"
+#include "planner/io/option_table.h"
 #include "planner/robot/urdf_reader.h"
 
 namespace mfp {
@@ -24,16 +25,61 @@ struct LimitField {
   const char* unit;
   bool required_without_urdf;
   bool derived;  // derived from the URDF (stance_height is an input of the derivation)
+  const char* description;
 };
 const LimitField kLimitFields[] = {
-    {"stance_height", &RobotModel::stance_height_m, 0.0, 10.0, "m", false, false},
-    {"foot_radius", &RobotModel::foot_radius_m, 0.0, 1.0, "m", false, true},
-    {"d_lim", &RobotModel::d_lim_m, 1e-4, 10.0, "m", true, true},
-    {"l_bnd", &RobotModel::l_bnd_m, 1e-4, 10.0, "m", true, true},
-    {"dz_max", &RobotModel::dz_max_m, 1e-4, 10.0, "m", true, true},
-    {"max_yaw_change", &RobotModel::max_yaw_change_rad, 1e-3, M_PI, "rad", true, true},
-    {"max_slope", &RobotModel::max_slope_rad, 0.0, M_PI / 2, "rad", false, true},
+    {"stance_height", &RobotModel::stance_height_m, 0.0, 10.0, "m", false, false,
+     "body height above the feet when standing (URDF form: an input of the derivation)"},
+    {"foot_radius", &RobotModel::foot_radius_m, 0.0, 1.0, "m", false, true, "radius of a foot's contact"},
+    {"d_lim", &RobotModel::d_lim_m, 1e-4, 10.0, "m", true, true, "half-width of a foot's reference box"},
+    {"l_bnd", &RobotModel::l_bnd_m, 1e-4, 10.0, "m", true, true,
+     "half-width of the box a foot keeps about the centre of contacts"},
+    {"dz_max", &RobotModel::dz_max_m, 1e-4, 10.0, "m", true, true, "largest height change of one step"},
+    {"max_yaw_change", &RobotModel::max_yaw_change_rad, 1e-3, M_PI, "rad", true, true,
+     "largest body yaw change between configurations"},
+    {"max_slope", &RobotModel::max_slope_rad, 0.0, M_PI / 2, "rad", false, true, "steepest surface a foot stands on"},
 };
+
+using option_table_internal::FormatNumber;
+using option_table_internal::FormatRange;
+
+// The keys of a robot YAML: the loaders below read each; the limits come from kLimitFields.
+OptionTable<RobotModel> MakeRobotOptionTable() {
+  using R = RobotModel;
+  OptionTable<R> t = {
+      LoaderOpt<R>("name", "string", "\"robot\" (URDF form: the URDF's name)", "name requests and logs use"),
+      LoaderOpt<R>("urdf", "path", "-", "derive legs and limits from this URDF, relative to the YAML"),
+      LoaderOpt<R>("feet", "list of link names", "the URDF's leaf links", "URDF form: the foot links"),
+      LoaderOpt<R>("foot_offset", "[x, y, z]", "[0, 0, 0]", "URDF form: the foot point in each foot link").Unit("m"),
+      LoaderOpt<R>("forward", "one of x, y, -x, -y", "x", "URDF form: the URDF axis the robot walks along"),
+      LoaderOpt<R>("legs", "list of legs", "(required without urdf)", "hand-written form: the legs"),
+      LoaderOpt<R>("legs[].name", "string", "legK", "name of the leg"),
+      LoaderOpt<R>("legs[].nominal_offset", "[x, y]", "(required)", "foot in the body frame when standing").Unit("m"),
+      LoaderOpt<R>("legs[].hip", "[x, y, z]", "-", "hip in the body frame").Unit("m"),
+      LoaderOpt<R>("gait", "list of leg names or indices", "leg order", "cyclic order in which the legs move"),
+  };
+  for (const LimitField& f : kLimitFields) {
+    const std::string range = "number in " + FormatRange(OptionKind::kDouble, f.min, f.max, false);
+    const std::string when = f.required_without_urdf ? "(required without urdf)" : "-";
+    t.push_back(LoaderOpt<R>(f.key, range, f.derived ? "derived from the URDF; " + when : when, f.description)
+                    .Unit(f.unit));
+  }
+  const PlannerWeights w;
+  t.push_back(LoaderOpt<R>("weights.goal_position", "number in [1e-06, 1e+09]", FormatNumber(w.goal_position),
+                           "cost per m^2 of final-stance foot error").Advanced());
+  t.push_back(LoaderOpt<R>("weights.goal_yaw", "number in [0, 1e+09]", FormatNumber(w.goal_yaw),
+                           "cost per rad^2 of final yaw error").Advanced());
+  t.push_back(LoaderOpt<R>("weights.trim_step", "number in [-1e+09, 0]", FormatNumber(w.trim_step),
+                           "cost per trimmed step (negative: rewards shorter plans)").Advanced());
+  t.push_back(LoaderOpt<R>("weights.displacement", "number in [0, 1e+09]", FormatNumber(w.displacement),
+                           "cost per m^2 of centre-of-contacts motion between configurations").Advanced());
+  return t;
+}
+
+const OptionTable<RobotModel>& RobotOptionTable() {
+  static const OptionTable<RobotModel> table = MakeRobotOptionTable();
+  return table;
+}
 
 std::string Describe(const std::string& key, double value, const std::string& unit,
                      const std::string& file) {
@@ -190,9 +236,8 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
 static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivation* derivation) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
-  RejectUnknownKeys(root, ctx,
-                    {"name", "urdf", "feet", "foot_offset", "forward", "legs", "gait", "stance_height", "foot_radius",
-                     "d_lim", "l_bnd", "dz_max", "max_yaw_change", "max_slope", "weights"});
+  RobotModel unread;
+  ReadOptions(RobotOptionTable(), root, ctx, &unread);  // checks the keys; all are read below
   if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation);
   if (derivation != nullptr) *derivation = RobotDerivation{};
   for (const char* key : {"feet", "foot_offset", "forward"}) {
@@ -253,6 +298,10 @@ static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivatio
 
 RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
   return GuardYaml(path, [&] { return LoadRobotYamlUnguarded(path, derivation); });
+}
+
+std::vector<OptionDoc> RobotOptionDocs() {
+  return DocumentOptions(RobotOptionTable(), "", RobotModel{});
 }
 
 }  // namespace mfp

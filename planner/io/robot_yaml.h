@@ -10,7 +10,9 @@
 //  - without it: hand-written legs (nominal offsets) and limits, all required.
 // Every value is recorded in provenance.
 #include <string>
+#include <vector>
 
+#include "planner/io/option_table.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/robot_model.h"
 
@@ -20,5 +22,8 @@ namespace mfp {
 // `derivation` is given and the YAML names a URDF, it receives the derivation details
 // (footprints, nominal joint positions) with its model equal to the returned one.
 RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation = nullptr);
+
+// The keys of a robot YAML, for the reference.
+std::vector<OptionDoc> RobotOptionDocs();
 
 }  // namespace mfp

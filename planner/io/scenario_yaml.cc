@@ -24,13 +24,80 @@ Eigen::Vector3d ReadVector3(const YAML::Node& node, const YamlContext& ctx) {
 
 }  // namespace
 
+// The keys of a scenario file; the loader below reads each (the `planner:` block through
+// PlannerOptionTable()). Keys of list entries ("[]") are checked where the entries are read.
+const OptionTable<Scenario>& ScenarioOptionTable() {
+  using S = Scenario;
+  static const OptionTable<S> table = {
+      LoaderOpt<S>("name", "string", "the file's path", "name in logs and pictures"),
+      LoaderOpt<S>("description", "string", "\"\"", "free text, not read"),
+      LoaderOpt<S>("robot", "path", "(required)", "robot YAML or URDF, relative to the scenario file"),
+      LoaderOpt<S>("start", "[x, y, yaw]", "(required)", "start body pose; the feet stand nominally on the regions below")
+          .Unit("m, m, rad"),
+      LoaderOpt<S>("goal", "[x, y, yaw]", "(required)", "goal body pose").Unit("m, m, rad"),
+      LoaderOpt<S>("max_steps", "int in [1, 100000]", "planner.max_steps",
+                   "new footsteps in the plan (the request's; wins over planner.max_steps, so not both)"),
+      LoaderOpt<S>("window", "int in [1, 1000]", "planner.window",
+                   "new footsteps per MIQP window (the request's; not together with planner.window)"),
+      LoaderOpt<S>("time_limit", "number in [0.001, 3600]", "planner.time_limit",
+                   "time for the whole plan (the request's; not together with planner.time_limit)")
+          .Unit("s"),
+      LoaderOpt<S>("planner", "mapping", "{}", "planner options: the planner.* keys below"),
+      LoaderOpt<S>("terrain.boxes", "list of boxes", "-",
+                   "a course of boxes (one of boxes, regions, map); regions come from their voxel map"),
+      LoaderOpt<S>("terrain.boxes[].name", "string", "\"\"", "name of the box"),
+      LoaderOpt<S>("terrain.boxes[].center", "[x, y, z]", "(required)", "centre of the box").Unit("m"),
+      LoaderOpt<S>("terrain.boxes[].size", "[sx, sy, sz]", "(required)", "size of the box").Unit("m"),
+      LoaderOpt<S>("terrain.boxes[].rpy", "[roll, pitch, yaw]", "[0, 0, 0]", "orientation of the box").Unit("rad"),
+      LoaderOpt<S>("terrain.resolution", "number in [0.001, 1]", "0.02", "voxel size of the boxes' map").Unit("m"),
+      LoaderOpt<S>("terrain.source", "one of extracted, top_faces", "extracted",
+                   "boxes: regions extracted from their map, or their exact top faces").Advanced(),
+      LoaderOpt<S>("terrain.scan.sensors", "list of [x, y, z]", "-",
+                   "boxes seen by rays from these points (free space too) instead of filled in").Unit("m"),
+      LoaderOpt<S>("terrain.scan.max_range", "number in [0.01, 100]", "6", "range of the scan's rays").Unit("m"),
+      LoaderOpt<S>("terrain.noise.seed", "int in [0, 2^30]", "1", "seed of the scan noise"),
+      LoaderOpt<S>("terrain.noise.jitter", "number in [0, 1]", "0", "fraction of top voxels moved up or down"),
+      LoaderOpt<S>("terrain.noise.holes", "number in [0, 1]", "0", "fraction of top voxels removed"),
+      LoaderOpt<S>("terrain.noise.outliers", "int in [0, 1000000]", "0", "stray voxels added"),
+      LoaderOpt<S>("terrain.regions", "list of regions", "-", "convex regions given directly (one of boxes, regions, map)"),
+      LoaderOpt<S>("terrain.regions[].vertices", "list of [x, y, z]", "(required)",
+                   "a convex polygon on a plane, at most 1000 vertices").Unit("m"),
+      LoaderOpt<S>("terrain.regions[].plane_tolerance", "number in [0, 0.1]", "0",
+                   "largest distance of a vertex from the polygon's plane").Unit("m"),
+      LoaderOpt<S>("terrain.map", "path", "-", "an OctoMap .bt or .ot file (one of boxes, regions, map)"),
+      LoaderOpt<S>("terrain.edge_margin", "number in [0, 0.5]", "extractor's",
+                   "real surface kept around each foot beyond its radius").Unit("m"),
+      LoaderOpt<S>("terrain.min_region_area", "number in [0, 100]", "extractor's",
+                   "smallest region of foot centres kept").Unit("m^2"),
+      LoaderOpt<S>("terrain.overlapping_regions", "bool", "extractor's", "one patch's regions may overlap")
+          .Advanced(),
+  };
+  return table;
+}
+
+// The request's sizes are given at the top of the file or as the planner's defaults,
+// not both: the top would win, silently.
+namespace {
+
+void RejectShadowedPlannerKeys(const YAML::Node& root, const YamlContext& ctx) {
+  const YAML::Node planner = root["planner"];
+  if (!planner || !planner.IsMap()) return;
+  for (const char* key : {"max_steps", "window", "time_limit"}) {
+    if (root[key] && planner[key]) {
+      throw InputError(ctx.Child("planner").Child(key).Where() + ": also given as " + key +
+                       " at the top of the file, which wins: give only one");
+    }
+  }
+}
+
+}  // namespace
+
 static Scenario LoadScenarioUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
-  RejectUnknownKeys(root, ctx,
-                    {"name", "description", "robot", "terrain", "start", "goal", "max_steps", "window",
-                     "time_limit", "planner"});
   Scenario s;
+  ReadOptions(ScenarioOptionTable(), root, ctx, &s);  // checks the keys; all are read below
+  RejectShadowedPlannerKeys(root, ctx);
   s.path = path;
   s.name = OptionalString(root, ctx, "name").value_or(path);
   if (!root["robot"]) throw InputError(ctx.Child("robot").Where() + ": missing (path of a robot YAML or URDF)");
@@ -41,14 +108,11 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
   s.max_steps = OptionalInt(root, ctx, "max_steps", 1, 100000).value_or(0);
   s.window_steps = OptionalInt(root, ctx, "window", 1, 1000).value_or(0);
   s.time_limit_s = OptionalDouble(root, ctx, "time_limit", 1e-3, 3600).value_or(0.0);
-  if (root["planner"]) ReadPlannerOptions(root["planner"], ctx.Child("planner"), &s.options);
+  if (root["planner"]) s.warnings = ReadPlannerOptions(root["planner"], ctx.Child("planner"), &s.options);
 
   if (!root["terrain"]) throw InputError(ctx.Child("terrain").Where() + ": missing (boxes, regions or map)");
   const YAML::Node terrain = root["terrain"];
   const YamlContext tctx = ctx.Child("terrain");
-  RejectUnknownKeys(terrain, tctx,
-                    {"resolution", "boxes", "regions", "map", "source", "scan", "noise", "edge_margin", "min_region_area",
-                     "overlapping_regions"});
   s.edge_margin_m = OptionalDouble(terrain, tctx, "edge_margin", 0.0, 0.5);
   s.min_region_area_m2 = OptionalDouble(terrain, tctx, "min_region_area", 0.0, 100.0);
   s.overlapping_regions = OptionalBool(terrain, tctx, "overlapping_regions");
@@ -168,6 +232,10 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
 
 Scenario LoadScenario(const std::string& path) {
   return GuardYaml(path, [&] { return LoadScenarioUnguarded(path); });
+}
+
+std::vector<OptionDoc> ScenarioOptionDocs() {
+  return DocumentOptions(ScenarioOptionTable(), "", Scenario{});
 }
 
 }  // namespace mfp

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/io/option_table.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
@@ -47,10 +48,16 @@ struct Scenario {
   int window_steps = 0;     // 0: planner default
   double time_limit_s = 0;  // 0: planner default
   PlannerOptions options;
+  // What the file should change (flat planner keys, read as aliases); the tools print them.
+  std::vector<std::string> warnings;
 };
 
 // Throws InputError naming the file, key and allowed range.
 Scenario LoadScenario(const std::string& path);
+
+// The keys of a scenario file (those of its planner: block are PlannerOptionDocs()).
+const OptionTable<Scenario>& ScenarioOptionTable();
+std::vector<OptionDoc> ScenarioOptionDocs();
 
 // The scenario's regions for this robot (foot radius, slope limit): listed regions as
 // given; a map file or the boxes through the terrain pipeline; or the boxes' top faces.

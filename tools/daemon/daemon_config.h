@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/io/option_table.h"
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {
@@ -57,10 +58,14 @@ struct DaemonConfig {
   size_t lcm_recv_buf_bytes = 0;
   DaemonLimits limits;
   PlannerOptions planner;
+  std::vector<std::string> warnings;  // what the file should change (flat planner keys); the daemon logs them
 };
 
 // Loads and validates a daemon YAML; relative paths are resolved against its directory.
 // Throws InputError naming the file, key and allowed range.
 DaemonConfig LoadDaemonConfig(const std::string& path);
+
+// The keys of a daemon YAML, for the reference (its planner: block: PlannerOptionDocs()).
+std::vector<OptionDoc> DaemonOptionDocs();
 
 }  // namespace mfp
