@@ -3,10 +3,31 @@
 #include <algorithm>
 #include <limits>
 
+#include "planner/base/check.h"
+#include "planner/base/format.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 
 namespace mfp {
+namespace {
+
+// terrain_map_t.format is "bt", "ot" or "" (the content decides); a named format must
+// match the content's first line, so a sender's mistake is named, not guessed around.
+void CheckMapFormat(const std::string& format, const std::string& bytes, const std::string& what) {
+  if (format.empty()) return;
+  if (format != "bt" && format != "ot") {
+    throw InputError(what + ": format '" + EscapedText(format.substr(0, 64)) +
+                     "' is not a map format: give \"bt\", \"ot\" or \"\" (the content decides)");
+  }
+  const bool binary = bytes.rfind("# Octomap OcTree binary file", 0) == 0;
+  const bool full = !binary && bytes.rfind("# Octomap OcTree file", 0) == 0;
+  if ((format == "bt" && full) || (format == "ot" && binary)) {
+    throw InputError(what + ": format is '" + format + "' but the data is a ." +
+                     (binary ? "bt" : "ot") + " map: give the matching format, or \"\"");
+  }
+}
+
+}  // namespace
 
 MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
   // One region set serves every robot: inset by the widest foot and limited to the
@@ -23,8 +44,9 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
   }
   if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
-  return [options](const std::string& bytes, const std::string& /*format*/,
+  return [options](const std::string& bytes, const std::string& format,
                    const std::string& what) {
+    CheckMapFormat(format, bytes, what);
     const std::vector<uint8_t> data(bytes.begin(), bytes.end());
     const OccupancyMap map = LoadMapBytes(data, what);
     return ExtractRegions(map, options).regions;
