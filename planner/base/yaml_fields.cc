@@ -1,6 +1,7 @@
 #include "planner/base/yaml_fields.h"
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
