@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <utility>
-#include <sstream>
 
 #include "planner/planning/goal.h"
 
