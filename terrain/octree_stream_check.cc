@@ -1,5 +1,6 @@
 #include "terrain/octree_stream_check.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -80,18 +81,24 @@ class TreeWalker {
   uint64_t leaf_columns() const { return leaf_columns_; }
 
   // A leaf at `depth` is a cube of 2^(16 - depth) voxels a side: it covers 4^(16 - depth)
-  // x-y columns, each of which becomes a run when the map is cut into columns.
+  // x-y columns, each of which becomes a run when the map is cut into columns. Summed
+  // here (at most max_nodes * 4^16, no overflow) and capped once the tree is known whole,
+  // so a malformed stream is named as such first.
   void CountLeaf(int depth) {
-    leaf_columns_ += uint64_t{1} << (2 * (kTreeDepth - depth));
-    if (leaf_columns_ > max_leaf_columns_) {
-      throw InputError(in_.what() + ": not a usable map: its leaves cover more than " +
-                       std::to_string(max_leaf_columns_) +
-                       " x-y column cells (a leaf n voxels wide counts n^2; the one that crossed "
-                       "the limit is " + std::to_string(uint64_t{1} << (kTreeDepth - depth)) +
-                       " voxels wide), the extraction's limit (OctreeStreamLimits::"
-                       "max_leaf_columns, about 32 bytes a cell): give a map of the terrain "
-                       "near the robot, or raise that limit where the map is loaded");
-    }
+    const uint64_t columns = uint64_t{1} << (2 * (kTreeDepth - depth));
+    leaf_columns_ += columns;
+    widest_leaf_ = std::max(widest_leaf_, uint64_t{1} << (kTreeDepth - depth));
+  }
+
+  void CheckLeafColumns() const {
+    if (leaf_columns_ <= max_leaf_columns_) return;
+    throw InputError(in_.what() + ": not a usable map: its leaves cover " +
+                     std::to_string(leaf_columns_) + " x-y column cells (a leaf n voxels wide "
+                     "counts n^2; the widest is " + std::to_string(widest_leaf_) +
+                     " voxels wide), more than the extraction's limit of " +
+                     std::to_string(max_leaf_columns_) + " (OctreeStreamLimits::max_leaf_columns, "
+                     "about 32 bytes a cell): give a map of the terrain near the robot, or raise "
+                     "that limit where the map is loaded");
   }
 
   void CountNode() {
@@ -154,6 +161,7 @@ class TreeWalker {
   uint64_t max_leaf_columns_;
   uint64_t nodes_ = 0;
   uint64_t leaf_columns_ = 0;
+  uint64_t widest_leaf_ = 0;
 };
 
 bool ParseUnsigned(const std::string& token, uint64_t* value) {
@@ -257,6 +265,7 @@ OctreeStreamInfo CheckOctreeStream(const uint8_t* data, size_t size, const std::
   if (!in.AtEnd()) {
     in.Fail(std::to_string(size - in.pos()) + " bytes of unexpected data after the tree");
   }
+  walker.CheckLeafColumns();
   return info;
 }
 

@@ -22,6 +22,9 @@ bool WholeNumber(const std::string& field, double* value) {
 
 std::string Quoted(const std::string& text) { return "'" + EscapedText(text.substr(0, 64)) + "'"; }
 
+// "FLAG: " (nothing when CLI11 names the flag itself, flag "").
+std::string Prefix(const std::string& flag) { return flag.empty() ? "" : flag + ": "; }
+
 }  // namespace
 
 std::string PoseFlagProblem(const std::string& text, const std::string& flag) {
@@ -35,17 +38,17 @@ std::string PoseFlagProblem(const std::string& text, const std::string& flag) {
     }
   }
   if (fields.size() != 3) {
-    return flag + ": expected X,Y,YAW (three numbers: m, m, rad), got " + Quoted(text) + " (" +
+    return Prefix(flag) + "expected X,Y,YAW (three numbers: m, m, rad), got " + Quoted(text) + " (" +
            std::to_string(fields.size()) + " fields)";
   }
   for (size_t i = 0; i < 3; ++i) {
     double v = 0.0;
     if (!WholeNumber(fields[i], &v)) {
-      return flag + ": " + kNames[i] + " = " + Quoted(fields[i]) + " is not a number (expected X,Y,YAW in m, m, rad)";
+      return Prefix(flag) + kNames[i] + " = " + Quoted(fields[i]) + " is not a number (expected X,Y,YAW in m, m, rad)";
     }
     const double limit = i < 2 ? kMaxPoseCoordinateM : kMaxPoseYawRad;
     if (!std::isfinite(v) || std::abs(v) > limit) {
-      return flag + ": " + kNames[i] + " = " + fields[i] + " is outside [-" + Number(limit) + ", " +
+      return Prefix(flag) + kNames[i] + " = " + fields[i] + " is outside [-" + Number(limit) + ", " +
              Number(limit) + "] " + (i < 2 ? "m" : "rad (one turn either way)");
     }
   }
@@ -55,22 +58,23 @@ std::string PoseFlagProblem(const std::string& text, const std::string& flag) {
 std::string NumberFlagProblem(const std::string& text, const std::string& flag, double min,
                               double max) {
   double v = 0.0;
-  if (!WholeNumber(text, &v)) return flag + ": " + Quoted(text) + " is not a number";
+  if (!WholeNumber(text, &v)) return Prefix(flag) + Quoted(text) + " is not a number";
   if (!std::isfinite(v) || v < min || v > max) {
-    return flag + ": " + text + " is not a finite number in [" + Number(min) + ", " + Number(max) + "]";
+    return Prefix(flag) + text + " is not a finite number in [" + Number(min) + ", " + Number(max) + "]";
   }
   return "";
 }
 
-CLI::Validator PoseFlag(const std::string& flag) {
-  return CLI::Validator([flag](std::string& text) { return PoseFlagProblem(text, flag); }, "X,Y,YAW");
+// CLI11 puts the flag's name before a validator's message: the messages leave it out.
+CLI::Validator PoseFlag() {
+  return CLI::Validator([](std::string& text) { return PoseFlagProblem(text, ""); }, "X,Y,YAW");
 }
 
-CLI::Validator FiniteRange(const std::string& flag, double min, double max) {
+CLI::Validator FiniteRange(double min, double max) {
   std::ostringstream description;
   description << "finite number in [" << min << ", " << max << "]";
   return CLI::Validator(
-      [flag, min, max](std::string& text) { return NumberFlagProblem(text, flag, min, max); },
+      [min, max](std::string& text) { return NumberFlagProblem(text, "", min, max); },
       description.str());
 }
 

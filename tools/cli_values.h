@@ -18,7 +18,7 @@ constexpr double kMaxPoseYawRad = 2.0 * M_PI;
 
 // "" when `text` is X,Y,YAW: exactly three comma-separated finite numbers (no empty
 // field, so no trailing comma), |X|, |Y| <= kMaxPoseCoordinateM and |YAW| <=
-// kMaxPoseYawRad; else the problem, naming `flag` and the field.
+// kMaxPoseYawRad; else the problem, naming the field, after "FLAG: " unless flag is "".
 std::string PoseFlagProblem(const std::string& text, const std::string& flag);
 
 // "" when `text` is one finite number in [min, max] (NaN and inf refused); else the
@@ -26,8 +26,8 @@ std::string PoseFlagProblem(const std::string& text, const std::string& flag);
 std::string NumberFlagProblem(const std::string& text, const std::string& flag, double min,
                               double max);
 
-// The validators of add_option(...)->check(...).
-CLI::Validator PoseFlag(const std::string& flag);
-CLI::Validator FiniteRange(const std::string& flag, double min, double max);
+// The validators of add_option(...)->check(...); CLI11 names the flag in their messages.
+CLI::Validator PoseFlag();
+CLI::Validator FiniteRange(double min, double max);
 
 }  // namespace mfp

@@ -66,11 +66,11 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", scenario_path, "scenario YAML (robot, terrain, start, goal)");
   app.add_option("--robot", robot_path, "robot YAML (or URDF)");
   app.add_option("--terrain", terrain_path, "terrain: .bt/.ot map, or a YAML with boxes/regions");
-  app.add_option("--start", start_text, "start pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag("--start"));
-  app.add_option("--goal", goal_text, "goal pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag("--goal"));
+  app.add_option("--start", start_text, "start pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
+  app.add_option("--goal", goal_text, "goal pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
   app.add_option("--max-steps", max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
   app.add_option("--window", window, "new footsteps per MIQP (default 2 n; the paper used 4 n)")->check(CLI::Range(1, 1000));
-  app.add_option("--time-limit", time_limit, "time limit for the whole plan [s]")->check(mfp::FiniteRange("--time-limit", 1e-3, 3600.0));
+  app.add_option("--time-limit", time_limit, "time limit for the whole plan [s]")->check(mfp::FiniteRange(1e-3, 3600.0));
   app.add_option("--json", json_path, "write the plan JSON here ('-' = stdout)");
   app.add_option("--svg", svg_path, "write a picture of the plan here");
   app.add_option("--write-mps", mps_path, "write the first window's MIQP as free MPS (constant left out)");
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress lines");
   app.add_flag("--no-polish", no_polish, "keep each window's MIQP plan (sin/cos by chords) instead of solving it again with exact sin/cos");
   app.add_option("--polish-time-limit", polish_time_limit, "time limit of the exact-trigonometry polisher per window [s]")
-      ->check(mfp::FiniteRange("--polish-time-limit", 1e-4, 3600.0));
+      ->check(mfp::FiniteRange(1e-4, 3600.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
