@@ -4,10 +4,10 @@
 
 #include <cmath>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <sstream>
 
+#include "planner/base/bounded_file.h"
 #include "planner/base/check.h"
 #include "terrain/voxelize.h"
 
@@ -62,18 +62,17 @@ std::unique_ptr<octomap::OcTree> ToOcTree(const OccupancyMap& map) {
   return tree;
 }
 
-}  // namespace
-
-OccupancyMap LoadMapBytes(const std::vector<uint8_t>& bytes, const std::string& what,
-                          const OctreeStreamLimits& limits) {
-  // Everything OctoMap would trip over is rejected here first.
-  const OctreeStreamInfo info = CheckOctreeStream(bytes.data(), bytes.size(), what, limits);
+OccupancyMap LoadMapData(const uint8_t* data, size_t size, const std::string& what,
+                         const OctreeStreamLimits& limits) {
+  // Everything OctoMap would trip over is rejected here first, and so is a tree whose
+  // leaves would expand into more column cells than the limit.
+  const OctreeStreamInfo info = CheckOctreeStream(data, size, what, limits);
   // Read only the data section, with the header already checked: OctoMap's own header
   // readers print progress to stderr, and libraries here do not print.
   octomap::OcTree tree(info.resolution_m);
   if (info.declared_nodes > 0) {
-    std::istringstream in(std::string(bytes.begin() + static_cast<std::ptrdiff_t>(info.data_offset),
-                                      bytes.end()),
+    std::istringstream in(std::string(reinterpret_cast<const char*>(data) + info.data_offset,
+                                      size - info.data_offset),
                           std::ios::binary);
     if (info.kind == OctreeFileKind::kBinary) {
       tree.readBinaryData(in);
@@ -86,22 +85,17 @@ OccupancyMap LoadMapBytes(const std::vector<uint8_t>& bytes, const std::string& 
   return FromOcTree(tree);
 }
 
+}  // namespace
+
+OccupancyMap LoadMapBytes(const std::vector<uint8_t>& bytes, const std::string& what,
+                          const OctreeStreamLimits& limits) {
+  return LoadMapData(bytes.data(), bytes.size(), what, limits);
+}
+
 OccupancyMap LoadMapFile(const std::string& path, const OctreeStreamLimits& limits) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(path + ": cannot open the map file");
-  file.seekg(0, std::ios::end);
-  const std::streamoff size = file.tellg();
-  if (size < 0) throw InputError(path + ": cannot read the map file");
-  if (static_cast<uint64_t>(size) > limits.max_bytes) {
-    throw InputError(path + ": the map is " + std::to_string(size) + " bytes, more than the " +
-                     std::to_string(limits.max_bytes) + " byte limit");
-  }
-  file.seekg(0, std::ios::beg);
-  std::vector<uint8_t> bytes(static_cast<size_t>(size));
-  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    throw InputError(path + ": cannot read the map file");
-  }
-  return LoadMapBytes(bytes, path, limits);
+  // Only a regular file (never a FIFO or a device), at most limits.max_bytes.
+  const std::string bytes = ReadBoundedRegularFile(path, limits.max_bytes, "map file");
+  return LoadMapData(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), path, limits);
 }
 
 std::vector<uint8_t> OccupancyMapBytes(const OccupancyMap& map, bool binary) {

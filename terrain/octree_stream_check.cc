@@ -1,5 +1,6 @@
 #include "terrain/octree_stream_check.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstring>
@@ -24,6 +25,7 @@ class Reader {
     throw InputError(what_ + ": not a valid OctoMap file: " + problem);
   }
   size_t pos() const { return pos_; }
+  const std::string& what() const { return what_; }
   bool AtEnd() const { return pos_ >= size_; }
 
   // The first line, as std::getline would read it.
@@ -73,8 +75,31 @@ class Reader {
 
 class TreeWalker {
  public:
-  TreeWalker(Reader* reader, uint64_t max_nodes) : in_(*reader), max_nodes_(max_nodes) {}
+  TreeWalker(Reader* reader, uint64_t max_nodes, uint64_t max_leaf_columns)
+      : in_(*reader), max_nodes_(max_nodes), max_leaf_columns_(max_leaf_columns) {}
   uint64_t nodes() const { return nodes_; }
+  uint64_t leaf_columns() const { return leaf_columns_; }
+
+  // A leaf at `depth` is a cube of 2^(16 - depth) voxels a side: it covers 4^(16 - depth)
+  // x-y columns, each of which becomes a run when the map is cut into columns. Summed
+  // here (at most max_nodes * 4^16, no overflow) and capped once the tree is known whole,
+  // so a malformed stream is named as such first.
+  void CountLeaf(int depth) {
+    const uint64_t columns = uint64_t{1} << (2 * (kTreeDepth - depth));
+    leaf_columns_ += columns;
+    widest_leaf_ = std::max(widest_leaf_, uint64_t{1} << (kTreeDepth - depth));
+  }
+
+  void CheckLeafColumns() const {
+    if (leaf_columns_ <= max_leaf_columns_) return;
+    throw InputError(in_.what() + ": not a usable map: its leaves cover " +
+                     std::to_string(leaf_columns_) + " x-y column cells (a leaf n voxels wide "
+                     "counts n^2; the widest is " + std::to_string(widest_leaf_) +
+                     " voxels wide), more than the extraction's limit of " +
+                     std::to_string(max_leaf_columns_) + " (OctreeStreamLimits::max_leaf_columns, "
+                     "about 32 bytes a cell): give a map of the terrain near the robot, or raise "
+                     "that limit where the map is loaded");
+  }
 
   void CountNode() {
     if (++nodes_ > max_nodes_) {
@@ -97,6 +122,7 @@ class TreeWalker {
         ++children;
         CountNode();
       }
+      if (code == 1 || code == 2) CountLeaf(depth + 1);
       if (inner[i] && depth + 1 >= kTreeDepth) {
         in_.Fail("a node at depth " + std::to_string(depth + 1) + " has children (the tree has " +
                  std::to_string(kTreeDepth) + " levels)");
@@ -116,6 +142,7 @@ class TreeWalker {
     const float log_odds = in_.Float("node value");
     if (!std::isfinite(log_odds)) in_.Fail("a node's occupancy is not a finite number");
     const uint8_t mask = in_.Byte("child mask");
+    if (mask == 0) CountLeaf(depth);
     if (mask != 0 && depth >= kTreeDepth) {
       in_.Fail("a node at depth " + std::to_string(depth) + " has children (the tree has " +
                std::to_string(kTreeDepth) + " levels)");
@@ -131,7 +158,10 @@ class TreeWalker {
  private:
   Reader& in_;
   uint64_t max_nodes_;
+  uint64_t max_leaf_columns_;
   uint64_t nodes_ = 0;
+  uint64_t leaf_columns_ = 0;
+  uint64_t widest_leaf_ = 0;
 };
 
 bool ParseUnsigned(const std::string& token, uint64_t* value) {
@@ -217,7 +247,7 @@ OctreeStreamInfo CheckOctreeStream(const uint8_t* data, size_t size, const std::
             std::to_string(limits.max_nodes) + " node limit");
   }
   info.data_offset = in.pos();
-  TreeWalker walker(&in, limits.max_nodes);
+  TreeWalker walker(&in, limits.max_nodes, limits.max_leaf_columns);
   if (info.declared_nodes > 0) {
     walker.CountNode();  // the root
     if (info.kind == OctreeFileKind::kBinary) {
@@ -227,6 +257,7 @@ OctreeStreamInfo CheckOctreeStream(const uint8_t* data, size_t size, const std::
     }
   }
   info.nodes = walker.nodes();
+  info.leaf_columns = walker.leaf_columns();
   if (info.nodes != info.declared_nodes) {
     in.Fail("the header declares " + std::to_string(info.declared_nodes) +
             " nodes but the data holds " + std::to_string(info.nodes));
@@ -234,6 +265,7 @@ OctreeStreamInfo CheckOctreeStream(const uint8_t* data, size_t size, const std::
   if (!in.AtEnd()) {
     in.Fail(std::to_string(size - in.pos()) + " bytes of unexpected data after the tree");
   }
+  walker.CheckLeafColumns();
   return info;
 }
 

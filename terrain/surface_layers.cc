@@ -142,6 +142,7 @@ int FillSingleCellNoise(HeightMap* hm) {
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
   MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
   SurfaceLayers out;
+  CheckLeafColumnBudget(map, options.max_leaf_columns);  // before any leaf is expanded
   // The grid and the validation of the leaves are the height map's.
   HeightMap grid = BuildHeightMap(map, options.max_cells);
   const double res = grid.resolution_m;

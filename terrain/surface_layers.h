@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "terrain/height_map.h"
+#include "terrain/leaf_budget.h"
 #include "terrain/occupancy_map.h"
 
 namespace mfp {
@@ -28,6 +29,7 @@ struct SurfaceLayerOptions {
   bool drop_isolated_voxels = true;
   bool fill_single_cell_noise = true;   // FillSingleCellNoise on every layer
   size_t max_cells = kDefaultMaxHeightMapCells;
+  uint64_t max_leaf_columns = kDefaultMaxLeafColumns;  // CheckLeafColumnBudget (leaf_budget.h)
 };
 
 // Bit of neighbour (row + dr, col + dc), dr, dc in {-1, 0, 1} and not both 0, in a

@@ -22,6 +22,7 @@
 #include "planner/base/check.h"
 #include "planner/io/robot_yaml.h"
 #include "planner/io/scenario_yaml.h"
+#include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
@@ -133,6 +134,43 @@ TEST(FuzzDecoders, Urdf) {
     ExpectLoadsOrNamesTheProblem([&] { ReadUrdfRobot(path); }, {path}, text, &errors);
   }
   EXPECT_GT(errors, 50);
+}
+
+// Issue 27: every number of a URDF, one at a time, at +-1e308 (finite, so the finite
+// check passes it): read and derived, it must load or be an InputError, never bad_alloc
+// from a grid sized by an overflowed extent. The derivation runs on small grids: the
+// grids are sized by the same code at any resolution.
+TEST(FuzzDecoders, UrdfNumbersAtTheEdgeOfDouble) {
+  const std::string seed = ReadFile(Source("tests/data/robots/sphere_quad.urdf"));
+  const std::string path = TestTempPath("extreme.urdf");
+  DerivationOptions quick;
+  quick.samples_per_leg = 500;
+  quick.final_cells = 16;
+  quick.scan_cells = 6;
+  quick.stance_candidates = 3;
+  int numbers = 0, errors = 0;
+  for (size_t open = seed.find("=\""); open != std::string::npos; open = seed.find("=\"", open + 1)) {
+    const size_t begin = open + 2, end = seed.find('"', begin);
+    for (size_t at = begin; at < end;) {
+      const size_t stop = std::min(end, seed.find(' ', at));
+      char* parsed = nullptr;
+      const std::string token = seed.substr(at, stop - at);
+      std::strtod(token.c_str(), &parsed);
+      if (!token.empty() && parsed == token.c_str() + token.size()) {
+        ++numbers;
+        for (const char* extreme : {"1e308", "-1e308"}) {
+          std::string text = seed;
+          text.replace(at, stop - at, extreme);
+          std::ofstream(path, std::ios::binary) << text;
+          ExpectLoadsOrNamesTheProblem([&] { DeriveRobot(ReadUrdfRobot(path), quick); }, {path, "footprint"},
+                                       text, &errors);
+        }
+      }
+      at = stop + 1;
+    }
+  }
+  EXPECT_GT(numbers, 200);   // every number of the file was reached
+  EXPECT_GT(errors, numbers);  // and most extremes refused (angles may stay finite)
 }
 
 TEST(FuzzDecoders, OctomapBytesAndRegionExtraction) {

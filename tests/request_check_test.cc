@@ -88,3 +88,33 @@ TEST_F(RequestCheckTest, StepBudgetsFallBackToTheOptionsThenToMultiplesOfTheLegs
 
 }  // namespace
 }  // namespace mfp
+
+namespace mfp {
+namespace {
+
+// Issue 27: a degenerate stance, absurd yaws, and no regions because the time ran out.
+TEST_F(RequestCheckTest, EveryStartFootAtOnePointIsAnInvalidStartNamingTheField) {
+  PlanRequest request = course_->request;
+  for (Eigen::Vector3d& f : request.start_feet_world_m) f = request.start_feet_world_m.front();
+  ExpectRejected(Check(request), SolveStatus::kInvalidStart, "start_feet: all 6 start feet");
+}
+
+TEST_F(RequestCheckTest, YawsBeyondOneTurnAreInvalid) {
+  PlanRequest request = course_->request;
+  request.goal_yaw_rad = 1e16;
+  ExpectRejected(Check(request), SolveStatus::kInvalidRequest, "goal yaw = 1e+16 rad");
+  request.goal_yaw_rad = -2.0 * M_PI;  // one turn is still a heading
+  EXPECT_TRUE(Check(request).ok()) << Check(request).message;
+  request.start_yaw_rad = 7.0;
+  ExpectRejected(Check(request), SolveStatus::kInvalidRequest, "start yaw = 7 rad");
+}
+
+TEST_F(RequestCheckTest, NoRegionsAfterTheDeadlineIsATimeLimit) {
+  PlanRequest request = course_->request;
+  request.deadline = Deadline::After(0.0);
+  const RequestCheck check = CheckPlanRequest(course_->robot, {}, request, course_->scenario.options);
+  ExpectRejected(check, SolveStatus::kTimeLimit, "time limit reached before planning");
+}
+
+}  // namespace
+}  // namespace mfp

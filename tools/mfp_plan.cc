@@ -21,6 +21,7 @@
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/request_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tools/cli_values.h"
 #include "tools/daemon/timestamped_log.h"
 #include "tools/options_reference.h"
 #include "tools/plan_svg.h"
@@ -66,11 +67,11 @@ void AddFlags(CLI::App* app, Flags* f) {
   app->add_option("--scenario", f->scenario_path, "scenario YAML (robot, terrain, start, goal)");
   app->add_option("--robot", f->robot_path, "robot YAML (or URDF)");
   app->add_option("--terrain", f->terrain_path, "terrain: .bt/.ot map, or a YAML with boxes/regions");
-  app->add_option("--start", f->start_text, "start pose X,Y,YAW [m, m, rad]");
-  app->add_option("--goal", f->goal_text, "goal pose X,Y,YAW [m, m, rad]");
+  app->add_option("--start", f->start_text, "start pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
+  app->add_option("--goal", f->goal_text, "goal pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
   app->add_option("--max-steps", f->max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
   app->add_option("--window", f->window, "new footsteps per MIQP (default 2 n; the paper used 4 n)")->check(CLI::Range(1, 1000));
-  app->add_option("--time-limit", f->time_limit, "time limit for the whole plan [s]")->check(CLI::Range(1e-3, 3600.0));
+  app->add_option("--time-limit", f->time_limit, "time limit for the whole plan [s]")->check(mfp::FiniteRange(1e-3, 3600.0));
   app->add_option("--json", f->json_path, "write the plan JSON here ('-' = stdout)");
   app->add_option("--svg", f->svg_path, "write a picture of the plan here");
   app->add_option("--write-mps", f->mps_path, "write the first window's MIQP as free MPS (constant left out)");
@@ -81,7 +82,7 @@ void AddFlags(CLI::App* app, Flags* f) {
   app->add_flag("--quiet", f->quiet, "no progress lines");
   app->add_flag("--no-polish", f->no_polish, "keep each window's MIQP plan (sin/cos by chords) instead of solving it again with exact sin/cos");
   app->add_option("--polish-time-limit", f->polish_time_limit, "time limit of the exact-trigonometry polisher per window [s]")
-      ->check(CLI::Range(1e-4, 3600.0));
+      ->check(mfp::FiniteRange(1e-4, 3600.0));
   app->add_flag("--list-options", f->list_options, "print every key of the YAML files (type, default, unit, description) and exit");
   app->add_flag("--markdown", f->markdown, "with --list-options: as docs/options.md");
 }

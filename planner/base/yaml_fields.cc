@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "planner/base/bounded_file.h"
 #include "planner/base/check.h"
 
 namespace mfp {
@@ -27,12 +28,9 @@ void RethrowYamlAsInputError(const std::string& file, const YAML::Exception& e) 
 }
 
 YAML::Node LoadYamlFile(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(path + ": no such file");
-  }
+  const std::string text = ReadBoundedRegularFile(path, kMaxTextInputBytes, "YAML file");
   try {
-    return YAML::LoadFile(path);
+    return YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(path + ": not valid YAML: " + e.what());
   }

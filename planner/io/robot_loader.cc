@@ -5,6 +5,7 @@
 
 #include "planner/base/check.h"
 #include "planner/io/robot_yaml.h"
+#include "planner/robot/derivation_budget.h"
 #include "planner/robot/urdf_reader.h"
 
 namespace mfp {
@@ -27,7 +28,9 @@ RobotModel LoadRobot(const std::string& path) { return LoadRobot(path, nullptr);
 RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation) {
   const std::string ext = LowerExtension(path);
   if (ext == ".urdf") {
-    RobotDerivation derived = DeriveRobot(ReadUrdfRobot(path), DerivationOptions{});
+    RobotDescription description = ReadUrdfRobot(path);
+    const DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+    RobotDerivation derived = DeriveRobot(description, options);
     ValidateRobotModel(derived.model);
     RobotModel model = derived.model;
     if (derivation != nullptr) *derivation = std::move(derived);

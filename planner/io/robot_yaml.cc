@@ -10,6 +10,7 @@
 #include "planner/base/format.h"
 #include "planner/base/yaml_fields.h"
 #include "planner/io/option_table.h"
+#include "planner/robot/derivation_budget.h"
 #include "planner/robot/urdf_reader.h"
 
 namespace mfp {
@@ -175,6 +176,7 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   }
   DerivationOptions options;
   options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
+  options = WithinDerivationBudget(options, &description);
   RobotDerivation derivation = DeriveRobot(description, options);
   RobotModel& robot = derivation.model;
   const std::string file = ctx.file;

@@ -1,7 +1,10 @@
 #include "planner/planning/request_check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "planner/planning/goal.h"
 
@@ -11,6 +14,38 @@ namespace {
 RequestCheck Rejection(SolveStatus status, const std::string& message) { return RequestCheck{status, message}; }
 
 int ChooseValue(int requested, int fallback) { return requested > 0 ? requested : fallback; }
+
+// "" or why the yaws are refused: a heading beyond one turn either way is a mistake (a
+// goal yaw of 1e16 rad would have the planner turn on the spot until its steps ran out).
+std::string YawProblem(const PlanRequest& request) {
+  const std::pair<const char*, double> yaws[] = {{"start yaw", request.start_yaw_rad},
+                                                 {"goal yaw", request.goal_yaw_rad}};
+  for (const auto& [name, yaw] : yaws) {
+    if (std::abs(yaw) > kMaxRequestYawRad) {
+      std::ostringstream msg;
+      msg << name << " = " << yaw << " rad is outside [-2 pi, 2 pi] (one turn either way); give the "
+          << "heading in radians";
+      return msg.str();
+    }
+  }
+  return "";
+}
+
+// "" or why the start stance is degenerate: every foot within kMinStanceSpreadM of one
+// point is no stance a robot can stand in (and gives the planner no heading).
+std::string StanceProblem(const std::vector<Eigen::Vector3d>& feet) {
+  if (feet.size() < 2) return "";
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& f : feet) centre += f / static_cast<double>(feet.size());
+  double spread = 0.0;
+  for (const Eigen::Vector3d& f : feet) spread = std::max(spread, (f - centre).norm());
+  if (spread >= kMinStanceSpreadM) return "";
+  std::ostringstream msg;
+  msg << "start_feet: all " << feet.size() << " start feet are within " << spread
+      << " m of one point (" << centre.x() << ", " << centre.y() << ", " << centre.z()
+      << "): not a stance; give each foot's own position";
+  return msg.str();
+}
 
 }  // namespace
 
@@ -25,6 +60,13 @@ int WindowSteps(const RobotModel& robot, const PlanRequest& request, const Plann
 RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                               const PlanRequest& request, const PlannerOptions& options) {
   const int n = robot.num_legs();
+  if (regions.empty() && request.deadline.Expired()) {
+    // Nothing was extracted because the time ran out (loading the robot, reading or
+    // extracting the map): a time limit, not a map without surfaces.
+    return Rejection(SolveStatus::kTimeLimit,
+                     "time limit reached before planning: loading the robot and extracting the "
+                     "terrain regions took the whole time limit; give a longer time limit");
+  }
   if (regions.empty()) return Rejection(SolveStatus::kNoMap, "no terrain regions: no map yet or the map has no walkable surface");
   if (static_cast<int>(request.start_feet_world_m.size()) != n) {
     return Rejection(SolveStatus::kInvalidRequest,
@@ -40,6 +82,12 @@ RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexR
       !std::isfinite(request.goal_y_m) || !std::isfinite(request.goal_yaw_rad) ||
       !std::isfinite(request.time_limit_s)) {
     return Rejection(SolveStatus::kInvalidRequest, "start yaw, goal pose and time limit must be finite numbers");
+  }
+  if (const std::string problem = YawProblem(request); !problem.empty()) {
+    return Rejection(SolveStatus::kInvalidRequest, problem);
+  }
+  if (const std::string problem = StanceProblem(request.start_feet_world_m); !problem.empty()) {
+    return Rejection(SolveStatus::kInvalidStart, problem);
   }
   const int max_steps = MaxSteps(robot, request, options);
   const int window = WindowSteps(robot, request, options);

@@ -9,14 +9,23 @@
 
 namespace mfp {
 
+// Largest |start yaw| and |goal yaw| of a request [rad]: one turn either way.
+constexpr double kMaxRequestYawRad = 2.0 * 3.14159265358979323846;
+// Smallest distance of the farthest start foot from the feet's centre [m]: below it the
+// stance is degenerate (every foot at one point).
+constexpr double kMinStanceSpreadM = 1e-3;
+
 struct RequestCheck {
   SolveStatus status = SolveStatus::kOptimal;  // of the rejection when !ok()
   std::string message;                         // names the problem and the allowed range
   bool ok() const { return message.empty(); }
 };
 
-// Rejections: kNoMap (no regions), kInvalidRequest (sizes, non-finite numbers, ranges),
-// kInvalidStart (a start foot on no region within options.start_tolerance_m),
+// Rejections: kTimeLimit (no regions and request.deadline already passed: the time ran
+// out before any were extracted), kNoMap (no regions), kInvalidRequest (sizes, non-finite numbers, ranges,
+// a yaw beyond kMaxRequestYawRad), kInvalidStart (every start foot within
+// kMinStanceSpreadM of one point, or a start foot on no region within
+// options.start_tolerance_m),
 // kInvalidGoal (the goal farther than LegReach + l_bnd from every region in plan view).
 RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                               const PlanRequest& request, const PlannerOptions& options);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "planner/base/check.h"
 
@@ -11,10 +12,22 @@ namespace mfp {
 FootprintGrid::FootprintGrid(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m,
                              double cell_m, int margin_cells)
     : cell_m_(cell_m) {
-  MFP_CHECK(cell_m > 0.0 && margin_cells >= 1);
-  MFP_CHECK((max_m - min_m).minCoeff() >= 0.0);
-  nx_ = static_cast<int>(std::ceil((max_m.x() - min_m.x()) / cell_m)) + 1 + 2 * margin_cells;
-  ny_ = static_cast<int>(std::ceil((max_m.y() - min_m.y()) / cell_m)) + 1 + 2 * margin_cells;
+  MFP_CHECK(margin_cells >= 1 && margin_cells < 1000);
+  // The extent comes from a robot's description: sized only once it is known to be
+  // finite and the grid bounded, never from an overflowed or NaN count.
+  const Eigen::Vector2d span_cells = (max_m - min_m) / cell_m;
+  if (!(cell_m > 0.0) || !min_m.allFinite() || !max_m.allFinite() || !span_cells.allFinite() ||
+      !(span_cells.minCoeff() >= 0.0) ||
+      (span_cells.x() + 1.0) * (span_cells.y() + 1.0) > static_cast<double>(kMaxFootprintGridCells)) {
+    std::ostringstream msg;
+    msg << "reachable footprint grid: x in [" << min_m.x() << ", " << max_m.x() << "] m, y in ["
+        << min_m.y() << ", " << max_m.y() << "] m at cells of " << cell_m
+        << " m is not a finite grid of at most " << kMaxFootprintGridCells
+        << " cells: the robot's lengths are out of range";
+    throw InputError(msg.str());
+  }
+  nx_ = static_cast<int>(std::ceil(span_cells.x())) + 1 + 2 * margin_cells;
+  ny_ = static_cast<int>(std::ceil(span_cells.y())) + 1 + 2 * margin_cells;
   origin_m_ = min_m - Eigen::Vector2d::Constant(margin_cells * cell_m);
   cells_.assign(static_cast<size_t>(nx_) * ny_, 0);
 }

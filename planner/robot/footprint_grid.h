@@ -8,10 +8,15 @@
 
 namespace mfp {
 
+// Largest footprint grid [cells]; the derivation uses about 100 x 100.
+constexpr int kMaxFootprintGridCells = 1 << 22;
+
 class FootprintGrid {
  public:
   FootprintGrid() = default;
   // A grid covering [min_m, max_m] plus a ring of `margin_cells` empty cells on each side.
+  // Throws InputError when the bounds or the cell are not finite, the bounds are inverted,
+  // or the grid would exceed kMaxFootprintGridCells.
   FootprintGrid(const Eigen::Vector2d& min_m, const Eigen::Vector2d& max_m, double cell_m,
                 int margin_cells = 2);
 

@@ -9,24 +9,21 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
 
+#include "planner/base/bounded_file.h"
 #include "planner/base/check.h"
+#include "planner/robot/urdf_numbers.h"
 
 namespace mfp {
 namespace {
 
+// Only a regular file, at most kMaxTextInputBytes (never /dev/zero or a FIFO).
 std::string ReadWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": no such file or not readable");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": could not be read");
-  return text.str();
+  return ReadBoundedRegularFile(path, kMaxTextInputBytes, "URDF");
 }
 
 // Attributes that hold numbers in URDF; each is checked for NaN and infinity, which
@@ -359,6 +356,7 @@ RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::s
   tinyxml2::XMLElement* robot_xml = doc.FirstChildElement("robot");
   if (robot_xml == nullptr) throw InputError(path + ": not a URDF (no <robot> element)");
   CheckFiniteNumbers(robot_xml, path);
+  CheckUrdfMagnitudes(robot_xml, path);
   RobotDescription robot;
   CheckAndPruneJointGraph(robot_xml, path, &robot.notes);
   const std::map<std::string, int> joint_order = JointOrder(robot_xml);

@@ -8,8 +8,10 @@
 
 #include "lcmtypes/message_guard.h"
 #include "mfp/terrain_map_t.hpp"
+#include "planner/base/bounded_file.h"
 #include "planner/base/check.h"
 #include "planner/base/deadline.h"
+#include "planner/base/format.h"
 #include "tools/daemon/abandonable_task.h"
 #include "tools/daemon/message_conversion.h"
 #include "tools/daemon/request_validation.h"
@@ -45,7 +47,7 @@ void DaemonCore::SubscribeTo(Transport& transport) {
 }
 
 void DaemonCore::Log(const std::string& line) const {
-  if (log_) log_(line);
+  if (log_) log_(EscapedText(line));  // one line, whatever names it quotes
 }
 
 template <class Message>
@@ -236,9 +238,7 @@ void DaemonCore::HandleMap(const RawMessage& message, bool abandon_on_stop) {
 }
 
 void DaemonCore::LoadMapFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("initial_map: cannot open '" + path + "'");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = ReadBoundedRegularFile(path, setup_->config.limits.max_map_bytes, "initial_map");
   const size_t dot = path.rfind('.');
   const std::string format = dot == std::string::npos ? "" : path.substr(dot + 1);
   AcceptMap(bytes, format, "world", clock_(), path, /*abandon_on_stop=*/false);

@@ -3,10 +3,24 @@
 #include <algorithm>
 #include <limits>
 
+#include "planner/base/check.h"
+#include "planner/base/format.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 
 namespace mfp {
+namespace {
+
+// terrain_map_t.format is "bt", "ot" or "" (DESIGN.md); anything else is a sender's
+// mistake, named. The content decides between .bt and .ot (CheckOctreeStream reads either),
+// as mfp-make-log's logs label a map by its file name.
+void CheckMapFormat(const std::string& format, const std::string& what) {
+  if (format.empty() || format == "bt" || format == "ot") return;
+  throw InputError(what + ": format '" + EscapedText(format.substr(0, 64)) +
+                   "' is not a map format: give \"bt\", \"ot\" or \"\" (the content decides)");
+}
+
+}  // namespace
 
 MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
   // One region set serves every robot: inset by the widest foot and limited to the
@@ -23,8 +37,9 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
   }
   if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
-  return [options](const std::string& bytes, const std::string& /*format*/,
+  return [options](const std::string& bytes, const std::string& format,
                    const std::string& what) {
+    CheckMapFormat(format, what);
     const std::vector<uint8_t> data(bytes.begin(), bytes.end());
     const OccupancyMap map = LoadMapBytes(data, what);
     return ExtractRegions(map, options).regions;

@@ -1,5 +1,7 @@
 #include "tools/daemon/message_conversion.h"
 
+#include "planner/base/format.h"
+
 namespace mfp {
 
 plan_t StatusReply(SolveStatus status, const std::string& message, int64_t request_id,
@@ -8,8 +10,10 @@ plan_t StatusReply(SolveStatus status, const std::string& message, int64_t reque
   reply.utime = utime;
   reply.request_id = request_id;
   reply.status = static_cast<int8_t>(status);
-  reply.message = message;
-  reply.robot = robot_name;
+  // Names and messages quoting them are published escaped (EscapedText): no control
+  // byte reaches a client's log, and a NUL cannot cut the LCM string.
+  reply.message = EscapedText(message);
+  reply.robot = EscapedText(robot_name);
   reply.map_utime = map_utime;
   reply.reaches_goal = false;
   reply.num_steps = 0;
@@ -48,7 +52,7 @@ region_set_t ToRegionSetMessage(const std::vector<ConvexRegion>& regions, const 
   region_set_t set;
   set.utime = utime;
   set.map_utime = map_utime;
-  set.frame = frame;
+  set.frame = EscapedText(frame);
   for (const ConvexRegion& r : regions) {
     region_t out;
     out.id = r.id;
