@@ -7,12 +7,14 @@
 #include "planner/base/check.h"
 #include "planner/formulation/centre_of_contacts.h"
 #include "planner/formulation/cost.h"
+#include "planner/formulation/miqp_encoder.h"
 #include "planner/formulation/region_choice.h"
 #include "planner/formulation/region_union_hull.h"
 #include "planner/formulation/step_expressions.h"
 #include "planner/formulation/step_limits.h"
 #include "planner/formulation/trimming.h"
 #include "planner/formulation/workspace_box.h"
+#include "planner/formulation/yaw_change_limit.h"
 #include "planner/miqp/miqp_builder.h"
 
 namespace mfp {
@@ -80,15 +82,16 @@ void MiqpFormulation::Build() {
   const RobotModel& robot = *problem_.robot;
   MiqpBuilder b;
   const StepExpressions e(problem_, vars_);
+  MiqpEncoder encoder(e, &b);
   const Box3 box = MakeWorkspaceBox(problem_.regions, problem_.start_feet_world_m);
   AddFootstepPositions(box, num_steps_, n_, &b, &vars_);
   AddCentreOfContacts(e, box, num_steps_, &b, &vars_);
   AddYawVariables(yaw_, &b, &vars_);
   for (int cfg = 1; cfg < num_configurations_; ++cfg) {
     AddYawChords(e, yaw_, cfg, options_.yaw_encoding, &b, &vars_);
-    AddYawChangeLimit(e, robot, cfg, &b);
+    AddYawChangeLimit(encoder, robot, cfg);
   }
-  for (int i = n_; i < num_steps_; ++i) AddStepLimits(e, robot, i, &b);
+  for (int i = n_; i < num_steps_; ++i) AddStepLimits(encoder, robot, i);
   const std::vector<double> max_move_xy = MaxMovesXY(e, robot, num_steps_);
   AddTrimming(e, robot, max_move_xy, num_steps_, options_.monotone_trimming, &b, &vars_);
   if (options_.trimmed_configurations_hold_yaw) {

@@ -10,10 +10,14 @@
 // Build() writes the paper's equation families in this order, one unit each:
 //   footstep positions and centre of contacts (eq. 2)   centre_of_contacts.h
 //   yaw with its sin/cos chords                         yaw_chords.h
-//   reference box, reachability, height and yaw change  step_limits.h
+//   yaw change                                          yaw_change_limit.h
+//   reference box, reachability, height                 step_limits.h
 //   trimming                                            trimming.h
-//   region choice (big-M or convex hull)                region_choice.h
+//   region choice (big-M or convex hull)                region_choice.h, region_faces.h
 //   cost                                                cost.h
+// The families the polisher shares (yaw change, step limits, region faces) write their
+// rows through a StepEncoder (step_encoder.h): here the MiqpEncoder (chords), in the
+// polisher the ExactEncoder (exact sin/cos), in the plan validator the plan's values.
 // The order of variables and rows is part of the contract: the search's node counts
 // depend on it.
 #include <Eigen/Core>

@@ -2,6 +2,9 @@
 
 #include <sstream>
 
+#include "planner/formulation/miqp_encoder.h"
+#include "planner/formulation/region_faces.h"
+
 namespace mfp {
 namespace {
 
@@ -10,15 +13,8 @@ void AddRegionRows(const StepExpressions& e, const ConvexRegion& region, RegionE
                    int i, int r, int h, MiqpBuilder* b, FootstepVariables* vars) {
   const std::string tag = std::to_string(i) + "_" + std::to_string(region.id);
   if (encoding == RegionEncoding::kBigM) {
-    for (int row = 0; row < region.A.rows(); ++row) {
-      const Eigen::Vector3d a = region.A.row(row).transpose();
-      const double M = MaxOverBox(a, region.b(row), box);
-      if (M <= 0.0) continue;  // the box already implies this face
-      LinExpr af;
-      for (int axis = 0; axis < 3; ++axis) af += a(axis) * e.Position(i, axis);
-      // a.f <= b + M (1 - H)
-      b->AddRow("region_" + tag + "_" + std::to_string(row), af + LinExpr::Var(h, M), -kInfinity, region.b(row) + M);
-    }
+    MiqpEncoder encoder(e, b);
+    AddRegionFaces(encoder, region, i, h, box);
     return;
   }
   // Disaggregated copies f_ir with A_r f_ir <= b_r H_ir and box bounds scaled by H.

@@ -8,21 +8,17 @@
 
 namespace mfp {
 
-void AddStepLimits(const StepExpressions& e, const RobotModel& robot, int i, MiqpBuilder* b) {
+void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
   const int n = e.num_legs();
   for (int axis = 0; axis < 2; ++axis) {
     const char* ax = axis == 0 ? "x" : "y";
-    b->AddRow(std::string("ref_") + ax + "_" + std::to_string(i), e.Position(i, axis) - e.NominalFoot(i, axis),
-              -robot.l_bnd_m, robot.l_bnd_m);
-    b->AddRow(std::string("reach_") + ax + "_" + std::to_string(i), e.Position(i, axis) - e.NominalFoot(i - n, axis),
-              -robot.d_lim_m, robot.d_lim_m);
+    e.AddRow(RowKind::kReferenceBox, std::string("ref_") + ax + "_" + std::to_string(i),
+             e.Position(i, axis) - e.NominalFoot(i, axis), -robot.l_bnd_m, robot.l_bnd_m);
+    e.AddRow(RowKind::kReachability, std::string("reach_") + ax + "_" + std::to_string(i),
+             e.Position(i, axis) - e.NominalFoot(i - n, axis), -robot.d_lim_m, robot.d_lim_m);
   }
-  b->AddRow(StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m, robot.dz_max_m);
-}
-
-void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int cfg, MiqpBuilder* b) {
-  b->AddRow(StepName("yaw_change", cfg), e.Yaw(cfg) - e.Yaw(cfg - 1), -robot.max_yaw_change_rad,
-            robot.max_yaw_change_rad);
+  e.AddRow(RowKind::kHeightChange, StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m,
+           robot.dz_max_m);
 }
 
 std::vector<double> MaxMovesXY(const StepExpressions& e, const RobotModel& robot, int num_steps) {

@@ -4,20 +4,20 @@
 //   reference box   |f_i - r_nom,i|_inf   <= l_bnd   (x, y)
 //   reachability    |f_i - r_nom,i-n|_inf <= d_lim   (x, y): from the previous configuration
 //   height change   |z_i - z_i-n|         <= dz_max
-//   yaw change      |theta_b - theta_b-1| <= max_yaw_change
+// written once through a StepEncoder: the MIQP's rows (chords) and the polisher's (exact
+// sin/cos) alike, and evaluated by the plan validator.
 #include <vector>
 
+#include "planner/formulation/step_encoder.h"
 #include "planner/formulation/step_expressions.h"
 #include "planner/miqp/miqp_builder.h"
 #include "planner/robot/robot_model.h"
 
 namespace mfp {
 
-// Reference box, reachability and height change of new step i.
-void AddStepLimits(const StepExpressions& e, const RobotModel& robot, int i, MiqpBuilder* b);
-
-// Yaw change between configurations cfg - 1 and cfg.
-void AddYawChangeLimit(const StepExpressions& e, const RobotModel& robot, int cfg, MiqpBuilder* b);
+// Reference box, reachability and height change of new step i, in this order: ref x,
+// reach x, ref y, reach y, dz.
+void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i);
 
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the
 // reachability box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n

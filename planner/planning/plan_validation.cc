@@ -1,14 +1,71 @@
 #include "planner/planning/plan_validation.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "planner/base/check.h"
 #include "planner/formulation/centre_of_contacts.h"
+#include "planner/formulation/step_encoder.h"
+#include "planner/formulation/step_limits.h"
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {
 namespace {
+
+// A plan's footsteps as a StepEncoder for the constraint families: every quantity is a
+// value (positions before the plan wrap to the start stance; r_nom,j turns the leg's
+// offset by the exact R(yaw) of the yaw step j reports), and each row written records
+// its excess over its bounds, the largest per kind.
+class FootstepRowExcess final : public StepEncoder {
+ public:
+  FootstepRowExcess(const RobotModel& robot, const std::vector<Footstep>& steps)
+      : robot_(robot), steps_(steps), n_(robot.num_legs()) {
+    excess_.fill(-std::numeric_limits<double>::infinity());
+  }
+
+  int num_legs() const override { return n_; }
+  StepExpr Position(int j, int axis) const override { return LinExpr::Constant(Pos(j)(axis)); }
+  StepExpr CentreOfContacts(int i, int axis) const override { return LinExpr::Constant(Centre(i)(axis)); }
+  StepExpr NominalFoot(int j, int axis) const override {
+    const Eigen::Vector2d p = Centre(j);
+    const Footstep& step = steps_[std::max(j, 0)];
+    return LinExpr::Constant(NominalFootXY(robot_, step.leg, p.x(), p.y(), step.yaw_rad)(axis));
+  }
+  StepExpr Yaw(int cfg) const override {
+    return LinExpr::Constant(steps_[std::min<size_t>(cfg * n_, steps_.size() - 1)].yaw_rad);
+  }
+  void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) override {
+    MFP_CHECK_MSG(expr.lin.terms.empty() && expr.rotations.empty(), name + ": a plan's rows are values");
+    const double v = expr.lin.constant;
+    double& worst = excess_[static_cast<size_t>(kind)];
+    worst = std::max({worst, v - upper, lower - v});
+  }
+  void AddImpliedRow(RowKind kind, const std::string& name, int /*indicator*/, const StepExpr& expr, double upper,
+                     double /*big_m*/) override {
+    AddRow(kind, name, expr, -kInfinity, upper);
+  }
+
+  // Largest excess of the rows of a kind written so far; -infinity when none.
+  double excess(RowKind kind) const { return excess_[static_cast<size_t>(kind)]; }
+
+ private:
+  Eigen::Vector3d Pos(int j) const {
+    while (j < 0) j += n_;  // before the plan: the start stance
+    return steps_[j].position_world_m;
+  }
+  // The centre of contacts of the n latest footsteps ending at j.
+  Eigen::Vector2d Centre(int j) const {
+    return mfp::CentreOfContacts<Eigen::Vector2d>(j, n_, [&](int k) { return Eigen::Vector2d(Pos(k).head<2>()); });
+  }
+
+  const RobotModel& robot_;
+  const std::vector<Footstep>& steps_;
+  int n_;
+  std::array<double, kNumRowKinds> excess_;
+};
 
 // How far step i (i >= n) is beyond each of its limits [m, rad]; <= 0 where it holds.
 // region_missing: its region id names no region.
@@ -19,19 +76,14 @@ struct StepExcess {
 
 StepExcess ExcessOfStep(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                         const std::vector<Footstep>& steps, int i) {
-  const int n = robot.num_legs();
-  auto pos = [&](int j) -> Eigen::Vector3d {
-    while (j < 0) j += n;  // before the plan: the start stance
-    return steps[j].position_world_m;
-  };
-  // r_nom,j: the centre of contacts of the n latest footsteps ending at j plus the leg's
-  // offset turned by the exact R(yaw) of the yaw step j reports.
-  auto nominal = [&](int j) -> Eigen::Vector2d {
-    const Eigen::Vector2d p =
-        CentreOfContacts<Eigen::Vector2d>(j, n, [&](int k) { return Eigen::Vector2d(pos(k).head<2>()); });
-    return NominalFootXY(robot, steps[std::max(j, 0)].leg, p.x(), p.y(), steps[std::max(j, 0)].yaw_rad);
-  };
   StepExcess e;
+  FootstepRowExcess rows(robot, steps);
+  AddStepLimits(rows, robot, i);
+  e.reference = rows.excess(RowKind::kReferenceBox);
+  e.reachability = rows.excess(RowKind::kReachability);
+  e.height = rows.excess(RowKind::kHeightChange);
+  // The region and the yaw change per step (not per configuration: a plan whose steps of
+  // one configuration report different yaws is caught here).
   const Eigen::Vector3d f = steps[i].position_world_m;
   const ConvexRegion* region = nullptr;
   for (const ConvexRegion& r : regions) {
@@ -39,9 +91,6 @@ StepExcess ExcessOfStep(const RobotModel& robot, const std::vector<ConvexRegion>
   }
   e.region_missing = region == nullptr;
   e.region = region == nullptr ? 0.0 : RegionViolation(*region, f);
-  e.reference = (f.head<2>() - nominal(i)).cwiseAbs().maxCoeff() - robot.l_bnd_m;
-  e.reachability = (f.head<2>() - nominal(i - n)).cwiseAbs().maxCoeff() - robot.d_lim_m;
-  e.height = std::abs(f.z() - pos(i - n).z()) - robot.dz_max_m;
   e.yaw_change = std::abs(steps[i].yaw_rad - steps[i - 1].yaw_rad) - robot.max_yaw_change_rad;
   return e;
 }

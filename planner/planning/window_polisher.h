@@ -13,8 +13,11 @@
 //   yaw change      |theta_b - theta_b-1| <= max_yaw_change, theta_b within its MIQP bounds
 //   regions         A_r f_i <= b_r for the region the MIQP chose for step i
 //   trimming        a trimmed step stays where its leg stood (f_i = f_i-n, by substitution)
-// p_i is the centre of contacts of the n latest footsteps (paper eq. 2). The boxes are
-// tightened by margin_m so that the solver's own tolerance leaves the plan inside them.
+// p_i is the centre of contacts of the n latest footsteps (paper eq. 2). These rows are
+// the formulation's own families written through the ExactEncoder (exact_encoder.h,
+// window_program.h); the cost is the MIQP's, evaluated at the MIQP point the polished
+// variables stand for. The boxes are tightened by margin_m so that the solver's own
+// tolerance leaves the plan inside them.
 // It starts from the MIQP's solution: first a sequential QP on mfp's sparse interior
 // point (rounds of a trust-region QP with sin/cos linearised, each followed by the exact
 // QP of the footsteps alone at the yaws it chose); where that ends outside the
