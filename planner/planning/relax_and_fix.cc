@@ -34,22 +34,27 @@ std::vector<std::vector<int>> IntegersByConfiguration(const MiqpFormulation& f) 
 // that solution holds), and the best rounding whose QP is feasible becomes the plan. One
 // QP per proposal, so a short time limit still ends with a complete plan.
 std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formulation, const Eigen::VectorXd& x,
-                                                  RelaxationSolver& solver, double feasibility_tolerance,
-                                                  int* relaxations) {
+                                                  RelaxationSolver& solver, const Deadline& deadline,
+                                                  double feasibility_tolerance, int* relaxations) {
   const Miqp& full = formulation.miqp();
   std::optional<Eigen::VectorXd> best;
   double best_objective = kInfinity;
   for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
-    Eigen::VectorXd lower = full.var_lower, upper = full.var_upper;
+    RelaxationRequest request;
+    request.lower = full.var_lower;
+    request.upper = full.var_upper;
     for (int j = 0; j < full.num_variables(); ++j) {
       if (!full.is_integer[j]) continue;
-      lower(j) = upper(j) = std::clamp(std::round(proposal(j)), full.var_lower(j), full.var_upper(j));
+      request.lower(j) = request.upper(j) =
+          std::clamp(std::round(proposal(j)), full.var_lower(j), full.var_upper(j));
     }
-    RelaxationResult r = solver.Solve(full, lower, upper, &x);
+    request.warm_start = x;
+    request.deadline = deadline;
+    RelaxationResult r = solver.Solve(full, request);
     ++*relaxations;
     if (r.status != RelaxationStatus::kSolved) continue;
     for (int j = 0; j < full.num_variables(); ++j) {
-      if (full.is_integer[j]) r.x(j) = lower(j);
+      if (full.is_integer[j]) r.x(j) = request.lower(j);
     }
     if (full.MaxViolation(r.x) > feasibility_tolerance) continue;
     const double objective = full.Objective(r.x);
@@ -84,10 +89,11 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   // The earlier stages' choices, as bounds on the full model's variables.
   Eigen::VectorXd fixed_lower = full.var_lower, fixed_upper = full.var_upper;
   Eigen::VectorXd x;
+  Deadline last_stage_deadline;  // the deadline of the latest stage's search
   const auto complete_by_rounding = [&] {
     if (x.size() == 0) return;
-    result.x = CompleteByRounding(formulation, x, *solvers.front(), options.stage.feasibility_tolerance,
-                                  &result.relaxations);
+    result.x = CompleteByRounding(formulation, x, *solvers.front(), last_stage_deadline,
+                                  options.stage.feasibility_tolerance, &result.relaxations);
     result.completed_by_rounding = result.x.has_value();
   };
   // Stages for the configurations that have integers; the last stage takes all the rest.
@@ -125,6 +131,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     // searches stopped at a poor incumbent (docs/measurements.md).
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
+    last_stage_deadline = bnb.time_limit_needs_incumbent ? bnb.deadline : bnb.deadline.Within(bnb.time_limit_s);
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;

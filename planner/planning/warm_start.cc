@@ -91,16 +91,17 @@ std::optional<Eigen::VectorXd> SolveWarmStart(const MiqpFormulation& formulation
   const Miqp& miqp = formulation.miqp();
   std::optional<Eigen::VectorXd> best;
   double best_objective = std::numeric_limits<double>::infinity();
-  solver.SetDeadline(deadline);
-  solver.SetTimeLimit(std::max(1e-3, std::min(1.0, deadline.RemainingSeconds())));
-  solver.SetCutoff(std::numeric_limits<double>::infinity());
   for (const Eigen::VectorXd& proposal : proposals) {
-    Eigen::VectorXd lower = miqp.var_lower, upper = miqp.var_upper;
+    RelaxationRequest request;
+    request.lower = miqp.var_lower;
+    request.upper = miqp.var_upper;
     for (int j = 0; j < miqp.num_variables(); ++j) {
       if (!miqp.is_integer[j]) continue;
-      lower(j) = upper(j) = std::clamp(std::round(proposal(j)), miqp.var_lower(j), miqp.var_upper(j));
+      request.lower(j) = request.upper(j) =
+          std::clamp(std::round(proposal(j)), miqp.var_lower(j), miqp.var_upper(j));
     }
-    RelaxationResult r = solver.Solve(miqp, lower, upper, nullptr);
+    request.deadline = deadline.Within(1.0);  // no one QP longer than a second
+    RelaxationResult r = solver.Solve(miqp, request);
     if (r.status != RelaxationStatus::kSolved) continue;
     for (int j = 0; j < miqp.num_variables(); ++j) {
       if (miqp.is_integer[j]) r.x(j) = std::round(r.x(j));

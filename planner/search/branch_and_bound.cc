@@ -268,15 +268,22 @@ class Search {
   // bounds the optimum: the reported bound must not rise above it.
   void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
 
+  // The request for one relaxation under the deadline in force.
+  RelaxationRequest Request(Eigen::VectorXd lower, Eigen::VectorXd upper, const Eigen::VectorXd* warm,
+                            double cutoff = kInfinity) const {
+    RelaxationRequest request;
+    request.lower = std::move(lower);
+    request.upper = std::move(upper);
+    if (warm != nullptr) request.warm_start = *warm;
+    request.deadline = Active();
+    if (opt_.early_cutoff) request.cutoff = cutoff;
+    request.relative_tolerance = opt_.relaxation_tolerance;
+    return request;
+  }
+
   RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                              const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
-    const Deadline& deadline = Active();
-    // (Without a caller's deadline the anytime search has none: a finite number for the solver.)
-    solver.SetTimeLimit(std::clamp(deadline.RemainingSeconds(), 1e-3, 1e6));
-    solver.SetDeadline(deadline);
-    if (opt_.early_cutoff) solver.SetCutoff(cutoff);
-    if (opt_.relaxation_tolerance > 0.0) solver.SetRelativeTolerance(opt_.relaxation_tolerance);
-    return solver.Solve(p_, lower, upper, warm);
+    return solver.Solve(p_, Request(lower, upper, warm, cutoff));
   }
 
   Node PopNode() {
