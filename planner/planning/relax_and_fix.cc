@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "planner/base/check.h"
+#include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {
 namespace {
@@ -36,34 +37,12 @@ std::vector<std::vector<int>> IntegersByConfiguration(const MiqpFormulation& f) 
 std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formulation, const Eigen::VectorXd& x,
                                                   RelaxationSolver& solver, const Deadline& deadline,
                                                   double feasibility_tolerance, int* relaxations) {
-  const Miqp& full = formulation.miqp();
-  std::optional<Eigen::VectorXd> best;
-  double best_objective = kInfinity;
-  for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
-    RelaxationRequest request;
-    request.lower = full.var_lower;
-    request.upper = full.var_upper;
-    for (int j = 0; j < full.num_variables(); ++j) {
-      if (!full.is_integer[j]) continue;
-      request.lower(j) = request.upper(j) =
-          std::clamp(std::round(proposal(j)), full.var_lower(j), full.var_upper(j));
-    }
-    request.warm_start = x;
-    request.deadline = deadline;
-    RelaxationResult r = solver.Solve(full, request);
-    ++*relaxations;
-    if (r.status != RelaxationStatus::kSolved) continue;
-    for (int j = 0; j < full.num_variables(); ++j) {
-      if (full.is_integer[j]) r.x(j) = request.lower(j);
-    }
-    if (full.MaxViolation(r.x) > feasibility_tolerance) continue;
-    const double objective = full.Objective(r.x);
-    if (objective < best_objective) {
-      best_objective = objective;
-      best = std::move(r.x);
-    }
-  }
-  return best;
+  RelaxationRequest request;
+  request.warm_start = x;
+  request.deadline = deadline;
+  FixedAssignmentOptions options;
+  options.feasibility_tolerance = feasibility_tolerance;
+  return BestFixedAssignment(formulation.miqp(), formulation.RoundAlongPlan(x), solver, request, options, relaxations);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "planner/base/check.h"
+#include "planner/qp/fixed_integer_qp.h"
 #include "planner/search/bound_propagation.h"
 #include "planner/search/pseudo_costs.h"
 
@@ -540,15 +541,9 @@ class Search {
       if (Active().Expired()) return;
       const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
       std::vector<RelaxationResult> results(count);
+      const RelaxationRequest request = Request(Eigen::VectorXd(), Eigen::VectorXd(), &x);
       ForEachInParallel(count, [&](int k) {
-        const Eigen::VectorXd& r = proposals[first + k];
-        Eigen::VectorXd lower = p_.var_lower, upper = p_.var_upper;
-        for (int j = 0; j < p_.num_variables(); ++j) {
-          if (!p_.is_integer[j]) continue;
-          const double v = std::clamp(std::round(r(j)), p_.var_lower(j), p_.var_upper(j));
-          lower(j) = upper(j) = v;
-        }
-        results[k] = SolveWith(*solvers_[k], lower, upper, &x);
+        results[k] = SolveWithIntegersFixed(p_, proposals[first + k], *solvers_[k], request);
       });
       result_.relaxations += count;
       for (RelaxationResult& rel : results) {
@@ -558,14 +553,11 @@ class Search {
   }
 
   void OfferIncumbent(Eigen::VectorXd x) {
-    for (int j = 0; j < p_.num_variables(); ++j) {
-      if (p_.is_integer[j]) x(j) = std::round(x(j));
-    }
-    if (p_.MaxViolation(x) > opt_.feasibility_tolerance) return;
-    const double objective = p_.Objective(x);
-    if (!HasIncumbent() || objective < result_.objective) {
+    const std::optional<double> objective = FeasibleObjective(p_, &x, opt_.feasibility_tolerance);
+    if (!objective) return;
+    if (!HasIncumbent() || *objective < result_.objective) {
       result_.x = std::move(x);
-      result_.objective = objective;
+      result_.objective = *objective;
       last_improvement_ = Clock::now();
       if (opt_.on_incumbent) ReportProgress();
     }
