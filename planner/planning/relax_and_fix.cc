@@ -68,10 +68,11 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   // The earlier stages' choices, as bounds on the full model's variables.
   Eigen::VectorXd fixed_lower = full.var_lower, fixed_upper = full.var_upper;
   Eigen::VectorXd x;
-  Deadline last_stage_deadline;  // the deadline of the latest stage's search
   const auto complete_by_rounding = [&] {
     if (x.size() == 0) return;
-    result.x = CompleteByRounding(formulation, x, *solvers.front(), last_stage_deadline,
+    // The completion is what turns the stages' choices into a plan: its QPs run under the
+    // caller's deadline, not under the time limit that has just ended the stages.
+    result.x = CompleteByRounding(formulation, x, *solvers.front(), options.stage.deadline,
                                   options.stage.feasibility_tolerance, &result.relaxations);
     result.completed_by_rounding = result.x.has_value();
   };
@@ -110,7 +111,6 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     // searches stopped at a poor incumbent (docs/measurements.md).
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
-    last_stage_deadline = bnb.time_limit_needs_incumbent ? bnb.deadline : bnb.deadline.Within(bnb.time_limit_s);
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;
