@@ -123,15 +123,17 @@ void PrintPolisherTables() {
 
 // Median time of one relaxation solve with every integer fixed to its value in x [s].
 double FixedAssignmentQpTime(const mfp::Miqp& miqp, const Eigen::VectorXd& x, mfp::RelaxationBackend backend) {
-  Eigen::VectorXd lower = miqp.var_lower, upper = miqp.var_upper;
+  mfp::RelaxationRequest request;
+  request.lower = miqp.var_lower;
+  request.upper = miqp.var_upper;
   for (int j = 0; j < miqp.num_variables(); ++j) {
-    if (miqp.is_integer[j]) lower(j) = upper(j) = std::round(x(j));
+    if (miqp.is_integer[j]) request.lower(j) = request.upper(j) = std::round(x(j));
   }
   const auto solver = mfp::MakeRelaxationSolver(backend);
   std::vector<double> times;
   for (int k = 0; k < 21; ++k) {
     const auto start = std::chrono::steady_clock::now();
-    const mfp::RelaxationResult r = solver->Solve(miqp, lower, upper, nullptr);
+    const mfp::RelaxationResult r = solver->Solve(miqp, request);
     times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (r.status != mfp::RelaxationStatus::kSolved) return 0.0;  // not a lower limit then
   }

@@ -63,11 +63,12 @@ TEST(Deadline, EverySolverStopsAtItsNextIterationWhenStopped) {
   EXPECT_EQ(direct.iterations, 0);
   for (RelaxationBackend backend : {RelaxationBackend::kIpopt, RelaxationBackend::kInteriorPointWithIpoptFallback}) {
     const auto solver = MakeRelaxationSolver(backend);
-    solver->SetDeadline(stopped);
-    const RelaxationResult r = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+    RelaxationRequest request;
+    request.deadline = stopped;
+    const RelaxationResult r = solver->Solve(p, request);
     EXPECT_EQ(r.status, RelaxationStatus::kIterationLimit) << solver->Name();
-    stop = false;  // the same solver solves once the flag is down
-    EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).status, RelaxationStatus::kSolved)
+    stop = false;  // the same request solves once the flag is down
+    EXPECT_EQ(solver->Solve(p, request).status, RelaxationStatus::kSolved)
         << solver->Name();
     stop = true;
   }
@@ -94,25 +95,27 @@ TEST(Deadline, IpoptStopsInsideASolveAtItsIntermediateCallback) {
   const Miqp p = ChainQp(4000);
   const auto solver = MakeRelaxationSolver(RelaxationBackend::kIpopt);
   const auto start = std::chrono::steady_clock::now();
-  const RelaxationResult full = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  const RelaxationResult full = solver->Solve(p, RelaxationRequest());
   const double full_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(full.status, RelaxationStatus::kSolved);
   ASSERT_GE(full.iterations, 8) << "the test needs a solve of several iterations";
   // Stopped by a flag raised from another thread, as the daemon's SIGTERM handler does.
   std::atomic<bool> stop{false};
-  solver->SetDeadline(Deadline().WithStop(&stop));
+  RelaxationRequest flagged;
+  flagged.deadline = Deadline().WithStop(&stop);
   std::thread raise([&stop, full_s] {
     std::this_thread::sleep_for(std::chrono::duration<double>(0.4 * full_s));
     stop = true;
   });
-  const RelaxationResult stopped = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  const RelaxationResult stopped = solver->Solve(p, flagged);
   raise.join();
   EXPECT_EQ(stopped.status, RelaxationStatus::kIterationLimit);
   EXPECT_LT(stopped.iterations, full.iterations);
   // A deadline (no flag) stops it the same way, and the solve had begun: the check
   // before a solve passes (the deadline is half a solve away), so the stop is Ipopt's.
-  solver->SetDeadline(Deadline::After(0.5 * full_s));
-  const RelaxationResult timed = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  RelaxationRequest timed_request;
+  timed_request.deadline = Deadline::After(0.5 * full_s);
+  const RelaxationResult timed = solver->Solve(p, timed_request);
   EXPECT_EQ(timed.status, RelaxationStatus::kIterationLimit);
   EXPECT_GE(timed.iterations, 1);
   EXPECT_LT(timed.iterations, full.iterations);

@@ -111,29 +111,32 @@ TEST(InteriorPointQp, CutoffStopsOnceAProvenFloorReachesIt) {
   ASSERT_EQ(solved.status, RelaxationStatus::kSolved);
   EXPECT_NEAR(solved.objective, 0.5, 1e-8);
 
-  // Through the solver interface the cutoff holds for the next solve only.
+  // Through the solver interface the cutoff holds for its own request only.
   const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
-  solver->SetCutoff(0.4);
-  EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).status, RelaxationStatus::kCutoff);
-  const RelaxationResult next = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  RelaxationRequest cut_request;
+  cut_request.cutoff = 0.4;
+  EXPECT_EQ(solver->Solve(p, cut_request).status, RelaxationStatus::kCutoff);
+  const RelaxationResult next = solver->Solve(p, RelaxationRequest());
   ASSERT_EQ(next.status, RelaxationStatus::kSolved);
   EXPECT_NEAR(next.objective, 0.5, 1e-8);
 }
 
-TEST(InteriorPointQp, ALooserToleranceHoldsForTheNextSolveOnly) {
+TEST(InteriorPointQp, ALooserToleranceHoldsForItsOwnRequestOnly) {
   const Miqp p = Projection();  // optimum 0.5
   const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
-  const RelaxationResult exact = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
-  solver->SetRelativeTolerance(1e-3);
-  const RelaxationResult coarse = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  const RelaxationResult exact = solver->Solve(p, RelaxationRequest());
+  RelaxationRequest loose;
+  loose.relative_tolerance = 1e-3;
+  const RelaxationResult coarse = solver->Solve(p, loose);
   ASSERT_EQ(coarse.status, RelaxationStatus::kSolved);
   EXPECT_LT(coarse.iterations, exact.iterations);
   EXPECT_NEAR(coarse.objective, 0.5, 1e-2);
-  const RelaxationResult next = solver->Solve(p, p.var_lower, p.var_upper, nullptr);
+  const RelaxationResult next = solver->Solve(p, RelaxationRequest());
   EXPECT_EQ(next.iterations, exact.iterations);
   EXPECT_NEAR(next.objective, 0.5, 1e-8);
-  solver->SetRelativeTolerance(1e-12);  // tighter than the solver's own: its own holds
-  EXPECT_EQ(solver->Solve(p, p.var_lower, p.var_upper, nullptr).iterations, exact.iterations);
+  RelaxationRequest tight;
+  tight.relative_tolerance = 1e-12;  // tighter than the solver's own: its own holds
+  EXPECT_EQ(solver->Solve(p, tight).iterations, exact.iterations);
 }
 
 TEST(InteriorPointQp, LinearProgramWithActiveBounds) {
@@ -190,8 +193,12 @@ TEST(InteriorPointQp, ABoxNarrowerThanRoundingErrorIsAFixedVariable) {
   EXPECT_GE(reduced.fixed_x(0), lo(0));
   EXPECT_LE(reduced.fixed_x(0), up(0));
   const Eigen::VectorXd warm = Eigen::Vector2d(0.3, 0.9);
-  for (const Eigen::VectorXd* start : {static_cast<const Eigen::VectorXd*>(nullptr), &warm}) {
-    const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, start);
+  for (const Eigen::VectorXd& start : {Eigen::VectorXd(), warm}) {
+    RelaxationRequest request;
+    request.lower = lo;
+    request.upper = up;
+    request.warm_start = start;
+    const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, request);
     ASSERT_EQ(r.status, RelaxationStatus::kSolved);
     EXPECT_NEAR(r.x(1), 1.0, 1e-4);
     EXPECT_NEAR(r.objective, 1.7 * 1.7, 1e-6);
@@ -204,7 +211,10 @@ TEST(InteriorPointQp, SolvesANodeWhoseOnlyRowLeftBinds) {
   const Miqp p = RowsTheBoxMostlyKeeps();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
   lo(0) = up(0) = 1.0;
-  const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
+  RelaxationRequest request;
+  request.lower = lo;
+  request.upper = up;
+  const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, request);
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
   EXPECT_NEAR(r.x(1), 1.5, 1e-6);
   EXPECT_NEAR(r.objective, 0.25, 1e-6);
@@ -223,7 +233,7 @@ TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
   bld.AddSquaredCost(LinExpr::Var(b) - LinExpr::Constant(0.9), 3.0);
   bld.AddLinearCost(LinExpr::Var(c, -2.0));
   const Miqp p = bld.Build();
-  const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, p.var_lower, p.var_upper, nullptr);
+  const RelaxationResult r = MakeInteriorPointRelaxationSolver()->Solve(p, RelaxationRequest());
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
   ASSERT_EQ(r.lower_cost_rate.size(), 3);
   ASSERT_EQ(r.upper_cost_rate.size(), 3);

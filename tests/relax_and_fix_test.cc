@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
@@ -10,6 +13,39 @@
 
 namespace mfp {
 namespace {
+
+TEST(RelaxAndFix, EndedByItsTimeLimitStillCompletesThePlan) {
+  // When relax-and-fix's time runs out, the configurations it has not searched are
+  // rounded from the latest stage's solution and their QPs solved. Those QPs run under
+  // the caller's deadline, not under the deadline of the stage search that the time
+  // limit has just ended (issue 26: with the solver's old setters they inherited that
+  // expired deadline, and relax-and-fix ended with no plan).
+  Course c = LoadCourse("hexapod_stepping_stones_45.yaml");
+  c.request.window_steps = 12;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  ASSERT_GE(formulation.num_configurations(), 3) << "the test needs a stage before the last";
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.solvers.backend, 1);
+  RelaxAndFixOptions rf;
+  rf.stage = c.scenario.options.branch_and_bound;
+  rf.stage_rounding = true;  // the first stage's root rounding gives it a plan at once
+  rf.time_limit_s = 2.0;
+  // The second node any stage search settles waits past the whole time limit: that
+  // search ends on its deadline, and relax-and-fix on its time limit.
+  int nodes_settled = 0;
+  rf.stage.equivalent_point = [&nodes_settled, &rf](const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                                    Eigen::VectorXd*) {
+    if (++nodes_settled == 2) std::this_thread::sleep_for(std::chrono::duration<double>(1.25 * rf.time_limit_s));
+    return false;  // the point is kept as it is
+  };
+  const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), rf);
+  ASSERT_GE(nodes_settled, 2);
+  ASSERT_TRUE(r.x.has_value()) << "relax-and-fix ended by its time limit without a plan";
+  EXPECT_TRUE(r.completed_by_rounding);
+  const Miqp& m = formulation.miqp();
+  EXPECT_LE(m.MaxViolation(*r.x), 1e-5);
+  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
+}
 
 TEST(RelaxAndFix, FindsAFeasiblePlanNearTheProvenOptimum) {
   // The hexapod stones with 24 new steps (Table I): relax-and-fix fixes the four

@@ -17,14 +17,17 @@ TEST(RelaxationSolverFactory, DegenerateNodesFallBackToIpopt) {
   const Miqp p = Projection();
   Eigen::VectorXd lo = p.var_lower, up = p.var_upper;
   lo(0) = up(0) = 1.0;  // the reduction leaves y <= 1 (fixed_variable_reduction_test.cc)
-  const RelaxationResult own = MakeInteriorPointRelaxationSolver()->Solve(p, lo, up, nullptr);
+  RelaxationRequest request;
+  request.lower = lo;
+  request.upper = up;
+  const RelaxationResult own = MakeInteriorPointRelaxationSolver()->Solve(p, request);
   if (own.status == RelaxationStatus::kSolved) {
     EXPECT_NEAR(own.objective, 1.0, 1e-6);
   } else {
     EXPECT_EQ(own.status, RelaxationStatus::kIterationLimit);
   }
   const RelaxationResult r =
-      MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback)->Solve(p, lo, up, nullptr);
+      MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback)->Solve(p, request);
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
   // The objective grows with (y - 1)^2 only, so an objective accurate to 1e-8 places y
   // to about its square root: the bound the search uses is the objective.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "planner/base/check.h"
+#include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {
 namespace {
@@ -34,31 +35,14 @@ std::vector<std::vector<int>> IntegersByConfiguration(const MiqpFormulation& f) 
 // that solution holds), and the best rounding whose QP is feasible becomes the plan. One
 // QP per proposal, so a short time limit still ends with a complete plan.
 std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formulation, const Eigen::VectorXd& x,
-                                                  RelaxationSolver& solver, double feasibility_tolerance,
-                                                  int* relaxations) {
-  const Miqp& full = formulation.miqp();
-  std::optional<Eigen::VectorXd> best;
-  double best_objective = kInfinity;
-  for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
-    Eigen::VectorXd lower = full.var_lower, upper = full.var_upper;
-    for (int j = 0; j < full.num_variables(); ++j) {
-      if (!full.is_integer[j]) continue;
-      lower(j) = upper(j) = std::clamp(std::round(proposal(j)), full.var_lower(j), full.var_upper(j));
-    }
-    RelaxationResult r = solver.Solve(full, lower, upper, &x);
-    ++*relaxations;
-    if (r.status != RelaxationStatus::kSolved) continue;
-    for (int j = 0; j < full.num_variables(); ++j) {
-      if (full.is_integer[j]) r.x(j) = lower(j);
-    }
-    if (full.MaxViolation(r.x) > feasibility_tolerance) continue;
-    const double objective = full.Objective(r.x);
-    if (objective < best_objective) {
-      best_objective = objective;
-      best = std::move(r.x);
-    }
-  }
-  return best;
+                                                  RelaxationSolver& solver, const Deadline& deadline,
+                                                  double feasibility_tolerance, int* relaxations) {
+  RelaxationRequest request;
+  request.warm_start = x;
+  request.deadline = deadline;
+  FixedAssignmentOptions options;
+  options.feasibility_tolerance = feasibility_tolerance;
+  return BestFixedAssignment(formulation.miqp(), formulation.RoundAlongPlan(x), solver, request, options, relaxations);
 }
 
 }  // namespace
@@ -86,8 +70,10 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   Eigen::VectorXd x;
   const auto complete_by_rounding = [&] {
     if (x.size() == 0) return;
-    result.x = CompleteByRounding(formulation, x, *solvers.front(), options.stage.feasibility_tolerance,
-                                  &result.relaxations);
+    // The completion is what turns the stages' choices into a plan: its QPs run under the
+    // caller's deadline, not under the time limit that has just ended the stages.
+    result.x = CompleteByRounding(formulation, x, *solvers.front(), options.stage.deadline,
+                                  options.stage.feasibility_tolerance, &result.relaxations);
     result.completed_by_rounding = result.x.has_value();
   };
   // Stages for the configurations that have integers; the last stage takes all the rest.

@@ -12,7 +12,8 @@
 //
 // Anytime: when the time runs out before the last stage, the configurations still open
 // are rounded along the plan from the latest stage's solution, so a short budget ends
-// with a complete (if worse) plan rather than none.
+// with a complete (if worse) plan rather than none. The rounding's QPs (one per proposal)
+// run under the caller's deadline, stage.deadline: time_limit_s has passed by then.
 #include <Eigen/Core>
 #include <optional>
 #include <vector>

@@ -1,8 +1,9 @@
 #include "planner/planning/warm_start.h"
 
-#include <algorithm>
-#include <cmath>
 #include <limits>
+#include <utility>
+
+#include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {
 
@@ -88,31 +89,13 @@ std::optional<Eigen::VectorXd> SolveWarmStart(const MiqpFormulation& formulation
                                               const std::vector<Eigen::VectorXd>& proposals,
                                               RelaxationSolver& solver, const Deadline& deadline,
                                               double feasibility_tolerance) {
-  const Miqp& miqp = formulation.miqp();
-  std::optional<Eigen::VectorXd> best;
-  double best_objective = std::numeric_limits<double>::infinity();
-  solver.SetDeadline(deadline);
-  solver.SetTimeLimit(std::max(1e-3, std::min(1.0, deadline.RemainingSeconds())));
-  solver.SetCutoff(std::numeric_limits<double>::infinity());
-  for (const Eigen::VectorXd& proposal : proposals) {
-    Eigen::VectorXd lower = miqp.var_lower, upper = miqp.var_upper;
-    for (int j = 0; j < miqp.num_variables(); ++j) {
-      if (!miqp.is_integer[j]) continue;
-      lower(j) = upper(j) = std::clamp(std::round(proposal(j)), miqp.var_lower(j), miqp.var_upper(j));
-    }
-    RelaxationResult r = solver.Solve(miqp, lower, upper, nullptr);
-    if (r.status != RelaxationStatus::kSolved) continue;
-    for (int j = 0; j < miqp.num_variables(); ++j) {
-      if (miqp.is_integer[j]) r.x(j) = std::round(r.x(j));
-    }
-    if (miqp.MaxViolation(r.x) > feasibility_tolerance || formulation.CountUntrimmedSteps(r.x) == 0) continue;
-    const double objective = miqp.Objective(r.x);
-    if (objective < best_objective) {
-      best_objective = objective;
-      best = std::move(r.x);
-    }
-  }
-  return best;
+  RelaxationRequest request;
+  request.deadline = deadline;
+  FixedAssignmentOptions options;
+  options.feasibility_tolerance = feasibility_tolerance;
+  options.max_solve_s = 1.0;  // no one QP longer than a second
+  options.acceptable = [&formulation](const Eigen::VectorXd& x) { return formulation.CountUntrimmedSteps(x) > 0; };
+  return BestFixedAssignment(formulation.miqp(), proposals, solver, request, options);
 }
 
 }  // namespace mfp

@@ -12,16 +12,16 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
  public:
   explicit InteriorPointRelaxationSolver(const InteriorPointOptions& options) : options_(options) {}
 
-  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                         const Eigen::VectorXd* warm_start) override {
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
     RelaxationResult result;
     ReducedQp reduced;
     InteriorPointOptions options = options_;
-    options.cutoff = cutoff_;
-    options.deadline = deadline_;
-    options.tolerance = std::max(options.tolerance, tolerance_);
-    cutoff_ = kInfinity;  // the next solve only
-    tolerance_ = 0.0;
+    options.cutoff = request.cutoff;
+    options.deadline = request.deadline;
+    options.tolerance = std::max(options.tolerance, request.relative_tolerance);
+    const Eigen::VectorXd& lower = request.LowerOr(problem);
+    const Eigen::VectorXd& upper = request.UpperOr(problem);
+    const Eigen::VectorXd* warm_start = request.WarmStart();
     if (ReduceOrSettle(problem, lower, upper, options.infeasible_violation, &reduced, &result)) return result;
     Eigen::VectorXd start;
     if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
@@ -47,17 +47,10 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     return result;
   }
 
-  void SetTimeLimit(double) override {}  // SetDeadline holds the time
-  void SetDeadline(const Deadline& deadline) override { deadline_ = deadline; }
-  void SetCutoff(double objective) override { cutoff_ = objective; }
-  void SetRelativeTolerance(double tolerance) override { tolerance_ = tolerance; }
   std::string Name() const override { return "ipm"; }
 
  private:
   InteriorPointOptions options_;
-  double cutoff_ = kInfinity;
-  double tolerance_ = 0.0;  // 0: options_.tolerance
-  Deadline deadline_;
 };
 
 }  // namespace

@@ -193,9 +193,12 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
     }
   }
 
-  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower,
-                         const Eigen::VectorXd& upper, const Eigen::VectorXd* warm_start) override {
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
     // Ipopt sees only the free variables and the rows that still constrain them.
+    const Eigen::VectorXd& lower = request.LowerOr(problem);
+    const Eigen::VectorXd& upper = request.UpperOr(problem);
+    const Eigen::VectorXd* warm_start = request.WarmStart();
+    const Deadline& deadline = request.deadline;
     RelaxationResult result;
     ReducedQp reduced;
     if (ReduceOrSettle(problem, lower, upper, kRowTolerance, &reduced, &result)) return result;
@@ -205,13 +208,17 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
     // Ipopt solve at a time in the process, whichever solver object runs it.
     static std::mutex ipopt_mutex;
     const std::lock_guard<std::mutex> lock(ipopt_mutex);
-    if (deadline_.Expired()) {
+    if (deadline.Expired()) {
       result.status = RelaxationStatus::kIterationLimit;
       result.x = Eigen::VectorXd::Zero(problem.num_variables());
       return result;
     }
+    // Ipopt's own limit counts CPU time: at most what is left of the deadline (the
+    // callback holds the deadline itself, on wall time).
+    app_->Options()->SetNumericValue("max_cpu_time",
+                                     std::clamp(deadline.RemainingSeconds(), 1e-3, max_cpu_time_s_));
     Ipopt::SmartPtr<QpTnlp> tnlp = new QpTnlp(reduced.problem, reduced.lower, reduced.upper,
-                                              warm_start != nullptr ? &reduced_start : nullptr, deadline_);
+                                              warm_start != nullptr ? &reduced_start : nullptr, deadline);
     Ipopt::ApplicationReturnStatus status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
     Miqp widened;  // outlives the retry's TNLP, which refers to it
     if (status == Ipopt::Not_Enough_Degrees_Of_Freedom) {
@@ -225,7 +232,7 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
         }
       }
       tnlp = new QpTnlp(widened, reduced.lower, reduced.upper, warm_start != nullptr ? &reduced_start : nullptr,
-                        deadline_);
+                        deadline);
       status = app_->OptimizeTNLP(Ipopt::GetRawPtr(tnlp));
     }
     const Ipopt::SmartPtr<Ipopt::SolveStatistics> stats = app_->Statistics();
@@ -262,19 +269,11 @@ class IpoptRelaxationSolver final : public RelaxationSolver {
     return result;
   }
 
-  void SetTimeLimit(double seconds) override {
-    const double limit = std::clamp(seconds, 1e-3, max_cpu_time_s_);
-    app_->Options()->SetNumericValue("max_cpu_time", limit);
-  }
-
-  void SetDeadline(const Deadline& deadline) override { deadline_ = deadline; }
-
   std::string Name() const override { return "ipopt"; }
 
  private:
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
-  double max_cpu_time_s_;
-  Deadline deadline_;
+  double max_cpu_time_s_;  // the most any one solve may take, in CPU seconds
 };
 
 }  // namespace

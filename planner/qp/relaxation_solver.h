@@ -14,8 +14,8 @@ enum class RelaxationStatus {
   kSolved,          // converged to the tolerance: x is optimal for the relaxation
   kInfeasible,      // the relaxation has no feasible point
   kIterationLimit,  // stopped early; x may be inaccurate
-  kCutoff,          // stopped early on SetCutoff: objective is a proven floor of the
-                    // relaxation's optimum at or above the cutoff; x is not optimal
+  kCutoff,          // stopped early on RelaxationRequest::cutoff: objective is a proven
+                    // floor of the relaxation's optimum at or above the cutoff; x is not optimal
   kFailed,          // numerical failure
 };
 
@@ -33,27 +33,41 @@ struct RelaxationResult {
   Eigen::VectorXd lower_cost_rate, upper_cost_rate;
 };
 
+// One solve's whole contract, as Drake's Solve(program, initial_guess, options): a
+// solver keeps nothing from one request to the next.
+struct RelaxationRequest {
+  // The variable bounds in force (a branch-and-bound node's); they replace
+  // problem.var_lower/var_upper. Empty: the problem's own.
+  Eigen::VectorXd lower, upper;
+  // A point to start from (the parent node's relaxation point). Empty: a cold start.
+  Eigen::VectorXd warm_start;
+  // The solve stops, with status kIterationLimit, at its first check (every iteration)
+  // after the deadline passes or its stop flag is set: a time limit holds inside one
+  // solve, not only between solves. Solvers that cannot check ignore it; solvers that cap
+  // their own time (Ipopt's CPU time) cap it at what is left of it.
+  Deadline deadline;
+  // The solve may stop, with status kCutoff, once it proves that the relaxation's
+  // optimum is at least this objective (a node that cannot beat the incumbent need not
+  // be solved to the end). Infinite: solve to the end. Solvers that cannot prove it ignore it.
+  double cutoff = kInfinity;
+  // The relative accuracy asked of the solve, when looser than the solver's own (a
+  // search that only needs bounds to a coarse gap need not pay for digits it will not
+  // use); 0: the solver's own. Solvers without such a setting ignore it.
+  double relative_tolerance = 0.0;
+
+  // The bounds in force: lower/upper, or the problem's own when empty.
+  const Eigen::VectorXd& LowerOr(const Miqp& problem) const { return lower.size() ? lower : problem.var_lower; }
+  const Eigen::VectorXd& UpperOr(const Miqp& problem) const { return upper.size() ? upper : problem.var_upper; }
+  // The warm start, or null for a cold start.
+  const Eigen::VectorXd* WarmStart() const { return warm_start.size() ? &warm_start : nullptr; }
+};
+
 class RelaxationSolver {
  public:
   virtual ~RelaxationSolver() = default;
-  // lower/upper replace problem.var_lower/var_upper (same size). warm_start may be null.
-  virtual RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower,
-                                 const Eigen::VectorXd& upper,
-                                 const Eigen::VectorXd* warm_start) = 0;
-  // Caps the time of the next solves (the branch-and-bound passes its remaining time).
-  virtual void SetTimeLimit(double seconds) = 0;
-  // The next solves stop, with status kIterationLimit, at their first check (every
-  // iteration) after the deadline passes or its stop flag is set: a time limit holds
-  // inside one solve, not only between solves. Solvers that cannot check ignore it.
-  virtual void SetDeadline(const Deadline& /*deadline*/) {}
-  // For the next Solve only: it may stop, with status kCutoff, once it proves that the
-  // relaxation's optimum is at least this objective (a node that cannot beat the
-  // incumbent need not be solved to the end). Solvers that cannot prove it ignore it.
-  virtual void SetCutoff(double /*objective*/) {}
-  // For the next Solve only: the relative accuracy asked of it, when looser than the
-  // solver's own (a search that only needs bounds to a coarse gap need not pay for
-  // digits it will not use). Solvers without such a setting ignore it.
-  virtual void SetRelativeTolerance(double /*tolerance*/) {}
+  // Solves the relaxation of problem under request (sizes: problem.num_variables()).
+  // A solver object may not be used by two threads at once.
+  virtual RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) = 0;
   virtual std::string Name() const = 0;
 };
 

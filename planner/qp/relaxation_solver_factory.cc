@@ -13,37 +13,24 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   FallbackRelaxationSolver(std::unique_ptr<RelaxationSolver> primary, std::unique_ptr<RelaxationSolver> fallback)
       : primary_(std::move(primary)), fallback_(std::move(fallback)) {}
 
-  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                         const Eigen::VectorXd* warm_start) override {
-    RelaxationResult result = primary_->Solve(problem, lower, upper, warm_start);
+  // The fallback solves to the end: it gets the request without its cutoff.
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    RelaxationResult result = primary_->Solve(problem, request);
     if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible ||
-        result.status == RelaxationStatus::kCutoff || deadline_.Expired()) {
+        result.status == RelaxationStatus::kCutoff || request.deadline.Expired()) {
       return result;
     }
-    return fallback_->Solve(problem, lower, upper, warm_start);
+    RelaxationRequest to_the_end = request;
+    to_the_end.cutoff = kInfinity;
+    to_the_end.relative_tolerance = 0.0;
+    return fallback_->Solve(problem, to_the_end);
   }
-
-  void SetTimeLimit(double seconds) override {
-    primary_->SetTimeLimit(seconds);
-    fallback_->SetTimeLimit(seconds);
-  }
-  void SetDeadline(const Deadline& deadline) override {
-    deadline_ = deadline;
-    primary_->SetDeadline(deadline);
-    fallback_->SetDeadline(deadline);
-  }
-
-  void SetCutoff(double objective) override {  // the fallback solves to the end
-    primary_->SetCutoff(objective);
-  }
-  void SetRelativeTolerance(double tolerance) override { primary_->SetRelativeTolerance(tolerance); }
 
   std::string Name() const override { return primary_->Name() + "+" + fallback_->Name(); }
 
  private:
   std::unique_ptr<RelaxationSolver> primary_;
   std::unique_ptr<RelaxationSolver> fallback_;
-  Deadline deadline_;
 };
 
 }  // namespace

@@ -37,7 +37,7 @@ struct BranchAndBoundOptions {
   double time_limit_s = 10.0;
   // The caller's deadline (a whole plan's limit, a stop flag): the search ends at the
   // sooner of it and time_limit_s from its start, checked between nodes and inside
-  // every relaxation solve (RelaxationSolver::SetDeadline).
+  // every relaxation solve (RelaxationRequest::deadline).
   Deadline deadline;
   // Anytime windows: when set, time_limit_s ends the search only once it holds an
   // incumbent; before its first one it runs on until the deadline (or max_nodes), so a
@@ -67,9 +67,9 @@ struct BranchAndBoundOptions {
   // that cannot beat the incumbent are ruled out for the node's subtree.
   bool reduced_cost_fixing = true;
   // A node's relaxation may stop as soon as its solver proves that it cannot beat the
-  // incumbent (RelaxationSolver::SetCutoff).
+  // incumbent (RelaxationRequest::cutoff).
   bool early_cutoff = true;
-  // Relative accuracy asked of each relaxation (RelaxationSolver::SetRelativeTolerance)
+  // Relative accuracy asked of each relaxation (RelaxationRequest::relative_tolerance)
   // when looser than the solver's own; 0: the solver's own.
   double relaxation_tolerance = 0.0;
   // Optional: replaces a node's relaxation point x by one with more integral values that

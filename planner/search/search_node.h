@@ -1,0 +1,28 @@
+#pragma once
+// A branch-and-bound node: its parent's bound plus the bound changes from the root, and
+// the branching that made it (for the pseudo-costs).
+#include <Eigen/Core>
+#include <vector>
+
+#include "planner/miqp/miqp.h"
+
+namespace mfp {
+
+struct BoundChange {
+  int index;
+  double lower, upper;
+};
+
+struct SearchNode {
+  std::vector<BoundChange> changes;
+  double parent_bound = -kInfinity;
+  int depth = 0;
+  // The branching that made this node, for the pseudo-costs.
+  int branch_var = -1;
+  bool branch_up = false;
+  double branch_distance = 0.0;
+  double parent_objective = 0.0;
+  Eigen::VectorXd warm_start;  // parent's relaxation point
+};
+
+}  // namespace mfp

@@ -1,0 +1,74 @@
+#include "planner/search/search_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "planner/qp/fixed_integer_qp.h"
+
+namespace mfp {
+
+SearchState::SearchState(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
+                         const BranchAndBoundOptions& options)
+    : p_(problem),
+      solvers_(solvers),
+      opt_(options),
+      start_(Clock::now()),
+      deadline_(options.deadline.Within(options.time_limit_s)),
+      hard_deadline_(options.time_limit_needs_incumbent ? options.deadline : deadline_),
+      queue_(options.node_selection, options.plunge_fraction) {}
+
+bool SearchState::Stalled() const {
+  return opt_.stall_time_fraction > 0.0 && HasIncumbent() &&
+         std::chrono::duration<double>(Clock::now() - last_improvement_).count() >
+             opt_.stall_time_fraction * opt_.time_limit_s;
+}
+
+double SearchState::GapTolerance() const {
+  return std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
+}
+
+void SearchState::OfferIncumbent(Eigen::VectorXd x) {
+  const std::optional<double> objective = FeasibleObjective(p_, &x, opt_.feasibility_tolerance);
+  if (!objective) return;
+  if (!HasIncumbent() || *objective < result_.objective) {
+    result_.x = std::move(x);
+    result_.objective = *objective;
+    last_improvement_ = Clock::now();
+    if (opt_.on_incumbent) ReportProgress();
+  }
+}
+
+RelaxationRequest SearchState::Request(Eigen::VectorXd lower, Eigen::VectorXd upper, const Eigen::VectorXd* warm,
+                                       double cutoff) const {
+  RelaxationRequest request;
+  request.lower = std::move(lower);
+  request.upper = std::move(upper);
+  if (warm != nullptr) request.warm_start = *warm;
+  request.deadline = Active();
+  if (opt_.early_cutoff) request.cutoff = cutoff;
+  request.relative_tolerance = opt_.relaxation_tolerance;
+  return request;
+}
+
+double SearchState::UnexploredBound() const {
+  return std::min({in_flight_bound_, unresolved_bound_, gap_pruned_bound_, queue_.LeastBound()});
+}
+
+double RelativeGap(double objective, double bound) { return (objective - bound) / std::max(1.0, std::abs(objective)); }
+
+void SearchState::ReportProgress() const {
+  BranchAndBoundResult progress;
+  progress.status = SolveStatus::kFeasible;
+  progress.objective = result_.objective;
+  progress.bound = std::min(result_.objective, std::max(result_.bound, UnexploredBound()));
+  progress.gap = RelativeGap(progress.objective, progress.bound);
+  progress.nodes = result_.nodes;
+  progress.relaxations = result_.relaxations;
+  progress.strong_branching_solves = result_.strong_branching_solves;
+  progress.propagation_prunes = result_.propagation_prunes;
+  progress.solve_time_s = Elapsed();
+  opt_.on_incumbent(progress);
+}
+
+}  // namespace mfp
