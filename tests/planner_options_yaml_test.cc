@@ -14,6 +14,7 @@
 #include "planner/io/scenario_yaml.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "test_temp_path.h"
+#include "tests/input_error_of.h"
 
 namespace mfp {
 namespace {
@@ -62,12 +63,7 @@ std::string Nested(const std::string& key, const std::string& value) {
 }
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Read(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return InputErrorOf([&] { Read(text); });
 }
 
 TEST(PlannerOptionsYaml, SearchOptionsReachTheBranchAndBound) {
