@@ -50,37 +50,11 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
 }
 
-}  // namespace
-
-RegionExtractionResult ExtractRegions(const OccupancyMap& map,
-                                      const RegionExtractorOptions& options) {
-  ValidateOptions(options);
-  const Clock::time_point start = Clock::now();
-  RegionExtractionResult result;
+// The stages after the surface layers: surface fit, planar patches, decomposition.
+// `result` holds the layers' statistics already; `start` is when the extraction began.
+void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions& options,
+                       Clock::time_point start, RegionExtractionResult& result) {
   RegionExtractionStats& stats = result.stats;
-  const double res_in = map.resolution_m;
-  SurfaceLayerOptions layer_options;
-  layer_options.clearance_m = options.clearance_m;
-  layer_options.require_seen_from_above = options.require_seen_from_above;
-  layer_options.max_cells = options.max_height_map_cells;
-  // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
-  layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
-                                  ? res_in * (options.grow_tolerance_voxels + std::tan(options.max_slope_rad)) * (1.0 + 1e-3)
-                                  : 0.0;
-  SurfaceLayers layers = BuildSurfaceLayers(map, layer_options);
-  result.layers = std::move(layers.layers);
-  result.height_map = result.layers.front();
-  stats.layers = static_cast<int>(result.layers.size());
-  stats.no_room_above = layers.no_room_above;
-  stats.not_seen_from_above = layers.not_seen_from_above;
-  stats.isolated_voxels = layers.isolated_voxels;
-  stats.height_map_s = SecondsSince(start);
-  if (map.leaves.empty()) {
-    result.message = "the map has no occupied voxels, so it has no regions";
-    stats.total_s = SecondsSince(start);
-    return result;
-  }
-  stats.surface_cells = layers.candidates;
   const double res = result.height_map.resolution_m;
 
   Clock::time_point t = Clock::now();
@@ -204,6 +178,59 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
         << " m";
     result.message = msg.str();
   }
+}
+
+}  // namespace
+
+RegionExtractionResult ExtractRegions(const OccupancyMap& map,
+                                      const RegionExtractorOptions& options) {
+  ValidateOptions(options);
+  const Clock::time_point start = Clock::now();
+  RegionExtractionResult result;
+  RegionExtractionStats& stats = result.stats;
+  const double res_in = map.resolution_m;
+  SurfaceLayerOptions layer_options;
+  layer_options.clearance_m = options.clearance_m;
+  layer_options.require_seen_from_above = options.require_seen_from_above;
+  layer_options.max_cells = options.max_height_map_cells;
+  // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
+  layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
+                                  ? res_in * (options.grow_tolerance_voxels + std::tan(options.max_slope_rad)) * (1.0 + 1e-3)
+                                  : 0.0;
+  SurfaceLayers layers = BuildSurfaceLayers(map, layer_options);
+  result.layers = std::move(layers.layers);
+  result.height_map = result.layers.front();
+  stats.layers = static_cast<int>(result.layers.size());
+  stats.no_room_above = layers.no_room_above;
+  stats.not_seen_from_above = layers.not_seen_from_above;
+  stats.isolated_voxels = layers.isolated_voxels;
+  stats.height_map_s = SecondsSince(start);
+  if (map.leaves.empty()) {
+    result.message = "the map has no occupied voxels, so it has no regions";
+    stats.total_s = SecondsSince(start);
+    return result;
+  }
+  stats.surface_cells = layers.candidates;
+  ExtractFromLayers(layers, options, start, result);
+  return result;
+}
+
+RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
+                                                const RegionExtractorOptions& options) {
+  ValidateOptions(options);
+  MFP_CHECK(!layers.layers.empty() && layers.layers.size() == layers.solid_beside.size());
+  const Clock::time_point start = Clock::now();
+  RegionExtractionResult result;
+  result.layers = std::move(layers.layers);
+  result.height_map = result.layers.front();
+  result.stats.layers = static_cast<int>(result.layers.size());
+  result.stats.surface_cells = layers.candidates;
+  result.stats.height_map_s = 0.0;
+  if (layers.candidates == 0) {
+    result.message = "the map has no known surface cells, so it has no regions";
+    return result;
+  }
+  ExtractFromLayers(layers, options, start, result);
   return result;
 }
 

@@ -20,6 +20,7 @@
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/request_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "terrain/map_file.h"
 #include "tools/daemon/timestamped_log.h"
 #include "tools/plan_svg.h"
 #include "tools/text_output.h"
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
   std::string relaxation_solver;
   app.add_option("--scenario", scenario_path, "scenario YAML (robot, terrain, start, goal)");
   app.add_option("--robot", robot_path, "robot YAML (or URDF)");
-  app.add_option("--terrain", terrain_path, "terrain: .bt/.ot map, or a YAML with boxes/regions");
+  app.add_option("--terrain", terrain_path, "terrain: .bt/.ot map, or a height map (.npy with its .yaml, or the .yaml)");
   app.add_option("--start", start_text, "start pose X,Y,YAW [m, m, rad]");
   app.add_option("--goal", goal_text, "goal pose X,Y,YAW [m, m, rad]");
   app.add_option("--max-steps", max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
@@ -110,11 +111,10 @@ int main(int argc, char** argv) {
       scenario.robot_path = robot_path;
       scenario.start = ParsePose(start_text, "--start");
       scenario.goal = ParsePose(goal_text, "--goal");
-      const std::string ext = terrain_path.substr(terrain_path.find_last_of('.') + 1);
-      if (ext == "bt" || ext == "ot") {
+      if (mfp::IsMapFilePath(terrain_path)) {  // an OctoMap or a height map
         scenario.map_path = terrain_path;
       } else {
-        throw mfp::InputError("--terrain " + terrain_path + ": expected a .bt or .ot map");
+        throw mfp::InputError("--terrain " + terrain_path + ": expected a .bt or .ot map, or a height map (.npy with its .yaml)");
       }
     }
     const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
