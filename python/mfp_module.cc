@@ -184,7 +184,7 @@ py::list TerrainRegionList(const PyTerrain& t, const RobotModel* robot) {
   return RegionList(regions);
 }
 
-PyPlan Plan(const RobotModel& robot, const PyTerrain& terrain, const py::sequence& start, const py::sequence& goal,
+PyPlan PlanFromPython(const RobotModel& robot, const PyTerrain& terrain, const py::sequence& start, const py::sequence& goal,
             double time_limit, const py::object& options) {
   const py::dict opts = options.is_none() ? py::dict() : options.cast<py::dict>();
   const PythonPlanInputs inputs = InputsFrom(start, goal, time_limit, opts);
@@ -243,7 +243,7 @@ PYBIND11_MODULE(mfp, m) {
                std::to_string(p.result.plan.footsteps.size()) + " footsteps>";
       });
 
-  m.def("plan", &Plan, py::arg("robot"), py::arg("terrain"), py::arg("start"), py::arg("goal"),
+  m.def("plan", &PlanFromPython, py::arg("robot"), py::arg("terrain"), py::arg("start"), py::arg("goal"),
         py::arg("time_limit") = 0.0, py::arg("options") = py::none(),
         "Plans footsteps from start to goal (x, y, yaw) as mfp-plan does; time_limit in s (0: default).");
 }

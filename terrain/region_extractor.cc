@@ -82,7 +82,7 @@ void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions
     result.stopped = true;
     result.message = "time limit reached during the surface fit: no regions";
     stats.total_s = SecondsSince(start);
-    return result;
+    return;
   }
 
   t = Clock::now();

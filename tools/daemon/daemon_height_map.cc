@@ -3,6 +3,7 @@
 #include <mutex>
 
 #include "lcmtypes/message_guard.h"
+#include "planner/base/check.h"
 #include "tools/daemon/daemon_core.h"
 #include "tools/daemon/height_map_message.h"
 
