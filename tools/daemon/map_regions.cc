@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <limits>
 
-#include "terrain/octomap_io.h"
 #include "terrain/height_grid.h"
+#include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "tools/daemon/height_map_message.h"
 

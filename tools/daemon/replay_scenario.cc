@@ -2,8 +2,8 @@
 
 #include <random>
 
-#include "mfp/plan_request_t.hpp"
 #include "mfp/height_map_t.hpp"
+#include "mfp/plan_request_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
 #include "planner/base/yaml_fields.h"
