@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -64,11 +65,9 @@ TEST(NpyArray, RoundTripKeepsShapeAndValues) {
 
 TEST(NpyArray, ReadsFloat64InFortranOrder) {
   // [[1, 2], [3, 4]] stored column by column: 1, 3, 2, 4.
-  std::vector<uint8_t> data;
-  for (double v : {1.0, 3.0, 2.0, 4.0}) {
-    const auto* p = reinterpret_cast<const uint8_t*>(&v);
-    data.insert(data.end(), p, p + 8);
-  }
+  const double values[4] = {1.0, 3.0, 2.0, 4.0};
+  std::vector<uint8_t> data(sizeof(values));
+  std::memcpy(data.data(), values, sizeof(values));
   const NpyArray a = ParseNpy(HandNpy("{'descr': '<f8', 'fortran_order': True, 'shape': (2, 2), }\n", data), "t", 10);
   EXPECT_EQ(a.values, (std::vector<float>{1, 2, 3, 4}));
 }
