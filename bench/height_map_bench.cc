@@ -49,6 +49,9 @@ bool PrintHeightMapRows(const RegionExtractorOptions& options, int runs) {
       std::printf("%-22s %6.3f %7s %9zu %8s %9.1f %8zu %6d %9.4f  least-covered walkable face %.0f%%\n",
                   row.name.c_str(), row.resolution_m, "1.0/0.5", grid.heights_m.size(), "-", times_ms[runs / 2],
                   result.regions.size(), result.stats.layers, sound.fraction, 100.0 * worst);
+      std::printf("  stages [ms]: layers %.1f, surface fit %.1f, segmentation %.1f, decomposition %.1f\n",
+                  1e3 * result.stats.height_map_s, 1e3 * result.stats.analysis_s, 1e3 * result.stats.segmentation_s,
+                  1e3 * result.stats.decomposition_s);
       if (sound.fraction < 1.0) {
         std::printf("  unsound sample e.g. at (%.3f, %.3f, %.3f)\n", sound.worst_point.x(), sound.worst_point.y(),
                     sound.worst_point.z());

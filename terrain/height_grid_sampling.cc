@@ -32,10 +32,18 @@ HeightGrid SampleHeightGrid(const TerrainDescription& terrain, double resolution
   grid.nx = static_cast<int>(nx);
   grid.ny = static_cast<int>(ny);
   grid.heights_m.resize(static_cast<size_t>(grid.nx) * static_cast<size_t>(grid.ny));
+  const double offsets[3] = {-0.45 * resolution_m, 0.0, 0.45 * resolution_m};
   for (int i = 0; i < grid.nx; ++i) {
     for (int j = 0; j < grid.ny; ++j) {
-      grid.heights_m[grid.Index(i, j)] = static_cast<float>(
-          TrueTopHeight(terrain, grid.origin_m.x() + i * resolution_m, grid.origin_m.y() + j * resolution_m));
+      const double x = grid.origin_m.x() + i * resolution_m, y = grid.origin_m.y() + j * resolution_m;
+      double highest = std::numeric_limits<double>::quiet_NaN();
+      for (double dx : offsets) {
+        for (double dy : offsets) {
+          const double h = TrueTopHeight(terrain, x + dx, y + dy);
+          if (!std::isnan(h) && !(h <= highest)) highest = h;
+        }
+      }
+      grid.heights_m[grid.Index(i, j)] = static_cast<float>(highest);
     }
   }
   return grid;

@@ -7,9 +7,11 @@
 
 namespace mfp {
 
-// The highest box surface above each cell centre (TrueTopHeight) over the boxes' x-y
-// extent, on a grid of the given resolution whose cell centres lie on multiples of it;
-// NaN (unknown) where no box is. Throws InputError when the terrain has no boxes or the
+// Per cell, the highest box surface (TrueTopHeight) over a 3 x 3 pattern of points inside
+// the cell (its centre and +-0.45 cells): an elevation mapper's "highest point seen in the
+// cell", so a surface reaching into a cell raises it and a riser never reaches into a
+// lower cell by more than 0.05 cells. Over the boxes' x-y extent, on a grid of the given
+// resolution whose cell centres lie on multiples of it; NaN (unknown) where no box is. Throws InputError when the terrain has no boxes or the
 // grid would exceed kDefaultMaxHeightMapCells.
 HeightGrid SampleHeightGrid(const TerrainDescription& terrain, double resolution_m);
 
