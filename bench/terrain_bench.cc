@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/height_map_bench.h"
 #include "planner/base/check.h"
 #include "terrain/map_simulation.h"
 #include "terrain/octomap_io.h"
@@ -149,6 +150,8 @@ int main(int argc, char** argv) {
                   sound.worst_point.z());
     }
   }
+  // Height maps (.npy / height_map_t input): the same terrains sampled at cell centres.
+  all_ok = mfp::PrintHeightMapRows(options, runs) && all_ok;
   std::printf("\nsoundness >= 0.99 and coverage of the certifiable part >= 85%% on every face: %s\n",
               all_ok ? "yes" : "NO");
   std::printf("maps marked *: soundness >= 0.99 and coverage of the whole walkable face >= 85%% on every face: %s\n",

@@ -108,4 +108,20 @@ std::string CheckWireLayout(const terrain_map_t* /*tag*/, const uint8_t* data, s
   return cursor.Finish("terrain_map_t");
 }
 
+std::string CheckWireLayout(const height_map_t* /*tag*/, const uint8_t* data, size_t size) {
+  WireCursor cursor(data, size);
+  cursor.Skip(8, "fingerprint");
+  cursor.Skip(8, "utime");
+  cursor.SkipString("frame");
+  cursor.Skip(3 * 8, "resolution, origin_x, origin_y");
+  const int32_t nx = cursor.ReadLength("nx", 0, kMaxWireHeightMapSide, 0);
+  const int32_t ny = cursor.ReadLength("ny", 0, kMaxWireHeightMapSide, 0);
+  const size_t cells = static_cast<size_t>(nx) * static_cast<size_t>(ny);
+  cursor.Skip(cells * 4, "heights");
+  const int32_t variances = cursor.ReadLength("num_variances", 0, INT32_MAX, 4);
+  cursor.Skip(static_cast<size_t>(variances) * 4, "variances");
+  cursor.Skip(8, "max_variance");
+  return cursor.Finish("height_map_t");
+}
+
 }  // namespace mfp

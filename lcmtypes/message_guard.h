@@ -10,6 +10,7 @@
 #include <exception>
 #include <string>
 
+#include "mfp/height_map_t.hpp"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 
@@ -20,6 +21,7 @@ namespace mfp {
 // have a walker; tests check that each walk matches the generated encoder.
 std::string CheckWireLayout(const plan_request_t* tag, const uint8_t* data, size_t size);
 std::string CheckWireLayout(const terrain_map_t* tag, const uint8_t* data, size_t size);
+std::string CheckWireLayout(const height_map_t* tag, const uint8_t* data, size_t size);
 // Types without a walker (the daemon's own outputs, read back by tools and tests).
 template <class Message>
 std::string CheckWireLayout(const Message* /*tag*/, const uint8_t* /*data*/, size_t /*size*/) {
@@ -29,6 +31,9 @@ std::string CheckWireLayout(const Message* /*tag*/, const uint8_t* /*data*/, siz
 // Largest number of legs a plan_request_t may carry (a cap on allocation, not a robot
 // limit; requests are checked against the robot afterwards).
 constexpr int kMaxWireLegs = 64;
+
+// Largest height_map_t side (cells along x or y); the message size cap bounds nx * ny.
+constexpr int kMaxWireHeightMapSide = 65536;
 
 // Decodes data[0, size) into *out. Returns "" on success, else a reason that names the
 // problem ("3 bytes, shorter than the 8-byte fingerprint", "fingerprint ... expected ...").

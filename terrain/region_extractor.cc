@@ -183,6 +183,42 @@ std::string NoRegionsMessage(const RegionExtractionStats& stats, const RegionExt
   return msg.str();
 }
 
+// The stages after the surface layers: surface fit, planar patches, decomposition.
+// `result` holds the layers' statistics already; `start` is when the extraction began.
+void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions& options,
+                       Clock::time_point start, RegionExtractionResult* result) {
+  RegionExtractionStats& stats = result->stats;
+  const double res = result->height_map.resolution_m;
+
+  Clock::time_point t = Clock::now();
+  // The fit window is at least a foot wide (and at least 3 cells).
+  const int window_half_cells = std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
+  CheckFitWork(res, stats.surface_cells, window_half_cells, options);
+  std::vector<SurfaceAnalysis> surfaces;
+  for (const HeightMap& hm : result->layers) {
+    surfaces.push_back(AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
+                                      options.max_slope_rad, options.deadline));
+  }
+  stats.analysis_s = SecondsSince(t);
+  if (std::any_of(surfaces.begin(), surfaces.end(), [](const SurfaceAnalysis& s) { return s.stopped; })) {
+    result->stopped = true;
+    result->message = "time limit reached during the surface fit: no regions";
+    stats.total_s = SecondsSince(start);
+    return;
+  }
+
+  t = Clock::now();
+  const std::vector<LayerPatch> patches = SegmentLayers(result->layers, surfaces, res, options);
+  stats.segmentation_s = SecondsSince(t);
+  stats.patches = static_cast<int>(patches.size());
+
+  t = Clock::now();
+  DecomposePatches(patches, layers.solid_beside, res, options, result);
+  stats.decomposition_s = SecondsSince(t);
+  stats.total_s = SecondsSince(start);
+  if (result->regions.empty() && !result->stopped) result->message = NoRegionsMessage(stats, options);
+}
+
 }  // namespace
 
 RegionExtractionResult ExtractRegions(const OccupancyMap& map,
@@ -205,35 +241,26 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
     return result;
   }
   stats.surface_cells = layers.candidates;
-  const double res = result.height_map.resolution_m;
+  ExtractFromLayers(layers, options, start, &result);
+  return result;
+}
 
-  Clock::time_point t = Clock::now();
-  // The fit window is at least a foot wide (and at least 3 cells).
-  const int window_half_cells = std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
-  CheckFitWork(res, stats.surface_cells, window_half_cells, options);
-  std::vector<SurfaceAnalysis> surfaces;
-  for (const HeightMap& hm : result.layers) {
-    surfaces.push_back(AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
-                                      options.max_slope_rad, options.deadline));
-  }
-  stats.analysis_s = SecondsSince(t);
-  if (std::any_of(surfaces.begin(), surfaces.end(), [](const SurfaceAnalysis& s) { return s.stopped; })) {
-    result.stopped = true;
-    result.message = "time limit reached during the surface fit: no regions";
-    stats.total_s = SecondsSince(start);
+RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
+                                                const RegionExtractorOptions& options) {
+  ValidateOptions(options);
+  MFP_CHECK(!layers.layers.empty() && layers.layers.size() == layers.solid_beside.size());
+  const Clock::time_point start = Clock::now();
+  RegionExtractionResult result;
+  result.layers = std::move(layers.layers);
+  result.height_map = result.layers.front();
+  result.stats.layers = static_cast<int>(result.layers.size());
+  result.stats.surface_cells = layers.candidates;
+  result.stats.height_map_s = 0.0;
+  if (layers.candidates == 0) {
+    result.message = "the map has no known surface cells, so it has no regions";
     return result;
   }
-
-  t = Clock::now();
-  const std::vector<LayerPatch> patches = SegmentLayers(result.layers, surfaces, res, options);
-  stats.segmentation_s = SecondsSince(t);
-  stats.patches = static_cast<int>(patches.size());
-
-  t = Clock::now();
-  DecomposePatches(patches, layers.solid_beside, res, options, &result);
-  stats.decomposition_s = SecondsSince(t);
-  stats.total_s = SecondsSince(start);
-  if (result.regions.empty() && !result.stopped) result.message = NoRegionsMessage(stats, options);
+  ExtractFromLayers(layers, options, start, &result);
   return result;
 }
 

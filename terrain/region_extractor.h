@@ -14,6 +14,7 @@
 #include "terrain/convex_region.h"
 #include "terrain/height_map.h"
 #include "terrain/occupancy_map.h"
+#include "terrain/surface_layers.h"
 #include "terrain/terrain_description.h"
 
 namespace mfp {
@@ -105,6 +106,13 @@ struct RegionExtractionResult {
 // positive, clearance not > 0) and on maps BuildHeightMap rejects.
 RegionExtractionResult ExtractRegions(const OccupancyMap& map,
                                       const RegionExtractorOptions& options);
+
+// The same stages from surface layers made elsewhere (a height map: height_grid.h): the
+// surface fit, planar patches and decomposition. Every layer shares one grid and has its
+// solid_beside bits; `candidates` counts the surface cells. Throws InputError on options
+// out of range, as ExtractRegions does. (Clearance and seen-from-above options do not apply.)
+RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
+                                                const RegionExtractorOptions& options);
 
 // Makes the map of a box description (MakeTerrainMap: voxelised, or scanned from its
 // sensors, with its noise) and extracts its regions: what a scenario with a `terrain:`

@@ -2,7 +2,7 @@
 # The fresh-machine check: does a new user's Debian 12 go from clone to result with the
 # README's two commands? Makes a minimal bookworm root (debootstrap --variant=minbase,
 # nothing installed by hand), copies a clean clone of HEAD into it, and runs
-# tools/demo.sh and then tools/test.sh inside it with chroot. A package missing from
+# tools/demo.sh, then tools/test.sh, then the README's Python example inside it with chroot. A package missing from
 # tools/debian-packages.txt fails here even when this machine happens to have it.
 #
 # usage: tools/check_fresh_debian.sh [--keep] [--root DIR]
@@ -133,5 +133,7 @@ in_root() {
 }
 timed demo in_root bash -c 'cd /mfp && tools/demo.sh'
 timed test in_root bash -c 'cd /mfp && tools/test.sh'
+# The README's Python example, as a new user runs it after the two commands.
+timed example in_root bash -c 'cd /mfp && PYTHONPATH=build/python python3 examples/plan_on_stairs.py --out /tmp/stairs.png'
 step_name="done"
-echo "fresh Debian check: passed (demo and the whole suite on a fresh bookworm, $SECONDS s in all)"
+echo "fresh Debian check: passed (demo, the whole suite and the Python example on a fresh bookworm, $SECONDS s in all)"

@@ -1,6 +1,7 @@
 // mfp-make-log: writes an LCM log (for lcm-logplayer or mfp-replay) from a scenario
 // file: the map on MFP_TERRAIN_MAP, the requests on MFP_PLAN_REQUEST, and malformed
-// payloads, at the times the scenario gives. Format: tools/daemon/replay_scenario.h.
+// payloads, at the times the scenario gives (the map as a height_map_t on MFP_HEIGHT_MAP
+// with as_height_map). Format: tools/daemon/replay_scenario.h.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -12,10 +13,12 @@
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
 #include "planner/planning/footstep_planner.h"
+#include "terrain/height_grid_sampling.h"
 #include "terrain/octomap_io.h"
 #include "terrain/voxelize.h"
 #include "tools/daemon/daemon_config.h"
 #include "tools/daemon/daemon_setup.h"
+#include "tools/daemon/height_map_message.h"
 #include "tools/daemon/map_regions.h"
 #include "tools/daemon/replay_scenario.h"
 #include "tools/daemon/timestamped_log.h"
@@ -43,6 +46,10 @@ std::vector<uint8_t> Encode(const Message& m) {
 int64_t At(double seconds) { return kLogStartUtime + static_cast<int64_t>(std::llround(seconds * 1e6)); }
 
 std::vector<uint8_t> MapBytes(const ReplayScenario& scenario) {
+  if (scenario.as_height_map) {
+    return Encode(HeightMapMessage(SampleHeightGrid(*scenario.terrain, scenario.terrain->resolution_m),
+                                   At(scenario.map_at_s), "world"));
+  }
   if (scenario.terrain) return OccupancyMapBytes(VoxelizeTerrain(*scenario.terrain), true);
   std::ifstream in(scenario.map_file, std::ios::binary);
   if (!in) throw InputError(scenario.file + ": map: cannot open '" + scenario.map_file + "'");
@@ -55,7 +62,8 @@ int Run(const std::string& scenario_path, const std::string& config_path, const 
   const std::vector<uint8_t> map_bytes = MapBytes(scenario);
   // The regions the daemon will extract, to put start stances on the surface.
   const std::vector<ConvexRegion> regions = MakeOctomapMapFunction(setup)(
-      std::string(map_bytes.begin(), map_bytes.end()), "bt", scenario.file + ": map");
+      std::string(map_bytes.begin(), map_bytes.end()), scenario.as_height_map ? kHeightMapFormat : "bt",
+      scenario.file + ": map");
 
   std::vector<Event> events;
   terrain_map_t map{};
@@ -64,7 +72,11 @@ int Run(const std::string& scenario_path, const std::string& config_path, const 
   map.format = scenario.map_file.empty() ? "bt" : scenario.map_file.substr(scenario.map_file.rfind('.') + 1);
   map.data = map_bytes;
   map.num_bytes = static_cast<int32_t>(map.data.size());
-  events.push_back({map.utime, kTerrainMapChannel, Encode(map)});
+  if (scenario.as_height_map) {
+    events.push_back({map.utime, kHeightMapChannel, map_bytes});  // already a height_map_t
+  } else {
+    events.push_back({map.utime, kTerrainMapChannel, Encode(map)});
+  }
 
   for (const ScenarioRequest& r : scenario.requests) {
     const std::string robot_name = r.robot.empty() ? setup.config.default_robot : r.robot;

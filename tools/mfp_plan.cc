@@ -21,6 +21,7 @@
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/request_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "terrain/map_file.h"
 #include "tools/cli_values.h"
 #include "tools/daemon/timestamped_log.h"
 #include "tools/options_reference.h"
@@ -66,7 +67,7 @@ struct Flags {
 void AddFlags(CLI::App* app, Flags* f) {
   app->add_option("--scenario", f->scenario_path, "scenario YAML (robot, terrain, start, goal)");
   app->add_option("--robot", f->robot_path, "robot YAML (or URDF)");
-  app->add_option("--terrain", f->terrain_path, "terrain: .bt/.ot map, or a YAML with boxes/regions");
+  app->add_option("--terrain", f->terrain_path, "terrain: .bt/.ot map, or a height map (.npy with its .yaml, or the .yaml)");
   app->add_option("--start", f->start_text, "start pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
   app->add_option("--goal", f->goal_text, "goal pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
   app->add_option("--max-steps", f->max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
@@ -106,8 +107,9 @@ mfp::Scenario ScenarioFromFlags(const Flags& f) {
   scenario.robot_path = f.robot_path;
   scenario.start = ParsePose(f.start_text, "--start");
   scenario.goal = ParsePose(f.goal_text, "--goal");
-  const std::string ext = f.terrain_path.substr(f.terrain_path.find_last_of('.') + 1);
-  if (ext != "bt" && ext != "ot") throw mfp::InputError("--terrain " + f.terrain_path + ": expected a .bt or .ot map");
+  if (!mfp::IsMapFilePath(f.terrain_path)) {  // an OctoMap or a height map
+    throw mfp::InputError("--terrain " + f.terrain_path + ": expected a .bt or .ot map, or a height map (.npy with its .yaml)");
+  }
   scenario.map_path = f.terrain_path;
   return scenario;
 }

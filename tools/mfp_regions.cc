@@ -1,4 +1,4 @@
-// mfp-regions MAP: the convex safe regions of an OctoMap map (.bt or .ot), as a table,
+// mfp-regions MAP: the convex safe regions of an OctoMap map (.bt or .ot) or a height map, as a table,
 // JSON ({"regions": [...]}) and SVG; --region ID prints one region's faces and vertices.
 // Exit 0 on success (also when the map has no regions: the reason is printed), 2 on bad
 // input with the problem on stderr.
@@ -10,6 +10,8 @@
 #include <iostream>
 
 #include "planner/base/check.h"
+#include "terrain/height_grid.h"
+#include "terrain/height_map_file.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/region_json.h"
@@ -31,7 +33,7 @@ int main(int argc, char** argv) {
   std::string map_path, json_path, svg_path;
   int region_id = -1;
   mfp::RegionExtractorOptions options;
-  app.add_option("map", map_path, "map file (.bt or .ot)")->required();
+  app.add_option("map", map_path, "map file (.bt or .ot), or a height map (.npy with its .yaml, or the .yaml)")->required();
   app.add_option("--json", json_path, "write {\"regions\": [...]} to FILE ('-' = stdout)");
   app.add_option("--svg", svg_path, "write a picture (heights shaded, regions outlined) to FILE");
   app.add_option("--region", region_id, "print the faces (A, b) and vertices of region ID");
@@ -57,8 +59,11 @@ int main(int argc, char** argv) {
   }
   if (time_limit_s > 0) options.deadline = mfp::Deadline::After(time_limit_s);
   try {
-    const mfp::OccupancyMap map = mfp::LoadMapFile(map_path);
-    const mfp::RegionExtractionResult result = mfp::ExtractRegions(map, options);
+    const bool height_map = mfp::IsHeightMapPath(map_path);
+    const mfp::OccupancyMap map = height_map ? mfp::OccupancyMap() : mfp::LoadMapFile(map_path);
+    const mfp::RegionExtractionResult result =
+        height_map ? mfp::ExtractRegionsFromHeightGrid(mfp::LoadHeightGridFile(map_path), options)
+                   : mfp::ExtractRegions(map, options);
     if (!json_path.empty()) mfp::WriteTextOutput(json_path, mfp::RegionsToJson(result.regions).dump(2) + "\n");
     if (!svg_path.empty()) mfp::WriteTextOutput(svg_path, mfp::RegionsSvg(result.layers, result.regions, result.region_layer));
     if (region_id >= 0 || app.count("--region") > 0) {
@@ -80,6 +85,13 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (json_path == "-") return 0;  // stdout holds the JSON only
+    if (height_map) {
+      std::printf("%s: height map %d x %d at %.3f m, %d known cells, %d planar patches (%d too steep, "
+                  "%d too small), %zu regions in %.1f ms\n",
+                  map_path.c_str(), result.height_map.cols, result.height_map.rows, result.height_map.resolution_m,
+                  result.stats.surface_cells, result.stats.patches, result.stats.patches_too_steep,
+                  result.stats.patches_too_small, result.regions.size(), 1e3 * result.stats.total_s);
+    } else {
     std::printf("%s: %zu occupied leaves (%zu free) at %.3f m, %d surface cells on %d levels "
                 "(%d without room above, %d not seen from above, %d outlier voxels), %d planar patches "
                 "(%d too steep, %d too small), %zu regions in %.1f ms\n",
@@ -88,6 +100,7 @@ int main(int argc, char** argv) {
                 result.stats.not_seen_from_above, result.stats.isolated_voxels, result.stats.patches,
                 result.stats.patches_too_steep, result.stats.patches_too_small, result.regions.size(),
                 1e3 * result.stats.total_s);
+    }
     if (result.regions.empty() || result.stopped) std::printf("%s\n", result.message.c_str());
     if (result.regions.empty()) return 0;
     std::printf("%4s %10s %9s %9s %8s %6s\n", "id", "area_m2", "slope_deg", "height_m", "vertices", "level");

@@ -5,6 +5,7 @@
 #include "planner/base/check.h"
 #include "planner/base/yaml_fields.h"
 #include "planner/io/planner_options_yaml.h"
+#include "terrain/map_file.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
 #include "terrain/terrain_yaml.h"
@@ -184,9 +185,8 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
   return s;
 }
 
-std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
-                                          std::string* note, const Deadline& deadline) {
-  if (!scenario.listed_regions.empty()) return scenario.listed_regions;
+RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const RobotModel& robot,
+                                             const Deadline& deadline) {
   // Surfaces need room above them for the robot: its stance height plus a margin.
   const double clearance_m = robot.stance_height_m + scenario.options.body_clearance_margin_m;
   RegionExtractorOptions options;
@@ -200,8 +200,15 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
     options.min_region_area_voxels = 0.0;
   }
   if (scenario.overlapping_regions) options.overlapping_regions = *scenario.overlapping_regions;
+  return options;
+}
+
+std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
+                                          std::string* note, const Deadline& deadline) {
+  if (!scenario.listed_regions.empty()) return scenario.listed_regions;
+  const RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot, deadline);
   if (!scenario.map_path.empty()) {
-    RegionExtractionResult from_map = ExtractRegions(LoadMapFile(scenario.map_path), options);
+    RegionExtractionResult from_map = ExtractRegionsFromMapFile(scenario.map_path, options);
     if (note != nullptr) *note = from_map.message;
     return std::move(from_map.regions);
   }

@@ -11,6 +11,7 @@
 #include "planner/planning/footstep_planner.h"
 #include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
+#include "terrain/region_extractor.h"
 #include "terrain/terrain_description.h"
 
 namespace mfp {
@@ -66,6 +67,11 @@ std::vector<OptionDoc> ScenarioOptionDocs();
 std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
                                           std::string* note = nullptr,
                                           const Deadline& deadline = Deadline());
+
+// The extractor options ScenarioRegions uses for a map or boxes: the robot's foot radius,
+// slope limit and clearance, the scenario's terrain settings, the deadline.
+RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const RobotModel& robot,
+                                             const Deadline& deadline = Deadline());
 
 // The request a scenario describes: the robot's nominal stance at the start pose (feet on
 // the regions below them), the goal, and the scenario's step and time settings.

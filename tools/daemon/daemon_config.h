@@ -10,6 +10,7 @@ namespace mfp {
 
 // LCM channels of the design; fixed by the contract.
 inline constexpr const char* kTerrainMapChannel = "MFP_TERRAIN_MAP";
+inline constexpr const char* kHeightMapChannel = "MFP_HEIGHT_MAP";  // height_map_t (extension)
 inline constexpr const char* kPlanRequestChannel = "MFP_PLAN_REQUEST";
 inline constexpr const char* kPlanChannel = "MFP_PLAN";
 inline constexpr const char* kRegionsChannel = "MFP_REGIONS";
@@ -23,7 +24,7 @@ struct DaemonLimits {
   int max_steps = 120;                 // larger requests are rejected
   int queue_size = 4;                  // requests waiting; the oldest is dropped beyond
   size_t max_request_bytes = 64 * 1024;        // larger plan_request_t payloads are rejected
-  size_t max_map_bytes = 64 * 1024 * 1024;     // larger terrain_map_t payloads are rejected
+  size_t max_map_bytes = 64 * 1024 * 1024;     // larger terrain_map_t, height_map_t payloads are rejected
   // Messages received but not yet decoded (the intake queue between the LCM thread and
   // the decoding thread); beyond it a request is answered dropped and counted.
   int inbox_size = 4096;

@@ -25,6 +25,7 @@ DaemonCore::DaemonCore(std::shared_ptr<const DaemonSetup> setup, MapFunction map
 
 void DaemonCore::SubscribeTo(Transport& transport) {
   transport.Subscribe(kTerrainMapChannel, [this](const RawMessage& m) { Receive(m); });
+  transport.Subscribe(kHeightMapChannel, [this](const RawMessage& m) { Receive(m); });
   transport.Subscribe(kPlanRequestChannel, [this](const RawMessage& m) { Receive(m); });
 }
 
@@ -60,7 +61,7 @@ void DaemonCore::CountRejected(const std::string& channel, const std::string& er
 
 void DaemonCore::Receive(const RawMessage& message) {
   try {
-    const bool is_map = message.channel == kTerrainMapChannel;
+    const bool is_map = message.channel == kTerrainMapChannel || message.channel == kHeightMapChannel;
     if (!is_map && message.channel != kPlanRequestChannel) return;
     Received received;
     received.channel = message.channel;
@@ -142,7 +143,7 @@ bool DaemonCore::ProcessPendingMap(std::chrono::milliseconds timeout) {
 
 void DaemonCore::OnMessage(const RawMessage& message) {
   try {
-    if (message.channel == kTerrainMapChannel) {
+    if (message.channel == kTerrainMapChannel || message.channel == kHeightMapChannel) {
       HandleMap(message, /*abandon_on_stop=*/false);
     } else if (message.channel == kPlanRequestChannel) {
       HandleRequest(message, clock_());

@@ -81,7 +81,7 @@ class DaemonCore {
   DaemonCore(std::shared_ptr<const DaemonSetup> setup, MapFunction map_function,
              PlanFunction plan_function, Publisher& publisher, Clock clock, LogSink log = {});
 
-  // Subscribes Receive to MFP_TERRAIN_MAP and MFP_PLAN_REQUEST.
+  // Subscribes Receive to MFP_TERRAIN_MAP, MFP_HEIGHT_MAP and MFP_PLAN_REQUEST.
   void SubscribeTo(Transport& transport);
 
   // The live receive path: copies the message into the intake queue (a request) or the
@@ -163,6 +163,8 @@ class DaemonCore {
   void RecordOutcome(const PlanJob& job, const Plan& plan, bool abandoned);
 
   void HandleMap(const RawMessage& message, bool abandon_on_stop);
+  // A height_map_t (daemon_height_map.cc): checked, then read like a map file.
+  void HandleHeightMap(const RawMessage& message, bool abandon_on_stop);
   void HandleRequest(const RawMessage& message, int64_t arrival_utime);
   // Decodes a request that will not be planned and answers it dropped (or counts it
   // rejected when it does not decode).

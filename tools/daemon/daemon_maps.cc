@@ -12,6 +12,7 @@
 namespace mfp {
 
 void DaemonCore::HandleMap(const RawMessage& message, bool abandon_on_stop) {
+  if (message.channel == kHeightMapChannel) return HandleHeightMap(message, abandon_on_stop);
   size_t max_bytes = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -5,8 +5,10 @@
 
 #include "planner/base/check.h"
 #include "planner/base/format.h"
+#include "terrain/height_grid.h"
 #include "terrain/octomap_io.h"
 #include "terrain/region_extractor.h"
+#include "tools/daemon/height_map_message.h"
 
 namespace mfp {
 namespace {
@@ -37,8 +39,12 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
   }
   if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
-  return [options](const std::string& bytes, const std::string& format,
-                   const std::string& what) {
+  const size_t max_map_bytes = setup.config.limits.max_map_bytes;
+  return [options, max_map_bytes](const std::string& bytes, const std::string& format,
+                                   const std::string& what) {
+    if (format == kHeightMapFormat) {
+      return ExtractRegionsFromHeightGrid(HeightGridFromBytes(bytes, max_map_bytes, what), options).regions;
+    }
     CheckMapFormat(format, what);
     const std::vector<uint8_t> data(bytes.begin(), bytes.end());
     const OccupancyMap map = LoadMapBytes(data, what);

@@ -5,7 +5,8 @@
 
 namespace mfp {
 
-// Regions from the bytes of an OctoMap file (.bt or .ot), extracted for the robots of
+// Regions from the bytes of an OctoMap file (.bt or .ot), or of a height_map_t message
+// (format kHeightMapFormat), extracted for the robots of
 // the setup (inset by the largest foot radius, slopes up to the smallest max_slope).
 MapFunction MakeOctomapMapFunction(const DaemonSetup& setup);
 

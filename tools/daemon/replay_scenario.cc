@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "mfp/height_map_t.hpp"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/base/check.h"
@@ -58,7 +59,7 @@ ScenarioRequest ReadRequest(const YAML::Node& node, const YamlContext& ctx) {
 static ReplayScenario LoadReplayScenarioUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
-  RejectUnknownKeys(root, ctx, {"description", "terrain", "map", "map_at_s", "requests", "malformed"});
+  RejectUnknownKeys(root, ctx, {"description", "terrain", "map", "map_at_s", "as_height_map", "requests", "malformed"});
   ReplayScenario s;
   s.file = path;
   if (root["terrain"]) s.terrain = ParseTerrainDescription(root["terrain"], ctx.Child("terrain"));
@@ -66,6 +67,8 @@ static ReplayScenario LoadReplayScenarioUnguarded(const std::string& path) {
   if (s.terrain.has_value() == !s.map_file.empty())
     throw InputError(path + ": give exactly one of terrain and map");
   if (auto v = OptionalDouble(root, ctx, "map_at_s", 0.0, 3600.0)) s.map_at_s = *v;
+  s.as_height_map = OptionalBool(root, ctx, "as_height_map").value_or(false);
+  if (s.as_height_map && !s.terrain) throw InputError(path + ": as_height_map needs a terrain (boxes)");
   if (const YAML::Node requests = root["requests"]) {
     for (size_t i = 0; i < requests.size(); ++i)
       s.requests.push_back(ReadRequest(requests[i], ctx.Child("requests").Index(i)));
@@ -94,9 +97,10 @@ const std::vector<std::string>& MalformedKinds() {
 std::vector<uint8_t> MalformedPayload(const std::string& kind, const std::string& channel,
                                       size_t oversize_bytes, uint32_t seed) {
   const bool request = channel == kPlanRequestChannel;
-  if (!request && channel != kTerrainMapChannel)
+  const bool height_map = channel == kHeightMapChannel;
+  if (!request && !height_map && channel != kTerrainMapChannel)
     throw InputError("malformed payload channel '" + channel + "': expected " +
-                     kPlanRequestChannel + " or " + kTerrainMapChannel);
+                     kPlanRequestChannel + ", " + kTerrainMapChannel + " or " + kHeightMapChannel);
   auto encode = [](const auto& message) {
     std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
     message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
@@ -112,6 +116,14 @@ std::vector<uint8_t> MalformedPayload(const std::string& kind, const std::string
     m.request_id = 999999;
     m.num_legs = negative ? -1 : 6;
     if (!negative) m.start_feet.assign(6, std::vector<double>(3, 0.0));
+    valid = encode(m);
+  } else if (height_map) {
+    height_map_t m{};
+    m.frame = "world";
+    m.resolution = 0.02;
+    m.nx = negative ? -1 : 4;
+    m.ny = 4;
+    if (!negative) m.heights.assign(4, std::vector<float>(4, 0.0f));
     valid = encode(m);
   } else {
     terrain_map_t m{};

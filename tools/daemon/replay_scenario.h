@@ -4,6 +4,8 @@
 //
 //   terrain: {resolution: 0.02, boxes: [...]}   # the map (terrain_yaml.h); or map: FILE.bt
 //   map_at_s: 0.5                               # when the map is sent [s from the log start]
+//   as_height_map: true      # optional: send the terrain's boxes as a height_map_t on
+//                            # MFP_HEIGHT_MAP (sampled at its resolution), not an OctoMap
 //   requests:
 //     - at_s: 1.0            # when the request is sent [s]
 //       id: 1                # request_id
@@ -19,6 +21,7 @@
 //       expect_message: "num_legs"     # optional: a part of the reply's message
 //   malformed:               # payloads the daemon must count and survive
 //     - {at_s: 0.8, channel: MFP_PLAN_REQUEST, kind: truncated}
+//       channels: MFP_PLAN_REQUEST, MFP_TERRAIN_MAP, MFP_HEIGHT_MAP
 //       kinds: truncated, random, wrong_fingerprint, negative_length, oversized, empty
 #include <Eigen/Core>
 #include <cstdint>
@@ -55,6 +58,7 @@ struct ReplayScenario {
   std::optional<TerrainDescription> terrain;  // either terrain or map_file
   std::string map_file;
   double map_at_s = 0.0;
+  bool as_height_map = false;  // the terrain goes out as a height_map_t
   std::vector<ScenarioRequest> requests;
   std::vector<ScenarioMalformed> malformed;
 };
@@ -62,8 +66,8 @@ struct ReplayScenario {
 // Throws InputError naming the file, key and allowed range.
 ReplayScenario LoadReplayScenario(const std::string& path);
 
-// A malformed payload of the given kind for a channel (MFP_PLAN_REQUEST or
-// MFP_TERRAIN_MAP), derived from a valid message of the channel's type; seeded, so logs
+// A malformed payload of the given kind for a channel (MFP_PLAN_REQUEST, MFP_TERRAIN_MAP
+// or MFP_HEIGHT_MAP), derived from a valid message of the channel's type; seeded, so logs
 // are reproducible. oversize_bytes is the size of "oversized" payloads. Throws
 // InputError on an unknown kind or channel.
 std::vector<uint8_t> MalformedPayload(const std::string& kind, const std::string& channel,

@@ -73,7 +73,7 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
                       Number(limits.max_time_limit_s) + "] s (0 = default)",
                   name);
   if (regions == nullptr)
-    return Reject(SolveStatus::kNoMap, "no terrain map received yet on MFP_TERRAIN_MAP", name);
+    return Reject(SolveStatus::kNoMap, "no terrain map received yet on MFP_TERRAIN_MAP or MFP_HEIGHT_MAP", name);
   if (regions->empty())
     return Reject(SolveStatus::kNoMap, "the current terrain map has no safe regions", name);
 

@@ -1,0 +1,66 @@
+#!/bin/bash
+# The daemon receiving a height_map_t on MFP_HEIGHT_MAP over real LCM: plays a log
+# (mfp-make-log, as_height_map) with lcm-logplayer into a running mfp-daemon, records the
+# replies with lcm-logger and checks every one with mfp-check-replies (one reply per
+# request, plans valid on the published regions, malformed height maps counted), and that
+# the daemon logged the height map as its map. Multicast stays inside a private network
+# namespace (tests/netns_helper.sh); it never sends multicast on the host network.
+#
+# usage: daemon_height_map_test.sh SOURCE_DIR BUILD_DIR
+set -euo pipefail
+
+SOURCE_DIR=$(realpath "$1")
+BUILD_DIR=$(realpath "$2")
+SCENARIO="$SOURCE_DIR/tests/daemon_height_map_scenario.yaml"
+CONFIG="$SOURCE_DIR/config/daemon.yaml"
+URL="udpm://239.255.76.67:7667?ttl=0"
+
+source "$SOURCE_DIR/tests/netns_helper.sh"
+mfp_enter_private_namespace "$@"
+
+mfp_test_workspace mfp_daemon_height_map
+LOG="$WORK/daemon.log"
+
+"$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
+
+lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' \
+  --flush-interval=50 --force "$WORK/replies.lcmlog" &
+LOGGER_PID=$!
+
+"$BUILD_DIR/tools/mfp-daemon" --config "$CONFIG" --lcm-url "$URL" 2>"$LOG" &
+DAEMON_PID=$!
+for _ in $(seq 1 300); do
+  grep -q "started:" "$LOG" && break
+  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
+  sleep 0.1
+done
+grep -q "started:" "$LOG" || fail "mfp-daemon did not start within 30 s"
+
+lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
+
+deadline=$((SECONDS + 240))
+while :; do
+  check=0
+  "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" \
+    --config "$CONFIG" >"$WORK/check.txt" 2>&1 || check=$?
+  [ "$check" -ne 3 ] && break
+  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died"
+  if [ $SECONDS -ge $deadline ]; then cat "$WORK/check.txt"; fail "replies incomplete after 240 s"; fi
+  sleep 1
+done
+sleep 1  # one more heartbeat, so the last status counts every reply
+
+kill -TERM "$DAEMON_PID"
+status=0
+wait "$DAEMON_PID" || status=$?
+DAEMON_PID=""
+[ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
+kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
+
+"$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" --config "$CONFIG" \
+  || { cat "$WORK/check.txt"; fail "replies do not check"; }
+grep -q "height_map_t utime" "$LOG" || fail "the daemon logged no height_map_t map"
+grep -q "rejected message on MFP_HEIGHT_MAP" "$LOG" || fail "no malformed height_map_t was rejected"
+echo "--- daemon log ---"
+cat "$LOG"
+echo "PASS: daemon_height_map_test"
