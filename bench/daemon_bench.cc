@@ -93,6 +93,36 @@ double Percentile(std::vector<double> v, double p) {
   return v[lo] + (rank - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
+terrain_map_t MapMessage(const TerrainDescription& terrain) {
+  terrain_map_t map{};
+  map.utime = NowUs();
+  map.frame = "world";
+  map.format = "bt";
+  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
+  map.num_bytes = static_cast<int32_t>(map.data.size());
+  return map;
+}
+
+// Publishes the map and waits until the daemon has accepted it.
+void PublishMapAndWait(Publisher& transport, const DaemonCore& core, const terrain_map_t& map) {
+  const auto map_bytes = Encode(map);
+  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
+  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+
+// The robot's nominal stance at the origin; max_steps new footsteps towards a goal 0.25 m
+// ahead.
+plan_request_t NominalRequest(const RobotModel& robot, int max_steps, double time_limit_s) {
+  plan_request_t request{};
+  request.num_legs = robot.num_legs();
+  for (const LegModel& leg : robot.legs)
+    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
+  request.goal_x = 0.25;
+  request.max_steps = max_steps;
+  request.time_limit_s = time_limit_s;
+  return request;
+}
+
 // Replies by request id, with their receive time.
 class ReplyLog {
  public:
@@ -132,12 +162,7 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
   ground.center_world_m = Eigen::Vector3d(1.0, 0.0, -0.05);
   ground.size_m = Eigen::Vector3d(4.0, 3.0, 0.1);
   terrain.boxes.push_back(ground);
-  terrain_map_t map{};
-  map.utime = NowUs();
-  map.frame = "world";
-  map.format = "bt";
-  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
-  map.num_bytes = static_cast<int32_t>(map.data.size());
+  const terrain_map_t map = MapMessage(terrain);
 
   LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
   DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
@@ -149,18 +174,9 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
   });
   const double rss_start = RssMiB();
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  PublishMapAndWait(transport, core, map);
 
-  // Nominal hexapod stance at the origin; 12 new footsteps towards a goal 0.25 m ahead.
-  plan_request_t request{};
-  request.num_legs = hexapod.num_legs();
-  for (const LegModel& leg : hexapod.legs)
-    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
-  request.goal_x = 0.25;
-  request.max_steps = 12;
-  request.time_limit_s = time_limit_s;
+  plan_request_t request = NominalRequest(hexapod, 12, time_limit_s);
 
   // 1. Latency at rate_hz.
   std::map<int64_t, int64_t> sent_us;
@@ -230,16 +246,6 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
               RssMiB());
   runner.Stop();
   return 0;
-}
-
-terrain_map_t MapMessage(const TerrainDescription& terrain) {
-  terrain_map_t map{};
-  map.utime = NowUs();
-  map.frame = "world";
-  map.format = "bt";
-  map.data = OccupancyMapBytes(VoxelizeTerrain(terrain), true);
-  map.num_bytes = static_cast<int32_t>(map.data.size());
-  return map;
 }
 
 // A real-size field, seeded: a 1.2 m start pad at the origin and 200 stones of 0.21 m on
@@ -384,9 +390,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     }
   };
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  PublishMapAndWait(transport, core, map);
 
   std::printf("\n3. replanning soak on %s (%zu regions, %zu map bytes): %s, %.0f Hz for %.1f min, "
               "%d new footsteps per request, time limit %.2f s, a gait cycle walked every %.2f s\n",
@@ -513,16 +517,8 @@ void Burst(const std::shared_ptr<const DaemonSetup>& setup, int count, double ti
     ++statuses[ToString(static_cast<SolveStatus>(p.status))];
   });
   DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  const auto map_bytes = Encode(map);
-  transport.Publish(kTerrainMapChannel, map_bytes.data(), map_bytes.size());
-  while (core.counters().maps == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  plan_request_t request{};
-  request.num_legs = robot.num_legs();
-  for (const LegModel& leg : robot.legs)
-    request.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
-  request.goal_x = 0.25;
-  request.max_steps = 12;
-  request.time_limit_s = time_limit_s;
+  PublishMapAndWait(transport, core, map);
+  plan_request_t request = NominalRequest(robot, 12, time_limit_s);
   const auto start = Clock::now();
   for (int i = 1; i <= count; ++i) {
     request.request_id = i;

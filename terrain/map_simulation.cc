@@ -18,22 +18,10 @@ namespace {
 // Returns -1 when o lies inside the box.
 double RayEntersBox(const TerrainBox& box, const Eigen::Matrix3d& R, const Eigen::Vector3d& o,
                     const Eigen::Vector3d& d) {
-  const Eigen::Vector3d lo = R.transpose() * (o - box.center_world_m);
-  const Eigen::Vector3d ld = R.transpose() * d;
-  double t_in = -std::numeric_limits<double>::infinity();
-  double t_out = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    const double h = 0.5 * box.size_m(a);
-    if (std::abs(ld(a)) < 1e-15) {
-      if (std::abs(lo(a)) > h) return std::numeric_limits<double>::infinity();
-      continue;
-    }
-    double t0 = (-h - lo(a)) / ld(a), t1 = (h - lo(a)) / ld(a);
-    if (t0 > t1) std::swap(t0, t1);
-    t_in = std::max(t_in, t0);
-    t_out = std::min(t_out, t1);
+  double t_in = 0.0, t_out = 0.0;
+  if (!RayBoxInterval(box, R, o, d, 1e-15, &t_in, &t_out) || t_out < 0.0) {
+    return std::numeric_limits<double>::infinity();
   }
-  if (t_in > t_out || t_out < 0.0) return std::numeric_limits<double>::infinity();
   return t_in < 0.0 ? -1.0 : t_in;
 }
 

@@ -17,6 +17,7 @@ struct LocalGrid {
   std::vector<uint8_t> cells;
   uint8_t& At(int r, int c) { return cells[static_cast<size_t>(r) * cols + c]; }
   uint8_t At(int r, int c) const { return cells[static_cast<size_t>(r) * cols + c]; }
+  bool Contains(int r, int c) const { return r >= 0 && r < rows && c >= 0 && c < cols && At(r, c); }
 };
 
 // How far (in cells) the side of a safe rectangle [x0, x1] x [y0, y1] (local centre
@@ -116,23 +117,35 @@ double PrincipalAngleRad(const HeightMap& hm, const PlanarPatch& patch) {
   return best_angle;
 }
 
-std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
-                                   const PatchDecompositionOptions& options) {
-  std::vector<Quad2d> quads;
-  if (patch.cells.empty()) return quads;
-  const double res = hm.resolution_m;
-  const double base_cells = options.inset_m / res;
-  const double drop_cells = options.drop_inset_m / res;
+namespace {
+
+// The insets of one decomposition, in cells.
+struct InsetsInCells {
+  double base = 0.0;   // from every cell outside the patch
+  double drop = 0.0;   // in addition, next to the patch where its surface may end
+  double riser = 0.0;  // in addition, next to the patch where material rises
+  double max = 0.0;    // the largest of them all
+};
+
+InsetsInCells ToCells(const PatchDecompositionOptions& options, double res) {
+  InsetsInCells insets;
+  insets.base = options.inset_m / res;
+  insets.drop = options.drop_inset_m / res;
   // A riser with no uncertainty is kept strictly off (by 0.1 um): a foot disk touching a
   // wall is not on free surface.
-  const double riser_cells = (options.riser_inset_m > 0.0 ? options.riser_inset_m : 1e-7) / res;
-  const double max_inset_cells = base_cells + std::max(drop_cells, riser_cells);
-  // Offsets of the cells whose squares come closer than the largest inset to a cell
-  // centre, with that distance [cells].
-  struct Offset {
-    int dr, dc;
-    double dist_cells;
-  };
+  insets.riser = (options.riser_inset_m > 0.0 ? options.riser_inset_m : 1e-7) / res;
+  insets.max = insets.base + std::max(insets.drop, insets.riser);
+  return insets;
+}
+
+// Offset of a cell whose square comes closer than the largest inset to a cell centre,
+// with that distance [cells].
+struct Offset {
+  int dr, dc;
+  double dist_cells;
+};
+
+std::vector<Offset> DiskOffsets(double max_inset_cells, double res) {
   std::vector<Offset> offsets;
   const int reach = static_cast<int>(std::ceil(max_inset_cells + 0.5));
   for (int dr = -reach; dr <= reach; ++dr) {
@@ -142,7 +155,11 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
       if (d < max_inset_cells - 1e-12 / res) offsets.push_back({dr, dc, d});
     }
   }
-  // Patch mask over its bounding box.
+  return offsets;
+}
+
+// The patch's cells over its bounding box.
+LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch) {
   LocalGrid mask;
   int rmin = hm.rows, rmax = -1, cmin = hm.cols, cmax = -1;
   for (int cell : patch.cells) {
@@ -157,62 +174,87 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   mask.cols = cmax - cmin + 1;
   mask.cells.assign(static_cast<size_t>(mask.rows) * mask.cols, 0);
   for (int cell : patch.cells) mask.At(cell / hm.cols - rmin, cell % hm.cols - cmin) = 1;
-  auto in_mask = [&](int r, int c) {
-    return r >= 0 && r < mask.rows && c >= 0 && c < mask.cols && mask.At(r, c);
-  };
-  // Each outside cell's inset [cells] over the bounding box plus a ring (-1: a patch
-  // cell): the edge uncertainty is added where the patch may end inside its boundary
-  // cell next to it - every neighbour unless material rises there (solid_beside).
-  const int ring = static_cast<int>(std::ceil(max_inset_cells)) + 2;
-  const int ext_rows = mask.rows + 2 * ring, ext_cols = mask.cols + 2 * ring;
-  std::vector<double> inset_grid(static_cast<size_t>(ext_rows) * ext_cols, base_cells);
-  for (int r = -ring; r < mask.rows + ring; ++r) {
-    for (int c = -ring; c < mask.cols + ring; ++c) {
-      double& inset = inset_grid[static_cast<size_t>(r + ring) * ext_cols + (c + ring)];
-      if (in_mask(r, c)) {
+  return mask;
+}
+
+// Each outside cell's inset [cells] over the mask's bounding box plus a ring (-1: a patch
+// cell); beyond the ring, the largest inset.
+class InsetField {
+ public:
+  InsetField(const HeightMap& hm, const LocalGrid& mask, const PatchDecompositionOptions& options,
+             const InsetsInCells& insets);
+  double At(int r, int c) const {
+    if (r < -ring_ || r >= rows_ + ring_ || c < -ring_ || c >= cols_ + ring_) return max_;
+    return grid_[static_cast<size_t>(r + ring_) * ext_cols_ + (c + ring_)];
+  }
+  int ring() const { return ring_; }
+
+ private:
+  int ring_, rows_, cols_, ext_cols_;
+  double max_;
+  std::vector<double> grid_;
+};
+
+// The edge uncertainty is added where the patch may end inside its boundary cell next to
+// it - every neighbour unless material rises there (solid_beside).
+InsetField::InsetField(const HeightMap& hm, const LocalGrid& mask,
+                       const PatchDecompositionOptions& options, const InsetsInCells& insets)
+    : ring_(static_cast<int>(std::ceil(insets.max)) + 2),
+      rows_(mask.rows),
+      cols_(mask.cols),
+      ext_cols_(mask.cols + 2 * ring_),
+      max_(insets.max),
+      grid_(static_cast<size_t>(mask.rows + 2 * ring_) * ext_cols_, insets.base) {
+  for (int r = -ring_; r < mask.rows + ring_; ++r) {
+    for (int c = -ring_; c < mask.cols + ring_; ++c) {
+      double& inset = grid_[static_cast<size_t>(r + ring_) * ext_cols_ + (c + ring_)];
+      if (mask.Contains(r, c)) {
         inset = -1.0;
         continue;
       }
       bool next_to_patch = false, drop = false;
       for (int dr = -1; dr <= 1 && !drop; ++dr) {
         for (int dc = -1; dc <= 1 && !drop; ++dc) {
-          if ((dr == 0 && dc == 0) || !in_mask(r + dr, c + dc)) continue;
+          if ((dr == 0 && dc == 0) || !mask.Contains(r + dr, c + dc)) continue;
           next_to_patch = true;
           // From the patch cell (r + dr, c + dc), this cell is neighbour (-dr, -dc).
-          const int p = hm.Index(rmin + r + dr, cmin + c + dc);
+          const int p = hm.Index(mask.row0 + r + dr, mask.col0 + c + dc);
           drop = options.solid_beside == nullptr ||
                  !((*options.solid_beside)[static_cast<size_t>(p)] & (1u << NeighbourBit(-dr, -dc)));
         }
       }
-      if (next_to_patch) inset += drop ? drop_cells : riser_cells;
+      if (next_to_patch) inset += drop ? insets.drop : insets.riser;
       // A cell asking no inset (point feet, no margin) still keeps regions off its
-      // interior: the side and rotated-rectangle tests below need a positive inset.
+      // interior: the side and rotated-rectangle tests need a positive inset.
       inset = std::max(inset, 1e-6);
     }
   }
-  auto inset_at = [&](int r, int c) {
-    if (r < -ring || r >= mask.rows + ring || c < -ring || c >= mask.cols + ring) return max_inset_cells;
-    return inset_grid[static_cast<size_t>(r + ring) * ext_cols + (c + ring)];
-  };
-  // Eroded mask: cells whose centre holds a whole foot disk.
+}
+
+// Eroded mask: cells whose centre holds a whole foot disk.
+LocalGrid ErodedMask(const LocalGrid& mask, const InsetField& inset, const std::vector<Offset>& offsets,
+                     double res) {
   LocalGrid eroded = mask;
   for (int r = 0; r < mask.rows; ++r) {
     for (int c = 0; c < mask.cols; ++c) {
       if (!mask.At(r, c)) continue;
       for (const Offset& o : offsets) {
-        const double inset = inset_at(r + o.dr, c + o.dc);
-        if (inset >= 0.0 && res * o.dist_cells < res * inset - 1e-12) {
+        const double cell_inset = inset.At(r + o.dr, c + o.dc);
+        if (cell_inset >= 0.0 && res * o.dist_cells < res * cell_inset - 1e-12) {
           eroded.At(r, c) = 0;
           break;
         }
       }
     }
   }
-  if (mask.rows < 2 || mask.cols < 2) return quads;
-  // Dual squares: spanned by the centres of cells (r, c) .. (r + 1, c + 1), all kept.
+  return eroded;
+}
+
+// Dual squares: spanned by the centres of cells (r, c) .. (r + 1, c + 1), all kept.
+LocalGrid DualSquares(const LocalGrid& eroded) {
   LocalGrid dual;
-  dual.rows = mask.rows - 1;
-  dual.cols = mask.cols - 1;
+  dual.rows = eroded.rows - 1;
+  dual.cols = eroded.cols - 1;
   dual.cells.assign(static_cast<size_t>(dual.rows) * dual.cols, 0);
   for (int r = 0; r < dual.rows; ++r) {
     for (int c = 0; c < dual.cols; ++c) {
@@ -220,70 +262,98 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
                       eroded.At(r + 1, c + 1);
     }
   }
-  // Local "centre units": x = column offset from the centre of local cell (0, 0).
-  const Eigen::Vector2d origin_center = hm.CellCenter(rmin, cmin);
-  auto to_world = [&](const Eigen::Vector2d& local) { return origin_center + res * local; };
+  return dual;
+}
 
-  const double angle = PrincipalAngleRad(hm, patch);
-  const bool use_grid =
-      angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
+// What the two covers share: the patch's local frame ("centre units": x = column offset
+// from the centre of local cell (0, 0)) and its safety data.
+struct CoverInput {
+  const LocalGrid* mask;
+  const LocalGrid* dual;
+  const InsetField* inset;
+  double max_inset_cells;
+  double res;
+  Eigen::Vector2d origin_center;
+  Eigen::Vector2d ToWorld(const Eigen::Vector2d& local) const { return origin_center + res * local; }
+};
+
+int MinRectCells(double min_area_xy_m2, double cell_area_m2) {
+  return std::max(1, static_cast<int>(std::ceil(min_area_xy_m2 / cell_area_m2 - 1e-9)));
+}
+
+// Rectangles of complete dual squares end on cell centres; each side then moves out as
+// far as its strip keeps the inset from every cell outside the patch, so regions lose
+// less than the cell quantisation of the inset.
+std::vector<Quad2d> CoverOnGrid(const CoverInput& in, const PatchDecompositionOptions& options) {
   RectangleCoverOptions cover = options.cover;
-  if (use_grid) {
-    cover.min_rect_cells =
-        std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / (res * res) - 1e-9)));
-    // Rectangles of complete dual squares end on cell centres; each side then moves out
-    // as far as its strip keeps the inset from every cell outside the patch, so regions
-    // lose less than the cell quantisation of the inset.
-    auto inset_xy = [&](int c, int r) { return inset_at(r, c); };
-    for (const CellRect& rect : GreedyRectangleCover(dual.cells, dual.rows, dual.cols, cover)) {
-      double x0 = rect.col0, x1 = rect.col0 + rect.cols;
-      double y0 = rect.row0, y1 = rect.row0 + rect.rows;
-      if (max_inset_cells > 0.0) {
-        // -x, +x (mirrored), -y and +y (transposed), each with the sides moved so far.
-        x0 -= SideSlack(inset_xy, x0, y0, y1, max_inset_cells);
-        x1 += SideSlack([&](int c, int r) { return inset_xy(-c, r); }, -x1, y0, y1, max_inset_cells);
-        y0 -= SideSlack([&](int c, int r) { return inset_xy(r, c); }, y0, x0, x1, max_inset_cells);
-        y1 += SideSlack([&](int c, int r) { return inset_xy(r, -c); }, -y1, x0, x1, max_inset_cells);
-      }
-      quads.push_back({to_world({x0, y0}), to_world({x1, y0}), to_world({x1, y1}),
-                       to_world({x0, y1})});
+  cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, in.res * in.res);
+  const double max_inset = in.max_inset_cells;
+  auto inset_xy = [&](int c, int r) { return in.inset->At(r, c); };
+  std::vector<Quad2d> quads;
+  for (const CellRect& rect : GreedyRectangleCover(in.dual->cells, in.dual->rows, in.dual->cols, cover)) {
+    double x0 = rect.col0, x1 = rect.col0 + rect.cols;
+    double y0 = rect.row0, y1 = rect.row0 + rect.rows;
+    if (max_inset > 0.0) {
+      // -x, +x (mirrored), -y and +y (transposed), each with the sides moved so far.
+      x0 -= SideSlack(inset_xy, x0, y0, y1, max_inset);
+      x1 += SideSlack([&](int c, int r) { return inset_xy(-c, r); }, -x1, y0, y1, max_inset);
+      y0 -= SideSlack([&](int c, int r) { return inset_xy(r, c); }, y0, x0, x1, max_inset);
+      y1 += SideSlack([&](int c, int r) { return inset_xy(r, -c); }, -y1, x0, x1, max_inset);
     }
-    return quads;
+    quads.push_back({in.ToWorld({x0, y0}), in.ToWorld({x1, y0}), in.ToWorld({x1, y1}), in.ToWorld({x0, y1})});
   }
-  // Rotated frame: u along the principal direction, v across; half-cell sampling.
-  const double step = 0.5;
-  const Eigen::Vector2d eu(std::cos(angle), std::sin(angle)), ev(-std::sin(angle), std::cos(angle));
+  return quads;
+}
+
+// The rotated grid: u along the principal direction, v across, in steps of half a cell,
+// spanning the dual squares' bounding box.
+struct RotatedFrame {
+  static constexpr double kStep = 0.5;
+  Eigen::Vector2d eu, ev;
   double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
-  for (double x : {0.0, double(dual.cols)}) {
-    for (double y : {0.0, double(dual.rows)}) {
-      const Eigen::Vector2d p(x, y);
-      umin = std::min(umin, p.dot(eu));
-      umax = std::max(umax, p.dot(eu));
-      vmin = std::min(vmin, p.dot(ev));
-      vmax = std::max(vmax, p.dot(ev));
+
+  RotatedFrame(double angle, const LocalGrid& dual)
+      : eu(std::cos(angle), std::sin(angle)), ev(-std::sin(angle), std::cos(angle)) {
+    for (double x : {0.0, double(dual.cols)}) {
+      for (double y : {0.0, double(dual.rows)}) {
+        const Eigen::Vector2d p(x, y);
+        umin = std::min(umin, p.dot(eu));
+        umax = std::max(umax, p.dot(eu));
+        vmin = std::min(vmin, p.dot(ev));
+        vmax = std::max(vmax, p.dot(ev));
+      }
     }
   }
+  // Rotated-grid corner -> centre units.
+  Eigen::Vector2d Corner(double a, double b) const {
+    return Eigen::Vector2d(eu * (umin + a * kStep) + ev * (vmin + b * kStep));
+  }
+};
+
+struct Box2d {
+  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+  void Add(const Eigen::Vector2d& p) {
+    xmin = std::min(xmin, p.x());
+    xmax = std::max(xmax, p.x());
+    ymin = std::min(ymin, p.y());
+    ymax = std::max(ymax, p.y());
+  }
+};
+
+// A rotated-grid cell is kept when its bounding box lies in complete dual squares.
+LocalGrid RotatedGrid(const RotatedFrame& frame, const LocalGrid& dual) {
   LocalGrid rotated;
-  rotated.cols = static_cast<int>(std::ceil((umax - umin) / step));
-  rotated.rows = static_cast<int>(std::ceil((vmax - vmin) / step));
+  rotated.cols = static_cast<int>(std::ceil((frame.umax - frame.umin) / RotatedFrame::kStep));
+  rotated.rows = static_cast<int>(std::ceil((frame.vmax - frame.vmin) / RotatedFrame::kStep));
   rotated.cells.assign(static_cast<size_t>(rotated.rows) * rotated.cols, 0);
-  auto corner = [&](double a, double b) {  // rotated-grid corner -> centre units
-    return Eigen::Vector2d(eu * (umin + a * step) + ev * (vmin + b * step));
-  };
   for (int b = 0; b < rotated.rows; ++b) {
     for (int a = 0; a < rotated.cols; ++a) {
-      double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
-      for (int k = 0; k < 4; ++k) {
-        const Eigen::Vector2d p = corner(a + (k & 1), b + (k >> 1));
-        xmin = std::min(xmin, p.x());
-        xmax = std::max(xmax, p.x());
-        ymin = std::min(ymin, p.y());
-        ymax = std::max(ymax, p.y());
-      }
-      const int c0 = static_cast<int>(std::floor(xmin + 1e-9));
-      const int c1 = static_cast<int>(std::ceil(xmax - 1e-9));
-      const int r0 = static_cast<int>(std::floor(ymin + 1e-9));
-      const int r1 = static_cast<int>(std::ceil(ymax - 1e-9));
+      Box2d box;
+      for (int k = 0; k < 4; ++k) box.Add(frame.Corner(a + (k & 1), b + (k >> 1)));
+      const int c0 = static_cast<int>(std::floor(box.xmin + 1e-9));
+      const int c1 = static_cast<int>(std::ceil(box.xmax - 1e-9));
+      const int r0 = static_cast<int>(std::floor(box.ymin + 1e-9));
+      const int r1 = static_cast<int>(std::ceil(box.ymax - 1e-9));
       if (c0 < 0 || r0 < 0 || c1 > dual.cols || r1 > dual.rows) continue;
       bool inside = true;
       for (int r = r0; r < r1 && inside; ++r) {
@@ -292,80 +362,112 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
       rotated.At(b, a) = inside;
     }
   }
-  // Cells outside the patch near it (holes, and a ring around the bounding box), with
-  // their insets.
-  const double inset_cells = max_inset_cells;
-  struct Outside {
-    int r, c;
-    double inset_cells;
-  };
-  std::vector<Outside> outside;
-  for (int r = -ring; r < mask.rows + ring; ++r) {
-    for (int c = -ring; c < mask.cols + ring; ++c) {
-      if (in_mask(r, c)) continue;
-      outside.push_back({r, c, inset_at(r, c)});
+  return rotated;
+}
+
+// A cell outside the patch near it (holes, and a ring around the bounding box), with its
+// inset.
+struct OutsideCell {
+  int r, c;
+  double inset_cells;
+};
+
+std::vector<OutsideCell> OutsideCells(const LocalGrid& mask, const InsetField& inset) {
+  std::vector<OutsideCell> outside;
+  for (int r = -inset.ring(); r < mask.rows + inset.ring(); ++r) {
+    for (int c = -inset.ring(); c < mask.cols + inset.ring(); ++c) {
+      if (mask.Contains(r, c)) continue;
+      outside.push_back({r, c, inset.At(r, c)});
     }
   }
-  const double cell_area_m2 = step * step * res * res;
-  cover.min_rect_cells =
-      std::max(1, static_cast<int>(std::ceil(options.min_area_xy_m2 / cell_area_m2 - 1e-9)));
-  for (const CellRect& rect :
-       GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
+  return outside;
+}
+
+// Whether the rotated rectangle [u0, u1] x [v0, v1] (rotated-grid steps) keeps the inset
+// from every cell square outside the patch: an exact test.
+bool RotatedRectSafe(const RotatedFrame& frame, const std::vector<OutsideCell>& outside,
+                     double max_inset_cells, double u0, double u1, double v0, double v1) {
+  const std::array<Eigen::Vector2d, 4> quad = {frame.Corner(u0, v0), frame.Corner(u1, v0),
+                                               frame.Corner(u1, v1), frame.Corner(u0, v1)};
+  Box2d box;
+  for (const Eigen::Vector2d& p : quad) box.Add(p);
+  const double step = RotatedFrame::kStep;
+  for (const OutsideCell& out : outside) {
+    const int r = out.r, c = out.c;
+    if (r < box.ymin - max_inset_cells - 1 || r > box.ymax + max_inset_cells + 1 ||
+        c < box.xmin - max_inset_cells - 1 || c > box.xmax + max_inset_cells + 1) {
+      continue;
+    }
+    // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
+    const Eigen::Vector2d centre(c, r);
+    const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
+    const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+    if (centre_dist >= out.inset_cells + 0.7072) continue;
+    if (centre_dist < out.inset_cells - 0.7072) return false;
+    const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
+                                                 Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
+    if (QuadDistance(quad, cell) < out.inset_cells - 1e-9) return false;
+  }
+  return true;
+}
+
+// Each side of a safe rotated rectangle moves out (in rotated-grid steps, up to one cell)
+// while the rectangle stays safe, by bisection.
+void GrowRotatedRect(const RotatedFrame& frame, const std::vector<OutsideCell>& outside,
+                     double max_inset_cells, double* a0, double* a1, double* b0, double* b1) {
+  const double most = 1.0 / RotatedFrame::kStep;  // one cell, in rotated-grid steps
+  auto grow = [&](double* side, double sign) {
+    double lo = 0.0, hi = most;
+    const double base = *side;
+    for (int it = 0; it < 8; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      *side = base + sign * mid;
+      (RotatedRectSafe(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
+    }
+    *side = base + sign * lo;
+  };
+  grow(a0, -1.0);
+  grow(a1, 1.0);
+  grow(b0, -1.0);
+  grow(b1, 1.0);
+}
+
+std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const PatchDecompositionOptions& options) {
+  const RotatedFrame frame(angle, *in.dual);
+  const LocalGrid rotated = RotatedGrid(frame, *in.dual);
+  const std::vector<OutsideCell> outside = OutsideCells(*in.mask, *in.inset);
+  RectangleCoverOptions cover = options.cover;
+  const double step = RotatedFrame::kStep;
+  cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, step * step * in.res * in.res);
+  std::vector<Quad2d> quads;
+  for (const CellRect& rect : GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
     double a0 = rect.col0, a1 = rect.col0 + rect.cols;
     double b0 = rect.row0, b1 = rect.row0 + rect.rows;
-    // Each side moves out (in rotated-grid steps, up to one cell) while the rectangle keeps
-    // the inset from every cell square outside the patch: an exact test, by bisection.
-    auto safe = [&](double u0, double u1, double v0, double v1) {
-      const std::array<Eigen::Vector2d, 4> quad = {corner(u0, v0), corner(u1, v0), corner(u1, v1), corner(u0, v1)};
-      double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
-      for (const Eigen::Vector2d& p : quad) {
-        xmin = std::min(xmin, p.x());
-        xmax = std::max(xmax, p.x());
-        ymin = std::min(ymin, p.y());
-        ymax = std::max(ymax, p.y());
-      }
-      for (const Outside& out : outside) {
-        const int r = out.r, c = out.c;
-        if (r < ymin - inset_cells - 1 || r > ymax + inset_cells + 1 || c < xmin - inset_cells - 1 ||
-            c > xmax + inset_cells + 1) {
-          continue;
-        }
-        {
-          const double inset_cells = out.inset_cells;
-          // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
-          const Eigen::Vector2d centre(c, r);
-          const double a = (centre.dot(eu) - umin) / step, bb = (centre.dot(ev) - vmin) / step;
-          const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
-          if (centre_dist >= inset_cells + 0.7072) continue;
-          if (centre_dist < inset_cells - 0.7072) return false;
-          const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
-                                                       Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
-          if (QuadDistance(quad, cell) < inset_cells - 1e-9) return false;
-        }
-      }
-      return true;
-    };
-    if (inset_cells > 0.0 && safe(a0, a1, b0, b1)) {
-      const double most = 1.0 / step;  // one cell, in rotated-grid steps
-      auto grow = [&](double* side, double sign) {
-        double lo = 0.0, hi = most;
-        const double base = *side;
-        for (int it = 0; it < 8; ++it) {
-          const double mid = 0.5 * (lo + hi);
-          *side = base + sign * mid;
-          (safe(a0, a1, b0, b1) ? lo : hi) = mid;
-        }
-        *side = base + sign * lo;
-      };
-      grow(&a0, -1.0);
-      grow(&a1, 1.0);
-      grow(&b0, -1.0);
-      grow(&b1, 1.0);
+    if (in.max_inset_cells > 0.0 && RotatedRectSafe(frame, outside, in.max_inset_cells, a0, a1, b0, b1)) {
+      GrowRotatedRect(frame, outside, in.max_inset_cells, &a0, &a1, &b0, &b1);
     }
-    quads.push_back({to_world(corner(a0, b0)), to_world(corner(a1, b0)),
-                     to_world(corner(a1, b1)), to_world(corner(a0, b1))});
+    quads.push_back({in.ToWorld(frame.Corner(a0, b0)), in.ToWorld(frame.Corner(a1, b0)),
+                     in.ToWorld(frame.Corner(a1, b1)), in.ToWorld(frame.Corner(a0, b1))});
   }
   return quads;
+}
+
+}  // namespace
+
+std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
+                                   const PatchDecompositionOptions& options) {
+  if (patch.cells.empty()) return {};
+  const double res = hm.resolution_m;
+  const InsetsInCells insets = ToCells(options, res);
+  const LocalGrid mask = PatchMask(hm, patch);
+  const InsetField inset(hm, mask, options, insets);
+  if (mask.rows < 2 || mask.cols < 2) return {};
+  const LocalGrid eroded = ErodedMask(mask, inset, DiskOffsets(insets.max, res), res);
+  const LocalGrid dual = DualSquares(eroded);
+  const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
+  const double angle = PrincipalAngleRad(hm, patch);
+  const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
+  return use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
 }
 
 }  // namespace mfp

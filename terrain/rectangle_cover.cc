@@ -47,30 +47,30 @@ bool ColInside(const std::vector<uint8_t>& mask, int cols, int c, int r0, int n)
   return true;
 }
 
-// Grows a rectangle one row or column at a time while it stays inside the mask.
+// Adds the row (along_rows) or column just before or after the rectangle when it lies
+// inside the mask; true when it did.
+bool GrowSide(const std::vector<uint8_t>& mask, int rows, int cols, bool along_rows, bool before,
+              CellRect* rect) {
+  int& start = along_rows ? rect->row0 : rect->col0;
+  int& extent = along_rows ? rect->rows : rect->cols;
+  const int line = before ? start - 1 : start + extent;
+  if (line < 0 || line >= (along_rows ? rows : cols)) return false;
+  const bool inside = along_rows ? RowInside(mask, cols, line, rect->col0, rect->cols)
+                                 : ColInside(mask, cols, line, rect->row0, rect->rows);
+  if (!inside) return false;
+  if (before) --start;
+  ++extent;
+  return true;
+}
+
+// Grows a rectangle one row or column at a time while it stays inside the mask: rows
+// before and after, then columns before and after, round after round.
 void GrowInside(const std::vector<uint8_t>& mask, int rows, int cols, CellRect* rect) {
   bool grew = true;
   while (grew) {
     grew = false;
-    if (rect->row0 > 0 && RowInside(mask, cols, rect->row0 - 1, rect->col0, rect->cols)) {
-      --rect->row0;
-      ++rect->rows;
-      grew = true;
-    }
-    if (rect->row0 + rect->rows < rows &&
-        RowInside(mask, cols, rect->row0 + rect->rows, rect->col0, rect->cols)) {
-      ++rect->rows;
-      grew = true;
-    }
-    if (rect->col0 > 0 && ColInside(mask, cols, rect->col0 - 1, rect->row0, rect->rows)) {
-      --rect->col0;
-      ++rect->cols;
-      grew = true;
-    }
-    if (rect->col0 + rect->cols < cols &&
-        ColInside(mask, cols, rect->col0 + rect->cols, rect->row0, rect->rows)) {
-      ++rect->cols;
-      grew = true;
+    for (const bool along_rows : {true, false}) {
+      for (const bool before : {true, false}) grew |= GrowSide(mask, rows, cols, along_rows, before, rect);
     }
   }
 }

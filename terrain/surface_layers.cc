@@ -139,53 +139,54 @@ int FillSingleCellNoise(HeightMap* hm) {
   return changed;
 }
 
-SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
-  MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
-  SurfaceLayers out;
-  // The grid and the validation of the leaves are the height map's.
-  HeightMap grid = BuildHeightMap(map, options.max_cells);
-  const double res = grid.resolution_m;
-  const int cells = grid.rows * grid.cols;
-  if (cells == 0) {
-    out.layers.push_back(grid);
-    out.solid_beside.emplace_back();
-    return out;
-  }
-  const Columns occ = ColumnsOf(map.leaves, grid);
-  const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
-  const Columns free = know_free ? ColumnsOf(map.free_leaves, grid) : Columns{};
+namespace {
 
-  // Isolated single voxels: no occupied voxel in the 26-neighbourhood.
+// Isolated single voxels: no occupied voxel in the 26-neighbourhood. One flag per run of
+// occ; counted in *isolated.
+std::vector<uint8_t> IsolatedVoxels(const HeightMap& grid, const Columns& occ, int* isolated) {
   std::vector<uint8_t> dropped(occ.runs.size(), 0);
-  if (options.drop_isolated_voxels) {
-    for (int r = 0; r < grid.rows; ++r) {
-      for (int c = 0; c < grid.cols; ++c) {
-        const int col = grid.Index(r, c);
-        for (size_t i = occ.offset[col]; i < occ.offset[col + 1]; ++i) {
-          const Interval& run = occ.runs[i];
-          if (run.hi - run.lo != 1) continue;
-          bool alone = true;
-          for (int dr = -1; dr <= 1 && alone; ++dr) {
-            for (int dc = -1; dc <= 1 && alone; ++dc) {
-              if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
-              alone = !ColumnHas(occ, grid.Index(r + dr, c + dc), run.lo - 1, run.hi + 1);
-            }
+  for (int r = 0; r < grid.rows; ++r) {
+    for (int c = 0; c < grid.cols; ++c) {
+      const int col = grid.Index(r, c);
+      for (size_t i = occ.offset[col]; i < occ.offset[col + 1]; ++i) {
+        const Interval& run = occ.runs[i];
+        if (run.hi - run.lo != 1) continue;
+        bool alone = true;
+        for (int dr = -1; dr <= 1 && alone; ++dr) {
+          for (int dc = -1; dc <= 1 && alone; ++dc) {
+            if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
+            alone = !ColumnHas(occ, grid.Index(r + dr, c + dc), run.lo - 1, run.hi + 1);
           }
-          if (alone) {
-            dropped[i] = 1;
-            ++out.isolated_voxels;
-          }
+        }
+        if (alone) {
+          dropped[i] = 1;
+          ++*isolated;
         }
       }
     }
   }
+  return dropped;
+}
 
-  // Candidate surfaces per column (compressed rows of heights).
-  std::vector<size_t> cand_offset(static_cast<size_t>(cells) + 1, 0);
-  std::vector<float> cand_height;
+// Candidate surfaces per column, in compressed rows: column c owns [offset[c],
+// offset[c + 1]) of height and col.
+struct Candidates {
+  std::vector<size_t> offset;
+  std::vector<float> height;  // [m]
+  std::vector<int> col;       // the column of each candidate
+};
+
+// The tops of the runs with room above them (and, with free space known, seen from above).
+Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Columns* free,
+                             const std::vector<uint8_t>& dropped, const SurfaceLayerOptions& options,
+                             SurfaceLayers* out) {
+  const int cells = grid.rows * grid.cols;
+  const double res = grid.resolution_m;
+  Candidates cand;
+  cand.offset.assign(static_cast<size_t>(cells) + 1, 0);
   const double clearance_voxels = options.clearance_m / res;
   for (int col = 0; col < cells; ++col) {
-    cand_offset[col] = cand_height.size();
+    cand.offset[col] = cand.height.size();
     const size_t b = occ.offset[col], e = occ.offset[col + 1];
     for (size_t i = b; i < e; ++i) {
       if (dropped[i]) continue;
@@ -193,40 +194,43 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
       size_t next = i + 1;
       while (next < e && dropped[next]) ++next;
       if (next < e && static_cast<double>(occ.runs[next].lo - top) < clearance_voxels - 1e-6) {
-        ++out.no_room_above;
+        ++out->no_room_above;
         continue;
       }
-      if (know_free && !ColumnHas(free, col, top, top + 1)) {
-        ++out.not_seen_from_above;
+      if (free != nullptr && !ColumnHas(*free, col, top, top + 1)) {
+        ++out->not_seen_from_above;
         continue;
       }
-      cand_height.push_back(static_cast<float>(top * res));
+      cand.height.push_back(static_cast<float>(top * res));
     }
   }
-  cand_offset[cells] = cand_height.size();
-  out.candidates = static_cast<int>(cand_height.size());
-
-  // Sheets by flood fill over 4-neighbours, at most one surface per column each.
-  std::vector<int> cand_sheet(cand_height.size(), -1);
-  std::vector<int> column_claim(static_cast<size_t>(cells), -1);
-  std::vector<std::vector<int>> sheets;  // candidate indices
-  std::vector<int> cand_col(cand_height.size());
+  cand.offset[cells] = cand.height.size();
+  cand.col.resize(cand.height.size());
   for (int col = 0; col < cells; ++col) {
-    for (size_t k = cand_offset[col]; k < cand_offset[col + 1]; ++k) cand_col[k] = col;
+    for (size_t k = cand.offset[col]; k < cand.offset[col + 1]; ++k) cand.col[k] = col;
   }
+  return cand;
+}
+
+// Sheets (lists of candidate indices) by flood fill over 4-neighbours, at most one
+// surface per column each, neighbours within the step gate.
+std::vector<std::vector<int>> GrowSheets(const HeightMap& grid, const Candidates& cand, double step_gate_m) {
+  std::vector<int> cand_sheet(cand.height.size(), -1);
+  std::vector<int> column_claim(static_cast<size_t>(grid.rows) * grid.cols, -1);
+  std::vector<std::vector<int>> sheets;
   std::deque<int> queue;
-  for (size_t seed = 0; seed < cand_height.size(); ++seed) {
+  for (size_t seed = 0; seed < cand.height.size(); ++seed) {
     if (cand_sheet[seed] >= 0) continue;
     const int id = static_cast<int>(sheets.size());
     sheets.emplace_back();
     cand_sheet[seed] = id;
-    column_claim[cand_col[seed]] = id;
+    column_claim[cand.col[seed]] = id;
     queue.push_back(static_cast<int>(seed));
     while (!queue.empty()) {
       const int k = queue.front();
       queue.pop_front();
       sheets[id].push_back(k);
-      const int col = cand_col[k];
+      const int col = cand.col[k];
       const int r = col / grid.cols, c = col % grid.cols;
       const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
       for (int d = 0; d < 4; ++d) {
@@ -234,9 +238,9 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
         const int ncol = grid.Index(r + dr[d], c + dc[d]);
         if (column_claim[ncol] == id) continue;
         int best = -1;
-        float best_dz = static_cast<float>(options.step_gate_m) + 1e-6f;
-        for (size_t q = cand_offset[ncol]; q < cand_offset[ncol + 1]; ++q) {
-          const float dz = std::abs(cand_height[q] - cand_height[k]);
+        float best_dz = static_cast<float>(step_gate_m) + 1e-6f;
+        for (size_t q = cand.offset[ncol]; q < cand.offset[ncol + 1]; ++q) {
+          const float dz = std::abs(cand.height[q] - cand.height[k]);
           if (cand_sheet[q] < 0 && dz <= best_dz) {
             best = static_cast<int>(q);
             best_dz = dz;
@@ -249,61 +253,93 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
       }
     }
   }
+  return sheets;
+}
 
-  // Layers: largest sheets first, each into the first layer where its columns are empty.
+// Layers: largest sheets first, each into the first layer where its columns are empty;
+// at least one layer.
+std::vector<HeightMap> StackSheets(const HeightMap& grid, const Candidates& cand,
+                                   const std::vector<std::vector<int>>& sheets) {
   std::vector<int> order(sheets.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return sheets[a].size() > sheets[b].size(); });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return sheets[a].size() > sheets[b].size(); });
   HeightMap empty = grid;
   std::fill(empty.height_m.begin(), empty.height_m.end(), std::numeric_limits<float>::quiet_NaN());
+  std::vector<HeightMap> layers;
   for (int s : order) {
     size_t layer = 0;
-    for (; layer < out.layers.size(); ++layer) {
+    for (; layer < layers.size(); ++layer) {
       bool fits = true;
       for (int k : sheets[s]) {
-        if (!std::isnan(out.layers[layer].height_m[cand_col[k]])) {
+        if (!std::isnan(layers[layer].height_m[cand.col[k]])) {
           fits = false;
           break;
         }
       }
       if (fits) break;
     }
-    if (layer == out.layers.size()) out.layers.push_back(empty);
-    for (int k : sheets[s]) out.layers[layer].height_m[cand_col[k]] = cand_height[k];
+    if (layer == layers.size()) layers.push_back(empty);
+    for (int k : sheets[s]) layers[layer].height_m[cand.col[k]] = cand.height[k];
   }
-  if (out.layers.empty()) out.layers.push_back(empty);
+  if (layers.empty()) layers.push_back(empty);
+  return layers;
+}
+
+// Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
+std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
+  const double res = layer.resolution_m;
+  std::vector<uint8_t> bits(static_cast<size_t>(layer.rows) * layer.cols, 0);
+  for (int r = 0; r < layer.rows; ++r) {
+    for (int c = 0; c < layer.cols; ++c) {
+      const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
+      if (std::isnan(h)) continue;
+      const long long top_voxel = std::llround(h / res) - 1;
+      uint8_t b = 0;
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if ((dr == 0 && dc == 0) || !layer.Inside(r + dr, c + dc)) continue;
+          const int n = layer.Index(r + dr, c + dc);
+          if (ColumnCovers(occ, n, top_voxel + 1, top_voxel + 2) &&
+              (ColumnCovers(occ, n, top_voxel, top_voxel + 1) || ColumnCovers(occ, n, top_voxel + 2, top_voxel + 3))) {
+            b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
+          }
+        }
+      }
+      bits[static_cast<size_t>(layer.Index(r, c))] = b;
+    }
+  }
+  return bits;
+}
+
+}  // namespace
+
+SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
+  MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
+  SurfaceLayers out;
+  // The grid and the validation of the leaves are the height map's.
+  HeightMap grid = BuildHeightMap(map, options.max_cells);
+  if (grid.rows * grid.cols == 0) {
+    out.layers.push_back(grid);
+    out.solid_beside.emplace_back();
+    return out;
+  }
+  const Columns occ = ColumnsOf(map.leaves, grid);
+  const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
+  const Columns free = know_free ? ColumnsOf(map.free_leaves, grid) : Columns{};
+  const std::vector<uint8_t> dropped = options.drop_isolated_voxels
+                                           ? IsolatedVoxels(grid, occ, &out.isolated_voxels)
+                                           : std::vector<uint8_t>(occ.runs.size(), 0);
+  const Candidates cand = SurfaceCandidates(grid, occ, know_free ? &free : nullptr, dropped, options, &out);
+  out.candidates = static_cast<int>(cand.height.size());
+  out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
   if (options.fill_single_cell_noise) {
     for (HeightMap& layer : out.layers) {
       // Twice: a hole beside a displaced cell is filled once that cell is back.
       for (int pass = 0; pass < 2; ++pass) out.noise_cells_filled += FillSingleCellNoise(&layer);
     }
   }
-  // Material rising beside each surface cell, from the final (noise-repaired) heights.
-  for (const HeightMap& layer : out.layers) {
-    std::vector<uint8_t> bits(static_cast<size_t>(cells), 0);
-    for (int r = 0; r < grid.rows; ++r) {
-      for (int c = 0; c < grid.cols; ++c) {
-        const float h = layer.height_m[static_cast<size_t>(grid.Index(r, c))];
-        if (std::isnan(h)) continue;
-        const long long top_voxel = std::llround(h / res) - 1;
-        uint8_t b = 0;
-        for (int dr = -1; dr <= 1; ++dr) {
-          for (int dc = -1; dc <= 1; ++dc) {
-            if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
-            const int n = grid.Index(r + dr, c + dc);
-            if (ColumnCovers(occ, n, top_voxel + 1, top_voxel + 2) &&
-                (ColumnCovers(occ, n, top_voxel, top_voxel + 1) ||
-                 ColumnCovers(occ, n, top_voxel + 2, top_voxel + 3))) {
-              b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
-            }
-          }
-        }
-        bits[static_cast<size_t>(grid.Index(r, c))] = b;
-      }
-    }
-    out.solid_beside.push_back(std::move(bits));
-  }
+  // From the final (noise-repaired) heights.
+  for (const HeightMap& layer : out.layers) out.solid_beside.push_back(SolidBeside(layer, occ));
   return out;
 }
 

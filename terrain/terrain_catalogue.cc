@@ -2,34 +2,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace mfp {
 namespace {
 
 TerrainBox Box(const std::string& name, Eigen::Vector3d center, Eigen::Vector3d size,
                Eigen::Vector3d rpy = Eigen::Vector3d::Zero()) {
-  TerrainBox box;
-  box.name = name;
-  box.center_world_m = center;
-  box.size_m = size;
-  box.rpy_rad = rpy;
-  return box;
+  return TerrainBox{name, center, size, rpy};
 }
 
 double Deg(double deg) { return deg * M_PI / 180.0; }
 
-}  // namespace
-
-TerrainDescription FlatTerrain() {
+TerrainDescription WithBoxes(std::vector<TerrainBox> boxes) {
   TerrainDescription t;
-  t.boxes = {Box("ground", {0, 0, -0.05}, {2, 2, 0.1})};
+  t.boxes = std::move(boxes);
   return t;
 }
 
+}  // namespace
+
+TerrainDescription FlatTerrain() { return WithBoxes({Box("ground", {0, 0, -0.05}, {2, 2, 0.1})}); }
+
 TerrainDescription StepTerrain() {
-  TerrainDescription t;
-  t.boxes = {Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("step", {0.5, 0, 0.0}, {1, 2, 0.2})};
-  return t;
+  return WithBoxes({Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("step", {0.5, 0, 0.0}, {1, 2, 0.2})});
 }
 
 TerrainDescription SteppingStonesTerrain() {
@@ -46,21 +43,15 @@ TerrainDescription SteppingStonesTerrain() {
 }
 
 TerrainDescription TiltTerrain(double pitch_rad, double yaw_rad) {
-  TerrainDescription t;
-  t.boxes = {Box("tilted", {0, 0, 0}, {1.2, 1.2, 0.1}, {0, pitch_rad, yaw_rad})};
-  return t;
+  return WithBoxes({Box("tilted", {0, 0, 0}, {1.2, 1.2, 0.1}, {0, pitch_rad, yaw_rad})});
 }
 
 TerrainDescription GapTerrain() {
-  TerrainDescription t;
-  t.boxes = {Box("left", {-0.6, 0, -0.05}, {1, 1, 0.1}), Box("right", {0.6, 0, -0.05}, {1, 1, 0.1})};
-  return t;
+  return WithBoxes({Box("left", {-0.6, 0, -0.05}, {1, 1, 0.1}), Box("right", {0.6, 0, -0.05}, {1, 1, 0.1})});
 }
 
 TerrainDescription WallTerrain() {
-  TerrainDescription t;
-  t.boxes = {Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("wall", {0, 0, 0.2}, {0.04, 2, 0.6})};
-  return t;
+  return WithBoxes({Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("wall", {0, 0, 0.2}, {0.04, 2, 0.6})});
 }
 
 TerrainDescription CourseTerrain4m() {
@@ -83,15 +74,13 @@ TerrainDescription CourseTerrain4m() {
 }
 
 TerrainDescription BridgeTerrain() {
-  TerrainDescription t;
-  t.boxes = {Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("bridge", {0, 0, 0.55}, {0.6, 2, 0.1}),
-             Box("pier_s", {0, -0.9, 0.25}, {0.6, 0.2, 0.5}), Box("pier_n", {0, 0.9, 0.25}, {0.6, 0.2, 0.5})};
-  return t;
+  return WithBoxes({Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("bridge", {0, 0, 0.55}, {0.6, 2, 0.1}),
+                    Box("pier_s", {0, -0.9, 0.25}, {0.6, 0.2, 0.5}), Box("pier_n", {0, 0.9, 0.25}, {0.6, 0.2, 0.5})});
 }
 
 TerrainDescription TableTerrain() {
-  TerrainDescription t;
-  t.boxes = {Box("floor", {0, 0, -0.05}, {2, 2, 0.1}), Box("table", {0, 0, 0.68}, {1.0, 0.6, 0.04})};
+  TerrainDescription t =
+      WithBoxes({Box("floor", {0, 0, -0.05}, {2, 2, 0.1}), Box("table", {0, 0, 0.68}, {1.0, 0.6, 0.04})});
   for (int i = 0; i < 4; ++i) {
     const double x = (i & 1) ? 0.46 : -0.46, y = (i & 2) ? 0.26 : -0.26;
     t.boxes.push_back(Box("leg" + std::to_string(i), {x, y, 0.33}, {0.04, 0.04, 0.66}));
@@ -100,11 +89,8 @@ TerrainDescription TableTerrain() {
 }
 
 TerrainDescription OverhangTerrain() {
-  TerrainDescription t;
-  t.boxes = {Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("tread1", {0.2, 0, 0.05}, {0.4, 2, 0.1}),
-             Box("tread2", {0.6, 0, 0.1}, {0.4, 2, 0.2}),
-             Box("overhang", {0.3, 0, 0.7}, {1.0, 2, 0.1})};
-  return t;
+  return WithBoxes({Box("ground", {0, 0, -0.05}, {2, 2, 0.1}), Box("tread1", {0.2, 0, 0.05}, {0.4, 2, 0.1}),
+                    Box("tread2", {0.6, 0, 0.1}, {0.4, 2, 0.2}), Box("overhang", {0.3, 0, 0.7}, {1.0, 2, 0.1})});
 }
 
 TerrainDescription CorridorTerrain(double length_m, double resolution_m, const MapNoise& noise) {

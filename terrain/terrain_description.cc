@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "planner/base/check.h"
 #include "terrain/convex_hull_2d.h"
@@ -16,6 +17,26 @@ Eigen::Matrix3d BoxRotation(const TerrainBox& box) {
           Eigen::AngleAxisd(box.rpy_rad.y(), Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(box.rpy_rad.x(), Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
+}
+
+bool RayBoxInterval(const TerrainBox& box, const Eigen::Matrix3d& R, const Eigen::Vector3d& o,
+                    const Eigen::Vector3d& d, double parallel_tol, double* t_in, double* t_out) {
+  const Eigen::Vector3d lo = R.transpose() * (o - box.center_world_m);
+  const Eigen::Vector3d ld = R.transpose() * d;
+  *t_in = -std::numeric_limits<double>::infinity();
+  *t_out = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const double h = 0.5 * box.size_m(a);
+    if (std::abs(ld(a)) < parallel_tol) {
+      if (std::abs(lo(a)) > h) return false;
+      continue;
+    }
+    double t0 = (-h - lo(a)) / ld(a), t1 = (h - lo(a)) / ld(a);
+    if (t0 > t1) std::swap(t0, t1);
+    *t_in = std::max(*t_in, t0);
+    *t_out = std::min(*t_out, t1);
+  }
+  return *t_in <= *t_out;
 }
 
 std::vector<Eigen::Vector3d> BoxCorners(const TerrainBox& box) {

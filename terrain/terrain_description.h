@@ -48,6 +48,13 @@ Eigen::Matrix3d BoxRotation(const TerrainBox& box);
 // The eight corners of a box in the world frame.
 std::vector<Eigen::Vector3d> BoxCorners(const TerrainBox& box);
 
+// Where the ray o + t d (world frame) passes through the box of rotation R (BoxRotation):
+// the ray parameters [*t_in, *t_out] where it enters and leaves the box's slabs (t may be
+// negative: the line, not only the ray). False when it misses the box; a direction
+// component below parallel_tol (box frame) counts as parallel to those faces.
+bool RayBoxInterval(const TerrainBox& box, const Eigen::Matrix3d& R, const Eigen::Vector3d& o,
+                    const Eigen::Vector3d& d, double parallel_tol, double* t_in, double* t_out);
+
 // Exact top-face regions: for each box, the face whose outward normal points most
 // upward, inset by inset_m, minus the parts other boxes cover (where another box rises
 // above the face, grown by inset_m), as ConvexRegions with ids 0, 1, ... in box order.

@@ -10,22 +10,10 @@ namespace {
 // Where a downward vertical ray through (x, y) first enters the box, or NaN.
 double BoxTopAt(const TerrainBox& box, const Eigen::Matrix3d& R, double x_m, double y_m) {
   const double z_start = box.center_world_m.z() + box.size_m.norm() + 1.0;
-  const Eigen::Vector3d o = R.transpose() * (Eigen::Vector3d(x_m, y_m, z_start) - box.center_world_m);
-  const Eigen::Vector3d d = R.transpose() * Eigen::Vector3d(0, 0, -1);
-  double t_in = -std::numeric_limits<double>::infinity();
-  double t_out = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    const double h = 0.5 * box.size_m(a);
-    if (std::abs(d(a)) < 1e-12) {
-      if (std::abs(o(a)) > h) return std::numeric_limits<double>::quiet_NaN();
-      continue;
-    }
-    double t0 = (-h - o(a)) / d(a), t1 = (h - o(a)) / d(a);
-    if (t0 > t1) std::swap(t0, t1);
-    t_in = std::max(t_in, t0);
-    t_out = std::min(t_out, t1);
+  double t_in = 0.0, t_out = 0.0;
+  if (!RayBoxInterval(box, R, Eigen::Vector3d(x_m, y_m, z_start), Eigen::Vector3d(0, 0, -1), 1e-12, &t_in, &t_out)) {
+    return std::numeric_limits<double>::quiet_NaN();
   }
-  if (t_in > t_out) return std::numeric_limits<double>::quiet_NaN();
   return z_start - t_in;
 }
 

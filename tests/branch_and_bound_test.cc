@@ -127,6 +127,16 @@ CatalogueEntry Mixed() {
 // picks h_a: y = 3, cost 0.24. The optimum is h_b = 1, y = 2.2, cost 0.09.
 Miqp DecoyInterval() { return Intervals({3, 2}, {4, 2.2}, {-0.01, 0}); }
 
+// Solves problem with the default options as changed by `set`, relaxations by Ipopt or
+// the interior-point QP.
+BranchAndBoundResult SolveWith(const Miqp& problem, bool ipopt,
+                               const std::function<void(BranchAndBoundOptions*)>& set) {
+  const auto solver = ipopt ? MakeIpoptRelaxationSolver() : MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  set(&options);
+  return SolveBranchAndBound(problem, *solver, options);
+}
+
 std::vector<CatalogueEntry> Catalogue() {
   return {OneBinary(), Knapsack(), IntervalChoice(), Infeasible(), GeneralInteger(), CoupledBinaries(), Mixed()};
 }
@@ -227,10 +237,8 @@ TEST(BranchAndBound, ReportsEachBetterIncumbentWithAValidBound) {
 
 TEST(BranchAndBound, KnapsackNeedsBranching) {
   // Without rounding, the fractional root forces at least three nodes (root + 2 children).
-  const auto solver = MakeIpoptRelaxationSolver();
-  BranchAndBoundOptions options;
-  options.rounding_heuristic = false;
-  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  const BranchAndBoundResult r =
+      SolveWith(Knapsack().problem, true, [](BranchAndBoundOptions* o) { o->rounding_heuristic = false; });
   EXPECT_EQ(r.status, SolveStatus::kOptimal);
   EXPECT_GE(r.nodes, 3);
 }
@@ -239,10 +247,8 @@ TEST(BranchAndBound, NodeLimitReturnsBestSoFarWithItsGap) {
   // One node only. The interval choice's root relaxation reaches y = 2.5 (cost 0) with
   // fractional choices; rounding picks one interval, whose fixed QP costs at least 0.09.
   // The result must say unproven (feasible), keep the root bound 0 and report the gap.
-  const auto solver = MakeIpoptRelaxationSolver();
-  BranchAndBoundOptions options;
-  options.max_nodes = 1;
-  const BranchAndBoundResult r = SolveBranchAndBound(IntervalChoice().problem, *solver, options);
+  const BranchAndBoundResult r =
+      SolveWith(IntervalChoice().problem, true, [](BranchAndBoundOptions* o) { o->max_nodes = 1; });
   ASSERT_EQ(r.status, SolveStatus::kFeasible);
   EXPECT_NEAR(r.bound, 0.0, 1e-6);
   EXPECT_GE(r.objective, 0.09 - 1e-6);
@@ -253,11 +259,10 @@ TEST(BranchAndBound, GapTolerancePrunesButKeepsTheBoundValid) {
   // With a 0.3 absolute gap the root's rounding (0.24) ends the search: the root's
   // bound (about 0) cannot beat it by more than 0.3. The bound reported must be the
   // root's, not the incumbent's: at or below the true optimum 0.09.
-  const auto solver = MakeInteriorPointRelaxationSolver();
-  BranchAndBoundOptions options;
-  options.relative_gap = 0.0;
-  options.absolute_gap = 0.3;
-  const BranchAndBoundResult r = SolveBranchAndBound(DecoyInterval(), *solver, options);
+  const BranchAndBoundResult r = SolveWith(DecoyInterval(), false, [](BranchAndBoundOptions* o) {
+    o->relative_gap = 0.0;
+    o->absolute_gap = 0.3;
+  });
   ASSERT_EQ(r.status, SolveStatus::kOptimal);
   EXPECT_NEAR(r.objective, 0.24, 1e-6);  // the decoy: the search did stop early
   EXPECT_LE(r.bound, 0.09 + 1e-6);
@@ -267,11 +272,10 @@ TEST(BranchAndBound, GapTolerancePrunesButKeepsTheBoundValid) {
 TEST(BranchAndBound, StrongBranchingCountsItsSolvesAsRelaxations) {
   // Knapsack without rounding must branch; reliability branching strong-branches the
   // fractional root, so some relaxations are trials, and the optimum is still proven.
-  const auto solver = MakeInteriorPointRelaxationSolver();
-  BranchAndBoundOptions options;
-  options.rounding_heuristic = false;
-  options.branching = BranchingRule::kReliability;
-  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  const BranchAndBoundResult r = SolveWith(Knapsack().problem, false, [](BranchAndBoundOptions* o) {
+    o->rounding_heuristic = false;
+    o->branching = BranchingRule::kReliability;
+  });
   EXPECT_EQ(r.status, SolveStatus::kOptimal);
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
   EXPECT_GE(r.strong_branching_solves, 2);
@@ -320,10 +324,8 @@ TEST(BranchAndBound, EarlyCutoffKeepsEveryOptimum) {
 }
 
 TEST(BranchAndBound, TimeLimitWithoutIncumbentSaysSo) {
-  const auto solver = MakeIpoptRelaxationSolver();
-  BranchAndBoundOptions options;
-  options.time_limit_s = 0.0;
-  const BranchAndBoundResult r = SolveBranchAndBound(Knapsack().problem, *solver, options);
+  const BranchAndBoundResult r =
+      SolveWith(Knapsack().problem, true, [](BranchAndBoundOptions* o) { o->time_limit_s = 0.0; });
   EXPECT_EQ(r.status, SolveStatus::kNoSolution);
   EXPECT_EQ(r.x.size(), 0);
 }

@@ -111,16 +111,13 @@ std::shared_ptr<const DaemonSetup> TestSetup(int queue_size, bool supersede = tr
 
 // Nominal stance of a robot on flat ground at the origin, in leg order.
 plan_request_t Request(const RobotModel& robot, int64_t id) {
-  plan_request_t m;
+  plan_request_t m{};  // no robot name (the default robot), goal y and yaw 0
   m.utime = 1;
   m.request_id = id;
-  m.robot = "";
   m.num_legs = robot.num_legs();
   for (const LegModel& leg : robot.legs)
     m.start_feet.push_back({leg.nominal_offset_body_m.x(), leg.nominal_offset_body_m.y(), 0.0});
   m.goal_x = 0.5;
-  m.goal_y = 0.0;
-  m.goal_yaw = 0.0;
   m.max_steps = 12;
   m.time_limit_s = 1.0;
   return m;
@@ -196,16 +193,26 @@ class DaemonCoreTest : public ::testing::Test {
 
   // One hexapod request with a 0.2 s limit to a daemon whose planner is `plan`: the reply
   // must come within 1 s (the overrunning planners take 3 s). Returns the replies.
-  std::vector<plan_t> PlanPastTheDeadline(PlanFunction plan) {
+  // Sends the request, plans it and returns its reply, the only one so far (an empty
+  // plan_t when there is none, a failure).
+  plan_t PlanTheOnlyRequest(const plan_request_t& request) {
+    Send(request);
+    EXPECT_TRUE(core_->PlanNext());
+    const std::vector<plan_t> replies = Replies();
+    EXPECT_EQ(replies.size(), 1u);
+    return replies.empty() ? plan_t{} : replies.front();
+  }
+
+  // A 0.2 s request to a planner that overruns it: its reply, sent within 1 s.
+  plan_t PlanPastTheDeadline(PlanFunction plan) {
     Make(4, std::move(plan));
     SendMap("flat");
     plan_request_t request = Request(Hexapod(), 1);
     request.time_limit_s = 0.2;
-    Send(request);
     const auto start = std::chrono::steady_clock::now();
-    EXPECT_TRUE(core_->PlanNext());
+    const plan_t reply = PlanTheOnlyRequest(request);
     EXPECT_LT(SecondsSince(start), 1.0);
-    return Replies();
+    return reply;
   }
 
   RecordingPublisher publisher_;
@@ -232,15 +239,12 @@ TEST_F(DaemonCoreTest, MapPublishesRegionsAndRequestIsPlanned) {
   ASSERT_EQ(sets.size(), 1u);
   EXPECT_EQ(sets[0].num_regions, 1);
   EXPECT_EQ(sets[0].map_utime, 99);
-  Send(Request(Hexapod(), 8));
-  EXPECT_TRUE(core_->PlanNext());
-  const auto replies = Replies();
-  ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(replies[0].request_id, 8);
-  EXPECT_EQ(replies[0].status, +plan_t::STATUS_OPTIMAL);
-  EXPECT_EQ(replies[0].num_steps, 6);
-  EXPECT_EQ(replies[0].robot, "hexapod");
-  EXPECT_EQ(replies[0].map_utime, 99);
+  const plan_t reply = PlanTheOnlyRequest(Request(Hexapod(), 8));
+  EXPECT_EQ(reply.request_id, 8);
+  EXPECT_EQ(reply.status, +plan_t::STATUS_OPTIMAL);
+  EXPECT_EQ(reply.num_steps, 6);
+  EXPECT_EQ(reply.robot, "hexapod");
+  EXPECT_EQ(reply.map_utime, 99);
 }
 
 TEST_F(DaemonCoreTest, BadRequestsGetAStatusThatNamesTheProblem) {
@@ -301,12 +305,9 @@ TEST_F(DaemonCoreTest, OtherRobotByName) {
   SendMap("flat");
   plan_request_t m = Request(setup_->robots.at("littledog"), 9);
   m.robot = "littledog";
-  Send(m);
-  ASSERT_TRUE(core_->PlanNext());
-  const auto replies = Replies();
-  ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(replies[0].status, +plan_t::STATUS_OPTIMAL) << replies[0].message;
-  EXPECT_EQ(replies[0].num_steps, 4);
+  const plan_t reply = PlanTheOnlyRequest(m);
+  EXPECT_EQ(reply.status, +plan_t::STATUS_OPTIMAL) << reply.message;
+  EXPECT_EQ(reply.num_steps, 4);
 }
 
 TEST_F(DaemonCoreTest, FullQueueDropsTheOldestWithAReplyAndServesNewestFirst) {
@@ -353,12 +354,9 @@ TEST_F(DaemonCoreTest, UnreadableMessagesAreCountedAndTheDaemonGoesOn) {
   for (const auto& payload : bad) core_->OnMessage(Raw(kPlanRequestChannel, payload));
   for (const auto& payload : bad) core_->OnMessage(Raw(kTerrainMapChannel, payload));
   SendMap("not a map");  // decodes, but the map reader rejects it
-  Send(Request(Hexapod(), 77));
-  ASSERT_TRUE(core_->PlanNext());
-  const auto replies = Replies();
-  ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(replies[0].request_id, 77);
-  EXPECT_EQ(replies[0].status, +plan_t::STATUS_OPTIMAL);
+  const plan_t reply = PlanTheOnlyRequest(Request(Hexapod(), 77));
+  EXPECT_EQ(reply.request_id, 77);
+  EXPECT_EQ(reply.status, +plan_t::STATUS_OPTIMAL);
   const DaemonCounters c = core_->counters();
   EXPECT_EQ(c.rejected_messages, static_cast<int64_t>(2 * bad.size()));
   EXPECT_EQ(c.rejected_maps, 1);
@@ -373,12 +371,9 @@ TEST_F(DaemonCoreTest, PlannerFailureIsAnInternalErrorReply) {
   Make(4, [](const RobotModel&, const std::vector<ConvexRegion>&, const PlanRequest&,
              const PlannerOptions&) -> Plan { throw std::runtime_error("solver exploded"); });
   SendMap("flat");
-  Send(Request(Hexapod(), 5));
-  ASSERT_TRUE(core_->PlanNext());
-  const auto replies = Replies();
-  ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(replies[0].status, +plan_t::STATUS_INTERNAL_ERROR);
-  EXPECT_NE(replies[0].message.find("solver exploded"), std::string::npos);
+  const plan_t reply = PlanTheOnlyRequest(Request(Hexapod(), 5));
+  EXPECT_EQ(reply.status, +plan_t::STATUS_INTERNAL_ERROR);
+  EXPECT_NE(reply.message.find("solver exploded"), std::string::npos);
 }
 
 TEST_F(DaemonCoreTest, ANewerRequestForTheSameRobotSupersedesTheQueuedOne) {
@@ -435,9 +430,8 @@ Plan SleepyPlan(const RobotModel& robot, const std::vector<ConvexRegion>& region
 }
 
 TEST_F(DaemonCoreTest, AnOverrunningPlannerIsAnsweredAtTheDeadline) {
-  const auto replies = PlanPastTheDeadline(SleepyPlan);
-  ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(replies[0].status, +plan_t::STATUS_TIME_LIMIT);
+  const plan_t reply = PlanPastTheDeadline(SleepyPlan);
+  EXPECT_EQ(reply.status, +plan_t::STATUS_TIME_LIMIT);
   EXPECT_EQ(core_->counters().abandoned_solves, 1);
 }
 
@@ -456,18 +450,16 @@ Plan OneWindowThenSleepyPlan(const RobotModel& robot, const std::vector<ConvexRe
   so_far.reaches_goal = false;
   so_far.message = "the plan so far: 6 steps";
   request.on_plan_so_far(so_far);
-  std::this_thread::sleep_for(std::chrono::seconds(3));
-  return FakePlan(robot, regions, request, options);
+  return SleepyPlan(robot, regions, request, options);
 }
 
 TEST_F(DaemonCoreTest, AtTheDeadlineTheReplyCarriesThePlanSoFar) {
-  const auto replies = PlanPastTheDeadline(OneWindowThenSleepyPlan);
-  ASSERT_EQ(replies.size(), 1u);
-  EXPECT_EQ(replies[0].status, +plan_t::STATUS_PARTIAL);
-  ASSERT_EQ(replies[0].num_steps, 2 * Hexapod().num_legs());
-  EXPECT_NEAR(replies[0].steps[6].position[0], Hexapod().legs[static_cast<size_t>(replies[0].steps[6].leg)]
-                                                       .nominal_offset_body_m.x() + 0.05, 1e-9);
-  EXPECT_NE(replies[0].message.find("had not finished by the deadline"), std::string::npos) << replies[0].message;
+  const plan_t reply = PlanPastTheDeadline(OneWindowThenSleepyPlan);
+  EXPECT_EQ(reply.status, +plan_t::STATUS_PARTIAL);
+  ASSERT_EQ(reply.num_steps, 2 * Hexapod().num_legs());
+  EXPECT_NEAR(reply.steps[6].position[0],
+              Hexapod().legs[static_cast<size_t>(reply.steps[6].leg)].nominal_offset_body_m.x() + 0.05, 1e-9);
+  EXPECT_NE(reply.message.find("had not finished by the deadline"), std::string::npos) << reply.message;
   EXPECT_EQ(core_->counters().time_limit_endings, 1);
   EXPECT_EQ(core_->counters().abandoned_solves, 1);
 }
@@ -597,6 +589,18 @@ int64_t SteadyUs() {
       .count();
 }
 
+void Publish(LcmTransport& transport, const std::string& channel, const std::vector<uint8_t>& bytes) {
+  ASSERT_TRUE(transport.Publish(channel, bytes.data(), bytes.size()));
+}
+
+// Publishes a map and waits (up to 5 s) until the core has read one: maps are read on a
+// thread of their own, and requests sent before it is done get no_map.
+void PublishMapAndWait(LcmTransport& transport, const DaemonCore& core, const std::string& name) {
+  Publish(transport, kTerrainMapChannel, Encode(MapMessage(name)));
+  for (int i = 0; i < 500 && core.counters().maps == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+
 // Replies collected from memq://, by request id.
 struct ReplyCollector {
   explicit ReplyCollector(LcmTransport& transport) {
@@ -625,15 +629,9 @@ TEST(DaemonRunnerTest, ABurstOf2000RequestsIsAnsweredOnceEach) {
   core.SubscribeTo(transport);
   ReplyCollector collector(transport);
   DaemonRunner runner(core, transport, 0.2);
-  const auto map = Encode(MapMessage("flat"));
-  ASSERT_TRUE(transport.Publish(kTerrainMapChannel, map.data(), map.size()));
-  for (int i = 0; i < 500 && core.counters().maps == 0; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  PublishMapAndWait(transport, core, "flat");
   constexpr int kBurst = 2000;
-  for (int id = 1; id <= kBurst; ++id) {
-    const auto bytes = Encode(Request(hexapod, id));
-    ASSERT_TRUE(transport.Publish(kPlanRequestChannel, bytes.data(), bytes.size()));
-  }
+  for (int id = 1; id <= kBurst; ++id) Publish(transport, kPlanRequestChannel, Encode(Request(hexapod, id)));
   for (int i = 0; i < 1000 && collector.distinct() < kBurst; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   runner.Stop();
@@ -659,19 +657,14 @@ TEST(DaemonRunnerTest, StopDuringAMapExtractionReturnsPromptlyAndAnswersEveryReq
   core.SubscribeTo(transport);
   ReplyCollector collector(transport);
   DaemonRunner runner(core, transport, 0.2);
-  auto publish = [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
-    ASSERT_TRUE(transport.Publish(channel, bytes.data(), bytes.size()));
-  };
-  publish(kTerrainMapChannel, Encode(MapMessage("flat")));
-  for (int i = 0; i < 500 && core.counters().maps == 0; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  publish(kTerrainMapChannel, Encode(MapMessage("slow")));
+  PublishMapAndWait(transport, core, "flat");
+  Publish(transport, kTerrainMapChannel, Encode(MapMessage("slow")));
   plan_request_t request = Request(hexapod, 1);
   request.time_limit_s = 10;
-  publish(kPlanRequestChannel, Encode(request));  // planned by the 3 s planner
+  Publish(transport, kPlanRequestChannel, Encode(request));  // planned by the 3 s planner
   plan_request_t dog = Request(setup->robots.at("littledog"), 2);
   dog.robot = "littledog";
-  publish(kPlanRequestChannel, Encode(dog));  // queued behind it
+  Publish(transport, kPlanRequestChannel, Encode(dog));  // queued behind it
   for (int i = 0; i < 500 && !(core.StatusMessage().extracting_map &&
                                core.StatusMessage().state == status_t::STATE_PLANNING);
        ++i)
@@ -758,27 +751,21 @@ TEST(DaemonRunnerTest, SurvivesBadInputOverMemqAndKeepsTheHeartbeat) {
   });
   DaemonRunner runner(core, transport, 0.2);
 
-  auto publish = [&](const std::string& channel, const std::vector<uint8_t>& bytes) {
-    ASSERT_TRUE(transport.Publish(channel, bytes.data(), bytes.size()));
-  };
-  publish(kTerrainMapChannel, Encode(MapMessage("flat")));
-  // Maps are read on a thread of their own: requests sent before it is done get no_map.
-  for (int i = 0; i < 500 && core.counters().maps == 0; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  PublishMapAndWait(transport, core, "flat");
   ASSERT_EQ(core.counters().maps, 1);
   const auto bad = BadPayloads(hexapod);
-  for (const auto& payload : bad) publish(kPlanRequestChannel, payload);
-  for (const auto& payload : bad) publish(kTerrainMapChannel, payload);
+  for (const auto& payload : bad) Publish(transport, kPlanRequestChannel, payload);
+  for (const auto& payload : bad) Publish(transport, kTerrainMapChannel, payload);
   plan_request_t wrong_legs = Request(hexapod, 1);
   wrong_legs.num_legs = 3;
   wrong_legs.start_feet.resize(3);
-  publish(kPlanRequestChannel, Encode(wrong_legs));
+  Publish(transport, kPlanRequestChannel, Encode(wrong_legs));
   plan_request_t nan_goal = Request(hexapod, 2);
   nan_goal.goal_yaw = std::nan("");
-  publish(kPlanRequestChannel, Encode(nan_goal));
+  Publish(transport, kPlanRequestChannel, Encode(nan_goal));
   plan_request_t valid = Request(hexapod, 3);
   valid.time_limit_s = 5.0;  // more than the slow planner's 1.5 s
-  publish(kPlanRequestChannel, Encode(valid));
+  Publish(transport, kPlanRequestChannel, Encode(valid));
 
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   size_t heartbeats_while_planning = 0;

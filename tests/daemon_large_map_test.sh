@@ -55,17 +55,8 @@ cp "$DATA/large_map.yaml" "$WORK/"
 } >"$WORK/daemon.yaml"
 
 "$BUILD_DIR/tools/mfp-make-log" "$WORK/large_map.yaml" --config "$WORK/daemon.yaml" --out "$WORK/large_map.lcmlog"
-lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' --flush-interval=50 \
-  --force "$WORK/replies.lcmlog" &
-LOGGER_PID=$!
-"$BUILD_DIR/tools/mfp-daemon" --config "$WORK/daemon.yaml" 2>"$LOG" &
-DAEMON_PID=$!
-for _ in $(seq 1 300); do
-  grep -q "started:" "$LOG" && break
-  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
-  sleep 0.1
-done
-grep -q "started:" "$LOG" || fail "mfp-daemon did not start within 30 s"
+mfp_start_logger "$WORK/replies.lcmlog"
+mfp_start_daemon "$LOG" --config "$WORK/daemon.yaml"
 grep -qi "rmem_max" "$LOG" && fail "the kernel capped the receive buffer below $BUFFER_BYTES bytes: raise it with sysctl -w net.core.rmem_max=$BUFFER_BYTES"
 
 lcm-logplayer --lcm-url="$URL" "$WORK/large_map.lcmlog"

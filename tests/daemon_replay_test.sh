@@ -23,18 +23,8 @@ LOG="$WORK/daemon.log"
 
 "$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
 
-lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' \
-  --flush-interval=50 --force "$WORK/replies.lcmlog" &
-LOGGER_PID=$!
-
-"$BUILD_DIR/tools/mfp-daemon" --config "$CONFIG" --lcm-url "$URL" 2>"$WORK/daemon.log" &
-DAEMON_PID=$!
-for _ in $(seq 1 300); do
-  grep -q "started:" "$WORK/daemon.log" && break
-  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
-  sleep 0.1
-done
-grep -q "started:" "$WORK/daemon.log" || fail "mfp-daemon did not start within 30 s"
+mfp_start_logger "$WORK/replies.lcmlog"
+mfp_start_daemon "$WORK/daemon.log" --config "$CONFIG" --lcm-url "$URL"
 
 # SIGHUP reloads the config while it runs.
 kill -HUP "$DAEMON_PID"
@@ -74,12 +64,7 @@ echo "--- daemon log ---"
 cat "$WORK/daemon.log"
 
 # SIGINT: also a clean exit with status 0.
-"$BUILD_DIR/tools/mfp-daemon" --config "$CONFIG" --lcm-url "$URL" 2>"$WORK/daemon2.log" &
-DAEMON_PID=$!
-for _ in $(seq 1 300); do
-  grep -q "started:" "$WORK/daemon2.log" && break
-  sleep 0.1
-done
+mfp_start_daemon "$WORK/daemon2.log" --config "$CONFIG" --lcm-url "$URL"
 kill -INT "$DAEMON_PID"
 status=0
 wait "$DAEMON_PID" || status=$?

@@ -43,24 +43,6 @@ write_config() {  # extra robot files...
   } >"$WORK/daemon.yaml"
 }
 
-start_daemon() {  # log file
-  LOG="$1"
-  "$BUILD_DIR/tools/mfp-daemon" --config "$WORK/daemon.yaml" 2>"$LOG" &
-  DAEMON_PID=$!
-  for _ in $(seq 1 300); do
-    grep -q "started:" "$LOG" && return 0
-    kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
-    sleep 0.1
-  done
-  fail "mfp-daemon did not start within 30 s"
-}
-
-start_logger() {  # log file
-  lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' --flush-interval=50 \
-    --force "$1" &
-  LOGGER_PID=$!
-}
-
 stop_logger() {
   sleep 0.5
   kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
@@ -91,8 +73,8 @@ terminate() {
 write_config
 "$BUILD_DIR/tools/mfp-make-log" "$WORK/during_extraction.yaml" --config "$WORK/daemon.yaml" \
   --out "$WORK/extraction.lcmlog"
-start_logger "$WORK/extraction_replies.lcmlog"
-start_daemon "$WORK/daemon1.log"
+mfp_start_logger "$WORK/extraction_replies.lcmlog"
+mfp_start_daemon "$WORK/daemon1.log" --config "$WORK/daemon.yaml"
 write_config "$WORK/bad_robot.yaml"
 kill -HUP "$DAEMON_PID"
 wait_for_log "SIGHUP: reload failed, keeping the previous configuration" 20
@@ -117,8 +99,8 @@ stop_logger
 write_config
 "$BUILD_DIR/tools/mfp-make-log" "$WORK/during_plan.yaml" --config "$WORK/daemon.yaml" \
   --out "$WORK/plan.lcmlog"
-start_logger "$WORK/plan_replies.lcmlog"
-start_daemon "$WORK/daemon2.log"
+mfp_start_logger "$WORK/plan_replies.lcmlog"
+mfp_start_daemon "$WORK/daemon2.log" --config "$WORK/daemon.yaml"
 lcm-logplayer --lcm-url="$URL" "$WORK/plan.lcmlog" &
 PLAYER_PID=$!
 wait "$PLAYER_PID"; PLAYER_PID=""

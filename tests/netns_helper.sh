@@ -15,7 +15,8 @@
 # fresh folder; DAEMON_PID, LOGGER_PID, PLAYER_PID, the background processes it starts
 # (killed on exit; set one back to "" once it has been waited for); fail MESSAGE, which
 # prints the message and the daemon log the script names in LOG, then exits 1. On exit
-# the processes are killed and WORK removed.
+# the processes are killed and WORK removed. mfp_start_logger and mfp_start_daemon start
+# the two background processes most scripts need (BUILD_DIR and URL set by the script).
 
 MFP_NAMESPACE_MARKER="--in-namespace"
 
@@ -65,4 +66,23 @@ fail() {
   echo "FAIL: $*"
   [ -n "$LOG" ] && [ -f "$LOG" ] && { echo "--- daemon log ---"; cat "$LOG" || true; }
   exit 1
+}
+
+mfp_start_logger() {  # OUT: records the daemon's replies, regions and status from $URL
+  lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' --flush-interval=50 \
+    --force "$1" &
+  LOGGER_PID=$!
+}
+
+mfp_start_daemon() {  # LOG ARGS...: mfp-daemon with ARGS, its log in LOG; waits until it has started
+  LOG="$1"
+  shift
+  "$BUILD_DIR/tools/mfp-daemon" "$@" 2>"$LOG" &
+  DAEMON_PID=$!
+  for _ in $(seq 1 300); do
+    grep -q "started:" "$LOG" && return 0
+    kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
+    sleep 0.1
+  done
+  fail "mfp-daemon did not start within 30 s"
 }

@@ -14,6 +14,7 @@
 #include "terrain/region_extractor.h"
 #include "terrain/terrain_catalogue.h"
 #include "terrain/voxelize.h"
+#include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {
@@ -23,12 +24,7 @@ std::vector<uint8_t> Bytes(const std::string& s) { return std::vector<uint8_t>(s
 
 std::string ErrorOf(const std::vector<uint8_t>& bytes,
                     const OctreeStreamLimits& limits = OctreeStreamLimits()) {
-  try {
-    LoadMapBytes(bytes, "test map", limits);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return InputErrorOf([&] { LoadMapBytes(bytes, "test map", limits); });
 }
 
 const char kBinaryHeader[] = "# Octomap OcTree binary file\nid OcTree\nsize 5\nres 0.1\ndata\n";

@@ -8,6 +8,7 @@
 
 #include "planner/base/check.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tests/input_error_of.h"
 
 namespace mfp {
 namespace {
@@ -19,12 +20,7 @@ PlannerOptions Read(const std::string& text) {
 }
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Read(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return InputErrorOf([&] { Read(text); });
 }
 
 TEST(PlannerOptionsYaml, SearchOptionsReachTheBranchAndBound) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "planner/base/check.h"
+#include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {
@@ -16,12 +17,7 @@ TerrainDescription Parse(const std::string& text) {
 }
 
 std::string ErrorOf(const std::string& text) {
-  try {
-    Parse(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return InputErrorOf([&] { Parse(text); });
 }
 
 TEST(TerrainYamlTest, ReadsBoxesWithDefaults) {

@@ -11,11 +11,13 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "planner/base/check.h"
 #include "planner/io/robot_loader.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
+#include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {
@@ -36,6 +38,14 @@ struct Quad {
   double length_scale_x = 1.0, length_scale_y = 1.0;
 };
 
+// A link p_<link> hanging from leg p's shank by the fixed joint p_<joint>, origin xyz.
+std::string FixedLeaf(const std::string& p, const std::string& link, const std::string& joint,
+                      const std::string& xyz) {
+  return "<link name=\"" + p + "_" + link + "\"/><joint name=\"" + p + "_" + joint +
+         "\" type=\"fixed\"><parent link=\"" + p + "_shank\"/><child link=\"" + p + "_" + link +
+         "\"/><origin xyz=\"" + xyz + "\"/></joint>\n";
+}
+
 std::string Leg(const Quad& q, const std::string& p, int sx, int sy) {
   std::ostringstream s;
   const std::string hip =
@@ -52,8 +62,7 @@ std::string Leg(const Quad& q, const std::string& p, int sx, int sy) {
   if (q.foot) {
     s << q.foot(p, sx, sy);
   } else {
-    s << "<link name=\"" << p << "_foot\"/><joint name=\"" << p << "_foot_fixed\" type=\"fixed\"><parent link=\"" << p
-      << "_shank\"/><child link=\"" << p << "_foot\"/><origin xyz=\"0 0 -0.2\"/></joint>\n";
+    s << FixedLeaf(p, "foot", "foot_fixed", "0 0 -0.2");
   }
   if (q.leg_extra) s << q.leg_extra(p, sx, sy);
   return s.str();
@@ -75,18 +84,20 @@ std::string Write(const std::string& name, const std::string& text) {
   return path;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
+std::string ErrorOf(const std::function<void()>& f) { return InputErrorOf(f, "(accepted)"); }
 
 int ExitCode(const std::string& args) {
   const int status = std::system((std::string(MFP_BINARY_DIR) + "/tools/mfp-robot " + args + " >/dev/null 2>&1").c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Writes the URDF text to name and expects both LoadRobot and mfp-robot (exit code 2)
+// to refuse it, the message holding each of `words`.
+void ExpectRefused(const std::string& name, const std::string& text, const std::vector<std::string>& words) {
+  const std::string path = Write(name, text);
+  const std::string error = ErrorOf([&] { LoadRobot(path); });
+  for (const std::string& word : words) EXPECT_NE(error.find(word), std::string::npos) << error;
+  EXPECT_EQ(ExitCode(path), 2);
 }
 
 bool HasLine(const RobotModel& robot, const std::string& part) {
@@ -190,10 +201,7 @@ TEST(UrdfStructure, SeveralLeavesPerLegKeepOneFoot) {
   // the end link is farther along the leg, and a sphere beats both.
   Quad q;
   q.foot = [](const std::string& p, int, int) {
-    return "<link name=\"" + p + "_shin_guard\"/><joint name=\"" + p + "_guard\" type=\"fixed\"><parent link=\"" + p +
-           "_shank\"/><child link=\"" + p + "_shin_guard\"/><origin xyz=\"0.02 0 -0.08\"/></joint>\n"
-           "<link name=\"" + p + "_end\"/><joint name=\"" + p + "_end_fixed\" type=\"fixed\"><parent link=\"" + p +
-           "_shank\"/><child link=\"" + p + "_end\"/><origin xyz=\"0 0 -0.2\"/></joint>\n";
+    return FixedLeaf(p, "shin_guard", "guard", "0.02 0 -0.08") + FixedLeaf(p, "end", "end_fixed", "0 0 -0.2");
   };
   const RobotDescription farthest = ReadUrdfRobot(Write("f.urdf", Urdf(q)));
   ASSERT_EQ(farthest.legs.size(), 4u);
@@ -202,10 +210,7 @@ TEST(UrdfStructure, SeveralLeavesPerLegKeepOneFoot) {
               return n.find("foot link 'fl_end' chosen over 'fl_shin_guard'") != std::string::npos;
             }));
   q.foot = [](const std::string& p, int, int) {
-    return "<link name=\"" + p + "_end\"/><joint name=\"" + p + "_end_fixed\" type=\"fixed\"><parent link=\"" + p +
-           "_shank\"/><child link=\"" + p + "_end\"/><origin xyz=\"0 0 -0.25\"/></joint>\n"
-           "<link name=\"" + p + "_toe\"/><joint name=\"" + p + "_toe_fixed\" type=\"fixed\"><parent link=\"" + p +
-           "_shank\"/><child link=\"" + p + "_toe\"/><origin xyz=\"0 0 -0.2\"/></joint>\n"
+    return FixedLeaf(p, "end", "end_fixed", "0 0 -0.25") + FixedLeaf(p, "toe", "toe_fixed", "0 0 -0.2") +
            "<link name=\"" + p + "_pad\"><collision><origin xyz=\"0 0 -0.2\"/><geometry><sphere radius=\"0.02\"/>"
            "</geometry></collision></link><joint name=\"" + p + "_pad_fixed\" type=\"fixed\"><parent link=\"" + p +
            "_shank\"/><child link=\"" + p + "_pad\"/></joint>\n";
@@ -218,10 +223,7 @@ TEST(UrdfStructure, SeveralLeavesPerLegKeepOneFoot) {
 TEST(UrdfStructure, AFootNameBeatsALongerLeaf) {
   Quad q;
   q.foot = [](const std::string& p, int, int) {
-    return "<link name=\"" + p + "_end\"/><joint name=\"" + p + "_end_fixed\" type=\"fixed\"><parent link=\"" + p +
-           "_shank\"/><child link=\"" + p + "_end\"/><origin xyz=\"0 0 -0.25\"/></joint>\n"
-           "<link name=\"" + p + "_toe\"/><joint name=\"" + p + "_toe_fixed\" type=\"fixed\"><parent link=\"" + p +
-           "_shank\"/><child link=\"" + p + "_toe\"/><origin xyz=\"0 0 -0.2\"/></joint>\n";
+    return FixedLeaf(p, "end", "end_fixed", "0 0 -0.25") + FixedLeaf(p, "toe", "toe_fixed", "0 0 -0.2");
   };
   EXPECT_EQ(ReadUrdfRobot(Write("t.urdf", Urdf(q))).legs[0].foot_link, "fl_toe");
 }
@@ -301,11 +303,7 @@ TEST(UrdfStructure, PlanarLegsAreRefusedByName) {
   for (size_t at = text.find("<axis xyz=\"1 0 0\"/>"); at != std::string::npos; at = text.find("<axis xyz=\"1 0 0\"/>")) {
     text.replace(at, 19, "<axis xyz=\"0 1 0\"/>");
   }
-  const std::string path = Write("planar.urdf", text);
-  const std::string error = ErrorOf([&] { LoadRobot(path); });
-  EXPECT_NE(error.find("leg 'fl' is planar"), std::string::npos) << error;
-  EXPECT_NE(error.find("no sideways freedom"), std::string::npos) << error;
-  EXPECT_EQ(ExitCode(path), 2);
+  ExpectRefused("planar.urdf", text, {"leg 'fl' is planar", "no sideways freedom"});
 }
 
 TEST(UrdfStructure, RotatingCLegsAreRefused) {
@@ -317,11 +315,7 @@ TEST(UrdfStructure, RotatingCLegsAreRefused) {
             " 0\"/><axis xyz=\"0 1 0\"/></joint>\n";
   }
   text += "</robot>\n";
-  const std::string path = Write("rhex.urdf", text);
-  const std::string error = ErrorOf([&] { LoadRobot(path); });
-  EXPECT_NE(error.find("single movable joint"), std::string::npos) << error;
-  EXPECT_NE(error.find("rotating C-legs"), std::string::npos) << error;
-  EXPECT_EQ(ExitCode(path), 2);
+  ExpectRefused("rhex.urdf", text, {"single movable joint", "rotating C-legs"});
 }
 
 // --- hostile input (issue 19) ---
@@ -371,10 +365,7 @@ TEST(UrdfHostile, LegsWithManyJointsAreRefusedQuickly) {
        std::vector<std::tuple<int, int, std::string>>{{32, 0, "has 32 movable joints; mfp reads at most 12"},
                                                       {64, 0, "has 64 movable joints; mfp reads at most 12"},
                                                       {3, 1000, "has more than 64 joints"}}) {
-    const std::string path = Write("long.urdf", LongLeg(revolute, fixed));
-    const std::string error = ErrorOf([&] { LoadRobot(path); });
-    EXPECT_NE(error.find(expect), std::string::npos) << error;
-    EXPECT_EQ(ExitCode(path), 2);
+    ExpectRefused("long.urdf", LongLeg(revolute, fixed), {expect});
   }
 }
 

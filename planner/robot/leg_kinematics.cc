@@ -35,6 +35,16 @@ Eigen::Isometry3d WalkChain(const LegChain& leg, const Eigen::VectorXd& q, Visit
   return T_body_link;
 }
 
+// One field of each movable joint, in chain order.
+Eigen::VectorXd MovableJointValues(const LegChain& leg, double JointModel::*field) {
+  Eigen::VectorXd values(leg.num_dof());
+  int dof = 0;
+  for (const JointModel& joint : leg.joints) {
+    if (joint.movable()) values[dof++] = joint.*field;
+  }
+  return values;
+}
+
 }  // namespace
 
 int LegChain::num_dof() const {
@@ -43,23 +53,9 @@ int LegChain::num_dof() const {
   return n;
 }
 
-Eigen::VectorXd LegChain::LowerLimits() const {
-  Eigen::VectorXd lower(num_dof());
-  int dof = 0;
-  for (const JointModel& joint : joints) {
-    if (joint.movable()) lower[dof++] = joint.lower;
-  }
-  return lower;
-}
+Eigen::VectorXd LegChain::LowerLimits() const { return MovableJointValues(*this, &JointModel::lower); }
 
-Eigen::VectorXd LegChain::UpperLimits() const {
-  Eigen::VectorXd upper(num_dof());
-  int dof = 0;
-  for (const JointModel& joint : joints) {
-    if (joint.movable()) upper[dof++] = joint.upper;
-  }
-  return upper;
-}
+Eigen::VectorXd LegChain::UpperLimits() const { return MovableJointValues(*this, &JointModel::upper); }
 
 void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad) {
   const Eigen::Isometry3d turn(Eigen::AngleAxisd(-forward_yaw_rad, Eigen::Vector3d::UnitZ()));

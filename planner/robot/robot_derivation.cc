@@ -146,203 +146,230 @@ std::vector<int> WaveGait(const std::vector<LegModel>& legs) {
   return gait;
 }
 
-RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptions& options) {
-  MFP_CHECK(!robot.legs.empty());
-  const size_t n = robot.legs.size();
-  const std::string& src = robot.source;
+namespace {
+
+void RejectPlanarLegs(const RobotDescription& robot) {
   for (const LegChain& leg : robot.legs) {
     const std::string axis = PlanarLegAxis(leg);
-    if (!axis.empty()) {
-      std::string joints;
-      for (const JointModel& j : leg.joints) {
-        if (j.movable()) joints += (joints.empty() ? "'" : ", '") + j.name + "'";
-      }
-      throw InputError(src + ": leg '" + leg.name + "' is planar: its joints " + joints +
-                       " all turn about the axis " + axis +
-                       ", so its foot has no sideways freedom; mfp's reachability square needs a foot that "
-                       "moves both along and across the body (planar-legged robots are not supported)");
+    if (axis.empty()) continue;
+    std::string joints;
+    for (const JointModel& j : leg.joints) {
+      if (j.movable()) joints += (joints.empty() ? "'" : ", '") + j.name + "'";
     }
+    throw InputError(robot.source + ": leg '" + leg.name + "' is planar: its joints " + joints +
+                     " all turn about the axis " + axis +
+                     ", so its foot has no sideways freedom; mfp's reachability square needs a foot that "
+                     "moves both along and across the body (planar-legged robots are not supported)");
   }
-  std::vector<LegSamples> samples(n);
-  std::vector<Eigen::Vector3d> hips(n);
-  double widest_reach = 0.0;
-  double hip_z = 0.0;
-  for (size_t k = 0; k < n; ++k) {
-    samples[k] = SampleJointSpace(robot.legs[k], options.samples_per_leg);
-    hips[k] = HipPosition(robot.legs[k]);
-    hip_z += hips[k].z() / n;
-    const Eigen::Vector2d lo = samples[k].p.topRows<2>().rowwise().minCoeff();
-    const Eigen::Vector2d hi = samples[k].p.topRows<2>().rowwise().maxCoeff();
-    widest_reach = std::max(widest_reach, (hi - lo).maxCoeff());
-  }
-  // The downward reach of each leg below the mean hip height bounds the stance height.
-  double common_reach = std::numeric_limits<double>::infinity();
-  std::vector<double> lowest(n);
-  for (size_t k = 0; k < n; ++k) {
-    lowest[k] = samples[k].p.row(2).minCoeff();
-    const double reach = hip_z - lowest[k];
-    if (!(reach > 1e-6)) {
-      std::ostringstream msg;
-      msg << src << ": leg '" << robot.legs[k].name
-          << "' cannot reach the ground at any stance height: its lowest foot point is at z = "
-          << Fixed(lowest[k]) << " m, not below the hips (z = " << Fixed(hip_z) << " m)";
-      throw InputError(msg.str());
-    }
-    common_reach = std::min(common_reach, reach);
-  }
-  MFP_CHECK(widest_reach > 0.0);
+}
 
-  auto leg_bounds = [&](size_t k, double cell) {
+// The legs' joint-space samples and what they say about the robot's size.
+struct LegSampling {
+  std::vector<LegSamples> samples;
+  std::vector<Eigen::Vector3d> hips;
+  std::vector<double> lowest;   // lowest foot point per leg, body z [m]
+  double widest_reach = 0.0;    // widest x-y extent of a leg's samples [m]
+  double hip_z = 0.0;           // mean hip height, body z [m]
+  double common_reach = 0.0;    // smallest downward reach below hip_z [m]
+
+  // The x-y box of leg k's samples, grown by one cell.
+  std::pair<Eigen::Vector2d, Eigen::Vector2d> Bounds(size_t k, double cell) const {
     const Eigen::Vector2d lo = samples[k].p.topRows<2>().rowwise().minCoeff();
     const Eigen::Vector2d hi = samples[k].p.topRows<2>().rowwise().maxCoeff();
     return std::make_pair(Eigen::Vector2d(lo.array() - cell), Eigen::Vector2d(hi.array() + cell));
-  };
-  // Smallest leg's inscribed square at height z with a coarse grid (cell-centre search).
-  auto score = [&](double z, double cell) {
-    double worst = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < n && worst > 0.0; ++k) {
-      const auto [lo, hi] = leg_bounds(k, cell);
-      const Footprint fp = ReachableFootprint(robot.legs[k], samples[k], lo, hi, cell, z,
-                                              options.ik_tolerance_m);
-      double best = 0.0;
-      for (int iy = 0; iy < fp.grid.ny(); ++iy) {
-        for (int ix = 0; ix < fp.grid.nx(); ++ix) {
-          if (fp.grid.Occupied(ix, iy)) {
-            best = std::max(best, fp.grid.Clearance(fp.grid.CellCentre(ix, iy)));
-          }
-        }
-      }
-      worst = std::min(worst, best);
-    }
-    return worst;
-  };
-
-  RobotDerivation out;
-  RobotModel& model = out.model;
-  model.name = robot.name;
-  for (const std::string& note : robot.notes) model.provenance.push_back("urdf: " + note);
-  double stance = 0.0;
-  if (options.stance_height_m) {
-    stance = *options.stance_height_m;
-  } else {
-    // Legged robots stand with the knee bent, the hips at 60-80 % of the legs' full
-    // extension, so that a foot can both rise and drop: the nearest height to
-    // stance_fraction of the reach where every leg still has a useful footprint (its
-    // inscribed square at least half the best over the candidates). Never the crouched
-    // height where the footprint alone is largest.
-    const double scan_cell = widest_reach / options.scan_cells;
-    std::vector<double> fractions, scores;
-    double best_score = 0.0;
-    for (int i = 0; i < options.stance_candidates; ++i) {
-      const double frac = 0.25 + 0.70 * i / std::max(1, options.stance_candidates - 1);
-      fractions.push_back(frac);
-      scores.push_back(score(hip_z - frac * common_reach, scan_cell));
-      best_score = std::max(best_score, scores.back());
-    }
-    if (best_score <= 0.0) {
-      throw InputError(src + ": the legs have no common stance height: at no height between " +
-                       Fixed(0.25 * common_reach) + " and " + Fixed(0.95 * common_reach) +
-                       " m below the hips can every foot stand");
-    }
-    double chosen = -1.0;
-    for (size_t i = 0; i < fractions.size(); ++i) {
-      if (scores[i] < 0.5 * best_score) continue;
-      if (chosen < 0 || std::abs(fractions[i] - options.stance_fraction) <
-                            std::abs(chosen - options.stance_fraction) - 1e-9) {
-        chosen = fractions[i];
-      }
-    }
-    stance = chosen * common_reach;
-    model.provenance.push_back(
-        "stance_height = " + Fixed(stance) + " m: derived, " + Fixed(100 * chosen, 0) +
-        "% of the smallest downward reach below the hips (" + Fixed(common_reach) + " m): of " +
-        std::to_string(options.stance_candidates) + " heights between 25% and 95%, the nearest to " +
-        Fixed(100 * options.stance_fraction, 0) + "% (knee bent, as legged robots stand) where every "
-        "leg's inscribed square is at least half the best");
   }
-  model.stance_height_m = stance;
-  out.feet_plane_z_body_m = hip_z - stance;
-  const double z_plane = out.feet_plane_z_body_m;
+};
 
-  const double cell = widest_reach / options.final_cells;
-  std::vector<Eigen::Vector2d> feet_xy(n);
-  double d_lim_raw = std::numeric_limits<double>::infinity();
-  double dz_max = std::numeric_limits<double>::infinity();
-  std::string dz_leg, d_leg;
+LegSampling SampleLegs(const RobotDescription& robot, const DerivationOptions& options) {
+  const size_t n = robot.legs.size();
+  LegSampling s;
+  s.samples.resize(n);
+  s.hips.resize(n);
+  s.lowest.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    const LegChain& chain = robot.legs[k];
-    const auto [lo, hi] = leg_bounds(k, cell);
-    Footprint fp =
-        ReachableFootprint(chain, samples[k], lo, hi, cell, z_plane, options.ik_tolerance_m);
-    if (fp.grid.CountOccupied() == 0) {
+    s.samples[k] = SampleJointSpace(robot.legs[k], options.samples_per_leg);
+    s.hips[k] = HipPosition(robot.legs[k]);
+    s.hip_z += s.hips[k].z() / n;
+    const Eigen::Vector2d lo = s.samples[k].p.topRows<2>().rowwise().minCoeff();
+    const Eigen::Vector2d hi = s.samples[k].p.topRows<2>().rowwise().maxCoeff();
+    s.widest_reach = std::max(s.widest_reach, (hi - lo).maxCoeff());
+  }
+  // The downward reach of each leg below the mean hip height bounds the stance height.
+  s.common_reach = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < n; ++k) {
+    s.lowest[k] = s.samples[k].p.row(2).minCoeff();
+    const double reach = s.hip_z - s.lowest[k];
+    if (!(reach > 1e-6)) {
       std::ostringstream msg;
-      msg << src << ": leg '" << chain.name << "' cannot reach the stance height "
-          << Fixed(stance) << " m below the hips (its foot reaches down to "
-          << Fixed(hip_z - lowest[k]) << " m below them)";
+      msg << robot.source << ": leg '" << robot.legs[k].name
+          << "' cannot reach the ground at any stance height: its lowest foot point is at z = "
+          << Fixed(s.lowest[k]) << " m, not below the hips (z = " << Fixed(s.hip_z) << " m)";
       throw InputError(msg.str());
     }
-    const InscribedSquare square = LargestInscribedSquare(
-        fp.grid, hips[k].head<2>(), options.centre_weight_per_m);
-    LegDerivation leg;
-    leg.hip_body_m = hips[k];
-    leg.square_half_side_m = square.half_side_m;
-    leg.lowest_foot_z_m = lowest[k];
-    leg.nominal_foot_body_m = Eigen::Vector3d(square.centre_m.x(), square.centre_m.y(), z_plane);
-    int ix = 0, iy = 0;
-    MFP_CHECK(fp.grid.CellOf(square.centre_m, &ix, &iy));
-    const Eigen::VectorXd q_cell = fp.q[static_cast<size_t>(iy) * fp.grid.nx() + ix];
-    MFP_CHECK(q_cell.size() == chain.num_dof());
-    const IkResult ik = SolveFootIk(chain, leg.nominal_foot_body_m, q_cell, options.ik_tolerance_m);
-    leg.nominal_q = ik.converged ? ik.q : q_cell;
-    const double step = 0.5 * cell;
-    leg.dz_up_m = VerticalTravel(chain, leg.nominal_foot_body_m, leg.nominal_q, +1.0, step,
-                                 stance, options.ik_tolerance_m);
-    leg.dz_down_m = VerticalTravel(chain, leg.nominal_foot_body_m, leg.nominal_q, -1.0, step,
-                                   hip_z - lowest[k], options.ik_tolerance_m);
-    leg.footprint = std::move(fp.grid);
-    feet_xy[k] = square.centre_m;
-    if (square.half_side_m < d_lim_raw) {
-      d_lim_raw = square.half_side_m;
-      d_leg = chain.name;
-    }
-    const double dz = std::min(leg.dz_up_m, leg.dz_down_m);
-    if (dz < dz_max) {
-      dz_max = dz;
-      dz_leg = chain.name;
-    }
-    out.legs.push_back(std::move(leg));
+    s.common_reach = std::min(s.common_reach, reach);
   }
+  MFP_CHECK(s.widest_reach > 0.0);
+  return s;
+}
 
-  // A stance where a leg has no reach left is not a model to plan with: say which leg
-  // and which heights would do, instead of handing on a zero limit.
-  const std::string heights = Fixed(0.25 * common_reach) + " and " + Fixed(0.95 * common_reach) + " m";
-  if (!(d_lim_raw - 0.5 * cell > 0.0)) {
+// Smallest leg's inscribed square at height z with a coarse grid (cell-centre search).
+double SmallestSquareAt(const RobotDescription& robot, const LegSampling& s, double z, double cell,
+                        const DerivationOptions& options) {
+  double worst = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < robot.legs.size() && worst > 0.0; ++k) {
+    const auto [lo, hi] = s.Bounds(k, cell);
+    const Footprint fp = ReachableFootprint(robot.legs[k], s.samples[k], lo, hi, cell, z,
+                                            options.ik_tolerance_m);
+    double best = 0.0;
+    for (int iy = 0; iy < fp.grid.ny(); ++iy) {
+      for (int ix = 0; ix < fp.grid.nx(); ++ix) {
+        if (fp.grid.Occupied(ix, iy)) {
+          best = std::max(best, fp.grid.Clearance(fp.grid.CellCentre(ix, iy)));
+        }
+      }
+    }
+    worst = std::min(worst, best);
+  }
+  return worst;
+}
+
+// Legged robots stand with the knee bent, the hips at 60-80 % of the legs' full
+// extension, so that a foot can both rise and drop: the nearest height to stance_fraction
+// of the reach where every leg still has a useful footprint (its inscribed square at
+// least half the best over the candidates). Never the crouched height where the
+// footprint alone is largest. Returns the stance height [m] and notes it in provenance.
+double DeriveStanceHeight(const RobotDescription& robot, const LegSampling& s,
+                          const DerivationOptions& options, std::vector<std::string>* provenance) {
+  const double scan_cell = s.widest_reach / options.scan_cells;
+  std::vector<double> fractions, scores;
+  double best_score = 0.0;
+  for (int i = 0; i < options.stance_candidates; ++i) {
+    const double frac = 0.25 + 0.70 * i / std::max(1, options.stance_candidates - 1);
+    fractions.push_back(frac);
+    scores.push_back(SmallestSquareAt(robot, s, s.hip_z - frac * s.common_reach, scan_cell, options));
+    best_score = std::max(best_score, scores.back());
+  }
+  if (best_score <= 0.0) {
+    throw InputError(robot.source + ": the legs have no common stance height: at no height between " +
+                     Fixed(0.25 * s.common_reach) + " and " + Fixed(0.95 * s.common_reach) +
+                     " m below the hips can every foot stand");
+  }
+  double chosen = -1.0;
+  for (size_t i = 0; i < fractions.size(); ++i) {
+    if (scores[i] < 0.5 * best_score) continue;
+    if (chosen < 0 || std::abs(fractions[i] - options.stance_fraction) <
+                          std::abs(chosen - options.stance_fraction) - 1e-9) {
+      chosen = fractions[i];
+    }
+  }
+  const double stance = chosen * s.common_reach;
+  provenance->push_back(
+      "stance_height = " + Fixed(stance) + " m: derived, " + Fixed(100 * chosen, 0) +
+      "% of the smallest downward reach below the hips (" + Fixed(s.common_reach) + " m): of " +
+      std::to_string(options.stance_candidates) + " heights between 25% and 95%, the nearest to " +
+      Fixed(100 * options.stance_fraction, 0) + "% (knee bent, as legged robots stand) where every "
+      "leg's inscribed square is at least half the best");
+  return stance;
+}
+
+// Leg k at the stance height: its footprint, largest square, nominal foot and vertical
+// travel. foot_xy is the square's centre.
+LegDerivation DeriveLeg(const RobotDescription& robot, const LegSampling& s, size_t k, double stance,
+                        double z_plane, double cell, const DerivationOptions& options,
+                        Eigen::Vector2d* foot_xy) {
+  const LegChain& chain = robot.legs[k];
+  const auto [lo, hi] = s.Bounds(k, cell);
+  Footprint fp = ReachableFootprint(chain, s.samples[k], lo, hi, cell, z_plane, options.ik_tolerance_m);
+  if (fp.grid.CountOccupied() == 0) {
+    std::ostringstream msg;
+    msg << robot.source << ": leg '" << chain.name << "' cannot reach the stance height "
+        << Fixed(stance) << " m below the hips (its foot reaches down to "
+        << Fixed(s.hip_z - s.lowest[k]) << " m below them)";
+    throw InputError(msg.str());
+  }
+  const InscribedSquare square =
+      LargestInscribedSquare(fp.grid, s.hips[k].head<2>(), options.centre_weight_per_m);
+  LegDerivation leg;
+  leg.hip_body_m = s.hips[k];
+  leg.square_half_side_m = square.half_side_m;
+  leg.lowest_foot_z_m = s.lowest[k];
+  leg.nominal_foot_body_m = Eigen::Vector3d(square.centre_m.x(), square.centre_m.y(), z_plane);
+  int ix = 0, iy = 0;
+  MFP_CHECK(fp.grid.CellOf(square.centre_m, &ix, &iy));
+  const Eigen::VectorXd q_cell = fp.q[static_cast<size_t>(iy) * fp.grid.nx() + ix];
+  MFP_CHECK(q_cell.size() == chain.num_dof());
+  const IkResult ik = SolveFootIk(chain, leg.nominal_foot_body_m, q_cell, options.ik_tolerance_m);
+  leg.nominal_q = ik.converged ? ik.q : q_cell;
+  const double step = 0.5 * cell;
+  leg.dz_up_m = VerticalTravel(chain, leg.nominal_foot_body_m, leg.nominal_q, +1.0, step, stance,
+                               options.ik_tolerance_m);
+  leg.dz_down_m = VerticalTravel(chain, leg.nominal_foot_body_m, leg.nominal_q, -1.0, step,
+                                 s.hip_z - s.lowest[k], options.ik_tolerance_m);
+  leg.footprint = std::move(fp.grid);
+  *foot_xy = square.centre_m;
+  return leg;
+}
+
+// The smallest square and vertical travel over the legs, and the legs that set them.
+struct LegLimits {
+  double d_lim_raw = std::numeric_limits<double>::infinity();  // smallest half-side [m]
+  double dz_max = std::numeric_limits<double>::infinity();     // smallest travel [m]
+  std::string d_leg, dz_leg;
+};
+
+LegLimits SmallestLimits(const RobotDescription& robot, const std::vector<LegDerivation>& legs) {
+  LegLimits limits;
+  for (size_t k = 0; k < legs.size(); ++k) {
+    if (legs[k].square_half_side_m < limits.d_lim_raw) {
+      limits.d_lim_raw = legs[k].square_half_side_m;
+      limits.d_leg = robot.legs[k].name;
+    }
+    const double dz = std::min(legs[k].dz_up_m, legs[k].dz_down_m);
+    if (dz < limits.dz_max) {
+      limits.dz_max = dz;
+      limits.dz_leg = robot.legs[k].name;
+    }
+  }
+  return limits;
+}
+
+// A stance where a leg has no reach left is not a model to plan with: say which leg and
+// which heights would do, instead of handing on a zero limit.
+void RejectExhaustedLegs(const RobotDescription& robot, const LegSampling& s, const LegLimits& limits,
+                         double stance, double cell) {
+  const std::string& src = robot.source;
+  const std::string heights = Fixed(0.25 * s.common_reach) + " and " + Fixed(0.95 * s.common_reach) + " m";
+  if (!(limits.d_lim_raw - 0.5 * cell > 0.0)) {
     int dof = 0;
     for (const LegChain& leg : robot.legs) {
-      if (leg.name == d_leg) dof = leg.num_dof();
+      if (leg.name == limits.d_leg) dof = leg.num_dof();
     }
-    throw InputError(src + ": at the stance height " + Fixed(stance) + " m leg '" + d_leg +
+    throw InputError(src + ": at the stance height " + Fixed(stance) + " m leg '" + limits.d_leg +
                      "' reaches no square wider than a footprint cell (" + Fixed(cell) + " m)" +
                      (dof < 3 ? " (with " + std::to_string(dof) +
                                     " movable joints its foot reaches a curve, not an area, at one height; "
                                     "mfp needs legs of at least 3)"
                               : "; choose stance_height between " + heights + " in a robot YAML"));
   }
-  if (!(dz_max > 0.0)) {
-    throw InputError(src + ": at the stance height " + Fixed(stance) + " m leg '" + dz_leg +
+  if (!(limits.dz_max > 0.0)) {
+    throw InputError(src + ": at the stance height " + Fixed(stance) + " m leg '" + limits.dz_leg +
                      "' cannot move its foot up or down from its nominal point (the edge of its vertical "
                      "reach); choose stance_height between " + heights + " in a robot YAML");
   }
+}
+
+// The model's legs: nominal offsets about the mean of the feet.
+void AddModelLegs(const RobotDescription& robot, const std::vector<Eigen::Vector2d>& feet_xy,
+                  const std::vector<Eigen::Vector3d>& hips, RobotModel* model) {
+  const size_t n = feet_xy.size();
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(n);
-  double foot_radius = 0.0;
   for (size_t k = 0; k < n; ++k) {
     LegModel leg;
     leg.name = robot.legs[k].name;
     leg.nominal_offset_body_m = feet_xy[k] - mean;
     leg.hip_body_m = hips[k];
-    foot_radius = std::max(foot_radius, robot.legs[k].foot_sphere_radius_m);
-    model.legs.push_back(leg);
+    model->legs.push_back(leg);
     const Eigen::Vector2d o = leg.nominal_offset_body_m;
     std::ostringstream line;
     line << "legs[" << k << "] '" << leg.name << "' nominal offset (" << Fixed(o.x()) << ", "
@@ -350,38 +377,72 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
          << Fixed(std::atan2(o.y(), o.x())) << " rad: derived, centre of the largest square in "
          << "the foot's reachable footprint at the stance height (foot link '"
          << robot.legs[k].foot_link << "'), minus the mean of the feet";
-    model.provenance.push_back(line.str());
+    model->provenance.push_back(line.str());
   }
-  model.d_lim_m = std::max(0.0, d_lim_raw - 0.5 * cell);
-  model.provenance.push_back(
-      "d_lim = " + Fixed(model.d_lim_m) + " m: derived, half-side of the largest square in the "
-      "reachable footprint at the stance height, smallest over legs (leg '" + d_leg + "', " +
-      Fixed(d_lim_raw) + " m) less half a footprint cell (" + Fixed(0.5 * cell) + " m)");
-  model.l_bnd_m = options.l_bnd_fraction * model.d_lim_m;
-  model.provenance.push_back("l_bnd = " + Fixed(model.l_bnd_m) + " m: derived, " +
-                             Fixed(options.l_bnd_fraction, 2) + " * d_lim");
-  model.dz_max_m = dz_max;
-  model.provenance.push_back(
-      "dz_max = " + Fixed(dz_max) + " m: derived, the smallest vertical travel (up or down) of a "
+}
+
+// The model's limits, foot radius, gait and weights, each with its provenance.
+void AddModelLimits(const RobotDescription& robot, const LegLimits& limits, double cell,
+                    const DerivationOptions& options, RobotModel* model) {
+  double foot_radius = 0.0;
+  for (const LegChain& leg : robot.legs) foot_radius = std::max(foot_radius, leg.foot_sphere_radius_m);
+  model->d_lim_m = std::max(0.0, limits.d_lim_raw - 0.5 * cell);
+  model->provenance.push_back(
+      "d_lim = " + Fixed(model->d_lim_m) + " m: derived, half-side of the largest square in the "
+      "reachable footprint at the stance height, smallest over legs (leg '" + limits.d_leg + "', " +
+      Fixed(limits.d_lim_raw) + " m) less half a footprint cell (" + Fixed(0.5 * cell) + " m)");
+  model->l_bnd_m = options.l_bnd_fraction * model->d_lim_m;
+  model->provenance.push_back("l_bnd = " + Fixed(model->l_bnd_m) + " m: derived, " +
+                              Fixed(options.l_bnd_fraction, 2) + " * d_lim");
+  model->dz_max_m = limits.dz_max;
+  model->provenance.push_back(
+      "dz_max = " + Fixed(limits.dz_max) + " m: derived, the smallest vertical travel (up or down) of a "
       "foot from its nominal point that stays reachable, in steps of " + Fixed(0.5 * cell) +
-      " m (leg '" + dz_leg + "')");
-  const double max_leg = LegReach(model);
-  model.max_yaw_change_rad = MaxYawChangeFor(model.d_lim_m, max_leg);
-  model.provenance.push_back(
-      "max_yaw_change = " + Fixed(model.max_yaw_change_rad) + " rad: derived, 2 asin(d_lim / (2 * " +
+      " m (leg '" + limits.dz_leg + "')");
+  const double max_leg = LegReach(*model);
+  model->max_yaw_change_rad = MaxYawChangeFor(model->d_lim_m, max_leg);
+  model->provenance.push_back(
+      "max_yaw_change = " + Fixed(model->max_yaw_change_rad) + " rad: derived, 2 asin(d_lim / (2 * " +
       Fixed(max_leg) + " m)), the yaw that moves the farthest nominal foot by d_lim");
-  model.foot_radius_m = foot_radius;
-  model.provenance.push_back(
+  model->foot_radius_m = foot_radius;
+  model->provenance.push_back(
       "foot_radius = " + Fixed(foot_radius) + " m: derived, " +
       (foot_radius > 0 ? "largest foot collision sphere" : "no foot collision sphere"));
-  model.provenance.push_back("max_slope = " + Fixed(model.max_slope_rad) +
-                             " rad: default (a URDF cannot say)");
-  model.gait = WaveGait(model.legs);
+  model->provenance.push_back("max_slope = " + Fixed(model->max_slope_rad) +
+                              " rad: default (a URDF cannot say)");
+  model->gait = WaveGait(model->legs);
   std::string gait_text;
-  for (int g : model.gait) gait_text += (gait_text.empty() ? "" : ", ") + model.legs[g].name;
-  model.provenance.push_back("gait = [" + gait_text +
-                             "]: derived, a wave around the body in decreasing angle of o_k");
-  model.provenance.push_back("weights: defaults (a URDF cannot say)");
+  for (int g : model->gait) gait_text += (gait_text.empty() ? "" : ", ") + model->legs[g].name;
+  model->provenance.push_back("gait = [" + gait_text +
+                              "]: derived, a wave around the body in decreasing angle of o_k");
+  model->provenance.push_back("weights: defaults (a URDF cannot say)");
+}
+
+}  // namespace
+
+RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptions& options) {
+  MFP_CHECK(!robot.legs.empty());
+  RejectPlanarLegs(robot);
+  const LegSampling sampling = SampleLegs(robot, options);
+  RobotDerivation out;
+  RobotModel& model = out.model;
+  model.name = robot.name;
+  for (const std::string& note : robot.notes) model.provenance.push_back("urdf: " + note);
+  const double stance = options.stance_height_m
+                            ? *options.stance_height_m
+                            : DeriveStanceHeight(robot, sampling, options, &model.provenance);
+  model.stance_height_m = stance;
+  out.feet_plane_z_body_m = sampling.hip_z - stance;
+  const double cell = sampling.widest_reach / options.final_cells;
+  std::vector<Eigen::Vector2d> feet_xy(robot.legs.size());
+  for (size_t k = 0; k < robot.legs.size(); ++k) {
+    out.legs.push_back(
+        DeriveLeg(robot, sampling, k, stance, out.feet_plane_z_body_m, cell, options, &feet_xy[k]));
+  }
+  const LegLimits limits = SmallestLimits(robot, out.legs);
+  RejectExhaustedLegs(robot, sampling, limits, stance, cell);
+  AddModelLegs(robot, feet_xy, sampling.hips, &model);
+  AddModelLimits(robot, limits, cell, options, &model);
   return out;
 }
 

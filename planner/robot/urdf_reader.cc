@@ -1,81 +1,21 @@
 #include "planner/robot/urdf_reader.h"
 
 #include <console_bridge/console.h>
-#include <tinyxml2.h>
 #include <urdf_model/model.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 #include <tuple>
 
 #include "planner/base/check.h"
+#include "planner/robot/urdf_xml_checks.h"
 
 namespace mfp {
 namespace {
-
-std::string ReadWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": no such file or not readable");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": could not be read");
-  return text.str();
-}
-
-// Attributes that hold numbers in URDF; each is checked for NaN and infinity, which
-// urdfdom parses without complaint.
-bool IsNumericAttribute(const std::string& name) {
-  static const std::set<std::string> kNumeric = {
-      "xyz",   "rpy",    "lower",  "upper", "effort", "velocity", "radius", "length",
-      "size",  "value",  "scale",  "ixx",   "ixy",    "ixz",      "iyy",    "iyz",
-      "izz",   "damping", "friction", "soft_lower_limit", "soft_upper_limit",
-      "k_position", "k_velocity", "multiplier", "offset", "rising", "falling"};
-  return kNumeric.count(name) > 0;
-}
-
-void CheckFiniteNumbers(const tinyxml2::XMLElement* element, const std::string& path) {
-  for (; element != nullptr; element = element->NextSiblingElement()) {
-    for (const tinyxml2::XMLAttribute* a = element->FirstAttribute(); a != nullptr;
-         a = a->Next()) {
-      if (!IsNumericAttribute(a->Name())) continue;
-      std::istringstream tokens(a->Value());
-      std::string token;
-      while (tokens >> token) {
-        char* end = nullptr;
-        errno = 0;
-        const double value = std::strtod(token.c_str(), &end);
-        const bool whole = end != nullptr && *end == '\0';
-        if (whole && !std::isfinite(value)) {
-          std::ostringstream msg;
-          msg << path << ": line " << element->GetLineNum() << ": <" << element->Name()
-              << "> attribute '" << a->Name() << "' = '" << a->Value()
-              << "' is not a finite number";
-          throw InputError(msg.str());
-        }
-      }
-    }
-    CheckFiniteNumbers(element->FirstChildElement(), path);
-  }
-}
-
-// Document order of the joints, for a leg order that follows the file.
-std::map<std::string, int> JointOrder(const tinyxml2::XMLElement* robot) {
-  std::map<std::string, int> order;
-  int index = 0;
-  for (const tinyxml2::XMLElement* j = robot->FirstChildElement("joint"); j != nullptr;
-       j = j->NextSiblingElement("joint")) {
-    const char* name = j->Attribute("name");
-    if (name != nullptr) order.emplace(name, index++);
-  }
-  return order;
-}
 
 // Collects urdfdom's console messages so that they end up in our error, not on stderr.
 class CaptureConsole : public console_bridge::OutputHandler {
@@ -176,80 +116,6 @@ std::string CommonPrefixName(const std::vector<std::string>& names) {
   return TrimSeparators(prefix);
 }
 
-// Limits of the URDF path (docs/robot_derivation.md): beyond them a description is
-// refused with a message instead of exhausting time or memory.
-constexpr int kMaxLinks = 10000;      // links in the file
-constexpr int kMaxLegs = 16;          // legs found (or named)
-constexpr int kMaxLegDof = 12;        // movable joints in one leg
-constexpr int kMaxChainJoints = 64;   // joints (fixed included) from the body to a foot
-
-// Checks the joint graph of the raw XML before urdfdom sees it: too many links, a joint
-// whose parent is its child, joints that form a loop (urdfdom accepts a loop that is not
-// connected to the root, and walking up from it never ends). Removes links that appear
-// in no joint (urdfdom takes each for a second root), noting them.
-void CheckAndPruneJointGraph(tinyxml2::XMLElement* robot_xml, const std::string& path,
-                             std::vector<std::string>* notes) {
-  std::map<std::string, std::pair<std::string, std::string>> parent_of;  // child -> (parent, joint)
-  std::set<std::string> in_joint;
-  int links = 0;
-  for (const tinyxml2::XMLElement* l = robot_xml->FirstChildElement("link"); l != nullptr;
-       l = l->NextSiblingElement("link")) {
-    if (++links > kMaxLinks) {
-      throw InputError(path + ": more than " + std::to_string(kMaxLinks) +
-                       " links (mfp reads at most " + std::to_string(kMaxLinks) + ")");
-    }
-  }
-  for (const tinyxml2::XMLElement* j = robot_xml->FirstChildElement("joint"); j != nullptr;
-       j = j->NextSiblingElement("joint")) {
-    const tinyxml2::XMLElement* parent = j->FirstChildElement("parent");
-    const tinyxml2::XMLElement* child = j->FirstChildElement("child");
-    const char* name = j->Attribute("name");
-    const char* p = parent ? parent->Attribute("link") : nullptr;
-    const char* c = child ? child->Attribute("link") : nullptr;
-    if (name == nullptr || p == nullptr || c == nullptr) continue;  // urdfdom reports these
-    const std::string where = path + ": line " + std::to_string(j->GetLineNum()) + ": joint '" + name + "'";
-    if (std::string(p) == c) throw InputError(where + ": link '" + p + "' is its own parent");
-    in_joint.insert(p);
-    in_joint.insert(c);
-    parent_of.emplace(c, std::make_pair(std::string(p), std::string(name)));
-  }
-  // Walk up from every link; a walk that meets itself is a loop. Each link is finished once.
-  std::map<std::string, int> state;  // 1 on the current walk, 2 finished
-  for (const auto& [start, unused] : parent_of) {
-    std::vector<std::string> walk;
-    std::string link = start;
-    while (true) {
-      int& s = state[link];
-      if (s == 2) break;
-      if (s == 1) {
-        std::string cycle;
-        for (auto it = std::find(walk.begin(), walk.end(), link); it != walk.end(); ++it) {
-          cycle += "'" + parent_of.at(*it).second + "' -> ";
-        }
-        throw InputError(path + ": the joints form a loop (" + cycle + "back to link '" + link +
-                         "'); a URDF must be a tree");
-      }
-      s = 1;
-      walk.push_back(link);
-      const auto up = parent_of.find(link);
-      if (up == parent_of.end()) break;
-      link = up->second.first;
-    }
-    for (const std::string& l : walk) state[l] = 2;
-  }
-  if (in_joint.empty()) return;
-  std::vector<tinyxml2::XMLElement*> orphans;
-  for (tinyxml2::XMLElement* l = robot_xml->FirstChildElement("link"); l != nullptr;
-       l = l->NextSiblingElement("link")) {
-    const char* name = l->Attribute("name");
-    if (name != nullptr && in_joint.count(name) == 0) orphans.push_back(l);
-  }
-  for (tinyxml2::XMLElement* l : orphans) {
-    notes->push_back(std::string("link '") + l->Attribute("name") + "' is in no joint: ignored");
-    robot_xml->DeleteChild(l);
-  }
-}
-
 // The chain's common suffix when it has no common prefix ("abduct_fr", "thigh_fr",
 // "shank_fr" -> "fr"), separators trimmed.
 std::string CommonSuffixName(const std::vector<std::string>& names) {
@@ -345,27 +211,17 @@ double ReachAtZero(const LegChain& leg) {
   return (FootPosition(leg, Eigen::VectorXd::Zero(leg.num_dof())) - HipPosition(leg)).norm();
 }
 
-}  // namespace
+// A leg found, with the document order of its first movable joint.
+using OrderedLegs = std::vector<std::pair<int, LegChain>>;
+using JointOrder = std::map<std::string, int>;
 
-RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::string>& foot_links,
-                               const std::optional<Eigen::Vector3d>& foot_offset_m) {
-  const std::string xml_in = ReadWholeFile(path);
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml_in.c_str(), xml_in.size()) != tinyxml2::XML_SUCCESS) {
-    std::ostringstream msg;
-    msg << path << ": malformed XML at line " << doc.ErrorLineNum() << ": " << doc.ErrorStr();
-    throw InputError(msg.str());
-  }
-  tinyxml2::XMLElement* robot_xml = doc.FirstChildElement("robot");
-  if (robot_xml == nullptr) throw InputError(path + ": not a URDF (no <robot> element)");
-  CheckFiniteNumbers(robot_xml, path);
-  RobotDescription robot;
-  CheckAndPruneJointGraph(robot_xml, path, &robot.notes);
-  const std::map<std::string, int> joint_order = JointOrder(robot_xml);
-  tinyxml2::XMLPrinter printer;
-  doc.Print(&printer);
-  const std::string xml = printer.CStr();
+int FirstMovableOrder(const Chain& chain, const JointOrder& joint_order) {
+  if (chain.movable.empty()) return 0;
+  const auto it = joint_order.find(chain.joints[chain.movable.front()]->name);
+  return it == joint_order.end() ? 0 : it->second;
+}
 
+urdf::ModelInterfaceSharedPtr ParseWithUrdfdom(const std::string& xml, const std::string& path) {
   urdf::ModelInterfaceSharedPtr model;
   std::string parser_messages;
   {
@@ -374,168 +230,222 @@ RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::s
     parser_messages = capture.messages();
   }
   if (!model) {
-    throw InputError(path + ": not a valid URDF" +
-                     (parser_messages.empty() ? "" : ": " + parser_messages));
+    throw InputError(path + ": not a valid URDF" + (parser_messages.empty() ? "" : ": " + parser_messages));
   }
+  return model;
+}
+
+// The legs to the foot links the caller named, each with its own movable joints.
+OrderedLegs LegsOfNamedFeet(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& body,
+                            const std::vector<std::string>& foot_links, const JointOrder& joint_order,
+                            const std::string& path, std::vector<std::string>* notes) {
+  if (static_cast<int>(foot_links.size()) > kMaxLegs) {
+    throw InputError(path + ": " + std::to_string(foot_links.size()) + " foot links named; mfp plans for at most " +
+                     std::to_string(kMaxLegs) + " legs");
+  }
+  OrderedLegs ordered;
+  std::map<std::string, std::string> leg_of_joint;  // movable joint -> foot link using it
+  for (const std::string& name : foot_links) {
+    urdf::LinkConstSharedPtr link = model.getLink(name);
+    if (!link) throw InputError(path + ": foot link '" + name + "' is not a link of the URDF");
+    if (link == model.getRoot()) throw InputError(path + ": foot link '" + name + "' is the root link");
+    const Chain chain = ChainTo(model, body, link, path);
+    if (chain.movable.empty()) {
+      throw InputError(path + ": foot link '" + name +
+                       "' hangs from the root by fixed joints only (a leg needs a movable joint)");
+    }
+    for (int i : chain.movable) {
+      const std::string& joint = chain.joints[i]->name;
+      const auto [it, inserted] = leg_of_joint.emplace(joint, name);
+      if (!inserted) {
+        throw InputError(path + ": foot links '" + it->second + "' and '" + name + "' share the joint '" + joint +
+                         "'; each leg needs its own joints");
+      }
+    }
+    ordered.emplace_back(FirstMovableOrder(chain, joint_order), MakeLeg(*link, chain, path, notes));
+  }
+  return ordered;
+}
+
+using Leaf = std::pair<urdf::LinkConstSharedPtr, Chain>;
+
+// Leaves below the body that hang from it by a movable joint, each with its chain.
+std::vector<Leaf> LeafChains(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& body,
+                             const std::string& path) {
+  std::vector<Leaf> leaves;
+  std::vector<urdf::LinkConstSharedPtr> stack = {body};
+  while (!stack.empty()) {
+    const urdf::LinkConstSharedPtr link = stack.back();
+    stack.pop_back();
+    if (link->child_links.empty() && link != body) {
+      Chain chain = ChainTo(model, body, link, path);
+      if (!chain.movable.empty()) leaves.emplace_back(link, std::move(chain));
+      continue;  // hanging off the body by fixed joints only: a sensor or cover
+    }
+    for (const auto& child : link->child_links) stack.push_back(child);
+  }
+  return leaves;
+}
+
+// Leaves that share a leg's first movable joint are one leg: the groups of leaf indices,
+// in the order they are first met.
+std::vector<std::vector<size_t>> GroupLeavesByLeg(const std::vector<Leaf>& leaves) {
+  // A leaf whose last movable joint is not the last of another leaf hangs partway along
+  // a leg by fixed joints (a rotor, a cover, a sensor): not a foot.
+  std::set<std::string> inner;
+  for (const auto& [leaf, chain] : leaves) {
+    for (size_t i = 0; i + 1 < chain.movable.size(); ++i) inner.insert(chain.joints[chain.movable[i]]->name);
+  }
+  std::map<std::string, size_t> group_of;
+  std::vector<std::vector<size_t>> groups;
+  for (size_t i = 0; i < leaves.size(); ++i) {
+    const Chain& chain = leaves[i].second;
+    if (inner.count(chain.joints[chain.movable.back()]->name)) continue;
+    const std::string key = chain.joints[chain.movable.front()]->name;
+    const auto [it, inserted] = group_of.emplace(key, groups.size());
+    if (inserted) groups.emplace_back();
+    groups[it->second].push_back(i);
+  }
+  return groups;
+}
+
+// Rank of a foot candidate: a collision sphere, then a foot-like name, then more movable
+// joints, then the foot point farthest from the hip at zero joint positions.
+using FootRank = std::tuple<bool, bool, size_t, double>;
+
+size_t BestFootOfGroup(const std::vector<Leaf>& leaves, const std::vector<size_t>& group,
+                       const std::string& path, FootRank* best_rank) {
+  size_t best = group.front();
+  *best_rank = FootRank{false, false, 0, -1.0};
+  for (size_t i : group) {
+    const auto& [leaf, chain] = leaves[i];
+    Eigen::Vector3d centre;
+    const LegChain trial = MakeLeg(*leaf, chain, path, nullptr);
+    const FootRank rank{FootSphere(*leaf, &centre) != nullptr, FootLikeName(leaf->name), chain.movable.size(),
+                        ReachAtZero(trial)};
+    if (rank > *best_rank) {
+      *best_rank = rank;
+      best = i;
+    }
+  }
+  return best;
+}
+
+std::string ChosenFootNote(const std::vector<Leaf>& leaves, const std::vector<size_t>& group, size_t best,
+                           const FootRank& rank) {
+  std::string others;
+  for (size_t i : group) {
+    if (i != best) others += (others.empty() ? "'" : ", '") + leaves[i].first->name + "'";
+  }
+  return "foot link '" + leaves[best].first->name + "' chosen over " + others + " (same leg joints): " +
+         (std::get<0>(rank) ? "collision sphere" : std::get<1>(rank) ? "foot-like name" : "farthest along the chain");
+}
+
+[[noreturn]] void ThrowNoLegs(const std::string& path, const urdf::ModelInterface& model,
+                              const urdf::LinkConstSharedPtr& body, const std::vector<std::string>& one_joint) {
+  if (!one_joint.empty()) {
+    std::string list;
+    for (const std::string& s : one_joint) list += (list.empty() ? "" : ", ") + s;
+    throw InputError(path + ": no legs found: every chain from the body '" + body->name +
+                     "' has a single movable joint (" + list +
+                     "); a leg needs at least two, so rotating C-legs and wheels are not supported");
+  }
+  throw InputError(path + ": no legs found (no chain from the root link '" + model.getRoot()->name +
+                   "' to a leaf link has a movable joint)");
+}
+
+// The legs found below the body: per group of leaves on the same leg joints, the best
+// foot, when its chain has at least two movable joints.
+OrderedLegs LegsOfLeaves(const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& body,
+                         const JointOrder& joint_order, const std::string& path, std::vector<std::string>* notes) {
+  const std::vector<Leaf> leaves = LeafChains(model, body, path);
+  OrderedLegs ordered;
+  std::vector<std::string> one_joint;
+  int legs_found = 0;
+  for (const std::vector<size_t>& group : GroupLeavesByLeg(leaves)) {
+    FootRank rank;
+    const size_t best = BestFootOfGroup(leaves, group, path, &rank);
+    const auto& [leaf, chain] = leaves[best];
+    if (chain.movable.size() < 2) {
+      one_joint.push_back(leaf->name + " (joint '" + chain.joints[chain.movable.front()]->name + "')");
+      continue;
+    }
+    if (++legs_found > kMaxLegs) {
+      throw InputError(path + ": more than " + std::to_string(kMaxLegs) + " legs found; mfp plans for at most " +
+                       std::to_string(kMaxLegs) + " legs");
+    }
+    if (group.size() > 1) notes->push_back(ChosenFootNote(leaves, group, best, rank));
+    ordered.emplace_back(FirstMovableOrder(chain, joint_order), MakeLeg(*leaf, chain, path, notes));
+  }
+  if (ordered.empty()) ThrowNoLegs(path, model, body, one_joint);
+  return ordered;
+}
+
+// Legs in document order, each named by its chain's links, or by its foot link where
+// that name is empty or shared.
+void OrderAndNameLegs(OrderedLegs* ordered) {
+  std::stable_sort(ordered->begin(), ordered->end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::map<std::string, int> name_count;
+  for (const auto& [order, leg] : *ordered) ++name_count[leg.name];
+  for (auto& [order, leg] : *ordered) {
+    if (leg.name.empty() || name_count[leg.name] > 1) leg.name = leg.foot_link;
+  }
+}
+
+// The foot point must move with the last joint, else the URDF holds no foot (the lower
+// leg is only in a mesh and the leaf link's origin is the knee).
+void CheckFootMovesWithLastJoint(const LegChain& leg, const std::string& path) {
+  const JointModel* last = nullptr;
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity(), T_last = T;
+  for (const JointModel& j : leg.joints) {
+    T = T * j.T_parent_joint;
+    if (j.movable()) {
+      last = &j;
+      T_last = T;
+    }
+  }
+  const Eigen::Vector3d foot = FootPosition(leg, Eigen::VectorXd::Zero(leg.num_dof()));
+  const Eigen::Vector3d axis = T_last.linear() * last->axis;
+  const Eigen::Vector3d r = foot - T_last.translation();
+  if (last->type == JointModel::Type::kRevolute && (r - r.dot(axis) * axis).norm() < 1e-6) {
+    throw InputError(path + ": the URDF holds no foot for leg '" + leg.name + "': the foot link '" + leg.foot_link +
+                     "' has its origin on the axis of the leg's last joint '" + last->name +
+                     "' and no collision sphere (the lower leg is probably only a mesh); give the foot's "
+                     "position in that link in a robot YAML: foot_offset: [x, y, z] (m)");
+  }
+}
+
+// Refuses a leg with too many joints; sets or checks its foot point.
+void SettleFoot(const std::optional<Eigen::Vector3d>& foot_offset_m, const std::string& path, LegChain* leg) {
+  if (leg->num_dof() > kMaxLegDof) {
+    throw InputError(path + ": leg to '" + leg->foot_link + "' has " + std::to_string(leg->num_dof()) +
+                     " movable joints; mfp reads at most " + std::to_string(kMaxLegDof) + " per leg");
+  }
+  if (foot_offset_m) {
+    leg->p_footlink_foot_m = *foot_offset_m;
+  } else if (leg->foot_sphere_radius_m == 0.0) {
+    CheckFootMovesWithLastJoint(*leg, path);
+  }
+}
+
+}  // namespace
+
+RobotDescription ReadUrdfRobot(const std::string& path, const std::vector<std::string>& foot_links,
+                               const std::optional<Eigen::Vector3d>& foot_offset_m) {
+  RobotDescription robot;
+  const CheckedUrdfXml checked = ReadCheckedUrdfXml(path, &robot.notes);
+  const urdf::ModelInterfaceSharedPtr model = ParseWithUrdfdom(checked.xml, path);
   robot.name = model->getName();
   robot.source = path;
   const urdf::LinkConstSharedPtr root = model->getRoot();
   if (!root) throw InputError(path + ": URDF has no root link");
   const urdf::LinkConstSharedPtr body = foot_links.empty() ? BodyLink(root, &robot.notes) : root;
   robot.root_link = body->name;
-
-  auto first_movable_order = [&](const Chain& chain) {
-    if (chain.movable.empty()) return 0;
-    const auto it = joint_order.find(chain.joints[chain.movable.front()]->name);
-    return it == joint_order.end() ? 0 : it->second;
-  };
-  std::vector<std::pair<int, LegChain>> ordered;
-  if (!foot_links.empty()) {
-    if (static_cast<int>(foot_links.size()) > kMaxLegs) {
-      throw InputError(path + ": " + std::to_string(foot_links.size()) + " foot links named; mfp plans for at most " +
-                       std::to_string(kMaxLegs) + " legs");
-    }
-    std::map<std::string, std::string> leg_of_joint;  // movable joint -> foot link using it
-    for (const std::string& name : foot_links) {
-      urdf::LinkConstSharedPtr link = model->getLink(name);
-      if (!link) throw InputError(path + ": foot link '" + name + "' is not a link of the URDF");
-      if (link == root) throw InputError(path + ": foot link '" + name + "' is the root link");
-      const Chain chain = ChainTo(*model, body, link, path);
-      if (chain.movable.empty()) {
-        throw InputError(path + ": foot link '" + name +
-                         "' hangs from the root by fixed joints only (a leg needs a movable joint)");
-      }
-      for (int i : chain.movable) {
-        const std::string& joint = chain.joints[i]->name;
-        const auto [it, inserted] = leg_of_joint.emplace(joint, name);
-        if (!inserted) {
-          throw InputError(path + ": foot links '" + it->second + "' and '" + name + "' share the joint '" + joint +
-                           "'; each leg needs its own joints");
-        }
-      }
-      ordered.emplace_back(first_movable_order(chain), MakeLeg(*link, chain, path, &robot.notes));
-    }
-  } else {
-    // Leaves below the body, each with its chain.
-    std::vector<std::pair<urdf::LinkConstSharedPtr, Chain>> leaves;
-    std::vector<urdf::LinkConstSharedPtr> stack = {body};
-    while (!stack.empty()) {
-      const urdf::LinkConstSharedPtr link = stack.back();
-      stack.pop_back();
-      if (link->child_links.empty() && link != body) {
-        Chain chain = ChainTo(*model, body, link, path);
-        if (!chain.movable.empty()) leaves.emplace_back(link, std::move(chain));
-        continue;  // hanging off the body by fixed joints only: a sensor or cover
-      }
-      for (const auto& child : link->child_links) stack.push_back(child);
-    }
-    // A leaf whose last movable joint is not the last of another leaf hangs partway along
-    // a leg by fixed joints (a rotor, a cover, a sensor): not a foot.
-    std::set<std::string> inner;
-    for (const auto& [leaf, chain] : leaves) {
-      for (size_t i = 0; i + 1 < chain.movable.size(); ++i) inner.insert(chain.joints[chain.movable[i]]->name);
-    }
-    // Leaves that share a leg's first movable joint are one leg: keep the best foot.
-    std::map<std::string, std::vector<size_t>> groups;
-    std::vector<std::string> group_order;
-    for (size_t i = 0; i < leaves.size(); ++i) {
-      const Chain& chain = leaves[i].second;
-      if (inner.count(chain.joints[chain.movable.back()]->name)) continue;
-      const std::string key = chain.joints[chain.movable.front()]->name;
-      if (groups[key].empty()) group_order.push_back(key);
-      groups[key].push_back(i);
-    }
-    std::vector<std::string> one_joint;
-    int legs_found = 0;
-    for (const std::string& key : group_order) {
-      const std::vector<size_t>& group = groups[key];
-      // Rank: a collision sphere, then a foot-like name, then more movable joints, then
-      // the foot point farthest from the hip at zero joint positions.
-      size_t best = group.front();
-      std::tuple<bool, bool, size_t, double> best_rank{false, false, 0, -1.0};
-      for (size_t i : group) {
-        const auto& [leaf, chain] = leaves[i];
-        Eigen::Vector3d centre;
-        const LegChain trial = MakeLeg(*leaf, chain, path, nullptr);
-        const std::tuple<bool, bool, size_t, double> rank{FootSphere(*leaf, &centre) != nullptr,
-                                                          FootLikeName(leaf->name), chain.movable.size(),
-                                                          ReachAtZero(trial)};
-        if (rank > best_rank) {
-          best_rank = rank;
-          best = i;
-        }
-      }
-      const auto& [leaf, chain] = leaves[best];
-      if (chain.movable.size() < 2) {
-        one_joint.push_back(leaf->name + " (joint '" + chain.joints[chain.movable.front()]->name + "')");
-        continue;
-      }
-      if (++legs_found > kMaxLegs) {
-        throw InputError(path + ": more than " + std::to_string(kMaxLegs) + " legs found; mfp plans for at most " +
-                         std::to_string(kMaxLegs) + " legs");
-      }
-      if (group.size() > 1) {
-        std::string others;
-        for (size_t i : group) {
-          if (i != best) others += (others.empty() ? "'" : ", '") + leaves[i].first->name + "'";
-        }
-        robot.notes.push_back("foot link '" + leaf->name + "' chosen over " + others +
-                              " (same leg joints): " +
-                              (std::get<0>(best_rank) ? "collision sphere"
-                               : std::get<1>(best_rank) ? "foot-like name"
-                                                        : "farthest along the chain"));
-      }
-      ordered.emplace_back(first_movable_order(chain), MakeLeg(*leaf, chain, path, &robot.notes));
-    }
-    if (ordered.empty()) {
-      if (!one_joint.empty()) {
-        std::string list;
-        for (const std::string& s : one_joint) list += (list.empty() ? "" : ", ") + s;
-        throw InputError(path + ": no legs found: every chain from the body '" + body->name +
-                         "' has a single movable joint (" + list +
-                         "); a leg needs at least two, so rotating C-legs and wheels are not supported");
-      }
-      throw InputError(path + ": no legs found (no chain from the root link '" + root->name +
-                       "' to a leaf link has a movable joint)");
-    }
-  }
-  std::stable_sort(ordered.begin(), ordered.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::map<std::string, int> name_count;
-  for (const auto& [order, leg] : ordered) ++name_count[leg.name];
-  for (auto& [order, leg] : ordered) {
-    if (leg.name.empty() || name_count[leg.name] > 1) leg.name = leg.foot_link;
-  }
-  for (auto& [order, leg] : ordered) {
-    if (leg.num_dof() > kMaxLegDof) {
-      throw InputError(path + ": leg to '" + leg.foot_link + "' has " + std::to_string(leg.num_dof()) +
-                       " movable joints; mfp reads at most " + std::to_string(kMaxLegDof) + " per leg");
-    }
-    if (foot_offset_m) {
-      leg.p_footlink_foot_m = *foot_offset_m;
-    } else if (leg.foot_sphere_radius_m == 0.0) {
-      // The foot point must move with the last joint, else the URDF holds no foot (the
-      // lower leg is only in a mesh and the leaf link's origin is the knee).
-      const JointModel* last = nullptr;
-      Eigen::Isometry3d T = Eigen::Isometry3d::Identity(), T_last = T;
-      for (const JointModel& j : leg.joints) {
-        T = T * j.T_parent_joint;
-        if (j.movable()) {
-          last = &j;
-          T_last = T;
-        }
-      }
-      const Eigen::Vector3d foot = FootPosition(leg, Eigen::VectorXd::Zero(leg.num_dof()));
-      const Eigen::Vector3d axis = T_last.linear() * last->axis;
-      const Eigen::Vector3d r = foot - T_last.translation();
-      if (last->type == JointModel::Type::kRevolute && (r - r.dot(axis) * axis).norm() < 1e-6) {
-        throw InputError(path + ": the URDF holds no foot for leg '" + leg.name + "': the foot link '" + leg.foot_link +
-                         "' has its origin on the axis of the leg's last joint '" + last->name +
-                         "' and no collision sphere (the lower leg is probably only a mesh); give the foot's "
-                         "position in that link in a robot YAML: foot_offset: [x, y, z] (m)");
-      }
-    }
-  }
+  OrderedLegs ordered = foot_links.empty()
+                            ? LegsOfLeaves(*model, body, checked.joint_order, path, &robot.notes)
+                            : LegsOfNamedFeet(*model, body, foot_links, checked.joint_order, path, &robot.notes);
+  OrderAndNameLegs(&ordered);
+  for (auto& [order, leg] : ordered) SettleFoot(foot_offset_m, path, &leg);
   for (auto& [order, leg] : ordered) robot.legs.push_back(leg);
   return robot;
 }

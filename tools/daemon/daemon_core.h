@@ -12,6 +12,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <exception>
 #include <functional>
 #include <map>
 #include <memory>
@@ -135,7 +136,31 @@ class DaemonCore {
     std::string channel;
     std::vector<uint8_t> bytes;
     int64_t arrival_utime = 0;  // clock_ when received [us]
+    // A view of the bytes; valid while this Received lives.
+    RawMessage AsRaw() const {
+      RawMessage raw;
+      raw.channel = channel;
+      raw.data = bytes.data();
+      raw.size = bytes.size();
+      return raw;
+    }
   };
+  // A request taken from the queue to plan, with the setup and map it is planned on.
+  struct PlanJob {
+    QueuedRequest queued;
+    std::shared_ptr<const DaemonSetup> setup;
+    std::shared_ptr<const std::vector<ConvexRegion>> regions;
+    int64_t map_utime = 0;
+    std::vector<std::vector<Footstep>> warm_start;
+    double limit_s = 0.0;   // the request's time limit, from its arrival [s]
+    double waited_s = 0.0;  // spent in the queue [s]
+  };
+
+  // Planning (daemon_planning.cc).
+  std::optional<PlanJob> TakeNextJob();
+  Plan RunPlanner(PlanJob& job, const RobotModel& robot, bool* abandoned);
+  Plan AnswerAtDeadline(const PlanJob& job, Plan so_far);
+  void RecordOutcome(const PlanJob& job, const Plan& plan, bool abandoned);
 
   void HandleMap(const RawMessage& message, bool abandon_on_stop);
   void HandleRequest(const RawMessage& message, int64_t arrival_utime);
@@ -147,8 +172,12 @@ class DaemonCore {
   void Reply(plan_t reply);
   void ReplyStatus(const QueuedRequest& request, SolveStatus status, const std::string& why);
   void CountRejected(const std::string& channel, const std::string& error);
+  void CountInternalError(const std::string& doing, const std::exception& e);
+  void CountPublishFailure(const std::string& channel);
   template <class Message>
-  void Publish(const std::string& channel, const Message& message);
+  void Publish(const std::string& channel, const Message& message) {
+    if (!PublishMessage(publisher_, channel, message)) CountPublishFailure(channel);
+  }
   void Log(const std::string& line) const;
 
   PlanFunction plan_function_;

@@ -4,20 +4,13 @@ namespace mfp {
 
 plan_t StatusReply(SolveStatus status, const std::string& message, int64_t request_id,
                    const std::string& robot_name, int64_t utime, int64_t map_utime) {
-  plan_t reply;
+  plan_t reply{};  // value-initialised: no steps, every number zero, reaches_goal false
   reply.utime = utime;
   reply.request_id = request_id;
   reply.status = static_cast<int8_t>(status);
   reply.message = message;
   reply.robot = robot_name;
   reply.map_utime = map_utime;
-  reply.reaches_goal = false;
-  reply.num_steps = 0;
-  reply.objective = 0.0;
-  reply.bound = 0.0;
-  reply.gap = 0.0;
-  reply.solve_time_s = 0.0;
-  reply.nodes = 0;
   return reply;
 }
 
@@ -91,13 +84,8 @@ std::vector<ConvexRegion> FromRegionSetMessage(const region_set_t& message) {
 std::vector<Footstep> FootstepsFromPlanMessage(const plan_t& message) {
   std::vector<Footstep> steps;
   for (const footstep_t& s : message.steps) {
-    Footstep f;
-    f.index = s.index;
-    f.leg = s.leg;
-    f.position_world_m = Eigen::Vector3d(s.position[0], s.position[1], s.position[2]);
-    f.yaw_rad = s.yaw;
-    f.region_id = s.region_id;
-    steps.push_back(f);
+    steps.push_back(Footstep{s.index, s.leg, Eigen::Vector3d(s.position[0], s.position[1], s.position[2]), s.yaw,
+                             s.region_id});
   }
   return steps;
 }
