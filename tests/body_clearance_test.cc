@@ -9,6 +9,7 @@
 
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
+#include "planner/base/check.h"
 #include "planner/io/body_obstacles.h"
 #include "planner/io/robot_json.h"
 #include "planner/io/robot_loader.h"
