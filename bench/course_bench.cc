@@ -41,7 +41,10 @@ int RunCourseBench(const CourseBenchOptions& o) {
   std::vector<RobotModel> robots;
   for (const std::string& path : robot_paths) robots.push_back(LoadRobot(path));
   if (!o.write_dir.empty()) std::filesystem::create_directories(o.write_dir);
-  const auto& kinds = AllCourseKinds();
+  std::vector<CourseKind> kinds = AllCourseKinds();
+  for (CourseKind kind : AllCourseKinds()) {
+    if (ToString(kind) == o.only) kinds = {kind};
+  }
   std::printf("\nGenerated courses (seed %llu, %d courses, %.0f s per plan, regions: %s)\n",
               static_cast<unsigned long long>(o.seed), o.courses, o.time_limit_s,
               o.top_face_regions ? "true top faces inset by the edge margin" : "extracted from the voxelised boxes");
@@ -84,7 +87,8 @@ int RunCourseBench(const CourseBenchOptions& o) {
     try {
       regions = o.top_face_regions ? TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad)
                                    : ScenarioRegions(scenario, robot);
-      const PlanRequest request = ScenarioRequest(scenario, robot, regions);
+      PlanRequest request = ScenarioRequest(scenario, robot, regions);
+      if (!o.body_check) request.body_obstacles.clear();
       const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
       plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(), [&](const PlanProgress& p) {
         ++windows;

@@ -25,7 +25,10 @@ struct CourseBenchOptions {
   bool top_face_regions = false;
   bool print_windows = false;      // one line per window solved under each course's row
   std::string write_dir;           // write each course's scenario YAML here ("" = no)
-  std::string only;                // plan only courses whose name contains this ("" = all)
+  // Plan only courses whose name contains this ("" = all); a kind's exact name
+  // (ToString(CourseKind), e.g. "doorway") makes every course of that kind.
+  std::string only;
+  bool body_check = true;          // pass the boxes to the planner as body obstacles
   bool verbose = false;            // print each accepted window (steps, distance, nodes)
   std::function<void(Scenario*)> adjust;  // --set overrides
 };

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "planner/io/body_obstacles.h"
 #include "planner/planning/footstep_planner.h"
+#include "planner/robot/body_clearance.h"
 
 namespace mfp {
 
@@ -15,6 +17,35 @@ std::string Fmt(const Eigen::Vector3d& p) {
   s.precision(3);
   s << "(" << p.x() << ", " << p.y() << ", " << p.z() << ")";
   return s.str();
+}
+
+// The body at each configuration: centre of contacts and yaw of the stance after each
+// footstep, its band above the mean height of those feet, against the true boxes.
+void CheckBody(const TerrainDescription& terrain, const RobotModel& robot, const std::vector<Footstep>& footsteps,
+               const CourseCheckTolerances& tol, CourseVerdict* v) {
+  if (!robot.body.known()) return;
+  const int n = robot.num_legs();
+  const std::vector<BodyObstacle> boxes = BoxBodyObstacles(terrain.boxes);
+  std::vector<Eigen::Vector3d> feet(n, Eigen::Vector3d::Zero());
+  size_t worst_step = 0;
+  for (size_t k = 0; k < footsteps.size(); ++k) {
+    feet[footsteps[k].leg] = footsteps[k].position_world_m;
+    if (static_cast<int>(k) + 1 < n) continue;
+    const Eigen::Vector2d c = StanceCentreXY(feet);
+    double ground = 0.0;
+    for (const Eigen::Vector3d& f : feet) ground += f.z() / n;
+    const double share = BodyOverlapShare(robot.body, boxes, c.x(), c.y(), footsteps[k].yaw_rad, ground);
+    if (share > v->body_overlap_share) {
+      v->body_overlap_share = share;
+      worst_step = k;
+    }
+  }
+  if (v->body_overlap_share <= tol.body_share) return;
+  v->body_clear = false;
+  if (v->valid) v->cause = "body_collision";
+  v->valid = false;
+  v->violations.push_back("body_collision: " + std::to_string(100.0 * v->body_overlap_share) +
+                          " % of the body's plan box inside a box after step " + std::to_string(worst_step));
 }
 
 }  // namespace
@@ -76,6 +107,7 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
                         std::to_string(ref) + " m from its own (l_bnd " + std::to_string(robot.l_bnd_m) + ")");
     }
   }
+  CheckBody(terrain, robot, footsteps, tol, &v);
   // Goal: every final foot near its goal spot, final yaw near the goal yaw. The yaw is
   // the one the final feet show (best fit of the nominal offsets), not the plan's own
   // claim: FinalStanceYaw reads the last footstep's yaw, and a stance rebuilt here with

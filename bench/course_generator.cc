@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "bench/course_checker.h"
+#include "planner/io/body_obstacles.h"
+#include "planner/robot/body_clearance.h"
 
 namespace mfp {
 
@@ -98,10 +100,8 @@ struct Gen {
 // Every pose along the route has, for every leg, a spot on the true surface within
 // 0.9 l_bnd (body frame) of the nominal foot: the planner's reference box (l_bnd) about
 // the configuration's nominal spot, and consecutive poses 0.5 d_lim apart, within reach.
-bool RouteHolds(const RobotModel& robot, const TerrainDescription& terrain, const std::vector<Pose2D>& route,
-                double margin) {
-  const double half = 0.9 * robot.l_bnd_m;
-  const double step = half / 3;
+// Body poses along the route, consecutive ones at most 0.5 d_lim and 0.5 max_yaw_change apart.
+std::vector<Pose2D> RoutePoses(const RobotModel& robot, const std::vector<Pose2D>& route) {
   std::vector<Pose2D> poses;
   for (size_t k = 0; k + 1 < route.size(); ++k) {
     const Pose2D& a = route[k];
@@ -117,7 +117,14 @@ bool RouteHolds(const RobotModel& robot, const TerrainDescription& terrain, cons
     }
   }
   poses.push_back(route.back());
-  for (const Pose2D& pose : poses) {
+  return poses;
+}
+
+bool RouteHolds(const RobotModel& robot, const TerrainDescription& terrain, const std::vector<Pose2D>& route,
+                double margin) {
+  const double half = 0.9 * robot.l_bnd_m;
+  const double step = half / 3;
+  for (const Pose2D& pose : RoutePoses(robot, route)) {
     const Eigen::Rotation2Dd rot(pose.yaw_rad);
     for (int i = 0; i < robot.num_legs(); ++i) {
       const Eigen::Vector2d nom = NominalFootXY(robot, i, pose.x_m, pose.y_m, pose.yaw_rad);
@@ -147,7 +154,110 @@ bool RouteHolds(const RobotModel& robot, const TerrainDescription& terrain, cons
   return true;
 }
 
+constexpr double kWallTop = 0.5;    // walls' top above the floor [m]
+constexpr double kWallThick = 0.6;  // walls' height (from below the floor) [m]
+constexpr double kWallWidth = 0.05; // walls' thickness [m]
+
+// A wall from a to b (plan view) on the floor at z = 0.
+void Wall(Gen& g, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d c = 0.5 * (a + b), d = b - a;
+  g.Box(c.x(), c.y(), kWallTop, d.norm() + kWallWidth, kWallWidth, std::atan2(d.y(), d.x()), 0, 0, kWallThick);
+}
+// A floor slab over [x0, x1] x [y0, y1] with its top at z = 0.
+void Floor(Gen& g, double x0, double x1, double y0, double y1) {
+  g.Box(0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0, x1 - x0, y1 - y0, 0);
+}
+
+// The body-clearance kinds (course_generator.h); false when the robot's body does not
+// allow the kind (a door needs a body longer than wide, or wider than long).
+bool BodyCourse(Gen& g, CourseKind kind, const RobotModel& robot, std::vector<Pose2D>* route) {
+  const BodyExtent& body = robot.body;
+  if (!body.known()) return false;
+  const double P = g.footprint;
+  // The body's circumradius about the centre of contacts: room to turn.
+  const double turn_r = std::max({body.min_m.norm(), body.max_m.norm(), Eigen::Vector2d(body.min_m.x(), body.max_m.y()).norm(),
+                                  Eigen::Vector2d(body.max_m.x(), body.min_m.y()).norm()});
+  const double half_w = std::max(std::abs(body.min_m.y()), std::abs(body.max_m.y()));
+  const double half_l = std::max(std::abs(body.min_m.x()), std::abs(body.max_m.x()));
+  const double clear = g.U(0.05, 0.12);
+  switch (kind) {
+    case CourseKind::kPocket: {
+      const double inner = std::max(P, half_w + clear);     // pocket's inner half-width
+      const double a = std::max(P, half_l) + g.U(0.1, 0.3);  // pocket's mouth
+      const double b = a + 2 * std::max(P, half_l) + g.U(0.1, 0.3);  // its back wall
+      const double side = inner + kWallWidth + std::max(P, turn_r) + clear;  // the way around
+      const double gx = b + kWallWidth + std::max(P, turn_r) + g.U(0.1, 0.3);
+      Floor(g, -P, gx + P, -side - P, side + P);
+      Wall(g, {a, -inner - kWallWidth / 2}, {b, -inner - kWallWidth / 2});
+      Wall(g, {a, inner + kWallWidth / 2}, {b, inner + kWallWidth / 2});
+      Wall(g, {b + kWallWidth / 2, -inner - kWallWidth}, {b + kWallWidth / 2, inner + kWallWidth});
+      *route = {{0, 0, 0}, {0, -side, 0}, {gx, -side, 0}, {gx, 0, 0}};
+      return true;
+    }
+    case CourseKind::kBaffles: {
+      const double gap = 2 * std::max(P, half_w + clear);  // each baffle's opening
+      const double yc = gap + std::max(P, half_w) + 0.05;  // corridor half-width
+      const double s = 2 * std::max(P, half_l + clear) + kWallWidth;  // baffle spacing
+      const double gx = 4 * s;
+      Floor(g, -P, gx + P, -yc, yc);
+      Wall(g, {-P, -yc - kWallWidth / 2}, {gx + P, -yc - kWallWidth / 2});
+      Wall(g, {-P, yc + kWallWidth / 2}, {gx + P, yc + kWallWidth / 2});
+      route->push_back({0, 0, 0});
+      for (int k = 1; k <= 3; ++k) {
+        const double side = (k % 2 == 1) ? 1.0 : -1.0;  // the opening's side
+        const double x = k * s;
+        Wall(g, {x, -side * yc}, {x, side * (yc - gap)});
+        const double y = side * (yc - gap / 2);
+        route->push_back({x - s / 2, y, 0});
+        route->push_back({x + s / 2, y, 0});
+      }
+      route->push_back({gx, 0, 0});
+      return true;
+    }
+    case CourseKind::kDoorway: {
+      const double lo = std::min(2 * half_w, 2 * half_l), hi = std::max(2 * half_w, 2 * half_l);
+      if (hi - lo < 0.06) return false;
+      const double door = lo + g.U(0.35, 0.65) * (hi - lo);
+      // Facing so that the long side lies across the door (along y).
+      const double yaw = half_l > half_w ? M_PI / 2 : 0.0;
+      const double pass = half_l > half_w ? 0.0 : M_PI / 2;
+      const double room = std::max(P, turn_r) + clear;
+      const double wx = room + g.U(0.05, 0.2), gx = wx + room + g.U(0.05, 0.2);
+      const double ya = std::max(P, turn_r) + 0.2;
+      Floor(g, -room, gx + room, -ya, ya);
+      Wall(g, {wx, -ya}, {wx, -door / 2 - kWallWidth / 2});
+      Wall(g, {wx, door / 2 + kWallWidth / 2}, {wx, ya});
+      *route = {{0, 0, yaw}, {0, 0, pass}, {gx, 0, pass}, {gx, 0, yaw}};
+      return true;
+    }
+    case CourseKind::kCorridor: {
+      const double h = std::max(P, turn_r) + clear;  // corridor half-width
+      const double cx = h + g.U(1.0, 2.0) * std::max(P, half_l) + 0.3;
+      const double gy = h + g.U(1.0, 2.0) * std::max(P, half_l) + 0.3;
+      Floor(g, -h, cx + h, -h, h);
+      Floor(g, cx - h, cx + h, h, gy + h);
+      const double w = kWallWidth / 2;
+      Wall(g, {-h, -h - w}, {cx + h + w, -h - w});
+      Wall(g, {cx + h + w, -h - w}, {cx + h + w, gy + h});
+      Wall(g, {-h, h + w}, {cx - h - w, h + w});
+      Wall(g, {cx - h - w, h + w}, {cx - h - w, gy + h});
+      *route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
+      return true;
+    }
+    default: return false;
+  }
+}
+
 }  // namespace
+
+bool BodyRouteClear(const RobotModel& robot, const TerrainDescription& terrain, const std::vector<Pose2D>& route,
+                    double ground_z_m) {
+  const std::vector<BodyObstacle> boxes = BoxBodyObstacles(terrain.boxes);
+  for (const Pose2D& pose : RoutePoses(robot, route)) {
+    if (BodyOverlapShare(robot.body, boxes, pose.x_m, pose.y_m, pose.yaw_rad, ground_z_m) > 0.0) return false;
+  }
+  return true;
+}
 
 double MaxFootTravel(const RobotModel& robot) {
   const int n = robot.num_legs();
@@ -158,7 +268,8 @@ const std::vector<CourseKind>& AllCourseKinds() {
   static const std::vector<CourseKind> kinds = {
       CourseKind::kStones, CourseKind::kStonesTurn, CourseKind::kGaps,   CourseKind::kStairs,
       CourseKind::kTilted, CourseKind::kRough,      CourseKind::kBeams,  CourseKind::kDetour,
-      CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal};
+      CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal, CourseKind::kPocket,
+      CourseKind::kBaffles, CourseKind::kDoorway, CourseKind::kCorridor};
   return kinds;
 }
 
@@ -175,6 +286,10 @@ std::string ToString(CourseKind kind) {
     case CourseKind::kCutStones: return "cut_stones";
     case CourseKind::kCutGaps: return "cut_gaps";
     case CourseKind::kWalledGoal: return "raised_goal";
+    case CourseKind::kPocket: return "pocket";
+    case CourseKind::kBaffles: return "baffles";
+    case CourseKind::kDoorway: return "doorway";
+    case CourseKind::kCorridor: return "corridor";
   }
   return "?";
 }
@@ -338,6 +453,15 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
         exists = false;
         break;
       }
+      case CourseKind::kPocket:
+      case CourseKind::kBaffles:
+      case CourseKind::kDoorway:
+      case CourseKind::kCorridor:
+        if (!BodyCourse(g, kind, robot, &route)) {
+          throw std::runtime_error("GenerateCourse: robot '" + robot.name + "' has no body box for a " +
+                                   ToString(kind) + " course (or a door cannot need a turn)");
+        }
+        break;
     }
     course.terrain.boxes = g.boxes;
     // The map resolves the course: its voxel at most a sixth of the finest feature (a gap
@@ -351,6 +475,9 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
     course.goal = route.back();
     course.route_exists = exists;
     course.route = exists ? route : std::vector<Pose2D>{};
+    const bool body_kind = kind == CourseKind::kPocket || kind == CourseKind::kBaffles ||
+                           kind == CourseKind::kDoorway || kind == CourseKind::kCorridor;
+    if (body_kind && !BodyRouteClear(robot, course.terrain, route, 0.0)) continue;
     if (!exists || RouteHolds(robot, course.terrain, route, course.edge_margin_m)) return course;
   }
   throw std::runtime_error("GenerateCourse: no valid " + ToString(kind) + " course for seed " + std::to_string(seed));

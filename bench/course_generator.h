@@ -27,6 +27,12 @@ enum class CourseKind {
   kCutStones,   // stones cut by a gap no step can cross (no route)
   kCutGaps,     // ground cut by such a gap (no route)
   kWalledGoal,  // the goal platform out of reach of everything (no route)
+  // Body clearance (the route's body poses clear of every box in the body's band):
+  kPocket,      // a U-shaped dead-end pocket open toward the start, the goal behind it
+  kBaffles,     // a walled corridor with three baffles from alternating sides (slalom)
+  kDoorway,     // a wall with a door wider than the body's short side, narrower than its
+                // long side, met with the long side across it (must turn)
+  kCorridor,    // a floor corridor with walls beside it and a 90 degree turn
 };
 
 const std::vector<CourseKind>& AllCourseKinds();
@@ -59,6 +65,11 @@ constexpr double kCourseEdgeMargin = 0.01;
 constexpr double kCourseMaxResolution = 0.02;
 constexpr double kCourseMinResolution = 0.005;
 constexpr double kCourseVoxelsPerFeature = 6.0;
+
+// Whether every body pose along the route (interpolated as RouteHolds does) keeps the
+// body's plan box clear of every box in its band above ground_z_m; true when the body is unknown.
+bool BodyRouteClear(const RobotModel& robot, const TerrainDescription& terrain, const std::vector<Pose2D>& route,
+                    double ground_z_m);
 
 Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed);
 

@@ -284,7 +284,11 @@ int main(int argc, char** argv) {
   app.add_option("--write-courses", write_courses, "write each generated course as a scenario YAML here");
   std::string course_only;
   bool course_verbose = false;
-  app.add_option("--course-only", course_only, "generated courses: plan only those whose name contains this text");
+  bool no_body_check = false;
+  app.add_flag("--no-body-check", no_body_check,
+               "generated courses: give the planner no body obstacles (the checker still judges the body)");
+  app.add_option("--course-only", course_only, "generated courses: plan only those whose name contains this text; a kind's name (e.g. doorway) "
+                 "makes every course of that kind");
   app.add_flag("--course-verbose", course_verbose, "generated courses: print each accepted window");
   std::vector<std::string> course_robots;
   app.add_option("--course-robots", course_robots,
@@ -303,6 +307,7 @@ int main(int argc, char** argv) {
       o.write_dir = write_courses;
       o.top_face_regions = course_top_faces;
       o.only = course_only;
+      o.body_check = !no_body_check;
       o.verbose = course_verbose;
       o.print_windows = course_windows;
       o.first = course_first;

@@ -56,6 +56,15 @@ void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& deriva
   out << "  max yaw change: " << Fixed(robot.max_yaw_change_rad) << " rad\n";
   out << "  foot radius:    " << Fixed(robot.foot_radius_m) << " m\n";
   out << "  max slope:      " << Fixed(robot.max_slope_rad) << " rad\n";
+  const mfp::BodyExtent& body = robot.body;
+  if (body.known()) {
+    out << "  body box:       " << Fixed(body.length_m()) << " x " << Fixed(body.width_m()) << " m (x ["
+        << Fixed(body.min_m.x()) << ", " << Fixed(body.max_m.x()) << "], y [" << Fixed(body.min_m.y()) << ", "
+        << Fixed(body.max_m.y()) << "] about the centre of contacts), " << Fixed(body.bottom_m) << " to "
+        << Fixed(body.top_m) << " m above the feet\n";
+  } else {
+    out << "  body box:       unknown (no body clearance)\n";
+  }
   out << "where each value comes from:\n";
   for (const std::string& line : robot.provenance) out << "  " << line << "\n";
 }

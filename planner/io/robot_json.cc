@@ -26,6 +26,14 @@ nlohmann::json RobotToJson(const RobotModel& robot) {
             {"goal_yaw", w.goal_yaw},
             {"trim_step", w.trim_step},
             {"displacement", w.displacement}}},
+          {"body_box",
+           {{"known", robot.body.known()},
+            {"min", {robot.body.min_m.x(), robot.body.min_m.y()}},
+            {"max", {robot.body.max_m.x(), robot.body.max_m.y()}},
+            {"bottom", robot.body.bottom_m},
+            {"top", robot.body.top_m},
+            {"length", robot.body.length_m()},
+            {"width", robot.body.width_m()}}},
           {"provenance", robot.provenance}};
 }
 

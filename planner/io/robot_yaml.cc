@@ -65,6 +65,14 @@ OptionTable<RobotModel> MakeRobotOptionTable() {
     t.push_back(LoaderOpt<R>(f.key, range, f.derived ? "derived from the URDF; " + when : when, f.description)
                     .Unit(f.unit));
   }
+  t.push_back(LoaderOpt<R>("body_box.min", "[x, y]", "derived from the URDF; else none",
+                           "rear-right corner of the body's plan box about the centre of contacts").Unit("m"));
+  t.push_back(LoaderOpt<R>("body_box.max", "[x, y]", "derived from the URDF; else none",
+                           "front-left corner of the body's plan box about the centre of contacts").Unit("m"));
+  t.push_back(LoaderOpt<R>("body_box.bottom", "number in [0, 10]", "derived from the URDF; else none",
+                           "lowest point of the body above the feet when standing").Unit("m"));
+  t.push_back(LoaderOpt<R>("body_box.top", "number in [0, 10]", "derived from the URDF; else none",
+                           "highest point of the body above the feet when standing").Unit("m"));
   const PlannerWeights w;
   t.push_back(LoaderOpt<R>("weights.goal_position", "number in [1e-06, 1e+09]", FormatNumber(w.goal_position),
                            "cost per m^2 of final-stance foot error").Advanced());
@@ -131,6 +139,31 @@ void ReadWeights(const YAML::Node& root, const YamlContext& ctx, PlannerWeights*
       OptionalDouble(w, wctx, "trim_step", -1e9, 0.0).value_or(weights->trim_step);
   weights->displacement =
       OptionalDouble(w, wctx, "displacement", 0.0, 1e9).value_or(weights->displacement);
+}
+
+// body_box: every key optional, each overriding the derived (or unknown) value; the
+// result must be a box with min < max and bottom < top.
+void ReadBodyBox(const YAML::Node& root, const YamlContext& ctx, RobotModel* robot) {
+  if (!root["body_box"]) return;
+  const YAML::Node node = root["body_box"];
+  const YamlContext bctx = ctx.Child("body_box");
+  if (!node.IsMap()) throw InputError(bctx.Where() + ": expected a mapping {min, max, bottom, top}");
+  BodyExtent& body = robot->body;
+  for (const char* corner : {"min", "max"}) {
+    if (!node[corner]) continue;
+    const auto v = ReadNumbers(node[corner], bctx.Child(corner), 2);
+    (std::string(corner) == "min" ? body.min_m : body.max_m) = Eigen::Vector2d(v[0], v[1]);
+  }
+  body.bottom_m = OptionalDouble(node, bctx, "bottom", 0.0, 10.0).value_or(body.bottom_m);
+  body.top_m = OptionalDouble(node, bctx, "top", 0.0, 10.0).value_or(body.top_m);
+  if (!body.known()) {
+    throw InputError(bctx.Where() + ": the body box needs min < max on x and y and bottom < top (m); give all "
+                     "four keys where the URDF gives no body box");
+  }
+  SetProvenance(robot, "body box",
+                "body box = x [" + Fixed(body.min_m.x()) + ", " + Fixed(body.max_m.x()) + "] m, y [" +
+                    Fixed(body.min_m.y()) + ", " + Fixed(body.max_m.y()) + "] m about the centre of contacts, " +
+                    Fixed(body.bottom_m) + " to " + Fixed(body.top_m) + " m above the feet: from " + ctx.file);
 }
 
 // The URDF form: derive, then apply the YAML's values as visible overrides.
@@ -227,6 +260,7 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
     ReadWeights(root, ctx, &robot.weights);
     SetProvenance(&robot, "weights", "weights: from " + file);
   }
+  ReadBodyBox(root, ctx, &robot);
   ValidateRobotModel(robot);
   RobotModel result = robot;
   if (derivation_out != nullptr) *derivation_out = std::move(derivation);
@@ -286,6 +320,7 @@ static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivatio
     }
   }
   ReadWeights(root, ctx, &robot.weights);
+  ReadBodyBox(root, ctx, &robot);
   for (size_t k = 0; k < robot.legs.size(); ++k) {
     const Eigen::Vector2d o = robot.legs[k].nominal_offset_body_m;
     std::ostringstream out;

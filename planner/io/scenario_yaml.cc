@@ -4,6 +4,7 @@
 
 #include "planner/base/check.h"
 #include "planner/base/yaml_fields.h"
+#include "planner/io/body_obstacles.h"
 #include "planner/io/planner_options_yaml.h"
 #include "terrain/map_file.h"
 #include "terrain/octomap_io.h"
@@ -234,6 +235,7 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
   request.max_steps = scenario.max_steps;
   request.window_steps = scenario.window_steps;
   request.time_limit_s = scenario.time_limit_s;
+  request.body_obstacles = BoxBodyObstacles(scenario.terrain.boxes);
   return request;
 }
 

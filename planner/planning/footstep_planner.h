@@ -14,6 +14,7 @@
 #include "planner/planning/window_polisher.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
 #include "planner/search/branch_and_bound.h"
 #include "terrain/convex_region.h"
@@ -46,6 +47,12 @@ struct PlanRequest {
   // valid; status partial unless it reaches the goal), so a caller whose deadline comes
   // first (a daemon's watchdog) can answer with it. Called on the planning thread.
   std::function<void(const Plan&)> on_plan_so_far;
+  // Optional: the occupied space the body must keep clear of (a box terrain's boxes, a
+  // map's occupied columns), as prisms in the world frame. With a known body box
+  // (RobotModel::body) the stance route keeps the body's plan box out of every prism in
+  // its height band, turning where a passage fits only one way, and the windows follow
+  // that route and its yaws. Empty (the default): no body check, plans as before.
+  std::vector<BodyObstacle> body_obstacles;
 };
 
 struct PlannerOptions {

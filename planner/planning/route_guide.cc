@@ -184,23 +184,32 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
 }
 
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                       const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
                        const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide) {
   if (!guide->connected || start_feet.empty()) return;
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
-  for (const auto& f : start_feet) start += f.head<2>();
+  double ground_z = 0.0;
+  for (const auto& f : start_feet) {
+    start += f.head<2>();
+    ground_z += f.z();
+  }
   start /= static_cast<double>(start_feet.size());
-  StanceRoute stances = PlanStanceRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad);
+  ground_z /= static_cast<double>(start_feet.size());
+  StanceRoute stances =
+      PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad);
   if (!stances.found) {
     // Where no pose has every reference box surely on support, poses whose boxes may
     // meet it (an octopod on stones laid for its feet: the region graph's route through
     // region centres zig-zagged across the tracks, 2.45 m short).
     StanceRouteOptions loose;
     loose.support_radius_l_bnd = std::sqrt(2.0);
-    stances = PlanStanceRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad, loose);
+    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad,
+                              loose);
   }
   if (!stances.found) return;
   guide->route = stances.route;
+  if (stances.body_blocked_poses > 0) guide->yaws_rad = stances.yaws_rad;
   guide->length_m = stances.length_m;
   guide->from_stances = true;
 }
@@ -214,6 +223,17 @@ Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m) {
     s -= len;
   }
   return guide.route.back();
+}
+
+std::optional<double> RouteYaw(const RouteGuide& guide, double s_m) {
+  if (guide.yaws_rad.size() != guide.route.size() || guide.route.empty()) return std::nullopt;
+  double s = std::max(0.0, s_m);
+  for (size_t k = 1; k < guide.route.size(); ++k) {
+    const double len = (guide.route[k] - guide.route[k - 1]).norm();
+    if (s < len) return guide.yaws_rad[k - 1];
+    s -= len;
+  }
+  return guide.yaws_rad.back();
 }
 
 double RouteProgress(const RouteGuide& guide, const Eigen::Vector2d& p) {

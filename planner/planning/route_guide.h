@@ -8,9 +8,11 @@
 // step budget and its points the windows' local goals. No I/O.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
 
@@ -24,6 +26,9 @@ struct RouteGuide {
   std::vector<Eigen::Vector2d> route;
   double length_m = 0.0;
   bool from_stances = false;  // route from the stance search (FollowStanceRoute)
+  // Body yaw at each route point, when the route keeps the body clear of obstacles and
+  // the body check refused some pose (the yaw then matters); else empty [rad].
+  std::vector<double> yaws_rad;
 };
 
 // Longest horizontal distance between two regions that one step can bridge: each axis of
@@ -39,12 +44,17 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
 // Replaces a connected guide's route by a route over stance poses (stance_route.h) from
 // the start stance's centre and yaw to the goal, when that search finds one.
 // start_feet: leg order.
+// body_obstacles: what the body keeps clear of (stance_route.h); may be empty.
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                       const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
                        const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide);
 
 // The point of the route at arc length s (clamped to the route) [m].
 Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m);
+// The body yaw the route holds at arc length s: that of the route point the segment
+// starts from; nullopt when the route carries no yaws [rad].
+std::optional<double> RouteYaw(const RouteGuide& guide, double s_m);
 // Arc length of the route point nearest to p [m].
 double RouteProgress(const RouteGuide& guide, const Eigen::Vector2d& p);
 

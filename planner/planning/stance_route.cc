@@ -19,11 +19,16 @@ struct SupportRaster {
   double res = 0.02;
   int nx = 0, ny = 0;
   std::vector<uint8_t> cells;
-  int At(const Eigen::Vector2d& p) const {
+  std::vector<float> heights;  // highest region through the cell's centre where it is 2 [m]
+  long Index(const Eigen::Vector2d& p) const {
     const int i = static_cast<int>(std::floor((p.x() - origin.x()) / res));
     const int j = static_cast<int>(std::floor((p.y() - origin.y()) / res));
-    if (i < 0 || j < 0 || i >= nx || j >= ny) return 0;
-    return cells[static_cast<size_t>(j) * nx + i];
+    if (i < 0 || j < 0 || i >= nx || j >= ny) return -1;
+    return static_cast<long>(j) * nx + i;
+  }
+  int At(const Eigen::Vector2d& p) const {
+    const long k = Index(p);
+    return k < 0 ? 0 : cells[static_cast<size_t>(k)];
   }
 };
 
@@ -35,6 +40,7 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
   s.nx = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / res)));
   s.ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / res)));
   s.cells.assign(static_cast<size_t>(s.nx) * s.ny, 0);
+  s.heights.assign(s.cells.size(), -std::numeric_limits<float>::infinity());
   for (const ConvexRegion& r : regions) {
     Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = -rlo;
     for (const Eigen::Vector3d& v : r.vertices_world_m) {
@@ -47,12 +53,13 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
     const int j1 = std::min(s.ny - 1, static_cast<int>(std::floor((rhi.y() + radius - lo.y()) / res)));
     for (int j = j0; j <= j1; ++j) {
       for (int i = i0; i <= i1; ++i) {
-        uint8_t& c = s.cells[static_cast<size_t>(j) * s.nx + i];
-        if (c == 2) continue;
+        const size_t k = static_cast<size_t>(j) * s.nx + i;
+        uint8_t& c = s.cells[k];
         const Eigen::Vector2d p = lo + res * Eigen::Vector2d(i + 0.5, j + 0.5);
         const double d = PlanDistanceToRegion(r, p);
         if (d <= 0.0) {
           c = 2;
+          s.heights[k] = std::max(s.heights[k], static_cast<float>(r.HeightAt(p.x(), p.y())));
         } else if (d <= radius) {
           c = 1;
         }
@@ -62,11 +69,101 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
   return s;
 }
 
+constexpr int kFineHeadings = 16;
+
+StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                          const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                          const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options);
+
+// The body check of a pose (stance_route.h): obstacles near the pose judged against the
+// body's plan box in its height band above the pose's ground.
+class BodyGate {
+ public:
+  BodyGate(const RobotModel& robot, const std::vector<BodyObstacle>& obstacles, const SupportRaster& support,
+           double ground_z_m, double overlap_share)
+      : robot_(robot), obstacles_(obstacles), support_(support), ground_z_m_(ground_z_m), share_(overlap_share) {
+    const BodyExtent& body = robot.body;
+    active_ = body.known() && !obstacles.empty();
+    radius_m_ = std::max({body.min_m.norm(), body.max_m.norm(), Eigen::Vector2d(body.min_m.x(), body.max_m.y()).norm(),
+                          Eigen::Vector2d(body.max_m.x(), body.min_m.y()).norm()});
+    for (const BodyObstacle& o : obstacles) {
+      Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf), hi = -lo;
+      for (const Eigen::Vector2d& v : o.polygon_world_m) {
+        lo = lo.cwiseMin(v);
+        hi = hi.cwiseMax(v);
+      }
+      bounds_.emplace_back(lo, hi);
+    }
+  }
+  bool active() const { return active_; }
+
+  // Whether the body at (c, yaw) overlaps an obstacle in its band.
+  bool Blocked(const Eigen::Vector2d& c, double yaw) const {
+    if (!active_) return false;
+    std::vector<BodyObstacle> near;
+    for (size_t k = 0; k < obstacles_.size(); ++k) {
+      const Eigen::Vector2d gap =
+          (bounds_[k].first - c).cwiseMax(c - bounds_[k].second).cwiseMax(Eigen::Vector2d::Zero());
+      if (gap.norm() < radius_m_) near.push_back(obstacles_[k]);
+    }
+    if (near.empty()) return false;
+    return BodyOverlapShare(robot_.body, near, c.x(), c.y(), yaw, Ground(c, yaw)) > share_;
+  }
+
+ private:
+  // Mean height of the regions under the nominal feet; the fallback where none is.
+  double Ground(const Eigen::Vector2d& c, double yaw) const {
+    double sum = 0.0;
+    int count = 0;
+    for (int leg = 0; leg < robot_.num_legs(); ++leg) {
+      const long k = support_.Index(NominalFootXY(robot_, leg, c.x(), c.y(), yaw));
+      if (k < 0 || !std::isfinite(support_.heights[static_cast<size_t>(k)])) continue;
+      sum += support_.heights[static_cast<size_t>(k)];
+      ++count;
+    }
+    return count > 0 ? sum / count : ground_z_m_;
+  }
+
+  const RobotModel& robot_;
+  const std::vector<BodyObstacle>& obstacles_;
+  const SupportRaster& support_;
+  double ground_z_m_, share_, radius_m_ = 0.0;
+  bool active_ = false;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> bounds_;
+};
+
 }  // namespace
 
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                            double goal_yaw_rad, const StanceRouteOptions& options) {
+                          double goal_yaw_rad, const StanceRouteOptions& options) {
+  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options);
+}
+
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options) {
+  StanceRoute route = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                    goal_yaw_rad, options);
+  // Where the body check refused poses, headings finer than 8 let the body turn to fit.
+  if (route.body_blocked_poses > 0 && options.headings < kFineHeadings) {
+    StanceRouteOptions fine = options;
+    fine.headings = kFineHeadings;
+    StanceRoute finer = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                      goal_yaw_rad, fine);
+    if (finer.found || !route.found) route = std::move(finer);
+  }
+  return route;
+}
+
+namespace {
+
+StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                          const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                          const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options) {
   StanceRoute out;
   const int n = robot.num_legs();
   const int H = std::max(1, options.headings);
@@ -93,6 +190,7 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
   const SupportRaster support =
       MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m);
 
+  const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
     return ((static_cast<int>(std::lround(u / (2 * M_PI / H))) % H) + H) % H;
@@ -122,6 +220,10 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
         worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
       }
       u = static_cast<uint8_t>(3 - worst);
+      if (u < 3 && gate.Blocked(c, yaw)) {
+        u = 3;
+        ++out.body_blocked_poses;
+      }
     }
     return u;
   };
@@ -173,19 +275,32 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
     relax(i, j, (h + H - 1) % H, turn_cost);
   }
   if (reached == SIZE_MAX) return out;
+  // Positions and the yaw the body leaves each with (a turn in place keeps the later).
   std::vector<Eigen::Vector2d> cells;
+  std::vector<double> yaws;
   for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
     const size_t c = s / H;
     const Eigen::Vector2d p = centre_of(static_cast<int>(c % nx), static_cast<int>(c / nx));
-    if (cells.empty() || (cells.back() - p).norm() > 1e-12) cells.push_back(p);
+    if (cells.empty() || (cells.back() - p).norm() > 1e-12) {
+      cells.push_back(p);
+      yaws.push_back(static_cast<double>(s % H) * 2 * M_PI / H);
+    }
   }
   std::reverse(cells.begin(), cells.end());
+  std::reverse(yaws.begin(), yaws.end());
   out.route.push_back(start_xy);
-  for (size_t k = 1; k + 1 < cells.size(); ++k) out.route.push_back(cells[k]);
+  out.yaws_rad.push_back(cells.size() > 1 ? yaws.front() : start_yaw_rad);
+  for (size_t k = 1; k + 1 < cells.size(); ++k) {
+    out.route.push_back(cells[k]);
+    out.yaws_rad.push_back(yaws[k]);
+  }
   out.route.push_back(goal_xy);
+  out.yaws_rad.push_back(goal_yaw_rad);
   for (size_t k = 1; k < out.route.size(); ++k) out.length_m += (out.route[k] - out.route[k - 1]).norm();
   out.found = true;
   return out;
 }
+
+}  // namespace
 
 }  // namespace mfp

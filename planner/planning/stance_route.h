@@ -8,10 +8,15 @@
 // support; A* over usable poses (moves to the 8 neighbouring cells, or a turn by one
 // heading) gives a route the windows can follow, dearer through poses where a nominal
 // foot is off every region. Heights are not judged here (the region graph and the MIQP
-// do that). No I/O.
+// do that). With body obstacles (body_clearance.h) and a known body box, a pose is also
+// unusable when the body's plan box at the pose's yaw overlaps an obstacle in the body's
+// height band above the pose's ground (the mean height of the regions under its nominal
+// feet): the route keeps the body clear and turns where a passage fits only one way.
+// No I/O.
 #include <Eigen/Core>
 #include <vector>
 
+#include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
 
@@ -29,17 +34,28 @@ struct StanceRouteOptions {
   // 1, the reference box's inscribed disk (the box surely meets the region); sqrt(2), its
   // corners (the box may meet it).
   double support_radius_l_bnd = 1.0;
+  // Share of the body's plan box an obstacle may cover before a pose is unusable (room
+  // for the grid's rounding; the checker's tolerance is larger).
+  double body_overlap_share = 0.0;
 };
 
 struct StanceRoute {
   bool found = false;
   std::vector<Eigen::Vector2d> route;  // body positions from start to goal [m, world]
+  std::vector<double> yaws_rad;        // body yaw at each route point [rad]
   double length_m = 0.0;
+  long body_blocked_poses = 0;  // poses the search met that only the body check refused
 };
 
 // start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
 // support around them (the start stance may be off nominal).
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+// The same, keeping the body clear of `body_obstacles`. ground_z_m: the ground height
+// assumed where no region lies under a pose's feet (the start stance's) [m].
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
                             double goal_yaw_rad, const StanceRouteOptions& options = {});
 

@@ -62,12 +62,26 @@ void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad) {
   for (LegChain& leg : robot->legs) {
     if (!leg.joints.empty()) leg.joints.front().T_parent_joint = turn * leg.joints.front().T_parent_joint;
   }
+  if (robot->body_box_m.isEmpty()) return;
+  Eigen::AlignedBox3d turned;
+  for (int corner = 0; corner < 8; ++corner) {
+    turned.extend(turn * robot->body_box_m.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  }
+  robot->body_box_m = turned;
 }
 
 Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q) {
   const Eigen::Isometry3d T_body_foot =
       WalkChain(leg, q, [](const JointModel&, const Eigen::Isometry3d&, int) {});
   return T_body_foot * leg.p_footlink_foot_m;
+}
+
+std::vector<Eigen::Vector3d> MovableJointOrigins(const LegChain& leg, const Eigen::VectorXd& q) {
+  std::vector<Eigen::Vector3d> origins;
+  WalkChain(leg, q, [&](const JointModel& joint, const Eigen::Isometry3d& T, int) {
+    if (joint.movable()) origins.push_back(T.translation());
+  });
+  return origins;
 }
 
 Eigen::Vector3d HipPosition(const LegChain& leg) {

@@ -49,6 +49,11 @@ struct RobotDescription {
   // What the reader chose or assumed (body link below a frame root, ignored links, joint
   // ranges given to continuous or placeholder limits, foot choices); shown as provenance.
   std::vector<std::string> notes;
+  // The body link's extent in the body frame [m]: the bounding box of its collision
+  // boxes, cylinders and spheres, else of its visual ones, else the box of uniform density
+  // with its inertia; empty when the link has none of these (meshes are not read).
+  Eigen::AlignedBox3d body_box_m;
+  std::string body_box_source;  // which of those it was, for provenance
 };
 
 // Turns the body frame about z so that the robot's forward direction, at forward_yaw_rad
@@ -57,6 +62,10 @@ void TurnForwardToX(RobotDescription* robot, double forward_yaw_rad);
 
 // Foot point in the body frame for movable-joint positions q (size num_dof()).
 Eigen::Vector3d FootPosition(const LegChain& leg, const Eigen::VectorXd& q);
+
+// Origins of the leg's movable joints (hip, knee, ...) in the body frame for joint
+// positions q, in chain order [m].
+std::vector<Eigen::Vector3d> MovableJointOrigins(const LegChain& leg, const Eigen::VectorXd& q);
 
 // The leg's hip in the body frame, at zero joint positions: the point of the first
 // movable joint's axis nearest the next movable joint's origin (or the foot); the first

@@ -129,6 +129,36 @@ double VerticalTravel(const LegChain& leg, const Eigen::Vector3d& start,
   return reached;
 }
 
+// The body's extent (robot_model.h): the base link's box from the URDF, widened in plan
+// view to the legs' movable joint origins (hips, knees) at the nominal stance; heights
+// above the feet's plane from the base box. Unknown when the URDF gives no base box.
+BodyExtent DeriveBodyExtent(const RobotDescription& robot, const std::vector<LegDerivation>& legs,
+                            const Eigen::Vector2d& centre_body_m, double feet_plane_z_body_m,
+                            std::string* provenance) {
+  BodyExtent body;
+  const Eigen::AlignedBox3d& base = robot.body_box_m;
+  if (base.isEmpty()) {
+    *provenance = "body box: unknown (the body link '" + robot.root_link + "' has no collision, visual or "
+                  "inertial box); give body_box in the robot YAML for body clearance";
+    return body;
+  }
+  Eigen::AlignedBox2d plan(base.min().head<2>(), base.max().head<2>());
+  for (size_t k = 0; k < legs.size(); ++k) {
+    for (const Eigen::Vector3d& joint : MovableJointOrigins(robot.legs[k], legs[k].nominal_q)) {
+      plan.extend(joint.head<2>());
+    }
+  }
+  body.min_m = plan.min() - centre_body_m;
+  body.max_m = plan.max() - centre_body_m;
+  body.bottom_m = std::max(0.0, base.min().z() - feet_plane_z_body_m);
+  body.top_m = std::max(body.bottom_m, base.max().z() - feet_plane_z_body_m);
+  *provenance = "body box = x [" + Fixed(body.min_m.x()) + ", " + Fixed(body.max_m.x()) + "] m, y [" +
+                Fixed(body.min_m.y()) + ", " + Fixed(body.max_m.y()) + "] m about the centre of contacts, " +
+                Fixed(body.bottom_m) + " to " + Fixed(body.top_m) + " m above the feet: derived, " +
+                robot.body_box_source + ", widened in plan view to the legs' hips and knees at the nominal stance";
+  return body;
+}
+
 }  // namespace
 
 std::vector<int> WaveGait(const std::vector<LegModel>& legs) {
@@ -443,6 +473,11 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
   RejectExhaustedLegs(robot, sampling, limits, stance, cell);
   AddModelLegs(robot, feet_xy, sampling.hips, &model);
   AddModelLimits(robot, limits, cell, options, &model);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(feet_xy.size());
+  std::string body_line;
+  model.body = DeriveBodyExtent(robot, out.legs, mean, out.feet_plane_z_body_m, &body_line);
+  model.provenance.push_back(body_line);
   return out;
 }
 

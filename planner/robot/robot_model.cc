@@ -26,6 +26,12 @@ void ValidateRobotModel(const RobotModel& robot) {
     throw InputError("robot '" + name + "': needs at least 2 legs, has " +
                      std::to_string(robot.legs.size()));
   }
+  const BodyExtent& body = robot.body;
+  if (!body.min_m.allFinite() || !body.max_m.allFinite() || !std::isfinite(body.bottom_m) ||
+      !std::isfinite(body.top_m) || (body.min_m.array() > body.max_m.array()).any() || body.bottom_m > body.top_m) {
+    throw InputError("robot '" + name + "': body box needs finite numbers with min <= max (x and y) and "
+                     "bottom <= top");
+  }
   for (size_t k = 0; k < robot.legs.size(); ++k) {
     const LegModel& leg = robot.legs[k];
     if (!leg.nominal_offset_body_m.allFinite() || !leg.hip_body_m.allFinite()) {
@@ -95,6 +101,15 @@ Eigen::Vector2d MeanNominalOffset(const RobotModel& robot) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (const LegModel& leg : robot.legs) sum += leg.nominal_offset_body_m;
   return robot.legs.empty() ? sum : Eigen::Vector2d(sum / robot.legs.size());
+}
+
+std::vector<Eigen::Vector2d> BodyFootprint(const BodyExtent& body, double x_m, double y_m, double yaw_rad) {
+  const double c = std::cos(yaw_rad), s = std::sin(yaw_rad);
+  const Eigen::Vector2d local[4] = {body.min_m, {body.max_m.x(), body.min_m.y()}, body.max_m,
+                                    {body.min_m.x(), body.max_m.y()}};
+  std::vector<Eigen::Vector2d> corners;
+  for (const Eigen::Vector2d& p : local) corners.emplace_back(x_m + c * p.x() - s * p.y(), y_m + s * p.x() + c * p.y());
+  return corners;
 }
 
 }  // namespace mfp

@@ -27,6 +27,27 @@ struct PlannerWeights {
   double displacement = 1.0;     // per m^2 of centre-of-contacts motion between configurations
 };
 
+// The body's extent for clearance: a box in plan view, in the body frame about the centre
+// of contacts of the nominal stance (x forward, y left), and the height band it fills
+// above the feet's plane at the nominal stance. It keeps out the base link's box and the
+// legs' upper joints (hips, knees) at the nominal stance, in plan view, within the
+// base's height band; it does not keep out lower legs, feet in swing, knees below the
+// base's band, or the body's motion between configurations. All zero: unknown (no check).
+struct BodyExtent {
+  Eigen::Vector2d min_m = Eigen::Vector2d::Zero();  // rear-right corner [m]
+  Eigen::Vector2d max_m = Eigen::Vector2d::Zero();  // front-left corner [m]
+  double bottom_m = 0.0;  // lowest point above the feet's plane [m]
+  double top_m = 0.0;     // highest point above the feet's plane [m]
+
+  bool known() const { return (max_m - min_m).minCoeff() > 0.0 && top_m > bottom_m; }
+  double length_m() const { return max_m.x() - min_m.x(); }
+  double width_m() const { return max_m.y() - min_m.y(); }
+};
+
+// Corners of the body's plan box for a configuration at (x, y) and yaw, counter-clockwise
+// [m, world].
+std::vector<Eigen::Vector2d> BodyFootprint(const BodyExtent& body, double x_m, double y_m, double yaw_rad);
+
 struct RobotModel {
   std::string name;
   std::vector<LegModel> legs;
@@ -40,6 +61,7 @@ struct RobotModel {
   double max_yaw_change_rad = 0.0;  // largest body yaw change between configurations [rad]
   double max_slope_rad = 0.5;       // steepest surface a foot may stand on [rad]
   PlannerWeights weights;
+  BodyExtent body;  // for body clearance; unknown unless derived or given
   // One line per parameter saying where its value came from ("d_lim_m = 0.070 m:
   // override in robot.yaml (derived 0.064 m)"). Printed by mfp-robot.
   std::vector<std::string> provenance;

@@ -38,7 +38,7 @@ std::optional<Plan> GuideRoute(PlanContext* c) {
     return rejected;
   }
   if (options.stance_route) {
-    FollowStanceRoute(c->robot, c->usable, request.start_feet_world_m, request.start_yaw_rad, c->GoalXY(),
+    FollowStanceRoute(c->robot, c->usable, request.body_obstacles, request.start_feet_world_m, request.start_yaw_rad, c->GoalXY(),
                       request.goal_yaw_rad, &c->guide);
   }
   if (request.max_steps == 0 && options.default_max_steps == 0) {

@@ -1,10 +1,13 @@
 #include "planner/planning/internal/window_problem.h"
 
+#include <cmath>
+
 #include "terrain/region_reachability.h"
 
 namespace mfp {
 
-std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& centre) {
+std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& centre,
+                                         std::optional<double>* yaw_rad) {
   const PlannerOptions& options = context.options;
   const RouteGuide& guide = context.guide;
   // Default: about one window's walk. A route over stance poses is followed closely (two
@@ -19,7 +22,11 @@ std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen
   // straight line to the goal, the goal itself pulls the same way.
   const double straight_m = (context.GoalXY() - centre).norm();
   const bool detour = guide.length_m - progress > options.local_goal_detour_ratio * straight_m;
-  if (detour && s < guide.length_m) return RoutePoint(guide, s);
+  const std::optional<double> route_yaw = RouteYaw(guide, s);
+  if ((detour || route_yaw) && s < guide.length_m) {
+    if (yaw_rad != nullptr) *yaw_rad = route_yaw;
+    return RoutePoint(guide, s);
+  }
   return std::nullopt;
 }
 
@@ -35,9 +42,12 @@ FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState
                                    context.robot.dz_max_m)) {
     problem.regions.push_back(context.usable[static_cast<size_t>(i)]);
   }
-  if (const std::optional<Eigen::Vector2d> local = LocalGoal(context, StanceCentreXY(state.stance))) {
+  std::optional<double> local_yaw;
+  if (const std::optional<Eigen::Vector2d> local = LocalGoal(context, StanceCentreXY(state.stance), &local_yaw)) {
     problem.goal_x_m = local->x();
     problem.goal_y_m = local->y();
+    // The route's yaw, unwrapped to the nearest turn from the stance's yaw.
+    if (local_yaw) problem.goal_yaw_rad = state.yaw + std::remainder(*local_yaw - state.yaw, 2 * M_PI);
   }
   if (state.plan.windows > 0) {
     problem.history_feet_world_m = state.history;

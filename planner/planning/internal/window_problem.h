@@ -14,7 +14,10 @@ namespace mfp {
 // that the window's goal term pulls toward (PlannerOptions::local_goal_lookahead_m),
 // while the route left detours (is longer than local_goal_detour_ratio times the straight
 // line to the goal) and that point is short of the route's end. nullopt: the goal itself.
-std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& stance_centre);
+// A route that carries yaws (it keeps the body clear of obstacles) is followed to its end
+// whatever its detour, and *yaw_rad (when given) receives its yaw at that point.
+std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& stance_centre,
+                                         std::optional<double>* yaw_rad = nullptr);
 
 // The window from the state's stance: `steps` new footsteps, the usable regions those
 // steps can reach, the local goal, and after the first window the feet's history.
