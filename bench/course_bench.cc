@@ -11,7 +11,7 @@
 
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
-#include "planner/io/robot_loader.h"
+#include "io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"

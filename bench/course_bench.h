@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/io/scenario_yaml.h"
+#include "io/scenario_yaml.h"
 
 namespace mfp {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "planner/io/body_obstacles.h"
+#include "io/body_obstacles.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/robot/body_clearance.h"
 

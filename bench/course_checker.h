@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "geometry/terrain_description.h"
+#include "io/scenario_yaml.h"
 #include "planner/formulation/plan.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/robot/robot_model.h"
-#include "terrain/terrain_description.h"
-#include "terrain/terrain_quality.h"  // FootOnTrueSurface: the foot test against the boxes
+#include "terrain/quality/terrain_quality.h"  // FootOnTrueSurface: the foot test against the boxes
 
 namespace mfp {
 

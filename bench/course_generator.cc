@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "bench/course_checker.h"
-#include "planner/io/body_obstacles.h"
+#include "io/body_obstacles.h"
 #include "planner/robot/body_clearance.h"
 
 namespace mfp {

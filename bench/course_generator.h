@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "planner/io/scenario_yaml.h"
+#include "geometry/terrain_description.h"
+#include "io/scenario_yaml.h"
 #include "planner/robot/robot_model.h"
-#include "terrain/terrain_description.h"
 
 namespace mfp {
 

@@ -35,24 +35,24 @@
 #include <random>
 #include <thread>
 
+#include "base/check.h"
+#include "daemon/daemon_config.h"
+#include "daemon/daemon_core.h"
+#include "daemon/daemon_runner.h"
+#include "daemon/daemon_setup.h"
+#include "daemon/map_regions.h"
+#include "daemon/solver_plan_function.h"
+#include "io/scenario_yaml.h"
+#include "io/terrain_yaml.h"
 #include "lcmtypes/lcm_transport.h"
 #include "lcmtypes/message_guard.h"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/plan_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/base/check.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
-#include "terrain/octomap_io.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/terrain_yaml.h"
-#include "terrain/voxelize.h"
-#include "tools/daemon/daemon_config.h"
-#include "tools/daemon/daemon_core.h"
-#include "tools/daemon/daemon_runner.h"
-#include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/map_regions.h"
-#include "tools/daemon/solver_plan_function.h"
+#include "terrain/extraction/voxelize.h"
+#include "terrain/octomap/octomap_io.h"
+#include "terrain/quality/terrain_catalogue.h"
 
 namespace mfp {
 namespace {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "terrain/height_grid.h"
-#include "terrain/height_grid_sampling.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/terrain_quality.h"
+#include "terrain/extraction/height_grid.h"
+#include "terrain/quality/height_grid_sampling.h"
+#include "terrain/quality/terrain_catalogue.h"
+#include "terrain/quality/terrain_quality.h"
 
 namespace mfp {
 

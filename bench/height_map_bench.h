@@ -2,7 +2,7 @@
 // mfp-terrain-bench's height-map rows: terrains of the catalogue sampled as height maps
 // (height_grid_sampling.h), extracted through the height-map entry point, timed and
 // judged against the true boxes like the voxel maps.
-#include "terrain/region_extractor.h"
+#include "terrain/extraction/region_extractor.h"
 
 namespace mfp {
 

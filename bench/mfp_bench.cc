@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "base/check.h"
 #include "bench/course_bench.h"
-#include "planner/base/check.h"
+#include "io/plan_json.h"
+#include "io/planner_options_yaml.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/io/plan_json.h"
-#include "planner/io/planner_options_yaml.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/miqp/mps_writer.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <iostream>
 
+#include "base/check.h"
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
-#include "planner/base/check.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mfp-course-check: a plan judged against the true geometry of its course"};

@@ -19,14 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "base/check.h"
 #include "bench/height_map_bench.h"
-#include "planner/base/check.h"
-#include "terrain/map_simulation.h"
-#include "terrain/octomap_io.h"
-#include "terrain/region_extractor.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/terrain_quality.h"
-#include "terrain/voxel_quality.h"
+#include "terrain/extraction/map_simulation.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/octomap/octomap_io.h"
+#include "terrain/quality/terrain_catalogue.h"
+#include "terrain/quality/terrain_quality.h"
+#include "terrain/quality/voxel_quality.h"
 
 namespace {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "planner/base/check.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "base/check.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
 

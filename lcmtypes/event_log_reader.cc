@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

@@ -1,6 +1,6 @@
 #include "lcmtypes/lcm_transport.h"
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

@@ -12,12 +12,12 @@
 #include <string>
 #include <utility>
 
-#include "planner/base/check.h"
-#include "planner/base/solve_status.h"
-#include "planner/io/robot_loader.h"
+#include "base/check.h"
+#include "base/solve_status.h"
+#include "io/height_map_file.h"
+#include "io/robot_loader.h"
 #include "python/python_planner.h"
-#include "terrain/height_map_file.h"
-#include "terrain/region_extractor.h"
+#include "terrain/extraction/region_extractor.h"
 
 namespace py = pybind11;
 

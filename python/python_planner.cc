@@ -2,13 +2,13 @@
 
 #include <chrono>
 
-#include "planner/base/check.h"
-#include "planner/io/plan_json.h"
+#include "base/check.h"
+#include "io/height_map_file.h"
+#include "io/plan_json.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "terrain/height_map_file.h"
-#include "terrain/octomap_io.h"
-#include "terrain/region_extractor.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/octomap/octomap_io.h"
 
 namespace mfp {
 namespace {

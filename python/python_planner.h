@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "geometry/convex_region.h"
+#include "io/scenario_yaml.h"
 #include "planner/formulation/plan.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/robot/robot_model.h"
-#include "terrain/convex_region.h"
-#include "terrain/height_grid.h"
-#include "terrain/occupancy_map.h"
+#include "terrain/extraction/height_grid.h"
+#include "terrain/extraction/occupancy_map.h"
 
 namespace mfp {
 

@@ -1,5 +1,5 @@
 // Body clearance: the body box derived from the URDF (planner/robot/body_clearance.h),
-// the stance route that keeps it clear (planner/planning/stance_route.h), and plans on
+// the stance route that keeps it clear (planner/planning/internal/stance_route.h), and plans on
 // the body courses (a door that needs a turn, a dead-end pocket) judged by the checker
 // against the true boxes.
 #include <gtest/gtest.h>
@@ -7,14 +7,14 @@
 #include <cstdio>
 #include <fstream>
 
+#include "base/check.h"
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
-#include "planner/base/check.h"
-#include "planner/io/body_obstacles.h"
-#include "planner/io/robot_json.h"
-#include "planner/io/robot_loader.h"
+#include "io/body_obstacles.h"
+#include "io/robot_json.h"
+#include "io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
-#include "planner/planning/stance_route.h"
+#include "planner/planning/internal/stance_route.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/body_clearance.h"
 

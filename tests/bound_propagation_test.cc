@@ -1,5 +1,5 @@
 // Bound propagation over the rows of an MIQP, on problems solved by hand.
-#include "planner/search/bound_propagation.h"
+#include "planner/search/internal/bound_propagation.h"
 
 #include <gtest/gtest.h>
 

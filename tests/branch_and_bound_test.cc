@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "planner/miqp/miqp_builder.h"
-#include "planner/qp/ipm_relaxation_solver.h"
-#include "planner/qp/ipopt_relaxation_solver.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipopt_relaxation_solver.h"
 
 namespace mfp {
 namespace {

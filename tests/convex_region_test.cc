@@ -1,12 +1,12 @@
 // Convex regions from polygons, box top faces, containment and lookup.
-#include "terrain/convex_region.h"
+#include "geometry/convex_region.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "planner/base/check.h"
-#include "terrain/terrain_description.h"
+#include "base/check.h"
+#include "geometry/terrain_description.h"
 
 namespace mfp {
 namespace {

@@ -16,16 +16,16 @@
 #include <random>
 #include <thread>
 
+#include "base/check.h"
+#include "daemon/daemon_config.h"
+#include "daemon/daemon_core.h"
+#include "daemon/daemon_runner.h"
+#include "daemon/daemon_setup.h"
 #include "lcmtypes/lcm_transport.h"
 #include "lcmtypes/message_guard.h"
 #include "mfp/region_set_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/base/check.h"
 #include "test_temp_path.h"
-#include "tools/daemon/daemon_config.h"
-#include "tools/daemon/daemon_core.h"
-#include "tools/daemon/daemon_runner.h"
-#include "tools/daemon/daemon_setup.h"
 
 namespace mfp {
 namespace {

@@ -1,6 +1,6 @@
 // Deadlines and stop flags hold inside a solve: the interior point QP and Ipopt stop at
 // their next iteration, the search at its next node, the planner with the best so far.
-#include "planner/base/deadline.h"
+#include "base/deadline.h"
 
 #include <gtest/gtest.h>
 
@@ -9,13 +9,13 @@
 #include <cmath>
 #include <thread>
 
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/miqp/miqp_builder.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/interior_point_qp.h"
-#include "planner/qp/ipm_relaxation_solver.h"
-#include "planner/qp/ipopt_relaxation_solver.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipopt_relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
 

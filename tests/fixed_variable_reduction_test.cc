@@ -1,7 +1,7 @@
 // The fixed-variable reduction every relaxation backend runs first: fixed variables move
 // into the objective and the row bounds, rows the box already keeps are left out, and
 // nodes that need no solver are settled directly.
-#include "planner/qp/fixed_variable_reduction.h"
+#include "planner/qp/internal/fixed_variable_reduction.h"
 
 #include <gtest/gtest.h>
 

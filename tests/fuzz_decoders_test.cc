@@ -17,16 +17,16 @@
 #include <string>
 #include <vector>
 
+#include "base/check.h"
+#include "io/robot_yaml.h"
+#include "io/scenario_yaml.h"
+#include "io/terrain_yaml.h"
 #include "lcmtypes/event_log_reader.h"
 #include "lcmtypes/message_guard.h"
-#include "planner/base/check.h"
-#include "planner/io/robot_yaml.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
-#include "terrain/octomap_io.h"
-#include "terrain/region_extractor.h"
-#include "terrain/terrain_yaml.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/octomap/octomap_io.h"
 #include "test_temp_path.h"
 
 namespace mfp {

@@ -9,14 +9,14 @@
 #include <limits>
 #include <random>
 
-#include "planner/base/check.h"
-#include "terrain/height_grid.h"
-#include "terrain/height_grid_sampling.h"
-#include "terrain/height_map_file.h"
-#include "terrain/map_file.h"
-#include "terrain/npy_array.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/terrain_quality.h"
+#include "base/check.h"
+#include "io/height_map_file.h"
+#include "io/internal/npy_array.h"
+#include "io/map_file.h"
+#include "terrain/extraction/height_grid.h"
+#include "terrain/quality/height_grid_sampling.h"
+#include "terrain/quality/terrain_catalogue.h"
+#include "terrain/quality/terrain_quality.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {

@@ -7,15 +7,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "io/internal/npy_array.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "terrain/height_grid_sampling.h"
-#include "terrain/npy_array.h"
-#include "terrain/octomap_io.h"
-#include "terrain/terrain_quality.h"
+#include "terrain/octomap/octomap_io.h"
+#include "terrain/quality/height_grid_sampling.h"
+#include "terrain/quality/terrain_quality.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {

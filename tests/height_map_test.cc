@@ -1,12 +1,12 @@
 // Height map, local surface fits and the rectangle cover, with hand-worked answers.
-#include "terrain/height_map.h"
+#include "terrain/extraction/height_map.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "planner/base/check.h"
-#include "terrain/rectangle_cover.h"
+#include "base/check.h"
+#include "terrain/extraction/internal/rectangle_cover.h"
 
 namespace mfp {
 namespace {

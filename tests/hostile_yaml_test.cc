@@ -8,10 +8,10 @@
 #include <functional>
 #include <string>
 
-#include "planner/base/check.h"
-#include "planner/io/robot_yaml.h"
-#include "planner/io/scenario_yaml.h"
-#include "terrain/terrain_yaml.h"
+#include "base/check.h"
+#include "io/robot_yaml.h"
+#include "io/scenario_yaml.h"
+#include "io/terrain_yaml.h"
 #include "test_temp_path.h"
 
 namespace mfp {

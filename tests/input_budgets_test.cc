@@ -10,17 +10,17 @@
 #include <string>
 #include <vector>
 
-#include "planner/base/bounded_file.h"
-#include "planner/base/check.h"
-#include "planner/base/format.h"
+#include "base/bounded_file.h"
+#include "base/check.h"
+#include "base/format.h"
+#include "daemon/map_regions.h"
+#include "daemon/message_conversion.h"
+#include "io/cli_values.h"
 #include "planner/robot/derivation_budget.h"
 #include "planner/robot/urdf_reader.h"
-#include "terrain/leaf_budget.h"
-#include "terrain/octomap_io.h"
+#include "terrain/extraction/leaf_budget.h"
+#include "terrain/octomap/octomap_io.h"
 #include "tests/test_temp_path.h"
-#include "tools/cli_values.h"
-#include "tools/daemon/map_regions.h"
-#include "tools/daemon/message_conversion.h"
 
 namespace mfp {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

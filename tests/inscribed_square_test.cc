@@ -1,13 +1,13 @@
 // The footprint grid's clearance and the NLopt inscribed square on footprints with known
 // answers.
-#include "planner/robot/inscribed_square.h"
+#include "planner/robot/internal/inscribed_square.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <functional>
 
-#include "planner/robot/footprint_grid.h"
+#include "planner/robot/internal/footprint_grid.h"
 
 namespace mfp {
 namespace {

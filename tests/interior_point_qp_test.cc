@@ -7,8 +7,8 @@
 #include <random>
 
 #include "planner/miqp/miqp_builder.h"
-#include "planner/qp/fixed_variable_reduction.h"
-#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/internal/fixed_variable_reduction.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "tests/test_qps.h"
 

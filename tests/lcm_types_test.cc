@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "base/solve_status.h"
 #include "lcmtypes/message_guard.h"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/plan_t.hpp"
 #include "mfp/status_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/base/solve_status.h"
 
 namespace mfp {
 namespace {

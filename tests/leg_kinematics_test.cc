@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "planner/robot/leg_kinematics.h"
+#include "planner/robot/internal/leg_kinematics.h"
 
 namespace mfp {
 namespace {

@@ -17,7 +17,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "tests/test_robots.h"
 
 namespace mfp {

@@ -11,7 +11,7 @@
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/miqp/miqp_builder.h"
-#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "planner/search/branch_and_bound.h"
 #include "tests/test_robots.h"
 

@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "terrain/map_simulation.h"
-#include "terrain/region_extractor.h"
-#include "terrain/surface_layers.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/terrain_quality.h"
+#include "terrain/extraction/internal/surface_layers.h"
+#include "terrain/extraction/map_simulation.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/quality/terrain_catalogue.h"
+#include "terrain/quality/terrain_quality.h"
 
 namespace mfp {
 namespace {

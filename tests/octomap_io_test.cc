@@ -1,6 +1,6 @@
 // OctoMap files: round trips through .bt and .ot, and malformed, truncated, random and
 // huge inputs, which must give an InputError (never a crash, never a partial map).
-#include "terrain/octomap_io.h"
+#include "terrain/octomap/octomap_io.h"
 
 #include <gtest/gtest.h>
 
@@ -10,10 +10,10 @@
 #include <fstream>
 #include <random>
 
-#include "planner/base/check.h"
-#include "terrain/region_extractor.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/voxelize.h"
+#include "base/check.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/extraction/voxelize.h"
+#include "terrain/quality/terrain_catalogue.h"
 #include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 

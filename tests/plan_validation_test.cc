@@ -5,8 +5,8 @@
 
 #include <utility>
 
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
 

@@ -1,6 +1,6 @@
 // The `planner:` block: every search option it names reaches PlannerOptions, and bad
 // values or unknown keys are errors that name the key.
-#include "planner/io/planner_options_yaml.h"
+#include "io/planner_options_yaml.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string>
 
-#include "planner/base/check.h"
-#include "planner/io/scenario_yaml.h"
+#include "base/check.h"
+#include "io/scenario_yaml.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "test_temp_path.h"
 #include "tests/input_error_of.h"

@@ -1,6 +1,6 @@
 // Pseudo-costs: per-unit means per direction, the all-variable mean as the prior for a
 // variable never branched on, and the product score.
-#include "planner/search/pseudo_costs.h"
+#include "planner/search/internal/pseudo_costs.h"
 
 #include <gtest/gtest.h>
 

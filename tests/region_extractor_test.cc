@@ -1,16 +1,16 @@
 // Region extraction on synthetic terrains with known answers (terrain_catalogue.h).
 // The maps are voxelised directly; octomap_io_test covers the same path through files.
-#include "terrain/region_extractor.h"
+#include "terrain/extraction/region_extractor.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
 
-#include "planner/base/check.h"
-#include "terrain/terrain_catalogue.h"
-#include "terrain/terrain_quality.h"
-#include "terrain/voxelize.h"
+#include "base/check.h"
+#include "terrain/extraction/voxelize.h"
+#include "terrain/quality/terrain_catalogue.h"
+#include "terrain/quality/terrain_quality.h"
 
 namespace mfp {
 namespace {

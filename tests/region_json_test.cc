@@ -1,4 +1,4 @@
-#include "terrain/region_json.h"
+#include "io/region_json.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Which regions a plan and one window can use (terrain/region_reachability.h).
-#include "terrain/region_reachability.h"
+// Which regions a plan and one window can use (geometry/region_reachability.h).
+#include "geometry/region_reachability.h"
 
 #include <gtest/gtest.h>
 

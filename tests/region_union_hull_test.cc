@@ -1,5 +1,5 @@
-// The convex hull of a set of regions seen from above (planner/formulation/region_union_hull.h).
-#include "planner/formulation/region_union_hull.h"
+// The convex hull of a set of regions seen from above (planner/formulation/internal/region_union_hull.h).
+#include "planner/formulation/internal/region_union_hull.h"
 
 #include <gtest/gtest.h>
 

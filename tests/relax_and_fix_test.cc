@@ -1,5 +1,5 @@
 // Relax-and-fix on a Table I instance: a feasible plan near the proven optimum.
-#include "planner/planning/relax_and_fix.h"
+#include "planner/planning/internal/relax_and_fix.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 #include "planner/qp/relaxation_solver_factory.h"
 
 #include <gtest/gtest.h>
-#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "tests/test_qps.h"
 
 namespace mfp {

@@ -5,9 +5,9 @@
 #include <fstream>
 #include <string>
 
-#include "planner/base/check.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/robot_yaml.h"
+#include "base/check.h"
+#include "io/robot_loader.h"
+#include "io/robot_yaml.h"
 
 namespace mfp {
 namespace {

@@ -1,17 +1,17 @@
-// Route-following proposals (planner/planning/route_proposals.h) on a field of small
+// Route-following proposals (planner/planning/internal/route_proposals.h) on a field of small
 // cells built by hand: the proposals are integer assignments of the window's MIQP, at
 // least one is a plan, and the best one walks the body along the route at half of d_lim
 // per configuration or more.
-#include "planner/planning/route_proposals.h"
+#include "planner/planning/internal/route_proposals.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "io/robot_loader.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
-#include "planner/planning/warm_start.h"
+#include "planner/planning/internal/warm_start.h"
 #include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
+#include "planner/planning/internal/relax_and_fix.h"
 #include "planner/planning/plan_validation.h"
-#include "planner/planning/relax_and_fix.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
 #include "tests/test_scenarios.h"

@@ -1,8 +1,8 @@
-// The route over stance poses (planner/planning/stance_route.h), on layouts built by hand.
+// The route over stance poses (planner/planning/internal/stance_route.h), on layouts built by hand.
 #include <gtest/gtest.h>
 
-#include "planner/io/robot_loader.h"
-#include "planner/planning/stance_route.h"
+#include "io/robot_loader.h"
+#include "planner/planning/internal/stance_route.h"
 
 namespace mfp {
 namespace {

@@ -1,11 +1,11 @@
-#include "terrain/terrain_yaml.h"
+#include "io/terrain_yaml.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {

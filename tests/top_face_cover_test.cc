@@ -5,9 +5,9 @@
 // inside the higher cell (hexapod_rough_turn_83, step 148).
 #include <gtest/gtest.h>
 
-#include "terrain/convex_polygon_difference.h"
-#include "terrain/terrain_description.h"
-#include "terrain/terrain_quality.h"
+#include "geometry/internal/convex_polygon_difference.h"
+#include "geometry/terrain_description.h"
+#include "terrain/quality/terrain_quality.h"
 
 namespace mfp {
 namespace {

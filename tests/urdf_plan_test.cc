@@ -2,11 +2,11 @@
 // 4, 6 and 8 legs, and for a robot whose feet are collision spheres with no foot links.
 #include <gtest/gtest.h>
 
-#include "planner/io/robot_loader.h"
+#include "geometry/terrain_description.h"
+#include "io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "terrain/terrain_description.h"
 
 namespace mfp {
 namespace {

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "planner/base/check.h"
-#include "planner/io/robot_loader.h"
+#include "base/check.h"
+#include "io/robot_loader.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
 

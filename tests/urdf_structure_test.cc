@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "planner/base/check.h"
-#include "planner/io/robot_loader.h"
+#include "base/check.h"
+#include "io/robot_loader.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
 #include "tests/input_error_of.h"

@@ -1,4 +1,4 @@
-// Replanning from the previous plan (planner/planning/warm_start.h): a robot that walked
+// Replanning from the previous plan (planner/planning/internal/warm_start.h): a robot that walked
 // one gait cycle of its plan asks again; the previous plan seeds the search, which must
 // find the same optimum as a search from scratch, and a bounded replan still answers a
 // valid plan.
@@ -8,8 +8,8 @@
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/planning/footstep_planner.h"
+#include "planner/planning/internal/warm_start.h"
 #include "planner/planning/plan_validation.h"
-#include "planner/planning/warm_start.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "tests/test_scenarios.h"
 

@@ -1,5 +1,5 @@
-// A window's share of the plan's time under route guidance (planner/planning/window_budget.h).
-#include "planner/planning/window_budget.h"
+// A window's share of the plan's time under route guidance (planner/planning/internal/window_budget.h).
+#include "planner/planning/internal/window_budget.h"
 
 #include <gtest/gtest.h>
 

@@ -4,13 +4,13 @@
 
 #include <cmath>
 
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
-#include "planner/planning/exact_window.h"
 #include "planner/planning/footstep_planner.h"
+#include "planner/planning/internal/exact_window.h"
+#include "planner/planning/internal/window_polisher.h"
 #include "planner/planning/plan_validation.h"
-#include "planner/planning/window_polisher.h"
 #include "planner/qp/relaxation_solver_factory.h"
 
 namespace mfp {

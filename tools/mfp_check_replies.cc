@@ -11,16 +11,16 @@
 #include <map>
 #include <sstream>
 
+#include "base/check.h"
+#include "daemon/daemon_config.h"
+#include "daemon/daemon_setup.h"
+#include "daemon/message_conversion.h"
+#include "daemon/replay_scenario.h"
 #include "lcmtypes/message_guard.h"
 #include "mfp/plan_t.hpp"
 #include "mfp/region_set_t.hpp"
 #include "mfp/status_t.hpp"
-#include "planner/base/check.h"
 #include "planner/planning/plan_validation.h"
-#include "tools/daemon/daemon_config.h"
-#include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/message_conversion.h"
-#include "tools/daemon/replay_scenario.h"
 
 namespace mfp {
 namespace {

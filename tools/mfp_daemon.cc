@@ -8,16 +8,16 @@
 #include <memory>
 #include <string>
 
+#include "base/check.h"
+#include "daemon/daemon_config.h"
+#include "daemon/daemon_core.h"
+#include "daemon/daemon_runner.h"
+#include "daemon/daemon_setup.h"
+#include "daemon/map_regions.h"
+#include "daemon/solver_plan_function.h"
+#include "daemon/udp_counters.h"
+#include "io/timestamped_log.h"
 #include "lcmtypes/lcm_transport.h"
-#include "planner/base/check.h"
-#include "tools/daemon/daemon_config.h"
-#include "tools/daemon/daemon_core.h"
-#include "tools/daemon/daemon_runner.h"
-#include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/map_regions.h"
-#include "tools/daemon/solver_plan_function.h"
-#include "tools/daemon/timestamped_log.h"
-#include "tools/daemon/udp_counters.h"
 
 namespace {
 

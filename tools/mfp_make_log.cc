@@ -1,27 +1,27 @@
 // mfp-make-log: writes an LCM log (for lcm-logplayer or mfp-replay) from a scenario
 // file: the map on MFP_TERRAIN_MAP, the requests on MFP_PLAN_REQUEST, and malformed
 // payloads, at the times the scenario gives (the map as a height_map_t on MFP_HEIGHT_MAP
-// with as_height_map). Format: tools/daemon/replay_scenario.h.
+// with as_height_map). Format: daemon/replay_scenario.h.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 
+#include "base/check.h"
+#include "daemon/daemon_config.h"
+#include "daemon/daemon_setup.h"
+#include "daemon/height_map_message.h"
+#include "daemon/map_regions.h"
+#include "daemon/replay_scenario.h"
+#include "io/timestamped_log.h"
 #include "lcmtypes/event_log_writer.h"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/terrain_map_t.hpp"
-#include "planner/base/check.h"
 #include "planner/planning/footstep_planner.h"
-#include "terrain/height_grid_sampling.h"
-#include "terrain/octomap_io.h"
-#include "terrain/voxelize.h"
-#include "tools/daemon/daemon_config.h"
-#include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/height_map_message.h"
-#include "tools/daemon/map_regions.h"
-#include "tools/daemon/replay_scenario.h"
-#include "tools/daemon/timestamped_log.h"
+#include "terrain/extraction/voxelize.h"
+#include "terrain/octomap/octomap_io.h"
+#include "terrain/quality/height_grid_sampling.h"
 
 namespace mfp {
 namespace {
@@ -130,7 +130,7 @@ int Run(const std::string& scenario_path, const std::string& config_path, const 
 int main(int argc, char** argv) {
   CLI::App app{"mfp-make-log: an LCM log of a map and requests from a scenario file"};
   std::string scenario, config = "config/daemon.yaml", out;
-  app.add_option("scenario", scenario, "scenario YAML (tools/daemon/replay_scenario.h)")->required();
+  app.add_option("scenario", scenario, "scenario YAML (daemon/replay_scenario.h)")->required();
   app.add_option("--config", config, "daemon YAML: robots and limits")->capture_default_str();
   app.add_option("--out", out, "LCM log to write")->required();
   CLI11_PARSE(app, argc, argv);

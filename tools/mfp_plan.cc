@@ -11,22 +11,22 @@
 #include <iostream>
 #include <sstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
+#include "io/cli_values.h"
+#include "io/map_file.h"
+#include "io/plan_json.h"
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
+#include "io/text_output.h"
+#include "io/timestamped_log.h"
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/io/plan_json.h"
-#include "planner/io/robot_loader.h"
-#include "planner/io/scenario_yaml.h"
 #include "planner/miqp/mps_writer.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/request_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "terrain/map_file.h"
-#include "tools/cli_values.h"
-#include "tools/daemon/timestamped_log.h"
 #include "tools/options_reference.h"
 #include "tools/plan_svg.h"
-#include "tools/text_output.h"
 
 namespace {
 

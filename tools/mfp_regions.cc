@@ -9,14 +9,14 @@
 #include <fstream>
 #include <iostream>
 
-#include "planner/base/check.h"
-#include "terrain/height_grid.h"
-#include "terrain/height_map_file.h"
-#include "terrain/octomap_io.h"
-#include "terrain/region_extractor.h"
-#include "terrain/region_json.h"
+#include "base/check.h"
+#include "io/height_map_file.h"
+#include "io/region_json.h"
+#include "io/text_output.h"
+#include "terrain/extraction/height_grid.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/octomap/octomap_io.h"
 #include "tools/region_svg.h"
-#include "tools/text_output.h"
 
 namespace {
 

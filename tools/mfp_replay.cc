@@ -7,16 +7,16 @@
 // heartbeat period of log time) to an LCM log.
 #include <CLI/CLI.hpp>
 
+#include "base/check.h"
+#include "daemon/daemon_config.h"
+#include "daemon/daemon_core.h"
+#include "daemon/daemon_setup.h"
+#include "daemon/map_regions.h"
+#include "daemon/solver_plan_function.h"
+#include "io/timestamped_log.h"
 #include "lcmtypes/event_log_reader.h"
 #include "lcmtypes/event_log_writer.h"
 #include "lcmtypes/transport.h"
-#include "planner/base/check.h"
-#include "tools/daemon/daemon_config.h"
-#include "tools/daemon/daemon_core.h"
-#include "tools/daemon/daemon_setup.h"
-#include "tools/daemon/map_regions.h"
-#include "tools/daemon/solver_plan_function.h"
-#include "tools/daemon/timestamped_log.h"
 
 namespace mfp {
 namespace {

@@ -12,11 +12,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "planner/base/check.h"
-#include "planner/base/format.h"
-#include "planner/io/robot_json.h"
-#include "planner/io/robot_loader.h"
-#include "tools/text_output.h"
+#include "base/check.h"
+#include "base/format.h"
+#include "io/robot_json.h"
+#include "io/robot_loader.h"
+#include "io/text_output.h"
 
 namespace {
 

@@ -14,11 +14,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "planner/base/check.h"
-#include "terrain/map_simulation.h"
-#include "terrain/octomap_io.h"
-#include "terrain/terrain_quality.h"
-#include "terrain/terrain_yaml.h"
+#include "base/check.h"
+#include "io/terrain_yaml.h"
+#include "terrain/extraction/map_simulation.h"
+#include "terrain/octomap/octomap_io.h"
+#include "terrain/quality/terrain_quality.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Build an OctoMap terrain map from a scenario's terrain description"};

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <sstream>
 
-#include "planner/io/planner_options_yaml.h"
-#include "planner/io/robot_yaml.h"
-#include "planner/io/scenario_yaml.h"
-#include "tools/daemon/daemon_config.h"
+#include "daemon/daemon_config.h"
+#include "io/planner_options_yaml.h"
+#include "io/robot_yaml.h"
+#include "io/scenario_yaml.h"
 
 namespace mfp {
 namespace {

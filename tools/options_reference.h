@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/io/option_table.h"
+#include "io/option_table.h"
 
 namespace mfp {
 

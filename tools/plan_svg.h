@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "geometry/convex_region.h"
 #include "planner/formulation/plan.h"
 #include "planner/robot/robot_model.h"
-#include "terrain/convex_region.h"
 
 namespace mfp {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "terrain/convex_region.h"
-#include "terrain/height_map.h"
+#include "geometry/convex_region.h"
+#include "terrain/extraction/height_map.h"
 
 namespace mfp {
 

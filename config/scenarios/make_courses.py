@@ -126,7 +126,7 @@ write("littledog_flat", "quadruped walks 0.6 m across flat ground", "littledog",
       [box("ground", 0.3, 0.0, 0.0, 1.2, 0.6)], [0, 0, 0], [0.6, 0.0, 0.0], 80, resolution=0.005)
 
 
-# An indoor corridor as a robot's sensor maps it (terrain/terrain_catalogue.cc's
+# An indoor corridor as a robot's sensor maps it (terrain/quality/terrain_catalogue.cc's
 # CorridorTerrain): floor, side walls with doors every 2.4 m, a ceiling at 2.8 m, 8 cm
 # voxels, free space from rays cast every 1.5 m along the centre line, and noise. In
 # long/: minutes to plan, so not part of the scenario tests (README).

@@ -2,7 +2,7 @@
 // Centre of contacts (seed paper eq. 2): p_i is the mean of the n latest footsteps ending
 // at step i. One definition for the formulation (positions as LinExpr) and plan validation
 // (positions as vectors).
-#include "planner/formulation/step_expressions.h"
+#include "planner/formulation/internal/step_expressions.h"
 #include "planner/formulation/workspace_box.h"
 #include "planner/miqp/miqp_builder.h"
 

@@ -1,4 +1,4 @@
-#include "planner/formulation/cost.h"
+#include "planner/formulation/internal/cost.h"
 
 namespace mfp {
 

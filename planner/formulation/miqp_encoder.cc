@@ -1,6 +1,6 @@
-#include "planner/formulation/miqp_encoder.h"
+#include "planner/formulation/internal/miqp_encoder.h"
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

@@ -4,15 +4,15 @@
 #include <cmath>
 #include <tuple>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/formulation/centre_of_contacts.h"
-#include "planner/formulation/cost.h"
-#include "planner/formulation/miqp_encoder.h"
-#include "planner/formulation/region_choice.h"
-#include "planner/formulation/region_union_hull.h"
-#include "planner/formulation/step_expressions.h"
+#include "planner/formulation/internal/cost.h"
+#include "planner/formulation/internal/miqp_encoder.h"
+#include "planner/formulation/internal/region_choice.h"
+#include "planner/formulation/internal/region_union_hull.h"
+#include "planner/formulation/internal/step_expressions.h"
+#include "planner/formulation/internal/trimming.h"
 #include "planner/formulation/step_limits.h"
-#include "planner/formulation/trimming.h"
 #include "planner/formulation/workspace_box.h"
 #include "planner/formulation/yaw_change_limit.h"
 #include "planner/miqp/miqp_builder.h"

@@ -25,9 +25,9 @@
 #include <utility>
 #include <vector>
 
-#include "planner/formulation/footstep_problem.h"
+#include "planner/formulation/internal/footstep_problem.h"
+#include "planner/formulation/internal/yaw_chords.h"
 #include "planner/formulation/plan.h"
-#include "planner/formulation/yaw_chords.h"
 #include "planner/miqp/miqp.h"
 
 namespace mfp {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/base/solve_status.h"
+#include "base/solve_status.h"
 
 namespace mfp {
 

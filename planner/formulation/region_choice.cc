@@ -1,8 +1,8 @@
-#include "planner/formulation/region_choice.h"
+#include "planner/formulation/internal/region_choice.h"
 
 #include <sstream>
 
-#include "planner/formulation/miqp_encoder.h"
+#include "planner/formulation/internal/miqp_encoder.h"
 #include "planner/formulation/region_faces.h"
 
 namespace mfp {

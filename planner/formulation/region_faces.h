@@ -4,9 +4,9 @@
 //   H_ir => a_k . f_i <= b_k   for each face k of A_r f <= b_r
 // written once through a StepEncoder: the MIQP's big-M rows (region_choice.h, big-M
 // encoding) and the polisher's rows for the region its MIQP point chose.
+#include "geometry/convex_region.h"
 #include "planner/formulation/step_encoder.h"
 #include "planner/formulation/workspace_box.h"
-#include "terrain/convex_region.h"
 
 namespace mfp {
 

@@ -1,11 +1,11 @@
-#include "planner/formulation/region_union_hull.h"
+#include "planner/formulation/internal/region_union_hull.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "planner/base/check.h"
-#include "terrain/convex_hull_2d.h"
+#include "base/check.h"
+#include "geometry/convex_hull_2d.h"
 
 namespace mfp {
 

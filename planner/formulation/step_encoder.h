@@ -6,7 +6,7 @@
 //   MiqpEncoder (miqp_encoder.h)                  the MIQP: positions and centres of
 //        contacts as variables, R(yaw) through the sin/cos chord variables; rows into a
 //        MiqpBuilder, an implied row as a big-M row on its binary.
-//   ExactEncoder (planner/planning/exact_encoder.h) the polisher: the MIQP's integers
+//   ExactEncoder (planner/planning/internal/exact_encoder.h) the polisher: the MIQP's integers
 //        fixed (a trimmed step is its leg's previous foot, a configuration that holds its
 //        yaw has the one before), R(yaw) with exact sin and cos of a yaw variable.
 //   the plan validator (planner/planning/plan_validation.cc): every quantity a value of

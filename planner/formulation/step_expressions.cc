@@ -1,4 +1,4 @@
-#include "planner/formulation/step_expressions.h"
+#include "planner/formulation/internal/step_expressions.h"
 
 #include <cmath>
 

@@ -8,8 +8,8 @@
 // sin/cos) alike, and evaluated by the plan validator.
 #include <vector>
 
+#include "planner/formulation/internal/step_expressions.h"
 #include "planner/formulation/step_encoder.h"
-#include "planner/formulation/step_expressions.h"
 #include "planner/miqp/miqp_builder.h"
 #include "planner/robot/robot_model.h"
 

@@ -1,4 +1,4 @@
-#include "planner/formulation/trimming.h"
+#include "planner/formulation/internal/trimming.h"
 
 #include <string>
 

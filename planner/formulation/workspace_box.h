@@ -5,8 +5,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "geometry/convex_region.h"
 #include "planner/miqp/miqp.h"
-#include "terrain/convex_region.h"
 
 namespace mfp {
 

@@ -1,6 +1,6 @@
 #include "planner/formulation/yaw_change_limit.h"
 
-#include "planner/formulation/step_expressions.h"
+#include "planner/formulation/internal/step_expressions.h"
 
 namespace mfp {
 

@@ -1,4 +1,4 @@
-#include "planner/formulation/yaw_chords.h"
+#include "planner/formulation/internal/yaw_chords.h"
 
 #include <algorithm>
 #include <cmath>

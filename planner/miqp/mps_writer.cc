@@ -5,7 +5,7 @@
 #include <iomanip>
 #include <vector>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

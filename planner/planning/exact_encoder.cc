@@ -1,9 +1,9 @@
-#include "planner/planning/exact_encoder.h"
+#include "planner/planning/internal/exact_encoder.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

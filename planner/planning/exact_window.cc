@@ -1,4 +1,4 @@
-#include "planner/planning/exact_window.h"
+#include "planner/planning/internal/exact_window.h"
 
 #include <sstream>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/planning/internal/horizon_policy.h"
 #include "planner/planning/internal/horizon_state.h"
 #include "planner/planning/internal/plan_context.h"

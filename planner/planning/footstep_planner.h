@@ -6,18 +6,18 @@
 #include <functional>
 #include <vector>
 
-#include "planner/base/deadline.h"
+#include "base/deadline.h"
+#include "geometry/convex_region.h"
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
-#include "planner/planning/relax_and_fix.h"
-#include "planner/planning/route_proposals.h"
-#include "planner/planning/window_polisher.h"
+#include "planner/planning/internal/relax_and_fix.h"
+#include "planner/planning/internal/route_proposals.h"
+#include "planner/planning/internal/window_polisher.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
 #include "planner/search/branch_and_bound.h"
-#include "terrain/convex_region.h"
 
 namespace mfp {
 
@@ -40,7 +40,7 @@ struct PlanRequest {
                            // the single MIQP of FirstWindowProblem (benchmarks of Table I)
   // Optional: the footsteps of this client's previous plans (Plan::footsteps, newest
   // first) on the same map. When the start stance lies on one, its steps ahead seed the
-  // first window's search (planner/planning/warm_start.h), and
+  // first window's search (planner/planning/internal/warm_start.h), and
   // PlannerOptions::replan_time bounds that search.
   std::vector<std::vector<Footstep>> warm_start;
   // Optional: called after each accepted window with the plan so far (every step in it
@@ -90,12 +90,12 @@ struct PlannerOptions {
   double local_goal_lookahead_m = -1.0;
   double local_goal_detour_ratio = 1.0;
   // The route the local goals follow comes from a search over stance poses where every
-  // leg's reference box meets a region (planner/planning/stance_route.h), not from the
+  // leg's reference box meets a region (planner/planning/internal/stance_route.h), not from the
   // region graph's centres, which cut corners a whole body cannot. The region graph
   // still decides 'no route'; where the stance search finds nothing its route is kept.
   bool stance_route = true;
   // Each guided window's search starts from plans that walk the route at a few speeds
-  // (planner/planning/route_proposals.h), solved as QPs with their regions fixed.
+  // (planner/planning/internal/route_proposals.h), solved as QPs with their regions fixed.
   bool route_proposals = true;
   RouteProposalOptions route_proposal;
   // Default step budget under route guidance (no max_steps given): configurations for

@@ -1,9 +1,9 @@
-#include "planner/planning/goal.h"
+#include "planner/planning/internal/goal.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <sstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/formulation/centre_of_contacts.h"
 #include "planner/formulation/step_encoder.h"
 #include "planner/formulation/step_limits.h"

@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "geometry/convex_region.h"
 #include "planner/formulation/plan.h"
-#include "planner/planning/goal.h"
+#include "planner/planning/internal/goal.h"
 #include "planner/robot/robot_model.h"
-#include "terrain/convex_region.h"
 
 namespace mfp {
 

@@ -1,4 +1,4 @@
-#include "planner/planning/relax_and_fix.h"
+#include "planner/planning/internal/relax_and_fix.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,7 +6,7 @@
 #include <thread>
 #include <vector>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {

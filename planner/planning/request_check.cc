@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "planner/planning/goal.h"
+#include "planner/planning/internal/goal.h"
 
 namespace mfp {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/base/solve_status.h"
+#include "base/solve_status.h"
 #include "planner/planning/footstep_planner.h"
 
 namespace mfp {

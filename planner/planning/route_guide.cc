@@ -1,4 +1,4 @@
-#include "planner/planning/route_guide.h"
+#include "planner/planning/internal/route_guide.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <queue>
 #include <sstream>
 
-#include "planner/planning/stance_route.h"
+#include "planner/planning/internal/stance_route.h"
 
 namespace mfp {
 

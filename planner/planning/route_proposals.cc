@@ -1,4 +1,4 @@
-#include "planner/planning/route_proposals.h"
+#include "planner/planning/internal/route_proposals.h"
 
 #include <algorithm>
 #include <cmath>

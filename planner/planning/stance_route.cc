@@ -1,4 +1,4 @@
-#include "planner/planning/stance_route.h"
+#include "planner/planning/internal/stance_route.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "planner/planning/warm_start.h"
+#include "planner/planning/internal/warm_start.h"
 
 #include <limits>
 #include <utility>

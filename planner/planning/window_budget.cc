@@ -1,8 +1,8 @@
-#include "planner/planning/window_budget.h"
+#include "planner/planning/internal/window_budget.h"
 
 #include <algorithm>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

@@ -1,4 +1,4 @@
-#include "planner/planning/window_polisher.h"
+#include "planner/planning/internal/window_polisher.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,10 +8,10 @@
 
 #include <Eigen/Sparse>
 
-#include "planner/base/check.h"
-#include "planner/planning/window_program.h"
+#include "base/check.h"
+#include "planner/nlp/nonlinear_program.h"
+#include "planner/planning/internal/window_program.h"
 #include "planner/qp/interior_point_qp.h"
-#include "planner/qp/nonlinear_program.h"
 
 namespace mfp {
 namespace {

@@ -1,9 +1,9 @@
-#include "planner/planning/window_program.h"
+#include "planner/planning/internal/window_program.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/formulation/region_faces.h"
 #include "planner/formulation/step_limits.h"
 #include "planner/formulation/workspace_box.h"

@@ -1,9 +1,9 @@
-#include "planner/qp/fixed_variable_reduction.h"
+#include "planner/qp/internal/fixed_variable_reduction.h"
 
 #include <Eigen/SparseCore>
 #include <algorithm>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

@@ -1,9 +1,9 @@
-#include "planner/qp/interior_point_kkt.h"
+#include "planner/qp/internal/interior_point_kkt.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

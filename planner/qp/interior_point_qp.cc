@@ -5,8 +5,8 @@
 #include <cmath>
 #include <vector>
 
-#include "planner/base/check.h"
-#include "planner/qp/interior_point_kkt.h"
+#include "base/check.h"
+#include "planner/qp/internal/interior_point_kkt.h"
 
 namespace mfp {
 namespace {

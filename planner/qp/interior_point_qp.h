@@ -10,7 +10,7 @@
 // always consistent: fixed variables are removed before, see fixed_variable_reduction.h).
 #include <Eigen/Core>
 
-#include "planner/base/deadline.h"
+#include "base/deadline.h"
 #include "planner/miqp/miqp.h"
 #include "planner/qp/relaxation_solver.h"
 

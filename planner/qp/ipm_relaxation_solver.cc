@@ -1,9 +1,9 @@
-#include "planner/qp/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
 
 #include <algorithm>
 
-#include "planner/base/check.h"
-#include "planner/qp/fixed_variable_reduction.h"
+#include "base/check.h"
+#include "planner/qp/internal/fixed_variable_reduction.h"
 
 namespace mfp {
 namespace {

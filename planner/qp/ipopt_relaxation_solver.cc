@@ -1,4 +1,4 @@
-#include "planner/qp/ipopt_relaxation_solver.h"
+#include "planner/qp/internal/ipopt_relaxation_solver.h"
 
 #include <coin/IpIpoptApplication.hpp>
 #include <coin/IpSolveStatistics.hpp>
@@ -9,8 +9,8 @@
 #include <mutex>
 #include <sstream>
 
-#include "planner/base/check.h"
-#include "planner/qp/fixed_variable_reduction.h"
+#include "base/check.h"
+#include "planner/qp/internal/fixed_variable_reduction.h"
 
 namespace mfp {
 namespace {

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "planner/base/deadline.h"
+#include "base/deadline.h"
 #include "planner/miqp/miqp.h"
 
 namespace mfp {

@@ -1,8 +1,8 @@
 #include "planner/qp/relaxation_solver_factory.h"
 
-#include "planner/base/check.h"
-#include "planner/qp/ipm_relaxation_solver.h"
-#include "planner/qp/ipopt_relaxation_solver.h"
+#include "base/check.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipopt_relaxation_solver.h"
 
 namespace mfp {
 namespace {

@@ -21,7 +21,7 @@ RelaxationBackend ParseRelaxationBackend(const std::string& name);
 std::string ToString(RelaxationBackend backend);
 
 // The solvers a plan uses, set by the `planner:` keys `relaxation_solver` and `threads`
-// (planner/io/planner_options_yaml.cc) and mfp-plan's --relaxation-solver, --threads.
+// (io/planner_options_yaml.cc) and mfp-plan's --relaxation-solver, --threads.
 struct RelaxationSolverOptions {
   RelaxationBackend backend = RelaxationBackend::kInteriorPointWithIpoptFallback;
   // Branch-and-bound workers, each with a relaxation solver of its own: node relaxations

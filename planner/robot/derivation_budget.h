@@ -8,7 +8,7 @@
 // derived on coarser grids and fewer stance candidates instead, and says so.
 #include <string>
 
-#include "planner/robot/leg_kinematics.h"
+#include "planner/robot/internal/leg_kinematics.h"
 #include "planner/robot/robot_derivation.h"
 
 namespace mfp {

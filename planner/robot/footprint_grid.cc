@@ -1,11 +1,11 @@
-#include "planner/robot/footprint_grid.h"
+#include "planner/robot/internal/footprint_grid.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

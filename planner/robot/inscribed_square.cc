@@ -1,4 +1,4 @@
-#include "planner/robot/inscribed_square.h"
+#include "planner/robot/internal/inscribed_square.h"
 
 #include <nlopt.hpp>
 
@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

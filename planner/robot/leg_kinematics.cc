@@ -1,10 +1,10 @@
-#include "planner/robot/leg_kinematics.h"
+#include "planner/robot/internal/leg_kinematics.h"
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <sstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

@@ -7,9 +7,9 @@
 #include <numeric>
 #include <sstream>
 
-#include "planner/base/check.h"
-#include "planner/base/format.h"
-#include "planner/robot/inscribed_square.h"
+#include "base/check.h"
+#include "base/format.h"
+#include "planner/robot/internal/inscribed_square.h"
 
 namespace mfp {
 namespace {

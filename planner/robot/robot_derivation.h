@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "planner/robot/footprint_grid.h"
-#include "planner/robot/leg_kinematics.h"
+#include "planner/robot/internal/footprint_grid.h"
+#include "planner/robot/internal/leg_kinematics.h"
 #include "planner/robot/robot_model.h"
 
 namespace mfp {

@@ -4,7 +4,7 @@
 #include <set>
 #include <sstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 #include "planner/robot/nominal_foot.h"
 
 namespace mfp {

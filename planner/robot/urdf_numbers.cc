@@ -1,4 +1,4 @@
-#include "planner/robot/urdf_numbers.h"
+#include "planner/robot/internal/urdf_numbers.h"
 
 #include <tinyxml2.h>
 
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

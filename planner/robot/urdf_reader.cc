@@ -11,8 +11,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "planner/base/check.h"
-#include "planner/robot/urdf_xml_checks.h"
+#include "base/check.h"
+#include "planner/robot/internal/urdf_xml_checks.h"
 
 namespace mfp {
 namespace {

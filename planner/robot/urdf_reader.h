@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "planner/robot/leg_kinematics.h"
+#include "planner/robot/internal/leg_kinematics.h"
 
 namespace mfp {
 

@@ -1,4 +1,4 @@
-#include "planner/robot/urdf_xml_checks.h"
+#include "planner/robot/internal/urdf_xml_checks.h"
 
 #include <tinyxml2.h>
 
@@ -9,9 +9,9 @@
 #include <set>
 #include <sstream>
 
-#include "planner/base/bounded_file.h"
-#include "planner/base/check.h"
-#include "planner/robot/urdf_numbers.h"
+#include "base/bounded_file.h"
+#include "base/check.h"
+#include "planner/robot/internal/urdf_numbers.h"
 
 namespace mfp {
 namespace {

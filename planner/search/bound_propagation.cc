@@ -1,9 +1,9 @@
-#include "planner/search/bound_propagation.h"
+#include "planner/search/internal/bound_propagation.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 namespace {

@@ -4,15 +4,15 @@
 #include <cmath>
 #include <vector>
 
-#include "planner/base/check.h"
-#include "planner/search/bound_propagation.h"
-#include "planner/search/branching.h"
-#include "planner/search/parallel_for.h"
-#include "planner/search/pseudo_costs.h"
-#include "planner/search/reduced_cost_fixing.h"
-#include "planner/search/reliability_branching.h"
-#include "planner/search/search_heuristics.h"
-#include "planner/search/search_state.h"
+#include "base/check.h"
+#include "planner/search/internal/bound_propagation.h"
+#include "planner/search/internal/branching.h"
+#include "planner/search/internal/parallel_for.h"
+#include "planner/search/internal/pseudo_costs.h"
+#include "planner/search/internal/reduced_cost_fixing.h"
+#include "planner/search/internal/reliability_branching.h"
+#include "planner/search/internal/search_heuristics.h"
+#include "planner/search/internal/search_state.h"
 
 namespace mfp {
 namespace {

@@ -6,8 +6,8 @@
 #include <functional>
 #include <vector>
 
-#include "planner/base/deadline.h"
-#include "planner/base/solve_status.h"
+#include "base/deadline.h"
+#include "base/solve_status.h"
 #include "planner/miqp/miqp.h"
 #include "planner/qp/relaxation_solver.h"
 

@@ -1,4 +1,4 @@
-#include "planner/search/branching.h"
+#include "planner/search/internal/branching.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "planner/search/node_queue.h"
+#include "planner/search/internal/node_queue.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
-#include "planner/search/pseudo_costs.h"
+#include "planner/search/internal/pseudo_costs.h"
 
 #include <algorithm>
 
-#include "planner/base/check.h"
+#include "base/check.h"
 
 namespace mfp {
 

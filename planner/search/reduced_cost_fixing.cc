@@ -1,4 +1,4 @@
-#include "planner/search/reduced_cost_fixing.h"
+#include "planner/search/internal/reduced_cost_fixing.h"
 
 #include <cmath>
 

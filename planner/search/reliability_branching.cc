@@ -1,11 +1,11 @@
-#include "planner/search/reliability_branching.h"
+#include "planner/search/internal/reliability_branching.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "planner/search/bound_propagation.h"
-#include "planner/search/parallel_for.h"
+#include "planner/search/internal/bound_propagation.h"
+#include "planner/search/internal/parallel_for.h"
 
 namespace mfp {
 namespace {

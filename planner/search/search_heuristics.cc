@@ -1,11 +1,11 @@
-#include "planner/search/search_heuristics.h"
+#include "planner/search/internal/search_heuristics.h"
 
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "planner/qp/fixed_integer_qp.h"
-#include "planner/search/parallel_for.h"
+#include "planner/search/internal/parallel_for.h"
 
 namespace mfp {
 namespace {

@@ -1,4 +1,4 @@
-#include "planner/search/search_state.h"
+#include "planner/search/internal/search_state.h"
 
 #include <algorithm>
 #include <cmath>

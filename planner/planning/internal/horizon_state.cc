@@ -1,7 +1,7 @@
 #include "planner/planning/internal/horizon_state.h"
 
-#include "planner/planning/goal.h"
-#include "terrain/convex_region.h"
+#include "geometry/convex_region.h"
+#include "planner/planning/internal/goal.h"
 
 namespace mfp {
 namespace {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "planner/base/check.h"
+#include "base/check.h"
+#include "geometry/region_reachability.h"
 #include "planner/planning/internal/plan_outcome.h"
 #include "planner/planning/request_check.h"
-#include "terrain/region_reachability.h"
 
 namespace mfp {
 namespace {

@@ -10,8 +10,8 @@
 
 #include "planner/formulation/plan.h"
 #include "planner/planning/footstep_planner.h"
-#include "planner/planning/goal.h"
-#include "planner/planning/route_guide.h"
+#include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/route_guide.h"
 
 namespace mfp {
 

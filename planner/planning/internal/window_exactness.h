@@ -6,10 +6,10 @@
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
-#include "planner/planning/exact_window.h"
+#include "planner/planning/internal/exact_window.h"
 #include "planner/planning/internal/plan_context.h"
+#include "planner/planning/internal/window_polisher.h"
 #include "planner/planning/internal/window_search.h"
-#include "planner/planning/window_polisher.h"
 
 namespace mfp {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "terrain/region_reachability.h"
+#include "geometry/region_reachability.h"
 
 namespace mfp {
 

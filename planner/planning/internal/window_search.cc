@@ -5,10 +5,10 @@
 #include <utility>
 #include <vector>
 
-#include "planner/planning/relax_and_fix.h"
-#include "planner/planning/route_proposals.h"
-#include "planner/planning/warm_start.h"
-#include "planner/planning/window_budget.h"
+#include "planner/planning/internal/relax_and_fix.h"
+#include "planner/planning/internal/route_proposals.h"
+#include "planner/planning/internal/warm_start.h"
+#include "planner/planning/internal/window_budget.h"
 
 namespace mfp {
 namespace {

@@ -1,0 +1,55 @@
+#include "daemon/map_regions.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "base/check.h"
+#include "base/format.h"
+#include "daemon/height_map_message.h"
+#include "terrain/extraction/height_grid.h"
+#include "terrain/extraction/region_extractor.h"
+#include "terrain/octomap/octomap_io.h"
+
+namespace mfp {
+namespace {
+
+// terrain_map_t.format is "bt", "ot" or "" (DESIGN.md); anything else is a sender's
+// mistake, named. The content decides between .bt and .ot (CheckOctreeStream reads either),
+// as mfp-make-log's logs label a map by its file name.
+void CheckMapFormat(const std::string& format, const std::string& what) {
+  if (format.empty() || format == "bt" || format == "ot") return;
+  throw InputError(what + ": format '" + EscapedText(format.substr(0, 64)) +
+                   "' is not a map format: give \"bt\", \"ot\" or \"\" (the content decides)");
+}
+
+}  // namespace
+
+MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
+  // One region set serves every robot: inset by the widest foot and limited to the
+  // gentlest max_slope, so no robot is sent onto a surface it cannot take.
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.0;
+  options.max_slope_rad = 1.5;
+  // Surfaces keep the room the tallest robot needs above them.
+  options.clearance_m = 0.0;
+  const double margin_m = PlannerOptions().body_clearance_margin_m;
+  for (const auto& entry : setup.robots) {
+    options.clearance_m = std::max(options.clearance_m, entry.second.stance_height_m + margin_m);
+    options.foot_radius_m = std::max(options.foot_radius_m, entry.second.foot_radius_m);
+    options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
+  }
+  if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
+  const size_t max_map_bytes = setup.config.limits.max_map_bytes;
+  return [options, max_map_bytes](const std::string& bytes, const std::string& format,
+                                   const std::string& what) {
+    if (format == kHeightMapFormat) {
+      return ExtractRegionsFromHeightGrid(HeightGridFromBytes(bytes, max_map_bytes, what), options).regions;
+    }
+    CheckMapFormat(format, what);
+    const std::vector<uint8_t> data(bytes.begin(), bytes.end());
+    const OccupancyMap map = LoadMapBytes(data, what);
+    return ExtractRegions(map, options).regions;
+  };
+}
+
+}  // namespace mfp

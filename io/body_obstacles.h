@@ -1,0 +1,17 @@
+#pragma once
+// A box terrain's boxes as the body's obstacles (body_clearance.h): each box's plan
+// outline (the convex hull of its corners in plan view) over the height band its corners
+// span. Every box counts; whether one reaches into the body's band is judged per pose.
+#include <vector>
+
+#include "geometry/terrain_description.h"
+#include "planner/robot/body_clearance.h"
+
+namespace mfp {
+
+std::vector<BodyObstacle> BoxBodyObstacles(const std::vector<TerrainBox>& boxes);
+
+// Convex hull of points in plan view, counter-clockwise (monotone chain).
+std::vector<Eigen::Vector2d> ConvexHull2D(std::vector<Eigen::Vector2d> points);
+
+}  // namespace mfp

@@ -1,0 +1,50 @@
+#include "io/plan_json.h"
+
+#include <cmath>
+
+#include "io/region_json.h"
+#include "io/robot_json.h"
+
+namespace mfp {
+namespace {
+
+// JSON has no infinity; an unknown bound or gap is written as null.
+nlohmann::json Number(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
+                          const std::vector<ConvexRegion>& regions) {
+  nlohmann::json steps = nlohmann::json::array();
+  for (const Footstep& f : plan.footsteps) {
+    steps.push_back({{"index", f.index},
+                     {"leg", f.leg},
+                     {"x", f.position_world_m.x()},
+                     {"y", f.position_world_m.y()},
+                     {"z", f.position_world_m.z()},
+                     {"yaw", f.yaw_rad},
+                     {"region", f.region_id}});
+  }
+  const nlohmann::json region_list = RegionsToJson(regions)["regions"];
+  const int new_steps = std::max(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
+  return {{"status", ToString(plan.status)},
+          {"message", plan.message},
+          {"reaches_goal", plan.reaches_goal},
+          {"objective", Number(plan.objective)},
+          {"bound", Number(plan.bound)},
+          {"gap", Number(plan.gap)},
+          {"solve_time_s", plan.solve_time_s},
+          {"nodes", plan.nodes},
+          {"relaxations", plan.relaxations},
+          {"windows", plan.windows},
+          {"steps", new_steps},
+          {"integer_variables", plan.integer_variables},
+          {"objective_offset", plan.objective_offset},
+          {"robot", RobotToJson(robot)},
+          {"regions", region_list},
+          {"footsteps", steps}};
+}
+
+}  // namespace mfp

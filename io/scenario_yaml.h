@@ -1,0 +1,81 @@
+#pragma once
+// Scenario files (config/scenarios/*.yaml): a robot, a terrain, a start and a goal, and
+// optional planner settings. The terrain is one of: boxes (a course description whose
+// top faces are the regions, also turned into maps by mfp-terrain), explicit convex
+// regions (polygons on planes, for users with regions from elsewhere), or a map file.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "geometry/terrain_description.h"
+#include "io/option_table.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/robot/robot_model.h"
+#include "terrain/extraction/region_extractor.h"
+
+namespace mfp {
+
+struct Pose2D {
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
+};
+
+// Where the regions of a box terrain come from: the map pipeline (voxelise the boxes,
+// extract regions as from any OctoMap; the default, as on the robot) or the boxes' exact
+// top faces (no perception error; for comparisons and debugging).
+enum class BoxRegionSource { kExtracted, kTopFaces };
+
+struct Scenario {
+  std::string name;
+  std::string path;        // the YAML file
+  std::string robot_path;  // resolved relative to the scenario file
+  TerrainDescription terrain;                // boxes, when given
+  BoxRegionSource boxes_source = BoxRegionSource::kExtracted;
+  std::vector<ConvexRegion> listed_regions;  // explicit regions, when given
+  std::string map_path;                      // map file, when given
+  // Real surface kept around each foot beyond its radius (terrain: edge_margin) [m];
+  // unset: the extractor's default (RegionExtractorOptions::edge_margin_m).
+  std::optional<double> edge_margin_m;
+  // Smallest region of foot centres kept (terrain: min_region_area) [m^2], exactly; unset:
+  // the extractor's default (RegionExtractorOptions::min_region_area_m2, or on fine maps
+  // min_region_area_voxels voxels). Stones barely wider than a foot plus its edge
+  // margins need less than the default.
+  std::optional<double> min_region_area_m2;
+  // Whether one patch's regions may overlap (terrain: overlapping_regions); unset: the
+  // extractor's default (RegionExtractorOptions::overlapping_regions).
+  std::optional<bool> overlapping_regions;
+  Pose2D start, goal;
+  int max_steps = 0;        // 0: planner default
+  int window_steps = 0;     // 0: planner default
+  double time_limit_s = 0;  // 0: planner default
+  PlannerOptions options;
+  // What the file should change (flat planner keys, read as aliases); the tools print them.
+  std::vector<std::string> warnings;
+};
+
+// Throws InputError naming the file, key and allowed range.
+Scenario LoadScenario(const std::string& path);
+
+// The keys of a scenario file (those of its planner: block are PlannerOptionDocs()).
+const OptionTable<Scenario>& ScenarioOptionTable();
+std::vector<OptionDoc> ScenarioOptionDocs();
+
+// The scenario's regions for this robot (foot radius, slope limit): listed regions as
+// given; a map file or the boxes through the terrain pipeline; or the boxes' top faces.
+// `note` (optional) receives the extractor's message when it finds no region or the
+// deadline ended it (then the regions of the patches done so far are returned).
+std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
+                                          std::string* note = nullptr,
+                                          const Deadline& deadline = Deadline());
+
+// The extractor options ScenarioRegions uses for a map or boxes: the robot's foot radius,
+// slope limit and clearance, the scenario's terrain settings, the deadline.
+RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const RobotModel& robot,
+                                             const Deadline& deadline = Deadline());
+
+// The request a scenario describes: the robot's nominal stance at the start pose (feet on
+// the regions below them), the goal, and the scenario's step and time settings.
+PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
+                            const std::vector<ConvexRegion>& regions);
+
+}  // namespace mfp

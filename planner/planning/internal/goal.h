@@ -1,0 +1,35 @@
+#pragma once
+// The goal of a request and the one test of whether a stance reaches it: every final foot
+// within a tolerance of its goal spot (its nominal foot at the goal pose) and the final
+// stance's yaw, estimated from the feet, within a tolerance of the goal yaw. The planner
+// stops on it; plan validation reports by it.
+#include <Eigen/Core>
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "planner/formulation/plan.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+struct GoalSpec {
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
+  double tolerance_m = 0.05, yaw_tolerance_rad = 0.15;
+};
+
+// How far a footstep list's final stance (its last n footsteps) is from the goal.
+struct GoalDistances {
+  std::vector<double> foot_m;  // per final footstep, in list order: plan-view distance to its goal spot [m]
+  double yaw_rad = 0.0;        // |final stance yaw - goal yaw|, wrapped to [0, pi] [rad]
+};
+GoalDistances DistancesToGoal(const RobotModel& robot, const std::vector<Footstep>& footsteps, const GoalSpec& goal);
+
+// Every distance within the goal's tolerances plus the given slack.
+bool WithinGoal(const GoalDistances& d, const GoalSpec& goal, double slack_m = 0.0, double slack_rad = 0.0);
+
+// Plan-view distance from (x, y) to the nearest region's polygon (0 inside; infinity
+// without regions) [m]. A goal farther than LegReach + l_bnd from every region cannot be
+// stood at.
+double DistanceToNearestRegion(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy);
+
+}  // namespace mfp

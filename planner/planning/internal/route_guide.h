@@ -1,0 +1,61 @@
+#pragma once
+// Route guidance before the receding windows: a graph over the safe regions whose edges
+// are the steps a foot can make between them (horizontal reach from d_lim and l_bnd, height
+// change from dz_max). Every plan moves each foot along a path of this graph, so when the
+// graph does not connect a leg's start region to a region at its goal spot there is no
+// plan at all: the planner answers 'no route' at once and names where the route breaks.
+// Otherwise the shortest path over region centres is a body route: its length sets the
+// step budget and its points the windows' local goals. No I/O.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "planner/robot/body_clearance.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+struct RouteGuide {
+  bool connected = false;
+  std::string broken;  // when !connected: where the route breaks, for the user
+  // Body route in plan view from the start centre to the goal [m, world]; its polyline
+  // passes through the centres of the regions a foot path crosses.
+  std::vector<Eigen::Vector2d> route;
+  double length_m = 0.0;
+  bool from_stances = false;  // route from the stance search (FollowStanceRoute)
+  // Body yaw at each route point, when the route keeps the body clear of obstacles and
+  // the body check refused some pose (the yaw then matters); else empty [rad].
+  std::vector<double> yaws_rad;
+};
+
+// Longest horizontal distance between two regions that one step can bridge: each axis of
+// a step moves at most d_lim + l_bnd (the reach box about the previous nominal spot plus
+// the reference box the previous foot stood in) [m].
+double MaxStepSpan(const RobotModel& robot);
+
+// start_feet: leg order. start_tolerance_m: how far off its region a start foot may be.
+RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                     const std::vector<Eigen::Vector3d>& start_feet, const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
+                     double goal_tolerance_m, double start_tolerance_m);
+
+// Replaces a connected guide's route by a route over stance poses (stance_route.h) from
+// the start stance's centre and yaw to the goal, when that search finds one.
+// start_feet: leg order.
+// body_obstacles: what the body keeps clear of (stance_route.h); may be empty.
+void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                       const std::vector<BodyObstacle>& body_obstacles,
+                       const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide);
+
+// The point of the route at arc length s (clamped to the route) [m].
+Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m);
+// The body yaw the route holds at arc length s: that of the route point the segment
+// starts from; nullopt when the route carries no yaws [rad].
+std::optional<double> RouteYaw(const RouteGuide& guide, double s_m);
+// Arc length of the route point nearest to p [m].
+double RouteProgress(const RouteGuide& guide, const Eigen::Vector2d& p);
+
+}  // namespace mfp

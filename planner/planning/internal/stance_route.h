@@ -1,0 +1,62 @@
+#pragma once
+// A body route from a search over stance poses, for the windows' local goals. The region
+// graph (route_guide.h) proves that a route exists or not, foot by foot; it does not see
+// that all n feet must stand at once, and its route through region centres cuts corners a
+// whole body cannot (the wall detour: feet left hanging over a dead-end pocket). Here a
+// body pose (x, y on a grid, yaw one of a few headings) is usable when every leg's
+// nominal foot lies within l_bnd of some region, i.e. the leg's reference box meets
+// support; A* over usable poses (moves to the 8 neighbouring cells, or a turn by one
+// heading) gives a route the windows can follow, dearer through poses where a nominal
+// foot is off every region. Heights are not judged here (the region graph and the MIQP
+// do that). With body obstacles (body_clearance.h) and a known body box, a pose is also
+// unusable when the body's plan box at the pose's yaw overlaps an obstacle in the body's
+// height band above the pose's ground (the mean height of the regions under its nominal
+// feet): the route keeps the body clear and turns where a passage fits only one way.
+// No I/O.
+#include <Eigen/Core>
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "planner/robot/body_clearance.h"
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+struct StanceRouteOptions {
+  double cell_m = 0.04;           // body grid; grown on large maps to stay within max_cells
+  int headings = 8;               // yaw candidates, evenly spaced over a full turn
+  long max_cells = 300000;        // body grid cells (x, y) at most
+  double turn_cost_m = 0.05;      // cost of turning by one heading, as distance [m]
+  // Cost factor of moving through a pose where some nominal foot is off every region
+  // (only its reference box meets one): the route keeps room where it can.
+  double tight_cost_factor = 3.0;
+  // A pose is usable when each leg's nominal foot has a region within this many l_bnd:
+  // 1, the reference box's inscribed disk (the box surely meets the region); sqrt(2), its
+  // corners (the box may meet it).
+  double support_radius_l_bnd = 1.0;
+  // Share of the body's plan box an obstacle may cover before a pose is unusable (room
+  // for the grid's rounding; the checker's tolerance is larger).
+  double body_overlap_share = 0.0;
+};
+
+struct StanceRoute {
+  bool found = false;
+  std::vector<Eigen::Vector2d> route;  // body positions from start to goal [m, world]
+  std::vector<double> yaws_rad;        // body yaw at each route point [rad]
+  double length_m = 0.0;
+  long body_blocked_poses = 0;  // poses the search met that only the body check refused
+};
+
+// start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
+// support around them (the start stance may be off nominal).
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+// The same, keeping the body clear of `body_obstacles`. ground_z_m: the ground height
+// assumed where no region lies under a pose's feet (the start stance's) [m].
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+
+}  // namespace mfp

@@ -1,0 +1,18 @@
+#pragma once
+// The branch-and-bound's primal heuristic (BranchAndBoundOptions::rounding_heuristic):
+// at the root, and every rounding_frequency nodes of a dive, the relaxation point is
+// rounded (the caller's proposals, such as the plan-ordered roundings and relax-and-fix's
+// plan, then one simple rounding) and each rounding's integers are fixed and the QP left
+// solved; every plan found is offered as the incumbent.
+#include <Eigen/Core>
+
+#include "planner/search/branch_and_bound.h"
+#include "planner/search/internal/branching.h"
+#include "planner/search/internal/search_state.h"
+
+namespace mfp {
+
+void TryRounding(SearchState* state, const Branching& branching, const RoundingHeuristic& proposals,
+                 const Eigen::VectorXd& x);
+
+}  // namespace mfp

@@ -1,0 +1,97 @@
+#pragma once
+// What the parts of a branch-and-bound share: the problem, the workers' relaxation
+// solvers, the deadlines, the open nodes, the incumbent with the bound and counters of
+// the result so far, and the bookkeeping of the subtrees settled without a bound of
+// their own. The search loop (branch_and_bound.cc), the branching rules, the heuristics
+// and the reduced-cost fixing all act on it.
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "base/deadline.h"
+#include "planner/miqp/miqp.h"
+#include "planner/qp/relaxation_solver.h"
+#include "planner/search/branch_and_bound.h"
+#include "planner/search/internal/node_queue.h"
+
+namespace mfp {
+
+class SearchState {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  SearchState(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
+              const BranchAndBoundOptions& options);
+
+  const Miqp& problem() const { return p_; }
+  const BranchAndBoundOptions& options() const { return opt_; }
+  RelaxationSolver& solver(int worker) const { return *solvers_[worker]; }
+  int workers() const { return static_cast<int>(solvers_.size()); }
+  NodeQueue& queue() { return queue_; }
+  const NodeQueue& queue() const { return queue_; }
+  BranchAndBoundResult& result() { return result_; }
+  const BranchAndBoundResult& result() const { return result_; }
+
+  // The deadline in force: the time limit's, or before the first incumbent under
+  // time_limit_needs_incumbent the caller's alone.
+  const Deadline& Active() const { return !HasIncumbent() ? hard_deadline_ : deadline_; }
+  // BranchAndBoundOptions::stall_time_fraction.
+  bool Stalled() const;
+  double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+  bool HasIncumbent() const { return result_.x.size() > 0; }
+  // True when a subtree with this bound may still beat the incumbent by more than the gap.
+  bool Improves(double bound) const { return bound < result_.objective - GapTolerance(); }
+  // How much better than the incumbent a subtree must be able to get to be explored.
+  double GapTolerance() const;
+  // x with its integers rounded becomes the incumbent when it meets the rows and bounds
+  // and beats the incumbent.
+  void OfferIncumbent(Eigen::VectorXd x);
+
+  // The request for one relaxation within the node bounds lower/upper, under the
+  // deadline in force. cutoff: see BranchAndBoundOptions::early_cutoff.
+  RelaxationRequest Request(Eigen::VectorXd lower, Eigen::VectorXd upper, const Eigen::VectorXd* warm,
+                            double cutoff = kInfinity) const;
+  RelaxationResult SolveWith(RelaxationSolver& solver, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                             const Eigen::VectorXd* warm, double cutoff = kInfinity) const {
+    return solver.Solve(p_, Request(lower, upper, warm, cutoff));
+  }
+
+  // A subtree dropped because it cannot beat the incumbent by more than the gap still
+  // bounds the optimum: the reported bound must not rise above it.
+  void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
+  // A subtree dropped because its relaxation could not be solved: optimality is unproven.
+  void NoteUnresolved(double bound) { unresolved_bound_ = std::min(unresolved_bound_, bound); }
+  bool HasUnresolved() const { return unresolved_bound_ < kInfinity; }
+  double gap_pruned_bound() const { return gap_pruned_bound_; }
+  // The nodes of a round being evaluated have left the queue: their least parent bound
+  // (infinity between rounds, once every node of the round is settled or back in the queue).
+  void SetInFlightBound(double bound) { in_flight_bound_ = bound; }
+  double in_flight_bound() const { return in_flight_bound_; }
+
+  // The least bound of everything not yet settled: open nodes, the round in flight,
+  // subtrees that could not be bounded and subtrees pruned by the gap tolerance.
+  double UnexploredBound() const;
+
+ private:
+  void ReportProgress() const;
+
+  const Miqp& p_;
+  const std::vector<RelaxationSolver*>& solvers_;  // one per worker
+  const BranchAndBoundOptions& opt_;
+  const Clock::time_point start_;
+  Clock::time_point last_improvement_;  // when the incumbent last improved
+  const Deadline deadline_;       // time_limit_s from the start, or the caller's deadline if sooner
+  const Deadline hard_deadline_;  // the caller's deadline alone under time_limit_needs_incumbent
+  NodeQueue queue_;
+  BranchAndBoundResult result_;
+  double unresolved_bound_ = kInfinity;
+  double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
+  double in_flight_bound_ = kInfinity;   // least parent bound of the round being processed
+};
+
+// (objective - bound) / max(1, |objective|).
+double RelativeGap(double objective, double bound);
+
+}  // namespace mfp

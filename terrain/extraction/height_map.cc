@@ -1,0 +1,135 @@
+#include "terrain/extraction/height_map.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "base/check.h"
+
+namespace mfp {
+
+bool HeightMap::HasSurface(int row, int col) const {
+  return Inside(row, col) && !std::isnan(height_m[static_cast<size_t>(Index(row, col))]);
+}
+
+Eigen::Vector2d HeightMap::CellCenter(int row, int col) const {
+  return origin_world_m + resolution_m * Eigen::Vector2d(col + 0.5, row + 0.5);
+}
+
+HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
+  const double res = map.resolution_m;
+  if (!std::isfinite(res) || res <= 0.0) {
+    throw InputError("occupancy map resolution must be a finite number > 0 m");
+  }
+  HeightMap hm;
+  hm.resolution_m = res;
+  if (map.leaves.empty()) return hm;
+  // Integer cell bounds of every leaf; leaves are aligned to the grid at multiples of res.
+  long long lo_x = std::numeric_limits<long long>::max(), lo_y = lo_x;
+  long long hi_x = std::numeric_limits<long long>::min(), hi_y = hi_x;
+  const double max_coord_m = 1e6;
+  for (const OccupiedLeaf& leaf : map.leaves) {
+    const double cells = leaf.size_m / res;
+    if (!leaf.center_world_m.allFinite() || !std::isfinite(cells) || cells < 0.5 ||
+        cells > 65536.5 || leaf.center_world_m.cwiseAbs().maxCoeff() > max_coord_m) {
+      throw InputError("occupancy map: a leaf is not a finite cube between one voxel and the "
+                       "octree's extent");
+    }
+    const long long n = std::llround(cells);
+    const long long x0 = std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
+    const long long y0 = std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
+    lo_x = std::min(lo_x, x0);
+    lo_y = std::min(lo_y, y0);
+    hi_x = std::max(hi_x, x0 + n);
+    hi_y = std::max(hi_y, y0 + n);
+  }
+  const double cells = static_cast<double>(hi_x - lo_x) * static_cast<double>(hi_y - lo_y);
+  if (cells > static_cast<double>(max_cells)) {
+    std::ostringstream msg;
+    msg << "occupancy map: the occupied area is " << (hi_x - lo_x) * res << " m x "
+        << (hi_y - lo_y) * res << " m, more than the height map limit of " << max_cells
+        << " cells at " << res << " m";
+    throw InputError(msg.str());
+  }
+  hm.cols = static_cast<int>(hi_x - lo_x);
+  hm.rows = static_cast<int>(hi_y - lo_y);
+  hm.origin_world_m = Eigen::Vector2d(lo_x * res, lo_y * res);
+  hm.height_m.assign(static_cast<size_t>(hm.rows) * hm.cols,
+                     std::numeric_limits<float>::quiet_NaN());
+  for (const OccupiedLeaf& leaf : map.leaves) {
+    const int n = static_cast<int>(std::llround(leaf.size_m / res));
+    const int c0 =
+        static_cast<int>(std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - lo_x);
+    const int r0 =
+        static_cast<int>(std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - lo_y);
+    const float top = static_cast<float>(leaf.center_world_m.z() + 0.5 * leaf.size_m);
+    for (int r = r0; r < r0 + n; ++r) {
+      float* row = &hm.height_m[static_cast<size_t>(r) * hm.cols];
+      for (int c = c0; c < c0 + n; ++c) {
+        if (!(row[c] >= top)) row[c] = top;  // NaN compares false: first leaf wins
+      }
+    }
+  }
+  return hm;
+}
+
+double FitWork(size_t surface_cells, int window_half_cells) {
+  const double side = 2.0 * window_half_cells + 1.0;
+  return static_cast<double>(surface_cells) * side * side;
+}
+
+SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, double step_gate_m,
+                               double max_slope_rad, const Deadline& deadline) {
+  MFP_CHECK(window_half_cells >= 1);
+  const size_t n = hm.height_m.size();
+  SurfaceAnalysis out;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  out.normal_world.assign(n, Eigen::Vector3f(nan, nan, nan));
+  out.roughness_m.assign(n, std::numeric_limits<float>::infinity());
+  const double res = hm.resolution_m;
+  const double tan_slope = std::tan(max_slope_rad);
+  const int w = window_half_cells;
+  for (int r = 0; r < hm.rows; ++r) {
+    if (deadline.Expired()) {
+      out.stopped = true;
+      break;
+    }
+    for (int c = 0; c < hm.cols; ++c) {
+      const float hc = hm.height_m[static_cast<size_t>(hm.Index(r, c))];
+      if (std::isnan(hc)) continue;
+      // Least squares in coordinates relative to the cell (x, y in cells, z in m).
+      Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
+      double zz = 0.0;
+      int count = 0;
+      for (int dr = -w; dr <= w; ++dr) {
+        for (int dc = -w; dc <= w; ++dc) {
+          if (!hm.Inside(r + dr, c + dc)) continue;
+          const float h = hm.height_m[static_cast<size_t>(hm.Index(r + dr, c + dc))];
+          if (std::isnan(h)) continue;
+          const double dz = h - hc;
+          const double dist_m = res * std::sqrt(double(dr * dr + dc * dc));
+          if (std::abs(dz) > step_gate_m + dist_m * tan_slope) continue;
+          const Eigen::Vector3d a(dc, dr, 1.0);
+          AtA += a * a.transpose();
+          Atz += a * dz;
+          zz += dz * dz;
+          ++count;
+        }
+      }
+      if (count < 3) continue;
+      Eigen::LDLT<Eigen::Matrix3d> ldlt(AtA);
+      if (ldlt.info() != Eigen::Success || std::abs(AtA.determinant()) < 1e-9) continue;
+      const Eigen::Vector3d p = ldlt.solve(Atz);
+      // Sum of squared residuals = z.z - p.(A^T z) for the least-squares solution.
+      const double sse = std::max(0.0, zz - p.dot(Atz));
+      const size_t i = static_cast<size_t>(hm.Index(r, c));
+      out.normal_world[i] = Eigen::Vector3d(-p.x() / res, -p.y() / res, 1.0).normalized().cast<float>();
+      out.roughness_m[i] = static_cast<float>(std::sqrt(sse / count));
+    }
+  }
+  return out;
+}
+
+}  // namespace mfp

@@ -1,0 +1,70 @@
+#pragma once
+// Every surface of an occupancy map a foot could stand on, not only the highest one per
+// column: floors under tables, ground under a bridge, stair treads under an overhang.
+// A surface is the top of a run of occupied voxels in a column; it is a candidate when
+// the column above it holds no occupied voxel up to the robot's clearance and, in maps
+// that store free space (maps built from sensor rays), the voxel on top of it is known
+// free (seen from above: the top of a ceiling never is). Isolated single voxels (scan
+// outliers) are ignored. Candidates are joined into sheets (neighbouring columns within
+// a step gate), and the sheets are stacked into layers - single-valued height maps on
+// the same grid, no two sheets of a layer sharing a column - so the height-map pipeline
+// runs on each layer. Plain Eigen.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "terrain/extraction/height_map.h"
+#include "terrain/extraction/leaf_budget.h"
+#include "terrain/extraction/occupancy_map.h"
+
+namespace mfp {
+
+struct SurfaceLayerOptions {
+  // Free space a surface needs above it [m]; the planner passes the robot's stance
+  // height plus a margin. Infinity: only the highest surface of each column.
+  double clearance_m = std::numeric_limits<double>::infinity();
+  double step_gate_m = 0.0;           // neighbouring surfaces closer than this join a sheet [m]
+  bool require_seen_from_above = true;  // applies only when the map stores free space
+  bool drop_isolated_voxels = true;
+  bool fill_single_cell_noise = true;   // FillSingleCellNoise on every layer
+  size_t max_cells = kDefaultMaxHeightMapCells;
+  uint64_t max_leaf_columns = kDefaultMaxLeafColumns;  // CheckLeafColumnBudget (leaf_budget.h)
+};
+
+// Bit of neighbour (row + dr, col + dc), dr, dc in {-1, 0, 1} and not both 0, in a
+// SurfaceLayers::solid_beside entry.
+inline int NeighbourBit(int dr, int dc) {
+  const int k = (dr + 1) * 3 + (dc + 1);
+  return k < 4 ? k : k - 1;
+}
+
+struct SurfaceLayers {
+  std::vector<HeightMap> layers;  // layer 0 holds the largest sheets; all share one grid
+  // Per layer and cell, one bit per neighbour column (NeighbourBit): set when material
+  // rises beside the cell's surface from its level - the neighbour column is occupied in
+  // the voxel above the cell's top voxel and in the one above that or the top voxel's
+  // own level (a wall, a riser, a higher step). There the surface does not end inside
+  // its top voxel: it runs on to the material beside it, unless a gap narrower than a
+  // voxel separates them, which no map of this resolution can show anyway. Where the
+  // bit is clear (a drop, unknown space, the map's border) the true edge may lie
+  // anywhere inside the top voxel.
+  std::vector<std::vector<uint8_t>> solid_beside;
+  int candidates = 0;             // surfaces that passed every test
+  int no_room_above = 0;          // surfaces with an occupied voxel within the clearance
+  int not_seen_from_above = 0;    // surfaces whose top voxel is not known free
+  int isolated_voxels = 0;        // single voxels with no occupied neighbour, ignored
+  int noise_cells_filled = 0;     // cells FillSingleCellNoise changed
+};
+
+// Scan noise on a level surface, undone: a cell whose 8 neighbours all have one height
+// and that is empty (a missed voxel) gets that height; a cell exactly one voxel above or
+// below a neighbourhood of which at least 7 of 8 agree is set to their height. Only holes
+// with all 8 neighbours present are filled, so no surface grows past its edge. Returns the
+// number of cells changed.
+int FillSingleCellNoise(HeightMap* height_map);
+
+// Throws InputError as BuildHeightMap does (bad resolution or leaves, too many cells).
+SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options);
+
+}  // namespace mfp

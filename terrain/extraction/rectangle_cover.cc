@@ -1,0 +1,107 @@
+#include "terrain/extraction/internal/rectangle_cover.h"
+
+#include "base/check.h"
+
+namespace mfp {
+
+CellRect LargestRectangle(const std::vector<uint8_t>& mask, int rows, int cols) {
+  MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  // Row by row: heights of the runs of set cells ending at this row, then the largest
+  // rectangle under that histogram with a stack (O(rows * cols) overall).
+  CellRect best;
+  std::vector<int> height(static_cast<size_t>(cols) + 1, 0);
+  std::vector<int> stack;
+  stack.reserve(static_cast<size_t>(cols) + 1);
+  for (int r = 0; r < rows; ++r) {
+    const uint8_t* row = &mask[static_cast<size_t>(r) * cols];
+    for (int c = 0; c < cols; ++c) height[c] = row[c] ? height[c] + 1 : 0;
+    height[cols] = 0;  // sentinel flushes the stack
+    stack.clear();
+    for (int c = 0; c <= cols; ++c) {
+      while (!stack.empty() && height[stack.back()] >= height[c]) {
+        const int h = height[stack.back()];
+        stack.pop_back();
+        const int left = stack.empty() ? 0 : stack.back() + 1;
+        const int width = c - left;
+        if (h * width > best.Area()) best = CellRect{r - h + 1, left, h, width};
+      }
+      stack.push_back(c);
+    }
+  }
+  return best;
+}
+
+namespace {
+
+bool RowInside(const std::vector<uint8_t>& mask, int cols, int r, int c0, int n) {
+  for (int c = c0; c < c0 + n; ++c) {
+    if (!mask[static_cast<size_t>(r) * cols + c]) return false;
+  }
+  return true;
+}
+
+bool ColInside(const std::vector<uint8_t>& mask, int cols, int c, int r0, int n) {
+  for (int r = r0; r < r0 + n; ++r) {
+    if (!mask[static_cast<size_t>(r) * cols + c]) return false;
+  }
+  return true;
+}
+
+// Adds the row (along_rows) or column just before or after the rectangle when it lies
+// inside the mask; true when it did.
+bool GrowSide(const std::vector<uint8_t>& mask, int rows, int cols, bool along_rows, bool before,
+              CellRect* rect) {
+  int& start = along_rows ? rect->row0 : rect->col0;
+  int& extent = along_rows ? rect->rows : rect->cols;
+  const int line = before ? start - 1 : start + extent;
+  if (line < 0 || line >= (along_rows ? rows : cols)) return false;
+  const bool inside = along_rows ? RowInside(mask, cols, line, rect->col0, rect->cols)
+                                 : ColInside(mask, cols, line, rect->row0, rect->rows);
+  if (!inside) return false;
+  if (before) --start;
+  ++extent;
+  return true;
+}
+
+// Grows a rectangle one row or column at a time while it stays inside the mask: rows
+// before and after, then columns before and after, round after round.
+void GrowInside(const std::vector<uint8_t>& mask, int rows, int cols, CellRect* rect) {
+  bool grew = true;
+  while (grew) {
+    grew = false;
+    for (const bool along_rows : {true, false}) {
+      for (const bool before : {true, false}) grew |= GrowSide(mask, rows, cols, along_rows, before, rect);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
+                                           const RectangleCoverOptions& options) {
+  MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  std::vector<uint8_t> uncovered = mask;
+  size_t total = 0;
+  for (uint8_t m : mask) total += m ? 1 : 0;
+  size_t left = total;
+  std::vector<CellRect> rects;
+  while (left > 0 && static_cast<int>(rects.size()) < options.max_rects &&
+         static_cast<double>(total - left) < options.target_coverage * static_cast<double>(total)) {
+    CellRect rect = LargestRectangle(uncovered, rows, cols);
+    if (rect.Area() < std::max(1, options.min_rect_cells)) break;
+    if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
+    for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
+      for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
+        uint8_t& u = uncovered[static_cast<size_t>(r) * cols + c];
+        if (u) {
+          u = 0;
+          --left;
+        }
+      }
+    }
+    rects.push_back(rect);
+  }
+  return rects;
+}
+
+}  // namespace mfp

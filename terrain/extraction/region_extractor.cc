@@ -1,0 +1,282 @@
+#include "terrain/extraction/region_extractor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "base/check.h"
+#include "terrain/extraction/internal/patch_decomposition.h"
+#include "terrain/extraction/internal/plane_segmentation.h"
+#include "terrain/extraction/internal/surface_layers.h"
+#include "terrain/extraction/map_simulation.h"
+
+namespace mfp {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void RequireRange(const char* field, double value, double lo, double hi, bool open_lo) {
+  if (!std::isfinite(value) || value < lo || value > hi || (open_lo && value == lo)) {
+    std::ostringstream msg;
+    msg << "region extractor option " << field << " = " << value << " is outside the allowed range "
+        << (open_lo ? "(" : "[") << lo << ", " << hi << "]";
+    throw InputError(msg.str());
+  }
+}
+
+void ValidateOptions(const RegionExtractorOptions& o) {
+  RequireRange("foot_radius_m", o.foot_radius_m, 0.0, 1.0, false);
+  RequireRange("edge_margin_m", o.edge_margin_m, 0.0, 1.0, false);
+  RequireRange("edge_uncertainty_voxels", o.edge_uncertainty_voxels, 0.0, 10.0, false);
+  RequireRange("riser_uncertainty_voxels", o.riser_uncertainty_voxels, 0.0, 10.0, false);
+  if (!(o.clearance_m > 0.0)) {
+    throw InputError("region extractor option clearance_m must be > 0 m (infinity: highest surfaces only)");
+  }
+  RequireRange("max_slope_rad", o.max_slope_rad, 0.0, M_PI / 2, true);
+  RequireRange("min_region_area_m2", o.min_region_area_m2, 0.0, 100.0, false);
+  RequireRange("min_region_area_voxels", o.min_region_area_voxels, 0.0, 1e6, false);
+  RequireRange("grow_tolerance_voxels", o.grow_tolerance_voxels, 0.0, 10.0, true);
+  RequireRange("max_residual_voxels", o.max_residual_voxels, 0.0, 10.0, true);
+  RequireRange("seed_roughness_voxels", o.seed_roughness_voxels, 0.0, 10.0, true);
+  RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
+  RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
+  RequireRange("max_regions_per_patch", o.max_regions_per_patch, 1, 10000, false);
+  RequireRange("max_regions", o.max_regions, 0, 100000, false);
+  RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
+}
+
+SurfaceLayers LayersOf(const OccupancyMap& map, const RegionExtractorOptions& options) {
+  const double res_in = map.resolution_m;
+  SurfaceLayerOptions layer_options;
+  layer_options.clearance_m = options.clearance_m;
+  layer_options.require_seen_from_above = options.require_seen_from_above;
+  layer_options.max_cells = options.max_height_map_cells;
+  // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
+  layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
+                                  ? res_in * (options.grow_tolerance_voxels + std::tan(options.max_slope_rad)) * (1.0 + 1e-3)
+                                  : 0.0;
+  return BuildSurfaceLayers(map, layer_options);
+}
+
+// Refuses a map whose surface fit would exceed max_fit_work cell visits.
+void CheckFitWork(double res, int surface_cells, int window_half_cells, const RegionExtractorOptions& options) {
+  const double work = FitWork(static_cast<size_t>(surface_cells), window_half_cells);
+  if (work <= options.max_fit_work) return;
+  std::ostringstream msg;
+  msg << "the map's resolution " << res << " m is too fine for a foot of radius "
+      << options.foot_radius_m << " m: fitting its " << surface_cells
+      << " surface cells over " << 2 * window_half_cells + 1 << "^2-cell windows is " << work
+      << " visits, more than the limit of " << options.max_fit_work
+      << " (cell visits); give a coarser map (cells of "
+      << std::max(0.5 * options.foot_radius_m, 1e-3) << " m or more suit this foot)";
+  throw InputError(msg.str());
+}
+
+struct LayerPatch {
+  int layer;
+  PlanarPatch patch;
+};
+
+// The planar patches of every layer, largest first.
+std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
+                                      const std::vector<SurfaceAnalysis>& surfaces, double res,
+                                      const RegionExtractorOptions& options) {
+  SegmentationOptions seg;
+  // The small margin keeps exact one-voxel risers of a voxelised tilt inside the tolerance.
+  seg.grow_tolerance_m = options.grow_tolerance_voxels * res * (1.0 + 1e-3);
+  seg.max_residual_m = options.max_residual_voxels * res;
+  seg.max_seed_roughness_m = options.seed_roughness_voxels * res;
+  std::vector<LayerPatch> patches;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    for (PlanarPatch& p : SegmentPlanarPatches(layers[l], surfaces[l], seg)) {
+      patches.push_back({static_cast<int>(l), std::move(p)});
+    }
+  }
+  std::stable_sort(patches.begin(), patches.end(), [](const LayerPatch& a, const LayerPatch& b) {
+    return a.patch.cells.size() > b.patch.cells.size();
+  });
+  return patches;
+}
+
+PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractorOptions& options) {
+  PatchDecompositionOptions dec;
+  dec.inset_m = options.foot_radius_m + options.edge_margin_m;
+  // The true edge may lie inside the outermost occupied voxel only where the surface has
+  // no material rising beside it (a drop or unseen space), not at a wall or a riser.
+  dec.drop_inset_m = options.edge_uncertainty_voxels * res;
+  dec.riser_inset_m = options.riser_uncertainty_voxels * res;
+  dec.axis_snap_rad = options.axis_snap_rad;
+  dec.cover.target_coverage = options.target_coverage;
+  dec.cover.max_rects = options.max_regions_per_patch;
+  dec.cover.grow_over_covered = options.overlapping_regions;
+  return dec;
+}
+
+// Decomposes the patches, largest first, into result's regions until the deadline or
+// max_regions; counts the patches too steep or too small in result's stats.
+void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<std::vector<uint8_t>>& solid_beside,
+                      double res, const RegionExtractorOptions& options, RegionExtractionResult* result) {
+  RegionExtractionStats& stats = result->stats;
+  const double foot_area_m2 = M_PI * options.foot_radius_m * options.foot_radius_m;
+  PatchDecompositionOptions dec = DecompositionOptions(res, options);
+  const double plane_tolerance_m = options.plane_tolerance_voxels * res;
+  const double min_area_m2 = options.min_region_area_voxels > 0.0
+                                 ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
+                                 : options.min_region_area_m2;
+  int patches_done = 0;
+  bool capped = false;  // max_regions reached: the patches left are not decomposed
+  for (const LayerPatch& layer_patch : patches) {
+    if (capped) break;
+    if (options.deadline.Expired()) {
+      result->stopped = true;
+      result->message = "time limit reached after " + std::to_string(patches_done) + " of " +
+                        std::to_string(patches.size()) + " planar patches (the largest first)";
+      break;
+    }
+    ++patches_done;
+    const PlanarPatch& patch = layer_patch.patch;
+    const double slope = patch.SlopeRad();
+    if (slope > options.max_slope_rad) {
+      ++stats.patches_too_steep;
+      continue;
+    }
+    const double cos_slope = std::cos(slope);
+    const double patch_area_m2 = patch.cells.size() * res * res / cos_slope;
+    if (patch_area_m2 < foot_area_m2) {
+      ++stats.patches_too_small;
+      continue;
+    }
+    // Region area on the plane = projected area / cos(slope).
+    dec.min_area_xy_m2 = min_area_m2 * cos_slope;
+    dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
+    const std::vector<Quad2d> quads =
+        DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch, dec);
+    if (quads.empty()) ++stats.patches_too_small;
+    for (const Quad2d& quad : quads) {
+      if (static_cast<int>(result->regions.size()) >= options.max_regions) {
+        capped = true;
+        break;
+      }
+      std::vector<Eigen::Vector3d> vertices;
+      for (const Eigen::Vector2d& xy : quad) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
+      result->regions.push_back(
+          MakeRegionFromPolygon(static_cast<int>(result->regions.size()), vertices, plane_tolerance_m));
+      result->region_layer.push_back(layer_patch.layer);
+    }
+  }
+  if (capped) {
+    result->message = "kept the " + std::to_string(options.max_regions) +
+                      " regions of the largest planar patches (max_regions); smaller footholds are missing";
+  }
+}
+
+std::string NoRegionsMessage(const RegionExtractionStats& stats, const RegionExtractorOptions& options) {
+  std::ostringstream msg;
+  msg << "no walkable regions: " << stats.patches << " planar patches, " << stats.patches_too_steep
+      << " steeper than " << options.max_slope_rad << " rad, " << stats.patches_too_small
+      << " too small for a foot of radius " << options.foot_radius_m << " m";
+  return msg.str();
+}
+
+// The stages after the surface layers: surface fit, planar patches, decomposition.
+// `result` holds the layers' statistics already; `start` is when the extraction began.
+void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions& options,
+                       Clock::time_point start, RegionExtractionResult* result) {
+  RegionExtractionStats& stats = result->stats;
+  const double res = result->height_map.resolution_m;
+
+  Clock::time_point t = Clock::now();
+  // The fit window is at least a foot wide (and at least 3 cells).
+  const int window_half_cells = std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
+  CheckFitWork(res, stats.surface_cells, window_half_cells, options);
+  std::vector<SurfaceAnalysis> surfaces;
+  for (const HeightMap& hm : result->layers) {
+    surfaces.push_back(AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
+                                      options.max_slope_rad, options.deadline));
+  }
+  stats.analysis_s = SecondsSince(t);
+  if (std::any_of(surfaces.begin(), surfaces.end(), [](const SurfaceAnalysis& s) { return s.stopped; })) {
+    result->stopped = true;
+    result->message = "time limit reached during the surface fit: no regions";
+    stats.total_s = SecondsSince(start);
+    return;
+  }
+
+  t = Clock::now();
+  const std::vector<LayerPatch> patches = SegmentLayers(result->layers, surfaces, res, options);
+  stats.segmentation_s = SecondsSince(t);
+  stats.patches = static_cast<int>(patches.size());
+
+  t = Clock::now();
+  DecomposePatches(patches, layers.solid_beside, res, options, result);
+  stats.decomposition_s = SecondsSince(t);
+  stats.total_s = SecondsSince(start);
+  if (result->regions.empty() && !result->stopped) result->message = NoRegionsMessage(stats, options);
+}
+
+}  // namespace
+
+RegionExtractionResult ExtractRegions(const OccupancyMap& map,
+                                      const RegionExtractorOptions& options) {
+  ValidateOptions(options);
+  const Clock::time_point start = Clock::now();
+  RegionExtractionResult result;
+  RegionExtractionStats& stats = result.stats;
+  SurfaceLayers layers = LayersOf(map, options);
+  result.layers = std::move(layers.layers);
+  result.height_map = result.layers.front();
+  stats.layers = static_cast<int>(result.layers.size());
+  stats.no_room_above = layers.no_room_above;
+  stats.not_seen_from_above = layers.not_seen_from_above;
+  stats.isolated_voxels = layers.isolated_voxels;
+  stats.height_map_s = SecondsSince(start);
+  if (map.leaves.empty()) {
+    result.message = "the map has no occupied voxels, so it has no regions";
+    stats.total_s = SecondsSince(start);
+    return result;
+  }
+  stats.surface_cells = layers.candidates;
+  ExtractFromLayers(layers, options, start, &result);
+  return result;
+}
+
+RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
+                                                const RegionExtractorOptions& options) {
+  ValidateOptions(options);
+  MFP_CHECK(!layers.layers.empty() && layers.layers.size() == layers.solid_beside.size());
+  const Clock::time_point start = Clock::now();
+  RegionExtractionResult result;
+  result.layers = std::move(layers.layers);
+  result.height_map = result.layers.front();
+  result.stats.layers = static_cast<int>(result.layers.size());
+  result.stats.surface_cells = layers.candidates;
+  result.stats.height_map_s = 0.0;
+  if (layers.candidates == 0) {
+    result.message = "the map has no known surface cells, so it has no regions";
+    return result;
+  }
+  ExtractFromLayers(layers, options, start, &result);
+  return result;
+}
+
+RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terrain,
+                                                 const RegionExtractorOptions& options) {
+  RegionExtractorOptions own = options;
+  if (terrain.scan.sensors_world_m.empty() && !terrain.noise.Any()) {
+    // A plain voxelisation marks a voxel occupied when its centre is inside a box, so a
+    // true edge lies within half a voxel of the occupied cells' faces.
+    own.edge_uncertainty_voxels = std::min(own.edge_uncertainty_voxels, 0.5);
+  } else if (!terrain.scan.sensors_world_m.empty()) {
+    // Occupancy from rays: a voxel any ray hits is occupied, so a wall reaching into a
+    // surface's top voxel would have occupied the voxel above it.
+    own.riser_uncertainty_voxels = 0.0;
+  }
+  return ExtractRegions(MakeTerrainMap(terrain), own);
+}
+
+}  // namespace mfp

@@ -1,0 +1,124 @@
+#pragma once
+// From an occupancy map to the planner's safe regions (the paper's "obstacle-free convex
+// regions"): surfaces with room above them, stacked into single-valued layers
+// (surface_layers.h) -> per layer, local plane fits -> planar patches -> each patch inset
+// by the foot radius, the map's edge uncertainty and an edge margin, and covered by large
+// rectangles (in the patch's principal frame) that hold only walkable surface ->
+// ConvexRegion (edges plus the plane as two inequalities, a tolerance from the voxel size
+// apart). Plain Eigen; one entry point with Options / Result types.
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "geometry/terrain_description.h"
+#include "terrain/extraction/height_map.h"
+#include "terrain/extraction/internal/surface_layers.h"
+#include "terrain/extraction/occupancy_map.h"
+
+namespace mfp {
+
+struct RegionExtractorOptions {
+  double foot_radius_m = 0.01;     // regions hold foot centres whose whole disk is on the patch [m]
+  // Real surface kept around the foot's disk, beyond the foot radius [m].
+  double edge_margin_m = 0.01;
+  // How far inside the outermost occupied voxel the true edge may lie, in voxels: a
+  // sensor marks a voxel occupied when any point of it is hit, so up to one voxel. Added
+  // only beside drops and unseen space: where material rises beside a surface (a wall, a
+  // riser; SurfaceLayers::solid_beside) the surface runs on to it.
+  double edge_uncertainty_voxels = 1.0;
+  // How far a wall or riser beside a surface may reach into the surface's outermost
+  // voxel, in voxels: 0 for maps whose voxels are occupied when any point is hit (the
+  // voxel above the surface would be occupied), half a voxel for voxelisations that mark
+  // a voxel when its centre is inside. The default suits either kind of map.
+  double riser_uncertainty_voxels = 0.5;
+  // Free space a surface needs above it [m] (the robot's stance height plus a margin,
+  // from the planner). Infinity: only the highest surface of each column.
+  double clearance_m = std::numeric_limits<double>::infinity();
+  // In maps that store free space, a surface must have been seen from above.
+  bool require_seen_from_above = true;
+  double max_slope_rad = 0.45;     // steeper patches are rejected [rad]
+  double min_region_area_m2 = 0.0016;  // smaller regions (of foot centres) are dropped [m^2]
+  // ... but never more than this many voxels' area (0: min_region_area_m2 alone). Every
+  // region is inset by the foot, the margin and the edge uncertainty: however small, its
+  // foot centres are footholds, and on a fine map stepping stones with a few centimetres
+  // to spare keep their regions (the 16 cm^2 default alone dropped most of them).
+  double min_region_area_voxels = 1.0;
+  // Tolerances in voxels (multiples of the map resolution), since the voxel size is
+  // what limits how well a surface is known.
+  double grow_tolerance_voxels = 1.0;   // a cell joins a patch within this of its plane
+  double max_residual_voxels = 0.75;    // patch cells further from the final plane are dropped
+  double seed_roughness_voxels = 0.35;  // RMS residual of the local fit for a patch seed
+  double plane_tolerance_voxels = 0.5;  // half-thickness of each region's plane slab
+  double target_coverage = 0.97;        // stop covering a patch once this fraction is covered
+  int max_regions_per_patch = 24;
+  // Rectangles of one patch may overlap (each grown over cells others cover). Off: they
+  // only share sides, so a foothold inside a patch has one region, not several equivalent
+  // ones for the branch-and-bound to tell apart (ANYmal C down the scanned corridor:
+  // 1.6 s with all 17 windows proven, against 33 s with 3 windows at the node cap).
+  bool overlapping_regions = false;
+  // At most this many regions, the largest patches first (a bound on the work of the
+  // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
+  // footholds the route needed: the planner answered 'no route' where one existed.
+  int max_regions = 4096;
+  double axis_snap_rad = 0.05;          // a patch within this of the grid axes uses the grid
+  size_t max_height_map_cells = kDefaultMaxHeightMapCells;
+  // Most neighbour visits of the surface fit, (surface cells) * (2 w + 1)^2 with w the
+  // foot radius in cells: a map much finer than the foot (0.1 mm cells for a 1 cm foot:
+  // 201^2 visits per cell) is refused up front, naming its resolution, instead of taking
+  // minutes. About 1e8 visits a second on one core; a 4096^2-cell map at w = 1 is 1.5e8.
+  double max_fit_work = 3e8;
+  // Ends the extraction (checked every height map row and every patch): the regions of
+  // the patches done so far are returned, with a message saying the time ran out.
+  Deadline deadline;
+};
+
+struct RegionExtractionStats {
+  int surface_cells = 0;       // surfaces in all layers
+  int layers = 0;              // single-valued surface layers (1 without overlapping levels)
+  int no_room_above = 0;       // surfaces rejected: occupied voxel within the clearance
+  int not_seen_from_above = 0; // surfaces rejected: top voxel not known free
+  int isolated_voxels = 0;     // single outlier voxels ignored
+  int patches = 0;             // planar patches found
+  int patches_too_steep = 0;   // rejected: slope above max_slope_rad
+  int patches_too_small = 0;   // rejected: smaller than a foot, or nothing left after the inset
+  double height_map_s = 0.0;   // wall time per stage [s]
+  double analysis_s = 0.0;
+  double segmentation_s = 0.0;
+  double decomposition_s = 0.0;
+  double total_s = 0.0;
+};
+
+struct RegionExtractionResult {
+  std::vector<ConvexRegion> regions;  // ids 0, 1, ... in order
+  RegionExtractionStats stats;
+  HeightMap height_map;               // layer 0, for display
+  std::vector<HeightMap> layers;      // every surface layer (mfp-regions --svg shows them apart)
+  std::vector<int> region_layer;      // per region, the layer it lies on
+  std::string message;                // why there are no regions, when there are none
+  bool stopped = false;               // the deadline ended it early (message says where)
+};
+
+// Every region point f keeps a disk of radius foot_radius_m + edge_margin_m on the map's
+// surface cells shrunk by edge_uncertainty_voxels at their drops. Throws InputError on options out of
+// range (foot radius not in [0, 1] m, max slope not in (0, pi/2), tolerances not
+// positive, clearance not > 0) and on maps BuildHeightMap rejects.
+RegionExtractionResult ExtractRegions(const OccupancyMap& map,
+                                      const RegionExtractorOptions& options);
+
+// The same stages from surface layers made elsewhere (a height map: height_grid.h): the
+// surface fit, planar patches and decomposition. Every layer shares one grid and has its
+// solid_beside bits; `candidates` counts the surface cells. Throws InputError on options
+// out of range, as ExtractRegions does. (Clearance and seen-from-above options do not apply.)
+RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
+                                                const RegionExtractorOptions& options);
+
+// Makes the map of a box description (MakeTerrainMap: voxelised, or scanned from its
+// sensors, with its noise) and extracts its regions: what a scenario with a `terrain:`
+// block plans on. A plain voxelisation (no scan, no noise) is known to put true edges
+// within half a voxel of its cells, so its edge uncertainty is at most 0.5 voxels.
+RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terrain,
+                                                 const RegionExtractorOptions& options);
+
+}  // namespace mfp

@@ -1,0 +1,347 @@
+#include "terrain/extraction/internal/surface_layers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+
+#include "base/check.h"
+
+namespace mfp {
+namespace {
+
+struct Interval {
+  long long lo = 0, hi = 0;  // voxel indices [lo, hi) along z
+};
+
+// Per-column interval lists in compressed rows: column c owns [offset[c], offset[c + 1]).
+struct Columns {
+  std::vector<size_t> offset;
+  std::vector<Interval> runs;
+  const Interval* begin(int c) const { return runs.data() + offset[c]; }
+  const Interval* end(int c) const { return runs.data() + offset[c + 1]; }
+};
+
+// Leaves cut into per-column intervals, sorted and merged (touching runs join).
+Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+  const double res = hm.resolution_m;
+  const long long x_lo = std::llround(hm.origin_world_m.x() / res);
+  const long long y_lo = std::llround(hm.origin_world_m.y() / res);
+  const int cells = hm.rows * hm.cols;
+  struct Footprint {
+    long long c0, r0, n, z0;
+  };
+  std::vector<Footprint> prints;
+  prints.reserve(leaves.size());
+  std::vector<size_t> count(static_cast<size_t>(cells) + 1, 0);
+  for (const OccupiedLeaf& leaf : leaves) {
+    const double n_d = leaf.size_m / res;
+    if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
+    const long long n = std::llround(n_d);
+    Footprint f{std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo,
+                std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo, n,
+                std::llround((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res)};
+    prints.push_back(f);
+    for (long long r = std::max(0LL, f.r0); r < std::min<long long>(hm.rows, f.r0 + n); ++r) {
+      for (long long c = std::max(0LL, f.c0); c < std::min<long long>(hm.cols, f.c0 + n); ++c) {
+        ++count[static_cast<size_t>(r * hm.cols + c)];
+      }
+    }
+  }
+  Columns cols;
+  cols.offset.assign(static_cast<size_t>(cells) + 1, 0);
+  for (int c = 0; c < cells; ++c) cols.offset[c + 1] = cols.offset[c] + count[c];
+  cols.runs.resize(cols.offset[cells]);
+  std::vector<size_t> fill(cols.offset.begin(), cols.offset.end() - 1);
+  for (const Footprint& f : prints) {
+    for (long long r = std::max(0LL, f.r0); r < std::min<long long>(hm.rows, f.r0 + f.n); ++r) {
+      for (long long c = std::max(0LL, f.c0); c < std::min<long long>(hm.cols, f.c0 + f.n); ++c) {
+        cols.runs[fill[static_cast<size_t>(r * hm.cols + c)]++] = {f.z0, f.z0 + f.n};
+      }
+    }
+  }
+  // Sort and merge each column in place, then compact.
+  size_t out = 0;
+  std::vector<size_t> new_offset(static_cast<size_t>(cells) + 1, 0);
+  for (int c = 0; c < cells; ++c) {
+    auto b = cols.runs.begin() + static_cast<std::ptrdiff_t>(cols.offset[c]);
+    auto e = cols.runs.begin() + static_cast<std::ptrdiff_t>(cols.offset[c + 1]);
+    std::sort(b, e, [](const Interval& p, const Interval& q) { return p.lo < q.lo; });
+    new_offset[c] = out;
+    for (auto it = b; it != e; ++it) {
+      if (out > new_offset[c] && it->lo <= cols.runs[out - 1].hi) {
+        cols.runs[out - 1].hi = std::max(cols.runs[out - 1].hi, it->hi);
+      } else {
+        cols.runs[out++] = *it;
+      }
+    }
+  }
+  new_offset[cells] = out;
+  cols.runs.resize(out);
+  cols.offset = std::move(new_offset);
+  return cols;
+}
+
+// True when voxels [z_lo, z_hi) of column c are all occupied (runs are merged).
+bool ColumnCovers(const Columns& cols, int c, long long z_lo, long long z_hi) {
+  for (const Interval* it = cols.begin(c); it != cols.end(c); ++it) {
+    if (it->lo <= z_lo && it->hi >= z_hi) return true;
+  }
+  return false;
+}
+
+bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
+  for (const Interval* it = cols.begin(c); it != cols.end(c); ++it) {
+    if (it->lo < z_hi && it->hi > z_lo) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int FillSingleCellNoise(HeightMap* hm) {
+  const double res = hm->resolution_m;
+  const std::vector<float> in = hm->height_m;
+  int changed = 0;
+  for (int r = 1; r + 1 < hm->rows; ++r) {
+    for (int c = 1; c + 1 < hm->cols; ++c) {
+      // The most common neighbour height and how many of the 8 have it.
+      float h0 = std::numeric_limits<float>::quiet_NaN();
+      int best = 0, present = 0;
+      for (int k = 0; k < 9; ++k) {
+        if (k == 4) continue;
+        const float h = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
+        if (std::isnan(h)) continue;
+        ++present;
+        int same = 0;
+        for (int j = 0; j < 9; ++j) {
+          if (j == 4) continue;
+          const float g = in[static_cast<size_t>(hm->Index(r + j / 3 - 1, c + j % 3 - 1))];
+          same += !std::isnan(g) && std::abs(g - h) < 0.01 * res;
+        }
+        if (same > best) {
+          best = same;
+          h0 = h;
+        }
+      }
+      float& h = hm->height_m[static_cast<size_t>(hm->Index(r, c))];
+      if (std::isnan(h)) {
+        if (best == 8) {  // a one-cell hole in a level surface
+          h = h0;
+          ++changed;
+        }
+      } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
+        h = h0;  // one voxel off a level neighbourhood
+        ++changed;
+      }
+    }
+  }
+  return changed;
+}
+
+namespace {
+
+// Isolated single voxels: no occupied voxel in the 26-neighbourhood. One flag per run of
+// occ; counted in *isolated.
+std::vector<uint8_t> IsolatedVoxels(const HeightMap& grid, const Columns& occ, int* isolated) {
+  std::vector<uint8_t> dropped(occ.runs.size(), 0);
+  for (int r = 0; r < grid.rows; ++r) {
+    for (int c = 0; c < grid.cols; ++c) {
+      const int col = grid.Index(r, c);
+      for (size_t i = occ.offset[col]; i < occ.offset[col + 1]; ++i) {
+        const Interval& run = occ.runs[i];
+        if (run.hi - run.lo != 1) continue;
+        bool alone = true;
+        for (int dr = -1; dr <= 1 && alone; ++dr) {
+          for (int dc = -1; dc <= 1 && alone; ++dc) {
+            if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
+            alone = !ColumnHas(occ, grid.Index(r + dr, c + dc), run.lo - 1, run.hi + 1);
+          }
+        }
+        if (alone) {
+          dropped[i] = 1;
+          ++*isolated;
+        }
+      }
+    }
+  }
+  return dropped;
+}
+
+// Candidate surfaces per column, in compressed rows: column c owns [offset[c],
+// offset[c + 1]) of height and col.
+struct Candidates {
+  std::vector<size_t> offset;
+  std::vector<float> height;  // [m]
+  std::vector<int> col;       // the column of each candidate
+};
+
+// The tops of the runs with room above them (and, with free space known, seen from above).
+Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Columns* free,
+                             const std::vector<uint8_t>& dropped, const SurfaceLayerOptions& options,
+                             SurfaceLayers* out) {
+  const int cells = grid.rows * grid.cols;
+  const double res = grid.resolution_m;
+  Candidates cand;
+  cand.offset.assign(static_cast<size_t>(cells) + 1, 0);
+  const double clearance_voxels = options.clearance_m / res;
+  for (int col = 0; col < cells; ++col) {
+    cand.offset[col] = cand.height.size();
+    const size_t b = occ.offset[col], e = occ.offset[col + 1];
+    for (size_t i = b; i < e; ++i) {
+      if (dropped[i]) continue;
+      const long long top = occ.runs[i].hi;
+      size_t next = i + 1;
+      while (next < e && dropped[next]) ++next;
+      if (next < e && static_cast<double>(occ.runs[next].lo - top) < clearance_voxels - 1e-6) {
+        ++out->no_room_above;
+        continue;
+      }
+      if (free != nullptr && !ColumnHas(*free, col, top, top + 1)) {
+        ++out->not_seen_from_above;
+        continue;
+      }
+      cand.height.push_back(static_cast<float>(top * res));
+    }
+  }
+  cand.offset[cells] = cand.height.size();
+  cand.col.resize(cand.height.size());
+  for (int col = 0; col < cells; ++col) {
+    for (size_t k = cand.offset[col]; k < cand.offset[col + 1]; ++k) cand.col[k] = col;
+  }
+  return cand;
+}
+
+// Sheets (lists of candidate indices) by flood fill over 4-neighbours, at most one
+// surface per column each, neighbours within the step gate.
+std::vector<std::vector<int>> GrowSheets(const HeightMap& grid, const Candidates& cand, double step_gate_m) {
+  std::vector<int> cand_sheet(cand.height.size(), -1);
+  std::vector<int> column_claim(static_cast<size_t>(grid.rows) * grid.cols, -1);
+  std::vector<std::vector<int>> sheets;
+  std::deque<int> queue;
+  for (size_t seed = 0; seed < cand.height.size(); ++seed) {
+    if (cand_sheet[seed] >= 0) continue;
+    const int id = static_cast<int>(sheets.size());
+    sheets.emplace_back();
+    cand_sheet[seed] = id;
+    column_claim[cand.col[seed]] = id;
+    queue.push_back(static_cast<int>(seed));
+    while (!queue.empty()) {
+      const int k = queue.front();
+      queue.pop_front();
+      sheets[id].push_back(k);
+      const int col = cand.col[k];
+      const int r = col / grid.cols, c = col % grid.cols;
+      const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
+      for (int d = 0; d < 4; ++d) {
+        if (!grid.Inside(r + dr[d], c + dc[d])) continue;
+        const int ncol = grid.Index(r + dr[d], c + dc[d]);
+        if (column_claim[ncol] == id) continue;
+        int best = -1;
+        float best_dz = static_cast<float>(step_gate_m) + 1e-6f;
+        for (size_t q = cand.offset[ncol]; q < cand.offset[ncol + 1]; ++q) {
+          const float dz = std::abs(cand.height[q] - cand.height[k]);
+          if (cand_sheet[q] < 0 && dz <= best_dz) {
+            best = static_cast<int>(q);
+            best_dz = dz;
+          }
+        }
+        if (best < 0) continue;
+        cand_sheet[best] = id;
+        column_claim[ncol] = id;
+        queue.push_back(best);
+      }
+    }
+  }
+  return sheets;
+}
+
+// Layers: largest sheets first, each into the first layer where its columns are empty;
+// at least one layer.
+std::vector<HeightMap> StackSheets(const HeightMap& grid, const Candidates& cand,
+                                   const std::vector<std::vector<int>>& sheets) {
+  std::vector<int> order(sheets.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return sheets[a].size() > sheets[b].size(); });
+  HeightMap empty = grid;
+  std::fill(empty.height_m.begin(), empty.height_m.end(), std::numeric_limits<float>::quiet_NaN());
+  std::vector<HeightMap> layers;
+  for (int s : order) {
+    size_t layer = 0;
+    for (; layer < layers.size(); ++layer) {
+      bool fits = true;
+      for (int k : sheets[s]) {
+        if (!std::isnan(layers[layer].height_m[cand.col[k]])) {
+          fits = false;
+          break;
+        }
+      }
+      if (fits) break;
+    }
+    if (layer == layers.size()) layers.push_back(empty);
+    for (int k : sheets[s]) layers[layer].height_m[cand.col[k]] = cand.height[k];
+  }
+  if (layers.empty()) layers.push_back(empty);
+  return layers;
+}
+
+// Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
+std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
+  const double res = layer.resolution_m;
+  std::vector<uint8_t> bits(static_cast<size_t>(layer.rows) * layer.cols, 0);
+  for (int r = 0; r < layer.rows; ++r) {
+    for (int c = 0; c < layer.cols; ++c) {
+      const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
+      if (std::isnan(h)) continue;
+      const long long top_voxel = std::llround(h / res) - 1;
+      uint8_t b = 0;
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if ((dr == 0 && dc == 0) || !layer.Inside(r + dr, c + dc)) continue;
+          const int n = layer.Index(r + dr, c + dc);
+          if (ColumnCovers(occ, n, top_voxel + 1, top_voxel + 2) &&
+              (ColumnCovers(occ, n, top_voxel, top_voxel + 1) || ColumnCovers(occ, n, top_voxel + 2, top_voxel + 3))) {
+            b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
+          }
+        }
+      }
+      bits[static_cast<size_t>(layer.Index(r, c))] = b;
+    }
+  }
+  return bits;
+}
+
+}  // namespace
+
+SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
+  MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
+  SurfaceLayers out;
+  CheckLeafColumnBudget(map, options.max_leaf_columns);  // before any leaf is expanded
+  // The grid and the validation of the leaves are the height map's.
+  HeightMap grid = BuildHeightMap(map, options.max_cells);
+  if (grid.rows * grid.cols == 0) {
+    out.layers.push_back(grid);
+    out.solid_beside.emplace_back();
+    return out;
+  }
+  const Columns occ = ColumnsOf(map.leaves, grid);
+  const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
+  const Columns free = know_free ? ColumnsOf(map.free_leaves, grid) : Columns{};
+  const std::vector<uint8_t> dropped = options.drop_isolated_voxels
+                                           ? IsolatedVoxels(grid, occ, &out.isolated_voxels)
+                                           : std::vector<uint8_t>(occ.runs.size(), 0);
+  const Candidates cand = SurfaceCandidates(grid, occ, know_free ? &free : nullptr, dropped, options, &out);
+  out.candidates = static_cast<int>(cand.height.size());
+  out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
+  if (options.fill_single_cell_noise) {
+    for (HeightMap& layer : out.layers) {
+      // Twice: a hole beside a displaced cell is filled once that cell is back.
+      for (int pass = 0; pass < 2; ++pass) out.noise_cells_filled += FillSingleCellNoise(&layer);
+    }
+  }
+  // From the final (noise-repaired) heights.
+  for (const HeightMap& layer : out.layers) out.solid_beside.push_back(SolidBeside(layer, occ));
+  return out;
+}
+
+}  // namespace mfp

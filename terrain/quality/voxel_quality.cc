@@ -1,0 +1,189 @@
+#include "terrain/quality/voxel_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "base/check.h"
+
+namespace mfp {
+namespace {
+
+int64_t FloorShift(int64_t i, int level) { return i >= 0 ? i >> level : -((-i - 1) >> level) - 1; }
+
+int64_t Key3(int64_t i, int64_t j, int64_t k) {
+  return ((i + (1 << 20)) << 42) | ((j + (1 << 20)) << 21) | (k + (1 << 20));
+}
+int64_t Key2(int64_t i, int64_t j) { return ((i + (1 << 20)) << 21) | (j + (1 << 20)); }
+
+// Leaves of one kind, looked up voxel by voxel through their octree level.
+class LeafSet {
+ public:
+  LeafSet(const std::vector<OccupiedLeaf>& leaves, double resolution_m) : r_(resolution_m) {
+    for (const OccupiedLeaf& leaf : leaves) {
+      const int level = LevelOf(leaf.size_m);
+      const Eigen::Vector3d corner = leaf.center_world_m.array() - 0.5 * leaf.size_m;
+      const auto i = static_cast<int64_t>(std::llround(corner.x() / r_));
+      const auto j = static_cast<int64_t>(std::llround(corner.y() / r_));
+      const auto k = static_cast<int64_t>(std::llround(corner.z() / r_));
+      by_level_[level].insert(Key3(FloorShift(i, level), FloorShift(j, level), FloorShift(k, level)));
+    }
+  }
+  bool Contains(int64_t i, int64_t j, int64_t k) const {
+    for (const auto& [level, keys] : by_level_) {
+      if (keys.count(Key3(FloorShift(i, level), FloorShift(j, level), FloorShift(k, level))) != 0) return true;
+    }
+    return false;
+  }
+  int LevelOf(double size_m) const { return std::max(0, static_cast<int>(std::lround(std::log2(size_m / r_)))); }
+
+ private:
+  double r_;
+  std::map<int, std::unordered_set<int64_t>> by_level_;
+};
+
+struct SurfaceVoxel {
+  int64_t i, j, k;  // the occupied voxel; its top is (k + 1) r
+};
+
+// Every seen surface voxel: the top layer of each occupied leaf, known free above, no
+// occupied voxel within the clearance.
+std::vector<SurfaceVoxel> SeenSurfaces(const OccupancyMap& map, const LeafSet& occupied, const LeafSet& free,
+                                       double clearance_m) {
+  const double r = map.resolution_m;
+  const int room = std::max(1, static_cast<int>(std::ceil(clearance_m / r - 1e-9)));
+  std::vector<SurfaceVoxel> out;
+  for (const OccupiedLeaf& leaf : map.leaves) {
+    const int64_t n = int64_t{1} << occupied.LevelOf(leaf.size_m);
+    const Eigen::Vector3d corner = leaf.center_world_m.array() - 0.5 * leaf.size_m;
+    const auto i0 = static_cast<int64_t>(std::llround(corner.x() / r));
+    const auto j0 = static_cast<int64_t>(std::llround(corner.y() / r));
+    const int64_t k = static_cast<int64_t>(std::llround(corner.z() / r)) + n - 1;
+    for (int64_t i = i0; i < i0 + n; ++i) {
+      for (int64_t j = j0; j < j0 + n; ++j) {
+        if (!free.Contains(i, j, k + 1)) continue;
+        bool clear = true;
+        for (int d = 1; d <= room && clear; ++d) clear = !occupied.Contains(i, j, k + d);
+        if (clear) out.push_back({i, j, k});
+      }
+    }
+  }
+  return out;
+}
+
+int64_t DominantLevel(const std::vector<SurfaceVoxel>& surfaces) {
+  std::unordered_map<int64_t, int> count;
+  int64_t best = 0;
+  int best_count = -1;
+  for (const SurfaceVoxel& s : surfaces) {
+    const int c = ++count[s.k];
+    if (c > best_count) best_count = c, best = s.k;
+  }
+  return best;
+}
+
+struct RegionBox {
+  Eigen::Vector2d lo, hi;
+};
+
+bool CoveredAt(const std::vector<ConvexRegion>& regions, const std::vector<RegionBox>& boxes,
+               const Eigen::Vector2d& xy, double top_m, double height_tolerance_m) {
+  for (size_t n = 0; n < regions.size(); ++n) {
+    if ((xy.array() < boxes[n].lo.array()).any() || (xy.array() > boxes[n].hi.array()).any()) continue;
+    if (std::abs(regions[n].HeightAt(xy.x(), xy.y()) - top_m) > height_tolerance_m) continue;
+    if (PlanDistanceToRegion(regions[n], xy) <= 1e-9) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions, const OccupancyMap& map,
+                                       const VoxelQualityOptions& options) {
+  const double r = map.resolution_m;
+  if (!(r > 0.0) || !std::isfinite(r)) throw InputError("voxel quality: the map's resolution must be positive");
+  if (!(options.clearance_m > 0.0) || !(options.erosion_m >= 0.0) || !(options.floor_band_m >= 0.0)) {
+    throw InputError("voxel quality: clearance must be > 0, erosion and floor band >= 0");
+  }
+  const LeafSet occupied(map.leaves, r), free(map.free_leaves, r);
+  const std::vector<SurfaceVoxel> surfaces = SeenSurfaces(map, occupied, free, options.clearance_m);
+  VoxelQuality q;
+  q.seen_surface_voxels = static_cast<int>(surfaces.size());
+  std::unordered_map<int64_t, std::vector<int64_t>> columns;  // plan cell -> surface voxel k
+  for (const SurfaceVoxel& s : surfaces) columns[Key2(s.i, s.j)].push_back(s.k);
+  auto surface_near = [&](int64_t i, int64_t j, double top_m, double tolerance_m) {
+    const auto it = columns.find(Key2(i, j));
+    if (it == columns.end()) return false;
+    for (int64_t k : it->second) {
+      if (std::abs((static_cast<double>(k) + 1.0) * r - top_m) <= tolerance_m + 1e-9) return true;
+    }
+    return false;
+  };
+
+  std::vector<RegionBox> boxes;
+  for (const ConvexRegion& region : regions) {
+    RegionBox box{Eigen::Vector2d::Constant(INFINITY), Eigen::Vector2d::Constant(-INFINITY)};
+    for (const Eigen::Vector3d& v : region.vertices_world_m) {
+      box.lo = box.lo.cwiseMin(v.head<2>());
+      box.hi = box.hi.cwiseMax(v.head<2>());
+    }
+    boxes.push_back(box);
+  }
+
+  // The floor, its certifiable part and their coverage.
+  if (!surfaces.empty()) {
+    const int64_t floor_k = DominantLevel(surfaces);
+    q.floor_height_m = (static_cast<double>(floor_k) + 1.0) * r;
+    const int reach = static_cast<int>(std::floor(options.erosion_m / r + 1e-9));
+    int seen_covered = 0;
+    for (const SurfaceVoxel& s : surfaces) {
+      const double top = (static_cast<double>(s.k) + 1.0) * r;
+      if (std::abs(top - q.floor_height_m) > options.floor_band_m + 1e-9) continue;
+      ++q.seen_floor_cells;
+      const Eigen::Vector2d xy((static_cast<double>(s.i) + 0.5) * r, (static_cast<double>(s.j) + 0.5) * r);
+      const bool covered = CoveredAt(regions, boxes, xy, top, r);
+      seen_covered += covered ? 1 : 0;
+      bool certifiable = true;
+      for (int di = -reach; di <= reach && certifiable; ++di) {
+        for (int dj = -reach; dj <= reach && certifiable; ++dj) {
+          if ((di * di + dj * dj) * r * r > options.erosion_m * options.erosion_m + 1e-12) continue;
+          certifiable = surface_near(s.i + di, s.j + dj, top, r);
+        }
+      }
+      if (!certifiable) continue;
+      ++q.certifiable_floor_cells;
+      q.certifiable_covered_cells += covered ? 1 : 0;
+    }
+    q.seen_floor_m2 = q.seen_floor_cells * r * r;
+    q.seen_floor_coverage = q.seen_floor_cells > 0 ? static_cast<double>(seen_covered) / q.seen_floor_cells : 0.0;
+    q.certifiable_coverage = q.certifiable_floor_cells > 0
+                                 ? static_cast<double>(q.certifiable_covered_cells) / q.certifiable_floor_cells
+                                 : 0.0;
+  }
+
+  // Soundness: region points sampled on a grid, each on a seen surface voxel.
+  const double step = options.sample_step_m > 0.0 ? options.sample_step_m : r;
+  for (size_t n = 0; n < regions.size(); ++n) {
+    for (double x = boxes[n].lo.x() + 0.5 * step; x < boxes[n].hi.x(); x += step) {
+      for (double y = boxes[n].lo.y() + 0.5 * step; y < boxes[n].hi.y(); y += step) {
+        if (PlanDistanceToRegion(regions[n], {x, y}) > 0.0) continue;
+        const double z = regions[n].HeightAt(x, y);
+        ++q.region_samples;
+        const auto i = static_cast<int64_t>(std::floor(x / r));
+        const auto j = static_cast<int64_t>(std::floor(y / r));
+        if (surface_near(i, j, z, r + regions[n].plane_tolerance_m)) {
+          ++q.sound_samples;
+        } else {
+          q.worst_point = {x, y, z};
+        }
+      }
+    }
+  }
+  q.soundness = q.region_samples > 0 ? static_cast<double>(q.sound_samples) / q.region_samples : 1.0;
+  return q;
+}
+
+}  // namespace mfp

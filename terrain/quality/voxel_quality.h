@@ -1,0 +1,52 @@
+#pragma once
+// Region quality judged against a map's raw voxels (for scans with no box description:
+// real sensor maps). Independent of the extractor: it reads only the occupancy map's
+// leaves, never the height map or the segmentation, so it can judge them.
+//
+// Definitions (resolution r, every leaf split into voxels of edge r):
+// - a *seen surface voxel* is occupied, its voxel above is known free (a ray passed
+//   above it: seen from above) and no voxel within the clearance above it is occupied;
+// - the *seen floor* is the seen surface voxels of the map's dominant level (the most
+//   common surface height, within floor_band_m);
+// - the *certifiable floor* is the seen floor eroded by erosion_m in plan view: every
+//   column within erosion_m holds a seen surface voxel within one voxel of its height.
+//   No sound extractor can certify more (a foot plus margin plus a voxel of edge
+//   uncertainty must fit on seen surface);
+// - a region point is *sound* when its column holds a seen surface voxel whose top lies
+//   within one voxel plus the region's plane tolerance of the point.
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "terrain/extraction/occupancy_map.h"
+
+namespace mfp {
+
+struct VoxelQualityOptions {
+  double clearance_m = 0.4;     // free of occupied voxels above a seen surface [m]
+  double erosion_m = 0.07;      // foot radius + 1 cm + one voxel, typically [m]
+  double floor_band_m = 0.1;    // floor voxels lie within this of the dominant height [m]
+  double sample_step_m = 0.0;   // region sampling step; 0: the map's resolution [m]
+};
+
+struct VoxelQuality {
+  double floor_height_m = 0.0;      // top of the dominant level's voxels [m]
+  int seen_surface_voxels = 0;      // anywhere in the map
+  int seen_floor_cells = 0;         // of the dominant level
+  double seen_floor_m2 = 0.0;
+  int certifiable_floor_cells = 0;
+  int certifiable_covered_cells = 0;  // certifiable floor cells inside a region at their height
+  double certifiable_coverage = 0.0;  // covered / certifiable (0 when nothing is certifiable)
+  double seen_floor_coverage = 0.0;   // seen floor cells inside a region / seen floor cells
+  int region_samples = 0;
+  int sound_samples = 0;
+  double soundness = 1.0;             // sound / samples (1 without regions)
+  Eigen::Vector3d worst_point = Eigen::Vector3d::Zero();  // an unsound sample, if any
+};
+
+// Throws InputError when the map's resolution is not positive or options are out of range.
+VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions, const OccupancyMap& map,
+                                       const VoxelQualityOptions& options);
+
+}  // namespace mfp

@@ -1,9 +1,0 @@
-#pragma once
-// The real PlanFunction: PlanFootsteps with the relaxation backend the options name.
-#include "tools/daemon/daemon_core.h"
-
-namespace mfp {
-
-PlanFunction MakeSolverPlanFunction();
-
-}  // namespace mfp
