@@ -38,17 +38,7 @@ grep -q "started:" "$LOG" || fail "mfp-daemon did not start within 30 s"
 
 lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
 
-deadline=$((SECONDS + 240))
-while :; do
-  check=0
-  "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" \
-    --config "$CONFIG" >"$WORK/check.txt" 2>&1 || check=$?
-  [ "$check" -ne 3 ] && break
-  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died"
-  if [ $SECONDS -ge $deadline ]; then cat "$WORK/check.txt"; fail "replies incomplete after 240 s"; fi
-  sleep 1
-done
-sleep 1  # one more heartbeat, so the last status counts every reply
+mfp_wait_for_replies "$SCENARIO" "$CONFIG"
 
 kill -TERM "$DAEMON_PID"
 status=0

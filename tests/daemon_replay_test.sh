@@ -31,19 +31,7 @@ kill -HUP "$DAEMON_PID"
 
 lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
 
-# Wait until every request has a reply (the checker stops answering 3) or time runs out.
-deadline=$((SECONDS + 240))
-while :; do
-  check=0
-  "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" \
-    --config "$CONFIG" >"$WORK/check.txt" 2>&1 || check=$?
-  [ "$check" -ne 3 ] && break
-  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died"
-  if [ $SECONDS -ge $deadline ]; then cat "$WORK/check.txt"; fail "replies incomplete after 240 s"; fi
-  sleep 1
-done
-# One more heartbeat so the last status counts every reply.
-sleep 1
+mfp_wait_for_replies "$SCENARIO" "$CONFIG"
 
 # SIGTERM: a clean exit with status 0.
 kill -TERM "$DAEMON_PID"

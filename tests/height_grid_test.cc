@@ -17,6 +17,7 @@
 #include "terrain/quality/height_grid_sampling.h"
 #include "terrain/quality/terrain_catalogue.h"
 #include "terrain/quality/terrain_quality.h"
+#include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {
@@ -41,14 +42,7 @@ std::vector<uint8_t> HandNpy(const std::string& header, const std::vector<uint8_
   return out;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::function<void()>& f) { return InputErrorOf(f); }
 
 TEST(NpyArray, RoundTripKeepsShapeAndValues) {
   NpyArray a;

@@ -20,6 +20,7 @@
 #include "planner/robot/urdf_reader.h"
 #include "terrain/extraction/leaf_budget.h"
 #include "terrain/octomap/octomap_io.h"
+#include "tests/input_error_of.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {
@@ -27,14 +28,7 @@ namespace {
 
 std::string Source(const std::string& rel) { return std::string(MFP_SOURCE_DIR) + "/" + rel; }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::function<void()>& f) { return InputErrorOf(f); }
 
 TEST(BoundedFile, ReadsARegularFileAndRefusesEverythingElse) {
   const std::string file = TestTempPath("small.txt");

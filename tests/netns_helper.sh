@@ -86,3 +86,18 @@ mfp_start_daemon() {  # LOG ARGS...: mfp-daemon with ARGS, its log in LOG; waits
   done
   fail "mfp-daemon did not start within 30 s"
 }
+
+mfp_wait_for_replies() {  # SCENARIO CONFIG: until mfp-check-replies stops answering 3 (every
+  # request replied) or 240 s pass; then one more heartbeat so the last status counts them all
+  local deadline=$((SECONDS + 240)) check
+  while :; do
+    check=0
+    "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$1" \
+      --config "$2" >"$WORK/check.txt" 2>&1 || check=$?
+    [ "$check" -ne 3 ] && break
+    kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died"
+    if [ $SECONDS -ge $deadline ]; then cat "$WORK/check.txt"; fail "replies incomplete after 240 s"; fi
+    sleep 1
+  done
+  sleep 1
+}
