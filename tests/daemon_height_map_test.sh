@@ -23,29 +23,14 @@ LOG="$WORK/daemon.log"
 
 "$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
 
-lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' \
-  --flush-interval=50 --force "$WORK/replies.lcmlog" &
-LOGGER_PID=$!
-
-"$BUILD_DIR/tools/mfp-daemon" --config "$CONFIG" --lcm-url "$URL" 2>"$LOG" &
-DAEMON_PID=$!
-for _ in $(seq 1 300); do
-  grep -q "started:" "$LOG" && break
-  kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon exited during start-up"
-  sleep 0.1
-done
-grep -q "started:" "$LOG" || fail "mfp-daemon did not start within 30 s"
+mfp_start_logger "$WORK/replies.lcmlog"
+mfp_start_daemon "$LOG" --config "$CONFIG" --lcm-url "$URL"
 
 lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
 
 mfp_wait_for_replies "$SCENARIO" "$CONFIG"
 
-kill -TERM "$DAEMON_PID"
-status=0
-wait "$DAEMON_PID" || status=$?
-DAEMON_PID=""
-[ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
-kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
+mfp_stop_daemon_and_logger
 
 "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" --config "$CONFIG" \
   || { cat "$WORK/check.txt"; fail "replies do not check"; }

@@ -34,12 +34,7 @@ lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
 mfp_wait_for_replies "$SCENARIO" "$CONFIG"
 
 # SIGTERM: a clean exit with status 0.
-kill -TERM "$DAEMON_PID"
-status=0
-wait "$DAEMON_PID" || status=$?
-DAEMON_PID=""
-[ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
-kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
+mfp_stop_daemon_and_logger
 
 # The final check, on the complete log.
 "$BUILD_DIR/tools/mfp-check-replies" "$WORK/replies.lcmlog" --scenario "$SCENARIO" --config "$CONFIG" \

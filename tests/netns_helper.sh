@@ -101,3 +101,12 @@ mfp_wait_for_replies() {  # SCENARIO CONFIG: until mfp-check-replies stops answe
   done
   sleep 1
 }
+
+mfp_stop_daemon_and_logger() {  # SIGTERM must end the daemon with status 0; the logger is closed
+  kill -TERM "$DAEMON_PID"
+  local status=0
+  wait "$DAEMON_PID" || status=$?
+  DAEMON_PID=""
+  [ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
+  kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
+}
