@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "planner/formulation/miqp_formulation.h"
+#include "planner/planning/exact_window.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
 #include "tests/test_scenarios.h"
@@ -64,6 +65,44 @@ TEST(AnytimePlan, NodeCappedPlannerStillReturnsAPlan) {
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status);
   EXPECT_GT(plan.gap, 0.0);  // a root alone proves nothing on this instance
   EXPECT_GT(plan.footsteps.size(), static_cast<size_t>(c.robot.num_legs()));
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+TEST(AnytimePlan, AWindowWithoutTimeToReplanKeepsItsOwnChoicesCompleted) {
+  // A window the polisher cannot make exact is planned again within the chords' error;
+  // when the window's search took all the time, that search gets none. The window's
+  // own integer choices, completed on the shrunk MIQP (one QP), must still make a plan
+  // (before, the window ended with none: LittleDog 24 of Table I, no_solution).
+  const Course c = LittleDog24();
+  const PlannerOptions& options = c.scenario.options;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  BranchAndBoundOptions bnb = options.branch_and_bound;
+  bnb.max_nodes = 1;  // the root and its roundings: a plan of the window
+  const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) { return formulation.RoundAlongPlan(relaxed); };
+  const BranchAndBoundResult window = SolveBranchAndBound(formulation.miqp(), solvers.workers(), bnb, rounding);
+  ASSERT_GT(window.x.size(), 0);
+  bnb.deadline = Deadline::After(0.0);  // nothing left for the re-plan's search
+  PolishOptions no_polish;
+  no_polish.enabled = false;
+  const ExactReplan replan = ReplanWithinChordError(formulation, solvers.workers(), bnb, no_polish, &window.x);
+  ASSERT_TRUE(replan.planned) << replan.note;
+  EXPECT_EQ(replan.result.nodes, 0);
+  const Miqp& shrunk = replan.formulation->miqp();
+  EXPECT_LE(shrunk.MaxViolation(replan.result.x), bnb.feasibility_tolerance);
+  EXPECT_EQ(shrunk.MaxIntegrality(replan.result.x), 0.0);
+  // The same choices: every step stands on the same region.
+  const std::vector<Footstep> before = formulation.ExtractFootsteps(window.x);
+  const std::vector<Footstep> after = replan.formulation->ExtractFootsteps(replan.result.x);
+  ASSERT_EQ(before.size(), after.size());
+  for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(before[i].region_id, after[i].region_id) << "step " << i;
+  // Without the window's point there is nothing to complete: no plan.
+  EXPECT_FALSE(ReplanWithinChordError(formulation, solvers.workers(), bnb, no_polish).planned);
 }
 
 }  // namespace
