@@ -94,7 +94,10 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
                            shrunk.miqp().var_names == formulation.miqp().var_names &&
                            shrunk.vars().region == formulation.vars().region &&
                            shrunk.vars().theta == formulation.vars().theta && shrunk.vars().trim == formulation.vars().trim;
-  if (!HasPlan(out.result.status) && out.result.status != SolveStatus::kInfeasible) {
+  // Only when the caller's time is up: with time left, a window without an exact plan is
+  // better retried by the caller (a longer look from the window before), which the
+  // completion would pre-empt with a plan that may go nowhere.
+  if (!HasPlan(out.result.status) && out.result.status != SolveStatus::kInfeasible && search.deadline.Expired()) {
     if (std::optional<Eigen::VectorXd> x =
             CompleteOnShrunk(formulation, shrunk, window_x, *solvers.front(), search.feasibility_tolerance)) {
       out.result.objective = shrunk.miqp().Objective(*x);
