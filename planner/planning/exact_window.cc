@@ -1,6 +1,13 @@
 #include "planner/planning/internal/exact_window.h"
 
+#include <cmath>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {
 
@@ -8,10 +15,48 @@ namespace {
 // Beyond the chords' error: the search's integrality and row tolerances let a solution's
 // (s, c) stray from the chord by about 1e-6 x the offset; 2e-6 m covers it.
 constexpr double kSolutionTolerance_m = 2e-6;
+
+// window_x (a point of the window's MIQP) carried over to the shrunk MIQP by variable
+// name; nullopt when an integer set to 1 has no counterpart (a region the shrunk reach
+// pruned). Variables of the shrunk MIQP without one start at 0.
+std::optional<Eigen::VectorXd> CarryOver(const Miqp& from, const Miqp& to, const Eigen::VectorXd& x) {
+  std::unordered_map<std::string, int> index;
+  for (int j = 0; j < from.num_variables(); ++j) index.emplace(from.var_names[j], j);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(to.num_variables());
+  int carried_ones = 0;
+  for (int j = 0; j < to.num_variables(); ++j) {
+    const auto it = index.find(to.var_names[j]);
+    if (it == index.end()) continue;
+    out(j) = x(it->second);
+    if (to.is_integer[j] && std::round(out(j)) == 1.0) ++carried_ones;
+  }
+  int ones = 0;
+  for (int j = 0; j < from.num_variables(); ++j) ones += from.is_integer[j] && std::round(x(j)) == 1.0 ? 1 : 0;
+  if (carried_ones != ones) return std::nullopt;
+  return out;
+}
+
+// The window's assignment completed on the shrunk MIQP, under no deadline but
+// kCompletionMaxSolve_s.
+std::optional<Eigen::VectorXd> CompleteOnShrunk(const MiqpFormulation& formulation, const MiqpFormulation& shrunk,
+                                                const Eigen::VectorXd* window_x, RelaxationSolver& solver,
+                                                double feasibility_tolerance) {
+  if (window_x == nullptr || window_x->size() != formulation.miqp().num_variables()) return std::nullopt;
+  const std::optional<Eigen::VectorXd> assignment = CarryOver(formulation.miqp(), shrunk.miqp(), *window_x);
+  if (!assignment) return std::nullopt;
+  RelaxationRequest request;
+  request.warm_start = *assignment;
+  FixedAssignmentOptions options;
+  options.feasibility_tolerance = feasibility_tolerance;
+  options.max_solve_s = kCompletionMaxSolve_s;
+  return BestFixedAssignment(shrunk.miqp(), {*assignment}, solver, request, options);
+}
+
 }  // namespace
 
 ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
-                                   const BranchAndBoundOptions& bnb, const PolishOptions& polish) {
+                                   const BranchAndBoundOptions& bnb, const PolishOptions& polish,
+                                   const Eigen::VectorXd* window_x) {
   ExactReplan out;
   out.shrink_m = ChordErrorBound(formulation) + kSolutionTolerance_m;
   out.robot = std::make_unique<RobotModel>(*formulation.problem().robot);
@@ -36,24 +81,38 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
   const MiqpFormulation& shrunk = *out.formulation;
   const RoundingHeuristic rounding = [&shrunk](const Eigen::VectorXd& relaxed) { return shrunk.RoundAlongPlan(relaxed); };
   BranchAndBoundOptions search = bnb;
+  search.root_heuristic = nullptr;  // a window's root heuristic belongs to its own formulation
   if (search.equivalent_point) {  // the window's snap belongs to its own formulation
     search.equivalent_point = [&shrunk](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x) {
       return shrunk.SnapYawToOneSegment(lower, upper, x);
     };
   }
   out.result = SolveBranchAndBound(shrunk.miqp(), solvers, search, rounding);
-  if (!HasPlan(out.result.status)) {
-    note << ": " << ToString(out.result.status) << " after " << out.result.nodes << " nodes";
-    out.note = note.str();
-    return out;
-  }
-  out.planned = true;
   // Polished against the true boxes when the two MIQPs share their variables (the
   // shrunk solution is then a point of the true one), else against the shrunk boxes.
   const bool same_layout = shrunk.miqp().num_variables() == formulation.miqp().num_variables() &&
                            shrunk.miqp().var_names == formulation.miqp().var_names &&
                            shrunk.vars().region == formulation.vars().region &&
                            shrunk.vars().theta == formulation.vars().theta && shrunk.vars().trim == formulation.vars().trim;
+  // Only when the caller's time is up: with time left, a window without an exact plan is
+  // better retried by the caller (a longer look from the window before), which the
+  // completion would pre-empt with a plan that may go nowhere.
+  if (!HasPlan(out.result.status) && out.result.status != SolveStatus::kInfeasible && search.deadline.Expired()) {
+    if (std::optional<Eigen::VectorXd> x =
+            CompleteOnShrunk(formulation, shrunk, window_x, *solvers.front(), search.feasibility_tolerance)) {
+      out.result.objective = shrunk.miqp().Objective(*x);
+      out.result.x = std::move(*x);
+      out.result.status = SolveStatus::kFeasible;
+      out.result.gap = kInfinity;
+      note << ": the window's own choices completed";
+    }
+  }
+  if (!HasPlan(out.result.status)) {
+    note << ": " << ToString(out.result.status) << " after " << out.result.nodes << " nodes";
+    out.note = note.str();
+    return out;
+  }
+  out.planned = true;
   out.polished = PolishWindow(same_layout ? formulation : shrunk, out.result.x, polish);
   if (!out.polished.report.exact) {
     // The shrunk MIQP's own footsteps meet the true boxes by construction.

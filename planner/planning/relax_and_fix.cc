@@ -111,6 +111,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     // searches stopped at a poor incumbent (docs/measurements.md).
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
+    bnb.root_heuristic = nullptr;  // a stage is itself part of the root heuristic
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;

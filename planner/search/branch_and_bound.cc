@@ -152,6 +152,7 @@ class Search {
     if (is_root) {
       result.bound = result.root_bound = bound;
       TryRounding(&state_, branching_, rounding_, rel.x);
+      RunRootHeuristic(&state_, rel.x);
     }
     if (state_.HasIncumbent() && !state_.Improves(bound)) {
       state_.NoteGapPrune(bound);

@@ -61,6 +61,13 @@ struct BranchAndBoundOptions {
   int strong_branching_lookahead = 4;   // kReliability: stop after this many trials without a better score
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
+  // Optional slow primal heuristic (relax-and-fix's seed), run once at the root with the
+  // root relaxation point when rounding_heuristic is on, and only after the root's
+  // roundings have been completed: the search holds their plan before this starts, so a
+  // heuristic that takes the whole time limit cannot leave the search without a plan.
+  // Returns assignments (a plan's own, typically); each is offered as it is and then
+  // completed by its fixed-integer QP while time is left.
+  std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> root_heuristic;
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
   // Reduced-cost fixing: when the relaxation solver certifies how fast the objective
   // grows away from a bound (RelaxationResult::cost_floor and rates), integer values

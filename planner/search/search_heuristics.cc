@@ -26,19 +26,12 @@ Eigen::VectorXd SimpleRounding(const Miqp& p, const Branching& branching, const 
   return simple;
 }
 
-}  // namespace
-
-void TryRounding(SearchState* state, const Branching& branching, const RoundingHeuristic& proposals_of,
-                 const Eigen::VectorXd& x) {
-  if (!state->options().rounding_heuristic) return;
+// Each proposal offered as it is (a heuristic's own plan is kept even when no time is
+// left for its QP), then completed: its integers fixed and the QP left solved, a round
+// of workers at a time, warm-started from the relaxation point x.
+void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& proposals, const Eigen::VectorXd& x) {
   const Miqp& p = state->problem();
-  std::vector<Eigen::VectorXd> proposals;
-  if (proposals_of) proposals = proposals_of(x);
-  proposals.push_back(SimpleRounding(p, branching, x));
-  // A proposal may already be a plan (a heuristic's own, such as relax-and-fix's): it
-  // is kept even when no time is left for its QP.
   for (const Eigen::VectorXd& proposal : proposals) state->OfferIncumbent(proposal);
-  // Each proposal is a QP with the integers fixed: solved a round of workers at a time.
   const int workers = state->workers();
   for (size_t first = 0; first < proposals.size(); first += workers) {
     if (state->Active().Expired()) return;
@@ -53,6 +46,23 @@ void TryRounding(SearchState* state, const Branching& branching, const RoundingH
       if (rel.status == RelaxationStatus::kSolved) state->OfferIncumbent(std::move(rel.x));
     }
   }
+}
+
+}  // namespace
+
+void TryRounding(SearchState* state, const Branching& branching, const RoundingHeuristic& proposals_of,
+                 const Eigen::VectorXd& x) {
+  if (!state->options().rounding_heuristic) return;
+  std::vector<Eigen::VectorXd> proposals;
+  if (proposals_of) proposals = proposals_of(x);
+  proposals.push_back(SimpleRounding(state->problem(), branching, x));
+  OfferAndComplete(state, proposals, x);
+}
+
+void RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
+  const BranchAndBoundOptions& options = state->options();
+  if (!options.rounding_heuristic || !options.root_heuristic) return;
+  OfferAndComplete(state, options.root_heuristic(x), x);
 }
 
 }  // namespace mfp

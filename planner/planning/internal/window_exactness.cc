@@ -27,7 +27,7 @@ ExactWindow MakeWindowExact(const PlanContext& context, const MiqpFormulation& f
   BranchAndBoundOptions bnb = std::move(search.bnb);
   bnb.deadline = context.request.deadline.Within(context.TimeLeftSeconds());
   out.replan_tried = true;
-  out.replan = ReplanWithinChordError(formulation, context.solvers, bnb, polish);
+  out.replan = ReplanWithinChordError(formulation, context.solvers, bnb, polish, &out.result.x);
   out.note = out.replan.note;
   if (!out.replan.planned) return out;
   const double polish_s = out.polished.report.time_s;

@@ -124,13 +124,18 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(relaxed);
     proposals.insert(proposals.end(), seeds.proposals.begin(), seeds.proposals.end());
     seeds.proposals.clear();  // offered once, at the root
-    if (!seeded) {  // the root: one relax-and-fix plan (the workers are idle during rounding)
-      seeded = true;
-      const PlanClock::time_point rf_start = PlanClock::now();
-      if (std::optional<Eigen::VectorXd> x = RelaxAndFixSeed(context, formulation, bnb)) proposals.push_back(*x);
-      record->heuristic_s = SecondsSince(rf_start);
-    }
     return proposals;
+  };
+  // The root, once its roundings are completed: one relax-and-fix plan (the workers are
+  // idle meanwhile).
+  bnb.root_heuristic = [&](const Eigen::VectorXd&) {
+    std::vector<Eigen::VectorXd> plans;
+    if (seeded) return plans;
+    seeded = true;
+    const PlanClock::time_point rf_start = PlanClock::now();
+    if (std::optional<Eigen::VectorXd> x = RelaxAndFixSeed(context, formulation, bnb)) plans.push_back(std::move(*x));
+    record->heuristic_s = SecondsSince(rf_start);
+    return plans;
   };
   const double window_time_limit_s = bnb.time_limit_s;
   if (bounded_replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
@@ -163,6 +168,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   record->status = result.status;
   record->nodes = result.nodes;
   record->relaxations = result.relaxations;
+  bnb.root_heuristic = nullptr;  // it refers to this call's locals
   return WindowSearch{std::move(result), std::move(bnb)};
 }
 

@@ -15,4 +15,8 @@ namespace mfp {
 void TryRounding(SearchState* state, const Branching& branching, const RoundingHeuristic& proposals,
                  const Eigen::VectorXd& x);
 
+// BranchAndBoundOptions::root_heuristic on the root relaxation point x, its proposals
+// offered and completed as TryRounding's. Nothing when either option is off.
+void RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x);
+
 }  // namespace mfp
