@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "planner/formulation/miqp_formulation.h"
-#include "planner/planning/exact_window.h"
+#include "planner/planning/internal/exact_window.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
 #include "tests/test_scenarios.h"
