@@ -4,13 +4,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 
 namespace mfp {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
+// A* expansions (and raster regions) between two deadline checks: a clock read per few
+// hundred cheap steps.
+constexpr int kChecksEvery = 256;
 
 // Cells of a raster: 2 where a region holds the point, 1 where one lies within `radius`
 // (a foot's reference box meets support there), 0 elsewhere.
@@ -27,8 +30,10 @@ struct SupportRaster {
   }
 };
 
-SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& lo,
-                                const Eigen::Vector2d& hi, double res, double radius) {
+// nullopt when the deadline passes first.
+std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& lo,
+                                               const Eigen::Vector2d& hi, double res, double radius,
+                                               const Deadline& deadline) {
   SupportRaster s;
   s.origin = lo;
   s.res = res;
@@ -36,6 +41,7 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
   s.ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / res)));
   s.cells.assign(static_cast<size_t>(s.nx) * s.ny, 0);
   for (const ConvexRegion& r : regions) {
+    if (deadline.Expired()) return std::nullopt;
     Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = -rlo;
     for (const Eigen::Vector3d& v : r.vertices_world_m) {
       rlo = rlo.cwiseMin(v.head<2>());
@@ -66,7 +72,7 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
 
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                            double goal_yaw_rad, const StanceRouteOptions& options) {
+                            double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute out;
   const int n = robot.num_legs();
   const int H = std::max(1, options.headings);
@@ -90,8 +96,13 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
   const int ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
   // Support within l_bnd of a foot; the raster finer than the body grid.
   const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
-  const SupportRaster support =
-      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m);
+  const std::optional<SupportRaster> raster =
+      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
+  if (!raster) {
+    out.out_of_time = true;
+    return out;
+  }
+  const SupportRaster& support = *raster;
 
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
@@ -137,7 +148,15 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
   dist[start] = 0.0;
   open.push({heuristic(si, sj), start});
   size_t reached = SIZE_MAX;
+  int until_check = kChecksEvery;
   while (!open.empty()) {
+    if (--until_check == 0) {
+      until_check = kChecksEvery;
+      if (deadline.Expired()) {
+        out.out_of_time = true;
+        return out;
+      }
+    }
     const auto [f, s] = open.top();
     open.pop();
     const int h = static_cast<int>(s % H);

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "planner/base/deadline.h"
 #include "planner/robot/robot_model.h"
 #include "terrain/convex_region.h"
 
@@ -33,14 +34,18 @@ struct StanceRouteOptions {
 
 struct StanceRoute {
   bool found = false;
+  bool out_of_time = false;  // the deadline passed (or its stop flag was set) first
   std::vector<Eigen::Vector2d> route;  // body positions from start to goal [m, world]
   double length_m = 0.0;
 };
 
 // start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
-// support around them (the start stance may be off nominal).
+// support around them (the start stance may be off nominal). The deadline is checked
+// while the support raster is built and every few hundred A* expansions: past it the
+// search ends with out_of_time set and no route.
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+                            double goal_yaw_rad, const StanceRouteOptions& options = {},
+                            const Deadline& deadline = {});
 
 }  // namespace mfp
