@@ -581,6 +581,7 @@ int main(int argc, char** argv) {
   std::string soak_map = "both";
   int field_side = 15;
   double field_pitch_m = 0.27;
+  double field_goal_x_m = 1.485;
   std::string stones = "config/scenarios/hexapod_stepping_stones_90.yaml";
   int burst = 0;
   app.add_option("--config", config, "daemon YAML")->capture_default_str();
@@ -601,6 +602,7 @@ int main(int argc, char** argv) {
   app.add_option("--soak-field-side", field_side, "stones per side of the soak's field")->capture_default_str();
   app.add_option("--soak-field-pitch", field_pitch_m, "between the field's stone centres [m]")
       ->capture_default_str();
+  app.add_option("--soak-field-goal-x", field_goal_x_m, "the field's goal, x [m] (y and yaw 0)")->capture_default_str();
   app.add_option("--stones", stones, "the stepping stones scenario of the soak")->capture_default_str();
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
   app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
@@ -624,7 +626,7 @@ int main(int argc, char** argv) {
         char name[160];
         std::snprintf(name, sizeof name, "a %.1f m x %.1f m field of %d x %d stones less the pad (seed 19)", extent_m,
                       extent_m, field_side / 2 * 2 + 1, field_side / 2 * 2 + 1);
-        mfp::SoakCourse course{name, mfp::StoneField(19, field_side, field_pitch_m), 5.5 * field_pitch_m, 0.0, 0.0};
+        mfp::SoakCourse course{name, mfp::StoneField(19, field_side, field_pitch_m), field_goal_x_m, 0.0, 0.0};
         mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
     }
