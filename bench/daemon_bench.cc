@@ -17,8 +17,10 @@
 //     --soak-time-limit. It patrols: at the goal (or stuck) it turns back for its start
 //     spot; lost (invalid start, infeasible, no route) it starts again. Per minute:
 //     replies, p50/p90/p99/max reply latency (publish to receipt, every reply), drops,
-//     supersessions, time-limit endings, VmRSS; then the planner's own solve times, nodes
-//     and proven gaps. --soak-cold plans every request from scratch.
+//     supersessions, time-limit endings, requests unanswered or answered more than once,
+//     VmRSS and threads; then the planner's own solve times, nodes and proven gaps.
+//     --soak-cold plans every request from scratch; --soak-field-side 25
+//     --soak-field-pitch 0.17 makes the field 500+ regions.
 //  4. Burst (--burst N, 2000): N requests published at once; every one answered once, or
 //     counted.
 // Prints a table; timing is never a pass/fail criterion.
@@ -59,19 +61,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double RssMiB() {
+// A number of /proc/self/status ("VmRSS:", "Threads:"); -1 when absent.
+double ProcStatus(const std::string& field) {
   std::ifstream in("/proc/self/status");
   std::string key;
   while (in >> key) {
-    if (key == "VmRSS:") {
-      double kib = 0;
-      in >> kib;
-      return kib / 1024.0;
+    if (key == field) {
+      double value = 0;
+      in >> value;
+      return value;
     }
     std::getline(in, key);
   }
   return -1;
 }
+
+double RssMiB() { return ProcStatus("VmRSS:") / 1024.0; }
+int ThreadCount() { return static_cast<int>(ProcStatus("Threads:")); }
 
 int64_t NowUs() {
   return std::chrono::duration_cast<std::chrono::microseconds>(Clock::now().time_since_epoch()).count();
@@ -252,7 +258,8 @@ int RunClassic(const std::shared_ptr<const DaemonSetup>& setup, int latency_requ
 // a 0.27 m grid (the stepping stones' spacing) over 4.1 m x 4.1 m, tops within +-3 cm:
 // every stone one of the extractor's regions (it keeps 256 at most). The goal, 1.485 m
 // ahead, puts every foot of the nominal stance on a stone.
-TerrainDescription StoneField(uint32_t seed) {
+// side x side stones `pitch_m` apart (each 0.78 pitch wide) about a start pad.
+TerrainDescription StoneField(uint32_t seed, int side, double pitch_m) {
   TerrainDescription terrain;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> height(-0.03, 0.03);
@@ -261,16 +268,17 @@ TerrainDescription StoneField(uint32_t seed) {
   pad.center_world_m = Eigen::Vector3d(0, 0, -0.05);
   pad.size_m = Eigen::Vector3d(1.2, 1.2, 0.1);
   terrain.boxes.push_back(pad);
-  for (int i = -7; i <= 7; ++i) {
-    for (int j = -7; j <= 7; ++j) {
-      const double x = 0.27 * i, y = 0.27 * j;
+  const int half = side / 2;
+  for (int i = -half; i <= half; ++i) {
+    for (int j = -half; j <= half; ++j) {
+      const double x = pitch_m * i, y = pitch_m * j;
       // Not on the pad: a stone overlapping its edge (the ring at 0.54 m) cuts the pad's
       // region where the hind feet of the start stance stand.
       if (std::abs(x) < 0.75 && std::abs(y) < 0.75) continue;
       TerrainBox stone;
       stone.name = "stone";
       stone.center_world_m = Eigen::Vector3d(x, y, height(rng) - 0.05);
-      stone.size_m = Eigen::Vector3d(0.21, 0.21, 0.1);
+      stone.size_m = Eigen::Vector3d(0.78 * pitch_m, 0.78 * pitch_m, 0.1);
       terrain.boxes.push_back(stone);
     }
   }
@@ -396,9 +404,9 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               "%d new footsteps per request, time limit %.2f s, a gait cycle walked every %.2f s\n",
               course.name.c_str(), regions.size(), map.data.size(), robot.name.c_str(), rate_hz,
               minutes, 2 * n, time_limit_s, cycle_s);
-  std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s\n", "minute", "sent", "plans",
+  std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s %9s %8s\n", "minute", "sent", "plans",
               "p50 ms", "p90 ms", "p99 ms", "max ms", "dropped", "supersed.", "time lim.",
-              "unanswer.", "VmRSS MiB");
+              "unanswer.", "answ.>1", "VmRSS MiB", "threads");
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
   const int total = static_cast<int>(std::lround(minutes * 60.0 * rate_hz));
@@ -407,11 +415,12 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   auto next = Clock::now();
   int64_t first_of_minute = 1;
   std::vector<double> all_latency_ms, all_solve_ms, all_nodes, all_gaps;
+  int most_threads = ThreadCount();  // sampled at every request and minute row
   std::map<std::string, int> all_statuses;
   auto report = [&](int64_t first, int64_t last, const std::string& label) {
     std::vector<double> latency_ms;
     std::map<int, int> by_status;
-    int unanswered = 0, planned = 0;
+    int unanswered = 0, planned = 0, answered_twice = 0;
     std::lock_guard<std::mutex> lock(mutex);
     for (int64_t id = first; id <= last; ++id) {
       const auto found = answers.find(id);
@@ -419,6 +428,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
         ++unanswered;
         continue;
       }
+      if (found->second.size() > 1) ++answered_twice;
       for (const Answer& a : found->second) {
         latency_ms.push_back(1e-3 * static_cast<double>(a.latency_us));
         all_latency_ms.push_back(latency_ms.back());
@@ -432,11 +442,12 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
         }
       }
     }
-    std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9.1f\n", label.c_str(),
+    std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9d %9.1f %8d\n", label.c_str(),
                 static_cast<long long>(last - first + 1), planned, Percentile(latency_ms, 0.5),
                 Percentile(latency_ms, 0.9), Percentile(latency_ms, 0.99), Percentile(latency_ms, 1.0),
                 by_status[plan_t::STATUS_DROPPED], by_status[plan_t::STATUS_SUPERSEDED],
-                by_status[plan_t::STATUS_TIME_LIMIT], unanswered, RssMiB());
+                by_status[plan_t::STATUS_TIME_LIMIT], unanswered, answered_twice, RssMiB(), ThreadCount());
+    most_threads = std::max(most_threads, ThreadCount());
     std::fflush(stdout);
   };
   for (int i = 1; i <= total; ++i) {
@@ -460,6 +471,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     request.time_limit_s = time_limit_s;
     const auto bytes = Encode(request);
     transport.Publish(kPlanRequestChannel, bytes.data(), bytes.size());
+    most_threads = std::max(most_threads, ThreadCount());
     if (i % per_minute == 0 || i == total) {
       // The minute's last requests get their time limit (and a little) to be answered.
       std::this_thread::sleep_for(std::chrono::duration<double>(time_limit_s + 0.2));
@@ -485,13 +497,15 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               "p90 %.2f %%, p99 %.2f %%",
               Percentile(all_gaps, 0.5), Percentile(all_gaps, 0.9), Percentile(all_gaps, 0.99));
   std::printf("\n   daemon counters: requests %lld, replies %lld, superseded %lld, dropped %lld, expired %lld, "
-              "time-limit endings %lld, abandoned solves %lld, intake overflows %lld, publish failures %lld; "
+              "time-limit endings %lld, abandoned solves %lld, intake overflows %lld, publish failures %lld, "
+              "most threads %d (limits.max_abandoned_plans %d); "
               "gait cycles walked %d, furthest %.2f m from the start, goals reached %d, turned back stuck %d, course restarts %d\n",
               static_cast<long long>(c.requests), static_cast<long long>(c.plans),
               static_cast<long long>(c.superseded_requests), static_cast<long long>(c.dropped_requests),
               static_cast<long long>(c.expired_requests), static_cast<long long>(c.time_limit_endings),
               static_cast<long long>(c.abandoned_solves), static_cast<long long>(c.inbox_overflows),
-              static_cast<long long>(c.publish_failures), cycles_walked, furthest_m, arrivals, turns, resets);
+              static_cast<long long>(c.publish_failures), most_threads, setup->config.limits.max_abandoned_plans,
+              cycles_walked, furthest_m, arrivals, turns, resets);
   if (!first_refusal.empty()) std::printf("   first reply without a plan: %s\n", first_refusal.c_str());
   std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
               "at each minute's end so they are all in)\n", time_limit_s + 0.2);
@@ -565,6 +579,9 @@ int main(int argc, char** argv) {
   double rate_hz = 10.0, time_limit_s = 2.0;
   double soak_minutes = 0, soak_rate_hz = 10.0, soak_time_limit_s = 0.5, soak_cycle_s = 0.5;
   std::string soak_map = "both";
+  int field_side = 15;
+  double field_pitch_m = 0.27;
+  double field_goal_x_m = 1.485;
   std::string stones = "config/scenarios/hexapod_stepping_stones_90.yaml";
   int burst = 0;
   app.add_option("--config", config, "daemon YAML")->capture_default_str();
@@ -582,6 +599,10 @@ int main(int argc, char** argv) {
   app.add_option("--soak-map", soak_map, "stones, field or both")
       ->check(CLI::IsMember({"stones", "field", "both"}))
       ->capture_default_str();
+  app.add_option("--soak-field-side", field_side, "stones per side of the soak's field")->capture_default_str();
+  app.add_option("--soak-field-pitch", field_pitch_m, "between the field's stone centres [m]")
+      ->capture_default_str();
+  app.add_option("--soak-field-goal-x", field_goal_x_m, "the field's goal, x [m] (y and yaw 0)")->capture_default_str();
   app.add_option("--stones", stones, "the stepping stones scenario of the soak")->capture_default_str();
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
   app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
@@ -601,7 +622,11 @@ int main(int argc, char** argv) {
         mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
       if (soak_map != "stones") {
-        mfp::SoakCourse course{"a 4.1 m x 4.1 m field of 200 stones (seed 19)", mfp::StoneField(19), 1.485, 0.0, 0.0};
+        const double extent_m = field_pitch_m * (field_side / 2 * 2 + 1);
+        char name[160];
+        std::snprintf(name, sizeof name, "a %.1f m x %.1f m field of %d x %d stones less the pad (seed 19)", extent_m,
+                      extent_m, field_side / 2 * 2 + 1, field_side / 2 * 2 + 1);
+        mfp::SoakCourse course{name, mfp::StoneField(19, field_side, field_pitch_m), field_goal_x_m, 0.0, 0.0};
         mfp::Soak(setup, course, soak_minutes, soak_rate_hz, soak_time_limit_s, soak_cycle_s);
       }
     }

@@ -58,6 +58,9 @@ void AddLimitKeys(OptionTable<C>* t) {
                    "a map without regions replaces a map with regions"));
   t->push_back(Opt("limits.warm_start_plans", Limit(&L::warm_start_plans), 0, 100,
                    "a robot's request starts from this many of the plans last sent to it (0: none)"));
+  t->push_back(Opt("limits.max_abandoned_plans", Limit(&L::max_abandoned_plans), 1, 64,
+                   "plans answered at their deadline and still stopping, at most; beyond it a request is "
+                   "answered dropped (no new planning thread)").Advanced());
 }
 
 const OptionTable<C>& DaemonOptionTable() {

@@ -41,6 +41,10 @@ struct DaemonLimits {
   // walks gets its answer from the plan it is walking on (the robot may follow an older
   // reply than the newest sent).
   int warm_start_plans = 4;
+  // Plans answered at their deadline but still stopping (their stop flag is set; they
+  // end at their next check) may number this many at most: a request that finds that
+  // many is answered dropped without a thread, so the daemon's threads stay bounded.
+  int max_abandoned_plans = 2;
 };
 
 struct DaemonConfig {

@@ -4,6 +4,8 @@
 // daemon_status.cc).
 #include "daemon/daemon_core.h"
 
+#include <algorithm>
+
 #include "base/check.h"
 #include "base/format.h"
 #include "lcmtypes/message_guard.h"
@@ -186,7 +188,16 @@ void DaemonCore::Stop() {
 
 DaemonCounters DaemonCore::counters() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return counters_;
+  DaemonCounters c = counters_;
+  // Those still running now, less the one being waited for.
+  c.abandoned_plans_running = std::max(0, plan_tasks_->load() - (planning_ ? 1 : 0));
+  return c;
+}
+
+void DaemonCore::SetTaskLauncher(TaskLauncher launcher) {
+  MFP_CHECK(launcher);
+  std::lock_guard<std::mutex> lock(mutex_);
+  launcher_ = std::move(launcher);
 }
 
 size_t DaemonCore::queue_length() const {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "daemon/abandonable_task.h"
 #include "daemon/daemon_config.h"
 #include "daemon/internal/request_queue.h"
 #include "geometry/convex_region.h"
@@ -71,6 +72,8 @@ struct DaemonCounters {
   int64_t empty_maps = 0;
   int64_t publish_failures = 0;
   double last_solve_time_s = -1;  // [s]
+  // Not in status_t: plans abandoned at their deadline whose threads still run (a gauge).
+  int64_t abandoned_plans_running = 0;
 };
 
 class DaemonCore {
@@ -124,6 +127,10 @@ class DaemonCore {
   // waiting threads.
   void Stop();
 
+  // How plan and map tasks get their threads (default: a detached std::thread each).
+  // For tests (a launcher that fails) and embedders; set before the first request.
+  void SetTaskLauncher(TaskLauncher launcher);
+
   // Kernel UDP receive errors to show in status_t (-1: unknown). Optional.
   void SetUdpErrorSource(std::function<int64_t()> source);
 
@@ -159,6 +166,9 @@ class DaemonCore {
   // Planning (daemon_planning.cc).
   std::optional<PlanJob> TakeNextJob();
   Plan RunPlanner(PlanJob& job, const RobotModel& robot, bool* abandoned);
+  // The reply to a job that must not be planned (deadline passed in the queue, robot
+  // gone, too many abandoned plans still stopping); nullopt when it may be planned.
+  std::optional<Plan> RefuseJob(const PlanJob& job);
   Plan AnswerAtDeadline(const PlanJob& job, Plan so_far);
   void RecordOutcome(const PlanJob& job, const Plan& plan, bool abandoned);
 
@@ -193,6 +203,10 @@ class DaemonCore {
   std::condition_variable received_available_;
   std::condition_variable map_available_;
   std::atomic<bool> stopped_{false};
+  TaskLauncher launcher_ = LaunchDetachedThread;
+  // Plan tasks whose planner has not returned: the one being waited for, if any, and the
+  // abandoned ones still stopping.
+  std::shared_ptr<std::atomic<int>> plan_tasks_ = std::make_shared<std::atomic<int>>(0);
   bool planning_ = false;
   bool extracting_ = false;
   std::deque<Received> received_;        // requests received, not yet decoded

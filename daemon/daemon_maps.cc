@@ -4,7 +4,7 @@
 
 #include "base/bounded_file.h"
 #include "base/check.h"
-#include "daemon/internal/abandonable_task.h"
+#include "daemon/abandonable_task.h"
 #include "daemon/message_conversion.h"
 #include "lcmtypes/message_guard.h"
 #include "mfp/terrain_map_t.hpp"
@@ -36,6 +36,8 @@ void DaemonCore::HandleMap(const RawMessage& message, bool abandon_on_stop) {
     }
     Log(std::string("rejected map: ") + e.what());
   }
+  // Anything else (no thread for the extraction: std::system_error) is counted by the
+  // caller as an internal error; the current map stays.
 }
 
 void DaemonCore::LoadMapFile(const std::string& path) {
@@ -49,10 +51,12 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
                            const std::string& frame, int64_t map_utime, const std::string& what,
                            bool abandon_on_stop) {
   MapFunction map_function;
+  TaskLauncher launcher;
   bool accept_empty = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     map_function = map_function_;
+    launcher = launcher_;
     accept_empty = setup_->config.limits.accept_empty_maps;
     extracting_ = true;
   }
@@ -63,7 +67,8 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
       // On a thread of its own that a stop stops waiting for (the extractor has no stop
       // flag of its own yet).
       AbandonableTask<std::vector<ConvexRegion>> task(
-          [map_function, bytes, format, what] { return map_function(bytes, format, what); });
+          [map_function, bytes, format, what] { return map_function(bytes, format, what); }, nullptr,
+          launcher);
       extracted = task.Wait(std::chrono::steady_clock::time_point::max(), stopped_);
     } else {
       extracted = map_function(bytes, format, what);

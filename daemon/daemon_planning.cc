@@ -7,7 +7,7 @@
 
 #include "base/check.h"
 #include "base/deadline.h"
-#include "daemon/internal/abandonable_task.h"
+#include "daemon/abandonable_task.h"
 #include "daemon/message_conversion.h"
 
 namespace mfp {
@@ -69,17 +69,23 @@ Plan DaemonCore::RunPlanner(PlanJob& job, const RobotModel& robot, bool* abandon
     std::lock_guard<std::mutex> lock(so_far->mutex);
     so_far->plan = p;
   };
-  // The task owns what it reads (setup and regions by shared pointer), so a plan left
-  // running after its deadline or a stop touches nothing of the core's.
-  AbandonableTask<Plan> task([plan_function = plan_function_, setup = job.setup, regions = job.regions,
-                              robot = &robot, request, cancel] {
-    return plan_function(*robot, *regions, request, setup->config.planner);
-  });
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(remaining_s));
+  TaskLauncher launcher;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    launcher = launcher_;
+  }
   Plan plan;
   try {
+    // The task owns what it reads (setup and regions by shared pointer), so a plan left
+    // running after its deadline or a stop touches nothing of the core's. No thread
+    // (std::system_error) is an internal_error reply below.
+    AbandonableTask<Plan> task(
+        [plan_function = plan_function_, setup = job.setup, regions = job.regions, robot = &robot, request,
+         cancel] { return plan_function(*robot, *regions, request, setup->config.planner); },
+        plan_tasks_, launcher);
     std::optional<Plan> result = task.Wait(deadline, stopped_);
     if (result) return std::move(*result);
     cancel->store(true);
@@ -139,26 +145,40 @@ void DaemonCore::RecordOutcome(const PlanJob& job, const Plan& plan, bool abando
   }
 }
 
+std::optional<Plan> DaemonCore::RefuseJob(const PlanJob& job) {
+  Plan plan;
+  const DaemonLimits& limits = job.setup->config.limits;
+  const int abandoned_running = plan_tasks_->load();  // none is being waited for now
+  if (job.limit_s - job.waited_s <= limits.reply_margin_s) {
+    plan.status = SolveStatus::kTimeLimit;
+    plan.message = "deadline passed in the queue: waited " + Seconds(job.waited_s) + " s of its " +
+                   Seconds(job.limit_s) + " s time limit";
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.expired_requests;
+  } else if (job.setup->robots.count(job.queued.robot_name) == 0) {
+    // The robot went away with a config reload after the request was queued.
+    plan.status = SolveStatus::kInvalidRequest;
+    plan.message = "robot: '" + job.queued.robot_name + "' is no longer configured";
+  } else if (abandoned_running >= limits.max_abandoned_plans) {
+    // Planning now could leave one more abandoned plan than allowed.
+    plan.status = SolveStatus::kDropped;
+    plan.message = "dropped: " + std::to_string(abandoned_running) +
+                   " plans answered at their deadline are still stopping (limits.max_abandoned_plans: " +
+                   std::to_string(limits.max_abandoned_plans) + "); no new planning thread until one ends";
+  } else {
+    return std::nullopt;
+  }
+  return plan;
+}
+
 bool DaemonCore::PlanNext() {
   std::optional<PlanJob> job = TakeNextJob();
   if (!job) return false;
   const QueuedRequest& next = job->queued;
-  const auto robot = job->setup->robots.find(next.robot_name);
-  Plan plan;
   bool abandoned = false;
-  if (job->limit_s - job->waited_s <= job->setup->config.limits.reply_margin_s) {
-    plan.status = SolveStatus::kTimeLimit;
-    plan.message = "deadline passed in the queue: waited " + Seconds(job->waited_s) + " s of its " +
-                   Seconds(job->limit_s) + " s time limit";
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++counters_.expired_requests;
-  } else if (robot == job->setup->robots.end()) {
-    // The robot went away with a config reload after the request was queued.
-    plan.status = SolveStatus::kInvalidRequest;
-    plan.message = "robot: '" + next.robot_name + "' is no longer configured";
-  } else {
-    plan = RunPlanner(*job, robot->second, &abandoned);
-  }
+  std::optional<Plan> refused = RefuseJob(*job);
+  const Plan plan = refused ? std::move(*refused)
+                            : RunPlanner(*job, job->setup->robots.at(next.robot_name), &abandoned);
   RecordOutcome(*job, plan, abandoned);
   Log("request " + std::to_string(next.request_id) + " planned: " + ToString(plan.status) + ", " +
       std::to_string(plan.footsteps.size()) + " footsteps, " + Seconds(plan.solve_time_s) + " s" +

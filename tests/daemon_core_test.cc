@@ -14,6 +14,7 @@
 #include <map>
 #include <mutex>
 #include <random>
+#include <system_error>
 #include <thread>
 
 #include "base/check.h"
@@ -528,6 +529,76 @@ TEST_F(DaemonCoreTest, StopDuringAPlanAnswersItAndEveryQueuedRequest) {
   for (const plan_t& r : replies) EXPECT_EQ(r.status, +plan_t::STATUS_DROPPED) << r.message;
 }
 
+// A planner that ignores its time limit and ends only some time after its stop flag is
+// set (a solver between checks), counting how many of it run at once.
+struct StubbornPlanner {
+  std::atomic<int> running{0};
+  std::atomic<int> most{0};
+  std::chrono::milliseconds wind_down{300};
+  Plan operator()(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
+                  const PlannerOptions& options) {
+    const int now = ++running;
+    for (int seen = most.load(); now > seen && !most.compare_exchange_weak(seen, now);) {
+    }
+    while (!request.deadline.Stopped()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    std::this_thread::sleep_for(wind_down);
+    --running;
+    return FakePlan(robot, regions, request, options);
+  }
+};
+
+TEST_F(DaemonCoreTest, AbandonedPlansAreBoundedAndEveryRequestIsAnsweredOnce) {
+  auto planner = std::make_shared<StubbornPlanner>();  // outlives the abandoned plans
+  Make(4, [planner](const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
+                    const PlannerOptions& options) { return (*planner)(robot, regions, request, options); });
+  SendMap("flat");
+  constexpr int kRequests = 30;
+  for (int id = 1; id <= kRequests; ++id) {
+    plan_request_t request = Request(Hexapod(), id);
+    request.time_limit_s = 0.05;
+    Send(request);
+    ASSERT_TRUE(core_->PlanNext());
+    EXPECT_LE(core_->counters().abandoned_plans_running, setup_->config.limits.max_abandoned_plans);
+  }
+  EXPECT_LE(planner->most.load(), setup_->config.limits.max_abandoned_plans);
+  std::map<int64_t, int> answers;
+  int dropped = 0;
+  for (const plan_t& r : Replies()) {
+    ++answers[r.request_id];
+    if (r.status == plan_t::STATUS_DROPPED) {
+      ++dropped;
+      EXPECT_NE(r.message.find("limits.max_abandoned_plans"), std::string::npos) << r.message;
+    } else {
+      EXPECT_EQ(r.status, +plan_t::STATUS_TIME_LIMIT) << r.message;
+    }
+  }
+  EXPECT_EQ(answers.size(), static_cast<size_t>(kRequests));
+  for (const auto& [id, count] : answers) EXPECT_EQ(count, 1) << id;
+  EXPECT_GT(dropped, 0);
+  // Each abandoned plan had its stop flag set: all end within their wind-down.
+  for (int i = 0; i < 100 && planner->running.load() > 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_EQ(planner->running.load(), 0);
+  EXPECT_EQ(core_->counters().abandoned_plans_running, 0);
+}
+
+TEST_F(DaemonCoreTest, NoThreadForAPlanIsAnInternalErrorReplyNotACrash) {
+  Make(4);
+  SendMap("flat");
+  core_->SetTaskLauncher([](std::function<void()>) {
+    throw std::system_error(std::make_error_code(std::errc::resource_unavailable_try_again), "thread");
+  });
+  const plan_t reply = PlanTheOnlyRequest(Request(Hexapod(), 1));
+  EXPECT_EQ(reply.status, +plan_t::STATUS_INTERNAL_ERROR);
+  EXPECT_NE(reply.message.find("thread"), std::string::npos) << reply.message;
+  EXPECT_EQ(core_->counters().internal_errors, 1);
+  EXPECT_EQ(core_->counters().abandoned_plans_running, 0);
+  core_->SetTaskLauncher(LaunchDetachedThread);  // threads again: planned
+  Send(Request(Hexapod(), 2));
+  ASSERT_TRUE(core_->PlanNext());
+  EXPECT_EQ(Replies().back().status, +plan_t::STATUS_OPTIMAL);
+}
+
 TEST_F(DaemonCoreTest, AMapWithoutRegionsKeepsTheWorkingOneUnlessConfigured) {
   MapFunction maps = [](const std::string& bytes, const std::string& format,
                         const std::string& what) {
@@ -643,6 +714,59 @@ TEST(DaemonRunnerTest, ABurstOf2000RequestsIsAnsweredOnceEach) {
   EXPECT_EQ(c.plans, kBurst);
   EXPECT_GT(c.superseded_requests, 0);
   EXPECT_EQ(collector.by_status[plan_t::STATUS_SUPERSEDED], c.superseded_requests);
+}
+
+// Threads of this process now (/proc/self/status), -1 when unknown.
+int ThreadCount() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("Threads:", 0) == 0) return std::stoi(line.substr(8));
+  }
+  return -1;
+}
+
+TEST(DaemonRunnerTest, ABurstAgainstSlowPlansKeepsThreadsBoundedAndAnswersOnceEach) {
+  LcmTransport transport("memq://", 4096);
+  auto setup = std::make_shared<DaemonSetup>(*TestSetup(4, /*supersede=*/false));
+  const RobotModel& hexapod = setup->robots.at("hexapod");
+  auto planner = std::make_shared<StubbornPlanner>();
+  planner->wind_down = std::chrono::milliseconds(400);
+  DaemonCore core(setup, FakeMap,
+                  [planner](const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const PlanRequest& request, const PlannerOptions& options) {
+                    return (*planner)(robot, regions, request, options);
+                  },
+                  transport, &SteadyUs);
+  core.SubscribeTo(transport);
+  ReplyCollector collector(transport);
+  DaemonRunner runner(core, transport, 0.2);
+  PublishMapAndWait(transport, core, "flat");
+  const int threads_before = ThreadCount();
+  ASSERT_GT(threads_before, 0);
+  int most_threads = threads_before;
+  constexpr int kBurst = 100;
+  for (int id = 1; id <= kBurst; ++id) {
+    plan_request_t request = Request(hexapod, id);
+    request.time_limit_s = 0.05;
+    Publish(transport, kPlanRequestChannel, Encode(request));
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));  // 100 Hz
+    most_threads = std::max(most_threads, ThreadCount());
+  }
+  for (int i = 0; i < 500 && collector.distinct() < kBurst; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    most_threads = std::max(most_threads, ThreadCount());
+  }
+  runner.Stop();
+  while (transport.HandleTimeout(50) > 0) {
+  }
+  // The plan being waited for and the abandoned ones, no more.
+  EXPECT_LE(most_threads, threads_before + setup->config.limits.max_abandoned_plans);
+  EXPECT_LE(planner->most.load(), setup->config.limits.max_abandoned_plans);
+  std::lock_guard<std::mutex> lock(collector.mutex);
+  EXPECT_EQ(collector.replies.size(), static_cast<size_t>(kBurst));
+  for (const auto& entry : collector.replies) EXPECT_EQ(entry.second, 1) << entry.first;
+  EXPECT_GT(collector.by_status[plan_t::STATUS_DROPPED], 0);
 }
 
 TEST(DaemonRunnerTest, StopDuringAMapExtractionReturnsPromptlyAndAnswersEveryRequest) {

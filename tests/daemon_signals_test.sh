@@ -7,6 +7,8 @@
 #     requests sent meanwhile were answered (no_map) without waiting for the map.
 #  3. SIGTERM while a 20 s plan runs with a request queued behind it: exit 0 within
 #     0.5 s, both requests answered (dropped).
+#  4. SIGHUP onto a config that adds a robot derived from a 16-leg URDF (seconds of
+#     derivation), then SIGTERM during that reload: exit 0 within 0.5 s.
 # Replies are recorded with lcm-logger and checked with mfp-check-replies.
 #
 # usage: daemon_signals_test.sh SOURCE_DIR BUILD_DIR
@@ -113,6 +115,35 @@ stop_logger
 "$BUILD_DIR/tools/mfp-check-replies" "$WORK/plan_replies.lcmlog" \
   --scenario "$WORK/during_plan.yaml" --config "$WORK/daemon.yaml" \
   || fail "replies to the stopped requests do not check"
+
+# --- 4: SIGTERM during a reload onto a robot that takes seconds to derive ---
+python3 - "$SOURCE_DIR/tests/data/robots/octopod.urdf" "$WORK/sixteen_legs.urdf" <<'PY'
+# Sixteen legs: each of the octopod's legs twice, the copy 3 cm lower under new names.
+import re, sys
+text = open(sys.argv[1]).read()
+legs = sorted(set(re.findall(r'name="((?:left|right)\d)_coxa_yaw"', text)))
+body_end = text.rindex("</robot>")
+extra = []
+for leg in legs:
+    for block in re.findall(r'(<joint name="%s_[^"]*".*?</joint>|<link name="%s_[^"]*".*?</link>)' % (leg, leg), text, re.S):
+        copy = block.replace('"%s_' % leg, '"%sb_' % leg)
+        if '_coxa_yaw"' in block:
+            copy = re.sub(r'<origin xyz="([^ ]+) ([^ ]+) ([^ "]+)"', lambda m: '<origin xyz="%s %s %g"' % (m.group(1), m.group(2), float(m.group(3)) - 0.03), copy, count=1)
+        extra.append(copy)
+open(sys.argv[2], "w").write(text[:body_end].replace('robot name="octopod"', 'robot name="sixteen"') + "\n".join(extra) + "\n</robot>\n")
+PY
+write_config
+mfp_start_daemon "$WORK/daemon3.log" --config "$WORK/daemon.yaml"
+write_config "$WORK/sixteen_legs.urdf"
+kill -HUP "$DAEMON_PID"
+wait_for_log "SIGHUP: reloading" 10
+sleep 0.2
+grep -q "SIGHUP: configuration reloaded\|SIGHUP: reload failed" "$LOG" \
+  && fail "the reload ended before SIGTERM: make the robot slower to derive"
+terminate
+[ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during a reload"
+grep -q "the reload in progress is abandoned" "$LOG" || fail "no reload in progress at SIGTERM"
+
 echo "--- daemon log ---"
 cat "$LOG"
 echo "PASS"

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <random>
 
@@ -256,6 +257,32 @@ TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
     ASSERT_GE(p.Objective(x), floor - 1e-9) << x.transpose();
   }
   EXPECT_GT(checked, 1000);
+}
+
+
+TEST(InteriorPointQp, AQpOverTheKktWorkBudgetIsRefusedBeforeAssemblyAndNotHandedOn) {
+  // 60 variables in rows of ~24 each: ~12,000 product terms.
+  const Miqp p = RandomFeasibleQp(60, 40, 3);
+  InteriorPointOptions small;
+  small.max_kkt_terms = 1000;
+  const RelaxationResult refused = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, small);
+  EXPECT_EQ(refused.status, RelaxationStatus::kFailed);
+  EXPECT_TRUE(refused.over_work_budget);
+  EXPECT_EQ(refused.iterations, 0);
+  const RelaxationResult solved = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, InteriorPointOptions());
+  EXPECT_EQ(solved.status, RelaxationStatus::kSolved);
+  EXPECT_FALSE(solved.over_work_budget);
+}
+
+TEST(InteriorPointQp, AStopFlagSetBeforeTheSolveEndsItBeforeAnyIteration) {
+  const Miqp p = RandomFeasibleQp(600, 400, 4);
+  std::atomic<bool> stop{true};
+  InteriorPointOptions stopped;
+  stopped.deadline = Deadline().WithStop(&stop);
+  const RelaxationResult r = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, stopped);
+  EXPECT_EQ(r.status, RelaxationStatus::kIterationLimit);
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_EQ(r.x.size(), 600);
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 // The route over stance poses (planner/planning/internal/stance_route.h), on layouts built by hand.
 #include <gtest/gtest.h>
 
+#include <atomic>
+
 #include "io/robot_loader.h"
+#include "planner/planning/internal/route_guide.h"
 #include "planner/planning/internal/stance_route.h"
 
 namespace mfp {
@@ -53,6 +56,48 @@ TEST(StanceRoute, FindsNoneWhereOnlySingleFeetFit) {
   const std::vector<ConvexRegion> regions = {Rect(0, -0.2, -0.2, 0.2, 0.2), Rect(1, 0.2, -0.01, 1.0, 0.01),
                                              Rect(2, 1.0, -0.2, 1.4, 0.2)};
   EXPECT_FALSE(PlanStanceRoute(robot, regions, {0, 0}, 0.0, {1.2, 0}, 0.0).found);
+}
+
+// A field of 40 x 40 stones 0.1 m apart with the goal 4 m away: a long search.
+std::vector<ConvexRegion> StoneField() {
+  std::vector<ConvexRegion> regions;
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 0; j < 40; ++j) {
+      const double x = 0.1 * i, y = 0.1 * j - 2.0;
+      regions.push_back(Rect(static_cast<int>(regions.size()), x, y, x + 0.08, y + 0.08));
+    }
+  }
+  return regions;
+}
+
+TEST(StanceRoute, EndsOutOfTimeWhenTheDeadlineHasPassedOrTheStopFlagIsSet) {
+  const RobotModel robot = Littledog();
+  const std::vector<ConvexRegion> regions = StoneField();
+  const StanceRoute expired = PlanStanceRoute(robot, regions, {0.2, 0}, 0.0, {3.8, 0}, 0.0, {}, Deadline::After(0));
+  EXPECT_TRUE(expired.out_of_time);
+  EXPECT_FALSE(expired.found);
+  std::atomic<bool> stop{true};
+  const StanceRoute stopped =
+      PlanStanceRoute(robot, regions, {0.2, 0}, 0.0, {3.8, 0}, 0.0, {}, Deadline().WithStop(&stop));
+  EXPECT_TRUE(stopped.out_of_time);
+  const StanceRoute free = PlanStanceRoute(robot, regions, {0.2, 0}, 0.0, {3.8, 0}, 0.0);
+  EXPECT_FALSE(free.out_of_time);
+}
+
+TEST(RouteGuide, TheRegionGraphEndsOutOfTimeAndSaysSoRatherThanNoRoute) {
+  const RobotModel robot = Littledog();
+  const std::vector<ConvexRegion> regions = StoneField();
+  std::vector<Eigen::Vector3d> feet;
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d xy = NominalFootXY(robot, leg, 0.4, 0.0, 0.0);
+    feet.emplace_back(xy.x(), xy.y(), 0.0);
+  }
+  const RouteGuide late = PlanRoute(robot, regions, feet, {3.6, 0}, 0.0, 0.1, 0.1, Deadline::After(0));
+  EXPECT_TRUE(late.out_of_time);
+  EXPECT_FALSE(late.connected);
+  EXPECT_TRUE(late.broken.empty());
+  const RouteGuide in_time = PlanRoute(robot, regions, feet, {3.6, 0}, 0.0, 0.1, 0.1);
+  EXPECT_FALSE(in_time.out_of_time);
 }
 
 }  // namespace

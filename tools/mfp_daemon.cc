@@ -2,13 +2,18 @@
 // MFP_PLAN_REQUEST, publishes MFP_REGIONS after each map, one MFP_PLAN per request and
 // MFP_STATUS as a heartbeat. SIGINT/SIGTERM stop it (exit 0), SIGHUP reloads the config.
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "base/check.h"
+#include "daemon/abandonable_task.h"
 #include "daemon/daemon_config.h"
 #include "daemon/daemon_core.h"
 #include "daemon/daemon_runner.h"
@@ -31,6 +36,72 @@ std::shared_ptr<const mfp::DaemonSetup> LoadSetup(const std::string& config_path
   for (const std::string& warning : config.warnings) Log("warning: " + warning);
   if (!url_override.empty()) config.lcm_url = url_override;
   return std::make_shared<const mfp::DaemonSetup>(mfp::LoadDaemonSetup(config));
+}
+
+// A reload loads robots on a thread of its own (a hostile robot may take seconds to
+// derive) while the main thread keeps taking signals: SIGTERM during a reload stops the
+// daemon at once and leaves the reload to end unobserved.
+using ReloadTask = mfp::AbandonableTask<std::shared_ptr<const mfp::DaemonSetup>>;
+
+void ApplyReload(const std::shared_ptr<const mfp::DaemonSetup>& reloaded, const std::string& config_path,
+                 std::shared_ptr<const mfp::DaemonSetup>& setup, mfp::DaemonCore& core, mfp::DaemonRunner& runner) {
+  if (reloaded->config.lcm_url != setup->config.lcm_url ||
+      reloaded->config.lcm_queue_capacity != setup->config.lcm_queue_capacity ||
+      reloaded->config.lcm_recv_buf_bytes != setup->config.lcm_recv_buf_bytes)
+    Log("lcm_url, lcm_queue_capacity or lcm_recv_buf_bytes changed in the config; "
+        "they take effect on restart");
+  if (reloaded->config.initial_map != setup->config.initial_map)
+    Log("initial_map changed in the config; it is read on restart");
+  core.Reconfigure(reloaded, mfp::MakeOctomapMapFunction(*reloaded));
+  runner.SetHeartbeatPeriod(reloaded->config.heartbeat_period_s);
+  setup = reloaded;
+  Log("SIGHUP: configuration reloaded from " + config_path);
+}
+
+// Takes signals until SIGINT or SIGTERM (checked every 50 ms), reloading on SIGHUP.
+void ServeSignals(const sigset_t& signals, const std::string& config_path, const std::string& url_override,
+                  std::shared_ptr<const mfp::DaemonSetup>& setup, mfp::DaemonCore& core,
+                  mfp::DaemonRunner& runner) {
+  const std::atomic<bool> never{false};
+  std::unique_ptr<ReloadTask> reload;
+  for (;;) {
+    if (reload) {
+      try {
+        std::optional<std::shared_ptr<const mfp::DaemonSetup>> done =
+            reload->Wait(std::chrono::steady_clock::now(), never);
+        if (done) {
+          reload.reset();
+          ApplyReload(*done, config_path, setup, core, runner);
+        }
+      } catch (const std::exception& e) {
+        // InputError for bad files; anything else a reader let escape is no reason to
+        // drop a working configuration either.
+        reload.reset();
+        Log(std::string("SIGHUP: reload failed, keeping the previous configuration: ") + e.what());
+      }
+    }
+    const timespec poll{0, 50 * 1000 * 1000};
+    const int signal_number = sigtimedwait(&signals, nullptr, &poll);
+    if (signal_number < 0) continue;  // timeout or EINTR
+    if (signal_number == SIGHUP) {
+      if (reload) {
+        Log("SIGHUP: a reload is still loading; send SIGHUP again once it is done");
+        continue;
+      }
+      try {
+        reload = std::make_unique<ReloadTask>([config_path, url_override] {
+          return LoadSetup(config_path, url_override);
+        });
+        Log("SIGHUP: reloading " + config_path);
+      } catch (const std::exception& e) {
+        Log(std::string("SIGHUP: reload not started (no thread), keeping the configuration: ") + e.what());
+      }
+      continue;
+    }
+    Log(std::string(signal_number == SIGINT ? "SIGINT" : "SIGTERM") + ": stopping" +
+        (reload ? " (the reload in progress is abandoned)" : ""));
+    return;
+  }
 }
 
 }  // namespace
@@ -96,33 +167,7 @@ int main(int argc, char** argv) {
       setup->config.default_robot + ")");
 
   mfp::DaemonRunner runner(core, *transport, setup->config.heartbeat_period_s);
-  for (;;) {
-    int signal_number = 0;
-    if (sigwait(&signals, &signal_number) != 0) continue;
-    if (signal_number == SIGHUP) {
-      try {
-        auto reloaded = LoadSetup(config_path, url_override);
-        if (reloaded->config.lcm_url != setup->config.lcm_url ||
-            reloaded->config.lcm_queue_capacity != setup->config.lcm_queue_capacity ||
-            reloaded->config.lcm_recv_buf_bytes != setup->config.lcm_recv_buf_bytes)
-          Log("lcm_url, lcm_queue_capacity or lcm_recv_buf_bytes changed in the config; "
-              "they take effect on restart");
-        if (reloaded->config.initial_map != setup->config.initial_map)
-          Log("initial_map changed in the config; it is read on restart");
-        core.Reconfigure(reloaded, mfp::MakeOctomapMapFunction(*reloaded));
-        runner.SetHeartbeatPeriod(reloaded->config.heartbeat_period_s);
-        setup = reloaded;
-        Log("SIGHUP: configuration reloaded from " + config_path);
-      } catch (const std::exception& e) {
-        // InputError for bad files; anything else a reader let escape is no reason to
-        // drop a working configuration either.
-        Log(std::string("SIGHUP: reload failed, keeping the previous configuration: ") + e.what());
-      }
-      continue;
-    }
-    Log(std::string(signal_number == SIGINT ? "SIGINT" : "SIGTERM") + ": stopping");
-    break;
-  }
+  ServeSignals(signals, config_path, url_override, setup, core, runner);
   runner.Stop();
   const mfp::DaemonCounters c = core.counters();
   Log("stopped: requests " + std::to_string(c.requests) + ", plans " + std::to_string(c.plans) +

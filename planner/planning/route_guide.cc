@@ -74,7 +74,7 @@ double MaxStepSpan(const RobotModel& robot) { return std::sqrt(2.0) * (robot.d_l
 
 RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                      const std::vector<Eigen::Vector3d>& start_feet, const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
-                     double goal_tolerance_m, double start_tolerance_m) {
+                     double goal_tolerance_m, double start_tolerance_m, const Deadline& deadline) {
   RouteGuide guide;
   const int m = static_cast<int>(regions.size());
   const int n = robot.num_legs();
@@ -91,6 +91,10 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   const double span = MaxStepSpan(robot);
   std::vector<std::vector<std::pair<int, double>>> edges(m);
   for (int a = 0; a < m; ++a) {
+    if (deadline.Expired()) {
+      guide.out_of_time = true;
+      return guide;
+    }
     for (int b = a + 1; b < m; ++b) {
       const double dz = std::max({0.0, nodes[a].zmin - nodes[b].zmax, nodes[b].zmin - nodes[a].zmax});
       if (dz > robot.dz_max_m) continue;
@@ -117,6 +121,10 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
     const auto [d, r] = queue.top();
     queue.pop();
     if (d > dist[r]) continue;
+    if (deadline.Expired()) {
+      guide.out_of_time = true;
+      return guide;
+    }
     for (const auto& [s, w] : edges[r]) {
       if (d + w < dist[s]) {
         dist[s] = d + w;
@@ -186,7 +194,8 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                        const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
-                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide) {
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide,
+                       const Deadline& deadline) {
   if (!guide->connected || start_feet.empty()) return;
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   double ground_z = 0.0;
@@ -197,16 +206,17 @@ void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>&
   start /= static_cast<double>(start_feet.size());
   ground_z /= static_cast<double>(start_feet.size());
   StanceRoute stances =
-      PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad);
-  if (!stances.found) {
+      PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad, {}, deadline);
+  if (!stances.found && !stances.out_of_time) {
     // Where no pose has every reference box surely on support, poses whose boxes may
     // meet it (an octopod on stones laid for its feet: the region graph's route through
     // region centres zig-zagged across the tracks, 2.45 m short).
     StanceRouteOptions loose;
     loose.support_radius_l_bnd = std::sqrt(2.0);
     stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad,
-                              loose);
+                              loose, deadline);
   }
+  guide->out_of_time = stances.out_of_time;
   if (!stances.found) return;
   guide->route = stances.route;
   if (stances.body_blocked_poses > 0) guide->yaws_rad = stances.yaws_rad;

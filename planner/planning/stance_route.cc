@@ -4,12 +4,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 
 namespace mfp {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// A* expansions (and raster regions) between two deadline checks: a clock read per few
+// hundred cheap steps.
+constexpr int kChecksEvery = 256;
 
 
 // Cells of a raster: 2 where a region holds the point, 1 where one lies within `radius`
@@ -32,8 +36,10 @@ struct SupportRaster {
   }
 };
 
-SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& lo,
-                                const Eigen::Vector2d& hi, double res, double radius) {
+// nullopt when the deadline passes first.
+std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& lo,
+                                               const Eigen::Vector2d& hi, double res, double radius,
+                                               const Deadline& deadline) {
   SupportRaster s;
   s.origin = lo;
   s.res = res;
@@ -42,6 +48,7 @@ SupportRaster MakeSupportRaster(const std::vector<ConvexRegion>& regions, const 
   s.cells.assign(static_cast<size_t>(s.nx) * s.ny, 0);
   s.heights.assign(s.cells.size(), -std::numeric_limits<float>::infinity());
   for (const ConvexRegion& r : regions) {
+    if (deadline.Expired()) return std::nullopt;
     Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = -rlo;
     for (const Eigen::Vector3d& v : r.vertices_world_m) {
       rlo = rlo.cwiseMin(v.head<2>());
@@ -74,7 +81,7 @@ constexpr int kFineHeadings = 16;
 StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                           const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                           const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options);
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline);
 
 // The body check of a pose (stance_route.h): obstacles near the pose judged against the
 // body's plan box in its height band above the pose's ground.
@@ -137,22 +144,22 @@ class BodyGate {
 
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options) {
-  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options);
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
 }
 
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options) {
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute route = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                    goal_yaw_rad, options);
+                                    goal_yaw_rad, options, deadline);
   // Where the body check refused poses, headings finer than 8 let the body turn to fit.
-  if (route.body_blocked_poses > 0 && options.headings < kFineHeadings) {
+  if (route.body_blocked_poses > 0 && options.headings < kFineHeadings && !route.out_of_time) {
     StanceRouteOptions fine = options;
     fine.headings = kFineHeadings;
     StanceRoute finer = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                      goal_yaw_rad, fine);
+                                      goal_yaw_rad, fine, deadline);
     if (finer.found || !route.found) route = std::move(finer);
   }
   return route;
@@ -163,7 +170,7 @@ namespace {
 StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                           const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                           const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options) {
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute out;
   const int n = robot.num_legs();
   const int H = std::max(1, options.headings);
@@ -187,8 +194,13 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   const int ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
   // Support within l_bnd of a foot; the raster finer than the body grid.
   const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
-  const SupportRaster support =
-      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m);
+  const std::optional<SupportRaster> raster =
+      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
+  if (!raster) {
+    out.out_of_time = true;
+    return out;
+  }
+  const SupportRaster& support = *raster;
 
   const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share);
   auto heading_of = [&](double yaw) {
@@ -239,7 +251,15 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   dist[start] = 0.0;
   open.push({heuristic(si, sj), start});
   size_t reached = SIZE_MAX;
+  int until_check = kChecksEvery;
   while (!open.empty()) {
+    if (--until_check == 0) {
+      until_check = kChecksEvery;
+      if (deadline.Expired()) {
+        out.out_of_time = true;
+        return out;
+      }
+    }
     const auto [f, s] = open.top();
     open.pop();
     const int h = static_cast<int>(s % H);

@@ -24,7 +24,16 @@ std::vector<int> MinimumDegreeOrder(const SpMat& lower) {
 
 }  // namespace
 
-KktAssembly::KktAssembly(const InequalityForm& f) {
+double KktProductTerms(const InequalityForm& f) {
+  double terms = 0.0;
+  for (int k = 0; k < f.Gt.outerSize(); ++k) {
+    const double row = static_cast<double>(f.Gt.outerIndexPtr()[k + 1] - f.Gt.outerIndexPtr()[k]);
+    terms += 0.5 * row * (row + 1.0);
+  }
+  return terms;
+}
+
+KktAssembly::KktAssembly(const InequalityForm& f, const Deadline& deadline) {
   const int n = f.n;
   // 1. The lower triangle of Q + G'G + I in the original order (compressed columns,
   //    sorted rows). entry_of[a] is row a's entry in the column being built.
@@ -33,6 +42,10 @@ KktAssembly::KktAssembly(const InequalityForm& f) {
   std::vector<std::pair<int, double>> q_entries;  // (entry, value)
   diagonal.resize(n);
   for (int col = 0; col < n; ++col) {
+    if (col % 256 == 255 && deadline.Expired()) {
+      interrupted = true;
+      return;
+    }
     const int begin = static_cast<int>(lower_inner.size());
     const auto touch = [&](int row) {
       if (mark[row] == col) return;
@@ -68,6 +81,10 @@ KktAssembly::KktAssembly(const InequalityForm& f) {
   //    (docs/measurements.md).
   const std::vector<double> ones(entries, 1.0);
   const Eigen::Map<const SpMat> lower(n, n, entries, lower_outer.data(), lower_inner.data(), ones.data());
+  if (deadline.Expired()) {
+    interrupted = true;
+    return;
+  }
   const std::vector<int> order = MinimumDegreeOrder(SpMat(lower));
   MFP_CHECK(static_cast<int>(order.size()) == n);
   position.assign(n, -1);

@@ -321,9 +321,16 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
   const double scale_c = 1.0 + p.c.lpNorm<Eigen::Infinity>();
   // K = Q + G' diag(w) G + diag(b) keeps one sparsity pattern through the solve; its
   // values are scattered in place each iteration instead of forming sparse products.
-  KktSolver kkt(f);
+  if (KktProductTerms(f) > opt.max_kkt_terms) {
+    result.status = RelaxationStatus::kFailed;  // too large; see max_kkt_terms
+    result.over_work_budget = true;
+    result.x = w.head(n);
+    result.objective = p.Objective(result.x);
+    return result;
+  }
+  KktSolver kkt(f, opt.deadline);
 
-  for (int iter = 0; iter < opt.max_iterations; ++iter) {
+  for (int iter = 0; iter < opt.max_iterations && kkt.ready(); ++iter) {
     result.iterations = iter;
     if (opt.deadline.Expired()) break;  // kIterationLimit below
     const Residuals r = ResidualsAt(f, p, w, s, z, scale_c);

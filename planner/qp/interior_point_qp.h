@@ -40,8 +40,16 @@ struct InteriorPointOptions {
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;
-  // Checked at every iteration: once expired the solve returns kIterationLimit.
+  // Checked at every iteration and while the KKT pattern is built: once expired the
+  // solve returns kIterationLimit.
   Deadline deadline;
+  // Work budget of one solve: the terms of G'G its KKT assembly would store (16 bytes
+  // each; the factorisation's fill grows with them), counted before anything is
+  // allocated. A QP beyond it (long windows over many regions: rows over thousands of
+  // variables) is not assembled: kFailed with over_work_budget set, which the factory's
+  // fallback does not take over either (Ipopt's ordering alone took longer than the
+  // plan's time limit on such a QP: docs/measurements.md).
+  double max_kkt_terms = 2e7;
 };
 
 // Solves min 0.5 x'Qx + c'x + constant s.t. row bounds, lower <= x <= upper (all finite,

@@ -28,6 +28,7 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     const RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,
                                                     warm_start != nullptr ? &start : nullptr, options);
     result.status = r.status;
+    result.over_work_budget = r.over_work_budget;
     result.iterations = r.iterations;
     result.x = reduced.Expand(r.x);
     // A cutoff's objective is its floor (the reduced problem's constant holds the fixed

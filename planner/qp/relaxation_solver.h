@@ -31,6 +31,9 @@ struct RelaxationResult {
   // rule out integer values that cannot beat the incumbent. Empty rates: not given.
   double cost_floor = -kInfinity;
   Eigen::VectorXd lower_cost_rate, upper_cost_rate;
+  // kFailed because the problem exceeds the solver's work budget (it was not attempted):
+  // no other solver is tried on it either, as none finishes such a problem in a plan's time.
+  bool over_work_budget = false;
 };
 
 // One solve's whole contract, as Drake's Solve(program, initial_guess, options): a

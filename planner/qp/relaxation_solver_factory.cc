@@ -17,7 +17,7 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
     RelaxationResult result = primary_->Solve(problem, request);
     if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible ||
-        result.status == RelaxationStatus::kCutoff || request.deadline.Expired()) {
+        result.status == RelaxationStatus::kCutoff || request.deadline.Expired() || result.over_work_budget) {
       return result;
     }
     RelaxationRequest to_the_end = request;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "base/check.h"
 #include "geometry/region_reachability.h"
@@ -30,16 +31,28 @@ double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
 std::optional<Plan> GuideRoute(PlanContext* c) {
   const PlanRequest& request = c->request;
   const PlannerOptions& options = c->options;
+  // The plan's own time limit and the caller's deadline (and stop flag) bound the route
+  // searches as they bound the windows: a large map must not hold the plan here.
+  const Deadline deadline = request.deadline.Within(c->TimeLeftSeconds());
   c->guide = PlanRoute(c->robot, c->regions, request.start_feet_world_m, c->GoalXY(), request.goal_yaw_rad,
-                       options.goal_tolerance_m, options.start_tolerance_m);
+                       options.goal_tolerance_m, options.start_tolerance_m, deadline);
+  if (c->guide.out_of_time) {
+    Plan ended = Rejected(SolveStatus::kTimeLimit,
+                          std::string(request.deadline.Stopped() ? "stopped" : "time limit reached") +
+                              " while the region graph's route was searched (" + std::to_string(c->regions.size()) +
+                              " regions)");
+    ended.solve_time_s = c->ElapsedSeconds();
+    return ended;
+  }
   if (!c->guide.connected) {
     Plan rejected = Rejected(SolveStatus::kNoRoute, c->guide.broken);
     rejected.solve_time_s = c->ElapsedSeconds();
     return rejected;
   }
   if (options.stance_route) {
-    FollowStanceRoute(c->robot, c->usable, request.body_obstacles, request.start_feet_world_m, request.start_yaw_rad, c->GoalXY(),
-                      request.goal_yaw_rad, &c->guide);
+    // Out of time here, the windows end the plan on its time limit at their first check.
+    FollowStanceRoute(c->robot, c->usable, request.body_obstacles, request.start_feet_world_m, request.start_yaw_rad,
+                      c->GoalXY(), request.goal_yaw_rad, &c->guide, deadline);
   }
   if (request.max_steps == 0 && options.default_max_steps == 0) {
     // Enough configurations to walk the route route_step_budget times over at d_lim

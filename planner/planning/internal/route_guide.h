@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "base/deadline.h"
 #include "geometry/convex_region.h"
 #include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
@@ -20,7 +21,10 @@ namespace mfp {
 
 struct RouteGuide {
   bool connected = false;
-  std::string broken;  // when !connected: where the route breaks, for the user
+  // The deadline passed (or its stop flag was set) before the route was known: neither
+  // a route nor a proof that there is none.
+  bool out_of_time = false;
+  std::string broken;  // when !connected and in time: where the route breaks, for the user
   // Body route in plan view from the start centre to the goal [m, world]; its polyline
   // passes through the centres of the regions a foot path crosses.
   std::vector<Eigen::Vector2d> route;
@@ -37,18 +41,20 @@ struct RouteGuide {
 double MaxStepSpan(const RobotModel& robot);
 
 // start_feet: leg order. start_tolerance_m: how far off its region a start foot may be.
+// The deadline is checked per region while the graph is built and during its search.
 RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                      const std::vector<Eigen::Vector3d>& start_feet, const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
-                     double goal_tolerance_m, double start_tolerance_m);
+                     double goal_tolerance_m, double start_tolerance_m, const Deadline& deadline = {});
 
 // Replaces a connected guide's route by a route over stance poses (stance_route.h) from
 // the start stance's centre and yaw to the goal, when that search finds one.
-// start_feet: leg order.
+// start_feet: leg order. Past the deadline the guide keeps its route and out_of_time is set.
 // body_obstacles: what the body keeps clear of (stance_route.h); may be empty.
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                        const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
-                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide);
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide,
+                       const Deadline& deadline = {});
 
 // The point of the route at arc length s (clamped to the route) [m].
 Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m);

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "base/deadline.h"
 #include "geometry/convex_region.h"
 #include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
@@ -41,6 +42,7 @@ struct StanceRouteOptions {
 
 struct StanceRoute {
   bool found = false;
+  bool out_of_time = false;  // the deadline passed (or its stop flag was set) first
   std::vector<Eigen::Vector2d> route;  // body positions from start to goal [m, world]
   std::vector<double> yaws_rad;        // body yaw at each route point [rad]
   double length_m = 0.0;
@@ -48,15 +50,19 @@ struct StanceRoute {
 };
 
 // start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
-// support around them (the start stance may be off nominal).
+// support around them (the start stance may be off nominal). The deadline is checked
+// while the support raster is built and every few hundred A* expansions: past it the
+// search ends with out_of_time set and no route.
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+                            double goal_yaw_rad, const StanceRouteOptions& options = {},
+                            const Deadline& deadline = {});
 // The same, keeping the body clear of `body_obstacles`. ground_z_m: the ground height
 // assumed where no region lies under a pose's feet (the start stance's) [m].
 StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                            double goal_yaw_rad, const StanceRouteOptions& options = {});
+                            double goal_yaw_rad, const StanceRouteOptions& options = {},
+                            const Deadline& deadline = {});
 
 }  // namespace mfp

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "base/deadline.h"
+
 namespace mfp {
 
 using SpMat = Eigen::SparseMatrix<double>;
@@ -64,10 +66,14 @@ struct KktAssembly {
   };
   std::vector<Term> terms;
 
+  // The deadline passed while the pattern was built (checked every few hundred
+  // columns): the assembly is incomplete and must not be used.
+  bool interrupted = false;
+
   // The pattern is built column by column from G's rows, as a symbolic product with a
   // marker array, not from sparse products and conversions: per QP those took more
   // than one interior-point iteration.
-  explicit KktAssembly(const InequalityForm& f);
+  KktAssembly(const InequalityForm& f, const Deadline& deadline);
 
   void Assemble(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight, SpMat* K) const {
     Eigen::Map<Eigen::VectorXd> values(K->valuePtr(), K->nonZeros());
@@ -88,11 +94,18 @@ struct KktAssembly {
   }
 };
 
+// Terms of the symbolic product G'G the assembly stores (one per pair of variables
+// sharing a row, 16 bytes each): its work and memory, known before it is built.
+double KktProductTerms(const InequalityForm& f);
+
 // K factorised once per iteration: its pattern is fixed through a solve (analysed once),
 // its values scattered in place.
 class KktSolver {
  public:
-  explicit KktSolver(const InequalityForm& f) : assembly_(f), K_(assembly_.pattern) {}
+  KktSolver(const InequalityForm& f, const Deadline& deadline) : assembly_(f, deadline), K_(assembly_.pattern) {}
+
+  // False when the deadline interrupted the assembly: Factor must not be called.
+  bool ready() const { return !assembly_.interrupted; }
 
   // Factorises K for these weights; false when it cannot be, even shifted.
   bool Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight);
