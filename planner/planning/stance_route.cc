@@ -167,6 +167,39 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
 
 namespace {
 
+// The body positions' grid: over the regions, start and goal, padded by how far a body
+// stands beyond its feet (reach + l_bnd), cells coarsened to at most options.max_cells.
+struct BodyGrid {
+  Eigen::Vector2d lo, hi;  // [m, world]
+  double cell = 0.0;       // [m]
+  int nx = 1, ny = 1;
+};
+
+BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                      const Eigen::Vector2d& start_xy, const Eigen::Vector2d& goal_xy,
+                      const StanceRouteOptions& options) {
+  BodyGrid g;
+  double reach = 0.0;
+  for (const auto& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
+  g.lo = start_xy.cwiseMin(goal_xy);
+  g.hi = start_xy.cwiseMax(goal_xy);
+  for (const ConvexRegion& r : regions) {
+    for (const Eigen::Vector3d& v : r.vertices_world_m) {
+      g.lo = g.lo.cwiseMin(v.head<2>());
+      g.hi = g.hi.cwiseMax(v.head<2>());
+    }
+  }
+  const double pad = reach + robot.l_bnd_m;
+  g.lo -= Eigen::Vector2d::Constant(pad);
+  g.hi += Eigen::Vector2d::Constant(pad);
+  g.cell = options.cell_m;
+  const double area = (g.hi - g.lo).prod();
+  if (area / (g.cell * g.cell) > static_cast<double>(options.max_cells)) g.cell = std::sqrt(area / options.max_cells);
+  g.nx = std::max(1, static_cast<int>(std::ceil((g.hi.x() - g.lo.x()) / g.cell)));
+  g.ny = std::max(1, static_cast<int>(std::ceil((g.hi.y() - g.lo.y()) / g.cell)));
+  return g;
+}
+
 StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                           const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                           const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
@@ -174,24 +207,10 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   StanceRoute out;
   const int n = robot.num_legs();
   const int H = std::max(1, options.headings);
-  double reach = 0.0;
-  for (const auto& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
-  // Body grid over the regions (a body stands at most reach + l_bnd beyond its feet).
-  Eigen::Vector2d lo = start_xy.cwiseMin(goal_xy), hi = start_xy.cwiseMax(goal_xy);
-  for (const ConvexRegion& r : regions) {
-    for (const Eigen::Vector3d& v : r.vertices_world_m) {
-      lo = lo.cwiseMin(v.head<2>());
-      hi = hi.cwiseMax(v.head<2>());
-    }
-  }
-  const double pad = reach + robot.l_bnd_m;
-  lo -= Eigen::Vector2d::Constant(pad);
-  hi += Eigen::Vector2d::Constant(pad);
-  double cell = options.cell_m;
-  const double area = (hi - lo).prod();
-  if (area / (cell * cell) > static_cast<double>(options.max_cells)) cell = std::sqrt(area / options.max_cells);
-  const int nx = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x()) / cell)));
-  const int ny = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y()) / cell)));
+  const BodyGrid grid = MakeBodyGrid(robot, regions, start_xy, goal_xy, options);
+  const Eigen::Vector2d lo = grid.lo, hi = grid.hi;
+  const double cell = grid.cell;
+  const int nx = grid.nx, ny = grid.ny;
   // Support within l_bnd of a foot; the raster finer than the body grid.
   const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
   const std::optional<SupportRaster> raster =
