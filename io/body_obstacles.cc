@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace mfp {
@@ -31,6 +32,10 @@ std::vector<Eigen::Vector2d> ConvexHull2D(std::vector<Eigen::Vector2d> points) {
 std::vector<BodyObstacle> BoxBodyObstacles(const std::vector<TerrainBox>& boxes) {
   std::vector<BodyObstacle> obstacles;
   for (const TerrainBox& box : boxes) {
+    // A box tilted about x or y is a ramp the feet stand on: its highest corner says
+    // nothing about the surface under the body, so it is not an obstacle here (a body
+    // check on ramps needs the surface height under the footprint: left for later).
+    if (std::abs(box.rpy_rad.x()) > 1e-9 || std::abs(box.rpy_rad.y()) > 1e-9) continue;
     const Eigen::Matrix3d r = BoxRotation(box);
     BodyObstacle o;
     o.bottom_z_m = std::numeric_limits<double>::infinity();

@@ -1,7 +1,8 @@
 #pragma once
 // A box terrain's boxes as the body's obstacles (body_clearance.h): each box's plan
 // outline (the convex hull of its corners in plan view) over the height band its corners
-// span. Every box counts; whether one reaches into the body's band is judged per pose.
+// span; whether one reaches into the body's band is judged per pose. Boxes tilted about x
+// or y (ramps the feet stand on) are left out.
 #include <vector>
 
 #include "geometry/terrain_description.h"

@@ -7,7 +7,7 @@ The rules come from the library graph CMake writes at configure time
 - a file may include headers of its own folder and of the folders of the libraries its
   targets link, directly or through their public (interface) links;
 - a header in an internal/ folder is private: only its own folder (and tests/) includes it;
-- base/ includes the standard library and Eigen only;
+- base/ includes the standard library, POSIX's C headers and Eigen only;
 - every C++ file lies in a folder some target lists sources in.
 
 usage: include_direction_test.py SOURCE_DIR LIBRARY_GRAPH
@@ -20,6 +20,9 @@ import sys
 GENERATED = {'mfp': 'mfp_lcmtypes'}
 # Folders of C++ built outside the CMake build, and by what.
 OUTSIDE_THE_BUILD = {'bench/peers': 'bench/peers/build_bonmin_driver.sh, against Bonmin only'}
+# The platform's own C interface, which base/bounded_file.cc needs to refuse a FIFO or a
+# device before opening it (no library beside the standard one).
+POSIX_HEADERS = {'fcntl.h', 'sys/stat.h', 'unistd.h'}
 INCLUDE = re.compile(r'^\s*#\s*include\s+([<"])([^>"]+)[>"]', re.M)
 CXX = ('.h', '.hpp', '.cc', '.cpp')
 
@@ -100,7 +103,8 @@ def main():
         for kind, header in INCLUDE.findall(text):
             if kind == '<':
                 if folder == 'base' and not (header.startswith('Eigen/') or
-                                             re.fullmatch(r'[a-z_]+', header)):
+                                             re.fullmatch(r'[a-z_]+', header) or
+                                             header in POSIX_HEADERS):
                     failures.append('%s includes <%s>: base/ sees only the standard library '
                                     'and Eigen' % (path, header))
                 continue
