@@ -67,7 +67,7 @@ std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& 
         if (d <= 0.0) {
           c = 2;
           s.heights[k] = std::max(s.heights[k], static_cast<float>(r.HeightAt(p.x(), p.y())));
-        } else if (d <= radius) {
+        } else if (d <= radius && c != 2) {  // a cell held by one region stays held
           c = 1;
         }
       }
