@@ -5,29 +5,9 @@
 #include <cmath>
 #include <limits>
 
-namespace mfp {
+#include "geometry/convex_hull_2d.h"
 
-std::vector<Eigen::Vector2d> ConvexHull2D(std::vector<Eigen::Vector2d> points) {
-  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (points.size() < 3) return points;
-  auto turn = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-  };
-  std::vector<Eigen::Vector2d> hull(2 * points.size());
-  size_t k = 0;
-  for (size_t i = 0; i < points.size(); ++i) {
-    while (k >= 2 && turn(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
-    hull[k++] = points[i];
-  }
-  for (size_t i = points.size() - 1, lower = k + 1; i > 0; --i) {
-    while (k >= lower && turn(hull[k - 2], hull[k - 1], points[i - 1]) <= 0) --k;
-    hull[k++] = points[i - 1];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
+namespace mfp {
 
 std::vector<BodyObstacle> BoxBodyObstacles(const std::vector<TerrainBox>& boxes) {
   std::vector<BodyObstacle> obstacles;
@@ -49,7 +29,7 @@ std::vector<BodyObstacle> BoxBodyObstacles(const std::vector<TerrainBox>& boxes)
       o.bottom_z_m = std::min(o.bottom_z_m, p.z());
       o.top_z_m = std::max(o.top_z_m, p.z());
     }
-    o.polygon_world_m = ConvexHull2D(corners);
+    o.polygon_world_m = ConvexHull2d(corners);
     if (o.polygon_world_m.size() >= 3) obstacles.push_back(std::move(o));
   }
   return obstacles;

@@ -12,7 +12,4 @@ namespace mfp {
 
 std::vector<BodyObstacle> BoxBodyObstacles(const std::vector<TerrainBox>& boxes);
 
-// Convex hull of points in plan view, counter-clockwise (monotone chain).
-std::vector<Eigen::Vector2d> ConvexHull2D(std::vector<Eigen::Vector2d> points);
-
 }  // namespace mfp
