@@ -173,6 +173,10 @@ class DaemonCore {
   void RecordOutcome(const PlanJob& job, const Plan& plan, bool abandoned);
 
   void HandleMap(const RawMessage& message, bool abandon_on_stop);
+  // Decodes a map message (terrain_map_t, height_map_t) within limits.max_map_bytes;
+  // false, counted rejected, when it does not decode (daemon_maps.cc).
+  template <class MapMessage>
+  bool DecodeMap(const RawMessage& message, MapMessage* map);
   // A height_map_t (daemon_height_map.cc): checked, then read like a map file.
   void HandleHeightMap(const RawMessage& message, bool abandon_on_stop);
   void HandleRequest(const RawMessage& message, int64_t arrival_utime);

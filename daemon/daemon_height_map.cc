@@ -10,17 +10,8 @@
 namespace mfp {
 
 void DaemonCore::HandleHeightMap(const RawMessage& message, bool abandon_on_stop) {
-  size_t max_bytes = 0;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    max_bytes = setup_->config.limits.max_map_bytes;
-  }
   height_map_t map;
-  const std::string error = DecodeGuarded(message.data, message.size, max_bytes, &map);
-  if (!error.empty()) {
-    CountRejected(message.channel, error);
-    return;
-  }
+  if (!DecodeMap(message, &map)) return;
   const std::string what = "height_map_t utime " + std::to_string(map.utime);
   try {
     HeightGridFromMessage(map, what);  // the checks, before the extraction's work

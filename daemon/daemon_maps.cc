@@ -7,23 +7,30 @@
 #include "daemon/abandonable_task.h"
 #include "daemon/message_conversion.h"
 #include "lcmtypes/message_guard.h"
+#include "mfp/height_map_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 
 namespace mfp {
 
-void DaemonCore::HandleMap(const RawMessage& message, bool abandon_on_stop) {
-  if (message.channel == kHeightMapChannel) return HandleHeightMap(message, abandon_on_stop);
+template <class MapMessage>
+bool DaemonCore::DecodeMap(const RawMessage& message, MapMessage* map) {
   size_t max_bytes = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     max_bytes = setup_->config.limits.max_map_bytes;
   }
+  const std::string error = DecodeGuarded(message.data, message.size, max_bytes, map);
+  if (error.empty()) return true;
+  CountRejected(message.channel, error);
+  return false;
+}
+template bool DaemonCore::DecodeMap(const RawMessage&, terrain_map_t*);
+template bool DaemonCore::DecodeMap(const RawMessage&, height_map_t*);
+
+void DaemonCore::HandleMap(const RawMessage& message, bool abandon_on_stop) {
+  if (message.channel == kHeightMapChannel) return HandleHeightMap(message, abandon_on_stop);
   terrain_map_t map;
-  const std::string error = DecodeGuarded(message.data, message.size, max_bytes, &map);
-  if (!error.empty()) {
-    CountRejected(message.channel, error);
-    return;
-  }
+  if (!DecodeMap(message, &map)) return;
   const std::string bytes(map.data.begin(), map.data.end());
   map.data.clear();
   try {

@@ -5,21 +5,11 @@
 #include <limits>
 
 #include "base/check.h"
+#include "io/file_paths.h"
 #include "io/yaml_fields.h"
 
 namespace mfp {
 namespace {
-
-std::string Extension(const std::string& path) {
-  const size_t dot = path.find_last_of('.');
-  const size_t slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  return path.substr(dot + 1);
-}
-
-std::string WithoutExtension(const std::string& path) {
-  return path.substr(0, path.size() - Extension(path).size() - 1);
-}
 
 // `unknown:` is a number or nan (.nan, NaN); NaN cells are unknown in any case.
 double ReadUnknownValue(const YAML::Node& yaml, const YamlContext& ctx) {
@@ -35,10 +25,10 @@ double ReadUnknownValue(const YAML::Node& yaml, const YamlContext& ctx) {
 }
 
 HeightGrid LoadUnguarded(const std::string& path, size_t max_cells) {
-  const std::string ext = Extension(path);
+  const std::string ext = FileExtension(path);
   std::string yaml_path = path, npy_path;
   if (ext == "npy") {
-    yaml_path = WithoutExtension(path) + ".yaml";
+    yaml_path = WithoutFileExtension(path) + ".yaml";
     if (!std::ifstream(yaml_path)) {
       throw InputError(path + ": a .npy height map needs " + yaml_path +
                        " beside it (resolution: CELL_M, origin: [X, Y]; see the README)");
@@ -86,7 +76,7 @@ HeightGrid LoadUnguarded(const std::string& path, size_t max_cells) {
 }  // namespace
 
 bool IsHeightMapPath(const std::string& path) {
-  const std::string ext = Extension(path);
+  const std::string ext = FileExtension(path);
   return ext == "npy" || ext == "yaml" || ext == "yml";
 }
 

@@ -1,6 +1,7 @@
 #include "io/map_file.h"
 
 #include "base/check.h"
+#include "io/file_paths.h"
 #include "io/height_map_file.h"
 #include "terrain/extraction/height_grid.h"
 #include "terrain/octomap/octomap_io.h"
@@ -9,9 +10,7 @@ namespace mfp {
 namespace {
 
 bool IsOctomapPath(const std::string& path) {
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos) return false;
-  const std::string ext = path.substr(dot + 1);
+  const std::string ext = FileExtension(path);
   return ext == "bt" || ext == "ot";
 }
 

@@ -81,53 +81,56 @@ struct Option {
 template <class Root>
 using OptionTable = std::vector<Option<Root>>;
 
+// The parts every option has; each maker below adds where its value lives and its range.
+template <class Root>
+Option<Root> BaseOption(std::string key, OptionKind kind, std::string description) {
+  Option<Root> o;
+  o.key = std::move(key), o.kind = kind, o.description = std::move(description);
+  return o;
+}
+
 template <class Root>
 Option<Root> Opt(std::string key, Ref<Root, int> ref, int min, int max, std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kInt, o.int_at = ref.at, o.min = min, o.max = max;
-  o.description = std::move(description);
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kInt, std::move(description));
+  o.int_at = ref.at, o.min = min, o.max = max;
   return o;
 }
 template <class Root>
 Option<Root> Opt(std::string key, Ref<Root, double> ref, double min, double max, std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kDouble, o.double_at = ref.at, o.min = min, o.max = max;
-  o.description = std::move(description);
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kDouble, std::move(description));
+  o.double_at = ref.at, o.min = min, o.max = max;
   return o;
 }
 template <class Root>
 Option<Root> Opt(std::string key, Ref<Root, bool> ref, std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kBool, o.bool_at = ref.at;
-  o.description = std::move(description);
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kBool, std::move(description));
+  o.bool_at = ref.at;
   return o;
 }
 template <class Root>
 Option<Root> Opt(std::string key, Ref<Root, std::string> ref, std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kString, o.string_at = ref.at;
-  o.description = std::move(description);
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kString, std::move(description));
+  o.string_at = ref.at;
   return o;
 }
 // A list of numbers, each in [min, max] (or (min, max] with min_exclusive).
 template <class Root>
 Option<Root> ListOpt(std::string key, Ref<Root, std::vector<double>> ref, double min, bool min_exclusive,
                      double max, std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kNumberList, o.list_at = ref.at;
-  o.min = min, o.min_exclusive = min_exclusive, o.max = max;
-  o.description = std::move(description);
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kNumberList, std::move(description));
+  o.list_at = ref.at, o.min = min, o.min_exclusive = min_exclusive, o.max = max;
   return o;
 }
 // An enum member written as one of `names` (name, value pairs).
 template <class Root, class E>
 Option<Root> EnumOpt(std::string key, Ref<Root, E> ref, std::vector<std::pair<std::string, E>> names,
                      std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kEnum;
-  for (const auto& n : names) o.enum_names.push_back(n.first);
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kEnum, std::move(description));
   std::vector<E> values;
-  for (const auto& n : names) values.push_back(n.second);
+  for (const auto& n : names) {
+    o.enum_names.push_back(n.first);
+    values.push_back(n.second);
+  }
   o.enum_set = [ref, values](Root& r, size_t i) { ref.at(r) = values[i]; };
   o.enum_get = [ref, values](const Root& r) -> size_t {
     Root copy = r;
@@ -136,17 +139,14 @@ Option<Root> EnumOpt(std::string key, Ref<Root, E> ref, std::vector<std::pair<st
     }
     return 0;
   };
-  o.description = std::move(description);
   return o;
 }
 // A key the loader reads itself (a path, a pose, a list of boxes, a nested block): the
 // table names it, so it is allowed and listed, with the type and default the reference shows.
 template <class Root>
 Option<Root> LoaderOpt(std::string key, std::string type, std::string default_value, std::string description) {
-  Option<Root> o;
-  o.key = std::move(key), o.kind = OptionKind::kByLoader;
+  auto o = BaseOption<Root>(std::move(key), OptionKind::kByLoader, std::move(description));
   o.loader_type = std::move(type), o.loader_default = std::move(default_value);
-  o.description = std::move(description);
   return o;
 }
 

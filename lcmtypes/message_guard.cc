@@ -52,6 +52,12 @@ class WireCursor {
     return n;
   }
 
+  // What every mfp message starts with: LCM's 8-byte type fingerprint, then int64 utime.
+  void SkipFingerprintAndUtime() {
+    Skip(8, "fingerprint");
+    Skip(8, "utime");
+  }
+
   // An LCM string: int32 length including the terminating NUL, then the bytes.
   void SkipString(const char* what) {
     const int32_t n = ReadLength(what, 1, INT32_MAX, 1);
@@ -85,8 +91,7 @@ class WireCursor {
 
 std::string CheckWireLayout(const plan_request_t* /*tag*/, const uint8_t* data, size_t size) {
   WireCursor cursor(data, size);
-  cursor.Skip(8, "fingerprint");
-  cursor.Skip(8, "utime");
+  cursor.SkipFingerprintAndUtime();
   cursor.Skip(8, "request_id");
   cursor.SkipString("robot");
   const int32_t legs = cursor.ReadLength("num_legs", 0, kMaxWireLegs, 3 * 8);
@@ -99,8 +104,7 @@ std::string CheckWireLayout(const plan_request_t* /*tag*/, const uint8_t* data, 
 
 std::string CheckWireLayout(const terrain_map_t* /*tag*/, const uint8_t* data, size_t size) {
   WireCursor cursor(data, size);
-  cursor.Skip(8, "fingerprint");
-  cursor.Skip(8, "utime");
+  cursor.SkipFingerprintAndUtime();
   cursor.SkipString("frame");
   cursor.SkipString("format");
   const int32_t bytes = cursor.ReadLength("num_bytes", 0, INT32_MAX, 1);
@@ -110,8 +114,7 @@ std::string CheckWireLayout(const terrain_map_t* /*tag*/, const uint8_t* data, s
 
 std::string CheckWireLayout(const height_map_t* /*tag*/, const uint8_t* data, size_t size) {
   WireCursor cursor(data, size);
-  cursor.Skip(8, "fingerprint");
-  cursor.Skip(8, "utime");
+  cursor.SkipFingerprintAndUtime();
   cursor.SkipString("frame");
   cursor.Skip(3 * 8, "resolution, origin_x, origin_y");
   const int32_t nx = cursor.ReadLength("nx", 0, kMaxWireHeightMapSide, 0);

@@ -17,6 +17,7 @@
 #include "planner/planning/internal/stance_route.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/body_clearance.h"
+#include "tests/plan_course.h"
 
 namespace mfp {
 namespace {
@@ -82,21 +83,7 @@ TEST(StanceRoute, KeepsTheBodyClearOfAWallOverFloor) {
   EXPECT_GT(s.length_m, blind.length_m + 0.1);
 }
 
-struct Outcome {
-  Plan plan;
-  CourseVerdict verdict;
-};
-
-Outcome PlanCourse(const Course& course, const RobotModel& robot) {
-  const Scenario scenario = CourseScenario(course, 30.0);
-  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
-  const PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
-  Outcome out;
-  out.plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
-  out.verdict = CheckPlanOnCourse(course.terrain, robot, out.plan.footsteps, course.goal, course.edge_margin_m);
-  return out;
-}
+constexpr double kCourseTimeLimit_s = 30.0;
 
 TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
@@ -108,7 +95,7 @@ TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {
     if (b.size_m.z() > 0.3) door_x = b.center_world_m.x();
   }
   EXPECT_GT(BodyOverlapShare(robot.body, boxes, door_x, 0.0, course.start.yaw_rad, 0.0), 0.0);
-  const Outcome out = PlanCourse(course, robot);
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
   EXPECT_TRUE(out.verdict.valid) << out.verdict.cause << " " << out.plan.message;
   EXPECT_TRUE(out.verdict.body_clear) << out.verdict.body_overlap_share;
   EXPECT_TRUE(out.verdict.reaches_goal) << ToString(out.plan.status);
@@ -122,7 +109,7 @@ TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {
 TEST(BodyCourses, AUShapedPocketIsWalkedAroundNotThrough) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
   const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kPocket, 5);
-  const Outcome out = PlanCourse(course, robot);
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
   EXPECT_TRUE(out.verdict.body_clear) << out.verdict.body_overlap_share;
   EXPECT_TRUE(out.verdict.valid) << out.verdict.cause;
   EXPECT_TRUE(out.verdict.reaches_goal) << ToString(out.plan.status);

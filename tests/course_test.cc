@@ -11,28 +11,12 @@
 #include "planner/planning/internal/stance_route.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tests/plan_course.h"
 
 namespace mfp {
 namespace {
 
-struct Outcome {
-  Plan plan;
-  CourseVerdict verdict;
-};
-
-// Plans on the boxes' true top faces inset by the edge margin, or (from_map) on the
-// regions extracted from the course's voxel map, as mfp-plan does with a scenario.
-Outcome PlanCourse(const Course& course, const RobotModel& robot, bool from_map = false) {
-  const Scenario scenario = CourseScenario(course, 20.0);
-  const std::vector<ConvexRegion> regions = from_map ? ScenarioRegions(scenario, robot)
-                                                     : TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
-  const PlanRequest request = ScenarioRequest(scenario, robot, regions);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
-  Outcome out;
-  out.plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers());
-  out.verdict = CheckPlanOnCourse(course.terrain, robot, out.plan.footsteps, course.goal, course.edge_margin_m);
-  return out;
-}
+constexpr double kCourseTimeLimit_s = 20.0;
 
 std::string RobotPath(const std::string& name) { return std::string(MFP_SOURCE_DIR) + "/config/robots/" + name + ".yaml"; }
 
@@ -48,7 +32,7 @@ Course ExpectValidToTheGoal(const CourseCase& c, bool from_map) {
   const RobotModel robot = LoadRobot(RobotPath(c.robot));
   const Course course = GenerateCourse(robot, RobotPath(c.robot), c.kind, c.seed);
   EXPECT_TRUE(course.route_exists) << course.name;
-  const Outcome out = PlanCourse(course, robot, from_map);
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s, from_map);
   EXPECT_TRUE(out.verdict.valid) << course.name << ": " << (out.verdict.violations.empty() ? "" : out.verdict.violations[0]);
   EXPECT_TRUE(out.verdict.reaches_goal) << course.name << ": " << ToString(out.plan.status) << " " << out.plan.message;
   return course;
@@ -60,7 +44,7 @@ TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
     for (CourseKind kind : {CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal}) {
       const Course course = GenerateCourse(robot, RobotPath(name), kind, 7);
       ASSERT_FALSE(course.route_exists);
-      const Outcome out = PlanCourse(course, robot);
+      const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
       EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << course.name << ": " << out.plan.message;
       EXPECT_NE(out.plan.message.find("no route"), std::string::npos) << out.plan.message;
       EXPECT_LT(out.plan.solve_time_s, 2.0) << course.name;
@@ -231,7 +215,7 @@ TEST(CourseTest, AWindowThePolisherCannotMakeExactIsReplannedExactly) {
 TEST(CourseTest, CheckerRejectsFeetOffTheTrueSurfaceAndOutOfReach) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
   const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kGaps, 7);
-  const Outcome out = PlanCourse(course, robot);
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
   ASSERT_TRUE(out.verdict.valid);
   const size_t k = out.plan.footsteps.size() / 2;
   std::vector<Footstep> floating = out.plan.footsteps;

@@ -11,20 +11,11 @@ set -euo pipefail
 
 SOURCE_DIR=$(realpath "$1")
 BUILD_DIR=$(realpath "$2")
-SCENARIO="$SOURCE_DIR/tests/daemon_height_map_scenario.yaml"
-CONFIG="$SOURCE_DIR/config/daemon.yaml"
-URL="udpm://239.255.76.67:7667?ttl=0"
 
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
 
-mfp_test_workspace mfp_daemon_height_map
-LOG="$WORK/daemon.log"
-
-"$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
-
-mfp_start_logger "$WORK/replies.lcmlog"
-mfp_start_daemon "$LOG" --config "$CONFIG" --lcm-url "$URL"
+mfp_start_replay_session mfp_daemon_height_map tests/daemon_height_map_scenario.yaml
 
 lcm-logplayer --lcm-url="$URL" "$WORK/requests.lcmlog"
 

@@ -12,7 +12,6 @@ set -euo pipefail
 SOURCE_DIR=$(realpath "$1")
 BUILD_DIR=$(realpath "$2")
 DATA="$SOURCE_DIR/tests/data/daemon_large_map"
-URL="udpm://239.255.76.67:7667?ttl=0"
 BUFFER_BYTES=3145728  # 3 MiB: more than the map, within a common net.core.rmem_max (4 MiB)
 
 # Runs this script again inside a private network namespace (tests/netns_helper.sh).

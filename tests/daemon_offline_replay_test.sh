@@ -7,8 +7,8 @@ SOURCE_DIR=$(realpath "$1")
 BUILD_DIR=$(realpath "$2")
 SCENARIO="$SOURCE_DIR/tests/daemon_replay_scenario.yaml"
 CONFIG="$SOURCE_DIR/config/daemon.yaml"
-WORK=$(mktemp -d "${TMPDIR:-/tmp}/mfp_offline_replay.XXXXXX")
-trap 'rm -rf "$WORK"' EXIT
+source "$SOURCE_DIR/tests/test_workspace.sh"
+mfp_test_workspace mfp_offline_replay
 
 "$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
 "$BUILD_DIR/tools/mfp-replay" "$WORK/requests.lcmlog" --config "$CONFIG" --out "$WORK/replies.lcmlog"

@@ -10,21 +10,12 @@ set -euo pipefail
 
 SOURCE_DIR=$(realpath "$1")
 BUILD_DIR=$(realpath "$2")
-SCENARIO="$SOURCE_DIR/tests/daemon_replay_scenario.yaml"
-CONFIG="$SOURCE_DIR/config/daemon.yaml"
-URL="udpm://239.255.76.67:7667?ttl=0"
 
 # Runs this script again inside a private network namespace (tests/netns_helper.sh).
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
 
-mfp_test_workspace mfp_daemon_replay
-LOG="$WORK/daemon.log"
-
-"$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
-
-mfp_start_logger "$WORK/replies.lcmlog"
-mfp_start_daemon "$WORK/daemon.log" --config "$CONFIG" --lcm-url "$URL"
+mfp_start_replay_session mfp_daemon_replay tests/daemon_replay_scenario.yaml
 
 # SIGHUP reloads the config while it runs.
 kill -HUP "$DAEMON_PID"

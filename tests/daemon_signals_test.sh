@@ -17,7 +17,6 @@ set -euo pipefail
 SOURCE_DIR=$(realpath "$1")
 BUILD_DIR=$(realpath "$2")
 DATA="$SOURCE_DIR/tests/data/daemon_signals"
-URL="udpm://239.255.76.67:7667?ttl=0"
 
 # Runs this script again inside a private network namespace (tests/netns_helper.sh).
 source "$SOURCE_DIR/tests/netns_helper.sh"

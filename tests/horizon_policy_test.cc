@@ -46,6 +46,11 @@ class HorizonPolicyTest : public ::testing::Test {
     }
     state_->planned += steps;
   }
+  // A window starts (the state's snapshot) and keeps one step per leg, each 0.1 m ahead.
+  void KeepAWindow() {
+    state_->TakeSnapshot();
+    KeepSteps(n(), 0.1);
+  }
 
   static Course* course_;
   PlannerOptions options_;
@@ -83,10 +88,8 @@ TEST_F(HorizonPolicyTest, AFailureWhereOneFailedBeforeBacksUpOnlyItsOwnWindow) {
   SetUpContext(8);
   HorizonPolicy policy(*context_);
   const int window = context_->window_steps;
-  state_->TakeSnapshot();
-  KeepSteps(n(), 0.1);
-  state_->TakeSnapshot();
-  KeepSteps(n(), 0.1);
+  KeepAWindow();
+  KeepAWindow();
   state_->TakeSnapshot();  // window 3 starts at 2 n steps, and fails
   ASSERT_TRUE(policy.RetryLonger("window 3", state_.get()));
   EXPECT_EQ(state_->planned, n());  // back to window 2's start
@@ -100,8 +103,7 @@ TEST_F(HorizonPolicyTest, KeptStepsPastTheFailureRestoreTheDefaultWindow) {
   SetUpContext(8);
   HorizonPolicy policy(*context_);
   const int window = context_->window_steps;
-  state_->TakeSnapshot();
-  KeepSteps(n(), 0.1);
+  KeepAWindow();
   state_->TakeSnapshot();
   ASSERT_TRUE(policy.RetryLonger("window 2", state_.get()));  // failed at n steps
   state_->TakeSnapshot();

@@ -11,14 +11,15 @@
 # multicast and a route for 224.0.0.0/4. It fails loudly, never skips, when the
 # namespace cannot be made (unshare -n needs root or CAP_SYS_ADMIN).
 #
-# Inside, `mfp_test_workspace NAME` gives the script what each of them needs: WORK, a
-# fresh folder; DAEMON_PID, LOGGER_PID, PLAYER_PID, the background processes it starts
-# (killed on exit; set one back to "" once it has been waited for); fail MESSAGE, which
-# prints the message and the daemon log the script names in LOG, then exits 1. On exit
-# the processes are killed and WORK removed. mfp_start_logger and mfp_start_daemon start
-# the two background processes most scripts need (BUILD_DIR and URL set by the script).
+# Inside, `mfp_test_workspace NAME` (tests/test_workspace.sh) gives the script a fresh
+# WORK folder, `fail`, and the background processes' PIDs killed on exit.
+# mfp_start_logger and mfp_start_daemon start the two background processes most scripts
+# need (BUILD_DIR and URL set by the script); mfp_start_replay_session does the whole
+# set-up of a log replayed into a running daemon.
 
 MFP_NAMESPACE_MARKER="--in-namespace"
+# The LCM URL inside the namespace (ttl=0: never past this host); a script may set its own.
+: "${URL:=udpm://239.255.76.67:7667?ttl=0}"
 
 mfp_enter_private_namespace() {
   local last="${!#}"
@@ -45,28 +46,7 @@ mfp_enter_private_namespace() {
   ip route add 224.0.0.0/4 dev lo
 }
 
-mfp_test_workspace() {  # NAME: the work folder's prefix
-  WORK=$(mktemp -d "${TMPDIR:-/tmp}/$1.XXXXXX")
-  DAEMON_PID=""
-  LOGGER_PID=""
-  PLAYER_PID=""
-  LOG=""
-  trap mfp_test_cleanup EXIT
-}
-
-mfp_test_cleanup() {
-  local pid
-  for pid in "$DAEMON_PID" "$LOGGER_PID" "$PLAYER_PID"; do
-    [ -n "$pid" ] && kill -KILL "$pid" 2>/dev/null || true
-  done
-  rm -rf "$WORK"
-}
-
-fail() {
-  echo "FAIL: $*"
-  [ -n "$LOG" ] && [ -f "$LOG" ] && { echo "--- daemon log ---"; cat "$LOG" || true; }
-  exit 1
-}
+source "$(dirname "${BASH_SOURCE[0]}")/test_workspace.sh"
 
 mfp_start_logger() {  # OUT: records the daemon's replies, regions and status from $URL
   lcm-logger --quiet --lcm-url="$URL" --channel='MFP_PLAN|MFP_REGIONS|MFP_STATUS' --flush-interval=50 \
@@ -85,6 +65,18 @@ mfp_start_daemon() {  # LOG ARGS...: mfp-daemon with ARGS, its log in LOG; waits
     sleep 0.1
   done
   fail "mfp-daemon did not start within 30 s"
+}
+
+mfp_start_replay_session() {  # NAME SCENARIO [CONFIG]: SCENARIO and CONFIG (default
+  # config/daemon.yaml), both below SOURCE_DIR, set as variables; WORK; the scenario's
+  # request log in WORK/requests.lcmlog; the logger recording WORK/replies.lcmlog; the
+  # daemon on $URL with CONFIG, its log in WORK/daemon.log (LOG)
+  SCENARIO="$SOURCE_DIR/$2"
+  CONFIG="$SOURCE_DIR/${3:-config/daemon.yaml}"
+  mfp_test_workspace "$1"
+  "$BUILD_DIR/tools/mfp-make-log" "$SCENARIO" --config "$CONFIG" --out "$WORK/requests.lcmlog"
+  mfp_start_logger "$WORK/replies.lcmlog"
+  mfp_start_daemon "$WORK/daemon.log" --config "$CONFIG" --lcm-url "$URL"
 }
 
 mfp_wait_for_replies() {  # SCENARIO CONFIG: until mfp-check-replies stops answering 3 (every

@@ -18,6 +18,7 @@ A solver whose Python package is not installed is "unavailable", never a crash.
 
 import argparse
 import contextlib
+import importlib
 import importlib.metadata
 import json
 import os
@@ -184,13 +185,20 @@ def split_ranged_rows(path, out_path):
     return len(bounds)
 
 
+def import_peer(solver, module):
+    """The peer's Python module and None, or None and an "unavailable" result saying why."""
+    try:
+        return importlib.import_module(module), None
+    except ImportError as e:
+        return None, result(solver, "unavailable", message=f"{module} not importable: {e}")
+
+
 # --------------------------------------------------------------------------- SCIP
 
 def solve_scip(path, time_limit, threads, mip_gap):
-    try:
-        import pyscipopt
-    except ImportError as e:
-        return result("scip", "unavailable", message=f"pyscipopt not importable: {e}")
+    pyscipopt, unavailable = import_peer("scip", "pyscipopt")
+    if unavailable:
+        return unavailable
     model = pyscipopt.Model()
     version = f"SCIP {model.version()} (pyscipopt {pyscipopt.__version__})"
     model.hideOutput()
@@ -227,11 +235,10 @@ COPT_SIZE_WORDS = ("size", "limit", "licen")
 
 
 def solve_copt(path, time_limit, threads, mip_gap):
-    try:
-        import coptpy
-        from coptpy import COPT
-    except ImportError as e:
-        return result("copt", "unavailable", message=f"coptpy not importable: {e}")
+    coptpy, unavailable = import_peer("copt", "coptpy")
+    if unavailable:
+        return unavailable
+    COPT = coptpy.COPT
     version = f"COPT {package_version('coptpy')}"
     env = coptpy.Envr()
 
@@ -298,11 +305,10 @@ CPXERR_RESTRICTED_VERSION = 1016
 
 
 def solve_cplex(path, time_limit, threads, mip_gap):
-    try:
-        import cplex
-        from cplex.exceptions import CplexSolverError
-    except ImportError as e:
-        return result("cplex", "unavailable", message=f"cplex not importable: {e}")
+    cplex, unavailable = import_peer("cplex", "cplex")
+    if unavailable:
+        return unavailable
+    from cplex.exceptions import CplexSolverError
     cpx = cplex.Cplex()
     version = f"CPLEX {cpx.get_version()}"
     cpx.read(path)
@@ -350,11 +356,10 @@ GRB_ERROR_SIZE_LIMIT_EXCEEDED = 10010
 
 
 def solve_gurobi(path, time_limit, threads, mip_gap):
-    try:
-        import gurobipy as gp
-        from gurobipy import GRB
-    except ImportError as e:
-        return result("gurobi", "unavailable", message=f"gurobipy not importable: {e}")
+    gp, unavailable = import_peer("gurobi", "gurobipy")
+    if unavailable:
+        return unavailable
+    GRB = gp.GRB
     version = "Gurobi {}.{}.{}".format(*gp.gurobi.version())
     env = gp.Env(empty=True)
     env.setParam("OutputFlag", 1)

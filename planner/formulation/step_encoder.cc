@@ -23,8 +23,5 @@ StepExpr& StepExpr::operator*=(double scale) {
   return *this;
 }
 
-StepExpr operator+(StepExpr a, const StepExpr& b) { return a += b; }
-StepExpr operator-(StepExpr a, const StepExpr& b) { return a -= b; }
-StepExpr operator*(double scale, StepExpr a) { return a *= scale; }
 
 }  // namespace mfp

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "base/expression_arithmetic.h"
 #include "planner/miqp/miqp_builder.h"
 
 namespace mfp {
@@ -41,7 +42,7 @@ struct RotatedOffset {
 };
 
 // A linear expression over the encoder's variables plus exact rotated offsets.
-struct StepExpr {
+struct StepExpr : ExpressionArithmetic<StepExpr> {
   LinExpr lin;
   std::vector<RotatedOffset> rotations;
 
@@ -51,9 +52,6 @@ struct StepExpr {
   StepExpr& operator-=(const StepExpr& other);
   StepExpr& operator*=(double scale);
 };
-StepExpr operator+(StepExpr a, const StepExpr& b);
-StepExpr operator-(StepExpr a, const StepExpr& b);
-StepExpr operator*(double scale, StepExpr a);
 
 class StepEncoder {
  public:

@@ -36,9 +36,6 @@ LinExpr& LinExpr::operator*=(double scale) {
   return *this;
 }
 
-LinExpr operator+(LinExpr a, const LinExpr& b) { return a += b; }
-LinExpr operator-(LinExpr a, const LinExpr& b) { return a -= b; }
-LinExpr operator*(double scale, LinExpr a) { return a *= scale; }
 
 int MiqpBuilder::AddVariable(const std::string& name, double lower, double upper, bool integer) {
   MFP_CHECK_MSG(!std::isnan(lower) && !std::isnan(upper) && lower <= upper, name);

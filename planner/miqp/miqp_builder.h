@@ -6,12 +6,14 @@
 #include <utility>
 #include <vector>
 
+#include "base/expression_arithmetic.h"
 #include "planner/miqp/miqp.h"
 
 namespace mfp {
 
 // sum_j coefficient_j * x_j + constant. Terms may repeat a variable; they add up.
-struct LinExpr {
+// a + b, a - b and scale * a come from ExpressionArithmetic.
+struct LinExpr : ExpressionArithmetic<LinExpr> {
   std::vector<std::pair<int, double>> terms;
   double constant = 0.0;
 
@@ -21,9 +23,6 @@ struct LinExpr {
   LinExpr& operator-=(const LinExpr& other);
   LinExpr& operator*=(double scale);
 };
-LinExpr operator+(LinExpr a, const LinExpr& b);
-LinExpr operator-(LinExpr a, const LinExpr& b);
-LinExpr operator*(double scale, LinExpr a);
 
 class MiqpBuilder {
  public:
