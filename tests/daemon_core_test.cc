@@ -191,6 +191,18 @@ class DaemonCoreTest : public ::testing::Test {
   }
   const RobotModel& Hexapod() const { return setup_->robots.at("hexapod"); }
   std::vector<plan_t> Replies() { return publisher_.All<plan_t>(kPlanChannel); }
+  // The replies so far are requests 1 and 2, in that order, each with `status` and a
+  // message that says `words`.
+  void ExpectRequestsOneAndTwoAnswered(int8_t status, const std::string& words) {
+    const std::vector<plan_t> replies = Replies();
+    ASSERT_EQ(replies.size(), 2u);
+    EXPECT_EQ(replies[0].request_id, 1);
+    EXPECT_EQ(replies[1].request_id, 2);
+    for (const plan_t& r : replies) {
+      EXPECT_EQ(r.status, status);
+      EXPECT_NE(r.message.find(words), std::string::npos) << r.message;
+    }
+  }
 
   // One hexapod request with a 0.2 s limit to a daemon whose planner is `plan`: the reply
   // must come within 1 s (the overrunning planners take 3 s). Returns the replies.
@@ -316,19 +328,12 @@ TEST_F(DaemonCoreTest, FullQueueDropsTheOldestWithAReplyAndServesNewestFirst) {
   SendMap("flat");
   for (int64_t id = 1; id <= 4; ++id) Send(Request(Hexapod(), id));
   // Requests 1 and 2 were evicted by 3 and 4.
-  auto replies = Replies();
-  ASSERT_EQ(replies.size(), 2u);
-  EXPECT_EQ(replies[0].request_id, 1);
-  EXPECT_EQ(replies[1].request_id, 2);
-  for (const plan_t& r : replies) {
-    EXPECT_EQ(r.status, +plan_t::STATUS_DROPPED);
-    EXPECT_NE(r.message.find("queue"), std::string::npos);
-  }
+  ExpectRequestsOneAndTwoAnswered(plan_t::STATUS_DROPPED, "queue");
   EXPECT_EQ(core_->queue_length(), 2u);
   EXPECT_TRUE(core_->PlanNext());
   EXPECT_TRUE(core_->PlanNext());
   EXPECT_FALSE(core_->PlanNext());
-  replies = Replies();
+  const std::vector<plan_t> replies = Replies();
   ASSERT_EQ(replies.size(), 4u);
   EXPECT_EQ(replies[2].request_id, 4);  // newest first
   EXPECT_EQ(replies[3].request_id, 3);
@@ -386,14 +391,7 @@ TEST_F(DaemonCoreTest, ANewerRequestForTheSameRobotSupersedesTheQueuedOne) {
   dog.robot = "littledog";
   Send(dog);  // another robot: supersedes nothing
   Send(Request(Hexapod(), 4));
-  auto replies = Replies();
-  ASSERT_EQ(replies.size(), 2u);
-  EXPECT_EQ(replies[0].request_id, 1);
-  EXPECT_EQ(replies[1].request_id, 2);
-  for (const plan_t& r : replies) {
-    EXPECT_EQ(r.status, +plan_t::STATUS_SUPERSEDED);
-    EXPECT_NE(r.message.find("superseded by request"), std::string::npos) << r.message;
-  }
+  ExpectRequestsOneAndTwoAnswered(plan_t::STATUS_SUPERSEDED, "superseded by request");
   EXPECT_EQ(core_->queue_length(), 2u);
   EXPECT_EQ(core_->counters().superseded_requests, 2);
   EXPECT_EQ(core_->StatusMessage().superseded_requests, 2);
