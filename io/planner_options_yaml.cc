@@ -200,6 +200,9 @@ void AddRelaxAndFixKeys(Table* t) {
   t->push_back(Opt("relax_and_fix.stage_rounding", in(&R::stage_rounding),
                    "run the search's rounding heuristic inside the stages")
                    .Alias("relax_and_fix_stage_rounding").Advanced());
+  t->push_back(Opt("relax_and_fix.first_plan_dive", in(&R::first_plan_dive),
+                   "a seeded window whose root roundings find no plan first gets one from a one-node-per-stage dive")
+                   .Advanced());
 }
 
 void AddPolishKeys(Table* t) {
@@ -210,6 +213,10 @@ void AddPolishKeys(Table* t) {
                    .Alias("polish"));
   t->push_back(Opt("polish.time_limit", in(&O::time_limit_s), 1e-4, 3600, "time of the polisher per window")
                    .Alias("polish_time_limit").Unit("s"));
+  t->push_back(Opt("polish.reserve_fraction", in(&O::reserve_fraction), 0.0, 0.5,
+                   "fraction of the plan's time limit kept from every window's search for the polisher "
+                   "(at most polish.time_limit, at most half the time left)")
+                   .Advanced());
   t->push_back(Opt("polish.sequential_qp", in(&O::sequential_qp),
                    "polish by sequential QP on mfp's interior point first").Alias("polish_sequential_qp").Advanced());
   t->push_back(Opt("polish.slsqp_fallback", in(&O::slsqp_fallback),

@@ -1,6 +1,8 @@
-// The anytime guarantee on the hardest Table I instance (LittleDog, 24 new steps): a
-// search cut short, by its node cap or by a slow root heuristic that takes its whole
-// time, still ends with a plan.
+// The anytime guarantee on the hardest Table I instances (LittleDog, 24 and 36 new
+// steps): a search cut short, by its node cap or by a slow root heuristic that takes its
+// whole time, still ends with a plan; where no rounding of the root is feasible (36 steps)
+// the first plan comes from relax-and-fix's dive; a search that takes the whole limit
+// leaves the exactness step its reserve.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -8,6 +10,7 @@
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/planning/internal/exact_window.h"
+#include "planner/planning/internal/relax_and_fix.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
 #include "tests/test_scenarios.h"
@@ -15,13 +18,15 @@
 namespace mfp {
 namespace {
 
-Course LittleDog24() {
+Course LittleDogTableI(int steps) {
   Course c = LoadCourse("littledog_stepping_stones_45.yaml");
-  c.request.max_steps = 24;
-  c.request.window_steps = 24;
+  c.request.max_steps = steps;
+  c.request.window_steps = steps;
   c.request.max_windows = 1;  // one MIQP, as in Table I
   return c;
 }
+
+Course LittleDog24() { return LittleDogTableI(24); }
 
 TEST(AnytimePlan, RootRoundingsAreCompletedBeforeTheRootHeuristicTakesTheTime) {
   // The root heuristic (relax-and-fix's seed in the planner) sleeps past the search's
@@ -103,6 +108,71 @@ TEST(AnytimePlan, AWindowWithoutTimeToReplanKeepsItsOwnChoicesCompleted) {
   for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(before[i].region_id, after[i].region_id) << "step " << i;
   // Without the window's point there is nothing to complete: no plan.
   EXPECT_FALSE(ReplanWithinChordError(formulation, solvers.workers(), bnb, no_polish).planned);
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+TEST(AnytimePlan, ThirtySixStepsWithoutAFeasibleRoundingGetTheDivesPlanAtTheRoot) {
+  // LittleDog 36: none of the root's roundings is feasible, so a search capped at its root
+  // has no plan; the first-plan heuristic (relax-and-fix's dive, one node per stage)
+  // gives it one there.
+  const Course c = LittleDogTableI(36);
+  const PlannerOptions& options = c.scenario.options;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  BranchAndBoundOptions bnb = options.branch_and_bound;
+  bnb.max_nodes = 1;
+  const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) { return formulation.RoundAlongPlan(relaxed); };
+  const BranchAndBoundResult roundings_only = SolveBranchAndBound(formulation.miqp(), solvers.workers(), bnb, rounding);
+  ASSERT_EQ(roundings_only.x.size(), 0) << "a rounding of the root is feasible: this case no longer needs the dive";
+
+  int dives = 0;
+  bnb.first_plan_heuristic = [&](const Eigen::VectorXd&) {
+    ++dives;
+    RelaxAndFixOptions rf = options.relax_and_fix;
+    rf.stage = options.branch_and_bound;
+    rf.time_limit_s = 60.0;
+    std::vector<Eigen::VectorXd> plans;
+    if (const RelaxAndFixResult r = RelaxAndFix(formulation, solvers.workers(), DiveOptions(rf)); r.x) {
+      EXPECT_FALSE(r.completed_by_rounding);
+      EXPECT_EQ(r.nodes, formulation.num_configurations() - 1);  // one node per stage
+      plans.push_back(*r.x);
+    }
+    return plans;
+  };
+  const BranchAndBoundResult r = SolveBranchAndBound(formulation.miqp(), solvers.workers(), bnb, rounding);
+  EXPECT_EQ(dives, 1);
+  ASSERT_GT(r.x.size(), 0) << "the dive found no plan";
+  const Miqp& m = formulation.miqp();
+  EXPECT_LE(m.MaxViolation(r.x), bnb.feasibility_tolerance);
+  EXPECT_EQ(m.MaxIntegrality(r.x), 0.0);
+  EXPECT_GE(r.objective, r.root_bound);
+}
+
+TEST(AnytimePlan, ThirtySixStepsEndWithAPlanWhenTheSearchTakesTheWholeLimit) {
+  // LittleDog 36 as Table I runs it, with a limit far too short to prove it: the search
+  // runs to its deadline, which leaves the polisher its reserve, so the plan ends with
+  // the search's best plan made exact, no worse than the first plan it held. (Before,
+  // the search took the whole limit, the polisher got 1 ms, the completion on the shrunk
+  // boxes was infeasible, and the instance ended no_solution at any limit.)
+  Course c = LittleDogTableI(36);
+  c.request.time_limit_s = 3.0;
+  PlannerOptions options = c.scenario.options;
+  std::vector<double> incumbents;
+  options.branch_and_bound.on_incumbent = [&](const BranchAndBoundResult& r) { incumbents.push_back(r.objective); };
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
+  const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, options, solvers.workers());
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_GT(plan.gap, 0.0);  // not proven in 3 s
+  ASSERT_FALSE(incumbents.empty());
+  EXPECT_LE(plan.objective, incumbents.front());
+  ASSERT_EQ(plan.window_records.size(), 1u);
+  EXPECT_TRUE(plan.window_records.front().polished);
+  EXPECT_GT(plan.footsteps.size(), static_cast<size_t>(c.robot.num_legs()));
 }
 
 }  // namespace

@@ -81,7 +81,8 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
   const MiqpFormulation& shrunk = *out.formulation;
   const RoundingHeuristic rounding = [&shrunk](const Eigen::VectorXd& relaxed) { return shrunk.RoundAlongPlan(relaxed); };
   BranchAndBoundOptions search = bnb;
-  search.root_heuristic = nullptr;  // a window's root heuristic belongs to its own formulation
+  search.root_heuristic = nullptr;  // a window's root heuristics belong to its own formulation
+  search.first_plan_heuristic = nullptr;
   if (search.equivalent_point) {  // the window's snap belongs to its own formulation
     search.equivalent_point = [&shrunk](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x) {
       return shrunk.SnapYawToOneSegment(lower, upper, x);

@@ -112,6 +112,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
     bnb.root_heuristic = nullptr;  // a stage is itself part of the root heuristic
+    bnb.first_plan_heuristic = nullptr;
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;
@@ -133,6 +134,14 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   if (full.MaxViolation(x) > options.stage.feasibility_tolerance) return result;
   result.x = x;
   return result;
+}
+
+RelaxAndFixOptions DiveOptions(RelaxAndFixOptions options) {
+  options.nodes_per_stage = 1;
+  options.stage_rounding = true;
+  options.stage.rounding_heuristic = true;
+  options.stage.branching = BranchingRule::kGroupOrder;
+  return options;
 }
 
 RelaxAndFixResult RelaxAndFixTwoPaths(const MiqpFormulation& formulation,

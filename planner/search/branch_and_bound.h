@@ -68,6 +68,11 @@ struct BranchAndBoundOptions {
   // Returns assignments (a plan's own, typically); each is offered as it is and then
   // completed by its fixed-integer QP while time is left.
   std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> root_heuristic;
+  // Optional quick primal heuristic for a root whose roundings found no plan (relax-and-
+  // fix's dive in the planner): run once at the root, after the roundings and before
+  // root_heuristic, only when the search holds no incumbent yet; its plans are offered
+  // and completed as root_heuristic's. A search whose roundings succeed never calls it.
+  std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> first_plan_heuristic;
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
   // Reduced-cost fixing: when the relaxation solver certifies how fast the objective
   // grows away from a bound (RelaxationResult::cost_floor and rates), integer values

@@ -61,8 +61,11 @@ void TryRounding(SearchState* state, const Branching& branching, const RoundingH
 
 void RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
   const BranchAndBoundOptions& options = state->options();
-  if (!options.rounding_heuristic || !options.root_heuristic) return;
-  OfferAndComplete(state, options.root_heuristic(x), x);
+  if (!options.rounding_heuristic) return;
+  if (options.first_plan_heuristic && !state->HasIncumbent()) {
+    OfferAndComplete(state, options.first_plan_heuristic(x), x);
+  }
+  if (options.root_heuristic) OfferAndComplete(state, options.root_heuristic(x), x);
 }
 
 }  // namespace mfp

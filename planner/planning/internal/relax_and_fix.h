@@ -62,6 +62,12 @@ struct RelaxAndFixOptions {
   double time_share = 1.0;
   int min_configurations = 4;
   bool two_paths = true;
+  // A seeded window whose root roundings find no plan first gets a quick one: a dive,
+  // relax-and-fix with one node per stage and the stage roundings on (each stage's
+  // configuration fixed from its root relaxation's best rounding), before the full run
+  // above. On Table I's LittleDog 36 no rounding of the root is feasible, and the full
+  // run's plan came after seconds (docs/measurements.md).
+  bool first_plan_dive = true;
 };
 
 struct RelaxAndFixResult {
@@ -74,6 +80,10 @@ struct RelaxAndFixResult {
   // instead of searched.
   bool completed_by_rounding = false;
 };
+
+// options turned into the quick dive of RelaxAndFixOptions::first_plan_dive: one node per
+// stage, the stage roundings on, group-order branching.
+RelaxAndFixOptions DiveOptions(RelaxAndFixOptions options);
 
 // Each stage's search runs with the given workers (SolveBranchAndBound); none of them may
 // be in use elsewhere meanwhile.

@@ -37,6 +37,11 @@ namespace mfp {
 struct PolishOptions {
   bool enabled = true;
   double time_limit_s = 0.5;              // per window
+  // Kept for the exactness step out of every window search's deadline: this fraction of
+  // the plan's time limit, at most time_limit_s and at most half of the time left. A
+  // search that ran to the plan's limit left the polisher nothing, and its window, with
+  // a plan, was dropped (Table I's LittleDog 36 ended no_solution).
+  double reserve_fraction = 0.05;
   double margin_m = 1e-7;                 // boxes, heights and region faces tightened by this
   double feasibility_tolerance_m = 1e-6;  // largest violation of an accepted polished plan
   // The solver first sees only the inequalities within this of their bound at the MIQP's

@@ -71,7 +71,26 @@ std::optional<Eigen::VectorXd> RelaxAndFixSeed(const PlanContext& context, const
   return r.x;
 }
 
+// The quick first plan of a seeded window whose root roundings found none
+// (RelaxAndFixOptions::first_plan_dive): one node per stage, the stage roundings on, one
+// path, within the same time as the full run (each stage's QPs take milliseconds).
+std::optional<Eigen::VectorXd> RelaxAndFixDive(const PlanContext& context, const MiqpFormulation& formulation,
+                                               const BranchAndBoundOptions& bnb) {
+  RelaxAndFixOptions rf = context.options.relax_and_fix;
+  rf.stage = bnb;
+  rf.stage.time_limit_needs_incumbent = false;
+  rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+  return RelaxAndFix(formulation, context.solvers, DiveOptions(rf)).x;
+}
+
 }  // namespace
+
+double ExactnessReserve(const PlanContext& context) {
+  const PolishOptions& polish = context.options.polish;
+  if (!polish.enabled) return 0.0;
+  return std::min({polish.time_limit_s, polish.reserve_fraction * context.time_limit_s,
+                   0.5 * std::max(0.0, context.TimeLeftSeconds())});
+}
 
 BranchAndBoundOptions WindowSearchOptions(const PlanContext& context, const HorizonState& state, double remaining_s,
                                           const MiqpFormulation& formulation) {
@@ -95,9 +114,10 @@ BranchAndBoundOptions WindowSearchOptions(const PlanContext& context, const Hori
     bnb.time_limit_s = WindowTimeShare(budget);
   }
   bnb.time_limit_needs_incumbent = context.guided && options.anytime_windows;
-  // No window runs past the whole plan's limit, whatever it is given, nor, running on
-  // to its first plan, past anytime_window_cap shares.
-  const double time_left_s = context.TimeLeftSeconds();
+  // No window runs past the whole plan's limit less the exactness step's reserve
+  // (PolishOptions::reserve_fraction), whatever it is given, nor, running on to its first
+  // plan, past anytime_window_cap shares.
+  const double time_left_s = context.TimeLeftSeconds() - ExactnessReserve(context);
   bnb.deadline = context.request.deadline.Within(
       bnb.time_limit_needs_incumbent ? std::min(time_left_s, options.anytime_window_cap * bnb.time_limit_s)
                                      : time_left_s);
@@ -134,9 +154,20 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     seeded = true;
     const PlanClock::time_point rf_start = PlanClock::now();
     if (std::optional<Eigen::VectorXd> x = RelaxAndFixSeed(context, formulation, bnb)) plans.push_back(std::move(*x));
-    record->heuristic_s = SecondsSince(rf_start);
+    record->heuristic_s += SecondsSince(rf_start);
     return plans;
   };
+  // Before it, when the roundings found no plan: the quick dive.
+  if (!seeded && options.relax_and_fix.first_plan_dive) {
+    bnb.first_plan_heuristic = [&](const Eigen::VectorXd&) {
+      std::vector<Eigen::VectorXd> plans;
+      if (seeded) return plans;  // a bounded replan's second search: its first had the root
+      const PlanClock::time_point dive_start = PlanClock::now();
+      if (std::optional<Eigen::VectorXd> x = RelaxAndFixDive(context, formulation, bnb)) plans.push_back(std::move(*x));
+      record->heuristic_s += SecondsSince(dive_start);
+      return plans;
+    };
+  }
   const double window_time_limit_s = bnb.time_limit_s;
   if (bounded_replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
   const PlanClock::time_point search_start = PlanClock::now();
@@ -168,7 +199,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   record->status = result.status;
   record->nodes = result.nodes;
   record->relaxations = result.relaxations;
-  bnb.root_heuristic = nullptr;  // it refers to this call's locals
+  bnb.root_heuristic = nullptr;  // they refer to this call's locals
+  bnb.first_plan_heuristic = nullptr;
   return WindowSearch{std::move(result), std::move(bnb)};
 }
 

@@ -13,6 +13,10 @@
 
 namespace mfp {
 
+// The time kept from a window search's deadline for its exactness step [s]
+// (PolishOptions::reserve_fraction): the polisher and, when it fails, the re-plan.
+double ExactnessReserve(const PlanContext& context);
+
 // The search options of the next window: options.branch_and_bound with the window's time
 // share of remaining_s (an even split over the windows the step budget leaves, at least
 // half the time; under guidance WindowTimeShare over the windows the route still needs),

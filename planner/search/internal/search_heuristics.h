@@ -15,8 +15,9 @@ namespace mfp {
 void TryRounding(SearchState* state, const Branching& branching, const RoundingHeuristic& proposals,
                  const Eigen::VectorXd& x);
 
-// BranchAndBoundOptions::root_heuristic on the root relaxation point x, its proposals
-// offered and completed as TryRounding's. Nothing when either option is off.
+// BranchAndBoundOptions::first_plan_heuristic (only while the search has no incumbent),
+// then root_heuristic, on the root relaxation point x, their proposals offered and
+// completed as TryRounding's. Nothing when rounding_heuristic is off.
 void RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x);
 
 }  // namespace mfp
