@@ -44,6 +44,17 @@ class Deadline {
     return d;
   }
 
+  // This deadline moved `seconds` later (a never-expiring one stays so), with this one's
+  // stop flag: for a short piece of work that must finish what an expired search began,
+  // bounded past the request's deadline by `seconds` and still ended by the flag.
+  Deadline ExtendedBy(double seconds) const {
+    Deadline d = *this;
+    if (finite_) {
+      d.at_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::max(seconds, 0.0)));
+    }
+    return d;
+  }
+
   bool Stopped() const { return stop_ != nullptr && stop_->load(std::memory_order_relaxed); }
   bool Expired() const { return Stopped() || (finite_ && Clock::now() >= at_); }
   // Seconds left (0 when expired or stopped; +infinity when it never expires).

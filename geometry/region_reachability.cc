@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <optional>
 
 namespace mfp {
 namespace {
@@ -42,9 +43,10 @@ double RegionPlanarDistance(const ConvexRegion& a, const ConvexRegion& b) {
   return d;
 }
 
-std::vector<int> ReachableRegionIndices(const std::vector<ConvexRegion>& regions,
-                                        const std::vector<Eigen::Vector3d>& start_feet_world_m,
-                                        double step_xy_m, double dz_max_m, double tolerance_m) {
+std::optional<std::vector<int>> ReachableRegionIndices(const std::vector<ConvexRegion>& regions,
+                                                       const std::vector<Eigen::Vector3d>& start_feet_world_m,
+                                                       double step_xy_m, double dz_max_m, double tolerance_m,
+                                                       const Deadline& deadline) {
   const int n = static_cast<int>(regions.size());
   std::vector<double> lo(n), hi(n);
   std::vector<Eigen::Vector2d> box_lo(n), box_hi(n);
@@ -67,6 +69,7 @@ std::vector<int> ReachableRegionIndices(const std::vector<ConvexRegion>& regions
     }
   }
   while (!queue.empty()) {
+    if (deadline.Expired()) return std::nullopt;
     const int i = queue.front();
     queue.pop_front();
     for (int j = 0; j < n; ++j) {

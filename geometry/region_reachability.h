@@ -7,8 +7,10 @@
 // leg steps k times can only use regions within k steps of some start foot. Plain Eigen;
 // the planner calls it before building each window's MIQP, and route guidance may too.
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
+#include "base/deadline.h"
 #include "geometry/convex_region.h"
 
 namespace mfp {
@@ -20,9 +22,13 @@ double RegionPlanarDistance(const ConvexRegion& a, const ConvexRegion& b);
 // Indices (ascending) of the regions reachable from the start feet: chains of regions
 // whose polygons are within step_xy_m horizontally and whose height ranges are within
 // dz_max_m, starting at the regions that hold a start foot (within tolerance_m).
-std::vector<int> ReachableRegionIndices(const std::vector<ConvexRegion>& regions,
-                                        const std::vector<Eigen::Vector3d>& start_feet_world_m,
-                                        double step_xy_m, double dz_max_m, double tolerance_m);
+// nullopt when `deadline` expires (or its stop flag is set) first: the chains compare
+// every pair of regions, quadratic in their number, so a large map is checked between
+// the regions it visits.
+std::optional<std::vector<int>> ReachableRegionIndices(const std::vector<ConvexRegion>& regions,
+                                                       const std::vector<Eigen::Vector3d>& start_feet_world_m,
+                                                       double step_xy_m, double dz_max_m, double tolerance_m,
+                                                       const Deadline& deadline = Deadline());
 
 // Indices (ascending) of the regions a window can use: those within steps_per_leg *
 // step_xy_m horizontally and steps_per_leg * dz_max_m vertically of some start foot.

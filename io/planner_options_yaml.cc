@@ -225,6 +225,9 @@ void AddPolishKeys(Table* t) {
   t->push_back(Opt("polish.replan_inexact", in(&O::replan_when_inexact),
                    "a window the polisher cannot make exact is planned again with boxes shrunk by the chords' error")
                    .Alias("polish_replan_inexact").Advanced());
+  t->push_back(Opt("polish.completion_overrun", in(&O::completion_overrun_s), 0, 10,
+                   "a re-plan out of time completes the window's own choices with one QP, at most this long past the "
+                   "plan's deadline").Unit("s").Advanced());
 }
 
 Table MakeTable() {

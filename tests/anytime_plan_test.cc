@@ -5,6 +5,7 @@
 // leaves the exactness step its reserve.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <thread>
 
@@ -95,6 +96,9 @@ TEST(AnytimePlan, AWindowWithoutTimeToReplanKeepsItsOwnChoicesCompleted) {
   bnb.deadline = Deadline::After(0.0);  // nothing left for the re-plan's search
   PolishOptions no_polish;
   no_polish.enabled = false;
+  // The completion runs past the deadline by at most completion_overrun_s, counted from
+  // the deadline: building the shrunk MIQP takes part of it, so room to spare here.
+  no_polish.completion_overrun_s = 10.0;
   const ExactReplan replan = ReplanWithinChordError(formulation, solvers.workers(), bnb, no_polish, &window.x);
   ASSERT_TRUE(replan.planned) << replan.note;
   EXPECT_EQ(replan.result.nodes, 0);
@@ -108,6 +112,14 @@ TEST(AnytimePlan, AWindowWithoutTimeToReplanKeepsItsOwnChoicesCompleted) {
   for (size_t i = 0; i < before.size(); ++i) EXPECT_EQ(before[i].region_id, after[i].region_id) << "step " << i;
   // Without the window's point there is nothing to complete: no plan.
   EXPECT_FALSE(ReplanWithinChordError(formulation, solvers.workers(), bnb, no_polish).planned);
+  // No overrun allowed, or the request stopped: the completion does not run past either.
+  PolishOptions no_overrun = no_polish;
+  no_overrun.completion_overrun_s = 0.0;
+  EXPECT_FALSE(ReplanWithinChordError(formulation, solvers.workers(), bnb, no_overrun, &window.x).planned);
+  std::atomic<bool> stop{true};
+  BranchAndBoundOptions stopped = bnb;
+  stopped.deadline = Deadline::After(0.0).WithStop(&stop);
+  EXPECT_FALSE(ReplanWithinChordError(formulation, solvers.workers(), stopped, no_polish, &window.x).planned);
 }
 
 }  // namespace

@@ -57,6 +57,30 @@ TEST(BodyClearance, OverlapOfConvexPolygons) {
   EXPECT_EQ(ConvexOverlapArea(a, far), 0.0);
 }
 
+TEST(BodyClearance, ASubsetOfObstaclesByIndexIsJudgedAsThatSubset) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  TerrainBox under;  // the body's centre, in its band
+  under.center_world_m = {0.0, 0.0, 0.1};
+  under.size_m = {0.1, 0.1, 0.2};
+  TerrainBox beside = under;  // half the body's footprint
+  beside.center_world_m.x() = robot.body.max_m.x();
+  beside.size_m = {robot.body.length_m(), 1.0, 0.2};
+  TerrainBox far = under;
+  far.center_world_m.x() = 5.0;
+  const std::vector<BodyObstacle> obstacles = BoxBodyObstacles({under, beside, far});
+  const double all = BodyOverlapShare(robot.body, obstacles, 0.0, 0.0, 0.0, 0.0);
+  EXPECT_GT(all, 0.0);
+  EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, {0, 1, 2}, 0.0, 0.0, 0.0, 0.0), all);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, {k}, 0.0, 0.0, 0.0, 0.0),
+              BodyOverlapShare(robot.body, {obstacles[static_cast<size_t>(k)]}, 0.0, 0.0, 0.0, 0.0))
+        << "obstacle " << k;
+  }
+  EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, {2}, 0.0, 0.0, 0.0, 0.0), 0.0);
+  EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, std::vector<int>{}, 0.0, 0.0, 0.0, 0.0), 0.0);
+  EXPECT_LT(BodyOverlapShare(robot.body, obstacles, {0}, 0.0, 0.0, 0.0, 0.0), all);  // the wide one decides
+}
+
 ConvexRegion Rect(int id, double x0, double y0, double x1, double y1) {
   return MakeRegionFromPolygon(id, {{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}}, 0.0);
 }

@@ -7,10 +7,15 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <thread>
+#include <vector>
 
+#include "geometry/region_reachability.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
+#include "planner/formulation/miqp_formulation.h"
 #include "planner/miqp/miqp_builder.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/interior_point_qp.h"
@@ -37,6 +42,22 @@ TEST(Deadline, NeverAfterWithinAndStop) {
   EXPECT_TRUE(d.Expired());
   EXPECT_TRUE(d.Stopped());
   EXPECT_EQ(d.RemainingSeconds(), 0.0);
+}
+
+TEST(Deadline, ExtendedByMovesTheTimeAndKeepsTheFlag) {
+  EXPECT_FALSE(Deadline().ExtendedBy(1.0).finite());
+  EXPECT_TRUE(Deadline::After(0.0).ExtendedBy(0.0).Expired());
+  const Deadline later = Deadline::After(0.0).ExtendedBy(50.0);
+  EXPECT_FALSE(later.Expired());
+  EXPECT_GT(later.RemainingSeconds(), 40.0);
+  EXPECT_LE(later.RemainingSeconds(), 50.0);
+  EXPECT_LE(Deadline::After(1.0).ExtendedBy(-5.0).RemainingSeconds(), 1.0);  // never sooner
+  EXPECT_GT(Deadline::After(1.0).ExtendedBy(-5.0).RemainingSeconds(), 0.5);
+  std::atomic<bool> stop{false};
+  const Deadline d = Deadline::After(0.0).WithStop(&stop).ExtendedBy(50.0);
+  EXPECT_FALSE(d.Expired());
+  stop = true;
+  EXPECT_TRUE(d.Expired());
 }
 
 // n variables, each pulled to a target outside a shared budget row: many iterations.
@@ -168,6 +189,80 @@ TEST(Deadline, APlanStopsAtTheFlagAndKeepsWhatItHas) {
   EXPECT_NE(plan.message.find("stopped"), std::string::npos) << plan.message;
   EXPECT_GT(plan.footsteps.size(), static_cast<size_t>(robot.num_legs()));
   EXPECT_FALSE(plan.reaches_goal);
+}
+
+// A grid of rows x cols touching 20 cm squares at z = 0: every one reachable from the
+// first, through chains that visit them all.
+std::vector<ConvexRegion> SquareGrid(int rows, int cols) {
+  std::vector<ConvexRegion> out;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const double x = 0.2 * c, y = 0.2 * r;
+      out.push_back(MakeRegionFromPolygon(static_cast<int>(out.size()),
+                                          {{x, y, 0.0}, {x + 0.2, y, 0.0}, {x + 0.2, y + 0.2, 0.0}, {x, y + 0.2, 0.0}},
+                                          0.0));
+    }
+  }
+  return out;
+}
+
+TEST(Deadline, RegionReachabilityEndsAtAnExpiredDeadlineOrTheFlag) {
+  const std::vector<ConvexRegion> regions = SquareGrid(25, 40);  // 1000 regions
+  const std::vector<Eigen::Vector3d> feet = {{0.1, 0.1, 0.0}};
+  const std::optional<std::vector<int>> all = ReachableRegionIndices(regions, feet, 0.1, 0.05, 0.01);
+  ASSERT_TRUE(all.has_value());
+  EXPECT_EQ(all->size(), regions.size());
+  EXPECT_FALSE(ReachableRegionIndices(regions, feet, 0.1, 0.05, 0.01, Deadline::After(0.0)).has_value());
+  std::atomic<bool> stop{true};
+  EXPECT_FALSE(ReachableRegionIndices(regions, feet, 0.1, 0.05, 0.01, Deadline().WithStop(&stop)).has_value());
+}
+
+struct HexapodFlat {
+  HexapodFlat()
+      : scenario(LoadScenario(std::string(MFP_SOURCE_DIR) + "/config/scenarios/hexapod_flat.yaml")),
+        robot(LoadRobot(scenario.robot_path)),
+        regions(ScenarioRegions(scenario, robot, nullptr)),
+        request(ScenarioRequest(scenario, robot, regions)) {}
+  Scenario scenario;
+  RobotModel robot;
+  std::vector<ConvexRegion> regions;
+  PlanRequest request;
+};
+
+TEST(Deadline, AWindowMiqpBuildStopsAtAnExpiredDeadlineOrTheFlag) {
+  const HexapodFlat h;
+  const FootstepProblem problem = FirstWindowProblem(h.robot, h.regions, h.request, h.scenario.options);
+  const MiqpFormulation built(problem, h.scenario.options.formulation);
+  EXPECT_FALSE(built.out_of_time());
+  EXPECT_GT(built.miqp().num_integer(), 0);
+  const MiqpFormulation expired(problem, h.scenario.options.formulation, Deadline::After(0.0));
+  EXPECT_TRUE(expired.out_of_time());
+  EXPECT_EQ(expired.miqp().num_variables(), 0);  // nothing built
+  std::atomic<bool> stop{true};
+  const MiqpFormulation stopped(problem, h.scenario.options.formulation, Deadline().WithStop(&stop));
+  EXPECT_TRUE(stopped.out_of_time());
+}
+
+TEST(Deadline, APlanGivenAnExpiredDeadlineEndsOnTimeLimitBeforeAnyWindow) {
+  // Unguided, the first stage to see the deadline is the reachable regions: status
+  // time_limit naming it, no window built, no node solved.
+  HexapodFlat h;
+  PlannerOptions options = h.scenario.options;
+  options.route_guidance = false;
+  h.request.deadline = Deadline::After(0.0);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  const Plan timed = PlanFootsteps(h.robot, h.regions, h.request, options, solvers.workers());
+  EXPECT_EQ(timed.status, SolveStatus::kTimeLimit) << timed.message;
+  EXPECT_NE(timed.message.find("time limit reached while the regions the start stance can reach"), std::string::npos)
+      << timed.message;
+  EXPECT_EQ(timed.windows, 0);
+  EXPECT_EQ(timed.nodes, 0);
+  std::atomic<bool> stop{true};
+  h.request.deadline = Deadline().WithStop(&stop);
+  const Plan stopped = PlanFootsteps(h.robot, h.regions, h.request, options, solvers.workers());
+  EXPECT_EQ(stopped.status, SolveStatus::kTimeLimit);
+  EXPECT_EQ(stopped.message.rfind("stopped", 0), 0u) << stopped.message;
+  EXPECT_EQ(stopped.windows, 0);
 }
 
 }  // namespace

@@ -2,24 +2,17 @@
 // process: a clear error (exit 2, the message naming the problem) or a plan, with peak
 // memory (the child's ru_maxrss) under 1 GiB, never a signal; wall times are recorded as
 // test properties. The inputs: a tiny map whose leaves are 4096 voxels wide, URDFs that are not
-// regular files (/dev/zero, a FIFO), a URDF length at 1e308, flag values out of range,
+// regular files (/dev/zero, a FIFO), every URDF number class at +-1e308, flag values out of range,
 // a time limit that ends before any region is extracted.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <csignal>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "bench/hostile_inputs.h"
 #include "tests/test_temp_path.h"
 
 namespace mfp {
@@ -29,45 +22,8 @@ const std::string kTools = std::string(MFP_BINARY_DIR) + "/tools/";
 const std::string kSource = std::string(MFP_SOURCE_DIR) + "/";
 constexpr double kMaxPeakBytes = 1024.0 * 1024.0 * 1024.0;
 
-struct ChildRun {
-  int exit_code = -1;   // -1 when the child did not exit normally
-  int signal = 0;       // the signal that ended it (0: none)
-  double wall_s = 0.0;
-  double peak_bytes = 0.0;
-  std::string err;
-};
-
-// Runs `argv` with stderr to a file; kills it (and says so through signal = SIGKILL) at
-// kill_after_s so a hanging tool fails the test instead of blocking it.
 ChildRun Execute(const std::vector<std::string>& argv, double kill_after_s) {
-  const std::string err_path = TestTempPath("stderr.txt");
-  const auto start = std::chrono::steady_clock::now();
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    if (!std::freopen(err_path.c_str(), "w", stderr) || !std::freopen("/dev/null", "w", stdout)) _exit(127);
-    ::execv(args[0], args.data());
-    _exit(127);
-  }
-  ChildRun run;
-  int status = 0;
-  struct rusage usage {};
-  for (;;) {
-    const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
-    if (done == pid) break;
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (elapsed > kill_after_s) ::kill(pid, SIGKILL);
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  run.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  run.peak_bytes = static_cast<double>(usage.ru_maxrss) * 1024.0;  // ru_maxrss is in KiB
-  if (WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) run.signal = WTERMSIG(status);
-  std::ifstream in(err_path);
-  run.err.assign(std::istreambuf_iterator<char>(in), {});
-  return run;
+  return ExecuteChild(argv, kill_after_s, TestTempPath("stderr.txt"));
 }
 
 // A clear refusal: exit 2, the message containing `says`, under 1 GiB, no signal (a tool
@@ -85,14 +41,10 @@ void ExpectRefused(const ChildRun& run, const std::string& says) {
                                 std::to_string(run.peak_bytes / (1024.0 * 1024.0)));
 }
 
-// 68 bytes (the was 91): a .bt tree at 0.1 m whose only branch ends in 8 occupied leaves 4096 voxels
-// (410 m) wide, 2^27 column cells in all. Every header and count check passes.
+// 68 bytes (the was 91): leaves 4096 voxels wide (bench/hostile_inputs.h).
 std::string HugeLeafMap() {
-  std::string bytes = "# Octomap OcTree binary file\nid OcTree\nsize 12\nres 0.1\ndata\n";
-  const unsigned char tree[] = {0x03, 0x00, 0x03, 0x00, 0x03, 0x00, 0xAA, 0xAA};
-  bytes.append(reinterpret_cast<const char*>(tree), sizeof(tree));
   const std::string path = TestTempPath("huge_leaves.bt");
-  std::ofstream(path, std::ios::binary) << bytes;
+  WriteHugeLeafMap(path);
   return path;
 }
 
@@ -123,13 +75,8 @@ TEST(HostileInputs, NonRegularFilesAreRefusedWithoutReading) {
 
 // sphere_quad.urdf with the first occurrence of `from` replaced by `to`.
 std::string EditedUrdf(const std::string& from, const std::string& to) {
-  std::ifstream in(kSource + "tests/data/robots/sphere_quad.urdf");
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
   const std::string path = TestTempPath("edited.urdf");
-  std::ofstream(path) << text;
+  EXPECT_TRUE(WriteEditedUrdf(kSource + "tests/data/robots/sphere_quad.urdf", from, to, path)) << from;
   return path;
 }
 
@@ -140,19 +87,21 @@ TEST(HostileInputs, UrdfLengthAt1e308IsRefusedNamingTheElement) {
   ExpectRefused(run, "<origin> attribute 'xyz' = '1e308'");
 }
 
-std::vector<std::string> PlanArgs(const std::string& start, const std::string& goal,
-                                  const std::string& time_limit) {
-  return {kTools + "mfp-plan", "--scenario", kSource + "config/scenarios/littledog_flat.yaml", "--start",
-          start, "--goal", goal, "--time-limit", time_limit, "--quiet"};
+TEST(HostileInputs, EveryExtremeUrdfNumberIsRefusedOrFinite) {
+  // Each number of the bench's list: a clear refusal (exit 2) or a robot, never a signal
+  // or a gigabyte.
+  for (const UrdfNumberEdit& edit : ExtremeUrdfNumbers()) {
+    const ChildRun run = Execute({kTools + "mfp-robot", EditedUrdf(edit.from, edit.to)}, 60);
+    EXPECT_EQ(run.signal, 0) << edit.what << ": " << run.err;
+    EXPECT_TRUE(run.exit_code == 0 || run.exit_code == 2) << edit.what << ": exit " << run.exit_code << " " << run.err;
+    EXPECT_LT(run.peak_bytes, kMaxPeakBytes) << edit.what;
+  }
 }
 
 TEST(HostileInputs, FlagValuesAreRangeCheckedLikeTheScenarioKeys) {
-  ExpectRefused(Execute(PlanArgs("0,0,1e16", "0.6,0,0", "5"), 60), "--start: YAW = 1e16 is outside");
-  ExpectRefused(Execute(PlanArgs("1e16,0,0", "0.6,0,0", "5"), 60), "--start: X = 1e16 is outside");
-  ExpectRefused(Execute(PlanArgs("0,0,0,", "0.6,0,0", "5"), 60), "--start: expected X,Y,YAW");
-  ExpectRefused(Execute(PlanArgs("0,0,0", "0.6,0,1e16", "5"), 60), "--goal: YAW = 1e16 is outside");
-  ExpectRefused(Execute(PlanArgs("0,0,0", "0.6,0,0", "nan"), 60), "--time-limit");
-  ExpectRefused(Execute(PlanArgs("0,0,0", "0.6,0,0", "inf"), 60), "--time-limit");
+  for (const FlagCase& f : ExtremeFlags()) {
+    ExpectRefused(Execute(ScenarioPlanArgs(kTools, kSource, f.start, f.goal, f.time_limit), 60), f.says);
+  }
 }
 
 TEST(HostileInputs, TimeRunningOutBeforeExtractionIsATimeLimit) {

@@ -23,7 +23,7 @@ TEST(RegionReachabilityTest, CeilingAndFarStonesAreUnreachableStepsAreNot) {
   const std::vector<Eigen::Vector3d> feet = {{-0.1, 0.1, 0.0}, {0.1, -0.1, 0.0}};
   EXPECT_EQ(ReachableRegionIndices(regions, feet, 0.2, 0.08, 0.01), (std::vector<int>{0, 2, 3}));
   // With the start foot on no region, nothing is reachable.
-  EXPECT_TRUE(ReachableRegionIndices(regions, {{5.0, 5.0, 0.0}}, 0.2, 0.08, 0.01).empty());
+  EXPECT_TRUE(ReachableRegionIndices(regions, {{5.0, 5.0, 0.0}}, 0.2, 0.08, 0.01)->empty());
   // One step per leg reaches the first stone only; two reach the second as well.
   EXPECT_EQ(WindowRegionIndices(regions, feet, 1, 0.55, 0.08), (std::vector<int>{0, 2}));
   EXPECT_EQ(WindowRegionIndices(regions, feet, 2, 0.55, 0.08), (std::vector<int>{0, 2, 3}));

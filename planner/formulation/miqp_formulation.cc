@@ -43,7 +43,8 @@ std::vector<std::vector<int>> OneOfGroupsInPlanOrder(const FootstepVariables& va
 
 }  // namespace
 
-MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const FormulationOptions& options)
+MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const FormulationOptions& options,
+                                 const Deadline& deadline)
     : problem_(problem), options_(options) {
   MFP_CHECK(problem_.robot != nullptr);
   const RobotModel& robot = *problem_.robot;
@@ -71,15 +72,17 @@ MiqpFormulation::MiqpFormulation(const FootstepProblem& problem, const Formulati
       problem_.start_yaw_rad + WrapToPi(problem_.goal_yaw_rad - problem_.start_yaw_rad);
   yaw_ = MakeYawGrid(problem_.start_yaw_rad, problem_.goal_yaw_rad, robot.max_yaw_change_rad, num_configurations_, options_);
 
-  Build();
+  Build(deadline);
 }
 
 int MiqpFormulation::LegOfStep(int step) const { return mfp::LegOfStep(problem_, step); }
 
 Eigen::Vector2d MiqpFormulation::GoalFoot(int leg) const { return mfp::GoalFoot(problem_, leg); }
 
-void MiqpFormulation::Build() {
+void MiqpFormulation::Build(const Deadline& deadline) {
   const RobotModel& robot = *problem_.robot;
+  out_of_time_ = deadline.Expired();
+  if (out_of_time_) return;
   MiqpBuilder b;
   const StepExpressions e(problem_, vars_);
   MiqpEncoder encoder(e, &b);
@@ -97,7 +100,10 @@ void MiqpFormulation::Build() {
   if (options_.trimmed_configurations_hold_yaw) {
     AddTrimmedConfigurationsHoldYaw(e, robot, num_configurations_, vars_, &b);
   }
-  RegionChoiceRows regions = AddRegionChoice(e, problem_, options_, box, max_move_xy, num_steps_, &b, &vars_);
+  RegionChoiceRows regions =
+      AddRegionChoice(e, problem_, options_, box, max_move_xy, num_steps_, &b, &vars_, deadline);
+  out_of_time_ = regions.out_of_time || deadline.Expired();
+  if (out_of_time_) return;
   region_rows_ = std::move(regions.rows);
   infeasible_reason_ = std::move(regions.infeasible_reason);
   AddCost(e, problem_, num_steps_, num_configurations_, vars_, &b);

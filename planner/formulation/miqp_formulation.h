@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/deadline.h"
 #include "planner/formulation/internal/footstep_problem.h"
 #include "planner/formulation/internal/yaw_chords.h"
 #include "planner/formulation/plan.h"
@@ -35,7 +36,10 @@ namespace mfp {
 class MiqpFormulation {
  public:
   // Throws InputError when the problem is malformed (sizes, non-finite numbers).
-  MiqpFormulation(const FootstepProblem& problem, const FormulationOptions& options);
+  // deadline (and its stop flag) is checked between the equation families and before
+  // each step's regions; once it expires the build stops and out_of_time() is true.
+  MiqpFormulation(const FootstepProblem& problem, const FormulationOptions& options,
+                  const Deadline& deadline = Deadline());
 
   const Miqp& miqp() const { return miqp_; }
   const FootstepVariables& vars() const { return vars_; }
@@ -56,6 +60,10 @@ class MiqpFormulation {
   const std::vector<double>& configuration_yaw_breakpoints(int cfg) const { return yaw_.configuration_breakpoints[cfg]; }
   // Goal foot position (x, y) of a leg [m].
   Eigen::Vector2d GoalFoot(int leg) const;
+
+  // The build ran out of time (see the constructor): the Miqp is incomplete, not to be
+  // solved or read; the caller ends on its time limit.
+  bool out_of_time() const { return out_of_time_; }
 
   // Non-empty when the problem is infeasible by construction (a step that can reach no
   // region); the Miqp is then not worth solving.
@@ -90,7 +98,7 @@ class MiqpFormulation {
   bool SnapYawToOneSegment(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, Eigen::VectorXd* x) const;
 
  private:
-  void Build();
+  void Build(const Deadline& deadline);
   // One rounding with steps first_trimmed .. N-1 trimmed; false when a step has no region.
   bool RoundWithTrimming(const Eigen::VectorXd& relaxed, int first_trimmed, Eigen::VectorXd* rounded) const;
 
@@ -106,6 +114,7 @@ class MiqpFormulation {
   // steps and steps that reach no region).
   std::vector<std::pair<int, int>> region_rows_;
   std::string infeasible_reason_;
+  bool out_of_time_ = false;
 };
 
 }  // namespace mfp

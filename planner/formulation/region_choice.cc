@@ -38,7 +38,7 @@ void AddRegionRows(const StepExpressions& e, const ConvexRegion& region, RegionE
 RegionChoiceRows AddRegionChoice(const StepExpressions& e, const FootstepProblem& problem,
                                  const FormulationOptions& options, const Box3& box,
                                  const std::vector<double>& max_move_xy, int num_steps, MiqpBuilder* b,
-                                 FootstepVariables* vars) {
+                                 FootstepVariables* vars, const Deadline& deadline) {
   const int n = e.num_legs();
   const int N = num_steps;
   const RobotModel& robot = *problem.robot;
@@ -54,6 +54,10 @@ RegionChoiceRows AddRegionChoice(const StepExpressions& e, const FootstepProblem
   RegionChoiceRows out;
   out.rows.assign(N, {-1, -1});
   for (int i = n; i < N; ++i) {
+    if (deadline.Expired()) {
+      out.out_of_time = true;
+      return out;
+    }
     const Eigen::Vector3d& start_foot = problem.start_feet_world_m[(i - n) % n];
     const int first_region_row = b->num_rows();
     LinExpr one_region;

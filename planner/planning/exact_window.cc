@@ -36,19 +36,19 @@ std::optional<Eigen::VectorXd> CarryOver(const Miqp& from, const Miqp& to, const
   return out;
 }
 
-// The window's assignment completed on the shrunk MIQP, under no deadline but
-// kCompletionMaxSolve_s.
+// The window's assignment completed on the shrunk MIQP, by `deadline` (the plan's,
+// extended by polish.completion_overrun, with its stop flag).
 std::optional<Eigen::VectorXd> CompleteOnShrunk(const MiqpFormulation& formulation, const MiqpFormulation& shrunk,
                                                 const Eigen::VectorXd* window_x, RelaxationSolver& solver,
-                                                double feasibility_tolerance) {
+                                                const Deadline& deadline, double feasibility_tolerance) {
   if (window_x == nullptr || window_x->size() != formulation.miqp().num_variables()) return std::nullopt;
   const std::optional<Eigen::VectorXd> assignment = CarryOver(formulation.miqp(), shrunk.miqp(), *window_x);
   if (!assignment) return std::nullopt;
   RelaxationRequest request;
   request.warm_start = *assignment;
+  request.deadline = deadline;
   FixedAssignmentOptions options;
   options.feasibility_tolerance = feasibility_tolerance;
-  options.max_solve_s = kCompletionMaxSolve_s;
   return BestFixedAssignment(shrunk.miqp(), {*assignment}, solver, request, options);
 }
 
@@ -72,7 +72,14 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
   out.robot->d_lim_m -= out.shrink_m;
   FootstepProblem problem = formulation.problem();
   problem.robot = out.robot.get();
-  out.formulation = std::make_unique<MiqpFormulation>(problem, formulation.options());
+  // Its build belongs to the completion's time when the search has none (below).
+  const Deadline completion = bnb.deadline.ExtendedBy(polish.completion_overrun_s);
+  out.formulation = std::make_unique<MiqpFormulation>(problem, formulation.options(), completion);
+  if (out.formulation->out_of_time()) {
+    note << ": " << (completion.Stopped() ? "stopped" : "out of time") << " while its MIQP was built";
+    out.note = note.str();
+    return out;
+  }
   if (!out.formulation->infeasible_reason().empty()) {
     note << ": " << out.formulation->infeasible_reason();
     out.note = note.str();
@@ -100,7 +107,7 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
   // completion would pre-empt with a plan that may go nowhere.
   if (!HasPlan(out.result.status) && out.result.status != SolveStatus::kInfeasible && search.deadline.Expired()) {
     if (std::optional<Eigen::VectorXd> x =
-            CompleteOnShrunk(formulation, shrunk, window_x, *solvers.front(), search.feasibility_tolerance)) {
+            CompleteOnShrunk(formulation, shrunk, window_x, *solvers.front(), completion, search.feasibility_tolerance)) {
       out.result.objective = shrunk.miqp().Objective(*x);
       out.result.x = std::move(*x);
       out.result.status = SolveStatus::kFeasible;

@@ -91,8 +91,12 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     record.new_steps = problem.num_new_steps;
     record.regions = static_cast<int>(problem.regions.size());
     const PlanClock::time_point build_start = PlanClock::now();
-    const MiqpFormulation formulation(problem, options.formulation);
+    const MiqpFormulation formulation(problem, options.formulation, context.request.deadline.Within(remaining_s));
     record.build_s = SecondsSince(build_start);
+    if (formulation.out_of_time()) {
+      EndOnTimeLimit(context, &state);
+      break;
+    }
     record.integer_variables = formulation.miqp().num_integer();
     state.CountWindow(formulation);
     if (!formulation.infeasible_reason().empty()) {

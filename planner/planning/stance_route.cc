@@ -108,14 +108,14 @@ class BodyGate {
   // Whether the body at (c, yaw) overlaps an obstacle in its band.
   bool Blocked(const Eigen::Vector2d& c, double yaw) const {
     if (!active_) return false;
-    std::vector<BodyObstacle> near;
+    std::vector<int> near;  // indices: the obstacles (and their polygons) are not copied per pose
     for (size_t k = 0; k < obstacles_.size(); ++k) {
       const Eigen::Vector2d gap =
           (bounds_[k].first - c).cwiseMax(c - bounds_[k].second).cwiseMax(Eigen::Vector2d::Zero());
-      if (gap.norm() < radius_m_) near.push_back(obstacles_[k]);
+      if (gap.norm() < radius_m_) near.push_back(static_cast<int>(k));
     }
     if (near.empty()) return false;
-    return BodyOverlapShare(robot_.body, near, c.x(), c.y(), yaw, Ground(c, yaw)) > share_;
+    return BodyOverlapShare(robot_.body, obstacles_, near, c.x(), c.y(), yaw, Ground(c, yaw)) > share_;
   }
 
  private:

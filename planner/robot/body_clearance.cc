@@ -41,17 +41,38 @@ bool InBodyBand(const BodyExtent& body, const BodyObstacle& obstacle, double gro
   return obstacle.top_z_m > ground_z_m + body.bottom_m && obstacle.bottom_z_m < ground_z_m + body.top_m;
 }
 
-double BodyOverlapShare(const BodyExtent& body, const std::vector<BodyObstacle>& obstacles, double x_m, double y_m,
-                        double yaw_rad, double ground_z_m) {
+namespace {
+
+// The largest share over obstacle(0) .. obstacle(count - 1).
+template <typename ObstacleAt>
+double WorstOverlapShare(const BodyExtent& body, size_t count, const ObstacleAt& obstacle_at, double x_m, double y_m,
+                         double yaw_rad, double ground_z_m) {
   if (!body.known()) return 0.0;
   const std::vector<Eigen::Vector2d> footprint = BodyFootprint(body, x_m, y_m, yaw_rad);
   const double area = body.length_m() * body.width_m();
   double worst = 0.0;
-  for (const BodyObstacle& obstacle : obstacles) {
+  for (size_t k = 0; k < count; ++k) {
+    const BodyObstacle& obstacle = obstacle_at(k);
     if (!InBodyBand(body, obstacle, ground_z_m)) continue;
     worst = std::max(worst, ConvexOverlapArea(footprint, obstacle.polygon_world_m) / area);
   }
   return worst;
+}
+
+}  // namespace
+
+double BodyOverlapShare(const BodyExtent& body, const std::vector<BodyObstacle>& obstacles, double x_m, double y_m,
+                        double yaw_rad, double ground_z_m) {
+  const auto at = [&obstacles](size_t k) -> const BodyObstacle& { return obstacles[k]; };
+  return WorstOverlapShare(body, obstacles.size(), at, x_m, y_m, yaw_rad, ground_z_m);
+}
+
+double BodyOverlapShare(const BodyExtent& body, const std::vector<BodyObstacle>& obstacles,
+                        const std::vector<int>& which, double x_m, double y_m, double yaw_rad, double ground_z_m) {
+  const auto at = [&obstacles, &which](size_t k) -> const BodyObstacle& {
+    return obstacles[static_cast<size_t>(which[k])];
+  };
+  return WorstOverlapShare(body, which.size(), at, x_m, y_m, yaw_rad, ground_z_m);
 }
 
 }  // namespace mfp

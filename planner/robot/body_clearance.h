@@ -31,5 +31,9 @@ bool InBodyBand(const BodyExtent& body, const BodyObstacle& obstacle, double gro
 // the body at (x, y, yaw) over ground at ground_z_m; 0 when the body is unknown.
 double BodyOverlapShare(const BodyExtent& body, const std::vector<BodyObstacle>& obstacles, double x_m, double y_m,
                         double yaw_rad, double ground_z_m);
+// The same over obstacles[k] for k in `which` only (a caller's nearby subset, without
+// copying the obstacles and their polygons).
+double BodyOverlapShare(const BodyExtent& body, const std::vector<BodyObstacle>& obstacles,
+                        const std::vector<int>& which, double x_m, double y_m, double yaw_rad, double ground_z_m);
 
 }  // namespace mfp

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/deadline.h"
 #include "planner/formulation/internal/footstep_problem.h"
 #include "planner/formulation/internal/step_expressions.h"
 #include "planner/formulation/workspace_box.h"
@@ -23,12 +24,16 @@ struct RegionChoiceRows {
   std::vector<std::pair<int, int>> rows;
   // Non-empty when some step can reach no region: the MIQP is infeasible by construction.
   std::string infeasible_reason;
+  // The deadline expired (or its stop flag was set) before every step had its rows: the
+  // builder holds only some of them.
+  bool out_of_time = false;
 };
 
-// max_move_xy: MaxMovesXY (step_limits.h).
+// max_move_xy: MaxMovesXY (step_limits.h). deadline is checked before each step's
+// regions (a step of a large map writes rows for hundreds of them).
 RegionChoiceRows AddRegionChoice(const StepExpressions& e, const FootstepProblem& problem,
                                  const FormulationOptions& options, const Box3& box,
                                  const std::vector<double>& max_move_xy, int num_steps, MiqpBuilder* b,
-                                 FootstepVariables* vars);
+                                 FootstepVariables* vars, const Deadline& deadline);
 
 }  // namespace mfp

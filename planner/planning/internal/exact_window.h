@@ -35,14 +35,11 @@ struct ExactReplan {
 // ends without a plan on bnb.deadline (typically: the window's own search took all the
 // plan's time, so this one gets none), its integer assignment completed on the shrunk
 // MIQP is the plan: one
-// fixed-integer QP, solved past the deadline (at most kCompletionMaxSolve_s), which
-// keeps a window that had a plan from ending with none.
+// fixed-integer QP, solved past the deadline by at most polish.completion_overrun_s
+// (bnb.deadline's stop flag still ends it), which keeps a window that had a plan from
+// ending with none.
 ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
                                    const BranchAndBoundOptions& bnb, const PolishOptions& polish,
                                    const Eigen::VectorXd* window_x = nullptr);
-
-// The longest the completion of window_x may take [s]: a safety cap on one QP that
-// takes milliseconds, not a tuning parameter.
-constexpr double kCompletionMaxSolve_s = 1.0;
 
 }  // namespace mfp

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "base/check.h"
 #include "geometry/region_reachability.h"
@@ -27,6 +29,15 @@ double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
   return std::sqrt(2.0) * (robot.d_lim_m + offset);
 }
 
+// The plan ended, status time_limit, by its deadline or stop flag while `stage` ran.
+Plan OutOfTime(const PlanContext& c, const std::string& stage) {
+  Plan ended = Rejected(SolveStatus::kTimeLimit, std::string(c.request.deadline.Stopped() ? "stopped" : "time limit reached") +
+                                                     " while " + stage + " (" + std::to_string(c.regions.size()) +
+                                                     " regions)");
+  ended.solve_time_s = c.ElapsedSeconds();
+  return ended;
+}
+
 // Route guidance: 'no route', or a body route that sets the step budget.
 std::optional<Plan> GuideRoute(PlanContext* c) {
   const PlanRequest& request = c->request;
@@ -36,14 +47,7 @@ std::optional<Plan> GuideRoute(PlanContext* c) {
   const Deadline deadline = request.deadline.Within(c->TimeLeftSeconds());
   c->guide = PlanRoute(c->robot, c->regions, request.start_feet_world_m, c->GoalXY(), request.goal_yaw_rad,
                        options.goal_tolerance_m, options.start_tolerance_m, deadline);
-  if (c->guide.out_of_time) {
-    Plan ended = Rejected(SolveStatus::kTimeLimit,
-                          std::string(request.deadline.Stopped() ? "stopped" : "time limit reached") +
-                              " while the region graph's route was searched (" + std::to_string(c->regions.size()) +
-                              " regions)");
-    ended.solve_time_s = c->ElapsedSeconds();
-    return ended;
-  }
+  if (c->guide.out_of_time) return OutOfTime(*c, "the region graph's route was searched");
   if (!c->guide.connected) {
     Plan rejected = Rejected(SolveStatus::kNoRoute, c->guide.broken);
     rejected.solve_time_s = c->ElapsedSeconds();
@@ -93,10 +97,11 @@ std::optional<Plan> SetUpPlan(PlanContext* c) {
   // Only regions the start stance can reach (chains of steps within dz_max) enter the
   // MIQPs, and each window sees only those its steps can reach.
   c->step_reach_m = StepReachXY(robot, request);
-  for (int i : ReachableRegionIndices(c->regions, request.start_feet_world_m, c->step_reach_m, robot.dz_max_m,
-                                      options.start_tolerance_m)) {
-    c->usable.push_back(c->regions[static_cast<size_t>(i)]);
-  }
+  const std::optional<std::vector<int>> reachable =
+      ReachableRegionIndices(c->regions, request.start_feet_world_m, c->step_reach_m, robot.dz_max_m,
+                             options.start_tolerance_m, request.deadline.Within(c->TimeLeftSeconds()));
+  if (!reachable) return OutOfTime(*c, "the regions the start stance can reach were found");
+  for (int i : *reachable) c->usable.push_back(c->regions[static_cast<size_t>(i)]);
   c->guided = options.route_guidance && request.max_windows == 0;
   if (c->guided) return GuideRoute(c);
   return std::nullopt;

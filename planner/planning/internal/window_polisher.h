@@ -59,6 +59,10 @@ struct PolishOptions {
   // the boxes shrunk by the chords' error (exact_window.h). false: keep the MIQP's plan
   // and say so in the plan's message.
   bool replan_when_inexact = true;
+  // A re-plan that ends without a plan on the plan's deadline completes the window's own
+  // integer choices with one QP (exact_window.h), which may run this long past that
+  // deadline [s] (a stop flag still ends it at once).
+  double completion_overrun_s = 0.25;
 };
 
 struct PolishReport {
