@@ -11,17 +11,22 @@ namespace mfp {
 RobotModel LoadRobot(const std::string& path) { return LoadRobot(path, nullptr); }
 
 RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation) {
+  return LoadRobot(path, derivation, Deadline());
+}
+
+RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation, const Deadline& deadline) {
   const std::string ext = LowerFileExtension(path);
   if (ext == "urdf") {
     RobotDescription description = ReadUrdfRobot(path);
-    const DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+    DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+    options.deadline = deadline;
     RobotDerivation derived = DeriveRobot(description, options);
     ValidateRobotModel(derived.model);
     RobotModel model = derived.model;
     if (derivation != nullptr) *derivation = std::move(derived);
     return model;
   }
-  if (ext == "yaml" || ext == "yml") return LoadRobotYaml(path, derivation);
+  if (ext == "yaml" || ext == "yml") return LoadRobotYaml(path, derivation, deadline);
   throw InputError(path + ": robot file must end in .urdf, .yaml or .yml");
 }
 

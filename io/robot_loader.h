@@ -3,6 +3,7 @@
 // what a URDF cannot say) or a robot YAML (robot_yaml.h), chosen by the extension.
 #include <string>
 
+#include "base/deadline.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/robot_model.h"
 
@@ -15,5 +16,9 @@ RobotModel LoadRobot(const std::string& path);
 // The same, also returning the derivation details when the robot comes from a URDF
 // (`derivation->legs` is left empty for a hand-written YAML).
 RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation);
+
+// The same, deriving a URDF robot by `deadline` (its stop flag too): throws TimeLimitError
+// naming the stage once it expires.
+RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation, const Deadline& deadline);
 
 }  // namespace mfp

@@ -168,7 +168,7 @@ void ReadBodyBox(const YAML::Node& root, const YamlContext& ctx, RobotModel* rob
 
 // The URDF form: derive, then apply the YAML's values as visible overrides.
 RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const std::string& path,
-                        RobotDerivation* derivation_out) {
+                        RobotDerivation* derivation_out, const Deadline& deadline) {
   if (root["legs"]) {
     throw InputError(ctx.Child("legs").Where() +
                      ": not allowed with urdf (the URDF gives the legs; name the foot links "
@@ -210,6 +210,7 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   DerivationOptions options;
   options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
   options = WithinDerivationBudget(options, &description);
+  options.deadline = deadline;
   RobotDerivation derivation = DeriveRobot(description, options);
   RobotModel& robot = derivation.model;
   const std::string file = ctx.file;
@@ -269,12 +270,13 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
 
 }  // namespace
 
-static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivation* derivation) {
+static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivation* derivation,
+                                         const Deadline& deadline) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RobotModel unread;
   ReadOptions(RobotOptionTable(), root, ctx, &unread);  // checks the keys; all are read below
-  if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation);
+  if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation, deadline);
   if (derivation != nullptr) *derivation = RobotDerivation{};
   for (const char* key : {"feet", "foot_offset", "forward"}) {
     if (root[key]) throw InputError(ctx.Child(key).Where() + ": only allowed together with urdf");
@@ -333,8 +335,8 @@ static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivatio
   return robot;
 }
 
-RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation) {
-  return GuardYaml(path, [&] { return LoadRobotYamlUnguarded(path, derivation); });
+RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation, const Deadline& deadline) {
+  return GuardYaml(path, [&] { return LoadRobotYamlUnguarded(path, derivation, deadline); });
 }
 
 std::vector<OptionDoc> RobotOptionDocs() {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "base/deadline.h"
 #include "io/option_table.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/robot_model.h"
@@ -20,8 +21,10 @@ namespace mfp {
 
 // Throws InputError naming the file, key and allowed range on bad input. When
 // `derivation` is given and the YAML names a URDF, it receives the derivation details
-// (footprints, nominal joint positions) with its model equal to the returned one.
-RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation = nullptr);
+// (footprints, nominal joint positions) with its model equal to the returned one. A URDF's
+// derivation runs by `deadline` (TimeLimitError once it expires).
+RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation = nullptr,
+                         const Deadline& deadline = Deadline());
 
 // The keys of a robot YAML, for the reference.
 std::vector<OptionDoc> RobotOptionDocs();

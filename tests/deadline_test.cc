@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "base/check.h"
 #include "geometry/region_reachability.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
@@ -215,6 +216,25 @@ TEST(Deadline, RegionReachabilityEndsAtAnExpiredDeadlineOrTheFlag) {
   EXPECT_FALSE(ReachableRegionIndices(regions, feet, 0.1, 0.05, 0.01, Deadline::After(0.0)).has_value());
   std::atomic<bool> stop{true};
   EXPECT_FALSE(ReachableRegionIndices(regions, feet, 0.1, 0.05, 0.01, Deadline().WithStop(&stop)).has_value());
+}
+
+// Deriving a robot from its URDF: an expired deadline or a set stop flag ends it with
+// TimeLimitError naming the stage; a robot YAML that names a URDF gets the same.
+TEST(Deadline, RobotDerivationEndsAtAnExpiredDeadlineOrTheFlag) {
+  const std::string urdf = std::string(MFP_SOURCE_DIR) + "/config/robots/octopod.urdf";
+  const std::string yaml = std::string(MFP_SOURCE_DIR) + "/config/robots/hexapod.yaml";
+  for (const std::string& path : {urdf, yaml}) {
+    try {
+      LoadRobot(path, nullptr, Deadline::After(0.0));
+      ADD_FAILURE() << path << ": derived past an expired deadline";
+    } catch (const TimeLimitError& e) {
+      EXPECT_NE(std::string(e.what()).find("time limit reached while deriving the robot"), std::string::npos)
+          << e.what();
+    }
+  }
+  std::atomic<bool> stop{true};
+  EXPECT_THROW(LoadRobot(urdf, nullptr, Deadline().WithStop(&stop)), TimeLimitError);
+  EXPECT_EQ(LoadRobot(urdf, nullptr, Deadline::After(600.0)).num_legs(), 8);
 }
 
 struct HexapodFlat {

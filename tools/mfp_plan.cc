@@ -238,17 +238,17 @@ int ExitCode(const Flags& f, const mfp::Scenario& scenario, const mfp::Plan& pla
 
 // Loads, plans, writes and judges; throws InputError on bad input.
 int Run(const Flags& f, const Log& log) {
-  // The time limit counts from here: loading the robot and the terrain spend it too.
+  // The time limit counts from here: deriving the robot and extracting the terrain spend
+  // it too (one deadline for the whole run).
   const auto run_start = std::chrono::steady_clock::now();
   mfp::Scenario scenario = ScenarioFromFlags(f);
   for (const std::string& warning : scenario.warnings) log("warning: " + warning);
-  const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path);
-  // One deadline for the whole run: region extraction spends the same time limit.
   const double run_limit = f.time_limit > 0               ? f.time_limit
                            : scenario.time_limit_s > 0 ? scenario.time_limit_s
                                                        : scenario.options.default_time_limit_s;
   const mfp::Deadline run_deadline = mfp::Deadline::After(
       run_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
+  const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path, nullptr, run_deadline);
   std::string terrain_note;
   const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot, &terrain_note, run_deadline);
   if (!terrain_note.empty()) log("terrain: " + terrain_note);
@@ -289,5 +289,8 @@ int main(int argc, char** argv) {
   } catch (const mfp::InputError& e) {
     std::cerr << kProgram << ": " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const mfp::TimeLimitError& e) {
+    std::cerr << kProgram << ": " << e.what() << "\n";
+    return kExitNoPlan;
   }
 }

@@ -20,6 +20,13 @@ struct LegSamples {
   Eigen::MatrixXd p;  // 3 x N, body frame
 };
 
+// Throws TimeLimitError naming the stage once the derivation's deadline has expired.
+void CheckDerivationTime(const RobotDescription& robot, const DerivationOptions& options, const char* stage) {
+  if (!options.deadline.Expired()) return;
+  throw TimeLimitError(robot.source + ": " + (options.deadline.Stopped() ? "stopped" : "time limit reached") +
+                       " while deriving the robot from its URDF (" + stage + ")");
+}
+
 LegSamples SampleJointSpace(const LegChain& leg, int budget) {
   const int dof = leg.num_dof();
   MFP_CHECK(dof > 0);
@@ -54,7 +61,7 @@ struct Footprint {
 
 Footprint ReachableFootprint(const LegChain& leg, const LegSamples& samples,
                              const Eigen::Vector2d& xy_min, const Eigen::Vector2d& xy_max,
-                             double cell_m, double z_m, double ik_tolerance_m) {
+                             double cell_m, double z_m, double ik_tolerance_m, const Deadline& deadline) {
   Footprint fp;
   fp.grid = FootprintGrid(xy_min, xy_max, cell_m);
   const int nx = fp.grid.nx();
@@ -94,7 +101,10 @@ Footprint ReachableFootprint(const LegChain& leg, const LegSamples& samples,
     }
   }
   const int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
-  while (!queue.empty()) {
+  // The deadline is read every 64 cells (each up to 60 IK iterations); an expired one
+  // leaves the footprint partial, and the caller throws.
+  for (size_t popped = 0; !queue.empty(); ++popped) {
+    if (popped % 64 == 0 && deadline.Expired()) break;
     const auto [ix, iy] = queue.front();
     queue.pop_front();
     const Eigen::VectorXd q_here = fp.q[static_cast<size_t>(iy) * nx + ix];
@@ -217,6 +227,7 @@ LegSampling SampleLegs(const RobotDescription& robot, const DerivationOptions& o
   s.hips.resize(n);
   s.lowest.resize(n);
   for (size_t k = 0; k < n; ++k) {
+    CheckDerivationTime(robot, options, "joint-space samples");
     s.samples[k] = SampleJointSpace(robot.legs[k], options.samples_per_leg);
     s.hips[k] = HipPosition(robot.legs[k]);
     s.hip_z += s.hips[k].z() / n;
@@ -249,7 +260,8 @@ double SmallestSquareAt(const RobotDescription& robot, const LegSampling& s, dou
   for (size_t k = 0; k < robot.legs.size() && worst > 0.0; ++k) {
     const auto [lo, hi] = s.Bounds(k, cell);
     const Footprint fp = ReachableFootprint(robot.legs[k], s.samples[k], lo, hi, cell, z,
-                                            options.ik_tolerance_m);
+                                            options.ik_tolerance_m, options.deadline);
+    CheckDerivationTime(robot, options, "footprints of the stance candidates");
     double best = 0.0;
     for (int iy = 0; iy < fp.grid.ny(); ++iy) {
       for (int ix = 0; ix < fp.grid.nx(); ++ix) {
@@ -309,7 +321,9 @@ LegDerivation DeriveLeg(const RobotDescription& robot, const LegSampling& s, siz
                         Eigen::Vector2d* foot_xy) {
   const LegChain& chain = robot.legs[k];
   const auto [lo, hi] = s.Bounds(k, cell);
-  Footprint fp = ReachableFootprint(chain, s.samples[k], lo, hi, cell, z_plane, options.ik_tolerance_m);
+  Footprint fp =
+      ReachableFootprint(chain, s.samples[k], lo, hi, cell, z_plane, options.ik_tolerance_m, options.deadline);
+  CheckDerivationTime(robot, options, "footprints at the stance height");
   if (fp.grid.CountOccupied() == 0) {
     std::ostringstream msg;
     msg << robot.source << ": leg '" << chain.name << "' cannot reach the stance height "

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "base/deadline.h"
 #include "planner/robot/internal/footprint_grid.h"
 #include "planner/robot/internal/leg_kinematics.h"
 #include "planner/robot/robot_model.h"
@@ -39,6 +40,9 @@ struct DerivationOptions {
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
+  // The request's deadline and stop flag: checked between legs and stance candidates and
+  // inside the footprints' flood fill; once expired DeriveRobot throws TimeLimitError.
+  Deadline deadline;
 };
 
 struct LegDerivation {
