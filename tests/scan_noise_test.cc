@@ -22,13 +22,15 @@ constexpr int kMissing = -99;  // no occupied voxel in the column
 // A floor of n x n columns, two voxels thick with its top voxel at k = 0 (top at z = kRes),
 // each column's top moved by offset(i, j) voxels (kMissing: nothing in the column).
 // ground_below: a voxel at k = -10 under every column (a lower surface seen). seen: free
-// voxels from k = 1 up (known free above the floor), and at k = 0 where erased(i, j).
+// voxels from k = 1 up (known free above the floor), and at k = 0 where erased(i, j)
+// (also at k = -1 with ray_under).
 struct FloorSpec {
   int n = 40;
   std::function<int(int, int)> offset = [](int, int) { return 0; };
   bool ground_below = false;
   bool seen = false;
   std::function<bool(int, int)> erased = [](int, int) { return false; };
+  bool ray_under = false;
 };
 
 OccupancyMap Floor(const FloorSpec& spec) {
@@ -43,7 +45,8 @@ OccupancyMap Floor(const FloorSpec& spec) {
         for (int k = std::min(0, d) - 1; k <= d; ++k) map.leaves.push_back({{x, y, (k + 0.5) * kRes}, kRes});
       }
       if (!spec.seen) continue;
-      const int free_from = d == kMissing ? (spec.erased(i, j) ? 0 : 1) : std::max(1, d + 1);
+      const bool erased = d == kMissing && spec.erased(i, j);
+      const int free_from = erased ? (spec.ray_under ? -1 : 0) : std::max(1, d + 1);
       for (int k = free_from; k < 40; ++k) map.free_leaves.push_back({{x, y, (k + 0.5) * kRes}, kRes});
     }
   }
@@ -164,6 +167,19 @@ TEST(ScanNoise, UnseenCellsAreFloorOnlyWhereNothingLowerWasSeenAndNoRayPassed) {
   const RegionExtractionResult erased = Extract(Floor(spec));
   EXPECT_FALSE(FloorRegionHolds(erased, CellCentre(20, 20)));
   EXPECT_FALSE(FloorRegionHolds(erased, CellCentre(21, 20)));
+}
+
+TEST(ScanNoise, ASingleErasedCellIsFloorUnlessARayWentUnderTheFloor) {
+  FloorSpec spec;
+  spec.offset = [](int i, int j) { return i == 20 && j == 20 ? kMissing : 0; };
+  spec.seen = true;
+  spec.erased = [](int, int) { return true; };
+  // A ray passed through the floor-level voxel only, floor seen all round: grazing rays
+  // erase floor so (docs/unseen_floor.md).
+  EXPECT_TRUE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(20, 20)));
+  // A ray also went through the voxel under the floor's level: a hole.
+  spec.ray_under = true;
+  EXPECT_FALSE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(20, 20)));
 }
 
 }  // namespace
