@@ -53,7 +53,8 @@ OccupancyMap Floor(const FloorSpec& spec) {
   return map;
 }
 
-RegionExtractionResult Extract(const OccupancyMap& map, int noise_max_cells = RegionExtractorOptions().noise_max_cells) {
+RegionExtractionResult Extract(const OccupancyMap& map,
+                               int noise_max_cells = RegionExtractorOptions().noise_max_cells) {
   RegionExtractorOptions options;
   options.foot_radius_m = 0.03;
   options.clearance_m = 0.4;
@@ -70,7 +71,8 @@ double TotalArea(const RegionExtractionResult& r) {
 // Whether some region at the floor's height (within a voxel) holds the plan point xy.
 bool FloorRegionHolds(const RegionExtractionResult& r, const Eigen::Vector2d& xy) {
   for (const ConvexRegion& region : r.regions) {
-    if (std::abs(region.HeightAt(xy.x(), xy.y()) - kRes) <= kRes && PlanDistanceToRegion(region, xy) <= 0.0) return true;
+    const bool at_floor = std::abs(region.HeightAt(xy.x(), xy.y()) - kRes) <= kRes;
+    if (at_floor && PlanDistanceToRegion(region, xy) <= 0.0) return true;
   }
   return false;
 }
@@ -103,18 +105,24 @@ TEST(ScanNoise, GroupsOfOneVoxelPitsAndBumpsStayInTheFloorsRegion) {
 TEST(ScanNoise, ARegionBesideAHigherStoneKeepsItsOwnHeight) {
   FloorSpec spec;
   spec.n = 60;
-  // A 0.2 m stone one voxel higher in the floor's middle: its cells join the floor's
-  // growth (within a voxel) but are a step, not noise, and must not lift the floor's plane.
-  spec.offset = [](int i, int j) { return i >= 25 && i < 35 && j >= 25 && j < 35 ? 1 : 0; };
+  // A 0.4 m x 0.6 m stone one voxel higher in the floor: its cells join the floor's
+  // growth (within a voxel) but are a step, not noise, and must not lift or tilt the
+  // floor's plane (fitted to all grown cells, it sat a sixth of a voxel high).
+  spec.offset = [](int i, int j) { return i >= 20 && i < 40 && j >= 15 && j < 45 ? 1 : 0; };
   const RegionExtractionResult r = Extract(Floor(spec));
   int floor_regions = 0;
   for (const ConvexRegion& region : r.regions) {
-    if (PlanDistanceToRegion(region, CellCentre(5, 5)) > 0.0) continue;
-    ++floor_regions;
-    EXPECT_NEAR(region.HeightAt(0.1, 0.1), kRes, 0.05 * kRes);
+    if (PlanDistanceToRegion(region, CellCentre(5, 5)) <= 0.0) {
+      ++floor_regions;
+      EXPECT_NEAR(region.HeightAt(0.11, 0.11), kRes, 0.05 * kRes);
+    }
+    // No floor region reaches onto the stone (its cells, left out of the floor's patch,
+    // seed no patch of their own: a region there would be the stone's, at its height).
+    if (PlanDistanceToRegion(region, CellCentre(30, 30)) <= 0.0) {
+      EXPECT_NEAR(region.HeightAt(0.61, 0.61), 2 * kRes, 0.05 * kRes);
+    }
   }
-  EXPECT_EQ(floor_regions, 1);
-  EXPECT_FALSE(FloorRegionHolds(r, CellCentre(30, 30)));  // the stone's top is 2 cm higher
+  EXPECT_GE(floor_regions, 1);
 }
 
 TEST(ScanNoise, SteppingStonesAcrossAOneVoxelTrenchAreTwoRegionsAndNoneSpansTheDrop) {

@@ -35,7 +35,6 @@ struct PlaneSums {
   }
 };
 
-
 // The plane z = z0 + a (col - seed_col) + b (row - seed_row) + c of a growing patch, in
 // cells relative to its seed (z in metres).
 struct SeedPlane {
@@ -55,7 +54,9 @@ enum CellKind : uint8_t { kFree = 0, kCore = 1, kVisited = 2, kNoise = 3 };
 bool NoiseCandidate(const HeightMap& hm, const std::vector<int>& label, int cell, int patch_id,
                     const SeedPlane& plane, const SegmentationOptions& options) {
   if (label[cell] != kUnvisited && label[cell] != kDropped && label[cell] != patch_id) return false;
-  if (std::isnan(hm.height_m[cell])) return options.unseen != nullptr && (*options.unseen)[cell] == (kEmptyColumn | kNotErased);
+  if (std::isnan(hm.height_m[cell])) {
+    return options.unseen != nullptr && (*options.unseen)[cell] == (kEmptyColumn | kNotErased);
+  }
   return std::abs(plane.Residual(hm, cell)) <= options.noise_tolerance_m;
 }
 

@@ -300,7 +300,8 @@ std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, con
       float level = -std::numeric_limits<float>::infinity();
       const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
       for (int k = 0; k < 4; ++k) {
-        if (layer.HasSurface(r + dr[k], c + dc[k])) level = std::max(level, layer.height_m[layer.Index(r + dr[k], c + dc[k])]);
+        if (!layer.HasSurface(r + dr[k], c + dc[k])) continue;
+        level = std::max(level, layer.height_m[static_cast<size_t>(layer.Index(r + dr[k], c + dc[k]))]);
       }
       if (!std::isfinite(level)) continue;
       const long long top_voxel = std::llround(level / res) - 1;
@@ -373,7 +374,9 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
       }
     }
   }
-  for (const HeightMap& layer : out.layers) out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m));
+  for (const HeightMap& layer : out.layers) {
+    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m));
+  }
   // From the final (noise-repaired) heights.
   for (const HeightMap& layer : out.layers) out.solid_beside.push_back(SolidBeside(layer, occ));
   return out;
