@@ -1,10 +1,12 @@
 #include "terrain/extraction/internal/plane_segmentation.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <deque>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/surface_layers.h"
 
 namespace mfp {
 namespace {
@@ -33,6 +35,131 @@ struct PlaneSums {
   }
 };
 
+// The plane z = z0 + a (col - seed_col) + b (row - seed_row) + c of a growing patch, in
+// cells relative to its seed (z in metres).
+struct SeedPlane {
+  int seed_row = 0, seed_col = 0;
+  double z0 = 0.0;
+  Eigen::Vector3d abc = Eigen::Vector3d::Zero();
+  double Residual(const HeightMap& hm, int cell) const {
+    const int row = cell / hm.cols, col = cell % hm.cols;
+    return hm.height_m[cell] - z0 - (abc.x() * (col - seed_col) + abc.y() * (row - seed_row) + abc.z());
+  }
+};
+
+// Per-patch scratch over the height map: all kFree between patches.
+enum CellKind : uint8_t { kFree = 0, kCore = 1, kVisited = 2, kNoise = 3 };
+
+// Whether `cell` may be kept as noise of the patch `patch_id` (SegmentationOptions).
+bool NoiseCandidate(const HeightMap& hm, const std::vector<int>& label, int cell, int patch_id,
+                    const SeedPlane& plane, const SegmentationOptions& options) {
+  if (label[cell] != kUnvisited && label[cell] != kDropped && label[cell] != patch_id) return false;
+  if (std::isnan(hm.height_m[cell])) {
+    return options.unseen != nullptr && (*options.unseen)[cell] == (kEmptyColumn | kNotErased);
+  }
+  return std::abs(plane.Residual(hm, cell)) <= options.noise_tolerance_m;
+}
+
+// The group of non-core cells 4-connected to `start`, if it is noise: at most
+// noise_max_cells cells, every one a candidate, every 8-neighbour outside it a core
+// cell. Returns the group, or nothing; marks what it visited kVisited in kind and lists
+// it in touched.
+std::vector<int> NoiseGroup(const HeightMap& hm, const std::vector<int>& label, int start, int patch_id,
+                            const SeedPlane& plane, const SegmentationOptions& options, std::vector<uint8_t>* kind,
+                            std::vector<int>* touched) {
+  std::vector<int> group{start};
+  (*kind)[start] = kVisited;
+  touched->push_back(start);
+  const int drow[4] = {1, -1, 0, 0};
+  const int dcol[4] = {0, 0, 1, -1};
+  for (size_t next = 0; next < group.size(); ++next) {
+    const int cell = group[next];
+    if (!NoiseCandidate(hm, label, cell, patch_id, plane, options)) return {};
+    for (int k = 0; k < 4; ++k) {
+      const int r = cell / hm.cols + drow[k], c = cell % hm.cols + dcol[k];
+      if (!hm.Inside(r, c)) return {};
+      const int nb = hm.Index(r, c);
+      if ((*kind)[nb] != kFree) continue;  // core, or in this group
+      if (static_cast<int>(group.size()) >= options.noise_max_cells) return {};
+      (*kind)[nb] = kVisited;
+      touched->push_back(nb);
+      group.push_back(nb);
+    }
+  }
+  // Enclosed: every diagonal neighbour is core or in the group too.
+  for (int cell : group) {
+    for (int dr : {-1, 1}) {
+      for (int dc : {-1, 1}) {
+        const int r = cell / hm.cols + dr, c = cell % hm.cols + dc;
+        if (!hm.Inside(r, c)) return {};
+        const int nb = hm.Index(r, c);
+        if ((*kind)[nb] != kCore && std::find(group.begin(), group.end(), nb) == group.end()) return {};
+      }
+    }
+  }
+  return group;
+}
+
+// The patch of one grown region: members within max_residual_m of the plane (refitted
+// to them when others were left out), plus the noise groups they enclose; members left
+// out are labelled kDropped, noise cells patch_id. kind is all kFree on entry and return.
+PlanarPatch FinishPatch(const HeightMap& hm, const std::vector<int>& members, int patch_id, SeedPlane plane,
+                        const SegmentationOptions& options, std::vector<int>* label, std::vector<uint8_t>* kind) {
+  PlaneSums core_sums;
+  bool any_left_out = false;
+  for (int cell : members) {
+    if (std::abs(plane.Residual(hm, cell)) <= options.max_residual_m) {
+      (*kind)[cell] = kCore;
+      core_sums.Add(cell % hm.cols - plane.seed_col, cell / hm.cols - plane.seed_row, hm.height_m[cell] - plane.z0);
+    } else {
+      any_left_out = true;
+    }
+  }
+  if (any_left_out) core_sums.Fit(&plane.abc);  // unchanged when the core does not fix a plane
+  PlanarPatch patch;
+  std::vector<int> noise, touched;
+  if (options.noise_max_cells > 0) {
+    const int drow[4] = {1, -1, 0, 0};
+    const int dcol[4] = {0, 0, 1, -1};
+    for (int cell : members) {
+      if ((*kind)[cell] != kCore) continue;
+      for (int k = 0; k < 4; ++k) {
+        const int r = cell / hm.cols + drow[k], c = cell % hm.cols + dcol[k];
+        if (!hm.Inside(r, c) || (*kind)[hm.Index(r, c)] != kFree) continue;
+        const size_t before = noise.size();
+        for (int g : NoiseGroup(hm, *label, hm.Index(r, c), patch_id, plane, options, kind, &touched)) {
+          noise.push_back(g);
+        }
+        for (size_t i = before; i < noise.size(); ++i) (*kind)[noise[i]] = kNoise;
+      }
+    }
+  }
+  for (int cell : members) {
+    if ((*kind)[cell] == kCore) {
+      patch.max_residual_m = std::max(patch.max_residual_m, std::abs(plane.Residual(hm, cell)));
+      patch.cells.push_back(cell);
+    } else if ((*kind)[cell] != kNoise) {
+      (*label)[cell] = kDropped;
+    }
+  }
+  for (int cell : noise) {
+    (*label)[cell] = patch_id;
+    patch.cells.push_back(cell);
+  }
+  patch.noise_cells = static_cast<int>(noise.size());
+  // Back to kFree: members and whatever the noise searches visited.
+  for (int cell : members) (*kind)[cell] = kFree;
+  for (int cell : touched) (*kind)[cell] = kFree;
+  // Back to world coordinates: z = z0 + a' (x - x0)/res + b' (y - y0)/res + c'.
+  const double res = hm.resolution_m;
+  const Eigen::Vector2d xy0 = hm.CellCenter(plane.seed_row, plane.seed_col);
+  patch.a = plane.abc.x() / res;
+  patch.b = plane.abc.y() / res;
+  patch.c = plane.z0 + plane.abc.z() - patch.a * xy0.x() - patch.b * xy0.y();
+  patch.normal_world = Eigen::Vector3d(-patch.a, -patch.b, 1.0).normalized();
+  return patch;
+}
+
 }  // namespace
 
 double PlanarPatch::SlopeRad() const { return std::acos(std::min(1.0, normal_world.z())); }
@@ -47,6 +174,7 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const Surface
   const int dcol[4] = {0, 0, 1, -1};
   std::deque<int> queue;
   std::vector<int> members;
+  std::vector<uint8_t> kind(hm.height_m.size(), kFree);
   for (int seed = 0; seed < static_cast<int>(label.size()); ++seed) {
     if (label[seed] != kUnvisited || !(surface.roughness_m[seed] <= options.max_seed_roughness_m)) {
       continue;
@@ -87,24 +215,8 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const Surface
       }
     }
     sums.Fit(&abc);
-    PlanarPatch patch;
-    for (int cell : members) {
-      const int row = cell / hm.cols, col = cell % hm.cols;
-      const double residual =
-          hm.height_m[cell] - z0 - (abc.x() * (col - seed_col) + abc.y() * (row - seed_row) + abc.z());
-      if (std::abs(residual) > options.max_residual_m) {
-        label[cell] = kDropped;
-        continue;
-      }
-      patch.max_residual_m = std::max(patch.max_residual_m, std::abs(residual));
-      patch.cells.push_back(cell);
-    }
-    // Back to world coordinates: z = z0 + a' (x - x0)/res + b' (y - y0)/res + c'.
-    const Eigen::Vector2d xy0 = hm.CellCenter(seed_row, seed_col);
-    patch.a = abc.x() / res;
-    patch.b = abc.y() / res;
-    patch.c = z0 + abc.z() - patch.a * xy0.x() - patch.b * xy0.y();
-    patch.normal_world = Eigen::Vector3d(-patch.a, -patch.b, 1.0).normalized();
+    SeedPlane plane{seed_row, seed_col, z0, abc};
+    PlanarPatch patch = FinishPatch(hm, members, patch_id, plane, options, &label, &kind);
     patches.push_back(std::move(patch));
   }
   return patches;

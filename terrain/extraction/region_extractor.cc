@@ -42,6 +42,8 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("min_region_area_voxels", o.min_region_area_voxels, 0.0, 1e6, false);
   RequireRange("grow_tolerance_voxels", o.grow_tolerance_voxels, 0.0, 10.0, true);
   RequireRange("max_residual_voxels", o.max_residual_voxels, 0.0, 10.0, true);
+  RequireRange("noise_tolerance_voxels", o.noise_tolerance_voxels, 0.0, 10.0, false);
+  RequireRange("noise_max_cells", o.noise_max_cells, 0, 1000, false);
   RequireRange("seed_roughness_voxels", o.seed_roughness_voxels, 0.0, 10.0, true);
   RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
   RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
@@ -83,16 +85,21 @@ struct LayerPatch {
 };
 
 // The planar patches of every layer, largest first.
+// `unseen`: SurfaceLayers::unseen (empty: no cell is).
 std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
-                                      const std::vector<SurfaceAnalysis>& surfaces, double res,
+                                      const std::vector<SurfaceAnalysis>& surfaces,
+                                      const std::vector<std::vector<uint8_t>>& unseen, double res,
                                       const RegionExtractorOptions& options) {
   SegmentationOptions seg;
   // The small margin keeps exact one-voxel risers of a voxelised tilt inside the tolerance.
   seg.grow_tolerance_m = options.grow_tolerance_voxels * res * (1.0 + 1e-3);
   seg.max_residual_m = options.max_residual_voxels * res;
   seg.max_seed_roughness_m = options.seed_roughness_voxels * res;
+  seg.noise_tolerance_m = options.noise_tolerance_voxels * res;
+  seg.noise_max_cells = options.noise_max_cells;
   std::vector<LayerPatch> patches;
   for (size_t l = 0; l < layers.size(); ++l) {
+    seg.unseen = l < unseen.size() ? &unseen[l] : nullptr;
     for (PlanarPatch& p : SegmentPlanarPatches(layers[l], surfaces[l], seg)) {
       patches.push_back({static_cast<int>(l), std::move(p)});
     }
@@ -208,7 +215,7 @@ void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions
   }
 
   t = Clock::now();
-  const std::vector<LayerPatch> patches = SegmentLayers(result->layers, surfaces, res, options);
+  const std::vector<LayerPatch> patches = SegmentLayers(result->layers, surfaces, layers.unseen, res, options);
   stats.segmentation_s = SecondsSince(t);
   stats.patches = static_cast<int>(patches.size());
 

@@ -49,6 +49,15 @@ struct RegionExtractorOptions {
   // what limits how well a surface is known.
   double grow_tolerance_voxels = 1.0;   // a cell joins a patch within this of its plane
   double max_residual_voxels = 0.75;    // patch cells further from the final plane are dropped
+  // Sensor noise on a surface (a real floor's top voxel jumps by a voxel): a group of at
+  // most noise_max_cells 4-connected cells, each within noise_tolerance_voxels of its
+  // patch's plane or unseen floor (SurfaceLayers::unseen), enclosed on all 8 sides by the
+  // patch's own cells, stays in the patch instead of being cut out and inset by the foot
+  // and margin. A longer run (a riser) or a group at the patch's edge is a real edge; a
+  // cell further off (a deeper pit) or with a lower surface seen below is a drop.
+  // noise_max_cells 0: no noise kept.
+  double noise_tolerance_voxels = 1.4;
+  int noise_max_cells = 4;
   double seed_roughness_voxels = 0.35;  // RMS residual of the local fit for a patch seed
   double plane_tolerance_voxels = 0.5;  // half-thickness of each region's plane slab
   double target_coverage = 0.97;        // stop covering a patch once this fraction is covered

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <limits>
 
 #include "base/check.h"
 
@@ -99,7 +100,7 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 }  // namespace
 
-int FillSingleCellNoise(HeightMap* hm) {
+int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen) {
   const double res = hm->resolution_m;
   const std::vector<float> in = hm->height_m;
   int changed = 0;
@@ -126,7 +127,8 @@ int FillSingleCellNoise(HeightMap* hm) {
       }
       float& h = hm->height_m[static_cast<size_t>(hm->Index(r, c))];
       if (std::isnan(h)) {
-        if (best == 8) {  // a one-cell hole in a level surface
+        const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(hm->Index(r, c))] & kEmptyColumn);
+        if (best == 8 && may_fill) {  // a one-cell hole in a level surface
           h = h0;
           ++changed;
         }
@@ -285,6 +287,35 @@ std::vector<HeightMap> StackSheets(const HeightMap& grid, const Candidates& cand
   return layers;
 }
 
+// SurfaceLayers::unseen of one layer.
+std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m) {
+  const double res = layer.resolution_m;
+  std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
+  const long long room = std::isfinite(clearance_m) ? static_cast<long long>(std::ceil(clearance_m / res - 1e-6))
+                                                    : std::numeric_limits<long long>::max() / 4;
+  for (int r = 0; r < layer.rows; ++r) {
+    for (int c = 0; c < layer.cols; ++c) {
+      const size_t i = static_cast<size_t>(layer.Index(r, c));
+      if (!std::isnan(layer.height_m[i])) continue;
+      float level = -std::numeric_limits<float>::infinity();
+      const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
+      for (int k = 0; k < 4; ++k) {
+        if (!layer.HasSurface(r + dr[k], c + dc[k])) continue;
+        level = std::max(level, layer.height_m[static_cast<size_t>(layer.Index(r + dr[k], c + dc[k]))]);
+      }
+      if (!std::isfinite(level)) continue;
+      const long long top_voxel = std::llround(level / res) - 1;
+      const int col = layer.Index(r, c);
+      if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) continue;
+      // A ray through the voxel under the floor's level went into a hole: a drop.
+      if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) continue;
+      const bool erased = free != nullptr && ColumnHas(*free, col, top_voxel, top_voxel + 1);
+      unseen[i] = static_cast<uint8_t>(kEmptyColumn | (erased ? 0 : kNotErased));
+    }
+  }
+  return unseen;
+}
+
 // Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
 std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
   const double res = layer.resolution_m;
@@ -333,11 +364,18 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   const Candidates cand = SurfaceCandidates(grid, occ, know_free ? &free : nullptr, dropped, options, &out);
   out.candidates = static_cast<int>(cand.height.size());
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
+  const Columns* free_or_null = know_free ? &free : nullptr;
   if (options.fill_single_cell_noise) {
     for (HeightMap& layer : out.layers) {
       // Twice: a hole beside a displaced cell is filled once that cell is back.
-      for (int pass = 0; pass < 2; ++pass) out.noise_cells_filled += FillSingleCellNoise(&layer);
+      for (int pass = 0; pass < 2; ++pass) {
+        const std::vector<uint8_t> unseen = UnseenCells(layer, occ, free_or_null, options.clearance_m);
+        out.noise_cells_filled += FillSingleCellNoise(&layer, &unseen);
+      }
     }
+  }
+  for (const HeightMap& layer : out.layers) {
+    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m));
   }
   // From the final (noise-repaired) heights.
   for (const HeightMap& layer : out.layers) out.solid_beside.push_back(SolidBeside(layer, occ));

@@ -32,6 +32,15 @@ struct SurfaceLayerOptions {
   uint64_t max_leaf_columns = kDefaultMaxLeafColumns;  // CheckLeafColumnBudget (leaf_budget.h)
 };
 
+// SurfaceLayers::unseen bits of an empty cell. kEmptyColumn: its column holds no occupied
+// voxel from the bottom of the map up to the clearance above its neighbours' surface
+// and no ray passed through the voxel under that surface's level (nothing lower was seen,
+// no ray went into a hole: not a drop; nothing above: not an obstacle). kNotErased: the
+// voxel at that surface's level is not known free (no ray passed where the floor would
+// be). Both: floor nobody saw (docs/unseen_floor.md).
+constexpr uint8_t kEmptyColumn = 1;
+constexpr uint8_t kNotErased = 2;
+
 // Bit of neighbour (row + dr, col + dc), dr, dc in {-1, 0, 1} and not both 0, in a
 // SurfaceLayers::solid_beside entry.
 inline int NeighbourBit(int dr, int dc) {
@@ -50,6 +59,9 @@ struct SurfaceLayers {
   // bit is clear (a drop, unknown space, the map's border) the true edge may lie
   // anywhere inside the top voxel.
   std::vector<std::vector<uint8_t>> solid_beside;
+  // Per layer and cell, bits saying what is known of a cell empty in the layer
+  // (kEmptyColumn, kNotErased); 0 for a cell with a surface. Empty when not computed.
+  std::vector<std::vector<uint8_t>> unseen;
   int candidates = 0;             // surfaces that passed every test
   int no_room_above = 0;          // surfaces with an occupied voxel within the clearance
   int not_seen_from_above = 0;    // surfaces whose top voxel is not known free
@@ -58,11 +70,13 @@ struct SurfaceLayers {
 };
 
 // Scan noise on a level surface, undone: a cell whose 8 neighbours all have one height
-// and that is empty (a missed voxel) gets that height; a cell exactly one voxel above or
+// and that is empty (a missed voxel) gets that height unless `unseen` (SurfaceLayers::
+// unseen bits; nullptr: all allowed) says its column is not empty - a single erased
+// voxel with floor seen all round and nothing below is floor (docs/unseen_floor.md); a cell exactly one voxel above or
 // below a neighbourhood of which at least 7 of 8 agree is set to their height. Only holes
 // with all 8 neighbours present are filled, so no surface grows past its edge. Returns the
 // number of cells changed.
-int FillSingleCellNoise(HeightMap* height_map);
+int FillSingleCellNoise(HeightMap* height_map, const std::vector<uint8_t>* unseen = nullptr);
 
 // Throws InputError as BuildHeightMap does (bad resolution or leaves, too many cells).
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options);

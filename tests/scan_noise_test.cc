@@ -1,0 +1,194 @@
+// Sensor noise versus real edges (issue 25): small groups of one-voxel pits and bumps stay
+// in a floor's region, a region's height is its own surface's, a one-voxel trench is a
+// drop that no region spans, an unseen cell is floor only where nothing lower (or above)
+// was seen and no ray passed where the floor would be.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "geometry/convex_region.h"
+#include "terrain/extraction/occupancy_map.h"
+#include "terrain/extraction/region_extractor.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kRes = 0.02;
+constexpr int kMissing = -99;  // no occupied voxel in the column
+
+// A floor of n x n columns, two voxels thick with its top voxel at k = 0 (top at z = kRes),
+// each column's top moved by offset(i, j) voxels (kMissing: nothing in the column).
+// ground_below: a voxel at k = -10 under every column (a lower surface seen). seen: free
+// voxels from k = 1 up (known free above the floor), and at k = 0 where erased(i, j)
+// (also at k = -1 with ray_under).
+struct FloorSpec {
+  int n = 40;
+  std::function<int(int, int)> offset = [](int, int) { return 0; };
+  bool ground_below = false;
+  bool seen = false;
+  std::function<bool(int, int)> erased = [](int, int) { return false; };
+  bool ray_under = false;
+};
+
+OccupancyMap Floor(const FloorSpec& spec) {
+  OccupancyMap map;
+  map.resolution_m = kRes;
+  for (int i = 0; i < spec.n; ++i) {
+    for (int j = 0; j < spec.n; ++j) {
+      const double x = (i + 0.5) * kRes, y = (j + 0.5) * kRes;
+      if (spec.ground_below) map.leaves.push_back({{x, y, -9.5 * kRes}, kRes});
+      const int d = spec.offset(i, j);
+      if (d != kMissing) {
+        for (int k = std::min(0, d) - 1; k <= d; ++k) map.leaves.push_back({{x, y, (k + 0.5) * kRes}, kRes});
+      }
+      if (!spec.seen) continue;
+      const bool erased = d == kMissing && spec.erased(i, j);
+      const int free_from = erased ? (spec.ray_under ? -1 : 0) : std::max(1, d + 1);
+      for (int k = free_from; k < 40; ++k) map.free_leaves.push_back({{x, y, (k + 0.5) * kRes}, kRes});
+    }
+  }
+  return map;
+}
+
+RegionExtractionResult Extract(const OccupancyMap& map,
+                               int noise_max_cells = RegionExtractorOptions().noise_max_cells) {
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.03;
+  options.clearance_m = 0.4;
+  options.noise_max_cells = noise_max_cells;
+  return ExtractRegions(map, options);
+}
+
+double TotalArea(const RegionExtractionResult& r) {
+  double a = 0.0;
+  for (const ConvexRegion& region : r.regions) a += region.area_m2;
+  return a;
+}
+
+// Whether some region at the floor's height (within a voxel) holds the plan point xy.
+bool FloorRegionHolds(const RegionExtractionResult& r, const Eigen::Vector2d& xy) {
+  for (const ConvexRegion& region : r.regions) {
+    const bool at_floor = std::abs(region.HeightAt(xy.x(), xy.y()) - kRes) <= kRes;
+    if (at_floor && PlanDistanceToRegion(region, xy) <= 0.0) return true;
+  }
+  return false;
+}
+
+Eigen::Vector2d CellCentre(int i, int j) { return {(i + 0.5) * kRes, (j + 0.5) * kRes}; }
+
+// Groups of two by two pits and of three bumps in a row, one voxel off a 1.2 m floor:
+// too large for the height map's single-cell repair, small enough to be noise.
+int PitsAndBumps(int i, int j) {
+  if (i % 12 >= 4 && i % 12 < 6 && j % 10 >= 4 && j % 10 < 6) return -1;
+  if (i % 12 == 9 && j % 10 >= 7 && j % 10 < 10) return 1;
+  return 0;
+}
+
+TEST(ScanNoise, GroupsOfOneVoxelPitsAndBumpsStayInTheFloorsRegion) {
+  FloorSpec clean;
+  clean.n = 60;
+  FloorSpec noisy = clean;
+  noisy.offset = PitsAndBumps;
+  const RegionExtractionResult a = Extract(Floor(clean)), b = Extract(Floor(noisy)), cut = Extract(Floor(noisy), 0);
+  ASSERT_FALSE(a.regions.empty());
+  ASSERT_FALSE(b.regions.empty());
+  EXPECT_GE(TotalArea(b), 0.95 * TotalArea(a));
+  // Cutting the noise out (noise_max_cells 0) shatters the floor: the test tells them apart.
+  EXPECT_LT(TotalArea(cut), 0.8 * TotalArea(a));
+  // The regions' height is the floor's, not lifted by the bumps nor lowered by the pits.
+  for (const ConvexRegion& r : b.regions) EXPECT_NEAR(r.HeightAt(0.6, 0.6), kRes, 0.1 * kRes);
+}
+
+TEST(ScanNoise, ARegionBesideAHigherStoneKeepsItsOwnHeight) {
+  FloorSpec spec;
+  spec.n = 60;
+  // A 0.4 m x 0.6 m stone one voxel higher in the floor: its cells join the floor's
+  // growth (within a voxel) but are a step, not noise, and must not lift or tilt the
+  // floor's plane (fitted to all grown cells, it sat a sixth of a voxel high).
+  spec.offset = [](int i, int j) { return i >= 20 && i < 40 && j >= 15 && j < 45 ? 1 : 0; };
+  const RegionExtractionResult r = Extract(Floor(spec));
+  int floor_regions = 0;
+  for (const ConvexRegion& region : r.regions) {
+    if (PlanDistanceToRegion(region, CellCentre(5, 5)) <= 0.0) {
+      ++floor_regions;
+      EXPECT_NEAR(region.HeightAt(0.11, 0.11), kRes, 0.05 * kRes);
+    }
+    // No floor region reaches onto the stone (its cells, left out of the floor's patch,
+    // seed no patch of their own: a region there would be the stone's, at its height).
+    if (PlanDistanceToRegion(region, CellCentre(30, 30)) <= 0.0) {
+      EXPECT_NEAR(region.HeightAt(0.61, 0.61), 2 * kRes, 0.05 * kRes);
+    }
+  }
+  EXPECT_GE(floor_regions, 1);
+}
+
+TEST(ScanNoise, SteppingStonesAcrossAOneVoxelTrenchAreTwoRegionsAndNoneSpansTheDrop) {
+  FloorSpec spec;
+  spec.n = 61;  // the trench is column i = 30, its bottom 0.5 m down (seen there)
+  spec.offset = [](int i, int) { return i == 30 ? -25 : 0; };
+  for (bool ground : {false, true}) {
+    spec.ground_below = ground;
+    const RegionExtractionResult r = Extract(Floor(spec));
+    int left = 0, right = 0;
+    for (const ConvexRegion& region : r.regions) {
+      if (std::abs(region.HeightAt(0.61, 0.6) - kRes) > kRes) continue;  // the trench bottom, not a stone
+      double lo = INFINITY, hi = -INFINITY;
+      for (const Eigen::Vector3d& v : region.vertices_world_m) lo = std::min(lo, v.x()), hi = std::max(hi, v.x());
+      EXPECT_TRUE(hi <= 0.60 + 1e-9 || lo >= 0.62 - 1e-9) << "a region spans the trench: x " << lo << " .. " << hi;
+      left += hi <= 0.60 + 1e-9;
+      right += lo >= 0.62 - 1e-9;
+    }
+    EXPECT_GE(left, 1);
+    EXPECT_GE(right, 1);
+  }
+}
+
+TEST(ScanNoise, AShortOneVoxelPitWithItsBottomSeenIsADropNeverBridged) {
+  FloorSpec spec;
+  // Three cells in a row whose surface was seen 0.2 m down: narrower than the noise
+  // limit, yet a drop.
+  spec.offset = [](int i, int j) { return i == 20 && j >= 19 && j <= 21 ? -10 : 0; };
+  const RegionExtractionResult r = Extract(Floor(spec));
+  ASSERT_FALSE(r.regions.empty());
+  for (int j = 19; j <= 21; ++j) EXPECT_FALSE(FloorRegionHolds(r, CellCentre(20, j))) << j;
+}
+
+TEST(ScanNoise, UnseenCellsAreFloorOnlyWhereNothingLowerWasSeenAndNoRayPassed) {
+  const auto hole = [](int i, int j) { return i >= 20 && i <= 21 && j == 20 ? kMissing : 0; };
+  FloorSpec spec;
+  spec.offset = hole;
+  spec.seen = true;
+  // Nothing in the two columns and no ray through the floor's level: unseen floor.
+  const RegionExtractionResult filled = Extract(Floor(spec));
+  EXPECT_TRUE(FloorRegionHolds(filled, CellCentre(20, 20)));
+  EXPECT_TRUE(FloorRegionHolds(filled, CellCentre(21, 20)));
+  // Ground seen 0.2 m below them: a drop.
+  spec.ground_below = true;
+  const RegionExtractionResult drop = Extract(Floor(spec));
+  EXPECT_FALSE(FloorRegionHolds(drop, CellCentre(20, 20)));
+  // A ray passed where the floor would be (known free at its level): erased, not floor.
+  spec.ground_below = false;
+  spec.erased = [](int, int) { return true; };
+  const RegionExtractionResult erased = Extract(Floor(spec));
+  EXPECT_FALSE(FloorRegionHolds(erased, CellCentre(20, 20)));
+  EXPECT_FALSE(FloorRegionHolds(erased, CellCentre(21, 20)));
+}
+
+TEST(ScanNoise, ASingleErasedCellIsFloorUnlessARayWentUnderTheFloor) {
+  FloorSpec spec;
+  spec.offset = [](int i, int j) { return i == 20 && j == 20 ? kMissing : 0; };
+  spec.seen = true;
+  spec.erased = [](int, int) { return true; };
+  // A ray passed through the floor-level voxel only, floor seen all round: grazing rays
+  // erase floor so (docs/unseen_floor.md).
+  EXPECT_TRUE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(20, 20)));
+  // A ray also went through the voxel under the floor's level: a hole.
+  spec.ray_under = true;
+  EXPECT_FALSE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(20, 20)));
+}
+
+}  // namespace
+}  // namespace mfp
