@@ -4,8 +4,11 @@
 // on standing still (or only shuffles the feet) is planned again from the stance before
 // the previous window with a longer horizon (doubling up to max_horizon_windows default
 // windows, only under route guidance), so that the steps that led into a dead end can
-// change. A window that keeps steps past the dead end resets the horizon. Private to
-// planner/planning.
+// change. A window that keeps steps past the dead end resets the horizon. A window proven
+// infeasible at the longest look is still planned again from the start of the window
+// before (at most max_windows_without_progress times between two gains). A plan whose way
+// left has not shrunk over max_windows_without_progress accepted windows has stalled.
+// Private to planner/planning.
 #include <optional>
 #include <string>
 
@@ -23,8 +26,14 @@ class HorizonPolicy {
   // On a failed window: true when it is worth planning again with a longer look; then
   // the state is backed up, the horizon doubled, the retry counted and `why` made the
   // plan's message. False (nothing changed) when the horizon is at its longest, the
-  // plan's time is up, or 50 retries were spent.
-  bool RetryLonger(const std::string& why, HorizonState* state);
+  // plan's time is up, or 50 retries were spent. proven_infeasible: the window has no
+  // plan at all (not one cut by its time); at the longest look it is still planned again
+  // from an earlier point (above).
+  bool RetryLonger(const std::string& why, HorizonState* state, bool proven_infeasible = false);
+  // Why the plan has stalled short of the goal: its way left did not shrink over the last
+  // max_windows_without_progress accepted windows (HorizonState::NoteProgress); nullopt
+  // while it progresses, or when the rule is off (0).
+  std::optional<std::string> Stalled(const HorizonState& state) const;
   // Why a window that was accepted leaves the horizon stuck short of the goal: it kept
   // no step, or (guided) its steps only shuffle the feet, none moving a tenth of d_lim
   // from where it stood one and two windows ago, which the next windows would repeat
@@ -39,6 +48,7 @@ class HorizonPolicy {
   int horizon_ = 0;        // new footsteps of the next window
   int max_horizon_ = 0;
   int last_failure_ = -1;  // steps planned where a window last failed
+  int earlier_retries_ = 0;  // infeasible windows retried at the longest look since the last gain
 };
 
 }  // namespace mfp
