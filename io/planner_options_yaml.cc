@@ -43,8 +43,7 @@ void AddWindowKeys(Table* t) {
                    "a failed window is planned again with up to this many times the window's steps (1: no retries)")
                    .Alias("max_horizon_windows").Advanced());
   t->push_back(Opt("windows.max_without_progress", At(&P::max_windows_without_progress), 0, 1000,
-                   "a plan whose way left has not shrunk over this many windows ends partial at its best point (0: off)")
-                   .Alias("max_windows_without_progress"));
+                   "a plan whose way left has not shrunk over this many windows ends partial at its best point (0: off)"));
   t->push_back(Opt("windows.time_slack", At(&P::window_time_slack), 0.0, 1000.0,
                    "a guided window's time: this many fair shares of the time left (0: the even split)")
                    .Alias("window_time_slack").Advanced());

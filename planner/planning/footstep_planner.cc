@@ -12,6 +12,7 @@
 #include "planner/planning/internal/plan_context.h"
 #include "planner/planning/internal/plan_outcome.h"
 #include "planner/planning/internal/plan_progress.h"
+#include "planner/planning/internal/window_body_check.h"
 #include "planner/planning/internal/window_exactness.h"
 #include "planner/planning/internal/window_problem.h"
 #include "planner/planning/internal/window_search.h"
@@ -87,7 +88,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       break;
     }
     state.TakeSnapshot();
-    const FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state));
+    const FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state), policy.LookaheadScale());
     WindowRecord record;
     record.new_steps = problem.num_new_steps;
     record.regions = static_cast<int>(problem.regions.size());
@@ -125,6 +126,11 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       if (policy.RetryLonger(state.WindowName() + ": no exact plan (" + exact.replan.note + ")", &state)) continue;
       EndOnInexactWindow(exact, &state);
       break;
+    }
+    if (const std::optional<std::string> clash = WindowBodyClash(context, exact.polished.footsteps,
+                                                                     state.KeptSteps(exact.Used(formulation), exact.result))) {
+      // Between the route's clear poses the window's yaw is free: closer local goals.
+      if (policy.ReplanCloser(state.WindowName() + ": " + *clash, &state)) continue;
     }
     RecordExactness(exact, &state.plan);
     const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps);

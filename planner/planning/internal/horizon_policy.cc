@@ -72,7 +72,17 @@ std::optional<std::string> HorizonPolicy::Stalled(const HorizonState& state) con
   return why.str();
 }
 
+bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
+  if (lookahead_scale_ <= 0.125 || context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
+  lookahead_scale_ *= 0.5;
+  state->BackUp(/*past_failed_window=*/false);
+  ++state->plan.horizon_retries;
+  state->plan.message = why;
+  return true;
+}
+
 void HorizonPolicy::OnStepsKept(HorizonState* state, int kept) {
+  lookahead_scale_ = 1.0;
   if (state->windows_without_progress == 0) earlier_retries_ = 0;
   if (kept == 0) return;
   if (state->planned > last_failure_) horizon_ = context_.window_steps;  // past the dead end

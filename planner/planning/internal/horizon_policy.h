@@ -39,6 +39,14 @@ class HorizonPolicy {
   // from where it stood one and two windows ago, which the next windows would repeat
   // until the step budget ends. nullopt when it made progress or reached the goal.
   std::optional<std::string> Stuck(const HorizonState& state, int kept) const;
+  // The window's plan takes the body into an obstacle between the route's poses (why):
+  // true when it is worth planning it again from its own start with the local goal at
+  // half the lookahead (closer to the route, whose poses are clear); then the state is
+  // backed up and the retry counted. False at an eighth of the lookahead or when the
+  // plan's time is up.
+  bool ReplanCloser(const std::string& why, HorizonState* state);
+  // The lookahead of the next window's local goal, as a fraction of the default.
+  double LookaheadScale() const { return lookahead_scale_; }
   // A window kept steps: past the last failure the horizon is back to short windows,
   // and a retry's reason, now overcome, leaves the plan's message.
   void OnStepsKept(HorizonState* state, int kept);
@@ -48,7 +56,8 @@ class HorizonPolicy {
   int horizon_ = 0;        // new footsteps of the next window
   int max_horizon_ = 0;
   int last_failure_ = -1;  // steps planned where a window last failed
-  int earlier_retries_ = 0;  // infeasible windows retried at the longest look since the last gain
+  int earlier_retries_ = 0;
+  double lookahead_scale_ = 1.0;  // infeasible windows retried at the longest look since the last gain
 };
 
 }  // namespace mfp

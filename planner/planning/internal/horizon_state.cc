@@ -83,10 +83,7 @@ int HorizonState::Accept(const MiqpFormulation& used, const BranchAndBoundResult
   plan.status = Combine(plan.status, result.status);
   plan.objective += result.objective;
   plan.bound += result.bound;
-  int kept = 0;
-  for (int i = n; i < used.num_steps(); ++i) {
-    if (result.x(used.vars().trim[i]) < 0.5) kept = i - n + 1;
-  }
+  const int kept = KeptSteps(used, result);
   for (int i = n; i < n + kept; ++i) {
     Footstep f = steps[i];
     f.index = static_cast<int>(plan.footsteps.size());
@@ -133,6 +130,15 @@ bool HorizonState::ReturnToBest() {
   plan.footsteps = best_footsteps;
   Restore(best);
   return true;
+}
+
+int HorizonState::KeptSteps(const MiqpFormulation& used, const BranchAndBoundResult& result) const {
+  const int n = context.robot.num_legs();
+  int kept = 0;
+  for (int i = n; i < used.num_steps(); ++i) {
+    if (result.x(used.vars().trim[i]) < 0.5) kept = i - n + 1;
+  }
+  return kept;
 }
 
 std::vector<Eigen::Vector3d> HorizonState::FeetAfter(size_t count) const {

@@ -44,6 +44,8 @@ struct HorizonState {
   // to their end and returns how many were kept (also in the window's record, the last).
   // used: the MIQP that result.x solves; steps: its footsteps (start stance first).
   int Accept(const MiqpFormulation& used, const BranchAndBoundResult& result, const std::vector<Footstep>& steps);
+  // The window's untrimmed new steps that Accept would keep (those up to its last untrimmed one).
+  int KeptSteps(const MiqpFormulation& used, const BranchAndBoundResult& result) const;
   // After an accepted window: the way its stance has left (RemainingWay). A stance that
   // leaves less than the best so far becomes the best point; one that leaves min_gain_m
   // less than the stance that last did so resets windows_without_progress, which
