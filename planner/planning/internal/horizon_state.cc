@@ -42,7 +42,7 @@ HorizonState::HorizonState(const PlanContext& c)
   history = stance;
   UpdateGoalReached();
   start_progress_m = c.guided ? RouteProgress(c.guide, StanceCentreXY(stance)) : 0.0;
-  best = Snapshot{stance, history, stance_yaw, phase, planned, yaw, plan.objective, plan.bound, plan.footsteps.size()};
+  best = Here();
   best_footsteps = plan.footsteps;
   best_remaining_m = gain_anchor_m = RemainingWay(c, plan.footsteps);
 }
@@ -108,7 +108,7 @@ int HorizonState::Accept(const MiqpFormulation& used, const BranchAndBoundResult
 
 void HorizonState::NoteProgress(double remaining_m, double min_gain_m) {
   if (remaining_m < best_remaining_m) {
-    best = Snapshot{stance, history, stance_yaw, phase, planned, yaw, plan.objective, plan.bound, plan.footsteps.size()};
+    best = Here();
     best_footsteps = plan.footsteps;
     best_remaining_m = remaining_m;
     best_window = plan.windows;

@@ -29,8 +29,11 @@ struct HorizonState {
 
   // Another window is wanted: the goal is not reached, steps and windows are left.
   bool WantsAnotherWindow() const;
-  void TakeSnapshot() { snapshots.push_back(Snapshot{stance, history, stance_yaw, phase, planned, yaw,
-                                                     plan.objective, plan.bound, plan.footsteps.size()}); }
+  void TakeSnapshot() { snapshots.push_back(Here()); }
+  // Where the horizon stands now.
+  Snapshot Here() const {
+    return Snapshot{stance, history, stance_yaw, phase, planned, yaw, plan.objective, plan.bound, plan.footsteps.size()};
+  }
   // Back to the start of the window that just failed, or, with past_failed_window, to
   // the start of the window before it (when there is one); its snapshot is dropped
   // (taken again when the window is planned).
