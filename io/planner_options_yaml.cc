@@ -42,6 +42,8 @@ void AddWindowKeys(Table* t) {
   t->push_back(Opt("windows.max_horizon", At(&P::max_horizon_windows), 1, 100,
                    "a failed window is planned again with up to this many times the window's steps (1: no retries)")
                    .Alias("max_horizon_windows").Advanced());
+  t->push_back(Opt("windows.max_without_progress", At(&P::max_windows_without_progress), 0, 1000,
+                   "a plan whose way left has not shrunk over this many windows ends partial at its best point (0: off)"));
   t->push_back(Opt("windows.time_slack", At(&P::window_time_slack), 0.0, 1000.0,
                    "a guided window's time: this many fair shares of the time left (0: the even split)")
                    .Alias("window_time_slack").Advanced());

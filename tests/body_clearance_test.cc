@@ -14,7 +14,9 @@
 #include "io/robot_json.h"
 #include "io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
+#include "planner/planning/internal/plan_context.h"
 #include "planner/planning/internal/stance_route.h"
+#include "planner/planning/internal/window_body_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/body_clearance.h"
 #include "tests/plan_course.h"
@@ -142,6 +144,45 @@ TEST(BodyCourses, AUShapedPocketIsWalkedAroundNotThrough) {
   double widest = 0.0;
   for (const Footstep& f : out.plan.footsteps) widest = std::max(widest, std::abs(f.position_world_m.y()));
   EXPECT_GT(widest, 0.2);
+}
+
+TEST(WindowBodyCheck, NamesTheFirstConfigurationWhoseBodyMeetsAnObstacle) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.5, -1.0, 1.5, 1.0)};
+  TerrainBox wall;  // along x, its near face at y = 0.175
+  wall.center_world_m = {0.0, 0.2, 0.25};
+  wall.size_m = {1.0, 0.05, 0.5};
+  PlanRequest request;
+  request.start_feet_world_m = NominalStance(robot, regions, 0.0, 0.0, 0.0);
+  request.goal_x_m = 1.0;
+  request.body_obstacles = BoxBodyObstacles({wall});
+  const PlannerOptions options;
+  const std::vector<RelaxationSolver*> none;
+  const PlanContext context(robot, regions, request, options, none);
+  // The start stance, then the same feet under a body turned by a quarter, then by none.
+  std::vector<Footstep> steps;
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    Footstep f;
+    f.leg = leg;
+    f.position_world_m = request.start_feet_world_m[leg];
+    steps.push_back(f);
+  }
+  for (int leg = 0; leg < robot.num_legs(); ++leg) steps.push_back(steps[leg]);
+  EXPECT_FALSE(WindowBodyClash(context, steps, 4).has_value());
+  // Moved 0.1 m toward the wall, the body's half-width (0.06 m) stays clear of it; its
+  // half-length (0.1 m), turned across, does not.
+  for (size_t k = 4; k < 8; ++k) steps[k].position_world_m.y() += 0.1;
+  EXPECT_FALSE(WindowBodyClash(context, steps, 4).has_value());
+  steps[6].yaw_rad = M_PI / 2;
+  const std::optional<std::string> clash = WindowBodyClash(context, steps, 4);
+  ASSERT_TRUE(clash.has_value());
+  EXPECT_NE(clash->find("step 3 of the window"), std::string::npos) << *clash;
+  EXPECT_FALSE(WindowBodyClash(context, steps, 2).has_value());  // trimmed steps are never walked
+  // No obstacles, no check.
+  PlanRequest open = request;
+  open.body_obstacles.clear();
+  const PlanContext open_context(robot, regions, open, options, none);
+  EXPECT_FALSE(WindowBodyClash(open_context, steps, 4).has_value());
 }
 
 }  // namespace

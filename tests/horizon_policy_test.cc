@@ -12,6 +12,7 @@
 
 #include "planner/planning/internal/horizon_state.h"
 #include "planner/planning/internal/plan_context.h"
+#include "planner/planning/internal/plan_progress.h"
 #include "tests/test_scenarios.h"
 
 namespace mfp {
@@ -137,6 +138,67 @@ TEST_F(HorizonPolicyTest, AWindowThatKeepsNoStepOrOnlyShufflesIsStuck) {
   state_->TakeSnapshot();
   KeepSteps(n(), 0.5 * d_lim);  // a window that walks
   EXPECT_FALSE(policy.Stuck(*state_, n()).has_value());
+}
+
+TEST_F(HorizonPolicyTest, AWayLeftThatStopsShrinkingStallsThePlanWhichKeepsItsBestPoint) {
+  SetUpContext(2);
+  ASSERT_EQ(options_.max_windows_without_progress, 3);
+  HorizonPolicy policy(*context_);
+  const double d_lim = course_->robot.d_lim_m;
+  const double gain = MinProgressGain(*context_);
+  // Each window moves every foot by dx along the route (+x toward the goal).
+  auto window = [&](double dx) {
+    state_->TakeSnapshot();
+    KeepSteps(n(), dx);
+    ++state_->plan.windows;
+    state_->NoteProgress(RemainingWay(*context_, state_->plan.footsteps), gain);
+  };
+  window(0.5 * d_lim);
+  window(0.5 * d_lim);
+  EXPECT_EQ(state_->windows_without_progress, 0);
+  const size_t best_size = state_->plan.footsteps.size();
+  EXPECT_EQ(state_->best_window, 2);
+  window(-0.4 * d_lim);  // back, forth, and not quite as far again: marking time
+  window(0.3 * d_lim);
+  EXPECT_FALSE(policy.Stalled(*state_).has_value());
+  window(0.09 * d_lim);  // 0.01 d_lim short of the best point
+  const std::optional<std::string> stalled = policy.Stalled(*state_);
+  ASSERT_TRUE(stalled.has_value());
+  EXPECT_NE(stalled->find("no progress in 3 windows"), std::string::npos) << *stalled;
+  EXPECT_NE(stalled->find("after window 2"), std::string::npos) << *stalled;
+  ASSERT_TRUE(state_->ReturnToBest());
+  EXPECT_EQ(state_->plan.footsteps.size(), best_size);
+  EXPECT_EQ(state_->planned, 2 * n());
+  EXPECT_FALSE(state_->ReturnToBest());  // there already
+
+  // A gain of the least progress resets the count.
+  SetUpContext(2);
+  window(0.5 * d_lim);
+  window(-0.2 * d_lim);
+  window(0.2 * d_lim + 1.5 * gain);
+  EXPECT_EQ(state_->windows_without_progress, 0);
+}
+
+TEST_F(HorizonPolicyTest, AnInfeasibleWindowAtTheLongestLookIsPlannedAgainFromTheWindowBefore) {
+  SetUpContext(2);
+  HorizonPolicy policy(*context_);
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.1);
+  state_->TakeSnapshot();
+  KeepSteps(n(), 0.1);
+  state_->TakeSnapshot();  // window 3 starts at 2 n steps and fails
+  ASSERT_TRUE(policy.RetryLonger("window 3: infeasible", state_.get(), true));  // doubles the horizon
+  EXPECT_EQ(state_->planned, n());
+  state_->TakeSnapshot();
+  // At the longest look, a window cut by its time ends the plan; one proven infeasible
+  // is planned again from the start of the window before.
+  EXPECT_FALSE(policy.RetryLonger("window 4: no_solution", state_.get(), false));
+  ASSERT_TRUE(policy.RetryLonger("window 4: infeasible", state_.get(), true));
+  EXPECT_EQ(state_->planned, 0);
+  EXPECT_EQ(policy.NextWindowSteps(*state_), 2 * context_->window_steps);
+  // From the start there is no earlier point.
+  state_->TakeSnapshot();
+  EXPECT_FALSE(policy.RetryLonger("window 5: infeasible", state_.get(), true));
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 #include "planner/planning/internal/horizon_state.h"
 #include "planner/planning/internal/plan_context.h"
 #include "planner/planning/internal/plan_outcome.h"
+#include "planner/planning/internal/plan_progress.h"
+#include "planner/planning/internal/window_body_check.h"
 #include "planner/planning/internal/window_exactness.h"
 #include "planner/planning/internal/window_problem.h"
 #include "planner/planning/internal/window_search.h"
@@ -69,8 +71,8 @@ FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<Co
 
 // The receding-horizon loop (the units are in internal/): each pass plans one window
 // from the horizon's stance, makes its plan exact and keeps its steps; the policy backs
-// up for a longer look where a window fails or the horizon is stuck; the outcome names
-// how the plan ends.
+// up for a longer look where a window fails or the horizon is stuck, and ends a plan that
+// has stopped making progress; the outcome names how the plan ends.
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                    const PlanRequest& request, const PlannerOptions& options,
                    const std::vector<RelaxationSolver*>& solvers,
@@ -86,7 +88,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       break;
     }
     state.TakeSnapshot();
-    const FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state));
+    const FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state), policy.LookaheadScale());
     WindowRecord record;
     record.new_steps = problem.num_new_steps;
     record.regions = static_cast<int>(problem.regions.size());
@@ -100,6 +102,11 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     record.integer_variables = formulation.miqp().num_integer();
     state.CountWindow(formulation);
     if (!formulation.infeasible_reason().empty()) {
+      // Infeasible as built: the steps before may have led into it (from the start, nothing can).
+      if (state.snapshots.size() >= 2 &&
+          policy.RetryLonger(state.WindowName() + ": " + formulation.infeasible_reason(), &state, true)) {
+        continue;
+      }
       EndOnInfeasibleWindow(formulation.infeasible_reason(), &state);
       break;
     }
@@ -107,7 +114,10 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                                        state.plan.windows == 1, StanceCentreXY(state.stance), &record);
     state.RecordWindow(record);
     if (!HasPlan(search.result.status)) {
-      if (policy.RetryLonger(state.WindowName() + ": " + ToString(search.result.status), &state)) continue;
+      if (policy.RetryLonger(state.WindowName() + ": " + ToString(search.result.status), &state,
+                             search.result.status == SolveStatus::kInfeasible)) {
+        continue;
+      }
       EndOnFailedSearch(context, search.result, &state);
       break;
     }
@@ -121,15 +131,25 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
       EndOnInexactWindow(exact, &state);
       break;
     }
+    if (const std::optional<std::string> clash = WindowBodyClash(context, exact.polished.footsteps,
+                                                                     state.KeptSteps(exact.Used(formulation), exact.result))) {
+      // Between the route's clear poses the window's yaw is free: closer local goals.
+      if (policy.ReplanCloser(state.WindowName() + ": " + *clash, &state)) continue;
+    }
     RecordExactness(exact, &state.plan);
     const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps);
     ReportWindow(context, state, kept, exact, on_progress);
+    state.NoteProgress(RemainingWay(context, state.plan.footsteps), MinProgressGain(context));
     if (const std::optional<std::string> stuck = policy.Stuck(state, kept)) {
       if (policy.RetryLonger(*stuck, &state)) continue;
       EndStuck(*stuck, &state);
       break;
     }
     policy.OnStepsKept(&state, kept);
+    if (const std::optional<std::string> stalled = policy.Stalled(state)) {
+      EndStalled(*stalled, &state);
+      break;
+    }
   }
   return FinishPlan(context, &state);
 }

@@ -105,6 +105,13 @@ struct PlannerOptions {
   // Adaptive horizons: a failed window is planned again, backing up one window, with up
   // to this many times the default window's steps (1: no retries). Only with route guidance.
   int max_horizon_windows = 2;
+  // Progress, not budget: a plan whose way left (the route left, or at its end the
+  // feet's distance to the goal) has not shrunk by a tenth of d_lim over this many
+  // accepted windows ends with status partial, keeping the steps up to its best point
+  // (0: off; the step budget and the time limit end it). A window proven infeasible at the
+  // longest look is planned again from the window before at most this many times
+  // between two gains.
+  int max_windows_without_progress = 3;
   // Time budget of each window under route guidance (planner/window_budget.h): this many
   // fair shares of the remaining time, the fair share from the route left over the route
   // covered per window so far (0: the old rule, the larger of an even split over the step

@@ -1,7 +1,10 @@
 #include "planner/planning/internal/horizon_policy.h"
 
 #include <algorithm>
+#include <sstream>
 #include <vector>
+
+#include "planner/planning/internal/plan_progress.h"
 
 namespace mfp {
 
@@ -15,9 +18,23 @@ int HorizonPolicy::NextWindowSteps(const HorizonState& state) const {
   return std::min(horizon_, context_.max_steps - state.planned);
 }
 
-bool HorizonPolicy::RetryLonger(const std::string& why, HorizonState* state) {
+bool HorizonPolicy::RetryLonger(const std::string& why, HorizonState* state, bool proven_infeasible) {
   Plan& plan = state->plan;
-  if (horizon_ >= max_horizon_ || context_.TimeLeftSeconds() <= 0.0 || plan.horizon_retries >= 50) return false;
+  if (context_.TimeLeftSeconds() <= 0.0 || plan.horizon_retries >= 50) return false;
+  if (horizon_ >= max_horizon_) {
+    // Proven infeasible at the longest look: the steps before it led into the dead end.
+    // Plan again from the start of the window before, at the longest look.
+    if (!proven_infeasible || max_horizon_ <= context_.window_steps || state->snapshots.size() < 2 ||
+        earlier_retries_ >= context_.options.max_windows_without_progress) {
+      return false;
+    }
+    last_failure_ = std::max(last_failure_, state->planned);
+    state->BackUp(/*past_failed_window=*/true);
+    ++earlier_retries_;
+    ++plan.horizon_retries;
+    plan.message = why;
+    return true;
+  }
   const bool new_failure = state->planned > last_failure_;
   last_failure_ = std::max(last_failure_, state->planned);
   state->BackUp(/*past_failed_window=*/new_failure);
@@ -44,7 +61,29 @@ std::optional<std::string> HorizonPolicy::Stuck(const HorizonState& state, int k
          " m in two windows)";
 }
 
+std::optional<std::string> HorizonPolicy::Stalled(const HorizonState& state) const {
+  const int limit = context_.options.max_windows_without_progress;
+  if (limit <= 0 || state.plan.reaches_goal || state.windows_without_progress < limit) return std::nullopt;
+  std::ostringstream why;
+  why.precision(3);
+  why << "no progress in " << state.windows_without_progress << " windows (the way left did not shrink by "
+      << MinProgressGain(context_) << " m; best: " << state.best_remaining_m << " m left after window "
+      << state.best_window << ")";
+  return why.str();
+}
+
+bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
+  if (lookahead_scale_ <= 0.125 || context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
+  lookahead_scale_ *= 0.5;
+  state->BackUp(/*past_failed_window=*/false);
+  ++state->plan.horizon_retries;
+  state->plan.message = why;
+  return true;
+}
+
 void HorizonPolicy::OnStepsKept(HorizonState* state, int kept) {
+  lookahead_scale_ = 1.0;
+  if (state->windows_without_progress == 0) earlier_retries_ = 0;
   if (kept == 0) return;
   if (state->planned > last_failure_) horizon_ = context_.window_steps;  // past the dead end
   state->plan.message.clear();

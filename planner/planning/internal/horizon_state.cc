@@ -1,7 +1,10 @@
 #include "planner/planning/internal/horizon_state.h"
 
+#include <algorithm>
+
 #include "geometry/convex_region.h"
 #include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/plan_progress.h"
 
 namespace mfp {
 namespace {
@@ -39,6 +42,9 @@ HorizonState::HorizonState(const PlanContext& c)
   history = stance;
   UpdateGoalReached();
   start_progress_m = c.guided ? RouteProgress(c.guide, StanceCentreXY(stance)) : 0.0;
+  best = Here();
+  best_footsteps = plan.footsteps;
+  best_remaining_m = gain_anchor_m = RemainingWay(c, plan.footsteps);
 }
 
 bool HorizonState::WantsAnotherWindow() const {
@@ -77,10 +83,7 @@ int HorizonState::Accept(const MiqpFormulation& used, const BranchAndBoundResult
   plan.status = Combine(plan.status, result.status);
   plan.objective += result.objective;
   plan.bound += result.bound;
-  int kept = 0;
-  for (int i = n; i < used.num_steps(); ++i) {
-    if (result.x(used.vars().trim[i]) < 0.5) kept = i - n + 1;
-  }
+  const int kept = KeptSteps(used, result);
   for (int i = n; i < n + kept; ++i) {
     Footstep f = steps[i];
     f.index = static_cast<int>(plan.footsteps.size());
@@ -100,6 +103,41 @@ int HorizonState::Accept(const MiqpFormulation& used, const BranchAndBoundResult
   }
   yaw = plan.footsteps.back().yaw_rad;
   UpdateGoalReached();
+  return kept;
+}
+
+void HorizonState::NoteProgress(double remaining_m, double min_gain_m) {
+  if (remaining_m < best_remaining_m) {
+    best = Here();
+    best_footsteps = plan.footsteps;
+    best_remaining_m = remaining_m;
+    best_window = plan.windows;
+  }
+  if (remaining_m <= gain_anchor_m - min_gain_m) {
+    gain_anchor_m = remaining_m;
+    windows_without_progress = 0;
+  } else {
+    ++windows_without_progress;
+  }
+}
+
+bool HorizonState::ReturnToBest() {
+  if (plan.footsteps.size() == best_footsteps.size() &&
+      std::equal(plan.footsteps.begin(), plan.footsteps.end(), best_footsteps.begin(),
+                 [](const Footstep& a, const Footstep& b) { return a.position_world_m == b.position_world_m; })) {
+    return false;
+  }
+  plan.footsteps = best_footsteps;
+  Restore(best);
+  return true;
+}
+
+int HorizonState::KeptSteps(const MiqpFormulation& used, const BranchAndBoundResult& result) const {
+  const int n = context.robot.num_legs();
+  int kept = 0;
+  for (int i = n; i < used.num_steps(); ++i) {
+    if (result.x(used.vars().trim[i]) < 0.5) kept = i - n + 1;
+  }
   return kept;
 }
 

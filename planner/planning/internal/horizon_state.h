@@ -29,8 +29,11 @@ struct HorizonState {
 
   // Another window is wanted: the goal is not reached, steps and windows are left.
   bool WantsAnotherWindow() const;
-  void TakeSnapshot() { snapshots.push_back(Snapshot{stance, history, stance_yaw, phase, planned, yaw,
-                                                     plan.objective, plan.bound, plan.footsteps.size()}); }
+  void TakeSnapshot() { snapshots.push_back(Here()); }
+  // Where the horizon stands now.
+  Snapshot Here() const {
+    return Snapshot{stance, history, stance_yaw, phase, planned, yaw, plan.objective, plan.bound, plan.footsteps.size()};
+  }
   // Back to the start of the window that just failed, or, with past_failed_window, to
   // the start of the window before it (when there is one); its snapshot is dropped
   // (taken again when the window is planned).
@@ -44,6 +47,16 @@ struct HorizonState {
   // to their end and returns how many were kept (also in the window's record, the last).
   // used: the MIQP that result.x solves; steps: its footsteps (start stance first).
   int Accept(const MiqpFormulation& used, const BranchAndBoundResult& result, const std::vector<Footstep>& steps);
+  // The window's untrimmed new steps that Accept would keep (those up to its last untrimmed one).
+  int KeptSteps(const MiqpFormulation& used, const BranchAndBoundResult& result) const;
+  // After an accepted window: the way its stance has left (RemainingWay). A stance that
+  // leaves less than the best so far becomes the best point; one that leaves min_gain_m
+  // less than the stance that last did so resets windows_without_progress, which
+  // otherwise counts this window.
+  void NoteProgress(double remaining_m, double min_gain_m);
+  // Back to the best point when the plan stands behind it (a plan ending short of the
+  // goal keeps the steps that made progress); false when it stands there already.
+  bool ReturnToBest();
   // Where each leg stood after the plan's first `count` footsteps.
   std::vector<Eigen::Vector3d> FeetAfter(size_t count) const;
   // "window k", k the number of windows solved so far (the current one), for messages.
@@ -61,6 +74,14 @@ struct HorizonState {
   double start_progress_m = 0.0;          // route progress of the start stance (guided)
   std::vector<Snapshot> snapshots;        // one per window started and not backed out of
   std::string polish_note;  // the first window whose polished plan was not used, and why
+  // Progress (NoteProgress): the best point so far (the start stance at first), the way
+  // it had left, the window that reached it, and the accepted windows since the last gain.
+  Snapshot best;
+  std::vector<Footstep> best_footsteps;
+  double best_remaining_m = 0.0;
+  int best_window = 0;
+  double gain_anchor_m = 0.0;  // the way left at the last gain
+  int windows_without_progress = 0;
 
  private:
   void Restore(const Snapshot& s);

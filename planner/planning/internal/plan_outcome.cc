@@ -59,6 +59,10 @@ void EndStuck(const std::string& why, HorizonState* state) {
   state->plan.message = "the planner stopped short of the goal: " + why;
 }
 
+void EndStalled(const std::string& why, HorizonState* state) {
+  state->plan.message = "the plan stopped making progress: " + why;
+}
+
 void ReportWindow(const PlanContext& context, const HorizonState& state, int kept, const ExactWindow& exact,
                   const std::function<void(const PlanProgress&)>& on_progress) {
   const Plan& plan = state.plan;
@@ -94,6 +98,10 @@ Plan FinishPlan(const PlanContext& context, HorizonState* state) {
   if (!state->polish_note.empty()) plan.message += (plan.message.empty() ? "" : "; ") + state->polish_note;
   if (!plan.reaches_goal && HasPlan(plan.status) && request.max_windows == 0) {
     // Every accepted step satisfies the constraints: the robot can walk this far safely.
+    // Steps past the plan's best point only marked time (or a retry backed up behind it).
+    if (state->ReturnToBest()) {
+      plan.message += "; kept the steps up to window " + std::to_string(state->best_window) + ", its best point";
+    }
     const Eigen::Vector2d centre = StanceCentreXY(state->stance);
     std::ostringstream msg;
     msg.precision(3);

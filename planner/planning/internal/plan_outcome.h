@@ -32,13 +32,17 @@ void EndOnInexactWindow(const ExactWindow& exact, HorizonState* state);
 // The horizon is stuck short of the goal (HorizonPolicy::Stuck) and no retry is left.
 void EndStuck(const std::string& why, HorizonState* state);
 
+// The plan has stopped making progress (HorizonPolicy::Stalled).
+void EndStalled(const std::string& why, HorizonState* state);
+
 // After an accepted window: the plan so far to request.on_plan_so_far (when it kept
 // steps) and the window's progress to on_progress.
 void ReportWindow(const PlanContext& context, const HorizonState& state, int kept, const ExactWindow& exact,
                   const std::function<void(const PlanProgress&)>& on_progress);
 
 // The plan once the windows have ended: why it stops short of the goal, the polisher's
-// note, status partial for a whole plan short of the goal, its gap and solve time.
+// note, status partial for a whole plan short of the goal (its steps up to its best
+// point: HorizonState::ReturnToBest), its gap and solve time.
 Plan FinishPlan(const PlanContext& context, HorizonState* state);
 
 }  // namespace mfp

@@ -7,14 +7,14 @@
 namespace mfp {
 
 std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& centre,
-                                         std::optional<double>* yaw_rad) {
+                                         std::optional<double>* yaw_rad, double lookahead_scale) {
   const PlannerOptions& options = context.options;
   const RouteGuide& guide = context.guide;
   // Default: about one window's walk. A route over stance poses is followed closely (two
   // steps of d_lim per leg); one through region centres more loosely.
-  const double lookahead = options.local_goal_lookahead_m >= 0 ? options.local_goal_lookahead_m
-                           : guide.from_stances            ? 2.0 * context.robot.d_lim_m
-                                                           : 2.0 * LegReach(context.robot);
+  const double lookahead = lookahead_scale * (options.local_goal_lookahead_m >= 0 ? options.local_goal_lookahead_m
+                                              : guide.from_stances              ? 2.0 * context.robot.d_lim_m
+                                                                                : 2.0 * LegReach(context.robot));
   if (!context.guided || !(lookahead > 0.0)) return std::nullopt;
   const double progress = RouteProgress(guide, centre);
   const double s = progress + lookahead;
@@ -30,7 +30,8 @@ std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen
   return std::nullopt;
 }
 
-FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps) {
+FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps,
+                                  double lookahead_scale) {
   const int n = context.robot.num_legs();
   FootstepProblem problem = FirstWindowProblem(context.robot, context.regions, context.request, context.options);
   problem.start_feet_world_m = state.stance;
@@ -43,7 +44,7 @@ FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState
     problem.regions.push_back(context.usable[static_cast<size_t>(i)]);
   }
   std::optional<double> local_yaw;
-  if (const std::optional<Eigen::Vector2d> local = LocalGoal(context, StanceCentreXY(state.stance), &local_yaw)) {
+  if (const std::optional<Eigen::Vector2d> local = LocalGoal(context, StanceCentreXY(state.stance), &local_yaw, lookahead_scale)) {
     problem.goal_x_m = local->x();
     problem.goal_y_m = local->y();
     // The route's yaw, unwrapped to the nearest turn from the stance's yaw.

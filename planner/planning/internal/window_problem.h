@@ -16,11 +16,13 @@ namespace mfp {
 // line to the goal) and that point is short of the route's end. nullopt: the goal itself.
 // A route that carries yaws (it keeps the body clear of obstacles) is followed to its end
 // whatever its detour, and *yaw_rad (when given) receives its yaw at that point.
+// lookahead_scale: the lookahead times this (a window re-planned closer to the route).
 std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen::Vector2d& stance_centre,
-                                         std::optional<double>* yaw_rad = nullptr);
+                                         std::optional<double>* yaw_rad = nullptr, double lookahead_scale = 1.0);
 
 // The window from the state's stance: `steps` new footsteps, the usable regions those
 // steps can reach, the local goal, and after the first window the feet's history.
-FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps);
+FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps,
+                                  double lookahead_scale = 1.0);
 
 }  // namespace mfp
