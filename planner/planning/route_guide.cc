@@ -6,6 +6,7 @@
 #include <queue>
 #include <sstream>
 
+#include "geometry/region_reachability.h"
 #include "planner/planning/internal/stance_route.h"
 
 namespace mfp {
@@ -109,13 +110,10 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   std::vector<int> parent(m, -1);
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (int i = 0; i < n; ++i) {
-    for (int r = 0; r < m; ++r) {
-      if (RegionContains(regions[r], start_feet[i], start_tolerance_m) && dist[r] > 0) {
-        dist[r] = 0;
-        queue.push({0.0, r});
-      }
-    }
+  // (A start foot that no region holds starts from every region one step away.)
+  for (int r : StartRegionIndices(regions, start_feet, span, robot.dz_max_m, start_tolerance_m)) {
+    dist[r] = 0;
+    queue.push({0.0, r});
   }
   while (!queue.empty()) {
     const auto [d, r] = queue.top();
