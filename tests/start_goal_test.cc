@@ -157,3 +157,21 @@ TEST_F(StartGoalTest, AGoalFarBeyondTheToleranceIsAnInvalidGoalNamingTheFootAndT
 
 }  // namespace
 }  // namespace mfp
+
+namespace mfp {
+namespace {
+
+TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingTheLeg) {
+  PlanRequest request = Request();
+  request.seen_surface = FlatSeenFloor();
+  // Regions only beyond x = 2 m: every start foot is on seen floor, none a step from a region.
+  const std::vector<ConvexRegion> regions = {Rect(0, 2.0, -1.0, 3.0, 1.0)};
+  request.goal_x_m = 2.5;
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
+  EXPECT_NE(plan.message.find("no region lies within one step"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
+}
+
+}  // namespace
+}  // namespace mfp
