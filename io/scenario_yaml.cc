@@ -236,11 +236,13 @@ ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& 
     RegionExtractionResult from_map = ExtractRegionsFromMapFile(scenario.map_path, options);
     out.note = from_map.message;
     out.regions = std::move(from_map.regions);
-    out.seen_surface = SeenSurfaceOfLayers(from_map.layers);
+    out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers));
     return out;
   }
   // The boxes' true top faces are the surface a sensor sees from above.
-  out.seen_surface.faces = TopFaceRegions(scenario.terrain, 0.0, kPi / 2.0 - 1e-6);
+  SeenSurface faces;
+  faces.faces = TopFaceRegions(scenario.terrain, 0.0, kPi / 2.0 - 1e-6);
+  out.seen_surface = std::make_shared<const SeenSurface>(std::move(faces));
   if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
     // Inset like extracted regions: the foot and the edge margin (the faces are exact: no
     // edge uncertainty).
@@ -280,7 +282,7 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot, c
   PlanRequest request = ScenarioRequest(scenario, robot, terrain.regions);
   for (Eigen::Vector3d& foot : request.start_feet_world_m) {
     if (FindRegionBelow(terrain.regions, foot.x(), foot.y(), 0.0) >= 0) continue;
-    if (const std::optional<double> z = HighestSeenSurfaceAt(terrain.seen_surface, foot.head<2>())) foot.z() = *z;
+    if (const std::optional<double> z = HighestSeenSurfaceAt(*terrain.seen_surface, foot.head<2>())) foot.z() = *z;
   }
   request.seen_surface = terrain.seen_surface;
   return request;

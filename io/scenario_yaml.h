@@ -3,6 +3,7 @@
 // optional planner settings. The terrain is one of: boxes (a course description whose
 // top faces are the regions, also turned into maps by mfp-terrain), explicit convex
 // regions (polygons on planes, for users with regions from elsewhere), or a map file.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -78,7 +79,7 @@ SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers);
 // top faces; empty for listed regions (a start foot must then be on a region).
 struct ScenarioTerrain {
   std::vector<ConvexRegion> regions;
-  SeenSurface seen_surface;
+  std::shared_ptr<const SeenSurface> seen_surface = std::make_shared<const SeenSurface>();  // never null
   std::string note;  // the extractor's message when it found no region or ran out of time
 };
 ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot,

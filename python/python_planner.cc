@@ -1,6 +1,7 @@
 #include "python/python_planner.h"
 
 #include <chrono>
+#include <memory>
 
 #include "base/check.h"
 #include "io/height_map_file.h"
@@ -55,7 +56,9 @@ PythonPlanResult PlanOnTerrain(const RobotModel& robot, const PythonTerrain& ter
   const RegionExtractorOptions extraction = ScenarioRegionOptions(scenario, robot, run_deadline);
   RegionExtractionResult extracted =
       terrain.grid ? ExtractRegionsFromHeightGrid(*terrain.grid, extraction) : ExtractRegions(*terrain.map, extraction);
-  ScenarioTerrain scenario_terrain{std::move(extracted.regions), SeenSurfaceOfLayers(extracted.layers), extracted.message};
+  ScenarioTerrain scenario_terrain{std::move(extracted.regions),
+                                   std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(extracted.layers)),
+                                   extracted.message};
   out.regions = scenario_terrain.regions;
   PlannerOptions& options = scenario.options;
   if (!inputs.relaxation_solver.empty()) options.solvers.backend = ParseRelaxationBackend(inputs.relaxation_solver);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -86,7 +87,7 @@ TEST_F(StartGoalTest, AStartFootOnSeenFloorButOnNoRegionPlans) {
   EXPECT_EQ(refused.status, SolveStatus::kInvalidStart) << refused.message;
   EXPECT_NE(refused.message.find("leg 0"), std::string::npos) << refused.message;
 
-  request.seen_surface = FlatSeenFloor();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
   const Plan plan = PlanOn(regions, request);
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
@@ -99,7 +100,7 @@ TEST_F(StartGoalTest, AStartFootOnSeenFloorButOnNoRegionPlans) {
 
 TEST_F(StartGoalTest, AStartFootInTheAirIsAnInvalidStartNamingTheNearestSurface) {
   PlanRequest request = Request();
-  request.seen_surface = FlatSeenFloor();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
   const std::vector<ConvexRegion> regions = FloorWithHole(request.start_feet_world_m[0].head<2>(), 0.05);
   request.start_feet_world_m[2].z() += 0.3;
   const Plan plan = PlanOn(regions, request);
@@ -163,7 +164,7 @@ namespace {
 
 TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingTheLeg) {
   PlanRequest request = Request();
-  request.seen_surface = FlatSeenFloor();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
   // Regions only beyond x = 2 m: every start foot is on seen floor, none a step from a region.
   const std::vector<ConvexRegion> regions = {Rect(0, 2.0, -1.0, 3.0, 1.0)};
   request.goal_x_m = 2.5;

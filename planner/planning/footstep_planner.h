@@ -4,6 +4,7 @@
 // is reached, max_steps are spent, or the time limit runs out. No I/O.
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "base/deadline.h"
@@ -57,8 +58,9 @@ struct PlanRequest {
   // Optional: the surface the map's sensor saw from above (the layers or faces the regions
   // came from). A start foot on it within PlannerOptions::start_tolerance_m is accepted
   // where no region holds it (the robot stands there; its first step lands in a region).
-  // Empty (the default): every start foot must be on a region.
-  SeenSurface seen_surface;
+  // Shared, not copied: a map's layers are large and every request on the map reads them.
+  // Null or empty (the default): every start foot must be on a region.
+  std::shared_ptr<const SeenSurface> seen_surface;
 };
 
 struct PlannerOptions {

@@ -61,7 +61,8 @@ std::string StartFootProblem(const RobotModel& robot, const std::vector<ConvexRe
   for (const ConvexRegion& r : regions) {
     if (RegionContains(r, f, tol)) return "";
   }
-  const SeenSurface& seen = request.seen_surface;
+  static const SeenSurface kNone;
+  const SeenSurface& seen = request.seen_surface != nullptr ? *request.seen_surface : kNone;
   if (!seen.empty() && OnSeenSurface(seen, f, tol)) return "";
   std::ostringstream msg;
   msg << "start foot of leg " << k << " ('" << robot.legs[k].name << "') at (" << f.x() << ", " << f.y() << ", "
