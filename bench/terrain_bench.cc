@@ -21,6 +21,7 @@
 
 #include "base/check.h"
 #include "bench/height_map_bench.h"
+#include "bench/scan_walks.h"
 #include "terrain/extraction/map_simulation.h"
 #include "terrain/extraction/region_extractor.h"
 #include "terrain/octomap/octomap_io.h"
@@ -84,7 +85,21 @@ int main(int argc, char** argv) {
   app.add_option("--scan", scans, "a real scan (.bt/.ot) judged against its own voxels (repeatable)")
       ->check(CLI::ExistingFile);
   app.add_flag("--scans-only", scans_only, "only the real scans given with --scan");
+  std::vector<std::string> walk_robots;
+  mfp::ScanWalkOptions walks;
+  app.add_option("--walk-robot", walk_robots,
+                 "with --scan: walks on each scan with this robot (URDF or robot YAML; repeatable), judged against "
+                 "the raw voxels; only the walks are run")
+      ->check(CLI::ExistingFile);
+  app.add_option("--walks", walks.walks, "walks per scan and robot")->check(CLI::Range(1, 1000));
+  app.add_option("--walk-time-limit", walks.time_limit_s, "time limit of each walk's plan [s]")
+      ->check(CLI::Range(0.1, 3600.0));
+  app.add_flag("--walk-details", walks.verbose, "a line per walk");
   CLI11_PARSE(app, argc, argv);
+  if (!walk_robots.empty()) {
+    mfp::BenchScanWalks(scans, walk_robots, walks);
+    return 0;
+  }
 
   std::printf("foot radius %.3f m, edge margin %.3f m, edge uncertainty per map (unc), clearance %.2f m, "
               "max slope %.3f rad, %d runs per map\n\n",

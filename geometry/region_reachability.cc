@@ -43,6 +43,32 @@ double RegionPlanarDistance(const ConvexRegion& a, const ConvexRegion& b) {
   return d;
 }
 
+std::vector<int> StartRegionIndices(const std::vector<ConvexRegion>& regions,
+                                    const std::vector<Eigen::Vector3d>& start_feet_world_m, double step_xy_m,
+                                    double dz_max_m, double tolerance_m) {
+  const int n = static_cast<int>(regions.size());
+  std::vector<uint8_t> start(n, 0);
+  for (const Eigen::Vector3d& f : start_feet_world_m) {
+    bool on_region = false;
+    for (int i = 0; i < n; ++i) {
+      if (RegionContains(regions[i], f, tolerance_m)) start[i] = 1, on_region = true;
+    }
+    if (on_region) continue;
+    // A foot on seen surface that no region holds: its first step lands within one step.
+    for (int i = 0; i < n; ++i) {
+      double lo = 0.0, hi = 0.0;
+      HeightRange(regions[i], &lo, &hi);
+      if (f.z() > hi + dz_max_m || f.z() < lo - dz_max_m) continue;
+      if (PlanDistanceToRegion(regions[i], f.head<2>()) <= step_xy_m) start[i] = 1;
+    }
+  }
+  std::vector<int> out;
+  for (int i = 0; i < n; ++i) {
+    if (start[i]) out.push_back(i);
+  }
+  return out;
+}
+
 std::optional<std::vector<int>> ReachableRegionIndices(const std::vector<ConvexRegion>& regions,
                                                        const std::vector<Eigen::Vector3d>& start_feet_world_m,
                                                        double step_xy_m, double dz_max_m, double tolerance_m,
@@ -60,13 +86,9 @@ std::optional<std::vector<int>> ReachableRegionIndices(const std::vector<ConvexR
   }
   std::vector<uint8_t> seen(n, 0);
   std::deque<int> queue;
-  for (int i = 0; i < n; ++i) {
-    for (const Eigen::Vector3d& f : start_feet_world_m) {
-      if (!seen[i] && RegionContains(regions[i], f, tolerance_m)) {
-        seen[i] = 1;
-        queue.push_back(i);
-      }
-    }
+  for (int i : StartRegionIndices(regions, start_feet_world_m, step_xy_m, dz_max_m, tolerance_m)) {
+    seen[i] = 1;
+    queue.push_back(i);
   }
   while (!queue.empty()) {
     if (deadline.Expired()) return std::nullopt;

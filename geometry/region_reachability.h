@@ -19,9 +19,17 @@ namespace mfp {
 // plan view) [m].
 double RegionPlanarDistance(const ConvexRegion& a, const ConvexRegion& b);
 
+// Indices (ascending) of the regions a plan's first steps start from: those holding a
+// start foot (within tolerance_m) and, for a start foot no region holds (a robot standing
+// on seen surface the regions leave out), every region within one step of it: step_xy_m
+// horizontally and dz_max_m vertically.
+std::vector<int> StartRegionIndices(const std::vector<ConvexRegion>& regions,
+                                    const std::vector<Eigen::Vector3d>& start_feet_world_m, double step_xy_m,
+                                    double dz_max_m, double tolerance_m);
+
 // Indices (ascending) of the regions reachable from the start feet: chains of regions
 // whose polygons are within step_xy_m horizontally and whose height ranges are within
-// dz_max_m, starting at the regions that hold a start foot (within tolerance_m).
+// dz_max_m, starting at StartRegionIndices.
 // nullopt when `deadline` expires (or its stop flag is set) first: the chains compare
 // every pair of regions, quadratic in their number, so a large map is checked between
 // the regions it visits.

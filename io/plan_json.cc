@@ -44,7 +44,8 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
           {"objective_offset", plan.objective_offset},
           {"robot", RobotToJson(robot)},
           {"regions", region_list},
-          {"footsteps", steps}};
+          {"footsteps", steps},
+          {"goal", {{"x", plan.goal_x_m}, {"y", plan.goal_y_m}, {"yaw", plan.goal_yaw_rad}, {"moved", plan.goal_moved}}}};
 }
 
 }  // namespace mfp

@@ -24,6 +24,11 @@ void AddPlanKeys(Table* t) {
                    "every final foot within this of its goal spot").Unit("m"));
   t->push_back(Opt("goal_yaw_tolerance", At(&P::goal_yaw_tolerance_rad), 1e-4, M_PI,
                    "final body yaw within this of the goal yaw").Unit("rad"));
+  t->push_back(Opt("goal_position_tolerance", At(&P::goal_position_tolerance_m), 0, 10,
+                   "a goal stance with a foot spot on no region is moved to the nearest stance on regions at most "
+                   "this far (route guidance; beyond it: invalid_goal)").Unit("m"));
+  t->push_back(Opt("goal_heading_tolerance", At(&P::goal_heading_tolerance_rad), 0, M_PI,
+                   "... and turned at most this much").Unit("rad"));
   t->push_back(Opt("start_tolerance", At(&P::start_tolerance_m), 0, 1,
                    "a start foot may lie this far off its region").Unit("m"));
   t->push_back(Opt("warm_start_match", At(&P::warm_start_match_m), 0, 1,

@@ -186,6 +186,27 @@ static Scenario LoadScenarioUnguarded(const std::string& path) {
   return s;
 }
 
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
+
+SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers) {
+  SeenSurface seen;
+  for (const HeightMap& layer : layers) {
+    if (layer.rows <= 0 || layer.cols <= 0) continue;
+    SurfaceGrid grid;
+    grid.resolution_m = layer.resolution_m;
+    grid.origin_m = layer.origin_world_m;
+    grid.rows = layer.rows;
+    grid.cols = layer.cols;
+    grid.height_m = layer.height_m;
+    seen.grids.push_back(std::move(grid));
+  }
+  return seen;
+}
+
 RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const RobotModel& robot,
                                              const Deadline& deadline) {
   // Surfaces need room above them for the robot: its stance height plus a margin.
@@ -204,23 +225,41 @@ RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const Rob
   return options;
 }
 
-std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
-                                          std::string* note, const Deadline& deadline) {
-  if (!scenario.listed_regions.empty()) return scenario.listed_regions;
+ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot, const Deadline& deadline) {
+  ScenarioTerrain out;
+  if (!scenario.listed_regions.empty()) {
+    out.regions = scenario.listed_regions;
+    return out;
+  }
   const RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot, deadline);
   if (!scenario.map_path.empty()) {
     RegionExtractionResult from_map = ExtractRegionsFromMapFile(scenario.map_path, options);
-    if (note != nullptr) *note = from_map.message;
-    return std::move(from_map.regions);
+    out.note = from_map.message;
+    out.regions = std::move(from_map.regions);
+    out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers));
+    return out;
   }
+  // The boxes' true top faces are the surface a sensor sees from above.
+  SeenSurface faces;
+  faces.faces = TopFaceRegions(scenario.terrain, 0.0, kPi / 2.0 - 1e-6);
+  out.seen_surface = std::make_shared<const SeenSurface>(std::move(faces));
   if (scenario.boxes_source == BoxRegionSource::kTopFaces) {
     // Inset like extracted regions: the foot and the edge margin (the faces are exact: no
     // edge uncertainty).
-    return TopFaceRegions(scenario.terrain, robot.foot_radius_m + options.edge_margin_m, robot.max_slope_rad);
+    out.regions = TopFaceRegions(scenario.terrain, robot.foot_radius_m + options.edge_margin_m, robot.max_slope_rad);
+    return out;
   }
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
-  if (note != nullptr) *note = result.message;
-  return std::move(result.regions);
+  out.note = result.message;
+  out.regions = std::move(result.regions);
+  return out;
+}
+
+std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotModel& robot,
+                                          std::string* note, const Deadline& deadline) {
+  ScenarioTerrain terrain = LoadScenarioTerrain(scenario, robot, deadline);
+  if (note != nullptr) *note = terrain.note;
+  return std::move(terrain.regions);
 }
 
 PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
@@ -236,6 +275,16 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
   request.window_steps = scenario.window_steps;
   request.time_limit_s = scenario.time_limit_s;
   request.body_obstacles = BoxBodyObstacles(scenario.terrain.boxes);
+  return request;
+}
+
+PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot, const ScenarioTerrain& terrain) {
+  PlanRequest request = ScenarioRequest(scenario, robot, terrain.regions);
+  for (Eigen::Vector3d& foot : request.start_feet_world_m) {
+    if (FindRegionBelow(terrain.regions, foot.x(), foot.y(), 0.0) >= 0) continue;
+    if (const std::optional<double> z = HighestSeenSurfaceAt(*terrain.seen_surface, foot.head<2>())) foot.z() = *z;
+  }
+  request.seen_surface = terrain.seen_surface;
   return request;
 }
 

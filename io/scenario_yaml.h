@@ -3,11 +3,13 @@
 // optional planner settings. The terrain is one of: boxes (a course description whose
 // top faces are the regions, also turned into maps by mfp-terrain), explicit convex
 // regions (polygons on planes, for users with regions from elsewhere), or a map file.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "geometry/convex_region.h"
+#include "geometry/seen_surface.h"
 #include "geometry/terrain_description.h"
 #include "io/option_table.h"
 #include "planner/planning/footstep_planner.h"
@@ -68,6 +70,21 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
                                           std::string* note = nullptr,
                                           const Deadline& deadline = Deadline());
 
+// A map's surface layers (RegionExtractionResult::layers: every surface seen from above
+// with room above it) as the seen surface the planner accepts start feet on.
+SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers);
+
+// A scenario's terrain for one robot: its regions and the surface seen from above that they
+// came from (PlanRequest::seen_surface): a map's surface layers, a box terrain's uninset
+// top faces; empty for listed regions (a start foot must then be on a region).
+struct ScenarioTerrain {
+  std::vector<ConvexRegion> regions;
+  std::shared_ptr<const SeenSurface> seen_surface = std::make_shared<const SeenSurface>();  // never null
+  std::string note;  // the extractor's message when it found no region or ran out of time
+};
+ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot,
+                                    const Deadline& deadline = Deadline());
+
 // The extractor options ScenarioRegions uses for a map or boxes: the robot's foot radius,
 // slope limit and clearance, the scenario's terrain settings, the deadline.
 RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const RobotModel& robot,
@@ -77,5 +94,9 @@ RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const Rob
 // the regions below them), the goal, and the scenario's step and time settings.
 PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
                             const std::vector<ConvexRegion>& regions);
+
+// The same with the terrain's seen surface: the request carries it, and a start foot with
+// no region below it stands on the highest seen surface there.
+PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot, const ScenarioTerrain& terrain);
 
 }  // namespace mfp

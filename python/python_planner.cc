@@ -1,6 +1,7 @@
 #include "python/python_planner.h"
 
 #include <chrono>
+#include <memory>
 
 #include "base/check.h"
 #include "io/height_map_file.h"
@@ -52,10 +53,16 @@ PythonPlanResult PlanOnTerrain(const RobotModel& robot, const PythonTerrain& ter
   const Deadline run_deadline = Deadline::After(
       run_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
   PythonPlanResult out;
-  out.regions = TerrainRegions(terrain, ScenarioRegionOptions(scenario, robot, run_deadline));
+  const RegionExtractorOptions extraction = ScenarioRegionOptions(scenario, robot, run_deadline);
+  RegionExtractionResult extracted =
+      terrain.grid ? ExtractRegionsFromHeightGrid(*terrain.grid, extraction) : ExtractRegions(*terrain.map, extraction);
+  ScenarioTerrain scenario_terrain{std::move(extracted.regions),
+                                   std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(extracted.layers)),
+                                   extracted.message};
+  out.regions = scenario_terrain.regions;
   PlannerOptions& options = scenario.options;
   if (!inputs.relaxation_solver.empty()) options.solvers.backend = ParseRelaxationBackend(inputs.relaxation_solver);
-  PlanRequest request = ScenarioRequest(scenario, robot, out.regions);
+  PlanRequest request = ScenarioRequest(scenario, robot, scenario_terrain);
   if (inputs.max_steps > 0) request.max_steps = inputs.max_steps;
   if (inputs.window > 0) request.window_steps = inputs.window;
   if (inputs.time_limit_s > 0) request.time_limit_s = inputs.time_limit_s;

@@ -123,8 +123,8 @@ void ApplyFlags(const Flags& f, mfp::PlannerOptions* options) {
 }
 
 mfp::PlanRequest RequestFromFlags(const Flags& f, const mfp::Scenario& scenario, const mfp::RobotModel& robot,
-                                  const std::vector<mfp::ConvexRegion>& regions, const mfp::Deadline& deadline) {
-  mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, regions);
+                                  const mfp::ScenarioTerrain& terrain, const mfp::Deadline& deadline) {
+  mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, terrain);
   if (f.max_steps > 0) request.max_steps = f.max_steps;
   if (f.window > 0) request.window_steps = f.window;
   if (f.time_limit > 0) request.time_limit_s = f.time_limit;
@@ -198,7 +198,7 @@ void WriteOutputs(const Flags& f, const mfp::Scenario& scenario, const mfp::Plan
 
 // --validate: the plan checked constraint by constraint with exact trigonometry (no
 // slack for the chords of the MIQP's sin/cos). True when every constraint holds.
-bool ValidateWithExactTrigonometry(const mfp::Scenario& scenario, const mfp::Plan& plan, const mfp::RobotModel& robot,
+bool ValidateWithExactTrigonometry(const mfp::Plan& plan, const mfp::RobotModel& robot,
                                    const std::vector<mfp::ConvexRegion>& regions, const mfp::PlannerOptions& options,
                                    const Log& log) {
   const mfp::ExactExcess excess = mfp::MeasureExactExcess(robot, regions, plan);
@@ -210,7 +210,7 @@ bool ValidateWithExactTrigonometry(const mfp::Scenario& scenario, const mfp::Pla
        << std::max(0.0, excess.yaw_change_rad) << " rad";
   log(line.str());
   const auto errors = mfp::ValidatePlan(robot, regions, plan,
-                                        {scenario.goal.x_m, scenario.goal.y_m, scenario.goal.yaw_rad,
+                                        {plan.goal_x_m, plan.goal_y_m, plan.goal_yaw_rad,
                                          options.goal_tolerance_m, options.goal_yaw_tolerance_rad},
                                         mfp::ValidationTolerances{});
   for (const std::string& e : errors) std::cerr << kProgram << ": violation: " << e << "\n";
@@ -218,7 +218,7 @@ bool ValidateWithExactTrigonometry(const mfp::Scenario& scenario, const mfp::Pla
   return errors.empty();
 }
 
-int ExitCode(const Flags& f, const mfp::Scenario& scenario, const mfp::Plan& plan, const mfp::RobotModel& robot,
+int ExitCode(const Flags& f, const mfp::Plan& plan, const mfp::RobotModel& robot,
              const std::vector<mfp::ConvexRegion>& regions, const mfp::PlannerOptions& options, const Log& log) {
   using mfp::SolveStatus;
   if (plan.status == SolveStatus::kInvalidRequest || plan.status == SolveStatus::kInvalidStart ||
@@ -227,7 +227,7 @@ int ExitCode(const Flags& f, const mfp::Scenario& scenario, const mfp::Plan& pla
     return kExitBadInput;
   }
   if (f.validate && mfp::HasPlan(plan.status) &&
-      !ValidateWithExactTrigonometry(scenario, plan, robot, regions, options, log)) {
+      !ValidateWithExactTrigonometry(plan, robot, regions, options, log)) {
     return kExitNoPlan;
   }
   if (plan.status == SolveStatus::kNoRoute || plan.status == SolveStatus::kPartial) {
@@ -249,19 +249,19 @@ int Run(const Flags& f, const Log& log) {
   const mfp::Deadline run_deadline = mfp::Deadline::After(
       run_limit - std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start).count());
   const mfp::RobotModel robot = mfp::LoadRobot(scenario.robot_path, nullptr, run_deadline);
-  std::string terrain_note;
-  const std::vector<mfp::ConvexRegion> regions = mfp::ScenarioRegions(scenario, robot, &terrain_note, run_deadline);
-  if (!terrain_note.empty()) log("terrain: " + terrain_note);
+  const mfp::ScenarioTerrain terrain = mfp::LoadScenarioTerrain(scenario, robot, run_deadline);
+  const std::vector<mfp::ConvexRegion>& regions = terrain.regions;
+  if (!terrain.note.empty()) log("terrain: " + terrain.note);
   log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
       std::to_string(regions.size()) + " regions");
   mfp::PlannerOptions& options = scenario.options;
   ApplyFlags(f, &options);
-  const mfp::PlanRequest request = RequestFromFlags(f, scenario, robot, regions, run_deadline);
+  const mfp::PlanRequest request = RequestFromFlags(f, scenario, robot, terrain, run_deadline);
   WriteFirstWindowMps(f.mps_path, robot, regions, request, options, log);
   const mfp::Plan plan = PlanWithProgress(robot, regions, request, options, log);
   log(Summary(plan, robot));
   WriteOutputs(f, scenario, plan, robot, regions, log);
-  return ExitCode(f, scenario, plan, robot, regions, options, log);
+  return ExitCode(f, plan, robot, regions, options, log);
 }
 
 }  // namespace

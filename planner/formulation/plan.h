@@ -53,6 +53,11 @@ struct Plan {
   // stance, one per leg.
   std::vector<Footstep> footsteps;
   std::vector<WindowRecord> window_records;  // one per window solved, in order
+  // The goal pose the plan aimed for and reaches_goal is judged against: the request's,
+  // or, when goal_moved, the nearest certified stance within the planner's goal position
+  // and heading tolerances (a requested goal foot spot lay on no region) [m, rad].
+  bool goal_moved = false;
+  double goal_x_m = 0.0, goal_y_m = 0.0, goal_yaw_rad = 0.0;
 };
 
 }  // namespace mfp

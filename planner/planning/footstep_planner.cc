@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <utility>
 
 #include "base/check.h"
+#include "planner/planning/internal/goal.h"
 #include "planner/planning/internal/horizon_policy.h"
 #include "planner/planning/internal/horizon_state.h"
 #include "planner/planning/internal/plan_context.h"
@@ -69,11 +71,75 @@ FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<Co
   return problem;
 }
 
+namespace {
+
+// Grid of the search for a certified goal stance near the requested one [m, rad]: within
+// the tolerances, fine; beyond them (only to name the nearest one), coarse and out to
+// kGoalReportRadiusM.
+constexpr double kGoalSearchStepM = 0.02;
+constexpr double kGoalSearchYawStepRad = 0.05;
+constexpr double kGoalReportStepM = 0.05;
+constexpr double kGoalReportRadiusM = 2.0;
+
+struct GoalChoice {
+  std::optional<Plan> rejected;   // invalid_goal: no certified stance within the tolerances
+  std::optional<GoalPose> moved;  // plan to this instead of the request's goal
+  std::string note;               // why the goal moved
+};
+
+std::string PoseText(const GoalPose& p) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "(" << p.x_m << ", " << p.y_m << ", yaw " << p.yaw_rad << ")";
+  return s.str();
+}
+
+// Under route guidance a goal stance must stand on regions (the route guide's test). One
+// with a foot spot on none is moved to the nearest certified stance within the goal
+// tolerances; beyond them the request is invalid_goal, naming the foot and the nearest
+// certified stance farther out. Requests that fail their checks are left to SetUpPlan.
+GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
+                      const PlannerOptions& options) {
+  GoalChoice choice;
+  if (!options.route_guidance || request.max_windows != 0) return choice;
+  if (!CheckPlanRequest(robot, regions, request, options).ok()) return choice;
+  const GoalPose goal{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
+  const double tol = options.goal_tolerance_m;
+  const int leg = LegOffRegions(robot, regions, goal, tol);
+  if (leg < 0) return choice;
+  const Eigen::Vector2d spot = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
+  std::ostringstream why;
+  why.precision(3);
+  why << "the goal " << PoseText(goal) << " puts leg " << leg << " ('" << robot.legs[leg].name << "') at ("
+      << spot.x() << ", " << spot.y() << "), on no region";
+  // The stance moved to has every spot inside a region, not merely within the goal
+  // tolerance of one: its feet must be able to stand on their spots exactly.
+  choice.moved = NearestCertifiedGoal(robot, regions, goal, options.goal_position_tolerance_m,
+                                      options.goal_heading_tolerance_rad, kGoalSearchStepM, kGoalSearchYawStepRad, 0.0);
+  if (choice.moved) {
+    choice.note = why.str() + "; planned to the nearest stance on regions " + PoseText(*choice.moved);
+    return choice;
+  }
+  why << "; no stance on regions within goal_position_tolerance " << options.goal_position_tolerance_m
+      << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
+  const std::optional<GoalPose> farther =
+      NearestCertifiedGoal(robot, regions, goal, std::max(kGoalReportRadiusM, options.goal_position_tolerance_m),
+                           options.goal_heading_tolerance_rad, kGoalReportStepM, options.goal_heading_tolerance_rad, 0.0);
+  if (farther) {
+    why << "; the nearest is " << PoseText(*farther) << ", "
+        << std::hypot(farther->x_m - goal.x_m, farther->y_m - goal.y_m) << " m away";
+  } else {
+    why << " or " << kGoalReportRadiusM << " m";
+  }
+  choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str());
+  return choice;
+}
+
 // The receding-horizon loop (the units are in internal/): each pass plans one window
 // from the horizon's stance, makes its plan exact and keeps its steps; the policy backs
 // up for a longer look where a window fails or the horizon is stuck, and ends a plan that
 // has stopped making progress; the outcome names how the plan ends.
-Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                    const PlanRequest& request, const PlannerOptions& options,
                    const std::vector<RelaxationSolver*>& solvers,
                    const std::function<void(const PlanProgress&)>& on_progress) {
@@ -152,6 +218,34 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
   }
   return FinishPlan(context, &state);
+}
+
+}  // namespace
+
+Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                   const PlanRequest& request, const PlannerOptions& options,
+                   const std::vector<RelaxationSolver*>& solvers,
+                   const std::function<void(const PlanProgress&)>& on_progress) {
+  GoalChoice choice = ChooseGoal(robot, regions, request, options);
+  Plan plan;
+  if (choice.rejected) {
+    plan = std::move(*choice.rejected);
+  } else if (choice.moved) {
+    PlanRequest moved = request;
+    moved.goal_x_m = choice.moved->x_m;
+    moved.goal_y_m = choice.moved->y_m;
+    moved.goal_yaw_rad = choice.moved->yaw_rad;
+    plan = PlanWindows(robot, regions, moved, options, solvers, on_progress);
+    plan.goal_moved = true;
+    plan.message = choice.note + (plan.message.empty() ? "" : "; " + plan.message);
+  } else {
+    plan = PlanWindows(robot, regions, request, options, solvers, on_progress);
+  }
+  const GoalPose aimed = choice.moved ? *choice.moved : GoalPose{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
+  plan.goal_x_m = aimed.x_m;
+  plan.goal_y_m = aimed.y_m;
+  plan.goal_yaw_rad = aimed.yaw_rad;
+  return plan;
 }
 
 Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& regions,

@@ -4,10 +4,12 @@
 // is reached, max_steps are spent, or the time limit runs out. No I/O.
 #include <Eigen/Core>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "base/deadline.h"
 #include "geometry/convex_region.h"
+#include "geometry/seen_surface.h"
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
 #include "planner/planning/internal/relax_and_fix.h"
@@ -53,6 +55,12 @@ struct PlanRequest {
   // its height band, turning where a passage fits only one way, and the windows follow
   // that route and its yaws. Empty (the default): no body check, plans as before.
   std::vector<BodyObstacle> body_obstacles;
+  // Optional: the surface the map's sensor saw from above (the layers or faces the regions
+  // came from). A start foot on it within PlannerOptions::start_tolerance_m is accepted
+  // where no region holds it (the robot stands there; its first step lands in a region).
+  // Shared, not copied: a map's layers are large and every request on the map reads them.
+  // Null or empty (the default): every start foot must be on a region.
+  std::shared_ptr<const SeenSurface> seen_surface;
 };
 
 struct PlannerOptions {
@@ -65,6 +73,11 @@ struct PlannerOptions {
   double goal_tolerance_m = 0.05;        // every final foot within this of its goal spot
   double goal_yaw_tolerance_rad = 0.15;  // final body yaw within this of the goal yaw
   double start_tolerance_m = 0.02;       // a start foot may be this far off its region
+  // A goal stance with a foot spot on no region (route guidance only) is moved to the
+  // nearest stance whose spots all lie on regions, at most this far [m] and this much
+  // turned [rad]; beyond them the request ends invalid_goal (planner/planning/internal/goal.h).
+  double goal_position_tolerance_m = 0.3;
+  double goal_heading_tolerance_rad = 0.2;
   // Region extraction for this robot keeps surfaces with the stance height plus this much
   // free space above them (RegionExtractorOptions::clearance_m) [m].
   double body_clearance_margin_m = 0.1;

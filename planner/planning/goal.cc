@@ -9,6 +9,41 @@
 namespace mfp {
 namespace {
 
+struct Candidate {
+  double cost = 0.0;  // largest foot move the pose asks for [m]
+  GoalPose pose;
+};
+
+// The regions a foot spot of a pose within max_shift_m of the goal can lie on.
+std::vector<ConvexRegion> RegionsNear(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                      const GoalPose& goal, double max_shift_m, double tolerance_m) {
+  const double radius = max_shift_m + LegReach(robot) + tolerance_m;
+  std::vector<ConvexRegion> near;
+  for (const ConvexRegion& r : regions) {
+    if (PlanDistanceToRegion(r, Eigen::Vector2d(goal.x_m, goal.y_m)) <= radius) near.push_back(r);
+  }
+  return near;
+}
+
+std::vector<Candidate> CandidatePoses(const RobotModel& robot, const GoalPose& goal, double max_shift_m,
+                                      double max_turn_rad, double step_m, double yaw_step_rad) {
+  const int cells = static_cast<int>(std::floor(max_shift_m / step_m + 1e-9));
+  const int turns = max_turn_rad > 0.0 ? static_cast<int>(std::ceil(max_turn_rad / yaw_step_rad - 1e-9)) : 0;
+  const double reach = LegReach(robot);
+  std::vector<Candidate> out;
+  for (int t = -turns; t <= turns; ++t) {
+    const double turn = turns == 0 ? 0.0 : max_turn_rad * t / turns;
+    for (int i = -cells; i <= cells; ++i) {
+      for (int j = -cells; j <= cells; ++j) {
+        const double shift = step_m * std::hypot(i, j);
+        if (shift > max_shift_m + 1e-9) continue;
+        out.push_back({shift + reach * std::abs(turn), {goal.x_m + step_m * i, goal.y_m + step_m * j, goal.yaw_rad + turn}});
+      }
+    }
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+  return out;
+}
 
 }  // namespace
 
@@ -36,6 +71,29 @@ double DistanceToNearestRegion(const std::vector<ConvexRegion>& regions, const E
   double best = kInfinity;
   for (const ConvexRegion& r : regions) best = std::min(best, PlanDistanceToRegion(r, xy));
   return best;
+}
+
+int LegOffRegions(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const GoalPose& pose,
+                  double tolerance_m) {
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d spot = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
+    bool on = false;
+    for (const ConvexRegion& r : regions) on = on || PlanDistanceToRegion(r, spot) <= tolerance_m;
+    if (!on) return leg;
+  }
+  return -1;
+}
+
+std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                             const GoalPose& goal, double max_shift_m, double max_turn_rad,
+                                             double step_m, double yaw_step_rad, double tolerance_m) {
+  MFP_CHECK(step_m > 0.0 && yaw_step_rad > 0.0 && max_shift_m >= 0.0 && max_turn_rad >= 0.0);
+  const std::vector<ConvexRegion> near = RegionsNear(robot, regions, goal, max_shift_m, tolerance_m);
+  if (near.empty()) return std::nullopt;
+  for (const Candidate& c : CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad)) {
+    if (LegOffRegions(robot, near, c.pose, tolerance_m) < 0) return c.pose;
+  }
+  return std::nullopt;
 }
 
 }  // namespace mfp

@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "geometry/seen_surface.h"
 #include "planner/planning/internal/goal.h"
 
 namespace mfp {
@@ -44,6 +45,40 @@ std::string StanceProblem(const std::vector<Eigen::Vector3d>& feet) {
   msg << "start_feet: all " << feet.size() << " start feet are within " << spread
       << " m of one point (" << centre.x() << ", " << centre.y() << ", " << centre.z()
       << "): not a stance; give each foot's own position";
+  return msg.str();
+}
+
+// Plan-view radius searched for the seen surface nearest to a start foot off it [m].
+constexpr double kNearestSurfaceSearchM = 2.0;
+
+// "" or why start foot k cannot be stood on: on a region (within the start tolerance) it
+// can; with a seen surface, anywhere on that surface too (the robot stands there, the
+// regions only leave it out); else the message names the foot and the nearest surface.
+std::string StartFootProblem(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                             const PlanRequest& request, const PlannerOptions& options, int k) {
+  const Eigen::Vector3d& f = request.start_feet_world_m[k];
+  const double tol = options.start_tolerance_m;
+  for (const ConvexRegion& r : regions) {
+    if (RegionContains(r, f, tol)) return "";
+  }
+  static const SeenSurface kNone;
+  const SeenSurface& seen = request.seen_surface != nullptr ? *request.seen_surface : kNone;
+  if (!seen.empty() && OnSeenSurface(seen, f, tol)) return "";
+  std::ostringstream msg;
+  msg << "start foot of leg " << k << " ('" << robot.legs[k].name << "') at (" << f.x() << ", " << f.y() << ", "
+      << f.z() << ") m is not on any region";
+  if (seen.empty()) {
+    msg << " (tolerance " << tol << " m)";
+    return msg.str();
+  }
+  msg << " nor on the surface the map saw from above (tolerance " << tol << " m)";
+  const NearestSurfacePoint near = NearestSeenSurface(seen, f, kNearestSurfaceSearchM);
+  if (near.found) {
+    msg << "; the nearest seen surface is at (" << near.point_world_m.x() << ", " << near.point_world_m.y() << ", "
+        << near.point_world_m.z() << ") m, " << near.distance_m << " m away";
+  } else {
+    msg << "; no seen surface within " << kNearestSurfaceSearchM << " m in plan view";
+  }
   return msg.str();
 }
 
@@ -97,14 +132,8 @@ RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexR
                     "max_steps must be in [0, 100000], window in [0, 1000], time limit >= 0 s, max_windows >= 0");
   }
   for (int k = 0; k < n; ++k) {
-    const Eigen::Vector3d& f = request.start_feet_world_m[k];
-    bool on_region = false;
-    for (const ConvexRegion& r : regions) on_region = on_region || RegionContains(r, f, options.start_tolerance_m);
-    if (!on_region) {
-      std::ostringstream msg;
-      msg << "start foot of leg " << k << " ('" << robot.legs[k].name << "') at (" << f.x() << ", "
-          << f.y() << ", " << f.z() << ") m is not on any region (tolerance " << options.start_tolerance_m << " m)";
-      return Rejection(SolveStatus::kInvalidStart, msg.str());
+    if (const std::string problem = StartFootProblem(robot, regions, request, options, k); !problem.empty()) {
+      return Rejection(SolveStatus::kInvalidStart, problem);
     }
   }
   const double reach = LegReach(robot);

@@ -25,7 +25,8 @@ struct RequestCheck {
 // out before any were extracted), kNoMap (no regions), kInvalidRequest (sizes, non-finite numbers, ranges,
 // a yaw beyond kMaxRequestYawRad), kInvalidStart (every start foot within
 // kMinStanceSpreadM of one point, or a start foot on no region within
-// options.start_tolerance_m),
+// options.start_tolerance_m and, when the request carries a seen surface, not on that
+// either: the message then names the nearest seen surface point),
 // kInvalidGoal (the goal farther than LegReach + l_bnd from every region in plan view).
 RequestCheck CheckPlanRequest(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                               const PlanRequest& request, const PlannerOptions& options);

@@ -6,6 +6,7 @@
 #include <queue>
 #include <sstream>
 
+#include "geometry/region_reachability.h"
 #include "planner/planning/internal/stance_route.h"
 
 namespace mfp {
@@ -68,6 +69,23 @@ struct Node {
   double zmin = kInf, zmax = -kInf;
 };
 
+// "" or, for the first start foot that no region holds and no region lies one step from,
+// why that leg cannot take its first step.
+std::string StartFootWithoutFirstStep(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                      const std::vector<Eigen::Vector3d>& start_feet, double span_m,
+                                      double start_tolerance_m) {
+  for (int i = 0; i < robot.num_legs(); ++i) {
+    if (!StartRegionIndices(regions, {start_feet[i]}, span_m, robot.dz_max_m, start_tolerance_m).empty()) continue;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "no route: the start foot of leg '" << robot.legs[i].name << "' at (" << start_feet[i].x() << ", "
+        << start_feet[i].y() << ", " << start_feet[i].z() << ") stands on no region and no region lies within one step ("
+        << span_m << " m, dz_max " << robot.dz_max_m << " m) of it";
+    return msg.str();
+  }
+  return "";
+}
+
 }  // namespace
 
 double MaxStepSpan(const RobotModel& robot) { return std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m); }
@@ -109,13 +127,13 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   std::vector<int> parent(m, -1);
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (int i = 0; i < n; ++i) {
-    for (int r = 0; r < m; ++r) {
-      if (RegionContains(regions[r], start_feet[i], start_tolerance_m) && dist[r] > 0) {
-        dist[r] = 0;
-        queue.push({0.0, r});
-      }
-    }
+  // (A start foot that no region holds starts from every region one step away; with none
+  // there, that leg cannot take its first step.)
+  guide.broken = StartFootWithoutFirstStep(robot, regions, start_feet, span, start_tolerance_m);
+  if (!guide.broken.empty()) return guide;
+  for (int r : StartRegionIndices(regions, start_feet, span, robot.dz_max_m, start_tolerance_m)) {
+    dist[r] = 0;
+    queue.push({0.0, r});
   }
   while (!queue.empty()) {
     const auto [d, r] = queue.top();

@@ -4,6 +4,7 @@
 // stance's yaw, estimated from the feet, within a tolerance of the goal yaw. The planner
 // stops on it; plan validation reports by it.
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "geometry/convex_region.h"
@@ -31,5 +32,23 @@ bool WithinGoal(const GoalDistances& d, const GoalSpec& goal, double slack_m = 0
 // without regions) [m]. A goal farther than LegReach + l_bnd from every region cannot be
 // stood at.
 double DistanceToNearestRegion(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy);
+
+struct GoalPose {
+  double x_m = 0.0, y_m = 0.0, yaw_rad = 0.0;
+};
+
+// -1 when every leg's nominal foot spot at the pose lies within tolerance_m of a region's
+// polygon in plan view (the route guide's test of a goal stance); else the first leg, in
+// leg order, whose spot does not.
+int LegOffRegions(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const GoalPose& pose,
+                  double tolerance_m);
+
+// The pose nearest to `goal` whose spots all lie on regions (LegOffRegions == -1), moved
+// at most max_shift_m and turned at most max_turn_rad; positions on a grid of step_m
+// about the goal, yaws in steps of at most yaw_step_rad. Nearest by the largest move of a
+// foot it asks for (the shift plus LegReach times the turn). nullopt when there is none.
+std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                             const GoalPose& goal, double max_shift_m, double max_turn_rad,
+                                             double step_m, double yaw_step_rad, double tolerance_m);
 
 }  // namespace mfp

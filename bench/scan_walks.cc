@@ -1,0 +1,269 @@
+#include "bench/scan_walks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "io/robot_loader.h"
+#include "io/scenario_yaml.h"
+#include "planner/planning/footstep_planner.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "terrain/octomap/octomap_io.h"
+
+namespace mfp {
+namespace {
+
+int64_t Pack3(int64_t i, int64_t j, int64_t k) {
+  return ((i + (1 << 20)) << 42) | ((j + (1 << 20)) << 21) | (k + (1 << 20));
+}
+int64_t Pack2(int64_t i, int64_t j) { return ((i + (1 << 20)) << 21) | (j + (1 << 20)); }
+int64_t Coarse(int64_t i, int level) { return i >= 0 ? i >> level : -((-i - 1) >> level) - 1; }
+
+// Map leaves, looked up voxel by voxel (voxel (i, j, k) spans [i, i + 1) r etc.).
+class Voxels {
+ public:
+  Voxels(const std::vector<OccupiedLeaf>& leaves, double r) : r_(r) {
+    for (const OccupiedLeaf& leaf : leaves) {
+      const int level = Level(leaf.size_m);
+      const Eigen::Vector3d c = leaf.center_world_m.array() - 0.5 * leaf.size_m;
+      keys_[level].insert(Pack3(Coarse(std::llround(c.x() / r_), level), Coarse(std::llround(c.y() / r_), level),
+                                Coarse(std::llround(c.z() / r_), level)));
+    }
+  }
+  bool Has(int64_t i, int64_t j, int64_t k) const {
+    for (const auto& [level, keys] : keys_) {
+      if (keys.count(Pack3(Coarse(i, level), Coarse(j, level), Coarse(k, level)))) return true;
+    }
+    return false;
+  }
+  int Level(double size_m) const { return std::max(0, static_cast<int>(std::lround(std::log2(size_m / r_)))); }
+
+ private:
+  double r_;
+  std::map<int, std::unordered_set<int64_t>> keys_;
+};
+
+// The raw voxels' answer to "can a foot stand here": columns of voxels seen from above
+// (occupied, the voxel above known free) with `clearance_m` of no occupied voxel above.
+class SeenVoxelJudge {
+ public:
+  SeenVoxelJudge(const OccupancyMap& map, double clearance_m) : r_(map.resolution_m) {
+    const Voxels occupied(map.leaves, r_), free(map.free_leaves, r_);
+    const int room = std::max(1, static_cast<int>(std::ceil(clearance_m / r_ - 1e-9)));
+    std::unordered_map<int64_t, int> level_count;
+    for (const OccupiedLeaf& leaf : map.leaves) {
+      const int64_t n = int64_t{1} << occupied.Level(leaf.size_m);
+      const Eigen::Vector3d c = leaf.center_world_m.array() - 0.5 * leaf.size_m;
+      const int64_t i0 = std::llround(c.x() / r_), j0 = std::llround(c.y() / r_), k = std::llround(c.z() / r_) + n - 1;
+      for (int64_t i = i0; i < i0 + n; ++i) {
+        for (int64_t j = j0; j < j0 + n; ++j) {
+          if (!free.Has(i, j, k + 1)) continue;
+          bool clear = true;
+          for (int d = 1; d <= room && clear; ++d) clear = !occupied.Has(i, j, k + d);
+          if (!clear) continue;
+          tops_[Pack2(i, j)].push_back(k);
+          ++level_count[k];
+        }
+      }
+    }
+    int best = -1;
+    for (const auto& [k, count] : level_count) {
+      if (count > best) best = count, floor_k_ = k;
+    }
+    for (const auto& [key, ks] : tops_) {
+      for (int64_t k : ks) {
+        if (std::abs(k - floor_k_) <= 1) floor_cells_.push_back({key, k});
+      }
+    }
+    std::sort(floor_cells_.begin(), floor_cells_.end());
+  }
+
+  // True when the column of p holds a seen surface whose top lies within one voxel plus
+  // slack_m of p (slack: the plane tolerance of the region the foot stands in, as
+  // voxel_quality.h judges region points).
+  bool Stands(const Eigen::Vector3d& p, double slack_m) const {
+    const auto it = tops_.find(Pack2(Index(p.x()), Index(p.y())));
+    if (it == tops_.end()) return false;
+    for (int64_t k : it->second) {
+      if (std::abs(p.z() - (k + 1) * r_) <= r_ + slack_m + 1e-9) return true;
+    }
+    return false;
+  }
+  // The floor's top in the column of xy, when the column is seen floor.
+  bool FloorTop(const Eigen::Vector2d& xy, double* z) const {
+    const auto it = tops_.find(Pack2(Index(xy.x()), Index(xy.y())));
+    if (it == tops_.end()) return false;
+    for (int64_t k : it->second) {
+      if (std::abs(k - floor_k_) <= 1) {
+        *z = (k + 1) * r_;
+        return true;
+      }
+    }
+    return false;
+  }
+  // Centre of a random floor cell.
+  Eigen::Vector2d RandomFloorPoint(std::mt19937* rng) const {
+    std::uniform_int_distribution<size_t> pick(0, floor_cells_.size() - 1);
+    const int64_t key = floor_cells_[pick(*rng)].first;
+    const int64_t i = (key >> 21) - (1 << 20), j = (key & ((int64_t{1} << 21) - 1)) - (1 << 20);
+    return {(i + 0.5) * r_, (j + 0.5) * r_};
+  }
+  bool empty() const { return floor_cells_.empty(); }
+
+ private:
+  int64_t Index(double v) const { return static_cast<int64_t>(std::floor(v / r_)); }
+  double r_;
+  int64_t floor_k_ = 0;
+  std::unordered_map<int64_t, std::vector<int64_t>> tops_;
+  std::vector<std::pair<int64_t, int64_t>> floor_cells_;
+};
+
+// The robot's nominal feet at a pose, each on seen floor (within a voxel of each other),
+// or empty when the stance does not fit there.
+std::vector<Eigen::Vector3d> FloorStance(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
+                                         double resolution_m) {
+  std::vector<Eigen::Vector3d> feet;
+  double lo = 1e9, hi = -1e9, z = 0.0;
+  if (!judge.FloorTop({pose.x_m, pose.y_m}, &z)) return {};
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d xy = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
+    if (!judge.FloorTop(xy, &z)) return {};
+    lo = std::min(lo, z), hi = std::max(hi, z);
+    feet.emplace_back(xy.x(), xy.y(), z);
+  }
+  if (hi - lo > resolution_m + 1e-9) return {};
+  return feet;
+}
+
+struct Walk {
+  Pose2D start, goal;
+  std::vector<Eigen::Vector3d> start_feet;
+};
+
+std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double resolution_m,
+                            const ScanWalkOptions& o, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> yaw(-M_PI, M_PI), length(o.min_length_m, o.max_length_m);
+  std::vector<Walk> walks;
+  for (int attempt = 0; attempt < 200000 && static_cast<int>(walks.size()) < o.walks && !judge.empty(); ++attempt) {
+    Walk w;
+    const Eigen::Vector2d s = judge.RandomFloorPoint(&rng);
+    w.start = {s.x(), s.y(), yaw(rng)};
+    w.start_feet = FloorStance(robot, judge, w.start, resolution_m);
+    if (w.start_feet.empty()) continue;
+    const double heading = yaw(rng), d = length(rng);
+    w.goal = {s.x() + d * std::cos(heading), s.y() + d * std::sin(heading), yaw(rng)};
+    if (FloorStance(robot, judge, w.goal, resolution_m).empty()) continue;
+    walks.push_back(w);
+  }
+  return walks;
+}
+
+struct WalkResult {
+  SolveStatus status = SolveStatus::kInternalError;
+  bool valid_to_goal = false, goal_moved = false;
+  bool start_off_regions = false;  // a start foot on no region: invalid_start before issue 25
+  int feet_off = 0;
+  double time_s = 0.0;
+  std::string message;
+};
+
+WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTerrain& terrain,
+                   const SeenVoxelJudge& judge, const Walk& walk, const ScanWalkOptions& o) {
+  scenario.start = walk.start;
+  scenario.goal = walk.goal;
+  PlanRequest request = ScenarioRequest(scenario, robot, terrain);
+  request.start_feet_world_m = walk.start_feet;
+  request.time_limit_s = o.time_limit_s;
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers);
+  const Plan plan = PlanFootsteps(robot, terrain.regions, request, scenario.options, solvers.workers());
+  WalkResult r;
+  for (const Eigen::Vector3d& f : request.start_feet_world_m) {
+    bool on = false;
+    for (const ConvexRegion& region : terrain.regions) on = on || RegionContains(region, f, scenario.options.start_tolerance_m);
+    r.start_off_regions = r.start_off_regions || !on;
+  }
+  r.status = plan.status;
+  r.goal_moved = plan.goal_moved;
+  r.time_s = plan.solve_time_s;
+  r.message = plan.message;
+  for (size_t i = static_cast<size_t>(robot.num_legs()); i < plan.footsteps.size(); ++i) {
+    const Footstep& step = plan.footsteps[i];
+    double slack = 0.0;
+    for (const ConvexRegion& region : terrain.regions) {
+      if (region.id == step.region_id) slack = region.plane_tolerance_m;
+    }
+    if (!judge.Stands(step.position_world_m, slack)) {
+      ++r.feet_off;
+      if (o.verbose) {
+        std::printf("    step %zu off the seen voxels: (%.3f, %.3f, %.3f), region %d\n", i, step.position_world_m.x(),
+                    step.position_world_m.y(), step.position_world_m.z(), step.region_id);
+      }
+    }
+  }
+  r.valid_to_goal = HasPlan(plan.status) && plan.reaches_goal && r.feet_off == 0;
+  return r;
+}
+
+std::string BaseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
+
+}  // namespace
+
+int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
+                   const ScanWalkOptions& o) {
+  std::printf("walks on real scans: %d per scan and robot, %.0f-%.0f m between seen-floor stances, %.0f s each; "
+              "valid = reaches the goal (or the goal moved within its tolerance) with every footstep on a voxel "
+              "seen from above with room above it, within a voxel plus its region's plane tolerance (raw voxels)\n",
+              o.walks, o.min_length_m, o.max_length_m, o.time_limit_s);
+  std::printf("%-20s %-10s %5s %6s %9s %6s %8s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
+              "feet_off", "statuses");
+  int valid_total = 0, walks_total = 0;
+  for (const std::string& scan : scans) {
+    const OccupancyMap map = LoadMapFile(scan);
+    for (const std::string& robot_path : robots) {
+      const RobotModel robot = LoadRobot(robot_path);
+      Scenario scenario;
+      scenario.map_path = scan;
+      scenario.robot_path = robot_path;
+      const ScenarioTerrain terrain = LoadScenarioTerrain(scenario, robot);
+      const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
+      const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
+      const std::vector<Walk> walks = DrawWalks(robot, judge, map.resolution_m, o, seed);
+      int valid = 0, moved = 0, feet_off = 0, start_off = 0;
+      std::map<std::string, int> statuses;
+      for (const Walk& w : walks) {
+        const WalkResult r = RunWalk(robot, scenario, terrain, judge, w, o);
+        valid += r.valid_to_goal ? 1 : 0;
+        moved += r.goal_moved ? 1 : 0;
+        start_off += r.start_off_regions ? 1 : 0;
+        feet_off += r.feet_off;
+        ++statuses[ToString(r.status)];
+        if (o.verbose) {
+          std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s: %s\n",
+                      BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad,
+                      w.goal.x_m, w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(),
+                      r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, r.message.substr(0, 300).c_str());
+        }
+      }
+      std::string list;
+      for (const auto& [name, count] : statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
+      std::printf("%-20s %-10s %5zu %6d %9d %6d %8d  %s\n", BaseName(scan).c_str(), robot.name.c_str(), walks.size(),
+                  valid, start_off, moved, feet_off, list.c_str());
+      std::fflush(stdout);
+      valid_total += valid;
+      walks_total += static_cast<int>(walks.size());
+    }
+  }
+  std::printf("valid to the goal: %d of %d walks\n", valid_total, walks_total);
+  return valid_total;
+}
+
+}  // namespace mfp

@@ -1,0 +1,28 @@
+#pragma once
+// Walks on real scans (issue 25): for each scan and robot, walks of a few metres between
+// points of the scan's seen floor where the robot's nominal stance fits (every foot spot
+// on seen floor, room above it), planned as mfp-plan plans them (regions and seen surface
+// of the map, the robot's options), and each plan judged independently against the raw
+// voxels: every footstep on a voxel seen from above with room above it.
+#include <string>
+#include <vector>
+
+namespace mfp {
+
+struct ScanWalkOptions {
+  int walks = 4;              // per scan and robot
+  double min_length_m = 2.0;  // start to goal, straight line
+  double max_length_m = 10.0;
+  double time_limit_s = 20.0; // per plan
+  unsigned seed = 25;         // endpoints are drawn from this seed
+  bool verbose = false;       // a line per walk
+};
+
+// Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on
+// no region (accepted on the seen surface), goals moved, footsteps off the seen voxels,
+// statuses. Returns the number of
+// walks that ended valid at their goal (or at the goal moved within its tolerance).
+int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
+                   const ScanWalkOptions& options);
+
+}  // namespace mfp

@@ -1,0 +1,178 @@
+// Issue 25: the start is where the robot stands (a foot on seen surface that no region
+// holds is accepted; one in the air is not, and the message names the nearest surface),
+// and the goal has a tolerance (a goal foot spot on no region moves the goal to the
+// nearest stance on regions within goal_position_tolerance / goal_heading_tolerance;
+// beyond them invalid_goal names the foot and the nearest such stance).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/plan_json.h"
+#include "planner/planning/internal/goal.h"
+#include "planner/planning/plan_validation.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "tests/test_scenarios.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kFloorZ = 0.0;
+
+ConvexRegion Rect(int id, double x0, double y0, double x1, double y1) {
+  return MakeRegionFromPolygon(id, {{x0, y0, kFloorZ}, {x1, y0, kFloorZ}, {x1, y1, kFloorZ}, {x0, y1, kFloorZ}}, 0.005);
+}
+
+// Flat floor seen from above over [-1, 3] x [-1.5, 1.5] at 2 cm.
+SeenSurface FlatSeenFloor() {
+  SurfaceGrid g;
+  g.resolution_m = 0.02;
+  g.origin_m = {-1.0, -1.5};
+  g.cols = 200;
+  g.rows = 150;
+  g.height_m.assign(static_cast<size_t>(g.rows * g.cols), static_cast<float>(kFloorZ));
+  SeenSurface s;
+  s.grids.push_back(g);
+  return s;
+}
+
+// Regions covering [-1, 3] x [-1, 1] except a square of half-size `hole` about `centre`.
+std::vector<ConvexRegion> FloorWithHole(const Eigen::Vector2d& centre, double hole) {
+  const double x0 = centre.x() - hole, x1 = centre.x() + hole, y0 = centre.y() - hole, y1 = centre.y() + hole;
+  return {Rect(0, -1.0, -1.0, x0, 1.0), Rect(1, x1, -1.0, 3.0, 1.0), Rect(2, x0, -1.0, x1, y0),
+          Rect(3, x0, y1, x1, 1.0)};
+}
+
+class StartGoalTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { course_ = new Course(LoadCourse("hexapod_flat.yaml")); }
+  static void TearDownTestSuite() { delete course_; }
+
+  const RobotModel& robot() const { return course_->robot; }
+  PlanRequest Request() const {
+    PlanRequest r = course_->request;
+    for (Eigen::Vector3d& f : r.start_feet_world_m) f.z() = kFloorZ;
+    r.time_limit_s = 60.0;
+    return r;
+  }
+  Plan PlanOn(const std::vector<ConvexRegion>& regions, const PlanRequest& request) const {
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(course_->scenario.options.solvers);
+    return PlanFootsteps(robot(), regions, request, course_->scenario.options, solvers.workers());
+  }
+  std::vector<std::string> Violations(const std::vector<ConvexRegion>& regions, const Plan& plan) const {
+    const PlannerOptions& o = course_->scenario.options;
+    return ValidatePlan(robot(), regions, plan,
+                        {plan.goal_x_m, plan.goal_y_m, plan.goal_yaw_rad, o.goal_tolerance_m, o.goal_yaw_tolerance_rad},
+                        ValidationTolerances{});
+  }
+  // The largest x of a nominal foot about the body [m].
+  double FrontOffset() const {
+    double front = 0.0;
+    for (const LegModel& leg : robot().legs) front = std::max(front, leg.nominal_offset_body_m.x());
+    return front;
+  }
+  static Course* course_;
+};
+Course* StartGoalTest::course_ = nullptr;
+
+TEST_F(StartGoalTest, AStartFootOnSeenFloorButOnNoRegionPlans) {
+  PlanRequest request = Request();
+  const Eigen::Vector2d foot = request.start_feet_world_m[0].head<2>();
+  const std::vector<ConvexRegion> regions = FloorWithHole(foot, 0.05);
+  // Without the seen surface the foot is off every region: today's rejection.
+  const Plan refused = PlanOn(regions, request);
+  EXPECT_EQ(refused.status, SolveStatus::kInvalidStart) << refused.message;
+  EXPECT_NE(refused.message.find("leg 0"), std::string::npos) << refused.message;
+
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Plan plan = PlanOn(regions, request);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  EXPECT_FALSE(plan.goal_moved);
+  EXPECT_EQ(plan.footsteps[0].region_id, -1);  // the start foot stands on no region ...
+  // ... and every step after the start stance lands in its region, within every limit.
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
+}
+
+TEST_F(StartGoalTest, AStartFootInTheAirIsAnInvalidStartNamingTheNearestSurface) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const std::vector<ConvexRegion> regions = FloorWithHole(request.start_feet_world_m[0].head<2>(), 0.05);
+  request.start_feet_world_m[2].z() += 0.3;
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kInvalidStart);
+  EXPECT_NE(plan.message.find("leg 2"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("nearest seen surface is at"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find(" m away"), std::string::npos) << plan.message;
+}
+
+TEST_F(StartGoalTest, AGoalSpotOffRegionsWithinTheToleranceReachesTheNearestStanceOnRegions) {
+  const PlanRequest request = Request();
+  const PlannerOptions& o = course_->scenario.options;
+  // The floor ends 0.15 m short of the front goal spot: the goal moves back about 0.1 m.
+  const double end_x = request.goal_x_m + FrontOffset() - 0.15;
+  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, end_x, 1.0)};
+  const GoalPose asked{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
+  ASSERT_GE(LegOffRegions(robot(), regions, asked, o.goal_tolerance_m), 0);
+  const Plan plan = PlanOn(regions, request);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  ASSERT_TRUE(plan.goal_moved);
+  const GoalPose reached{plan.goal_x_m, plan.goal_y_m, plan.goal_yaw_rad};
+  EXPECT_EQ(LegOffRegions(robot(), regions, reached, 0.0), -1);  // every spot inside a region
+  const double shift = std::hypot(reached.x_m - asked.x_m, reached.y_m - asked.y_m);
+  EXPECT_GT(shift, 0.05);
+  EXPECT_LE(shift, o.goal_position_tolerance_m + 1e-9);
+  EXPECT_LE(std::abs(reached.yaw_rad - asked.yaw_rad), o.goal_heading_tolerance_rad + 1e-9);
+  // Nearest: a straight move back by the grid step less is not on regions.
+  const GoalPose nearer{reached.x_m + 0.02, reached.y_m, asked.yaw_rad};
+  if (std::hypot(nearer.x_m - asked.x_m, nearer.y_m - asked.y_m) < shift) {
+    EXPECT_GE(LegOffRegions(robot(), regions, nearer, 0.0), 0);
+  }
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
+  const nlohmann::json json = PlanToJson(plan, robot(), regions);
+  EXPECT_TRUE(json["goal"]["moved"].get<bool>());
+  EXPECT_DOUBLE_EQ(json["goal"]["x"].get<double>(), reached.x_m);
+  EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
+}
+
+TEST_F(StartGoalTest, AGoalFarBeyondTheToleranceIsAnInvalidGoalNamingTheFootAndTheNearestStance) {
+  const PlanRequest request = Request();
+  const PlannerOptions& o = course_->scenario.options;
+  // The floor ends 0.45 m short of the front goal spot: beyond the 0.3 m tolerance.
+  const double end_x = request.goal_x_m + FrontOffset() - 0.45;
+  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, end_x, 1.0)};
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
+  EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("leg "), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("the nearest is ("), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("goal_position_tolerance"), std::string::npos) << plan.message;
+  EXPECT_GT(o.goal_position_tolerance_m, 0.0);
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingTheLeg) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  // Regions only beyond x = 2 m: every start foot is on seen floor, none a step from a region.
+  const std::vector<ConvexRegion> regions = {Rect(0, 2.0, -1.0, 3.0, 1.0)};
+  request.goal_x_m = 2.5;
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
+  EXPECT_NE(plan.message.find("no region lies within one step"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
+}
+
+}  // namespace
+}  // namespace mfp
