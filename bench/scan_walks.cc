@@ -17,59 +17,30 @@
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "terrain/octomap/octomap_io.h"
+#include "terrain/quality/leaf_set.h"
 
 namespace mfp {
 namespace {
-
-int64_t Pack3(int64_t i, int64_t j, int64_t k) {
-  return ((i + (1 << 20)) << 42) | ((j + (1 << 20)) << 21) | (k + (1 << 20));
-}
-int64_t Pack2(int64_t i, int64_t j) { return ((i + (1 << 20)) << 21) | (j + (1 << 20)); }
-int64_t Coarse(int64_t i, int level) { return i >= 0 ? i >> level : -((-i - 1) >> level) - 1; }
-
-// Map leaves, looked up voxel by voxel (voxel (i, j, k) spans [i, i + 1) r etc.).
-class Voxels {
- public:
-  Voxels(const std::vector<OccupiedLeaf>& leaves, double r) : r_(r) {
-    for (const OccupiedLeaf& leaf : leaves) {
-      const int level = Level(leaf.size_m);
-      const Eigen::Vector3d c = leaf.center_world_m.array() - 0.5 * leaf.size_m;
-      keys_[level].insert(Pack3(Coarse(std::llround(c.x() / r_), level), Coarse(std::llround(c.y() / r_), level),
-                                Coarse(std::llround(c.z() / r_), level)));
-    }
-  }
-  bool Has(int64_t i, int64_t j, int64_t k) const {
-    for (const auto& [level, keys] : keys_) {
-      if (keys.count(Pack3(Coarse(i, level), Coarse(j, level), Coarse(k, level)))) return true;
-    }
-    return false;
-  }
-  int Level(double size_m) const { return std::max(0, static_cast<int>(std::lround(std::log2(size_m / r_)))); }
-
- private:
-  double r_;
-  std::map<int, std::unordered_set<int64_t>> keys_;
-};
 
 // The raw voxels' answer to "can a foot stand here": columns of voxels seen from above
 // (occupied, the voxel above known free) with `clearance_m` of no occupied voxel above.
 class SeenVoxelJudge {
  public:
   SeenVoxelJudge(const OccupancyMap& map, double clearance_m) : r_(map.resolution_m) {
-    const Voxels occupied(map.leaves, r_), free(map.free_leaves, r_);
+    const LeafSet occupied(map.leaves, r_), free(map.free_leaves, r_);
     const int room = std::max(1, static_cast<int>(std::ceil(clearance_m / r_ - 1e-9)));
     std::unordered_map<int64_t, int> level_count;
     for (const OccupiedLeaf& leaf : map.leaves) {
-      const int64_t n = int64_t{1} << occupied.Level(leaf.size_m);
+      const int64_t n = int64_t{1} << occupied.LevelOf(leaf.size_m);
       const Eigen::Vector3d c = leaf.center_world_m.array() - 0.5 * leaf.size_m;
       const int64_t i0 = std::llround(c.x() / r_), j0 = std::llround(c.y() / r_), k = std::llround(c.z() / r_) + n - 1;
       for (int64_t i = i0; i < i0 + n; ++i) {
         for (int64_t j = j0; j < j0 + n; ++j) {
-          if (!free.Has(i, j, k + 1)) continue;
+          if (!free.Contains(i, j, k + 1)) continue;
           bool clear = true;
-          for (int d = 1; d <= room && clear; ++d) clear = !occupied.Has(i, j, k + d);
+          for (int d = 1; d <= room && clear; ++d) clear = !occupied.Contains(i, j, k + d);
           if (!clear) continue;
-          tops_[Pack2(i, j)].push_back(k);
+          tops_[VoxelColumnKey(i, j)].push_back(k);
           ++level_count[k];
         }
       }
@@ -90,7 +61,7 @@ class SeenVoxelJudge {
   // slack_m of p (slack: the plane tolerance of the region the foot stands in, as
   // voxel_quality.h judges region points).
   bool Stands(const Eigen::Vector3d& p, double slack_m) const {
-    const auto it = tops_.find(Pack2(Index(p.x()), Index(p.y())));
+    const auto it = tops_.find(VoxelColumnKey(Index(p.x()), Index(p.y())));
     if (it == tops_.end()) return false;
     for (int64_t k : it->second) {
       if (std::abs(p.z() - (k + 1) * r_) <= r_ + slack_m + 1e-9) return true;
@@ -99,7 +70,7 @@ class SeenVoxelJudge {
   }
   // The floor's top in the column of xy, when the column is seen floor.
   bool FloorTop(const Eigen::Vector2d& xy, double* z) const {
-    const auto it = tops_.find(Pack2(Index(xy.x()), Index(xy.y())));
+    const auto it = tops_.find(VoxelColumnKey(Index(xy.x()), Index(xy.y())));
     if (it == tops_.end()) return false;
     for (int64_t k : it->second) {
       if (std::abs(k - floor_k_) <= 1) {

@@ -46,6 +46,11 @@ double RegionViolation(const ConvexRegion& region, const Eigen::Vector3d& point_
 // leaves them.
 double PlanDistanceToRegion(const ConvexRegion& region, const Eigen::Vector2d& xy_m);
 
+// The point of a closed polygon's boundary (vertices in order, either way round) nearest
+// to xy_m in plan view [m]. Inside or out: callers that want xy_m itself when inside
+// check that first.
+Eigen::Vector2d ClosestBoundaryPoint(const std::vector<Eigen::Vector2d>& polygon_m, const Eigen::Vector2d& xy_m);
+
 // Index (into regions) of the highest region whose polygon contains (x, y) within
 // tolerance_m horizontally (the surface a foot would stand on), or -1 when none does.
 int FindRegionBelow(const std::vector<ConvexRegion>& regions, double x_m, double y_m,

@@ -35,18 +35,9 @@ void ForSeenCellsNear(const SurfaceGrid& g, const Eigen::Vector2d& xy, double ra
 Eigen::Vector3d NearestFacePoint(const ConvexRegion& face, const Eigen::Vector2d& xy) {
   Eigen::Vector2d best = xy;
   if (PlanDistanceToRegion(face, xy) > 0.0) {
-    double best_d = std::numeric_limits<double>::infinity();
-    const auto& v = face.vertices_world_m;
-    for (size_t k = 0; k < v.size(); ++k) {
-      const Eigen::Vector2d a = v[k].head<2>(), d = v[(k + 1) % v.size()].head<2>() - a;
-      const double len2 = d.squaredNorm();
-      const double t = len2 > 0 ? std::clamp((xy - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-      const Eigen::Vector2d q = a + t * d;
-      if ((q - xy).norm() < best_d) {
-        best_d = (q - xy).norm();
-        best = q;
-      }
-    }
+    std::vector<Eigen::Vector2d> polygon;
+    for (const Eigen::Vector3d& v : face.vertices_world_m) polygon.push_back(v.head<2>());
+    best = ClosestBoundaryPoint(polygon, xy);
   }
   return {best.x(), best.y(), face.HeightAt(best.x(), best.y())};
 }

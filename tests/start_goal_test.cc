@@ -74,6 +74,10 @@ class StartGoalTest : public ::testing::Test {
     for (const LegModel& leg : robot().legs) front = std::max(front, leg.nominal_offset_body_m.x());
     return front;
   }
+  // One floor, 2 m wide, that ends `short_m` before the goal's front foot spot.
+  std::vector<ConvexRegion> FloorEndingShortOfTheGoal(const PlanRequest& request, double short_m) const {
+    return {Rect(0, -1.0, -1.0, request.goal_x_m + FrontOffset() - short_m, 1.0)};
+  }
   static Course* course_;
 };
 Course* StartGoalTest::course_ = nullptr;
@@ -114,8 +118,7 @@ TEST_F(StartGoalTest, AGoalSpotOffRegionsWithinTheToleranceReachesTheNearestStan
   const PlanRequest request = Request();
   const PlannerOptions& o = course_->scenario.options;
   // The floor ends 0.15 m short of the front goal spot: the goal moves back about 0.1 m.
-  const double end_x = request.goal_x_m + FrontOffset() - 0.15;
-  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, end_x, 1.0)};
+  const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 0.15);
   const GoalPose asked{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
   ASSERT_GE(LegOffRegions(robot(), regions, asked, o.goal_tolerance_m), 0);
   const Plan plan = PlanOn(regions, request);
@@ -145,8 +148,7 @@ TEST_F(StartGoalTest, AGoalFarBeyondTheToleranceIsAnInvalidGoalNamingTheFootAndT
   const PlanRequest request = Request();
   const PlannerOptions& o = course_->scenario.options;
   // The floor ends 0.45 m short of the front goal spot: beyond the 0.3 m tolerance.
-  const double end_x = request.goal_x_m + FrontOffset() - 0.45;
-  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, end_x, 1.0)};
+  const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 0.45);
   const Plan plan = PlanOn(regions, request);
   EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
   EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;

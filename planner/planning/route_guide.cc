@@ -41,19 +41,7 @@ double PolygonPointDistance(const std::vector<Eigen::Vector2d>& poly, const Eige
 
 Eigen::Vector2d ClosestPoint(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
   if (InsidePolygon(poly, p)) return p;
-  Eigen::Vector2d best = poly.front();
-  double best_d = kInf;
-  for (size_t k = 0; k < poly.size(); ++k) {
-    const Eigen::Vector2d a = poly[k], d = poly[(k + 1) % poly.size()] - a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    const Eigen::Vector2d q = a + t * d;
-    if ((q - p).norm() < best_d) {
-      best_d = (q - p).norm();
-      best = q;
-    }
-  }
-  return best;
+  return ClosestBoundaryPoint(poly, p);
 }
 
 double PolygonDistance(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b) {

@@ -8,42 +8,10 @@
 #include <unordered_set>
 
 #include "base/check.h"
+#include "terrain/quality/leaf_set.h"
 
 namespace mfp {
 namespace {
-
-int64_t FloorShift(int64_t i, int level) { return i >= 0 ? i >> level : -((-i - 1) >> level) - 1; }
-
-int64_t Key3(int64_t i, int64_t j, int64_t k) {
-  return ((i + (1 << 20)) << 42) | ((j + (1 << 20)) << 21) | (k + (1 << 20));
-}
-int64_t Key2(int64_t i, int64_t j) { return ((i + (1 << 20)) << 21) | (j + (1 << 20)); }
-
-// Leaves of one kind, looked up voxel by voxel through their octree level.
-class LeafSet {
- public:
-  LeafSet(const std::vector<OccupiedLeaf>& leaves, double resolution_m) : r_(resolution_m) {
-    for (const OccupiedLeaf& leaf : leaves) {
-      const int level = LevelOf(leaf.size_m);
-      const Eigen::Vector3d corner = leaf.center_world_m.array() - 0.5 * leaf.size_m;
-      const auto i = static_cast<int64_t>(std::llround(corner.x() / r_));
-      const auto j = static_cast<int64_t>(std::llround(corner.y() / r_));
-      const auto k = static_cast<int64_t>(std::llround(corner.z() / r_));
-      by_level_[level].insert(Key3(FloorShift(i, level), FloorShift(j, level), FloorShift(k, level)));
-    }
-  }
-  bool Contains(int64_t i, int64_t j, int64_t k) const {
-    for (const auto& [level, keys] : by_level_) {
-      if (keys.count(Key3(FloorShift(i, level), FloorShift(j, level), FloorShift(k, level))) != 0) return true;
-    }
-    return false;
-  }
-  int LevelOf(double size_m) const { return std::max(0, static_cast<int>(std::lround(std::log2(size_m / r_)))); }
-
- private:
-  double r_;
-  std::map<int, std::unordered_set<int64_t>> by_level_;
-};
 
 struct SurfaceVoxel {
   int64_t i, j, k;  // the occupied voxel; its top is (k + 1) r
@@ -113,9 +81,9 @@ VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions,
   VoxelQuality q;
   q.seen_surface_voxels = static_cast<int>(surfaces.size());
   std::unordered_map<int64_t, std::vector<int64_t>> columns;  // plan cell -> surface voxel k
-  for (const SurfaceVoxel& s : surfaces) columns[Key2(s.i, s.j)].push_back(s.k);
+  for (const SurfaceVoxel& s : surfaces) columns[VoxelColumnKey(s.i, s.j)].push_back(s.k);
   auto surface_near = [&](int64_t i, int64_t j, double top_m, double tolerance_m) {
-    const auto it = columns.find(Key2(i, j));
+    const auto it = columns.find(VoxelColumnKey(i, j));
     if (it == columns.end()) return false;
     for (int64_t k : it->second) {
       if (std::abs((static_cast<double>(k) + 1.0) * r - top_m) <= tolerance_m + 1e-9) return true;
