@@ -196,13 +196,7 @@ SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers) {
   SeenSurface seen;
   for (const HeightMap& layer : layers) {
     if (layer.rows <= 0 || layer.cols <= 0) continue;
-    SurfaceGrid grid;
-    grid.resolution_m = layer.resolution_m;
-    grid.origin_m = layer.origin_world_m;
-    grid.rows = layer.rows;
-    grid.cols = layer.cols;
-    grid.height_m = layer.height_m;
-    seen.grids.push_back(std::move(grid));
+    seen.grids.push_back(SurfaceGrid{layer.resolution_m, layer.origin_world_m, layer.rows, layer.cols, layer.height_m});
   }
   return seen;
 }
