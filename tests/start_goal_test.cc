@@ -144,6 +144,17 @@ TEST_F(StartGoalTest, AGoalSpotOffRegionsWithinTheToleranceReachesTheNearestStan
   EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
 }
 
+// The search for a certified goal stance takes the request's deadline: expired, the
+// plan ends time_limit saying where, not invalid_goal.
+TEST_F(StartGoalTest, TheGoalStanceSearchEndsAtAnExpiredDeadline) {
+  PlanRequest request = Request();
+  const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 0.15);
+  request.deadline = Deadline::After(0.0);
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kTimeLimit) << plan.message;
+  EXPECT_NE(plan.message.find("while looking for a goal stance on regions"), std::string::npos) << plan.message;
+}
+
 TEST_F(StartGoalTest, AGoalFarBeyondTheToleranceIsAnInvalidGoalNamingTheFootAndTheNearestStance) {
   const PlanRequest request = Request();
   const PlannerOptions& o = course_->scenario.options;

@@ -115,7 +115,15 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
   // The stance moved to has every spot inside a region, not merely within the goal
   // tolerance of one: its feet must be able to stand on their spots exactly.
   choice.moved = NearestCertifiedGoal(robot, regions, goal, options.goal_position_tolerance_m,
-                                      options.goal_heading_tolerance_rad, kGoalSearchStepM, kGoalSearchYawStepRad, 0.0);
+                                      options.goal_heading_tolerance_rad, kGoalSearchStepM, kGoalSearchYawStepRad, 0.0,
+                                      request.deadline);
+  if (request.deadline.Expired()) {
+    choice.moved.reset();
+    choice.rejected = Rejected(SolveStatus::kTimeLimit, why.str() + "; " +
+                                                            (request.deadline.Stopped() ? "stopped" : "time limit reached") +
+                                                            " while looking for a goal stance on regions");
+    return choice;
+  }
   if (choice.moved) {
     choice.note = why.str() + "; planned to the nearest stance on regions " + PoseText(*choice.moved);
     return choice;
@@ -124,10 +132,13 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
       << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
   const std::optional<GoalPose> farther =
       NearestCertifiedGoal(robot, regions, goal, std::max(kGoalReportRadiusM, options.goal_position_tolerance_m),
-                           options.goal_heading_tolerance_rad, kGoalReportStepM, options.goal_heading_tolerance_rad, 0.0);
+                           options.goal_heading_tolerance_rad, kGoalReportStepM, options.goal_heading_tolerance_rad, 0.0,
+                           request.deadline);
   if (farther) {
     why << "; the nearest is " << PoseText(*farther) << ", "
         << std::hypot(farther->x_m - goal.x_m, farther->y_m - goal.y_m) << " m away";
+  } else if (request.deadline.Expired()) {
+    why << "; the search for the nearest one farther out was cut short by the time limit";
   } else {
     why << " or " << kGoalReportRadiusM << " m";
   }

@@ -86,12 +86,15 @@ int LegOffRegions(const RobotModel& robot, const std::vector<ConvexRegion>& regi
 
 std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                              const GoalPose& goal, double max_shift_m, double max_turn_rad,
-                                             double step_m, double yaw_step_rad, double tolerance_m) {
+                                             double step_m, double yaw_step_rad, double tolerance_m,
+                                             const Deadline& deadline) {
   MFP_CHECK(step_m > 0.0 && yaw_step_rad > 0.0 && max_shift_m >= 0.0 && max_turn_rad >= 0.0);
   const std::vector<ConvexRegion> near = RegionsNear(robot, regions, goal, max_shift_m, tolerance_m);
   if (near.empty()) return std::nullopt;
-  for (const Candidate& c : CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad)) {
-    if (LegOffRegions(robot, near, c.pose, tolerance_m) < 0) return c.pose;
+  const std::vector<Candidate> candidates = CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad);
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    if (k % 64 == 0 && deadline.Expired()) return std::nullopt;
+    if (LegOffRegions(robot, near, candidates[k].pose, tolerance_m) < 0) return candidates[k].pose;
   }
   return std::nullopt;
 }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "base/deadline.h"
 #include "geometry/convex_region.h"
 #include "planner/formulation/plan.h"
 #include "planner/robot/robot_model.h"
@@ -46,9 +47,12 @@ int LegOffRegions(const RobotModel& robot, const std::vector<ConvexRegion>& regi
 // The pose nearest to `goal` whose spots all lie on regions (LegOffRegions == -1), moved
 // at most max_shift_m and turned at most max_turn_rad; positions on a grid of step_m
 // about the goal, yaws in steps of at most yaw_step_rad. Nearest by the largest move of a
-// foot it asks for (the shift plus LegReach times the turn). nullopt when there is none.
+// foot it asks for (the shift plus LegReach times the turn). nullopt when there is none,
+// or when `deadline` expires first (checked every 64 poses: a 2 m search on a large map
+// tries thousands of poses against hundreds of regions; the caller tells the two apart).
 std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                              const GoalPose& goal, double max_shift_m, double max_turn_rad,
-                                             double step_m, double yaw_step_rad, double tolerance_m);
+                                             double step_m, double yaw_step_rad, double tolerance_m,
+                                             const Deadline& deadline = Deadline());
 
 }  // namespace mfp
