@@ -1,0 +1,110 @@
+#include "planner/robot/internal/urdf_body.h"
+
+#include <urdf_model/model.h>
+
+#include "planner/robot/internal/urdf_xml_checks.h"
+
+namespace mfp {
+namespace {
+
+// Bounding box, in the link frame, of one primitive shape placed at `origin` [m]; empty
+// for meshes (not read).
+Eigen::AlignedBox3d ShapeBox(const urdf::Geometry& geometry, const urdf::Pose& origin) {
+  Eigen::Vector3d half = Eigen::Vector3d::Zero();
+  switch (geometry.type) {
+    case urdf::Geometry::BOX: {
+      const auto& d = static_cast<const urdf::Box&>(geometry).dim;
+      half = 0.5 * Eigen::Vector3d(d.x, d.y, d.z);
+      break;
+    }
+    case urdf::Geometry::CYLINDER: {
+      const auto& c = static_cast<const urdf::Cylinder&>(geometry);
+      half = Eigen::Vector3d(c.radius, c.radius, 0.5 * c.length);
+      break;
+    }
+    case urdf::Geometry::SPHERE:
+      half = Eigen::Vector3d::Constant(static_cast<const urdf::Sphere&>(geometry).radius);
+      break;
+    default:
+      return Eigen::AlignedBox3d();
+  }
+  const Eigen::Isometry3d T = ToIsometry(origin);
+  Eigen::AlignedBox3d box;
+  const Eigen::AlignedBox3d local(-half, half);
+  for (int corner = 0; corner < 8; ++corner) {
+    box.extend(T * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  }
+  return box;
+}
+
+// The box of uniform density whose principal moments are the link's inertia (a box of
+// sides a, b, c has Ixx = m (b^2 + c^2) / 12, ...), about the inertial origin; empty when
+// the link has no mass or the moments fit no box.
+Eigen::AlignedBox3d InertiaBox(const urdf::Inertial& inertial) {
+  const double m = inertial.mass;
+  if (!(m > 0.0)) return Eigen::AlignedBox3d();
+  const double ixx = inertial.ixx, iyy = inertial.iyy, izz = inertial.izz;
+  const Eigen::Vector3d squared = 6.0 / m * Eigen::Vector3d(iyy + izz - ixx, ixx + izz - iyy, ixx + iyy - izz);
+  if (!(squared.minCoeff() > 0.0)) return Eigen::AlignedBox3d();
+  const Eigen::Vector3d half = 0.5 * squared.cwiseSqrt();
+  const Eigen::Isometry3d T = ToIsometry(inertial.origin);
+  Eigen::AlignedBox3d box;
+  const Eigen::AlignedBox3d local(-half, half);
+  for (int corner = 0; corner < 8; ++corner) {
+    box.extend(T * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  }
+  return box;
+}
+
+}  // namespace
+
+Eigen::Isometry3d ToIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  T.linear() = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y,
+                                  pose.rotation.z)
+                   .normalized()
+                   .toRotationMatrix();
+  return T;
+}
+
+urdf::LinkConstSharedPtr BodyLink(const urdf::LinkConstSharedPtr& root, std::vector<std::string>* notes) {
+  urdf::LinkConstSharedPtr body = root;
+  for (int depth = 0; depth < kMaxLinks && body->child_joints.size() == 1; ++depth) {
+    const urdf::JointSharedPtr& joint = body->child_joints.front();
+    if (joint->type != urdf::Joint::FLOATING && joint->type != urdf::Joint::FIXED) break;
+    if (body->child_links.size() != 1) break;
+    notes->push_back("body: link '" + body->child_links.front()->name + "', below '" + body->name +
+                     "' by the " + (joint->type == urdf::Joint::FLOATING ? "floating" : "fixed") +
+                     " joint '" + joint->name + "'");
+    body = body->child_links.front();
+  }
+  return body;
+}
+
+void ReadBodyBox(const urdf::Link& body, RobotDescription* robot) {
+  Eigen::AlignedBox3d box;
+  for (const auto& collision : body.collision_array) {
+    if (collision && collision->geometry) box.extend(ShapeBox(*collision->geometry, collision->origin));
+  }
+  if (!box.isEmpty()) {
+    robot->body_box_m = box;
+    robot->body_box_source = "collision shapes of link '" + body.name + "'";
+    return;
+  }
+  for (const auto& visual : body.visual_array) {
+    if (visual && visual->geometry) box.extend(ShapeBox(*visual->geometry, visual->origin));
+  }
+  if (!box.isEmpty()) {
+    robot->body_box_m = box;
+    robot->body_box_source = "visual shapes of link '" + body.name + "'";
+    return;
+  }
+  if (body.inertial) box = InertiaBox(*body.inertial);
+  if (!box.isEmpty()) {
+    robot->body_box_m = box;
+    robot->body_box_source = "box of uniform density with the inertia of link '" + body.name + "'";
+  }
+}
+
+}  // namespace mfp
