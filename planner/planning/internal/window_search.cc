@@ -16,6 +16,7 @@ namespace {
 // The plans a window's search starts from.
 struct WindowSeeds {
   std::vector<Eigen::VectorXd> proposals;   // offered once at the root
+  bool stance_matched = false;              // the start stance stands on a previous plan
   bool bounded_replan = false;              // a robot on its previous plan, replan_time_s > 0
   std::optional<Eigen::VectorXd> warm_plan; // the previous plan's assignment solved (bounded replan)
 };
@@ -32,6 +33,7 @@ WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formul
     for (Eigen::VectorXd& x : w.proposals) warm_start.proposals.push_back(std::move(x));
   }
   WindowSeeds seeds;
+  seeds.stance_matched = warm_start.stance_matched;
   seeds.bounded_replan = warm_start.stance_matched && options.replan_time_s > 0.0;
   // A bounded replan solves the previous plan's assignment first (a few milliseconds,
   // not cut by the budget): it is the answer when the bounded search finds nothing
@@ -137,6 +139,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
                 formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
   WindowSeeds seeds = SeedWindow(context, formulation, bnb, first_window, stance_centre);
   bool bounded_replan = seeds.bounded_replan;
+  record->warm_matched = seeds.stance_matched;
+  record->bounded_replan = seeds.bounded_replan;
   // A search that stalls ends (BranchAndBoundOptions::stall_time_fraction), except a
   // bounded replan's, which must dive for a plan of its own.
   if (context.guided && !bounded_replan) bnb.stall_time_fraction = options.window_stall_fraction;
@@ -188,6 +192,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     result.nodes += first.nodes;
     result.relaxations += first.relaxations;
     bounded_replan = false;
+    record->replan_fell_back = true;
   }
   // Cut short by the replanning budget, not by the request's time: a plan, unproven.
   if (bounded_replan && result.status == SolveStatus::kTimeLimit &&
