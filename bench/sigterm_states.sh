@@ -12,7 +12,7 @@
 #   reload: hostile robot     SIGHUP onto a config that adds the 16-leg robot
 #   burst                     2,000 requests published at once, being answered
 # The bound is 0.5 s in every state; this script prints, it does not judge
-# (tests/daemon_signals_test.sh and tests/daemon_startup_signal_test.sh do).
+# (tests/daemon_signals_test.sh does, for the states most likely to regress).
 #
 # usage: bench/sigterm_states.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail

@@ -9,6 +9,8 @@
 #     0.5 s, both requests answered (dropped).
 #  4. SIGHUP onto a config that adds a robot derived from a 16-leg URDF (seconds of
 #     derivation), then SIGTERM during that reload: exit 0 within 0.5 s.
+#  5. SIGTERM during start-up while that robot is derived (before the daemon takes
+#     messages): exit 0 within 0.5 s, the start-up abandoned.
 # Replies are recorded with lcm-logger and checked with mfp-check-replies.
 #
 # usage: daemon_signals_test.sh SOURCE_DIR BUILD_DIR
@@ -128,6 +130,16 @@ grep -q "SIGHUP: configuration reloaded\|SIGHUP: reload failed" "$LOG" \
 terminate
 [ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during a reload"
 grep -q "the reload in progress is abandoned" "$LOG" || fail "no reload in progress at SIGTERM"
+
+# --- 5: SIGTERM during start-up, the 16-leg robot being derived ---
+LOG="$WORK/daemon4.log"
+"$BUILD_DIR/tools/mfp-daemon" --config "$WORK/daemon.yaml" 2>"$LOG" &
+DAEMON_PID=$!
+sleep 1
+grep -q "started:" "$LOG" && fail "the start-up ended before SIGTERM: make the robot slower to derive"
+terminate
+[ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during start-up"
+grep -q "SIGTERM: stopping during start-up" "$LOG" || fail "no start-up in progress at SIGTERM"
 
 echo "--- daemon log ---"
 cat "$LOG"
