@@ -50,6 +50,7 @@
 #include "daemon/daemon_core.h"
 #include "daemon/daemon_runner.h"
 #include "daemon/daemon_setup.h"
+#include "daemon/heap_release.h"
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
 #include "geometry/convex_region.h"
@@ -795,6 +796,7 @@ int main(int argc, char** argv) {
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
   app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
   CLI11_PARSE(app, argc, argv);
+  mfp::BoundHeapRetention();  // as mfp-daemon does at start
   try {
     mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);
     if (app.count("--soak-cold") > 0) daemon_config.limits.warm_start_plans = 0;

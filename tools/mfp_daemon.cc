@@ -19,6 +19,7 @@
 #include "daemon/daemon_core.h"
 #include "daemon/daemon_runner.h"
 #include "daemon/daemon_setup.h"
+#include "daemon/heap_release.h"
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
 #include "daemon/udp_counters.h"
@@ -152,6 +153,7 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  mfp::BoundHeapRetention();
 
   std::shared_ptr<const mfp::DaemonSetup> setup;
   std::unique_ptr<mfp::LcmTransport> transport;
