@@ -18,7 +18,10 @@
 //     spot; lost (invalid start, infeasible, no route) it starts again. Per minute:
 //     replies, p50/p90/p99/max reply latency (publish to receipt, every reply), drops,
 //     supersessions, time-limit endings, requests unanswered or answered more than once,
-//     VmRSS and threads; then the planner's own solve times, nodes and proven gaps.
+//     VmRSS and threads; then the planner's own solve times, nodes and proven gaps; then
+//     the reply latency distribution and the slowest 1 % one per line with what its plan
+//     did (set-up and route, windows, nodes, its first window warm or cold, the wait
+//     behind the plan before it) and what the robot did before asking.
 //     --soak-cold plans every request from scratch; --soak-field-side 25
 //     --soak-field-pitch 0.21 makes the field 500+ regions (577). The goal is moved to the
 //     nearest pose whose nominal foot spots all lie near a region (GoalOnRegions): one
@@ -34,7 +37,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <malloc.h>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <random>
 #include <thread>
@@ -44,6 +50,7 @@
 #include "daemon/daemon_core.h"
 #include "daemon/daemon_runner.h"
 #include "daemon/daemon_setup.h"
+#include "daemon/heap_release.h"
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
 #include "geometry/convex_region.h"
@@ -81,6 +88,16 @@ double ProcStatus(const std::string& field) {
 }
 
 double RssMiB() { return ProcStatus("VmRSS:") / 1024.0; }
+
+// The allocator's account (glibc mallinfo2, every arena): bytes in use (heap chunks and
+// mmapped blocks) and bytes free but kept by the allocator [MiB].
+struct HeapMiB {
+  double in_use = 0, kept_free = 0;
+};
+HeapMiB HeapNow() {
+  const struct mallinfo2 m = mallinfo2();
+  return {static_cast<double>(m.uordblks + m.hblkhd) / (1 << 20), static_cast<double>(m.fordblks) / (1 << 20)};
+}
 int ThreadCount() { return static_cast<int>(ProcStatus("Threads:")); }
 
 int64_t NowUs() {
@@ -325,6 +342,117 @@ Eigen::Vector3d GoalOnRegions(const RobotModel& robot, const std::vector<ConvexR
   return wanted;
 }
 
+// What the planner did for one plan, found again by its solve time: plan_t carries
+// Plan::solve_time_s unchanged (microsecond resolution, unique to a plan in practice). A
+// reply answered at the deadline carries its own time and has no trace.
+struct PlanTrace {
+  SolveStatus status = SolveStatus::kInternalError;
+  double setup_s = 0;
+  int windows = 0, nodes = 0;
+  std::vector<WindowRecord> records;
+};
+
+class PlanTraces {
+ public:
+  void Add(const Plan& p) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    traces_[p.solve_time_s] = {p.status, p.setup_s, p.windows, p.nodes, p.window_records};
+  }
+  const PlanTrace* Find(double solve_time_s) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = traces_.find(solve_time_s);
+    return found == traces_.end() ? nullptr : &found->second;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<double, PlanTrace> traces_;
+};
+
+// The daemon's own plan function, each plan's trace kept.
+PlanFunction TracedPlanFunction(const std::shared_ptr<PlanTraces>& traces) {
+  return [inner = MakeSolverPlanFunction(), traces](const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                                     const PlanRequest& request, const PlannerOptions& options) {
+    Plan plan = inner(robot, regions, request, options);
+    traces->Add(plan);
+    return plan;
+  };
+}
+
+// How the first window of a traced plan started: from scratch, or from the client's
+// previous plan (matched: seeds only; bounded: replan_time_s search; fell back: the
+// bounded search found nothing and the full search ran).
+std::string WarmKind(const PlanTrace& t) {
+  if (t.records.empty()) return "no window";
+  const WindowRecord& r = t.records.front();
+  if (r.replan_fell_back) return "fell back";
+  if (r.bounded_replan) return "bounded";
+  return r.warm_matched ? "matched" : "cold";
+}
+
+struct SoakReply {
+  int64_t id;
+  double latency_ms;
+  int8_t status;
+  double solve_time_s;
+  std::string event;  // what the robot did just before sending the request
+};
+
+// The latency distribution of every reply, then the slowest 1 % one per line with what
+// its plan did (the wait is the rest of the latency: queued behind the plan before it),
+// and the slowest 1 % and all replies counted by event and by first-window start.
+void PrintLatencyTail(std::vector<SoakReply> replies, const PlanTraces& traces) {
+  if (replies.empty()) return;
+  std::sort(replies.begin(), replies.end(),
+            [](const SoakReply& a, const SoakReply& b) { return a.latency_ms > b.latency_ms; });
+  std::vector<double> latency;
+  for (const SoakReply& r : replies) latency.push_back(r.latency_ms);
+  std::printf("   reply latency distribution [ms]:");
+  for (const double p : {0.5, 0.75, 0.9, 0.95, 0.98, 0.99, 0.995, 0.999, 1.0})
+    std::printf(" p%g %.1f", 100 * p, Percentile(latency, p));
+  std::printf("\n   replies by latency:");
+  const double edges[] = {25, 50, 75, 100, 150, 200, 300, 500};
+  for (size_t b = 0; b <= std::size(edges); ++b) {
+    const double lo = b == 0 ? 0 : edges[b - 1], hi = b == std::size(edges) ? 1e300 : edges[b];
+    const auto count = std::count_if(latency.begin(), latency.end(), [&](double v) { return v >= lo && v < hi; });
+    if (b == std::size(edges)) std::printf(" >=%.0f: %ld", lo, static_cast<long>(count));
+    else std::printf(" %.0f-%.0f: %ld", lo, hi, static_cast<long>(count));
+  }
+  const size_t tail = std::max<size_t>(1, replies.size() / 100);
+  std::printf("\n   the slowest 1 %% (%zu replies): id, latency, status, solve, wait = latency - solve, set-up "
+              "(checks, route), windows, nodes, first window (start, search s, its share s, heuristic s, polish s, "
+              "nodes), event before the request\n", tail);
+  std::map<std::string, std::pair<int, int>> by_event, by_start;  // (in the tail, all)
+  for (size_t i = 0; i < replies.size(); ++i) {
+    const SoakReply& r = replies[i];
+    const PlanTrace* t = HasPlan(static_cast<SolveStatus>(r.status)) || r.status == plan_t::STATUS_TIME_LIMIT
+                             ? traces.Find(r.solve_time_s) : nullptr;
+    const std::string start = t ? WarmKind(*t) : (r.status == plan_t::STATUS_SUPERSEDED ? "superseded" : "no trace");
+    (i < tail ? by_event[r.event].first : by_event[r.event].second)++;
+    (i < tail ? by_start[start].first : by_start[start].second)++;
+    if (i >= tail) continue;
+    std::printf("   %6lld %7.1f ms %-10s solve %6.1f wait %6.1f", static_cast<long long>(r.id), r.latency_ms,
+                ToString(static_cast<SolveStatus>(r.status)).c_str(), 1e3 * r.solve_time_s,
+                r.latency_ms - 1e3 * r.solve_time_s);
+    if (t != nullptr) {
+      std::printf(" setup %5.1f windows %d nodes %4d", 1e3 * t->setup_s, t->windows, t->nodes);
+      if (!t->records.empty()) {
+        const WindowRecord& w = t->records.front();
+        std::printf(" | %-9s %.3f of %.3f, rf %.3f, polish %.3f, %d nodes", start.c_str(), w.search_s,
+                    w.time_limit_s, w.heuristic_s, w.polish_s, w.nodes);
+      }
+    } else {
+      std::printf(" (%s)", start.c_str());
+    }
+    std::printf(" | %s\n", r.event.c_str());
+  }
+  std::printf("   tail / all by event before the request:");
+  for (const auto& [name, n] : by_event) std::printf(" %s %d/%d", name.c_str(), n.first, n.first + n.second);
+  std::printf("\n   tail / all by the first window's start:");
+  for (const auto& [name, n] : by_start) std::printf(" %s %d/%d", name.c_str(), n.first, n.first + n.second);
+  std::printf("\n");
+}
+
 struct SoakCourse {
   std::string name;
   TerrainDescription terrain;
@@ -346,7 +474,8 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   const double course_goal_x = goal_pose.x(), course_goal_y = goal_pose.y(), course_goal_yaw = goal_pose.z();
 
   LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
-  DaemonCore core(setup, MakeOctomapMapFunction(*setup), MakeSolverPlanFunction(), transport, &NowUs);
+  const auto traces = std::make_shared<PlanTraces>();
+  DaemonCore core(setup, MakeOctomapMapFunction(*setup), TracedPlanFunction(traces), transport, &NowUs);
   core.SubscribeTo(transport);
 
   std::mutex mutex;
@@ -358,6 +487,8 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   int stance_version = 0;                     // +1 at each gait cycle walked or reset
   std::map<int64_t, int64_t> sent_us;         // by request id
   std::map<int64_t, int> sent_stance;         // stance_version of each request
+  std::map<int64_t, std::string> sent_event;  // what the robot did just before each request
+  std::string last_event = "first";           // since the last request sent
   std::vector<footstep_t> followed;           // steps of the plan the robot follows
   int next_cycle = 1;                         // its next gait cycle to walk (0 is the start)
   struct Answer {
@@ -381,6 +512,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     goal_x = outward ? 0.0 : course_goal_x;
     goal_y = outward ? 0.0 : course_goal_y;
     followed.clear();
+    last_event = "turned back";
   };
   // Feet land near, not on, the planned spots: a seeded error of up to 3 mm per axis.
   std::mt19937 landing_rng(19);
@@ -417,6 +549,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
       followed.clear();
       ++stance_version;
       ++resets;
+      last_event = "restarted";
     }
   });
   // Walks the next gait cycle of the followed plan, if it has one. Under the mutex.
@@ -433,6 +566,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     ++stance_version;
     stuck_here = false;
     ++cycles_walked;
+    last_event = "walked";
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (const auto& f : feet) centre += f / n;
     furthest_m = std::max(furthest_m, std::hypot(centre.x(), centre.y()));
@@ -452,9 +586,9 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               goal_pose != Eigen::Vector3d(course.goal_x, course.goal_y, course.goal_yaw)
                   ? " (moved: the goal asked for has a foot spot off every region)"
                   : "");
-  std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s %9s %8s\n", "minute", "sent", "plans",
+  std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s %9s %8s %9s %9s\n", "minute", "sent", "plans",
               "p50 ms", "p90 ms", "p99 ms", "max ms", "dropped", "supersed.", "time lim.",
-              "unanswer.", "answ.>1", "VmRSS MiB", "threads");
+              "unanswer.", "answ.>1", "VmRSS MiB", "threads", "heap used", "heap free");
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
   const int total = static_cast<int>(std::lround(minutes * 60.0 * rate_hz));
@@ -465,6 +599,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   std::vector<double> all_latency_ms, all_solve_ms, all_nodes, all_gaps;
   int most_threads = ThreadCount();  // sampled at every request and minute row
   std::map<std::string, int> all_statuses;
+  std::vector<SoakReply> all_replies;
   auto report = [&](int64_t first, int64_t last, const std::string& label) {
     std::vector<double> latency_ms;
     std::map<int, int> by_status;
@@ -480,6 +615,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
       for (const Answer& a : found->second) {
         latency_ms.push_back(1e-3 * static_cast<double>(a.latency_us));
         all_latency_ms.push_back(latency_ms.back());
+        all_replies.push_back({id, latency_ms.back(), a.status, a.solve_time_s, sent_event[id]});
         ++by_status[a.status];
         ++all_statuses[ToString(static_cast<SolveStatus>(a.status))];
         if (HasPlan(static_cast<SolveStatus>(a.status))) {
@@ -490,11 +626,13 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
         }
       }
     }
-    std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9d %9.1f %8d\n", label.c_str(),
+    const HeapMiB heap = HeapNow();
+    std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9d %9.1f %8d %9.1f %9.1f\n", label.c_str(),
                 static_cast<long long>(last - first + 1), planned, Percentile(latency_ms, 0.5),
                 Percentile(latency_ms, 0.9), Percentile(latency_ms, 0.99), Percentile(latency_ms, 1.0),
                 by_status[plan_t::STATUS_DROPPED], by_status[plan_t::STATUS_SUPERSEDED],
-                by_status[plan_t::STATUS_TIME_LIMIT], unanswered, answered_twice, RssMiB(), ThreadCount());
+                by_status[plan_t::STATUS_TIME_LIMIT], unanswered, answered_twice, RssMiB(), ThreadCount(),
+                heap.in_use, heap.kept_free);
     most_threads = std::max(most_threads, ThreadCount());
     std::fflush(stdout);
   };
@@ -511,6 +649,8 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
       for (const auto& f : feet) request.start_feet.push_back({f.x(), f.y(), f.z()});
       sent_us[i] = NowUs();
       sent_stance[i] = stance_version;
+      sent_event[i] = last_event;
+      last_event = "same stance";
       request.goal_x = goal_x;
       request.goal_y = goal_y;
       request.goal_yaw = goal_yaw;
@@ -555,6 +695,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               static_cast<long long>(c.publish_failures), most_threads, setup->config.limits.max_abandoned_plans,
               cycles_walked, furthest_m, arrivals, turns, resets);
   if (!first_refusal.empty()) std::printf("   first reply without a plan: %s\n", first_refusal.c_str());
+  PrintLatencyTail(all_replies, *traces);
   std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
               "at each minute's end so they are all in)\n", time_limit_s + 0.2);
   std::fflush(stdout);
@@ -655,6 +796,7 @@ int main(int argc, char** argv) {
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
   app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
   CLI11_PARSE(app, argc, argv);
+  mfp::BoundHeapRetention();  // as mfp-daemon does at start
   try {
     mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);
     if (app.count("--soak-cold") > 0) daemon_config.limits.warm_start_plans = 0;

@@ -8,6 +8,7 @@
 
 #include "base/check.h"
 #include "base/format.h"
+#include "daemon/heap_release.h"
 #include "lcmtypes/message_guard.h"
 
 namespace mfp {
@@ -140,6 +141,8 @@ bool DaemonCore::ProcessPendingMap(std::chrono::milliseconds timeout) {
   } catch (const std::exception& e) {
     CountInternalError("handling " + next.channel, e);
   }
+  next = Received();  // the map's bytes freed too, then the extraction's leftovers returned
+  ReleaseFreeHeap();
   return true;
 }
 
@@ -147,6 +150,7 @@ void DaemonCore::OnMessage(const RawMessage& message) {
   try {
     if (message.channel == kTerrainMapChannel || message.channel == kHeightMapChannel) {
       HandleMap(message, /*abandon_on_stop=*/false);
+      ReleaseFreeHeap();
     } else if (message.channel == kPlanRequestChannel) {
       HandleRequest(message, clock_());
     }

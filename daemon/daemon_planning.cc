@@ -8,6 +8,7 @@
 #include "base/check.h"
 #include "base/deadline.h"
 #include "daemon/abandonable_task.h"
+#include "daemon/heap_release.h"
 #include "daemon/message_conversion.h"
 
 namespace mfp {
@@ -184,6 +185,9 @@ bool DaemonCore::PlanNext() {
       std::to_string(plan.footsteps.size()) + " footsteps, " + Seconds(plan.solve_time_s) + " s" +
       (plan.message.empty() ? "" : " (" + plan.message + ")"));
   Reply(ToPlanMessage(plan, next.request_id, next.robot_name, clock_(), job->map_utime));
+  // After the reply: each plan runs on a thread of its own, whose arena keeps what the
+  // plan freed (on the 577-region soak field tens of MiB, growing for minutes).
+  ReleaseFreeHeap();
   return true;
 }
 

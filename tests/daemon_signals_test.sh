@@ -9,6 +9,8 @@
 #     0.5 s, both requests answered (dropped).
 #  4. SIGHUP onto a config that adds a robot derived from a 16-leg URDF (seconds of
 #     derivation), then SIGTERM during that reload: exit 0 within 0.5 s.
+#  5. SIGTERM during start-up while that robot is derived (before the daemon takes
+#     messages): exit 0 within 0.5 s, the start-up abandoned.
 # Replies are recorded with lcm-logger and checked with mfp-check-replies.
 #
 # usage: daemon_signals_test.sh SOURCE_DIR BUILD_DIR
@@ -116,21 +118,7 @@ stop_logger
   || fail "replies to the stopped requests do not check"
 
 # --- 4: SIGTERM during a reload onto a robot that takes seconds to derive ---
-python3 - "$SOURCE_DIR/tests/data/robots/octopod.urdf" "$WORK/sixteen_legs.urdf" <<'PY'
-# Sixteen legs: each of the octopod's legs twice, the copy 3 cm lower under new names.
-import re, sys
-text = open(sys.argv[1]).read()
-legs = sorted(set(re.findall(r'name="((?:left|right)\d)_coxa_yaw"', text)))
-body_end = text.rindex("</robot>")
-extra = []
-for leg in legs:
-    for block in re.findall(r'(<joint name="%s_[^"]*".*?</joint>|<link name="%s_[^"]*".*?</link>)' % (leg, leg), text, re.S):
-        copy = block.replace('"%s_' % leg, '"%sb_' % leg)
-        if '_coxa_yaw"' in block:
-            copy = re.sub(r'<origin xyz="([^ ]+) ([^ ]+) ([^ "]+)"', lambda m: '<origin xyz="%s %s %g"' % (m.group(1), m.group(2), float(m.group(3)) - 0.03), copy, count=1)
-        extra.append(copy)
-open(sys.argv[2], "w").write(text[:body_end].replace('robot name="octopod"', 'robot name="sixteen"') + "\n".join(extra) + "\n</robot>\n")
-PY
+python3 "$SOURCE_DIR/tests/sixteen_leg_urdf.py" "$SOURCE_DIR/tests/data/robots/octopod.urdf" "$WORK/sixteen_legs.urdf"
 write_config
 mfp_start_daemon "$WORK/daemon3.log" --config "$WORK/daemon.yaml"
 write_config "$WORK/sixteen_legs.urdf"
@@ -142,6 +130,16 @@ grep -q "SIGHUP: configuration reloaded\|SIGHUP: reload failed" "$LOG" \
 terminate
 [ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during a reload"
 grep -q "the reload in progress is abandoned" "$LOG" || fail "no reload in progress at SIGTERM"
+
+# --- 5: SIGTERM during start-up, the 16-leg robot being derived ---
+LOG="$WORK/daemon4.log"
+"$BUILD_DIR/tools/mfp-daemon" --config "$WORK/daemon.yaml" 2>"$LOG" &
+DAEMON_PID=$!
+sleep 1
+grep -q "started:" "$LOG" && fail "the start-up ended before SIGTERM: make the robot slower to derive"
+terminate
+[ "$EXIT_MS" -lt 500 ] || fail "exit took $EXIT_MS ms after SIGTERM during start-up"
+grep -q "SIGTERM: stopping during start-up" "$LOG" || fail "no start-up in progress at SIGTERM"
 
 echo "--- daemon log ---"
 cat "$LOG"

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,6 +19,7 @@
 #include "daemon/daemon_core.h"
 #include "daemon/daemon_runner.h"
 #include "daemon/daemon_setup.h"
+#include "daemon/heap_release.h"
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
 #include "daemon/udp_counters.h"
@@ -56,6 +58,36 @@ void ApplyReload(const std::shared_ptr<const mfp::DaemonSetup>& reloaded, const 
   runner.SetHeartbeatPeriod(reloaded->config.heartbeat_period_s);
   setup = reloaded;
   Log("SIGHUP: configuration reloaded from " + config_path);
+}
+
+// Exit 0 at once: a plan, an extraction or start-up work abandoned by a stop may still run
+// on its detached thread, so no destructors run under it.
+[[noreturn]] void ExitLeavingThreads() {
+  std::fflush(nullptr);
+  std::_Exit(0);
+}
+
+// Start-up work (deriving the robots, reading initial_map) on a thread of its own while
+// the main thread takes signals: SIGINT or SIGTERM meanwhile answer nullopt at once (the
+// caller exits; the work is left to end unobserved), SIGHUP is logged and ignored.
+// Rethrows what the work throws.
+template <class Result>
+std::optional<Result> WhileTakingSignals(const sigset_t& signals, std::function<Result()> work,
+                                         const std::string& what) {
+  mfp::AbandonableTask<Result> task(std::move(work));
+  const std::atomic<bool> never{false};
+  for (;;) {
+    std::optional<Result> done = task.Wait(std::chrono::steady_clock::now() + std::chrono::milliseconds(50), never);
+    if (done) return done;
+    const timespec no_wait{0, 0};
+    const int signal_number = sigtimedwait(&signals, nullptr, &no_wait);
+    if (signal_number == SIGHUP) Log("SIGHUP during start-up (" + what + ") ignored: send it once started");
+    if (signal_number == SIGINT || signal_number == SIGTERM) {
+      Log(std::string(signal_number == SIGINT ? "SIGINT" : "SIGTERM") + ": stopping during start-up (" + what +
+          " abandoned)");
+      return std::nullopt;
+    }
+  }
 }
 
 // Takes signals until SIGINT or SIGTERM (checked every 50 ms), reloading on SIGHUP.
@@ -121,11 +153,17 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  mfp::BoundHeapRetention();
 
   std::shared_ptr<const mfp::DaemonSetup> setup;
   std::unique_ptr<mfp::LcmTransport> transport;
   try {
-    setup = LoadSetup(config_path, url_override);
+    std::optional<std::shared_ptr<const mfp::DaemonSetup>> loaded =
+        WhileTakingSignals<std::shared_ptr<const mfp::DaemonSetup>>(
+            signals, [config_path, url_override] { return LoadSetup(config_path, url_override); },
+            "loading the configuration and deriving its robots");
+    if (!loaded) ExitLeavingThreads();
+    setup = std::move(*loaded);
     const std::string url =
         mfp::WithReceiveBuffer(setup->config.lcm_url, setup->config.lcm_recv_buf_bytes);
     transport = std::make_unique<mfp::LcmTransport>(url, setup->config.lcm_queue_capacity);
@@ -155,7 +193,10 @@ int main(int argc, char** argv) {
   }
   if (!setup->config.initial_map.empty()) {
     try {
-      core.LoadMapFile(setup->config.initial_map);
+      const std::string path = setup->config.initial_map;
+      const std::optional<bool> read = WhileTakingSignals<bool>(
+          signals, [&core, path] { core.LoadMapFile(path); return true; }, "reading initial_map " + path);
+      if (!read) ExitLeavingThreads();
     } catch (const mfp::InputError& e) {
       Log(std::string("error: ") + e.what());
       return 2;
@@ -174,8 +215,5 @@ int main(int argc, char** argv) {
       ", rejected messages " + std::to_string(c.rejected_messages) + ", dropped " +
       std::to_string(c.dropped_requests) + ", abandoned solves " +
       std::to_string(c.abandoned_solves));
-  // A plan or extraction abandoned by the stop may still run on its detached thread:
-  // leave without running destructors under it.
-  std::fflush(nullptr);
-  std::_Exit(0);
+  ExitLeavingThreads();
 }

@@ -33,6 +33,12 @@ struct WindowRecord {
   double polish_s = 0.0;       // exact-trigonometry polish
   bool polished = false;       // the polished steps replaced the MIQP's
   bool replanned = false;      // planned again within the chords' error (exact_window.h)
+  // The client's previous plan (PlanRequest::warm_start): the start stance stood on one,
+  // its search was bounded by replan_time_s, and that bounded search found no plan so the
+  // full search ran after it. First window only.
+  bool warm_matched = false;
+  bool bounded_replan = false;
+  bool replan_fell_back = false;
 };
 
 struct Plan {
@@ -44,6 +50,7 @@ struct Plan {
   double gap = 0.0;           // relative gap (objective - bound) / max(1, |objective|)
   double objective_offset = 0.0;  // constant terms: objective = MPS objective + offset (first window)
   double solve_time_s = 0.0;
+  double setup_s = 0.0;        // request checks, reachable regions and route, before the first window
   int nodes = 0;               // branch-and-bound nodes over all windows
   int relaxations = 0;         // continuous QPs solved over all windows
   int integer_variables = 0;   // in the first window's MIQP

@@ -157,6 +157,7 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
   PlanContext context(robot, regions, request, options, solvers);
   if (std::optional<Plan> rejected = SetUpPlan(&context)) return *rejected;
   HorizonState state(context);
+  state.plan.setup_s = context.ElapsedSeconds();
   HorizonPolicy policy(context);
   while (state.WantsAnotherWindow()) {
     const double remaining_s = context.RemainingSeconds();

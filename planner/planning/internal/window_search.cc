@@ -16,8 +16,9 @@ namespace {
 // The plans a window's search starts from.
 struct WindowSeeds {
   std::vector<Eigen::VectorXd> proposals;   // offered once at the root
+  bool stance_matched = false;              // the start stance stands on a previous plan
   bool bounded_replan = false;              // a robot on its previous plan, replan_time_s > 0
-  std::optional<Eigen::VectorXd> warm_plan; // the previous plan's assignment solved (bounded replan)
+  std::optional<Eigen::VectorXd> warm_plan; // bounded replan: the best of the previous plan's and the route's plans
 };
 
 WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formulation, const BranchAndBoundOptions& bnb,
@@ -32,25 +33,32 @@ WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formul
     for (Eigen::VectorXd& x : w.proposals) warm_start.proposals.push_back(std::move(x));
   }
   WindowSeeds seeds;
+  seeds.stance_matched = warm_start.stance_matched;
   seeds.bounded_replan = warm_start.stance_matched && options.replan_time_s > 0.0;
-  // A bounded replan solves the previous plan's assignment first (a few milliseconds,
-  // not cut by the budget): it is the answer when the bounded search finds nothing
-  // better. The search does not start from it: with an incumbent from its root the
-  // search goes best-bound at once and, cut short, never dives to a better plan (the
-  // robot kept the first plan it got), so it dives for its own first.
-  if (seeds.bounded_replan && !warm_start.proposals.empty()) {
+  // Plans that follow the route (route_proposals.h): on fields of many small regions
+  // the search's own first plans barely move the body.
+  std::vector<Eigen::VectorXd> route_plans;
+  if (context.guided && options.route_proposals) {
+    route_plans = RouteProposals(formulation, context.guide, RouteProgress(context.guide, stance_centre),
+                                 options.route_proposal);
+  }
+  if (!seeds.bounded_replan) {
+    seeds.proposals = std::move(warm_start.proposals);
+    for (Eigen::VectorXd& x : route_plans) seeds.proposals.push_back(std::move(x));
+    return seeds;
+  }
+  // A bounded replan solves the previous plan's assignment and the route's plans first
+  // (each a QP of a few milliseconds, not cut by the budget): the best of them is the
+  // answer when the bounded search finds nothing better by replan_time_s. The route's
+  // plans walk on where the previous plan only marks time at its end (with the previous
+  // plan alone a robot on the stepping stones walked in place at the start pad's edge).
+  // The search does not start from them: with an incumbent from its root the search goes
+  // best-bound at once and, cut short, never dives to a better plan (the robot kept the
+  // first plan it got), so it dives for its own.
+  if (!warm_start.proposals.empty() || !route_plans.empty()) {
+    for (Eigen::VectorXd& x : route_plans) warm_start.proposals.push_back(std::move(x));
     seeds.warm_plan = SolveWarmStart(formulation, warm_start.proposals, *context.solvers.front(), bnb.deadline,
                                      bnb.feasibility_tolerance);
-  }
-  if (!seeds.bounded_replan) seeds.proposals = warm_start.proposals;
-  // Plans that follow the route (route_proposals.h): on fields of many small regions
-  // the search's own first plans barely move the body. Not for a bounded replan: its
-  // search must dive for a plan of its own (above).
-  if (context.guided && !seeds.bounded_replan && options.route_proposals) {
-    for (Eigen::VectorXd& x : RouteProposals(formulation, context.guide, RouteProgress(context.guide, stance_centre),
-                                             options.route_proposal)) {
-      seeds.proposals.push_back(std::move(x));
-    }
   }
   return seeds;
 }
@@ -137,6 +145,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
                 formulation.num_configurations() - 1 < options.relax_and_fix.min_configurations;
   WindowSeeds seeds = SeedWindow(context, formulation, bnb, first_window, stance_centre);
   bool bounded_replan = seeds.bounded_replan;
+  record->warm_matched = seeds.stance_matched;
+  record->bounded_replan = seeds.bounded_replan;
   // A search that stalls ends (BranchAndBoundOptions::stall_time_fraction), except a
   // bounded replan's, which must dive for a plan of its own.
   if (context.guided && !bounded_replan) bnb.stall_time_fraction = options.window_stall_fraction;
@@ -169,9 +179,16 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     };
   }
   const double window_time_limit_s = bnb.time_limit_s;
+  const bool window_needs_incumbent = bnb.time_limit_needs_incumbent;
   if (bounded_replan) bnb.time_limit_s = std::min(bnb.time_limit_s, options.replan_time_s);
+  // With a plan from the previous plan's or the route's assignments solved, the bounded
+  // search ends at replan_time_s with or without a plan of its own: that plan is its answer. An anytime search would
+  // run on to its first plan, up to anytime_window_cap whole shares (in the stones soak
+  // the slowest replies were such searches, 0.3-0.4 s against a 0.03 s budget).
+  if (bounded_replan && seeds.warm_plan) bnb.time_limit_needs_incumbent = false;
   const PlanClock::time_point search_start = PlanClock::now();
   BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), context.solvers, bnb, rounding);
+  bnb.time_limit_needs_incumbent = window_needs_incumbent;
   const std::optional<Eigen::VectorXd>& warm_plan = seeds.warm_plan;
   if (bounded_replan && warm_plan &&
       (!HasPlan(result.status) || formulation.miqp().Objective(*warm_plan) < result.objective)) {
@@ -188,6 +205,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     result.nodes += first.nodes;
     result.relaxations += first.relaxations;
     bounded_replan = false;
+    record->replan_fell_back = true;
   }
   // Cut short by the replanning budget, not by the request's time: a plan, unproven.
   if (bounded_replan && result.status == SolveStatus::kTimeLimit &&

@@ -32,8 +32,9 @@ struct WindowSearch {
 
 // Searches the window's MIQP from bnb (WindowSearchOptions). first_window: the client's
 // previous plans (PlanRequest::warm_start) seed it, and a robot standing on one gets a
-// search bounded by replan_time_s that answers the better of its plan and the previous
-// plan's assignment (status feasible), or goes on as the full search when it has none.
+// search bounded by replan_time_s that answers the best of its own plan, the previous
+// plan's assignment and the route's plans, each solved as a QP (status feasible), or,
+// when none of them is a plan, goes on as the full search.
 // Fills the record's search fields (time limit, status, nodes, relaxations, times).
 WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& formulation, BranchAndBoundOptions bnb,
                           bool first_window, const Eigen::Vector2d& stance_centre, WindowRecord* record);
