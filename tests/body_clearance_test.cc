@@ -109,6 +109,24 @@ TEST(StanceRoute, KeepsTheBodyClearOfAWallOverFloor) {
   EXPECT_GT(s.length_m, blind.length_m + 0.1);
 }
 
+// The hexapod's baffle slalom (seed 2): before each pose was expanded once, a distance
+// rounded up to float passed the double `<` again and again, and the search re-expanded
+// poses until its deadline (millions of queue entries for 156,000 poses).
+TEST(StanceRoute, ExpandsEachPoseAtMostOnceThroughABaffleSlalom) {
+  const RobotModel robot = LoadRobot(RobotPath("hexapod"));
+  const Course course = GenerateCourse(robot, RobotPath("hexapod"), CourseKind::kBaffles, 2);
+  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+  const std::vector<BodyObstacle> obstacles = BoxBodyObstacles(course.terrain.boxes);
+  const Eigen::Vector2d start(course.start.x_m, course.start.y_m), goal(course.goal.x_m, course.goal.y_m);
+  const StanceRoute s =
+      PlanStanceRoute(robot, regions, obstacles, 0.0, start, course.start.yaw_rad, goal, course.goal.yaw_rad);
+  ASSERT_TRUE(s.found);
+  EXPECT_GT(s.body_blocked_poses, 0);
+  // Start and goal are not classified; every other expanded pose was, once.
+  EXPECT_LE(s.expanded_poses, s.classified_poses + 2);
+  EXPECT_GT(s.expanded_poses, 100);
+}
+
 constexpr double kCourseTimeLimit_s = 30.0;
 
 TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {

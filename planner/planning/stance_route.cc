@@ -244,6 +244,7 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   auto pose_class = [&](int i, int j, int h) {
     uint8_t& u = usable[id(i, j, h)];
     if (u == 0) {
+      ++out.classified_poses;
       const Eigen::Vector2d c = centre_of(i, j);
       const double yaw = h * 2 * M_PI / H;
       int worst = 2;
@@ -264,6 +265,8 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   if (states >= kNone) return out;  // more headings than any caller asks for
   std::vector<float> dist(states, std::numeric_limits<float>::infinity());
   std::vector<uint32_t> parent(states, kNone);
+  // Expanded poses: a pose is expanded once, and a closed pose is not queued again.
+  std::vector<bool> closed(states, false);
   using Item = std::pair<double, size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
   auto heuristic = [&](int i, int j) { return (centre_of(i, j) - centre_of(gi, gj)).norm(); };
@@ -279,12 +282,14 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
         return out;
       }
     }
-    const auto [f, s] = open.top();
+    const size_t s = open.top().second;
     open.pop();
     const int h = static_cast<int>(s % H);
     const size_t cellid = s / H;
     const int i = static_cast<int>(cellid % nx), j = static_cast<int>(cellid / nx);
-    if (f > dist[s] + heuristic(i, j) + 1e-6) continue;
+    if (closed[s]) continue;
+    closed[s] = true;
+    ++out.expanded_poses;
     // Any heading at the goal cell: the windows turn to the goal yaw there.
     if (i == gi && j == gj) {
       reached = s;
@@ -292,12 +297,15 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     }
     auto relax = [&](int i2, int j2, int h2, double w) {
       const size_t t = id(i2, j2, h2);
+      if (closed[t]) return;
       const bool endpoint = (i2 == gi && j2 == gj && h2 == gh);
       const uint8_t c = endpoint ? 1 : pose_class(i2, j2, h2);
       if (c == 3) return;
       if (c == 2) w *= options.tight_cost_factor;
-      if (dist[s] + w < dist[t]) {
-        dist[t] = static_cast<float>(dist[s] + w);
+      // Compared as stored: a sum rounded up to float would pass a double `<` again.
+      const float via = static_cast<float>(dist[s] + w);
+      if (via < dist[t]) {
+        dist[t] = via;
         parent[t] = static_cast<uint32_t>(s);
         open.push({dist[t] + heuristic(i2, j2), t});
       }

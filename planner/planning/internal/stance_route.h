@@ -47,6 +47,8 @@ struct StanceRoute {
   std::vector<double> yaws_rad;        // body yaw at each route point [rad]
   double length_m = 0.0;
   long body_blocked_poses = 0;  // poses the search met that only the body check refused
+  long classified_poses = 0;    // poses judged usable or not (each once)
+  long expanded_poses = 0;      // poses expanded by the A* (each at most once)
 };
 
 // start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
