@@ -109,6 +109,35 @@ TEST(StanceRoute, KeepsTheBodyClearOfAWallOverFloor) {
   EXPECT_GT(s.length_m, blind.length_m + 0.1);
 }
 
+// A wall across the floor with an opening wider than the body by twice the route's body
+// margin and a little: the route keeps the margin through it rather than hugging the
+// opening's edge on the shortest line.
+TEST(StanceRoute, KeepsTheBodyMarginThroughAnOpeningWhereThereIsRoom) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.5, -1.5, 1.5, 1.5)};
+  const StanceRouteOptions options;
+  const double opening = robot.body.width_m() + 2 * options.body_margin_m + 0.06;
+  TerrainBox below, above;  // the wall's two parts, the opening y in [0.3, 0.3 + opening]
+  below.center_world_m = {0.5, 0.3 - 0.75, 0.25};
+  below.size_m = {0.05, 1.5, 0.5};
+  above = below;
+  above.center_world_m.y() = 0.3 + opening + 0.75;
+  const std::vector<BodyObstacle> obstacles = BoxBodyObstacles({below, above});
+  const StanceRoute s = PlanStanceRoute(robot, regions, obstacles, 0.0, {0, 0}, 0.0, {1, 0}, 0.0, options);
+  ASSERT_TRUE(s.found);
+  ASSERT_EQ(s.yaws_rad.size(), s.route.size());
+  BodyExtent grown = robot.body;
+  grown.min_m -= Eigen::Vector2d::Constant(options.body_margin_m);
+  grown.max_m += Eigen::Vector2d::Constant(options.body_margin_m);
+  bool passed = false;
+  for (size_t k = 1; k + 1 < s.route.size(); ++k) {  // start and goal are given, not chosen
+    EXPECT_EQ(BodyOverlapShare(grown, obstacles, s.route[k].x(), s.route[k].y(), s.yaws_rad[k], 0.0), 0.0)
+        << s.route[k].transpose() << " yaw " << s.yaws_rad[k];
+    passed = passed || std::abs(s.route[k].x() - 0.5) < 0.03;
+  }
+  EXPECT_TRUE(passed);
+}
+
 // The hexapod's baffle slalom (seed 2): before each pose was expanded once, a distance
 // rounded up to float passed the double `<` again and again, and the search re-expanded
 // poses until its deadline (millions of queue entries for 156,000 poses).
