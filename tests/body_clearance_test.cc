@@ -179,6 +179,24 @@ TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {
   EXPECT_GT(largest_turn, 0.5);
 }
 
+// The same door narrowed below the body's width and length: the feet's region graph still
+// connects (the floor runs under the wall's ends), but no heading fits the body through,
+// so the plan answers 'no route' naming the body rather than walking through the wall.
+TEST(BodyCourses, ADoorNarrowerThanTheBodyAtEveryHeadingIsNoRouteForTheBody) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kDoorway, 3);
+  const double narrow = 0.5 * std::min(robot.body.width_m(), robot.body.length_m());
+  for (TerrainBox& b : course.terrain.boxes) {
+    if (b.size_m.z() < 0.3) continue;  // the floor
+    const double inner = std::abs(b.center_world_m.y()) - 0.5 * b.size_m.x();  // the door's half-width
+    b.center_world_m.y() -= std::copysign(inner - 0.5 * narrow, b.center_world_m.y());
+  }
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
+  EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << out.plan.message;
+  EXPECT_NE(out.plan.message.find("no route for the body"), std::string::npos) << out.plan.message;
+  EXPECT_TRUE(out.plan.footsteps.empty());
+}
+
 TEST(BodyCourses, AUShapedPocketIsWalkedAroundNotThrough) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
   const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kPocket, 5);
