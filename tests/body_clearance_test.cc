@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <random>
 
 #include "base/check.h"
 #include "bench/course_checker.h"
@@ -136,6 +137,38 @@ TEST(StanceRoute, KeepsTheBodyMarginThroughAnOpeningWhereThereIsRoom) {
     passed = passed || std::abs(s.route[k].x() - 0.5) < 0.03;
   }
   EXPECT_TRUE(passed);
+}
+
+// Random walls over a floor: wherever the route is found, each of its chosen poses (all
+// but the given start and goal) is clear by the exact overlap test at the route's yaw, and
+// where it is not found, the same search without the walls finds one (the walls block).
+TEST(StanceRoute, EveryRoutePoseIsClearByTheExactTestAmongRandomWalls) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.6, -1.2, 2.6, 1.2)};
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> x(0.3, 1.7), y(-1.0, 1.0), len(0.1, 0.8), yaw(0.0, M_PI);
+  int found = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<TerrainBox> walls(4);
+    for (TerrainBox& w : walls) {
+      w.center_world_m = {x(rng), y(rng), 0.25};
+      w.size_m = {len(rng), 0.05, 0.5};
+      w.rpy_rad = {0.0, 0.0, yaw(rng)};
+    }
+    const std::vector<BodyObstacle> obstacles = BoxBodyObstacles(walls);
+    const StanceRoute s = PlanStanceRoute(robot, regions, obstacles, 0.0, {-0.2, 0}, 0.0, {2.2, 0}, 0.0);
+    if (!s.found) {
+      EXPECT_TRUE(PlanStanceRoute(robot, regions, {-0.2, 0}, 0.0, {2.2, 0}, 0.0).found) << "trial " << trial;
+      continue;
+    }
+    ++found;
+    ASSERT_EQ(s.yaws_rad.size(), s.route.size());
+    for (size_t k = 1; k + 1 < s.route.size(); ++k) {
+      EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, s.route[k].x(), s.route[k].y(), s.yaws_rad[k], 0.0), 0.0)
+          << "trial " << trial << " pose " << s.route[k].transpose() << " yaw " << s.yaws_rad[k];
+    }
+  }
+  EXPECT_GT(found, 6);
 }
 
 // The hexapod's baffle slalom (seed 2): before each pose was expanded once, a distance
