@@ -214,10 +214,13 @@ bool BodyCourse(Gen& g, CourseKind kind, const RobotModel& robot, std::vector<Po
       route->push_back({gx, 0, 0});
       return true;
     }
-    case CourseKind::kDoorway: {
+    case CourseKind::kDoorway:
+    case CourseKind::kClosedDoor: {
       const double lo = std::min(2 * half_w, 2 * half_l), hi = std::max(2 * half_w, 2 * half_l);
-      if (hi - lo < 0.06) return false;
-      const double door = lo + g.U(0.35, 0.65) * (hi - lo);
+      if (kind == CourseKind::kDoorway && hi - lo < 0.06) return false;
+      // A closed door is narrower than the body's short side at every heading (the feet
+      // still step through it).
+      const double door = kind == CourseKind::kDoorway ? lo + g.U(0.35, 0.65) * (hi - lo) : g.U(0.3, 0.6) * lo;
       // Facing so that the long side lies across the door (along y).
       const double yaw = half_l > half_w ? M_PI / 2 : 0.0;
       const double pass = half_l > half_w ? 0.0 : M_PI / 2;
@@ -269,7 +272,7 @@ const std::vector<CourseKind>& AllCourseKinds() {
       CourseKind::kStones, CourseKind::kStonesTurn, CourseKind::kGaps,   CourseKind::kStairs,
       CourseKind::kTilted, CourseKind::kRough,      CourseKind::kBeams,  CourseKind::kDetour,
       CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal, CourseKind::kPocket,
-      CourseKind::kBaffles, CourseKind::kDoorway, CourseKind::kCorridor};
+      CourseKind::kBaffles, CourseKind::kDoorway, CourseKind::kCorridor, CourseKind::kClosedDoor};
   return kinds;
 }
 
@@ -290,6 +293,7 @@ std::string ToString(CourseKind kind) {
     case CourseKind::kBaffles: return "baffles";
     case CourseKind::kDoorway: return "doorway";
     case CourseKind::kCorridor: return "corridor";
+    case CourseKind::kClosedDoor: return "closed_door";
   }
   return "?";
 }
@@ -457,10 +461,12 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
       case CourseKind::kBaffles:
       case CourseKind::kDoorway:
       case CourseKind::kCorridor:
+      case CourseKind::kClosedDoor:
         if (!BodyCourse(g, kind, robot, &route)) {
           throw std::runtime_error("GenerateCourse: robot '" + robot.name + "' has no body box for a " +
                                    ToString(kind) + " course (or a door cannot need a turn)");
         }
+        exists = kind != CourseKind::kClosedDoor;
         break;
     }
     course.terrain.boxes = g.boxes;

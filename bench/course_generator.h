@@ -33,6 +33,8 @@ enum class CourseKind {
   kDoorway,     // a wall with a door wider than the body's short side, narrower than its
                 // long side, met with the long side across it (must turn)
   kCorridor,    // a floor corridor with walls beside it and a 90 degree turn
+  kClosedDoor,  // the doorway with a door narrower than the body's short side (no route
+                // for the body; the feet could step through)
 };
 
 const std::vector<CourseKind>& AllCourseKinds();

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <random>
 
 #include "base/check.h"
 #include "bench/course_checker.h"
@@ -109,6 +110,85 @@ TEST(StanceRoute, KeepsTheBodyClearOfAWallOverFloor) {
   EXPECT_GT(s.length_m, blind.length_m + 0.1);
 }
 
+// A wall across the floor with an opening wider than the body by twice the route's body
+// margin and a little: the route keeps the margin through it rather than hugging the
+// opening's edge on the shortest line.
+TEST(StanceRoute, KeepsTheBodyMarginThroughAnOpeningWhereThereIsRoom) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.5, -1.5, 1.5, 1.5)};
+  const StanceRouteOptions options;
+  const double opening = robot.body.width_m() + 2 * options.body_margin_m + 0.06;
+  TerrainBox below, above;  // the wall's two parts, the opening y in [0.3, 0.3 + opening]
+  below.center_world_m = {0.5, 0.3 - 0.75, 0.25};
+  below.size_m = {0.05, 1.5, 0.5};
+  above = below;
+  above.center_world_m.y() = 0.3 + opening + 0.75;
+  const std::vector<BodyObstacle> obstacles = BoxBodyObstacles({below, above});
+  const StanceRoute s = PlanStanceRoute(robot, regions, obstacles, 0.0, {0, 0}, 0.0, {1, 0}, 0.0, options);
+  ASSERT_TRUE(s.found);
+  ASSERT_EQ(s.yaws_rad.size(), s.route.size());
+  BodyExtent grown = robot.body;
+  grown.min_m -= Eigen::Vector2d::Constant(options.body_margin_m);
+  grown.max_m += Eigen::Vector2d::Constant(options.body_margin_m);
+  bool passed = false;
+  for (size_t k = 1; k + 1 < s.route.size(); ++k) {  // start and goal are given, not chosen
+    EXPECT_EQ(BodyOverlapShare(grown, obstacles, s.route[k].x(), s.route[k].y(), s.yaws_rad[k], 0.0), 0.0)
+        << s.route[k].transpose() << " yaw " << s.yaws_rad[k];
+    passed = passed || std::abs(s.route[k].x() - 0.5) < 0.03;
+  }
+  EXPECT_TRUE(passed);
+}
+
+// Random walls over a floor: wherever the route is found, each of its chosen poses (all
+// but the given start and goal) is clear by the exact overlap test at the route's yaw, and
+// where it is not found, the same search without the walls finds one (the walls block).
+TEST(StanceRoute, EveryRoutePoseIsClearByTheExactTestAmongRandomWalls) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.6, -1.2, 2.6, 1.2)};
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> x(0.3, 1.7), y(-1.0, 1.0), len(0.1, 0.8), yaw(0.0, M_PI);
+  int found = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<TerrainBox> walls(4);
+    for (TerrainBox& w : walls) {
+      w.center_world_m = {x(rng), y(rng), 0.25};
+      w.size_m = {len(rng), 0.05, 0.5};
+      w.rpy_rad = {0.0, 0.0, yaw(rng)};
+    }
+    const std::vector<BodyObstacle> obstacles = BoxBodyObstacles(walls);
+    const StanceRoute s = PlanStanceRoute(robot, regions, obstacles, 0.0, {-0.2, 0}, 0.0, {2.2, 0}, 0.0);
+    if (!s.found) {
+      EXPECT_TRUE(PlanStanceRoute(robot, regions, {-0.2, 0}, 0.0, {2.2, 0}, 0.0).found) << "trial " << trial;
+      continue;
+    }
+    ++found;
+    ASSERT_EQ(s.yaws_rad.size(), s.route.size());
+    for (size_t k = 1; k + 1 < s.route.size(); ++k) {
+      EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, s.route[k].x(), s.route[k].y(), s.yaws_rad[k], 0.0), 0.0)
+          << "trial " << trial << " pose " << s.route[k].transpose() << " yaw " << s.yaws_rad[k];
+    }
+  }
+  EXPECT_GT(found, 6);
+}
+
+// The hexapod's baffle slalom (seed 2): before each pose was expanded once, a distance
+// rounded up to float passed the double `<` again and again, and the search re-expanded
+// poses until its deadline (millions of queue entries for 156,000 poses).
+TEST(StanceRoute, ExpandsEachPoseAtMostOnceThroughABaffleSlalom) {
+  const RobotModel robot = LoadRobot(RobotPath("hexapod"));
+  const Course course = GenerateCourse(robot, RobotPath("hexapod"), CourseKind::kBaffles, 2);
+  const std::vector<ConvexRegion> regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+  const std::vector<BodyObstacle> obstacles = BoxBodyObstacles(course.terrain.boxes);
+  const Eigen::Vector2d start(course.start.x_m, course.start.y_m), goal(course.goal.x_m, course.goal.y_m);
+  const StanceRoute s =
+      PlanStanceRoute(robot, regions, obstacles, 0.0, start, course.start.yaw_rad, goal, course.goal.yaw_rad);
+  ASSERT_TRUE(s.found);
+  EXPECT_GT(s.body_blocked_poses, 0);
+  // Start and goal are not classified; every other expanded pose was, once.
+  EXPECT_LE(s.expanded_poses, s.classified_poses + 2);
+  EXPECT_GT(s.expanded_poses, 100);
+}
+
 constexpr double kCourseTimeLimit_s = 30.0;
 
 TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {
@@ -130,6 +210,24 @@ TEST(BodyCourses, ARobotThatMustTurnToPassADoorTurns) {
     largest_turn = std::max(largest_turn, std::abs(std::remainder(f.yaw_rad - course.start.yaw_rad, 2 * M_PI)));
   }
   EXPECT_GT(largest_turn, 0.5);
+}
+
+// The same door narrowed below the body's width and length: the feet's region graph still
+// connects (the floor runs under the wall's ends), but no heading fits the body through,
+// so the plan answers 'no route' naming the body rather than walking through the wall.
+TEST(BodyCourses, ADoorNarrowerThanTheBodyAtEveryHeadingIsNoRouteForTheBody) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kDoorway, 3);
+  const double narrow = 0.5 * std::min(robot.body.width_m(), robot.body.length_m());
+  for (TerrainBox& b : course.terrain.boxes) {
+    if (b.size_m.z() < 0.3) continue;  // the floor
+    const double inner = std::abs(b.center_world_m.y()) - 0.5 * b.size_m.x();  // the door's half-width
+    b.center_world_m.y() -= std::copysign(inner - 0.5 * narrow, b.center_world_m.y());
+  }
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
+  EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << out.plan.message;
+  EXPECT_NE(out.plan.message.find("no route for the body"), std::string::npos) << out.plan.message;
+  EXPECT_TRUE(out.plan.footsteps.empty());
 }
 
 TEST(BodyCourses, AUShapedPocketIsWalkedAroundNotThrough) {

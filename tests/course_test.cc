@@ -41,7 +41,8 @@ Course ExpectValidToTheGoal(const CourseCase& c, bool from_map) {
 TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
   for (const std::string name : {"littledog", "hexapod", "octopod"}) {
     const RobotModel robot = LoadRobot(RobotPath(name));
-    for (CourseKind kind : {CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal}) {
+    for (CourseKind kind :
+         {CourseKind::kCutStones, CourseKind::kCutGaps, CourseKind::kWalledGoal, CourseKind::kClosedDoor}) {
       const Course course = GenerateCourse(robot, RobotPath(name), kind, 7);
       ASSERT_FALSE(course.route_exists);
       const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);

@@ -197,6 +197,34 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   return guide;
 }
 
+namespace {
+
+// Where no body-clear stance route was found but the body check refused poses: when the
+// same search without the body obstacles finds a route, the body (not the feet) is what
+// blocks it, and the guide is no longer connected (the plan answers 'no route' rather than
+// walking the region graph's route through the obstacle).
+void RefuseBodyBlockedRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                            double goal_yaw_rad, const StanceRoute& body_clear, RouteGuide* guide,
+                            const Deadline& deadline) {
+  StanceRouteOptions loose;
+  loose.support_radius_l_bnd = std::sqrt(2.0);
+  const StanceRoute feet_only =
+      PlanStanceRoute(robot, regions, {}, 0.0, start, start_yaw_rad, goal_xy, goal_yaw_rad, loose, deadline);
+  guide->out_of_time = feet_only.out_of_time;
+  if (!feet_only.found) return;
+  std::ostringstream why;
+  why.precision(3);
+  why << "no route for the body: the feet could pass, but every stance route from the start to the goal meets an "
+         "obstacle with the body's plan box ("
+      << robot.body.length_m() << " x " << robot.body.width_m() << " m, " << body_clear.body_blocked_poses
+      << " poses refused, at 16 headings); widen the passage, or check the robot's body_box";
+  guide->connected = false;
+  guide->broken = why.str();
+}
+
+}  // namespace
+
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                        const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
@@ -223,6 +251,9 @@ void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>&
                               loose, deadline);
   }
   guide->out_of_time = stances.out_of_time;
+  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0) {
+    RefuseBodyBlockedRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad, stances, guide, deadline);
+  }
   if (!stances.found) return;
   guide->route = stances.route;
   if (stances.body_blocked_poses > 0) guide->yaws_rad = stances.yaws_rad;

@@ -84,16 +84,23 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
                           double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline);
 
 // The body check of a pose (stance_route.h): obstacles near the pose judged against the
-// body's plan box in its height band above the pose's ground.
+// body's plan box in its height band above the pose's ground, and against that box grown
+// by the route's body margin in plan view.
 class BodyGate {
  public:
+  enum class Room { kClear, kTight, kBlocked };
+
   BodyGate(const RobotModel& robot, const std::vector<BodyObstacle>& obstacles, const SupportRaster& support,
-           double ground_z_m, double overlap_share)
+           double ground_z_m, double overlap_share, double margin_m)
       : robot_(robot), obstacles_(obstacles), support_(support), ground_z_m_(ground_z_m), share_(overlap_share) {
     const BodyExtent& body = robot.body;
     active_ = body.known() && !obstacles.empty();
-    radius_m_ = std::max({body.min_m.norm(), body.max_m.norm(), Eigen::Vector2d(body.min_m.x(), body.max_m.y()).norm(),
-                          Eigen::Vector2d(body.max_m.x(), body.min_m.y()).norm()});
+    grown_ = body;
+    grown_.min_m -= Eigen::Vector2d::Constant(std::max(0.0, margin_m));
+    grown_.max_m += Eigen::Vector2d::Constant(std::max(0.0, margin_m));
+    radius_m_ = std::max({grown_.min_m.norm(), grown_.max_m.norm(),
+                          Eigen::Vector2d(grown_.min_m.x(), grown_.max_m.y()).norm(),
+                          Eigen::Vector2d(grown_.max_m.x(), grown_.min_m.y()).norm()});
     for (const BodyObstacle& o : obstacles) {
       Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf), hi = -lo;
       for (const Eigen::Vector2d& v : o.polygon_world_m) {
@@ -105,17 +112,21 @@ class BodyGate {
   }
   bool active() const { return active_; }
 
-  // Whether the body at (c, yaw) overlaps an obstacle in its band.
-  bool Blocked(const Eigen::Vector2d& c, double yaw) const {
-    if (!active_) return false;
+  // kBlocked: the body at (c, yaw) overlaps an obstacle in its band; kTight: only the
+  // grown body does.
+  Room RoomAt(const Eigen::Vector2d& c, double yaw) const {
+    if (!active_) return Room::kClear;
     std::vector<int> near;  // indices: the obstacles (and their polygons) are not copied per pose
     for (size_t k = 0; k < obstacles_.size(); ++k) {
       const Eigen::Vector2d gap =
           (bounds_[k].first - c).cwiseMax(c - bounds_[k].second).cwiseMax(Eigen::Vector2d::Zero());
       if (gap.norm() < radius_m_) near.push_back(static_cast<int>(k));
     }
-    if (near.empty()) return false;
-    return BodyOverlapShare(robot_.body, obstacles_, near, c.x(), c.y(), yaw, Ground(c, yaw)) > share_;
+    if (near.empty()) return Room::kClear;
+    const double ground = Ground(c, yaw);
+    if (BodyOverlapShare(grown_, obstacles_, near, c.x(), c.y(), yaw, ground) <= 0.0) return Room::kClear;
+    return BodyOverlapShare(robot_.body, obstacles_, near, c.x(), c.y(), yaw, ground) > share_ ? Room::kBlocked
+                                                                                              : Room::kTight;
   }
 
  private:
@@ -135,6 +146,7 @@ class BodyGate {
   const RobotModel& robot_;
   const std::vector<BodyObstacle>& obstacles_;
   const SupportRaster& support_;
+  BodyExtent grown_;  // the body box grown by the margin in plan view
   double ground_z_m_, share_, radius_m_ = 0.0;
   bool active_ = false;
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> bounds_;
@@ -200,6 +212,23 @@ BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& 
   return g;
 }
 
+// The found route: the given start and goal poses with the searched cells' centres and
+// yaws between them (cells and yaws from the start's cell to the goal's).
+void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<double>& yaws,
+              const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+              double goal_yaw_rad, StanceRoute* out) {
+  out->route.push_back(start_xy);
+  out->yaws_rad.push_back(cells.size() > 1 ? yaws.front() : start_yaw_rad);
+  for (size_t k = 1; k + 1 < cells.size(); ++k) {
+    out->route.push_back(cells[k]);
+    out->yaws_rad.push_back(yaws[k]);
+  }
+  out->route.push_back(goal_xy);
+  out->yaws_rad.push_back(goal_yaw_rad);
+  for (size_t k = 1; k < out->route.size(); ++k) out->length_m += (out->route[k] - out->route[k - 1]).norm();
+  out->found = true;
+}
+
 StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                           const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
                           const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
@@ -221,7 +250,7 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   }
   const SupportRaster& support = *raster;
 
-  const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share);
+  const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
     return ((static_cast<int>(std::lround(u / (2 * M_PI / H))) % H) + H) % H;
@@ -239,11 +268,13 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   const int sh = heading_of(start_yaw_rad), gh = heading_of(goal_yaw_rad);
   const size_t start = id(si, sj, sh);
   // Per pose: 0 unknown, 1 every nominal foot on a region, 2 every reference box meets
-  // one (usable, at a higher cost: such poses leave no room), 3 not usable.
+  // one or the body clears obstacles by less than the margin (usable, at a higher cost:
+  // such poses leave no room), 3 not usable.
   std::vector<uint8_t> usable(states, 0);
   auto pose_class = [&](int i, int j, int h) {
     uint8_t& u = usable[id(i, j, h)];
     if (u == 0) {
+      ++out.classified_poses;
       const Eigen::Vector2d c = centre_of(i, j);
       const double yaw = h * 2 * M_PI / H;
       int worst = 2;
@@ -251,9 +282,14 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
         worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
       }
       u = static_cast<uint8_t>(3 - worst);
-      if (u < 3 && gate.Blocked(c, yaw)) {
-        u = 3;
-        ++out.body_blocked_poses;
+      if (u < 3) {
+        const BodyGate::Room room = gate.RoomAt(c, yaw);
+        if (room == BodyGate::Room::kBlocked) {
+          u = 3;
+          ++out.body_blocked_poses;
+        } else if (room == BodyGate::Room::kTight) {
+          u = 2;
+        }
       }
     }
     return u;
@@ -264,6 +300,8 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   if (states >= kNone) return out;  // more headings than any caller asks for
   std::vector<float> dist(states, std::numeric_limits<float>::infinity());
   std::vector<uint32_t> parent(states, kNone);
+  // Expanded poses: a pose is expanded once, and a closed pose is not queued again.
+  std::vector<bool> closed(states, false);
   using Item = std::pair<double, size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
   auto heuristic = [&](int i, int j) { return (centre_of(i, j) - centre_of(gi, gj)).norm(); };
@@ -279,12 +317,14 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
         return out;
       }
     }
-    const auto [f, s] = open.top();
+    const size_t s = open.top().second;
     open.pop();
     const int h = static_cast<int>(s % H);
     const size_t cellid = s / H;
     const int i = static_cast<int>(cellid % nx), j = static_cast<int>(cellid / nx);
-    if (f > dist[s] + heuristic(i, j) + 1e-6) continue;
+    if (closed[s]) continue;
+    closed[s] = true;
+    ++out.expanded_poses;
     // Any heading at the goal cell: the windows turn to the goal yaw there.
     if (i == gi && j == gj) {
       reached = s;
@@ -292,12 +332,15 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     }
     auto relax = [&](int i2, int j2, int h2, double w) {
       const size_t t = id(i2, j2, h2);
+      if (closed[t]) return;
       const bool endpoint = (i2 == gi && j2 == gj && h2 == gh);
       const uint8_t c = endpoint ? 1 : pose_class(i2, j2, h2);
       if (c == 3) return;
       if (c == 2) w *= options.tight_cost_factor;
-      if (dist[s] + w < dist[t]) {
-        dist[t] = static_cast<float>(dist[s] + w);
+      // Compared as stored: a sum rounded up to float would pass a double `<` again.
+      const float via = static_cast<float>(dist[s] + w);
+      if (via < dist[t]) {
+        dist[t] = via;
         parent[t] = static_cast<uint32_t>(s);
         open.push({dist[t] + heuristic(i2, j2), t});
       }
@@ -327,16 +370,7 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   }
   std::reverse(cells.begin(), cells.end());
   std::reverse(yaws.begin(), yaws.end());
-  out.route.push_back(start_xy);
-  out.yaws_rad.push_back(cells.size() > 1 ? yaws.front() : start_yaw_rad);
-  for (size_t k = 1; k + 1 < cells.size(); ++k) {
-    out.route.push_back(cells[k]);
-    out.yaws_rad.push_back(yaws[k]);
-  }
-  out.route.push_back(goal_xy);
-  out.yaws_rad.push_back(goal_yaw_rad);
-  for (size_t k = 1; k < out.route.size(); ++k) out.length_m += (out.route[k] - out.route[k - 1]).norm();
-  out.found = true;
+  SetRoute(cells, yaws, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);
   return out;
 }
 

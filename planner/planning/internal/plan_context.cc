@@ -57,6 +57,11 @@ std::optional<Plan> GuideRoute(PlanContext* c) {
     // Out of time here, the windows end the plan on its time limit at their first check.
     FollowStanceRoute(c->robot, c->usable, request.body_obstacles, request.start_feet_world_m, request.start_yaw_rad,
                       c->GoalXY(), request.goal_yaw_rad, &c->guide, deadline);
+    if (!c->guide.connected) {  // the body blocks every route the feet have
+      Plan rejected = Rejected(SolveStatus::kNoRoute, c->guide.broken);
+      rejected.solve_time_s = c->ElapsedSeconds();
+      return rejected;
+    }
   }
   if (request.max_steps == 0 && options.default_max_steps == 0) {
     // Enough configurations to walk the route route_step_budget times over at d_lim

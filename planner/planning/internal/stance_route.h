@@ -38,6 +38,10 @@ struct StanceRouteOptions {
   // Share of the body's plan box an obstacle may cover before a pose is unusable (room
   // for the grid's rounding; the checker's tolerance is larger).
   double body_overlap_share = 0.0;
+  // Room the route keeps between the body's plan box and obstacles where it can [m]: a
+  // pose whose box grown by this overlaps one costs tight_cost_factor (the windows' steps
+  // between route poses cut corners; a route along a wall leaves them none).
+  double body_margin_m = 0.04;
 };
 
 struct StanceRoute {
@@ -47,6 +51,8 @@ struct StanceRoute {
   std::vector<double> yaws_rad;        // body yaw at each route point [rad]
   double length_m = 0.0;
   long body_blocked_poses = 0;  // poses the search met that only the body check refused
+  long classified_poses = 0;    // poses judged usable or not (each once)
+  long expanded_poses = 0;      // poses expanded by the A* (each at most once)
 };
 
 // start and goal poses: body position [m] and yaw [rad]; they count as usable whatever the
