@@ -187,6 +187,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     result = SolveBranchAndBound(formulation.miqp(), context.solvers, bnb, rounding);
     result.nodes += first.nodes;
     result.relaxations += first.relaxations;
+    result.node_solve_iterations += first.node_solve_iterations;
+    result.node_solve_time_s += first.node_solve_time_s;
     bounded_replan = false;
   }
   // Cut short by the replanning budget, not by the request's time: a plan, unproven.
