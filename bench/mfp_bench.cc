@@ -57,6 +57,10 @@ struct Row {
   // medians over the runs, from the search's start.
   double first_plan_s = -1.0;
   double proven_s = -1.0;
+  // Single MIQPs, first run: the nodes' own relaxation solves (BranchAndBoundResult::
+  // node_solve_*), per node: wall time [ms] and solver iterations; -1: not measured.
+  double node_solve_ms = -1.0;
+  double node_iterations = -1.0;
   // The polisher's account of each window of the first run, and the plan's largest
   // reference/reachability box excess under exact R(yaw) [m].
   std::vector<std::pair<double, mfp::PolishReport>> windows;  // (window solve time [s], report)
@@ -71,9 +75,9 @@ constexpr double kAcceptance = 0.005;
 
 void PrintHeader(const std::string& title) {
   std::printf("\n%s\n", title.c_str());
-  std::printf("%-34s %6s %8s %7s %8s %9s %12s %12s %9s %-11s %5s %5s %10s %8s %9s %9s %9s %9s\n", "instance", "steps",
+  std::printf("%-34s %6s %8s %7s %8s %9s %12s %12s %9s %-11s %5s %5s %10s %8s %9s %9s %9s %9s %8s %7s\n", "instance", "steps",
               "int_vars", "nodes", "relax", "time_s", "objective", "worst_obj", "gap", "status", "goal", "viol", "fixed_qp_s",
-              "x_fixed", "root_gap", "within_s", "first_s", "proven_s");
+              "x_fixed", "root_gap", "within_s", "first_s", "proven_s", "ms_node", "it_node");
 }
 
 void PrintRow(const Row& r) {
@@ -97,6 +101,7 @@ void PrintRow(const Row& r) {
       std::printf(" %9s", "-");
     }
   }
+  if (r.node_solve_ms >= 0.0) std::printf(" %8.3f %7.1f", r.node_solve_ms, r.node_iterations);
   std::printf("\n");
   std::fflush(stdout);
 }
@@ -164,6 +169,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   Eigen::VectorXd first_window_x;  // the first window's MIQP solution, first run
   std::vector<std::pair<double, mfp::PolishReport>> windows;
   double root_bound = -mfp::kInfinity;
+  double node_solve_ms = -1.0, node_iterations = -1.0;
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
         mfp::MakeRelaxationSolvers(scenario.options.solvers);
@@ -184,6 +190,9 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                                          if (k == 0) {
                                            first_window_x = p.window_result.x;
                                            root_bound = p.window_result.root_bound;
+                                           const double nodes = std::max(1, p.window_result.nodes);
+                                           node_solve_ms = 1e3 * p.window_result.node_solve_time_s / nodes;
+                                           node_iterations = p.window_result.node_solve_iterations / nodes;
                                          }
                                          for (const auto& [t, objective] : incumbents) {
                                            if (objective <= p.window_result.objective +
@@ -222,6 +231,8 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     row.first_plan_s = median(first_times);
     // Proven only when every run proved it: a run cut short leaves it unproven.
     if (static_cast<int>(proven_times.size()) == repeat) row.proven_s = median(proven_times);
+    row.node_solve_ms = node_solve_ms;
+    row.node_iterations = node_iterations;
   }
   row.reaches_goal = plan.reaches_goal;
   row.windows = windows;

@@ -1,6 +1,7 @@
 #include "planner/search/branch_and_bound.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -69,6 +70,8 @@ class Search {
     bool propagation_infeasible = false;
     RelaxationResult relaxation;
     int solves = 0;
+    int iterations = 0;    // of its solves
+    double solve_s = 0.0;  // wall time of its solves
   };
 
   // Up to one node per worker: their relaxations are solved side by side, then the nodes
@@ -105,13 +108,17 @@ class Search {
     // A node whose relaxation cannot beat the incumbent is pruned: its solve may stop as
     // soon as that is proven.
     const double cutoff = state_.HasIncumbent() ? state_.result().objective - state_.GapTolerance() : kInfinity;
+    const auto start = std::chrono::steady_clock::now();
     e.relaxation = state_.SolveWith(solver, e.lower, e.upper, warm, cutoff);
     ++e.solves;
+    e.iterations += e.relaxation.iterations;
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
         warm != nullptr) {
       e.relaxation = state_.SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
       ++e.solves;
+      e.iterations += e.relaxation.iterations;
     }
+    e.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
   }
 
@@ -119,6 +126,8 @@ class Search {
     BranchAndBoundResult& result = state_.result();
     ++result.nodes;
     result.relaxations += e.solves;
+    result.node_solve_iterations += e.iterations;
+    result.node_solve_time_s += e.solve_s;
     const bool is_root = !root_done_;
     root_done_ = true;
     if (e.propagation_infeasible) {

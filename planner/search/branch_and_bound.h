@@ -111,6 +111,10 @@ struct BranchAndBoundResult {
   int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
   int early_cutoffs = 0;            // node relaxations stopped once they could not beat the incumbent
   int equivalent_points = 0;        // relaxation points replaced by options.equivalent_point
+  // The nodes' own relaxation solves (not the heuristics' QPs nor strong branching): their
+  // solver iterations and wall time, for the time per node and iterations per node.
+  long node_solve_iterations = 0;
+  double node_solve_time_s = 0.0;
   double solve_time_s = 0.0;
 };
 

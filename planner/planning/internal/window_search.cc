@@ -204,6 +204,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     result = SolveBranchAndBound(formulation.miqp(), context.solvers, bnb, rounding);
     result.nodes += first.nodes;
     result.relaxations += first.relaxations;
+    result.node_solve_iterations += first.node_solve_iterations;
+    result.node_solve_time_s += first.node_solve_time_s;
     bounded_replan = false;
     record->replan_fell_back = true;
   }
