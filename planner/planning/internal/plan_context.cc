@@ -85,9 +85,6 @@ std::optional<Plan> SetUpPlan(PlanContext* c) {
   const int n = robot.num_legs();
   MFP_CHECK(n >= 2 && static_cast<int>(robot.gait.size()) == n);
 
-  if (const RequestCheck check = CheckPlanRequest(robot, c->regions, request, options); !check.ok()) {
-    return Rejected(check.status, check.message);
-  }
   c->max_steps = MaxSteps(robot, request, options);
   c->window_steps = WindowSteps(robot, request, options);
   c->time_limit_s = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;
