@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -164,9 +165,28 @@ TEST_F(StartGoalTest, AGoalFarBeyondTheToleranceIsAnInvalidGoalNamingTheFootAndT
   EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
   EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("leg "), std::string::npos) << plan.message;
-  EXPECT_NE(plan.message.find("the nearest is ("), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("the nearest stance on regions is ("), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("goal_position_tolerance"), std::string::npos) << plan.message;
   EXPECT_GT(o.goal_position_tolerance_m, 0.0);
+}
+
+// A goal beyond a leg's reach of every region (refused before any goal search) names the
+// nearest stance on regions too, so the user learns where the robot could go.
+TEST_F(StartGoalTest, AGoalBeyondReachOfEveryRegionNamesTheNearestStanceOnRegions) {
+  const PlanRequest request = Request();
+  const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 1.2);
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
+  EXPECT_NE(plan.message.find("from the nearest region"), std::string::npos) << plan.message;
+  const size_t named = plan.message.find("the nearest stance on regions is (");
+  ASSERT_NE(named, std::string::npos) << plan.message;
+  // The stance named stands on the regions, back from the goal where the floor is.
+  double x = 0.0, y = 0.0, yaw = 0.0;
+  ASSERT_EQ(std::sscanf(plan.message.c_str() + named, "the nearest stance on regions is (%lf, %lf, yaw %lf)", &x, &y, &yaw),
+            3)
+      << plan.message;
+  EXPECT_EQ(LegOffRegions(robot(), regions, GoalPose{x, y, yaw}, 0.0), -1);
+  EXPECT_LT(x, request.goal_x_m - 1.2 + FrontOffset() + 1e-9);
 }
 
 }  // namespace

@@ -86,6 +86,29 @@ std::string PoseText(const GoalPose& p) {
   return s.str();
 }
 
+// For an invalid_goal message: "; the nearest stance on regions is (x, y, yaw), d m away"
+// from the search beyond the goal tolerances (goal_search.report_radius, turns within
+// the heading tolerance), or why none is named.
+std::string FartherStanceText(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const GoalPose& goal,
+                              const PlannerOptions& options, const Deadline& deadline) {
+  const double radius_m = options.goal_report_radius_m;
+  if (!(radius_m > options.goal_position_tolerance_m)) return "";
+  const std::optional<GoalPose> farther =
+      NearestCertifiedGoal(robot, regions, goal, radius_m, options.goal_heading_tolerance_rad, options.goal_report_step_m,
+                           options.goal_heading_tolerance_rad, 0.0, deadline);
+  std::ostringstream text;
+  text.precision(3);
+  if (farther) {
+    text << "; the nearest stance on regions is " << PoseText(*farther) << ", "
+         << std::hypot(farther->x_m - goal.x_m, farther->y_m - goal.y_m) << " m away";
+  } else if (deadline.Expired()) {
+    text << "; the search for the nearest stance on regions farther out was cut short by the time limit";
+  } else {
+    text << "; no stance on regions within " << radius_m << " m either";
+  }
+  return text.str();
+}
+
 // Under route guidance a goal stance must stand on regions (the route guide's test). One
 // with a foot spot on none is moved to the nearest certified stance within the goal
 // tolerances; beyond them the request is invalid_goal, naming the foot and the nearest
@@ -122,21 +145,8 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
   }
   why << "; no stance on regions within goal_position_tolerance " << options.goal_position_tolerance_m
       << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
-  const double report_radius_m = options.goal_report_radius_m;
-  const std::optional<GoalPose> farther =
-      report_radius_m > options.goal_position_tolerance_m
-          ? NearestCertifiedGoal(robot, regions, goal, report_radius_m, options.goal_heading_tolerance_rad,
-                                 options.goal_report_step_m, options.goal_heading_tolerance_rad, 0.0, request.deadline)
-          : std::nullopt;
-  if (farther) {
-    why << "; the nearest is " << PoseText(*farther) << ", "
-        << std::hypot(farther->x_m - goal.x_m, farther->y_m - goal.y_m) << " m away";
-  } else if (request.deadline.Expired()) {
-    why << "; the search for the nearest one farther out was cut short by the time limit";
-  } else if (report_radius_m > options.goal_position_tolerance_m) {
-    why << " or " << report_radius_m << " m";
-  }
-  choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str());
+  choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str() + FartherStanceText(robot, regions, goal, options,
+                                                                                      request.deadline));
   return choice;
 }
 
@@ -233,7 +243,13 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                    const std::function<void(const PlanProgress&)>& on_progress) {
   // Checked once here: the goal search below and the windows' set-up take it as checked.
   if (const RequestCheck check = CheckPlanRequest(robot, regions, request, options); !check.ok()) {
-    Plan plan = Rejected(check.status, check.message);
+    const bool guided = options.route_guidance && request.max_windows == 0;
+    Plan plan = Rejected(check.status, check.status == SolveStatus::kInvalidGoal && guided
+                                           ? check.message + FartherStanceText(robot, regions,
+                                                                               {request.goal_x_m, request.goal_y_m,
+                                                                                request.goal_yaw_rad},
+                                                                               options, request.deadline)
+                                           : check.message);
     plan.goal_x_m = request.goal_x_m;
     plan.goal_y_m = request.goal_y_m;
     plan.goal_yaw_rad = request.goal_yaw_rad;
