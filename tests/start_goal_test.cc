@@ -14,6 +14,7 @@
 
 #include "io/plan_json.h"
 #include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/route_guide.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "tests/test_scenarios.h"
@@ -187,6 +188,28 @@ TEST_F(StartGoalTest, AGoalBeyondReachOfEveryRegionNamesTheNearestStanceOnRegion
       << plan.message;
   EXPECT_EQ(LegOffRegions(robot(), regions, GoalPose{x, y, yaw}, 0.0), -1);
   EXPECT_LT(x, request.goal_x_m - 1.2 + FrontOffset() + 1e-9);
+}
+
+// A start foot whose route-graph step (MaxStepSpan) reaches a region but whose first step
+// in a window (within d_lim of its nominal spot) does not: no_route naming the leg and
+// the first step's box, not an infeasible first window.
+TEST_F(StartGoalTest, AStartFootWhoseFirstStepMeetsNoRegionIsNoRouteNamingItsFirstStep) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Eigen::Vector2d foot = request.start_feet_world_m[0].head<2>();
+  // A square hole about the nominal start foot, a little wider than d_lim, well inside
+  // the route graph's one-step span.
+  const double hole = robot().d_lim_m + 0.02;
+  ASSERT_LT(hole + 0.01, MaxStepSpan(robot()));
+  const std::vector<ConvexRegion> regions = FloorWithHole(foot, hole);
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
+  EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("its first step, within d_lim"), std::string::npos) << plan.message;
+  // The same hole a little narrower than d_lim leaves the first step its landing.
+  const Plan plans = PlanOn(FloorWithHole(foot, robot().d_lim_m - 0.02), request);
+  EXPECT_NE(plans.status, SolveStatus::kNoRoute) << plans.message;
+  EXPECT_NE(plans.status, SolveStatus::kInfeasible) << plans.message;
 }
 
 }  // namespace
