@@ -466,7 +466,7 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   const int n = robot.num_legs();
   const terrain_map_t map = MapMessage(course.terrain);
   const std::vector<ConvexRegion> regions = MakeOctomapMapFunction(*setup)(
-      std::string(map.data.begin(), map.data.end()), "bt", course.name);
+      std::string(map.data.begin(), map.data.end()), "bt", course.name).regions;
   const std::vector<Eigen::Vector3d> start = NominalStance(robot, regions, 0, 0, 0);
   const Eigen::Vector3d goal_pose =
       GoalOnRegions(robot, regions, Eigen::Vector3d(course.goal_x, course.goal_y, course.goal_yaw),

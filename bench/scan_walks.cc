@@ -80,6 +80,22 @@ class SeenVoxelJudge {
     }
     return false;
   }
+  // True when every column within radius_m of xy (cell centres) is seen floor within a
+  // voxel of the floor at xy: any sound extractor could certify a foot there.
+  bool Certifiable(const Eigen::Vector2d& xy, double radius_m) const {
+    double z0 = 0.0, z = 0.0;
+    if (!FloorTop(xy, &z0)) return false;
+    const int64_t ci = Index(xy.x()), cj = Index(xy.y());
+    const int64_t cells = static_cast<int64_t>(std::ceil(radius_m / r_));
+    for (int64_t i = ci - cells; i <= ci + cells; ++i) {
+      for (int64_t j = cj - cells; j <= cj + cells; ++j) {
+        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
+        if ((c - xy).norm() > radius_m) continue;
+        if (!FloorTop(c, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
+      }
+    }
+    return true;
+  }
   // Centre of a random floor cell.
   Eigen::Vector2d RandomFloorPoint(std::mt19937* rng) const {
     std::uniform_int_distribution<size_t> pick(0, floor_cells_.size() - 1);
@@ -88,6 +104,7 @@ class SeenVoxelJudge {
     return {(i + 0.5) * r_, (j + 0.5) * r_};
   }
   bool empty() const { return floor_cells_.empty(); }
+  double resolution_m() const { return r_; }
 
  private:
   int64_t Index(double v) const { return static_cast<int64_t>(std::floor(v / r_)); }
@@ -97,16 +114,21 @@ class SeenVoxelJudge {
   std::vector<std::pair<int64_t, int64_t>> floor_cells_;
 };
 
-// The robot's nominal feet at a pose, each on seen floor (within a voxel of each other),
-// or empty when the stance does not fit there.
+// Radius of seen floor around a foot spot that makes it certifiable: the foot, 1 cm, and
+// one voxel of edge uncertainty (issue 25's measure of what a sound extractor can cover).
+double CertifyRadiusM(const RobotModel& robot, double resolution_m) { return robot.foot_radius_m + 0.01 + resolution_m; }
+
+// The robot's nominal feet at a pose, each on seen floor (within a voxel of each other)
+// and, when certify_radius_m > 0, on certifiable floor; empty when the stance does not fit.
 std::vector<Eigen::Vector3d> FloorStance(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
-                                         double resolution_m) {
+                                         double resolution_m, double certify_radius_m) {
   std::vector<Eigen::Vector3d> feet;
   double lo = 1e9, hi = -1e9, z = 0.0;
   if (!judge.FloorTop({pose.x_m, pose.y_m}, &z)) return {};
   for (int leg = 0; leg < robot.num_legs(); ++leg) {
     const Eigen::Vector2d xy = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
     if (!judge.FloorTop(xy, &z)) return {};
+    if (certify_radius_m > 0.0 && !judge.Certifiable(xy, certify_radius_m)) return {};
     lo = std::min(lo, z), hi = std::max(hi, z);
     feet.emplace_back(xy.x(), xy.y(), z);
   }
@@ -123,20 +145,29 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
                             const ScanWalkOptions& o, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> yaw(-M_PI, M_PI), length(o.min_length_m, o.max_length_m);
+  const double certify = o.certifiable_ends ? CertifyRadiusM(robot, resolution_m) : 0.0;
   std::vector<Walk> walks;
   for (int attempt = 0; attempt < 200000 && static_cast<int>(walks.size()) < o.walks && !judge.empty(); ++attempt) {
     Walk w;
     const Eigen::Vector2d s = judge.RandomFloorPoint(&rng);
     w.start = {s.x(), s.y(), yaw(rng)};
-    w.start_feet = FloorStance(robot, judge, w.start, resolution_m);
+    w.start_feet = FloorStance(robot, judge, w.start, resolution_m, certify);
     if (w.start_feet.empty()) continue;
     const double heading = yaw(rng), d = length(rng);
     w.goal = {s.x() + d * std::cos(heading), s.y() + d * std::sin(heading), yaw(rng)};
-    if (FloorStance(robot, judge, w.goal, resolution_m).empty()) continue;
+    if (FloorStance(robot, judge, w.goal, resolution_m, certify).empty()) continue;
     walks.push_back(w);
   }
   return walks;
 }
+
+// Where one end's nominal feet stand: on no region, and of those on certifiable floor.
+struct EndFeet {
+  int off_regions = 0;
+  int certifiable = 0;     // of the feet off regions
+  double farthest_m = 0.0; // of the feet off regions, from the nearest region (plan view)
+  bool Coverage() const { return off_regions > 0 && certifiable == off_regions; }
+};
 
 struct WalkResult {
   SolveStatus status = SolveStatus::kInternalError;
@@ -145,7 +176,57 @@ struct WalkResult {
   int feet_off = 0;
   double time_s = 0.0;
   std::string message;
+  EndFeet start, goal;  // filled for walks that fail
 };
+
+double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy) {
+  double best = 1e9;
+  for (const ConvexRegion& r : regions) best = std::min(best, PlanDistanceToRegion(r, xy));
+  return best;
+}
+
+EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const SeenVoxelJudge& judge,
+                    const Pose2D& pose) {
+  EndFeet end;
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d xy = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
+    const double d = NearestRegionM(regions, xy);
+    if (d <= 1e-6) continue;
+    ++end.off_regions;
+    end.farthest_m = std::max(end.farthest_m, d);
+    end.certifiable += judge.Certifiable(xy, CertifyRadiusM(robot, judge.resolution_m())) ? 1 : 0;
+  }
+  return end;
+}
+
+std::string EndText(const char* name, const EndFeet& e) {
+  char line[160];
+  std::snprintf(line, sizeof(line), "%s: %d feet on no region (farthest %.2f m from one), %d of them on certifiable floor",
+                name, e.off_regions, e.farthest_m, e.certifiable);
+  return line;
+}
+
+bool Contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
+
+// The cause of a failed walk, from its status and message and where its ends stand:
+// "[coverage]" when every foot of the failing end that is on no region stands on
+// certifiable floor (a sound extractor could have covered it), "[uncertifiable floor]"
+// when one stands beside unseen or uneven floor.
+std::string FailureCause(const WalkResult& r) {
+  if (r.feet_off > 0) return "footsteps off the seen voxels";
+  auto tag = [](const EndFeet& e) { return e.Coverage() ? " [coverage]" : " [uncertifiable floor]"; };
+  if (Contains(r.message, "no region lies within one step")) {
+    return std::string("start: a start foot with no region within one step") + tag(r.start);
+  }
+  if (Contains(r.message, "m from the nearest region")) {
+    return std::string("goal: farther than a leg's reach from every region") + tag(r.goal);
+  }
+  if (Contains(r.message, "no stance on regions within")) {
+    return std::string("goal: no stance on regions within the goal tolerances") + tag(r.goal);
+  }
+  if (Contains(r.message, "regions reachable from the start end")) return "route: the reachable regions end short of the goal";
+  return "other: " + ToString(r.status);
+}
 
 WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTerrain& terrain,
                    const SeenVoxelJudge& judge, const Walk& walk, const ScanWalkOptions& o) {
@@ -181,6 +262,10 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
     }
   }
   r.valid_to_goal = HasPlan(plan.status) && plan.reaches_goal && r.feet_off == 0;
+  if (!r.valid_to_goal) {
+    r.start = DiagnoseEnd(robot, terrain.regions, judge, walk.start);
+    r.goal = DiagnoseEnd(robot, terrain.regions, judge, walk.goal);
+  }
   return r;
 }
 
@@ -190,13 +275,15 @@ std::string BaseName(const std::string& path) { return path.substr(path.find_las
 
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
                    const ScanWalkOptions& o) {
-  std::printf("walks on real scans: %d per scan and robot, %.0f-%.0f m between seen-floor stances, %.0f s each; "
+  std::printf("walks on real scans: %d per scan and robot, %.0f-%.0f m between %s stances, %.0f s each; "
               "valid = reaches the goal (or the goal moved within its tolerance) with every footstep on a voxel "
               "seen from above with room above it, within a voxel plus its region's plane tolerance (raw voxels)\n",
-              o.walks, o.min_length_m, o.max_length_m, o.time_limit_s);
+              o.walks, o.min_length_m, o.max_length_m, o.certifiable_ends ? "certifiable-floor" : "seen-floor",
+              o.time_limit_s);
   std::printf("%-20s %-10s %5s %6s %9s %6s %8s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
               "feet_off", "statuses");
   int valid_total = 0, walks_total = 0;
+  std::map<std::string, int> causes;  // of the walks that failed
   for (const std::string& scan : scans) {
     const OccupancyMap map = LoadMapFile(scan);
     for (const std::string& robot_path : robots) {
@@ -217,11 +304,16 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
         start_off += r.start_off_regions ? 1 : 0;
         feet_off += r.feet_off;
         ++statuses[ToString(r.status)];
+        if (!r.valid_to_goal) ++causes[FailureCause(r)];
         if (o.verbose) {
           std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s: %s\n",
                       BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad,
                       w.goal.x_m, w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(),
                       r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, r.message.substr(0, 300).c_str());
+          if (!r.valid_to_goal) {
+            std::printf("    cause: %s; %s; %s\n", FailureCause(r).c_str(), EndText("start", r.start).c_str(),
+                        EndText("goal", r.goal).c_str());
+          }
         }
       }
       std::string list;
@@ -234,6 +326,9 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
     }
   }
   std::printf("valid to the goal: %d of %d walks\n", valid_total, walks_total);
+  std::printf("failures by cause ([coverage]: every foot of that end on no region stands on certifiable floor, "
+              "seen for the foot radius + 1 cm + one voxel around it):\n");
+  for (const auto& [cause, count] : causes) std::printf("  %3d  %s\n", count, cause.c_str());
   return valid_total;
 }
 

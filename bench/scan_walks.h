@@ -16,6 +16,10 @@ struct ScanWalkOptions {
   double time_limit_s = 20.0; // per plan
   unsigned seed = 25;         // endpoints are drawn from this seed
   bool verbose = false;       // a line per walk
+  // Every nominal foot of both ends on certifiable floor (seen floor for the foot radius +
+  // 1 cm + one voxel around it), not merely on a seen floor cell: walks whose ends any
+  // sound extractor could cover.
+  bool certifiable_ends = false;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on

@@ -94,7 +94,10 @@ int main(int argc, char** argv) {
   app.add_option("--walks", walks.walks, "walks per scan and robot")->check(CLI::Range(1, 1000));
   app.add_option("--walk-time-limit", walks.time_limit_s, "time limit of each walk's plan [s]")
       ->check(CLI::Range(0.1, 3600.0));
-  app.add_flag("--walk-details", walks.verbose, "a line per walk");
+  app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
+  app.add_flag("--walk-certifiable", walks.certifiable_ends,
+               "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
+               "around it)");
   CLI11_PARSE(app, argc, argv);
   if (!walk_robots.empty()) {
     mfp::BenchScanWalks(scans, walk_robots, walks);

@@ -25,6 +25,7 @@
 #include "daemon/daemon_config.h"
 #include "daemon/internal/request_queue.h"
 #include "geometry/convex_region.h"
+#include "geometry/seen_surface.h"
 #include "lcmtypes/transport.h"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/plan_t.hpp"
@@ -47,11 +48,18 @@ using PlanFunction = std::function<Plan(const RobotModel& robot,
                                         const PlanRequest& request,
                                         const PlannerOptions& options)>;
 
-// Turns the bytes of a map file into regions; throws InputError on a bad map. `what`
+// What a map gives the planner: the regions a foot may be put in, and the surface the map
+// saw from above, where a start foot may already stand although no region holds it
+// (PlanRequest::seen_surface; null: start feet on regions only).
+struct MapTerrain {
+  std::vector<ConvexRegion> regions;
+  std::shared_ptr<const SeenSurface> seen_surface;
+};
+
+// Turns the bytes of a map file into its terrain; throws InputError on a bad map. `what`
 // names the source in messages.
-using MapFunction = std::function<std::vector<ConvexRegion>(const std::string& bytes,
-                                                            const std::string& format,
-                                                            const std::string& what)>;
+using MapFunction = std::function<MapTerrain(const std::string& bytes, const std::string& format,
+                                             const std::string& what)>;
 
 // status_t documents each counter.
 struct DaemonCounters {
@@ -157,6 +165,7 @@ class DaemonCore {
     QueuedRequest queued;
     std::shared_ptr<const DaemonSetup> setup;
     std::shared_ptr<const std::vector<ConvexRegion>> regions;
+    std::shared_ptr<const SeenSurface> seen_surface;  // of the same map as regions
     int64_t map_utime = 0;
     std::vector<std::vector<Footstep>> warm_start;
     double limit_s = 0.0;   // the request's time limit, from its arrival [s]
@@ -221,6 +230,7 @@ class DaemonCore {
   // Regions of the current map; shared so a plan in progress keeps its snapshot while a
   // new map replaces them.
   std::shared_ptr<const std::vector<ConvexRegion>> regions_;
+  std::shared_ptr<const SeenSurface> seen_surface_;  // of the current map; null: none
   int64_t map_utime_ = 0;          // terrain_map_t.utime of the current map
   int64_t map_receive_utime_ = 0;  // clock when it arrived
   RequestQueue queue_;

@@ -68,12 +68,12 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
     extracting_ = true;
   }
   // Extraction runs outside the lock: requests keep being answered meanwhile.
-  std::optional<std::vector<ConvexRegion>> extracted;
+  std::optional<MapTerrain> extracted;
   try {
     if (abandon_on_stop) {
       // On a thread of its own that a stop stops waiting for (the extractor has no stop
       // flag of its own yet).
-      AbandonableTask<std::vector<ConvexRegion>> task(
+      AbandonableTask<MapTerrain> task(
           [map_function, bytes, format, what] { return map_function(bytes, format, what); }, nullptr,
           launcher);
       extracted = task.Wait(std::chrono::steady_clock::time_point::max(), stopped_);
@@ -93,12 +93,13 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
     extracting_ = false;
     if (!extracted) {
       // Only a stop ends the wait without a result.
-    } else if (extracted->empty() && !accept_empty && regions_ != nullptr && !regions_->empty()) {
+    } else if (extracted->regions.empty() && !accept_empty && regions_ != nullptr && !regions_->empty()) {
       ++counters_.empty_maps;
       kept_regions = regions_->size();
     } else {
-      regions = std::make_shared<const std::vector<ConvexRegion>>(std::move(*extracted));
+      regions = std::make_shared<const std::vector<ConvexRegion>>(std::move(extracted->regions));
       regions_ = regions;
+      seen_surface_ = std::move(extracted->seen_surface);
       map_utime_ = map_utime;
       last_plans_.clear();
       map_receive_utime_ = now;

@@ -29,11 +29,13 @@ std::string WithoutNul(const std::string& s) {
 void DaemonCore::HandleRequest(const RawMessage& message, int64_t arrival_utime) {
   std::shared_ptr<const DaemonSetup> setup;
   std::shared_ptr<const std::vector<ConvexRegion>> regions;
+  std::shared_ptr<const SeenSurface> seen_surface;
   int64_t map_utime = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     setup = setup_;
     regions = regions_;
+    seen_surface = seen_surface_;
     map_utime = map_utime_;
   }
   plan_request_t request;
@@ -48,7 +50,7 @@ void DaemonCore::HandleRequest(const RawMessage& message, int64_t arrival_utime)
     ++counters_.requests;
   }
   const ValidatedRequest checked =
-      ValidateRequest(request, setup->robots, setup->config.default_robot, regions.get(),
+      ValidateRequest(request, setup->robots, setup->config.default_robot, regions.get(), seen_surface,
                       setup->config.limits, setup->config.planner);
   if (!checked.ok) {
     {

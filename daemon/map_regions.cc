@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
+#include <utility>
 
 #include "base/check.h"
 #include "base/format.h"
 #include "daemon/height_map_message.h"
+#include "io/scenario_yaml.h"
 #include "terrain/extraction/height_grid.h"
 #include "terrain/extraction/region_extractor.h"
 #include "terrain/octomap/octomap_io.h"
@@ -42,13 +45,17 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
   const size_t max_map_bytes = setup.config.limits.max_map_bytes;
   return [options, max_map_bytes](const std::string& bytes, const std::string& format,
                                    const std::string& what) {
+    RegionExtractionResult result;
     if (format == kHeightMapFormat) {
-      return ExtractRegionsFromHeightGrid(HeightGridFromBytes(bytes, max_map_bytes, what), options).regions;
+      result = ExtractRegionsFromHeightGrid(HeightGridFromBytes(bytes, max_map_bytes, what), options);
+    } else {
+      CheckMapFormat(format, what);
+      const std::vector<uint8_t> data(bytes.begin(), bytes.end());
+      result = ExtractRegions(LoadMapBytes(data, what), options);
     }
-    CheckMapFormat(format, what);
-    const std::vector<uint8_t> data(bytes.begin(), bytes.end());
-    const OccupancyMap map = LoadMapBytes(data, what);
-    return ExtractRegions(map, options).regions;
+    // The surface layers the regions were cut from: where a start foot may stand.
+    return MapTerrain{std::move(result.regions),
+                      std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers))};
   };
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "base/format.h"
 #include "planner/planning/request_check.h"
@@ -44,6 +45,7 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
                                  const std::map<std::string, RobotModel>& robots,
                                  const std::string& default_robot,
                                  const std::vector<ConvexRegion>* regions,
+                                 std::shared_ptr<const SeenSurface> seen_surface,
                                  const DaemonLimits& limits, const PlannerOptions& options) {
   if (const std::string bad = FirstNonFinite(m); !bad.empty())
     return Reject(SolveStatus::kInvalidRequest, "not a finite number: " + bad);
@@ -90,8 +92,10 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
   request.goal_yaw_rad = m.goal_yaw;
   request.max_steps = m.max_steps > 0 ? m.max_steps : limits.default_max_steps;
   request.time_limit_s = m.time_limit_s > 0 ? m.time_limit_s : limits.default_time_limit_s;
+  request.seen_surface = std::move(seen_surface);
 
-  // The planner's own checks (ranges, start feet on regions, the goal within reach).
+  // The planner's own checks (ranges, start feet on regions or the seen surface, the goal
+  // within reach).
   if (const RequestCheck check = CheckPlanRequest(robot, *regions, request, options); !check.ok())
     return Reject(check.status, check.message, name);
 

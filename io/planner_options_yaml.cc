@@ -29,6 +29,15 @@ void AddPlanKeys(Table* t) {
                    "this far (route guidance; beyond it: invalid_goal)").Unit("m"));
   t->push_back(Opt("goal_heading_tolerance", At(&P::goal_heading_tolerance_rad), 0, M_PI,
                    "... and turned at most this much").Unit("rad"));
+  t->push_back(Opt("goal_search.step", At(&P::goal_search_step_m), 1e-3, 1,
+                   "grid step of the search for that stance").Unit("m").Advanced());
+  t->push_back(Opt("goal_search.yaw_step", At(&P::goal_search_yaw_step_rad), 1e-3, M_PI,
+                   "turn step of the search for that stance").Unit("rad").Advanced());
+  t->push_back(Opt("goal_search.report_step", At(&P::goal_report_step_m), 1e-3, 1,
+                   "grid step of the search, beyond the tolerances, for the nearest stance on regions that "
+                   "invalid_goal names").Unit("m").Advanced());
+  t->push_back(Opt("goal_search.report_radius", At(&P::goal_report_radius_m), 0, 10,
+                   "... out to this distance (0: name none)").Unit("m").Advanced());
   t->push_back(Opt("start_tolerance", At(&P::start_tolerance_m), 0, 1,
                    "a start foot may lie this far off its region").Unit("m"));
   t->push_back(Opt("warm_start_match", At(&P::warm_start_match_m), 0, 1,

@@ -62,12 +62,10 @@ class RecordingPublisher final : public Publisher {
   std::vector<Recorded> messages_;
 };
 
-// Test maps: "flat" is one 4 m square at z = 0; anything else is unreadable.
-std::vector<ConvexRegion> FakeMap(const std::string& bytes, const std::string& /*format*/,
-                                  const std::string& what) {
+// Test maps: "flat" is one 4 m square at z = 0 (no seen surface); anything else is unreadable.
+MapTerrain FakeMap(const std::string& bytes, const std::string& /*format*/, const std::string& what) {
   if (bytes != "flat") throw InputError(what + ": not a test map");
-  return {MakeRegionFromPolygon(
-      0, {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}, 0.01)};
+  return {{MakeRegionFromPolygon(0, {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}, 0.01)}, nullptr};
 }
 
 // Plans nothing: returns the start stance as an optimal plan.
@@ -600,7 +598,7 @@ TEST_F(DaemonCoreTest, NoThreadForAPlanIsAnInternalErrorReplyNotACrash) {
 TEST_F(DaemonCoreTest, AMapWithoutRegionsKeepsTheWorkingOneUnlessConfigured) {
   MapFunction maps = [](const std::string& bytes, const std::string& format,
                         const std::string& what) {
-    return bytes == "empty" ? std::vector<ConvexRegion>{} : FakeMap(bytes, format, what);
+    return bytes == "empty" ? MapTerrain{} : FakeMap(bytes, format, what);
   };
   setup_ = TestSetup(4);
   core_ = std::make_unique<DaemonCore>(setup_, maps, FakePlan, publisher_, [this] { return ++now_; });

@@ -7,12 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "io/plan_json.h"
 #include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/route_guide.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "tests/test_scenarios.h"
@@ -164,9 +166,50 @@ TEST_F(StartGoalTest, AGoalFarBeyondTheToleranceIsAnInvalidGoalNamingTheFootAndT
   EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
   EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("leg "), std::string::npos) << plan.message;
-  EXPECT_NE(plan.message.find("the nearest is ("), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("the nearest stance on regions is ("), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("goal_position_tolerance"), std::string::npos) << plan.message;
   EXPECT_GT(o.goal_position_tolerance_m, 0.0);
+}
+
+// A goal beyond a leg's reach of every region (refused before any goal search) names the
+// nearest stance on regions too, so the user learns where the robot could go.
+TEST_F(StartGoalTest, AGoalBeyondReachOfEveryRegionNamesTheNearestStanceOnRegions) {
+  const PlanRequest request = Request();
+  const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 1.2);
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
+  EXPECT_NE(plan.message.find("from the nearest region"), std::string::npos) << plan.message;
+  const size_t named = plan.message.find("the nearest stance on regions is (");
+  ASSERT_NE(named, std::string::npos) << plan.message;
+  // The stance named stands on the regions, back from the goal where the floor is.
+  double x = 0.0, y = 0.0, yaw = 0.0;
+  ASSERT_EQ(std::sscanf(plan.message.c_str() + named, "the nearest stance on regions is (%lf, %lf, yaw %lf)", &x, &y, &yaw),
+            3)
+      << plan.message;
+  EXPECT_EQ(LegOffRegions(robot(), regions, GoalPose{x, y, yaw}, 0.0), -1);
+  EXPECT_LT(x, request.goal_x_m - 1.2 + FrontOffset() + 1e-9);
+}
+
+// A start foot whose route-graph step (MaxStepSpan) reaches a region but whose first step
+// in a window (within d_lim of its nominal spot) does not: no_route naming the leg and
+// the first step's box, not an infeasible first window.
+TEST_F(StartGoalTest, AStartFootWhoseFirstStepMeetsNoRegionIsNoRouteNamingItsFirstStep) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Eigen::Vector2d foot = request.start_feet_world_m[0].head<2>();
+  // A square hole about the nominal start foot, a little wider than d_lim, well inside
+  // the route graph's one-step span.
+  const double hole = robot().d_lim_m + 0.02;
+  ASSERT_LT(hole + 0.01, MaxStepSpan(robot()));
+  const std::vector<ConvexRegion> regions = FloorWithHole(foot, hole);
+  const Plan plan = PlanOn(regions, request);
+  EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
+  EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("its first step, within d_lim"), std::string::npos) << plan.message;
+  // The same hole a little narrower than d_lim leaves the first step its landing.
+  const Plan plans = PlanOn(FloorWithHole(foot, robot().d_lim_m - 0.02), request);
+  EXPECT_NE(plans.status, SolveStatus::kNoRoute) << plans.message;
+  EXPECT_NE(plans.status, SolveStatus::kInfeasible) << plans.message;
 }
 
 }  // namespace

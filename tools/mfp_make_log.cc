@@ -63,7 +63,7 @@ int Run(const std::string& scenario_path, const std::string& config_path, const 
   // The regions the daemon will extract, to put start stances on the surface.
   const std::vector<ConvexRegion> regions = MakeOctomapMapFunction(setup)(
       std::string(map_bytes.begin(), map_bytes.end()), scenario.as_height_map ? kHeightMapFormat : "bt",
-      scenario.file + ": map");
+      scenario.file + ": map").regions;
 
   std::vector<Event> events;
   terrain_map_t map{};

@@ -73,14 +73,6 @@ FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<Co
 
 namespace {
 
-// Grid of the search for a certified goal stance near the requested one [m, rad]: within
-// the tolerances, fine; beyond them (only to name the nearest one), coarse and out to
-// kGoalReportRadiusM.
-constexpr double kGoalSearchStepM = 0.02;
-constexpr double kGoalSearchYawStepRad = 0.05;
-constexpr double kGoalReportStepM = 0.05;
-constexpr double kGoalReportRadiusM = 2.0;
-
 struct GoalChoice {
   std::optional<Plan> rejected;   // invalid_goal: no certified stance within the tolerances
   std::optional<GoalPose> moved;  // plan to this instead of the request's goal
@@ -94,15 +86,37 @@ std::string PoseText(const GoalPose& p) {
   return s.str();
 }
 
+// For an invalid_goal message: "; the nearest stance on regions is (x, y, yaw), d m away"
+// from the search beyond the goal tolerances (goal_search.report_radius, turns within
+// the heading tolerance), or why none is named.
+std::string FartherStanceText(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const GoalPose& goal,
+                              const PlannerOptions& options, const Deadline& deadline) {
+  const double radius_m = options.goal_report_radius_m;
+  if (!(radius_m > options.goal_position_tolerance_m)) return "";
+  const std::optional<GoalPose> farther =
+      NearestCertifiedGoal(robot, regions, goal, radius_m, options.goal_heading_tolerance_rad, options.goal_report_step_m,
+                           options.goal_heading_tolerance_rad, 0.0, deadline);
+  std::ostringstream text;
+  text.precision(3);
+  if (farther) {
+    text << "; the nearest stance on regions is " << PoseText(*farther) << ", "
+         << std::hypot(farther->x_m - goal.x_m, farther->y_m - goal.y_m) << " m away";
+  } else if (deadline.Expired()) {
+    text << "; the search for the nearest stance on regions farther out was cut short by the time limit";
+  } else {
+    text << "; no stance on regions within " << radius_m << " m either";
+  }
+  return text.str();
+}
+
 // Under route guidance a goal stance must stand on regions (the route guide's test). One
 // with a foot spot on none is moved to the nearest certified stance within the goal
 // tolerances; beyond them the request is invalid_goal, naming the foot and the nearest
-// certified stance farther out. Requests that fail their checks are left to SetUpPlan.
+// certified stance farther out. The request has passed CheckPlanRequest.
 GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
                       const PlannerOptions& options) {
   GoalChoice choice;
   if (!options.route_guidance || request.max_windows != 0) return choice;
-  if (!CheckPlanRequest(robot, regions, request, options).ok()) return choice;
   const GoalPose goal{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
   const double tol = options.goal_tolerance_m;
   const int leg = LegOffRegions(robot, regions, goal, tol);
@@ -115,7 +129,8 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
   // The stance moved to has every spot inside a region, not merely within the goal
   // tolerance of one: its feet must be able to stand on their spots exactly.
   choice.moved = NearestCertifiedGoal(robot, regions, goal, options.goal_position_tolerance_m,
-                                      options.goal_heading_tolerance_rad, kGoalSearchStepM, kGoalSearchYawStepRad, 0.0,
+                                      options.goal_heading_tolerance_rad, options.goal_search_step_m,
+                                      options.goal_search_yaw_step_rad, 0.0,
                                       request.deadline);
   if (request.deadline.Expired()) {
     choice.moved.reset();
@@ -130,19 +145,8 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
   }
   why << "; no stance on regions within goal_position_tolerance " << options.goal_position_tolerance_m
       << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
-  const std::optional<GoalPose> farther =
-      NearestCertifiedGoal(robot, regions, goal, std::max(kGoalReportRadiusM, options.goal_position_tolerance_m),
-                           options.goal_heading_tolerance_rad, kGoalReportStepM, options.goal_heading_tolerance_rad, 0.0,
-                           request.deadline);
-  if (farther) {
-    why << "; the nearest is " << PoseText(*farther) << ", "
-        << std::hypot(farther->x_m - goal.x_m, farther->y_m - goal.y_m) << " m away";
-  } else if (request.deadline.Expired()) {
-    why << "; the search for the nearest one farther out was cut short by the time limit";
-  } else {
-    why << " or " << kGoalReportRadiusM << " m";
-  }
-  choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str());
+  choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str() + FartherStanceText(robot, regions, goal, options,
+                                                                                      request.deadline));
   return choice;
 }
 
@@ -238,6 +242,20 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                    const PlanRequest& request, const PlannerOptions& options,
                    const std::vector<RelaxationSolver*>& solvers,
                    const std::function<void(const PlanProgress&)>& on_progress) {
+  // Checked once here: the goal search below and the windows' set-up take it as checked.
+  if (const RequestCheck check = CheckPlanRequest(robot, regions, request, options); !check.ok()) {
+    const bool guided = options.route_guidance && request.max_windows == 0;
+    Plan plan = Rejected(check.status, check.status == SolveStatus::kInvalidGoal && guided
+                                           ? check.message + FartherStanceText(robot, regions,
+                                                                               {request.goal_x_m, request.goal_y_m,
+                                                                                request.goal_yaw_rad},
+                                                                               options, request.deadline)
+                                           : check.message);
+    plan.goal_x_m = request.goal_x_m;
+    plan.goal_y_m = request.goal_y_m;
+    plan.goal_yaw_rad = request.goal_yaw_rad;
+    return plan;
+  }
   GoalChoice choice = ChooseGoal(robot, regions, request, options);
   Plan plan;
   if (choice.rejected) {

@@ -78,6 +78,14 @@ struct PlannerOptions {
   // turned [rad]; beyond them the request ends invalid_goal (planner/planning/internal/goal.h).
   double goal_position_tolerance_m = 0.3;
   double goal_heading_tolerance_rad = 0.2;
+  // The grid of that search: poses goal_search_step_m apart and turns
+  // goal_search_yaw_step_rad apart within the tolerances; beyond them, only to name the
+  // nearest certified stance in the invalid_goal message, poses goal_report_step_m apart
+  // out to goal_report_radius_m (turns: the heading tolerance either way) [m, rad].
+  double goal_search_step_m = 0.02;
+  double goal_search_yaw_step_rad = 0.05;
+  double goal_report_step_m = 0.05;
+  double goal_report_radius_m = 2.0;
   // Region extraction for this robot keeps surfaces with the stance height plus this much
   // free space above them (RegionExtractorOptions::clearance_m) [m].
   double body_clearance_margin_m = 0.1;

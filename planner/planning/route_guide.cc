@@ -74,7 +74,66 @@ std::string StartFootWithoutFirstStep(const RobotModel& robot, const std::vector
   return "";
 }
 
+// True when the convex polygon meets the axis-aligned box [lo, hi] (separating axes: the
+// box's two and the polygon's edge normals).
+bool PolygonMeetsBox(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  if (poly.empty()) return false;
+  const std::vector<Eigen::Vector2d> box = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  std::vector<Eigen::Vector2d> axes = {{1.0, 0.0}, {0.0, 1.0}};
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Eigen::Vector2d edge = poly[(k + 1) % poly.size()] - poly[k];
+    if (edge.norm() > 1e-12) axes.emplace_back(-edge.y(), edge.x());
+  }
+  for (const Eigen::Vector2d& axis : axes) {
+    double pmin = kInf, pmax = -kInf, bmin = kInf, bmax = -kInf;
+    for (const Eigen::Vector2d& p : poly) pmin = std::min(pmin, axis.dot(p)), pmax = std::max(pmax, axis.dot(p));
+    for (const Eigen::Vector2d& p : box) bmin = std::min(bmin, axis.dot(p)), bmax = std::max(bmax, axis.dot(p));
+    const double slack = 1e-9 * axis.norm();
+    if (pmax < bmin - slack || bmax < pmin - slack) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                   const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
+                                   double start_tolerance_m) {
+  const Eigen::Vector2d centre = StanceCentreXY(start_feet);
+  const Eigen::Vector2d reach(robot.d_lim_m, robot.d_lim_m);
+  for (int k = 0; k < robot.num_legs(); ++k) {
+    bool held = false;
+    for (const ConvexRegion& r : regions) held = held || RegionContains(r, start_feet[k], start_tolerance_m);
+    if (held) continue;
+    const Eigen::Vector2d nominal = NominalFootXY(robot, k, centre.x(), centre.y(), start_yaw_rad);
+    bool landing = false;
+    for (const ConvexRegion& r : regions) {
+      if (r.vertices_world_m.empty()) continue;
+      double zlo = kInf, zhi = -kInf;
+      std::vector<Eigen::Vector2d> poly;
+      for (const Eigen::Vector3d& v : r.vertices_world_m) {
+        poly.push_back(v.head<2>());
+        zlo = std::min(zlo, v.z());
+        zhi = std::max(zhi, v.z());
+      }
+      const double tol = r.plane_tolerance_m + 1e-6;
+      if (zlo - tol > start_feet[k].z() + robot.dz_max_m || zhi + tol < start_feet[k].z() - robot.dz_max_m) continue;
+      if (PolygonMeetsBox(poly, nominal - reach, nominal + reach)) {
+        landing = true;
+        break;
+      }
+    }
+    if (landing) continue;
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "no route: the start foot of leg '" << robot.legs[k].name << "' at (" << start_feet[k].x() << ", "
+        << start_feet[k].y() << ", " << start_feet[k].z() << ") stands on no region, and its first step, within d_lim "
+        << robot.d_lim_m << " m of its nominal spot (" << nominal.x() << ", " << nominal.y()
+        << ") in the start stance and dz_max " << robot.dz_max_m << " m of the foot, meets no region";
+    return msg.str();
+  }
+  return "";
+}
 
 double MaxStepSpan(const RobotModel& robot) { return std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m); }
 

@@ -53,6 +53,19 @@ std::optional<Plan> GuideRoute(PlanContext* c) {
     rejected.solve_time_s = c->ElapsedSeconds();
     return rejected;
   }
+  // A route whose start feet each have a region one step away may still not start:
+  // windows of at least one step per leg take every leg's first step from the start
+  // stance, and a leg whose first step meets no region makes every window infeasible.
+  const std::string broken =
+      c->window_steps >= c->robot.num_legs()
+          ? FirstStepWithoutRegion(c->robot, c->regions, request.start_feet_world_m, request.start_yaw_rad,
+                                   options.start_tolerance_m)
+          : "";
+  if (!broken.empty()) {
+    Plan rejected = Rejected(SolveStatus::kNoRoute, broken);
+    rejected.solve_time_s = c->ElapsedSeconds();
+    return rejected;
+  }
   if (options.stance_route) {
     // Out of time here, the windows end the plan on its time limit at their first check.
     FollowStanceRoute(c->robot, c->usable, request.body_obstacles, request.start_feet_world_m, request.start_yaw_rad,
@@ -90,9 +103,6 @@ std::optional<Plan> SetUpPlan(PlanContext* c) {
   const int n = robot.num_legs();
   MFP_CHECK(n >= 2 && static_cast<int>(robot.gait.size()) == n);
 
-  if (const RequestCheck check = CheckPlanRequest(robot, c->regions, request, options); !check.ok()) {
-    return Rejected(check.status, check.message);
-  }
   c->max_steps = MaxSteps(robot, request, options);
   c->window_steps = WindowSteps(robot, request, options);
   c->time_limit_s = request.time_limit_s > 0 ? request.time_limit_s : options.default_time_limit_s;

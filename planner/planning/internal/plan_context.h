@@ -52,9 +52,10 @@ struct PlanContext {
   Eigen::Vector2d GoalXY() const { return {request.goal_x_m, request.goal_y_m}; }
 };
 
-// Checks the request, keeps the regions the start can reach and, under route guidance,
-// plans the route and sets the step budget from its length. nullopt when the windows
-// may start; else the plan that rejects the request (bad request, no route).
+// For a request that has passed CheckPlanRequest (PlanFootsteps checks it once): keeps
+// the regions the start can reach and, under route guidance, plans the route and sets the
+// step budget from its length. nullopt when the windows may start; else the plan that
+// ends the request (no route, out of time).
 std::optional<Plan> SetUpPlan(PlanContext* context);
 
 }  // namespace mfp

@@ -40,6 +40,15 @@ struct RouteGuide {
 // the reference box the previous foot stood in) [m].
 double MaxStepSpan(const RobotModel& robot);
 
+// "" or, for the first start foot that no region holds (within start_tolerance_m) whose
+// first step can land in no region, why: the MIQP puts a leg's first step within d_lim on
+// each axis of that leg's nominal spot in the start stance (centre of the start feet,
+// start yaw) and within dz_max of its start foot; no region meets that box. (The route
+// graph's one-step span, MaxStepSpan, is the reach of later steps.) start_feet: leg order.
+std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                   const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
+                                   double start_tolerance_m);
+
 // start_feet: leg order. start_tolerance_m: how far off its region a start foot may be.
 // The deadline is checked per region while the graph is built and during its search.
 RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
