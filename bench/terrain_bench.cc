@@ -17,9 +17,11 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/check.h"
+#include "bench/coverage_breakdown.h"
 #include "bench/height_map_bench.h"
 #include "bench/scan_walks.h"
 #include "terrain/extraction/map_simulation.h"
@@ -34,8 +36,10 @@ namespace {
 // A real scan (a .bt/.ot path): regions, extraction time, the floor seen from above, the
 // share of its certifiable part (eroded by foot radius + 1 cm + one voxel) the regions
 // cover, and soundness of region points against the raw voxels (voxel_quality.h).
-// Returns whether soundness is at least 0.99.
-bool BenchRealScan(const std::string& path, const mfp::RegionExtractorOptions& options, int runs) {
+// Returns whether soundness is at least 0.99; appends where the certifiable floor the
+// regions miss goes to `breakdowns` (one more extraction, recording cell fates).
+bool BenchRealScan(const std::string& path, const mfp::RegionExtractorOptions& options, int runs,
+                   std::vector<std::pair<std::string, mfp::CoverageBreakdown>>* breakdowns) {
   const mfp::OccupancyMap map = mfp::LoadMapFile(path);
   mfp::RegionExtractorOptions scan_options = options;
   scan_options.riser_uncertainty_voxels = 0.0;  // a scan occupies every voxel a ray hits
@@ -50,8 +54,11 @@ bool BenchRealScan(const std::string& path, const mfp::RegionExtractorOptions& o
   mfp::VoxelQualityOptions judge;
   judge.clearance_m = options.clearance_m;
   judge.erosion_m = options.foot_radius_m + 0.01 + map.resolution_m;
+  judge.list_missed = true;
   const mfp::VoxelQuality q = mfp::JudgeRegionsAgainstVoxels(result.regions, map, judge);
   const std::string name = path.substr(path.find_last_of('/') + 1);
+  scan_options.record_cell_fates = true;
+  breakdowns->emplace_back(name, mfp::BreakDownMissedFloor(q, mfp::ExtractRegions(map, scan_options)));
   std::printf("%-22s %6.3f %8zu %9.1f %8zu %8.2f %8.1f %9d %8.1f%% %8.1f%% %9.4f\n", name.c_str(), map.resolution_m,
               map.leaves.size(), times_ms[runs / 2], result.regions.size(), q.floor_height_m, q.seen_floor_m2,
               q.certifiable_floor_cells, 100.0 * q.seen_floor_coverage, 100.0 * q.certifiable_coverage, q.soundness);
@@ -111,8 +118,14 @@ int main(int argc, char** argv) {
                 "one voxel; sound = region point on a seen surface voxel\n");
     std::printf("%-22s %6s %8s %9s %8s %8s %8s %9s %9s %9s %9s\n", "scan", "res_m", "leaves", "median_ms",
                 "regions", "floor_z", "floor_m2", "cert_cells", "floor_cov", "cert_cov", "sound");
-    for (const std::string& path : scans) scans_ok = BenchRealScan(path, options, runs) && scans_ok;
+    std::vector<std::pair<std::string, mfp::CoverageBreakdown>> breakdowns;
+    for (const std::string& path : scans) scans_ok = BenchRealScan(path, options, runs, &breakdowns) && scans_ok;
     std::printf("real scans: soundness >= 0.99 on every scan: %s\n\n", scans_ok ? "yes" : "NO");
+    std::printf("certifiable floor missed, by cause (%% of the certifiable floor; bench/coverage_breakdown.h, "
+                "terrain/extraction/cell_fate.h)\n");
+    mfp::PrintBreakdownHeader();
+    for (const auto& [name, breakdown] : breakdowns) mfp::PrintBreakdownRow(name, breakdown);
+    std::printf("\n");
     if (scans_only) return scans_ok ? 0 : 1;
   }
   std::printf("%-22s %6s %7s %9s %8s %9s %8s %6s %9s  %s\n", "map", "res_m", "unc", "cells", "leaves", "median_ms",

@@ -452,22 +452,67 @@ std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const Patch
   return quads;
 }
 
+// Why an eroded cell lost its foot disk: a cell off the patch within the certification
+// radius (centre to centre), or only cells beyond it.
+CellFate InsetFate(const InsetField& inset, const std::vector<Offset>& offsets, int r, int c,
+                   double certify_radius_cells) {
+  for (const Offset& o : offsets) {
+    const double cell_inset = inset.At(r + o.dr, c + o.dc);
+    if (cell_inset < 0.0 || o.dist_cells >= cell_inset - 1e-12) continue;
+    if (std::hypot(o.dr, o.dc) <= certify_radius_cells + 1e-9) return CellFate::kInsetOffPatch;
+  }
+  return CellFate::kInsetBeyond;
+}
+
+bool InsideQuad(const Quad2d& quad, const Eigen::Vector2d& p) {  // counter-clockwise
+  for (int i = 0; i < 4; ++i) {
+    if (Cross(quad[(i + 1) % 4] - quad[i], p - quad[i]) < -1e-12) return false;
+  }
+  return true;
+}
+
+// Per patch cell: inset (and why), covered by a quad, or neither.
+std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& patch, const LocalGrid& mask,
+                                     const LocalGrid& eroded, const InsetField& inset,
+                                     const std::vector<Offset>& offsets, double certify_radius_cells,
+                                     const std::vector<Quad2d>& quads) {
+  std::vector<CellFate> fates;
+  fates.reserve(patch.cells.size());
+  for (int cell : patch.cells) {
+    const int r = cell / hm.cols - mask.row0, c = cell % hm.cols - mask.col0;
+    if (!eroded.At(r, c)) {
+      fates.push_back(InsetFate(inset, offsets, r, c, certify_radius_cells));
+      continue;
+    }
+    const Eigen::Vector2d centre = hm.CellCenter(cell / hm.cols, cell % hm.cols);
+    const bool covered = std::any_of(quads.begin(), quads.end(), [&](const Quad2d& q) { return InsideQuad(q, centre); });
+    fates.push_back(covered ? CellFate::kCovered : CellFate::kUncovered);
+  }
+  return fates;
+}
+
 }  // namespace
 
 std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
-                                   const PatchDecompositionOptions& options) {
+                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates) {
+  if (fates != nullptr) fates->assign(patch.cells.size(), CellFate::kSmallPatch);
   if (patch.cells.empty()) return {};
   const double res = hm.resolution_m;
   const InsetsInCells insets = ToCells(options, res);
   const LocalGrid mask = PatchMask(hm, patch);
   const InsetField inset(hm, mask, options, insets);
   if (mask.rows < 2 || mask.cols < 2) return {};
-  const LocalGrid eroded = ErodedMask(mask, inset, DiskOffsets(insets.max, res), res);
+  const std::vector<Offset> offsets = DiskOffsets(insets.max, res);
+  const LocalGrid eroded = ErodedMask(mask, inset, offsets, res);
   const LocalGrid dual = DualSquares(eroded);
   const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
   const double angle = PrincipalAngleRad(hm, patch);
   const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
-  return use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
+  std::vector<Quad2d> quads = use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
+  if (fates != nullptr) {
+    *fates = PatchCellFates(hm, patch, mask, eroded, inset, offsets, insets.base + insets.drop, quads);
+  }
+  return quads;
 }
 
 }  // namespace mfp

@@ -13,6 +13,7 @@
 
 #include "geometry/convex_region.h"
 #include "geometry/terrain_description.h"
+#include "terrain/extraction/cell_fate.h"
 #include "terrain/extraction/height_map.h"
 #include "terrain/extraction/internal/surface_layers.h"
 #include "terrain/extraction/occupancy_map.h"
@@ -78,6 +79,9 @@ struct RegionExtractorOptions {
   // 201^2 visits per cell) is refused up front, naming its resolution, instead of taking
   // minutes. About 1e8 visits a second on one core; a 4096^2-cell map at w = 1 is 1.5e8.
   double max_fit_work = 3e8;
+  // Record what became of every surface cell (RegionExtractionResult::cell_fates): a
+  // diagnostic for benches, off by default.
+  bool record_cell_fates = false;
   // Ends the extraction (checked every height map row and every patch): the regions of
   // the patches done so far are returned, with a message saying the time ran out.
   Deadline deadline;
@@ -105,6 +109,8 @@ struct RegionExtractionResult {
   HeightMap height_map;               // layer 0, for display
   std::vector<HeightMap> layers;      // every surface layer (mfp-regions --svg shows them apart)
   std::vector<int> region_layer;      // per region, the layer it lies on
+  // With record_cell_fates: per layer and height map cell, a CellFate (cell_fate.h).
+  std::vector<std::vector<CellFate>> cell_fates;
   std::string message;                // why there are no regions, when there are none
   bool stopped = false;               // the deadline ended it early (message says where)
 };
