@@ -48,6 +48,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
   RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
   RequireRange("max_regions_per_patch", o.max_regions_per_patch, 1, 10000, false);
+  RequireRange("regions_per_m2", o.regions_per_m2, 0.0, 1e4, false);
   RequireRange("max_regions", o.max_regions, 0, 100000, false);
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
 }
@@ -170,6 +171,8 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
     // Region area on the plane = projected area / cos(slope).
     dec.min_area_xy_m2 = min_area_m2 * cos_slope;
     dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
+    dec.cover.max_rects = static_cast<int>(std::min(
+        1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
     const std::vector<Quad2d> quads = DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch,
                                                      dec, record ? &patch_fates : nullptr);
     if (quads.empty()) ++stats.patches_too_small;

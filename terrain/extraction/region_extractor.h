@@ -62,7 +62,12 @@ struct RegionExtractorOptions {
   double seed_roughness_voxels = 0.35;  // RMS residual of the local fit for a patch seed
   double plane_tolerance_voxels = 0.5;  // half-thickness of each region's plane slab
   double target_coverage = 0.97;        // stop covering a patch once this fraction is covered
+  // A patch's cover stops at max(max_regions_per_patch, regions_per_m2 * the patch's
+  // area) regions. A floor with scattered holes (every cut inset by the foot) needs
+  // regions in proportion to its area: a fixed 24 left a quarter of a scanned room's
+  // certifiable floor uncovered (docs/measurements.md, "Where the seen floor goes").
   int max_regions_per_patch = 24;
+  double regions_per_m2 = 4.0;
   // Rectangles of one patch may overlap (each grown over cells others cover). Off: they
   // only share sides, so a foothold inside a patch has one region, not several equivalent
   // ones for the branch-and-bound to tell apart (ANYmal C down the scanned corridor:
