@@ -16,10 +16,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/check.h"
+#include "bench/coverage_breakdown.h"
 #include "bench/height_map_bench.h"
 #include "bench/scan_walks.h"
 #include "terrain/extraction/map_simulation.h"
@@ -34,26 +37,34 @@ namespace {
 // A real scan (a .bt/.ot path): regions, extraction time, the floor seen from above, the
 // share of its certifiable part (eroded by foot radius + 1 cm + one voxel) the regions
 // cover, and soundness of region points against the raw voxels (voxel_quality.h).
-// Returns whether soundness is at least 0.99.
-bool BenchRealScan(const std::string& path, const mfp::RegionExtractorOptions& options, int runs) {
+// Returns whether soundness is at least 0.99; appends where the certifiable floor the
+// regions miss goes to `breakdowns` (one more extraction, recording cell fates).
+bool BenchRealScan(const std::string& path, const mfp::RegionExtractorOptions& options, int runs,
+                   std::vector<std::pair<std::string, mfp::CoverageBreakdown>>* breakdowns) {
   const mfp::OccupancyMap map = mfp::LoadMapFile(path);
   mfp::RegionExtractorOptions scan_options = options;
   scan_options.riser_uncertainty_voxels = 0.0;  // a scan occupies every voxel a ray hits
-  std::vector<double> times_ms;
+  std::vector<double> times_ms, cpu_ms;
   mfp::RegionExtractionResult result;
   for (int i = 0; i < runs; ++i) {
     const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
     result = mfp::ExtractRegions(map, scan_options);
+    cpu_ms.push_back(1e3 * static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
     times_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   std::nth_element(times_ms.begin(), times_ms.begin() + runs / 2, times_ms.end());
+  std::nth_element(cpu_ms.begin(), cpu_ms.begin() + runs / 2, cpu_ms.end());
   mfp::VoxelQualityOptions judge;
   judge.clearance_m = options.clearance_m;
   judge.erosion_m = options.foot_radius_m + 0.01 + map.resolution_m;
+  judge.list_missed = true;
   const mfp::VoxelQuality q = mfp::JudgeRegionsAgainstVoxels(result.regions, map, judge);
   const std::string name = path.substr(path.find_last_of('/') + 1);
-  std::printf("%-22s %6.3f %8zu %9.1f %8zu %8.2f %8.1f %9d %8.1f%% %8.1f%% %9.4f\n", name.c_str(), map.resolution_m,
-              map.leaves.size(), times_ms[runs / 2], result.regions.size(), q.floor_height_m, q.seen_floor_m2,
+  scan_options.record_cell_fates = true;
+  breakdowns->emplace_back(name, mfp::BreakDownMissedFloor(q, mfp::ExtractRegions(map, scan_options)));
+  std::printf("%-22s %6.3f %8zu %9.1f %7.1f %8zu %8.2f %8.1f %9d %8.1f%% %8.1f%% %9.4f\n", name.c_str(),
+              map.resolution_m, map.leaves.size(), times_ms[runs / 2], cpu_ms[runs / 2], result.regions.size(), q.floor_height_m, q.seen_floor_m2,
               q.certifiable_floor_cells, 100.0 * q.seen_floor_coverage, 100.0 * q.certifiable_coverage, q.soundness);
   if (q.soundness < 1.0) {
     std::printf("  %d of %d region points off seen surface, e.g. at (%.3f, %.3f, %.3f)\n",
@@ -81,6 +92,22 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 100.0));
   app.add_option("--max-slope", options.max_slope_rad, "steepest walkable slope [rad]")
       ->check(CLI::Range(0.01, 1.5));
+  app.add_option("--max-regions-per-patch", options.max_regions_per_patch, "regions per planar patch at most")
+      ->check(CLI::Range(1, 10000));
+  app.add_option("--regions-per-m2", options.regions_per_m2, "a patch's regions per square metre at most")
+      ->check(CLI::Range(0.0, 1e4));
+  app.add_option("--target-coverage", options.target_coverage, "a patch's cover stops at this share")
+      ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--noise-max-cells", options.noise_max_cells, "largest group of off-plane cells kept in a patch")
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--edge-uncertainty", options.edge_uncertainty_voxels,
+                 "how far inside its outermost voxel a surface may end at a drop [voxels]")
+      ->check(CLI::Range(0.0, 10.0));
+  app.add_option("--max-residual", options.max_residual_voxels, "patch cells further from the plane are dropped [voxels]")
+      ->check(CLI::Range(0.01, 10.0));
+  app.add_option("--grow-tolerance", options.grow_tolerance_voxels, "a cell joins a patch within this of its plane [voxels]")
+      ->check(CLI::Range(0.01, 10.0));
+  app.add_flag("--overlapping-regions", options.overlapping_regions, "a patch's regions may overlap");
   app.add_flag("!--no-large", large, "skip the scanned corridor and the 40 m x 15 m floor");
   app.add_option("--scan", scans, "a real scan (.bt/.ot) judged against its own voxels (repeatable)")
       ->check(CLI::ExistingFile);
@@ -112,10 +139,16 @@ int main(int argc, char** argv) {
     std::printf("real scans: floor = seen surface voxels (known free above, no occupied voxel within the "
                 "clearance) of the dominant level +-0.1 m; certifiable = floor eroded by foot radius + 1 cm + "
                 "one voxel; sound = region point on a seen surface voxel\n");
-    std::printf("%-22s %6s %8s %9s %8s %8s %8s %9s %9s %9s %9s\n", "scan", "res_m", "leaves", "median_ms",
-                "regions", "floor_z", "floor_m2", "cert_cells", "floor_cov", "cert_cov", "sound");
-    for (const std::string& path : scans) scans_ok = BenchRealScan(path, options, runs) && scans_ok;
+    std::printf("%-22s %6s %8s %9s %7s %8s %8s %8s %9s %9s %9s %9s\n", "scan", "res_m", "leaves", "median_ms",
+                "cpu_ms", "regions", "floor_z", "floor_m2", "cert_cells", "floor_cov", "cert_cov", "sound");
+    std::vector<std::pair<std::string, mfp::CoverageBreakdown>> breakdowns;
+    for (const std::string& path : scans) scans_ok = BenchRealScan(path, options, runs, &breakdowns) && scans_ok;
     std::printf("real scans: soundness >= 0.99 on every scan: %s\n\n", scans_ok ? "yes" : "NO");
+    std::printf("certifiable floor missed, by cause (%% of the certifiable floor; bench/coverage_breakdown.h, "
+                "terrain/extraction/cell_fate.h)\n");
+    mfp::PrintBreakdownHeader();
+    for (const auto& [name, breakdown] : breakdowns) mfp::PrintBreakdownRow(name, breakdown);
+    std::printf("\n");
     if (scans_only) return scans_ok ? 0 : 1;
   }
   std::printf("%-22s %6s %7s %9s %8s %9s %8s %6s %9s  %s\n", "map", "res_m", "unc", "cells", "leaves", "median_ms",

@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
 #include "base/check.h"
+#include "terrain/extraction/cell_fate.h"
 #include "terrain/extraction/voxelize.h"
 #include "terrain/quality/terrain_catalogue.h"
 #include "terrain/quality/terrain_quality.h"
@@ -270,6 +272,107 @@ TEST(RegionExtractorLimits, AnExpiredDeadlineEndsTheExtractionWithAMessage) {
   std::atomic<bool> stop{false};
   options.deadline = Deadline().WithStop(&stop);
   EXPECT_FALSE(ExtractRegions(FineStones(0.02), options).stopped);
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+// A 3 m x 3 m floor at 2 cm with a one-voxel hole every 0.2 m (its column drops to ground
+// 0.4 m below): one patch with 196 holes, each inset by foot + margin + half a voxel.
+OccupancyMap FloorWithHoles(std::vector<Eigen::Vector2d>* holes) {
+  TerrainDescription t;
+  t.resolution_m = 0.02;
+  TerrainBox floor, ground;
+  floor.center_world_m = Eigen::Vector3d(1.5, 1.5, -0.03);
+  floor.size_m = Eigen::Vector3d(3.0, 3.0, 0.06);
+  ground.center_world_m = Eigen::Vector3d(1.5, 1.5, -0.45);
+  ground.size_m = Eigen::Vector3d(3.0, 3.0, 0.1);
+  t.boxes = {floor, ground};
+  OccupancyMap map = VoxelizeTerrain(t);
+  for (int i = 1; i < 15; ++i) {
+    for (int j = 1; j < 15; ++j) holes->emplace_back(0.2 * i + 0.01, 0.2 * j + 0.01);  // voxel centres
+  }
+  auto in_hole = [&](const OccupiedLeaf& leaf) {
+    if (leaf.center_world_m.z() < -0.2) return false;
+    for (const Eigen::Vector2d& h : *holes) {
+      if ((leaf.center_world_m.head<2>() - h).cwiseAbs().maxCoeff() < 0.005) return true;
+    }
+    return false;
+  };
+  map.leaves.erase(std::remove_if(map.leaves.begin(), map.leaves.end(), in_hole), map.leaves.end());
+  return map;
+}
+
+struct FloorCover {
+  int regions = 0;
+  double area_m2 = 0.0;
+  int unsound = 0;  // sampled points closer than foot + margin to a hole
+};
+
+// Regions on the floor (height 0) and their area; every sampled point keeps foot + margin
+// from every hole's square.
+FloorCover CoverFloorWithHoles(double regions_per_m2, RegionExtractionResult* out = nullptr) {
+  std::vector<Eigen::Vector2d> holes;
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.01;
+  options.edge_uncertainty_voxels = 0.5;  // a voxelisation
+  options.regions_per_m2 = regions_per_m2;
+  options.record_cell_fates = out != nullptr;
+  RegionExtractionResult result = ExtractRegions(FloorWithHoles(&holes), options);
+  FloorCover cover;
+  const double step = 0.004, keep = 0.02 - 1e-9;
+  for (const ConvexRegion& r : result.regions) {
+    if (std::abs(r.HeightAt(Min(r).x(), Min(r).y())) > 0.01) continue;
+    ++cover.regions;
+    const Eigen::Vector2d lo = Min(r), hi = Max(r);
+    for (double x = lo.x() + 0.5 * step; x < hi.x(); x += step) {
+      for (double y = lo.y() + 0.5 * step; y < hi.y(); y += step) {
+        if (PlanDistanceToRegion(r, {x, y}) > 0.0) continue;
+        cover.area_m2 += step * step;
+        for (const Eigen::Vector2d& h : holes) {
+          const Eigen::Vector2d d = ((Eigen::Vector2d(x, y) - h).cwiseAbs().array() - 0.01).max(0.0);
+          if (d.norm() < keep && ++cover.unsound == 1) {
+            ADD_FAILURE() << "region " << r.id << " point (" << x << ", " << y << ") near hole " << h.transpose();
+          }
+        }
+      }
+    }
+  }
+  if (out != nullptr) *out = std::move(result);
+  return cover;
+}
+
+TEST(RegionExtractorCover, AFloorWithScatteredHolesGetsRegionsInProportionToItsArea) {
+  const FloorCover fixed = CoverFloorWithHoles(0.0);  // 24 regions per patch at most
+  const FloorCover sized = CoverFloorWithHoles(8.0);  // up to 72 for the 9 m^2 patch
+  EXPECT_LE(fixed.regions, 24);
+  EXPECT_GT(sized.regions, 24);
+  EXPECT_LE(sized.regions, 72);
+  EXPECT_EQ(fixed.unsound + sized.unsound, 0);
+  // What a foot centre may use: the floor inset by 3 cm (foot, margin, half a voxel) at
+  // its border and from each hole's square.
+  const double usable_m2 = 2.94 * 2.94 - 196 * (0.02 * 0.02 + 4 * 0.02 * 0.03 + M_PI * 0.03 * 0.03);
+  EXPECT_LT(fixed.area_m2, 0.85 * usable_m2);
+  EXPECT_GT(sized.area_m2, fixed.area_m2 + 0.05 * usable_m2);
+}
+
+TEST(RegionExtractorCover, CellFatesSayWhatBecameOfEachFloorCell) {
+  RegionExtractionResult result;
+  CoverFloorWithHoles(8.0, &result);
+  ASSERT_EQ(result.cell_fates.size(), result.layers.size());
+  const HeightMap& hm = result.layers.front();
+  auto fate_at = [&](double x, double y) {
+    const int col = static_cast<int>(std::floor((x - hm.origin_world_m.x()) / hm.resolution_m));
+    const int row = static_cast<int>(std::floor((y - hm.origin_world_m.y()) / hm.resolution_m));
+    return result.cell_fates[0][static_cast<size_t>(hm.Index(row, col))];
+  };
+  EXPECT_NE(fate_at(1.01, 1.01), CellFate::kCovered);           // a hole
+  EXPECT_EQ(fate_at(1.03, 1.01), CellFate::kInsetOffPatch);     // beside it
+  EXPECT_EQ(fate_at(1.11, 1.11), CellFate::kCovered);           // between four holes
+  EXPECT_EQ(fate_at(0.01, 1.51), CellFate::kInsetOffPatch);     // at the floor's border
 }
 
 }  // namespace

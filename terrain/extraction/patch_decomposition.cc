@@ -372,48 +372,69 @@ struct OutsideCell {
   double inset_cells;
 };
 
-std::vector<OutsideCell> OutsideCells(const LocalGrid& mask, const InsetField& inset) {
-  std::vector<OutsideCell> outside;
+// The outside cells row by row (rows from -ring, each in column order), so a test near
+// a rectangle visits only the rows and columns within reach of it.
+struct OutsideCells {
+  int row0 = 0;
+  std::vector<std::vector<OutsideCell>> rows;
+};
+
+OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
+  OutsideCells outside;
+  outside.row0 = -inset.ring();
   for (int r = -inset.ring(); r < mask.rows + inset.ring(); ++r) {
+    std::vector<OutsideCell>& row = outside.rows.emplace_back();
     for (int c = -inset.ring(); c < mask.cols + inset.ring(); ++c) {
       if (mask.Contains(r, c)) continue;
-      outside.push_back({r, c, inset.At(r, c)});
+      row.push_back({r, c, inset.At(r, c)});
     }
   }
   return outside;
 }
 
+// Whether a rectangle keeps `out`'s inset from the cell's square (false) or not (true).
+bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out,
+              double u0, double u1, double v0, double v1) {
+  const int r = out.r, c = out.c;
+  const double step = RotatedFrame::kStep;
+  // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
+  const Eigen::Vector2d centre(c, r);
+  const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
+  const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+  if (centre_dist >= out.inset_cells + 0.7072) return false;
+  if (centre_dist < out.inset_cells - 0.7072) return true;
+  const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
+                                               Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
+  return QuadDistance(quad, cell) < out.inset_cells - 1e-9;
+}
+
 // Whether the rotated rectangle [u0, u1] x [v0, v1] (rotated-grid steps) keeps the inset
 // from every cell square outside the patch: an exact test.
-bool RotatedRectSafe(const RotatedFrame& frame, const std::vector<OutsideCell>& outside,
-                     double max_inset_cells, double u0, double u1, double v0, double v1) {
+bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells, double u0,
+                     double u1, double v0, double v1) {
   const std::array<Eigen::Vector2d, 4> quad = {frame.Corner(u0, v0), frame.Corner(u1, v0),
                                                frame.Corner(u1, v1), frame.Corner(u0, v1)};
   Box2d box;
   for (const Eigen::Vector2d& p : quad) box.Add(p);
-  const double step = RotatedFrame::kStep;
-  for (const OutsideCell& out : outside) {
-    const int r = out.r, c = out.c;
-    if (r < box.ymin - max_inset_cells - 1 || r > box.ymax + max_inset_cells + 1 ||
-        c < box.xmin - max_inset_cells - 1 || c > box.xmax + max_inset_cells + 1) {
-      continue;
+  // Cells further than the largest inset plus a cell from the box cannot be too close.
+  const double reach = max_inset_cells + 1;
+  const int n_rows = static_cast<int>(outside.rows.size());
+  const int first = std::max(0, static_cast<int>(std::ceil(box.ymin - reach)) - outside.row0);
+  const int last = std::min(n_rows - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
+  for (int i = first; i <= last; ++i) {
+    const std::vector<OutsideCell>& row = outside.rows[static_cast<size_t>(i)];
+    auto it = std::lower_bound(row.begin(), row.end(), box.xmin - reach,
+                               [](const OutsideCell& cell, double x) { return cell.c < x; });
+    for (; it != row.end() && it->c <= box.xmax + reach; ++it) {
+      if (TooClose(frame, quad, *it, u0, u1, v0, v1)) return false;
     }
-    // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
-    const Eigen::Vector2d centre(c, r);
-    const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
-    const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
-    if (centre_dist >= out.inset_cells + 0.7072) continue;
-    if (centre_dist < out.inset_cells - 0.7072) return false;
-    const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
-                                                 Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
-    if (QuadDistance(quad, cell) < out.inset_cells - 1e-9) return false;
   }
   return true;
 }
 
 // Each side of a safe rotated rectangle moves out (in rotated-grid steps, up to one cell)
 // while the rectangle stays safe, by bisection.
-void GrowRotatedRect(const RotatedFrame& frame, const std::vector<OutsideCell>& outside,
+void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside,
                      double max_inset_cells, double* a0, double* a1, double* b0, double* b1) {
   const double most = 1.0 / RotatedFrame::kStep;  // one cell, in rotated-grid steps
   auto grow = [&](double* side, double sign) {
@@ -435,7 +456,7 @@ void GrowRotatedRect(const RotatedFrame& frame, const std::vector<OutsideCell>& 
 std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const PatchDecompositionOptions& options) {
   const RotatedFrame frame(angle, *in.dual);
   const LocalGrid rotated = RotatedGrid(frame, *in.dual);
-  const std::vector<OutsideCell> outside = OutsideCells(*in.mask, *in.inset);
+  const OutsideCells outside = ListOutsideCells(*in.mask, *in.inset);
   RectangleCoverOptions cover = options.cover;
   const double step = RotatedFrame::kStep;
   cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, step * step * in.res * in.res);
@@ -452,22 +473,67 @@ std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const Patch
   return quads;
 }
 
+// Why an eroded cell lost its foot disk: a cell off the patch within the certification
+// radius (centre to centre), or only cells beyond it.
+CellFate InsetFate(const InsetField& inset, const std::vector<Offset>& offsets, int r, int c,
+                   double certify_radius_cells) {
+  for (const Offset& o : offsets) {
+    const double cell_inset = inset.At(r + o.dr, c + o.dc);
+    if (cell_inset < 0.0 || o.dist_cells >= cell_inset - 1e-12) continue;
+    if (std::hypot(o.dr, o.dc) <= certify_radius_cells + 1e-9) return CellFate::kInsetOffPatch;
+  }
+  return CellFate::kInsetBeyond;
+}
+
+bool InsideQuad(const Quad2d& quad, const Eigen::Vector2d& p) {  // counter-clockwise
+  for (int i = 0; i < 4; ++i) {
+    if (Cross(quad[(i + 1) % 4] - quad[i], p - quad[i]) < -1e-12) return false;
+  }
+  return true;
+}
+
+// Per patch cell: inset (and why), covered by a quad, or neither.
+std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& patch, const LocalGrid& mask,
+                                     const LocalGrid& eroded, const InsetField& inset,
+                                     const std::vector<Offset>& offsets, double certify_radius_cells,
+                                     const std::vector<Quad2d>& quads) {
+  std::vector<CellFate> fates;
+  fates.reserve(patch.cells.size());
+  for (int cell : patch.cells) {
+    const int r = cell / hm.cols - mask.row0, c = cell % hm.cols - mask.col0;
+    if (!eroded.At(r, c)) {
+      fates.push_back(InsetFate(inset, offsets, r, c, certify_radius_cells));
+      continue;
+    }
+    const Eigen::Vector2d centre = hm.CellCenter(cell / hm.cols, cell % hm.cols);
+    const bool covered = std::any_of(quads.begin(), quads.end(), [&](const Quad2d& q) { return InsideQuad(q, centre); });
+    fates.push_back(covered ? CellFate::kCovered : CellFate::kUncovered);
+  }
+  return fates;
+}
+
 }  // namespace
 
 std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
-                                   const PatchDecompositionOptions& options) {
+                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates) {
+  if (fates != nullptr) fates->assign(patch.cells.size(), CellFate::kSmallPatch);
   if (patch.cells.empty()) return {};
   const double res = hm.resolution_m;
   const InsetsInCells insets = ToCells(options, res);
   const LocalGrid mask = PatchMask(hm, patch);
   const InsetField inset(hm, mask, options, insets);
   if (mask.rows < 2 || mask.cols < 2) return {};
-  const LocalGrid eroded = ErodedMask(mask, inset, DiskOffsets(insets.max, res), res);
+  const std::vector<Offset> offsets = DiskOffsets(insets.max, res);
+  const LocalGrid eroded = ErodedMask(mask, inset, offsets, res);
   const LocalGrid dual = DualSquares(eroded);
   const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
   const double angle = PrincipalAngleRad(hm, patch);
   const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
-  return use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
+  std::vector<Quad2d> quads = use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
+  if (fates != nullptr) {
+    *fates = PatchCellFates(hm, patch, mask, eroded, inset, offsets, insets.base + insets.drop, quads);
+  }
+  return quads;
 }
 
 }  // namespace mfp

@@ -48,6 +48,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
   RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
   RequireRange("max_regions_per_patch", o.max_regions_per_patch, 1, 10000, false);
+  RequireRange("regions_per_m2", o.regions_per_m2, 0.0, 1e4, false);
   RequireRange("max_regions", o.max_regions, 0, 100000, false);
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
 }
@@ -135,35 +136,52 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
   const double min_area_m2 = options.min_region_area_voxels > 0.0
                                  ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
                                  : options.min_region_area_m2;
+  const bool record = options.record_cell_fates;
+  std::vector<CellFate> patch_fates;
+  auto mark = [&](const LayerPatch& lp, CellFate fate) {
+    if (!record) return;
+    for (int cell : lp.patch.cells) result->cell_fates[static_cast<size_t>(lp.layer)][static_cast<size_t>(cell)] = fate;
+  };
   int patches_done = 0;
   bool capped = false;  // max_regions reached: the patches left are not decomposed
   for (const LayerPatch& layer_patch : patches) {
-    if (capped) break;
-    if (options.deadline.Expired()) {
+    if (capped || options.deadline.Expired()) {
+      mark(layer_patch, CellFate::kNotDecomposed);
+      if (capped || result->stopped) continue;
       result->stopped = true;
       result->message = "time limit reached after " + std::to_string(patches_done) + " of " +
                         std::to_string(patches.size()) + " planar patches (the largest first)";
-      break;
+      continue;
     }
     ++patches_done;
     const PlanarPatch& patch = layer_patch.patch;
     const double slope = patch.SlopeRad();
     if (slope > options.max_slope_rad) {
       ++stats.patches_too_steep;
+      mark(layer_patch, CellFate::kSteepPatch);
       continue;
     }
     const double cos_slope = std::cos(slope);
     const double patch_area_m2 = patch.cells.size() * res * res / cos_slope;
     if (patch_area_m2 < foot_area_m2) {
       ++stats.patches_too_small;
+      mark(layer_patch, CellFate::kSmallPatch);
       continue;
     }
     // Region area on the plane = projected area / cos(slope).
     dec.min_area_xy_m2 = min_area_m2 * cos_slope;
     dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
-    const std::vector<Quad2d> quads =
-        DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch, dec);
+    dec.cover.max_rects = static_cast<int>(std::min(
+        1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
+    const std::vector<Quad2d> quads = DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch,
+                                                     dec, record ? &patch_fates : nullptr);
     if (quads.empty()) ++stats.patches_too_small;
+    if (record) {
+      for (size_t i = 0; i < patch.cells.size(); ++i) {
+        const CellFate fate = quads.empty() ? CellFate::kSmallPatch : patch_fates[i];
+        result->cell_fates[static_cast<size_t>(layer_patch.layer)][static_cast<size_t>(patch.cells[i])] = fate;
+      }
+    }
     for (const Quad2d& quad : quads) {
       if (static_cast<int>(result->regions.size()) >= options.max_regions) {
         capped = true;
@@ -179,6 +197,18 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
   if (capped) {
     result->message = "kept the " + std::to_string(options.max_regions) +
                       " regions of the largest planar patches (max_regions); smaller footholds are missing";
+  }
+}
+
+// Every surface cell not in a patch yet; empty cells kNoSurface.
+void InitCellFates(RegionExtractionResult* result) {
+  result->cell_fates.clear();
+  for (const HeightMap& hm : result->layers) {
+    std::vector<CellFate> fates(hm.height_m.size(), CellFate::kNoSurface);
+    for (size_t i = 0; i < fates.size(); ++i) {
+      if (!std::isnan(hm.height_m[i])) fates[i] = CellFate::kNotInPatch;
+    }
+    result->cell_fates.push_back(std::move(fates));
   }
 }
 
@@ -219,6 +249,7 @@ void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions
   stats.segmentation_s = SecondsSince(t);
   stats.patches = static_cast<int>(patches.size());
 
+  if (options.record_cell_fates) InitCellFates(result);
   t = Clock::now();
   DecomposePatches(patches, layers.solid_beside, res, options, result);
   stats.decomposition_s = SecondsSince(t);

@@ -13,6 +13,7 @@
 
 #include "geometry/convex_region.h"
 #include "geometry/terrain_description.h"
+#include "terrain/extraction/cell_fate.h"
 #include "terrain/extraction/height_map.h"
 #include "terrain/extraction/internal/surface_layers.h"
 #include "terrain/extraction/occupancy_map.h"
@@ -61,7 +62,12 @@ struct RegionExtractorOptions {
   double seed_roughness_voxels = 0.35;  // RMS residual of the local fit for a patch seed
   double plane_tolerance_voxels = 0.5;  // half-thickness of each region's plane slab
   double target_coverage = 0.97;        // stop covering a patch once this fraction is covered
+  // A patch's cover stops at max(max_regions_per_patch, regions_per_m2 * the patch's
+  // area) regions. A floor with scattered holes (every cut inset by the foot) needs
+  // regions in proportion to its area: a fixed 24 left a quarter of a scanned room's
+  // certifiable floor uncovered (docs/measurements.md, "Where the seen floor goes").
   int max_regions_per_patch = 24;
+  double regions_per_m2 = 4.0;
   // Rectangles of one patch may overlap (each grown over cells others cover). Off: they
   // only share sides, so a foothold inside a patch has one region, not several equivalent
   // ones for the branch-and-bound to tell apart (ANYmal C down the scanned corridor:
@@ -78,6 +84,9 @@ struct RegionExtractorOptions {
   // 201^2 visits per cell) is refused up front, naming its resolution, instead of taking
   // minutes. About 1e8 visits a second on one core; a 4096^2-cell map at w = 1 is 1.5e8.
   double max_fit_work = 3e8;
+  // Record what became of every surface cell (RegionExtractionResult::cell_fates): a
+  // diagnostic for benches, off by default.
+  bool record_cell_fates = false;
   // Ends the extraction (checked every height map row and every patch): the regions of
   // the patches done so far are returned, with a message saying the time ran out.
   Deadline deadline;
@@ -105,6 +114,8 @@ struct RegionExtractionResult {
   HeightMap height_map;               // layer 0, for display
   std::vector<HeightMap> layers;      // every surface layer (mfp-regions --svg shows them apart)
   std::vector<int> region_layer;      // per region, the layer it lies on
+  // With record_cell_fates: per layer and height map cell, a CellFate (cell_fate.h).
+  std::vector<std::vector<CellFate>> cell_fates;
   std::string message;                // why there are no regions, when there are none
   bool stopped = false;               // the deadline ended it early (message says where)
 };

@@ -124,6 +124,7 @@ VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions,
       if (!certifiable) continue;
       ++q.certifiable_floor_cells;
       q.certifiable_covered_cells += covered ? 1 : 0;
+      if (!covered && options.list_missed) q.missed_certifiable.emplace_back(xy.x(), xy.y(), top);
     }
     q.seen_floor_m2 = q.seen_floor_cells * r * r;
     q.seen_floor_coverage = q.seen_floor_cells > 0 ? static_cast<double>(seen_covered) / q.seen_floor_cells : 0.0;

@@ -28,6 +28,7 @@ struct VoxelQualityOptions {
   double erosion_m = 0.07;      // foot radius + 1 cm + one voxel, typically [m]
   double floor_band_m = 0.1;    // floor voxels lie within this of the dominant height [m]
   double sample_step_m = 0.0;   // region sampling step; 0: the map's resolution [m]
+  bool list_missed = false;     // fill VoxelQuality::missed_certifiable
 };
 
 struct VoxelQuality {
@@ -43,6 +44,9 @@ struct VoxelQuality {
   int sound_samples = 0;
   double soundness = 1.0;             // sound / samples (1 without regions)
   Eigen::Vector3d worst_point = Eigen::Vector3d::Zero();  // an unsound sample, if any
+  // With list_missed: the certifiable floor cells no region covers, as (x, y) of the
+  // voxel column's centre and the top of its surface voxel [m].
+  std::vector<Eigen::Vector3d> missed_certifiable;
 };
 
 // Throws InputError when the map's resolution is not positive or options are out of range.

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "terrain/extraction/cell_fate.h"
 #include "terrain/extraction/height_map.h"
 #include "terrain/extraction/internal/plane_segmentation.h"
 #include "terrain/extraction/internal/rectangle_cover.h"
@@ -41,8 +42,12 @@ struct PatchDecompositionOptions {
 
 using Quad2d = std::array<Eigen::Vector2d, 4>;  // counter-clockwise x-y corners [m, world]
 
+// fates (optional): per patch cell (in patch.cells' order), what the decomposition did
+// with it - kInsetOffPatch, kInsetBeyond, kUncovered or kCovered (all kSmallPatch when
+// the patch is too thin to decompose). The certification radius of kInsetOffPatch is
+// inset_m + drop_inset_m, centre to centre.
 std::vector<Quad2d> DecomposePatch(const HeightMap& height_map, const PlanarPatch& patch,
-                                   const PatchDecompositionOptions& options);
+                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates = nullptr);
 
 // Angle in [0, pi/2) of the smallest-area bounding rectangle of the patch's cells.
 double PrincipalAngleRad(const HeightMap& height_map, const PlanarPatch& patch);
