@@ -63,6 +63,26 @@ std::vector<Polygon2d> GapsAround(const std::vector<Polygon2d>& faces, size_t i,
   return wide;
 }
 
+// Small pieces beside a larger one (slivers where a grown gap's tip cut a seam) add
+// little room and a region each: dropped. A small piece alone is a foothold and stays.
+std::vector<Polygon2d> DropSmallSidePieces(std::vector<Polygon2d> out, const UnionInsetOptions& options) {
+  std::vector<bool> drop(out.size(), false);
+  for (size_t i = 0; i < out.size(); ++i) {
+    const double area = std::abs(PolygonArea2d(out[i]));
+    if (area >= options.min_useful_area_m2) continue;
+    const Polygon2d around = GrowConvexPolygon(out[i], options.seam_gap_m);
+    for (size_t j = 0; j < out.size() && !drop[i]; ++j) {
+      drop[i] = j != i && !drop[j] && std::abs(PolygonArea2d(out[j])) > area && BoundsTouch(around, out[j], 0.0) &&
+                !ConvexIntersection(around, out[j]).empty();
+    }
+  }
+  std::vector<Polygon2d> useful;
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!drop[i]) useful.push_back(std::move(out[i]));
+  }
+  return useful;
+}
+
 }  // namespace
 
 Polygon2d GrowConvexPolygon(const Polygon2d& polygon, double margin_m) {
@@ -220,24 +240,7 @@ std::vector<Polygon2d> InsetUnionOfConvexPolygons(const std::vector<Polygon2d>& 
     kept.insert(kept.end(), pieces.begin(), pieces.end());
     for (Polygon2d& p : MergeConvexPieces(pieces, pieces)) merged.push_back(std::move(p));  // few, then all
   }
-  std::vector<Polygon2d> out = MergeConvexPieces(std::move(merged), kept);
-  // Small pieces beside a larger one (slivers where a grown gap's tip cut a seam) add
-  // little room and a region each: dropped. A small piece alone is a foothold and stays.
-  std::vector<bool> drop(out.size(), false);
-  for (size_t i = 0; i < out.size(); ++i) {
-    const double area = std::abs(PolygonArea2d(out[i]));
-    if (area >= options.min_useful_area_m2) continue;
-    const Polygon2d around = GrowConvexPolygon(out[i], options.seam_gap_m);
-    for (size_t j = 0; j < out.size() && !drop[i]; ++j) {
-      drop[i] = j != i && !drop[j] && std::abs(PolygonArea2d(out[j])) > area && BoundsTouch(around, out[j], 0.0) &&
-                !ConvexIntersection(around, out[j]).empty();
-    }
-  }
-  std::vector<Polygon2d> useful;
-  for (size_t i = 0; i < out.size(); ++i) {
-    if (!drop[i]) useful.push_back(std::move(out[i]));
-  }
-  return useful;
+  return DropSmallSidePieces(MergeConvexPieces(std::move(merged), kept), options);
 }
 
 }  // namespace mfp
