@@ -177,6 +177,14 @@ std::vector<Polygon2d> MergeConvexPieces(std::vector<Polygon2d> pieces, const st
     for (size_t k : near) a += std::abs(PolygonArea2d(ConvexIntersection(p, within[k])));
     return PolygonArea2d(p) - a <= kMergeSliverM * Perimeter(p);
   };
+  // The hull of pieces i and j lies in `within` when what it adds to piece i does (piece
+  // i does): checked on the pieces of hull less piece i, small where piece j is.
+  auto hull_inside = [&](const Polygon2d& hull, const Polygon2d& piece) {
+    for (const Polygon2d& added : ConvexPolygonMinus(hull, piece, 0.0, 0.0)) {
+      if (added.size() >= 3 && !inside_within(added)) return false;
+    }
+    return true;
+  };
   auto covers = [](const Polygon2d& big, const Polygon2d& small) {  // small lies in big
     return std::all_of(small.begin(), small.end(), [&](const Eigen::Vector2d& v) { return ConvexContains(big, v, kMergeSliverM); });
   };
@@ -189,7 +197,7 @@ std::vector<Polygon2d> MergeConvexPieces(std::vector<Polygon2d> pieces, const st
       Polygon2d points = pieces[i];
       points.insert(points.end(), pieces[j].begin(), pieces[j].end());
       Polygon2d hull = ConvexHull2d(points);
-      if (!inside_within(hull)) continue;
+      if (!hull_inside(hull, pieces[i])) continue;
       // The hull replaces piece i and every piece it contains; look again from the start.
       std::vector<Polygon2d> kept;
       size_t new_i = 0;
