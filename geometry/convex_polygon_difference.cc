@@ -8,8 +8,9 @@ namespace {
 // An overlap this small is rounding where a cut touches the polygon [m^2].
 constexpr double kTouchAreaM2 = 1e-10;
 
-// The part of a convex polygon where n . p <= c (Sutherland-Hodgman against one line).
-std::vector<Eigen::Vector2d> KeepBelow(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& n, double c) {
+}  // namespace
+
+std::vector<Eigen::Vector2d> KeepBelowLine(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& n, double c) {
   std::vector<Eigen::Vector2d> out;
   const size_t m = poly.size();
   for (size_t i = 0; i < m; ++i) {
@@ -22,8 +23,6 @@ std::vector<Eigen::Vector2d> KeepBelow(const std::vector<Eigen::Vector2d>& poly,
   }
   return out;
 }
-
-}  // namespace
 
 double PolygonArea2d(const std::vector<Eigen::Vector2d>& polygon) {
   double twice = 0.0;
@@ -49,7 +48,7 @@ std::vector<std::vector<Eigen::Vector2d>> ConvexPolygonMinus(const std::vector<E
     const Eigen::Vector2d e = cut[(i + 1) % cut.size()] - cut[i];
     if (e.norm() <= 1e-12) continue;
     const Eigen::Vector2d n = Eigen::Vector2d(e.y(), -e.x()).normalized();
-    overlap = KeepBelow(overlap, n, n.dot(cut[i]) + margin_m);
+    overlap = KeepBelowLine(overlap, n, n.dot(cut[i]) + margin_m);
   }
   if (overlap.size() < 3 || PolygonArea2d(overlap) <= kTouchAreaM2) return {polygon};
   std::vector<std::vector<Eigen::Vector2d>> pieces;
@@ -59,9 +58,9 @@ std::vector<std::vector<Eigen::Vector2d>> ConvexPolygonMinus(const std::vector<E
     if (e.norm() <= 1e-12) continue;
     const Eigen::Vector2d n = Eigen::Vector2d(e.y(), -e.x()).normalized();  // outward for counter-clockwise
     const double c = n.dot(cut[i]) + margin_m;
-    std::vector<Eigen::Vector2d> outside = KeepBelow(rest, -n, -c);
+    std::vector<Eigen::Vector2d> outside = KeepBelowLine(rest, -n, -c);
     if (outside.size() >= 3 && PolygonArea2d(outside) >= min_area_m2) pieces.push_back(std::move(outside));
-    rest = KeepBelow(rest, n, c);
+    rest = KeepBelowLine(rest, n, c);
   }
   return pieces;
 }

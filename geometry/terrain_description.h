@@ -59,8 +59,11 @@ bool RayBoxInterval(const TerrainBox& box, const Eigen::Matrix3d& R, const Eigen
 // upward, inset by inset_m, minus the parts other boxes cover (where another box rises
 // above the face, grown by inset_m), as ConvexRegions with ids 0, 1, ... in box order.
 // An uncovered face is one region; a partly covered face is cut into several convex
-// pieces, a fully covered face gives none. Boxes whose top face is steeper than
-// max_slope_rad or vanishes after the inset are skipped.
+// pieces, a fully covered face gives none. Faces on one plane that touch or overlap
+// (a walkway of rotated boxes, a floor of tiles, a landing beside a floor of its height)
+// are one surface: their union is inset once (no strip lost along a seam) and cut into
+// few convex pieces (InsetUnionOfConvexPolygons), placed at their first box. Boxes whose
+// top face is steeper than max_slope_rad or (alone) vanishes after the inset are skipped.
 // Throws InputError on non-finite or non-positive sizes.
 std::vector<ConvexRegion> TopFaceRegions(const TerrainDescription& terrain, double inset_m,
                                          double max_slope_rad);

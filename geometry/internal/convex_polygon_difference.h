@@ -16,6 +16,10 @@ std::vector<std::vector<Eigen::Vector2d>> ConvexPolygonMinus(const std::vector<E
                                                              const std::vector<Eigen::Vector2d>& cut,
                                                              double margin_m, double min_area_m2);
 
+// The part of a convex polygon where n . p <= c (one Sutherland-Hodgman clip).
+std::vector<Eigen::Vector2d> KeepBelowLine(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& n,
+                                           double c);
+
 // Area of a simple polygon, positive when counter-clockwise [m^2].
 double PolygonArea2d(const std::vector<Eigen::Vector2d>& polygon);
 
