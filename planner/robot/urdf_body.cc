@@ -2,10 +2,25 @@
 
 #include <urdf_model/model.h>
 
+#include <string>
+#include <utility>
+
 #include "planner/robot/internal/urdf_xml_checks.h"
 
 namespace mfp {
 namespace {
+
+// Axis-aligned bounds, in the link frame, of the box of half-sizes `half` [m] centred at
+// `origin` and turned by its rotation.
+Eigen::AlignedBox3d PlacedBox(const Eigen::Vector3d& half, const urdf::Pose& origin) {
+  const Eigen::Isometry3d T = ToIsometry(origin);
+  const Eigen::AlignedBox3d local(-half, half);
+  Eigen::AlignedBox3d box;
+  for (int corner = 0; corner < 8; ++corner) {
+    box.extend(T * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  }
+  return box;
+}
 
 // Bounding box, in the link frame, of one primitive shape placed at `origin` [m]; empty
 // for meshes (not read).
@@ -28,13 +43,7 @@ Eigen::AlignedBox3d ShapeBox(const urdf::Geometry& geometry, const urdf::Pose& o
     default:
       return Eigen::AlignedBox3d();
   }
-  const Eigen::Isometry3d T = ToIsometry(origin);
-  Eigen::AlignedBox3d box;
-  const Eigen::AlignedBox3d local(-half, half);
-  for (int corner = 0; corner < 8; ++corner) {
-    box.extend(T * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
-  }
-  return box;
+  return PlacedBox(half, origin);
 }
 
 // The box of uniform density whose principal moments are the link's inertia (a box of
@@ -47,11 +56,16 @@ Eigen::AlignedBox3d InertiaBox(const urdf::Inertial& inertial) {
   const Eigen::Vector3d squared = 6.0 / m * Eigen::Vector3d(iyy + izz - ixx, ixx + izz - iyy, ixx + iyy - izz);
   if (!(squared.minCoeff() > 0.0)) return Eigen::AlignedBox3d();
   const Eigen::Vector3d half = 0.5 * squared.cwiseSqrt();
-  const Eigen::Isometry3d T = ToIsometry(inertial.origin);
+  return PlacedBox(half, inertial.origin);
+}
+
+// Bounds of the primitive shapes of a link's collision or visual elements [m, link frame];
+// empty when it has none (meshes are not read).
+template <typename Elements>
+Eigen::AlignedBox3d BoundsOfShapes(const Elements& elements) {
   Eigen::AlignedBox3d box;
-  const Eigen::AlignedBox3d local(-half, half);
-  for (int corner = 0; corner < 8; ++corner) {
-    box.extend(T * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  for (const auto& element : elements) {
+    if (element && element->geometry) box.extend(ShapeBox(*element->geometry, element->origin));
   }
   return box;
 }
@@ -83,27 +97,18 @@ urdf::LinkConstSharedPtr BodyLink(const urdf::LinkConstSharedPtr& root, std::vec
 }
 
 void ReadBodyBox(const urdf::Link& body, RobotDescription* robot) {
-  Eigen::AlignedBox3d box;
-  for (const auto& collision : body.collision_array) {
-    if (collision && collision->geometry) box.extend(ShapeBox(*collision->geometry, collision->origin));
-  }
-  if (!box.isEmpty()) {
+  // The first of these that is not empty, in this order of preference.
+  const std::pair<Eigen::AlignedBox3d, std::string> candidates[] = {
+      {BoundsOfShapes(body.collision_array), "collision shapes of link '" + body.name + "'"},
+      {BoundsOfShapes(body.visual_array), "visual shapes of link '" + body.name + "'"},
+      {body.inertial ? InertiaBox(*body.inertial) : Eigen::AlignedBox3d(),
+       "box of uniform density with the inertia of link '" + body.name + "'"},
+  };
+  for (const auto& [box, source] : candidates) {
+    if (box.isEmpty()) continue;
     robot->body_box_m = box;
-    robot->body_box_source = "collision shapes of link '" + body.name + "'";
+    robot->body_box_source = source;
     return;
-  }
-  for (const auto& visual : body.visual_array) {
-    if (visual && visual->geometry) box.extend(ShapeBox(*visual->geometry, visual->origin));
-  }
-  if (!box.isEmpty()) {
-    robot->body_box_m = box;
-    robot->body_box_source = "visual shapes of link '" + body.name + "'";
-    return;
-  }
-  if (body.inertial) box = InertiaBox(*body.inertial);
-  if (!box.isEmpty()) {
-    robot->body_box_m = box;
-    robot->body_box_source = "box of uniform density with the inertia of link '" + body.name + "'";
   }
 }
 
