@@ -10,6 +10,7 @@ namespace mfp {
 namespace {
 
 using P = PlannerOptions;
+using S = StanceRouteOptions;
 using Table = OptionTable<P>;
 
 // The top of the block: the plan's size, time and tolerances.
@@ -86,6 +87,29 @@ void AddRouteKeys(Table* t) {
   t->push_back(Opt("route.stance_route", At(&P::stance_route),
                    "local goals follow a search over whole-body stances, not the region graph's centres")
                    .Alias("stance_route").Advanced());
+  t->push_back(Opt("stance_search.cell", In(&P::stance_search, &S::cell_m), 0.005, 1.0,
+                   "grid step of that search's body positions (grown on large maps to stay within max_cells)")
+                   .Unit("m").Advanced());
+  t->push_back(Opt("stance_search.max_cells", In(&P::stance_search, &S::max_cells), 1000, 10000000,
+                   "body positions of that grid at most").Advanced());
+  t->push_back(Opt("stance_search.body_blocked_cell", In(&P::stance_search, &S::body_blocked_cell_m), 0.005, 1.0,
+                   "before a route is refused for the body, the search runs again on this finer grid")
+                   .Unit("m").Advanced());
+  t->push_back(Opt("stance_search.headings", In(&P::stance_search, &S::headings), 1, 360,
+                   "body yaws that search tries, evenly spaced over a full turn").Advanced());
+  t->push_back(Opt("stance_search.fine_headings", In(&P::stance_search, &S::fine_headings), 1, 360,
+                   "... and where the body check refused poses, again with this many (when more)").Advanced());
+  t->push_back(Opt("stance_search.turn_cost", In(&P::stance_search, &S::turn_cost_m), 0.0, 100.0,
+                   "cost of turning by one heading, as a distance walked").Unit("m").Advanced());
+  t->push_back(Opt("stance_search.tight_cost_factor", In(&P::stance_search, &S::tight_cost_factor), 1.0, 1000.0,
+                   "cost factor of a pose with a nominal foot off every region, or a body within body_margin of "
+                   "an obstacle").Advanced());
+  t->push_back(Opt("stance_search.support_radius", In(&P::stance_search, &S::support_radius_l_bnd), 0.1, 10.0,
+                   "a pose is usable when each nominal foot has a region within this many l_bnd").Advanced());
+  t->push_back(Opt("stance_search.body_overlap_share", In(&P::stance_search, &S::body_overlap_share), 0.0, 1.0,
+                   "share of the body's plan box an obstacle may cover before a pose is unusable").Advanced());
+  t->push_back(Opt("stance_search.body_margin", In(&P::stance_search, &S::body_margin_m), 0.0, 1.0,
+                   "room the route keeps between the body's plan box and obstacles where it can").Unit("m").Advanced());
   t->push_back(Opt("route.step_budget", At(&P::route_step_budget), 1.0, 1000.0,
                    "default step budget: configurations for this many times the route's length at d_lim each")
                    .Alias("route_step_budget").Advanced());

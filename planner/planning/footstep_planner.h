@@ -14,6 +14,7 @@
 #include "planner/formulation/plan.h"
 #include "planner/planning/internal/relax_and_fix.h"
 #include "planner/planning/internal/route_proposals.h"
+#include "planner/planning/internal/stance_route.h"
 #include "planner/planning/internal/window_polisher.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
@@ -115,6 +116,8 @@ struct PlannerOptions {
   // region graph's centres, which cut corners a whole body cannot. The region graph
   // still decides 'no route'; where the stance search finds nothing its route is kept.
   bool stance_route = true;
+  // That search's grid, headings, costs and the body's margin (StanceRouteOptions).
+  StanceRouteOptions stance_search;
   // Each guided window's search starts from plans that walk the route at a few speeds
   // (planner/planning/internal/route_proposals.h), solved as QPs with their regions fixed.
   bool route_proposals = true;

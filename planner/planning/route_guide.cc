@@ -5,6 +5,7 @@
 #include <limits>
 #include <queue>
 #include <sstream>
+#include <utility>
 
 #include "geometry/region_reachability.h"
 #include "planner/planning/internal/stance_route.h"
@@ -264,10 +265,10 @@ namespace {
 // walking the region graph's route through the obstacle).
 void RefuseBodyBlockedRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                             const Eigen::Vector2d& start, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                            double goal_yaw_rad, const StanceRoute& body_clear, RouteGuide* guide,
-                            const Deadline& deadline) {
-  StanceRouteOptions loose;
-  loose.support_radius_l_bnd = std::sqrt(2.0);
+                            double goal_yaw_rad, const StanceRouteOptions& options, const StanceRoute& body_clear,
+                            RouteGuide* guide, const Deadline& deadline) {
+  StanceRouteOptions loose = options;
+  loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
   const StanceRoute feet_only =
       PlanStanceRoute(robot, regions, {}, 0.0, start, start_yaw_rad, goal_xy, goal_yaw_rad, loose, deadline);
   guide->out_of_time = feet_only.out_of_time;
@@ -277,7 +278,8 @@ void RefuseBodyBlockedRoute(const RobotModel& robot, const std::vector<ConvexReg
   why << "no route for the body: the feet could pass, but every stance route from the start to the goal meets an "
          "obstacle with the body's plan box ("
       << robot.body.length_m() << " x " << robot.body.width_m() << " m, " << body_clear.body_blocked_poses
-      << " poses refused, at 16 headings); widen the passage, or check the robot's body_box";
+      << " poses refused, at up to " << std::max(options.headings, options.fine_headings)
+      << " headings); widen the passage, or check the robot's body_box";
   guide->connected = false;
   guide->broken = why.str();
 }
@@ -287,8 +289,8 @@ void RefuseBodyBlockedRoute(const RobotModel& robot, const std::vector<ConvexReg
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                        const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
-                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide,
-                       const Deadline& deadline) {
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, const StanceRouteOptions& options,
+                       RouteGuide* guide, const Deadline& deadline) {
   if (!guide->connected || start_feet.empty()) return;
   Eigen::Vector2d start = Eigen::Vector2d::Zero();
   double ground_z = 0.0;
@@ -299,19 +301,28 @@ void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>&
   start /= static_cast<double>(start_feet.size());
   ground_z /= static_cast<double>(start_feet.size());
   StanceRoute stances =
-      PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad, {}, deadline);
+      PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
   if (!stances.found && !stances.out_of_time) {
     // Where no pose has every reference box surely on support, poses whose boxes may
     // meet it (an octopod on stones laid for its feet: the region graph's route through
     // region centres zig-zagged across the tracks, 2.45 m short).
-    StanceRouteOptions loose;
-    loose.support_radius_l_bnd = std::sqrt(2.0);
+    StanceRouteOptions loose = options;
+    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
     stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad,
                               loose, deadline);
   }
+  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
+      options.body_blocked_cell_m < options.cell_m) {
+    StanceRouteOptions fine = options;
+    fine.cell_m = options.body_blocked_cell_m;
+    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, fine, deadline);
+    if (finer.found || finer.out_of_time) stances = std::move(finer);
+  }
   guide->out_of_time = stances.out_of_time;
   if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0) {
-    RefuseBodyBlockedRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad, stances, guide, deadline);
+    RefuseBodyBlockedRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad, options, stances, guide,
+                           deadline);
   }
   if (!stances.found) return;
   guide->route = stances.route;

@@ -76,7 +76,6 @@ std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& 
   return s;
 }
 
-constexpr int kFineHeadings = 16;
 
 StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                           const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
@@ -166,10 +165,10 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
                           double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute route = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
                                     goal_yaw_rad, options, deadline);
-  // Where the body check refused poses, headings finer than 8 let the body turn to fit.
-  if (route.body_blocked_poses > 0 && options.headings < kFineHeadings && !route.out_of_time) {
+  // Where the body check refused poses, finer headings let the body turn to fit.
+  if (route.body_blocked_poses > 0 && options.headings < options.fine_headings && !route.out_of_time) {
     StanceRouteOptions fine = options;
-    fine.headings = kFineHeadings;
+    fine.headings = options.fine_headings;
     StanceRoute finer = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
                                       goal_yaw_rad, fine, deadline);
     if (finer.found || !route.found) route = std::move(finer);

@@ -69,7 +69,7 @@ std::optional<Plan> GuideRoute(PlanContext* c) {
   if (options.stance_route) {
     // Out of time here, the windows end the plan on its time limit at their first check.
     FollowStanceRoute(c->robot, c->usable, request.body_obstacles, request.start_feet_world_m, request.start_yaw_rad,
-                      c->GoalXY(), request.goal_yaw_rad, &c->guide, deadline);
+                      c->GoalXY(), request.goal_yaw_rad, options.stance_search, &c->guide, deadline);
     if (!c->guide.connected) {  // the body blocks every route the feet have
       Plan rejected = Rejected(SolveStatus::kNoRoute, c->guide.broken);
       rejected.solve_time_s = c->ElapsedSeconds();

@@ -14,6 +14,7 @@
 
 #include "base/deadline.h"
 #include "geometry/convex_region.h"
+#include "planner/planning/internal/stance_route.h"
 #include "planner/robot/body_clearance.h"
 #include "planner/robot/robot_model.h"
 
@@ -62,8 +63,8 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
 void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                        const std::vector<BodyObstacle>& body_obstacles,
                        const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
-                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, RouteGuide* guide,
-                       const Deadline& deadline = {});
+                       const Eigen::Vector2d& goal_xy, double goal_yaw_rad, const StanceRouteOptions& options,
+                       RouteGuide* guide, const Deadline& deadline = {});
 
 // The point of the route at arc length s (clamped to the route) [m].
 Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m);

@@ -26,7 +26,14 @@ namespace mfp {
 struct StanceRouteOptions {
   double cell_m = 0.04;           // body grid; grown on large maps to stay within max_cells
   int headings = 8;               // yaw candidates, evenly spaced over a full turn
-  long max_cells = 300000;        // body grid cells (x, y) at most
+  // Where the body check refused poses, the search is run again with this many headings
+  // (when more than `headings`), so the body can turn to fit a passage.
+  int fine_headings = 16;
+  int max_cells = 300000;         // body grid cells (x, y) at most
+  // Before a route is refused for the body (route_guide.h), the search runs once more on
+  // a grid of this cell when it is finer than cell_m: a passage a few centimetres wider
+  // than the body can fall between the cells of the coarser grid [m].
+  double body_blocked_cell_m = 0.02;
   double turn_cost_m = 0.05;      // cost of turning by one heading, as distance [m]
   // Cost factor of moving through a pose where some nominal foot is off every region
   // (only its reference box meets one): the route keeps room where it can.
