@@ -24,6 +24,7 @@ DATA="$SOURCE_DIR/tests/data/daemon_signals"
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
 mfp_test_workspace mfp_sigterm_states
+source "$SOURCE_DIR/tests/daemon_signal_helpers.sh"
 
 cp "$DATA"/*.yaml "$WORK/"
 "$BUILD_DIR/tools/mfp-terrain" "$WORK/fine_map.yaml" --out "$WORK/fine_map.bt" >/dev/null
@@ -32,21 +33,7 @@ sed 's/size: \[1.8, 1.8,/size: [3.6, 3.6,/' "$WORK/fine_map.yaml" >"$WORK/large_
 "$BUILD_DIR/tools/mfp-terrain" "$WORK/large_map.yaml" --out "$WORK/large_map.bt" >/dev/null
 python3 "$SOURCE_DIR/tests/sixteen_leg_urdf.py" "$SOURCE_DIR/tests/data/robots/octopod.urdf" "$WORK/sixteen_legs.urdf"
 
-write_config() {  # INITIAL_MAP [EXTRA_ROBOT...]
-  {
-    echo "lcm_url: \"$URL\""
-    echo "initial_map: \"$1\""
-    shift
-    echo "robots:"
-    echo "  - $SOURCE_DIR/config/robots/hexapod.yaml"
-    for extra in "$@"; do echo "  - $extra"; done
-    echo "default_robot: hexapod"
-    echo "limits:"
-    echo "  supersede_same_robot: false"
-    echo "planner:"
-    echo "  window: 24"
-  } >"$WORK/daemon.yaml"
-}
+write_config() { mfp_write_daemon_config "$@"; }  # INITIAL_MAP [EXTRA_ROBOT...]
 
 start_daemon() {  # LOG: mfp-daemon on $WORK/daemon.yaml, not waiting for its start
   LOG="$1"
@@ -54,27 +41,15 @@ start_daemon() {  # LOG: mfp-daemon on $WORK/daemon.yaml, not waiting for its st
   DAEMON_PID=$!
 }
 
-wait_for_log() {  # PATTERN SECONDS
-  for _ in $(seq 1 $(( $2 * 20 ))); do
-    grep -q "$1" "$LOG" && return 0
-    sleep 0.05
-  done
-  fail "no '$1' in the daemon log within $2 s"
-}
-
 ROWS=()
 # SIGTERM now; a table row: STATE, the time to exit, the exit status, and whether the
 # state was still in progress (UNTIL: the log line that ends it; empty: none).
 terminate() {  # STATE UNTIL
-  local in_state="yes" t0 t1 status=0
+  local in_state="yes"
   if [ -n "$2" ] && grep -q "$2" "$LOG"; then in_state="no: '$2' logged before SIGTERM"; fi
   kill -0 "$DAEMON_PID" 2>/dev/null || in_state="no: the daemon had exited"
-  t0=$(date +%s%N)
-  kill -TERM "$DAEMON_PID"
-  wait "$DAEMON_PID" || status=$?
-  t1=$(date +%s%N)
-  DAEMON_PID=""
-  ROWS+=("| $1 | $(( (t1 - t0) / 1000000 )) | $status | $in_state |")
+  mfp_sigterm_daemon
+  ROWS+=("| $1 | $EXIT_MS | $EXIT_STATUS | $in_state |")
   echo "${ROWS[-1]}"
 }
 
@@ -86,7 +61,7 @@ play() {  # LCMLOG: in the background
 # idle
 write_config ""
 start_daemon "$WORK/idle.log"
-wait_for_log "started:" 30
+mfp_wait_for_log "started:" 30
 sleep 0.5
 terminate "idle (started, no map, no request)" ""
 
@@ -107,16 +82,16 @@ write_config ""
 "$BUILD_DIR/tools/mfp-make-log" "$WORK/during_extraction.yaml" --config "$WORK/daemon.yaml" \
   --out "$WORK/extraction.lcmlog"
 start_daemon "$WORK/extracting.log"
-wait_for_log "started:" 30
+mfp_wait_for_log "started:" 30
 play "$WORK/extraction.lcmlog"
-wait_for_log "request 1 rejected (no_map)" 10
+mfp_wait_for_log "request 1 rejected (no_map)" 10
 terminate "extracting a map received over LCM (1.8 m at 2 mm)" "map accepted"
 wait "$PLAYER_PID" || true; PLAYER_PID=""
 
 # planning a long request
 "$BUILD_DIR/tools/mfp-make-log" "$WORK/during_plan.yaml" --config "$WORK/daemon.yaml" --out "$WORK/plan.lcmlog"
 start_daemon "$WORK/planning.log"
-wait_for_log "started:" 30
+mfp_wait_for_log "started:" 30
 play "$WORK/plan.lcmlog"
 wait "$PLAYER_PID" || true; PLAYER_PID=""
 sleep 0.5
@@ -124,10 +99,10 @@ terminate "planning a 20 s request, one queued behind it" "request 10 planned"
 
 # reload onto a hostile robot
 start_daemon "$WORK/reload.log"
-wait_for_log "started:" 30
+mfp_wait_for_log "started:" 30
 write_config "" "$WORK/sixteen_legs.urdf"
 kill -HUP "$DAEMON_PID"
-wait_for_log "SIGHUP: reloading" 10
+mfp_wait_for_log "SIGHUP: reloading" 10
 sleep 0.5
 terminate "SIGHUP reload onto a 16-leg robot" "SIGHUP: configuration reloaded\|SIGHUP: reload failed"
 
@@ -145,9 +120,9 @@ with open(sys.argv[2], "w") as out:
 PY
 "$BUILD_DIR/tools/mfp-make-log" "$WORK/burst.yaml" --config "$WORK/daemon.yaml" --out "$WORK/burst.lcmlog"
 start_daemon "$WORK/burst.log"
-wait_for_log "started:" 30
+mfp_wait_for_log "started:" 30
 play "$WORK/burst.lcmlog"
-wait_for_log "request [0-9]* \(planned\|answered\)" 30
+mfp_wait_for_log "request [0-9]* \(planned\|answered\)" 30
 terminate "a burst of 2,000 requests being answered ($(grep -c "request [0-9]* \(planned\|answered\)" "$LOG") answered at SIGTERM)" ""
 wait "$PLAYER_PID" || true; PLAYER_PID=""
 

@@ -23,52 +23,24 @@ DATA="$SOURCE_DIR/tests/data/daemon_signals"
 # Runs this script again inside a private network namespace (tests/netns_helper.sh).
 source "$SOURCE_DIR/tests/netns_helper.sh"
 mfp_enter_private_namespace "$@"
+source "$SOURCE_DIR/tests/daemon_signal_helpers.sh"
 
 mfp_test_workspace mfp_daemon_signals
 
 cp "$DATA"/*.yaml "$WORK/"
 "$BUILD_DIR/tools/mfp-terrain" "$WORK/fine_map.yaml" --out "$WORK/fine_map.bt" >/dev/null
 
-# The config: the hexapod alone (each tool derives it once: the test's main cost);
-# 4 n-step windows, which plan until their time limit; no supersession, so a second
-# request of the same robot stays queued behind the first.
-write_config() {  # extra robot files...
-  {
-    echo "lcm_url: \"$URL\""
-    echo "robots:"
-    echo "  - $SOURCE_DIR/config/robots/hexapod.yaml"
-    for extra in "$@"; do echo "  - $extra"; done
-    echo "default_robot: hexapod"
-    echo "limits:"
-    echo "  supersede_same_robot: false"
-    echo "planner:"
-    echo "  window: 24"
-  } >"$WORK/daemon.yaml"
-}
-
 stop_logger() {
   sleep 0.5
   kill -INT "$LOGGER_PID"; wait "$LOGGER_PID" || true; LOGGER_PID=""
 }
 
-wait_for_log() {  # pattern seconds
-  for _ in $(seq 1 $(( $2 * 20 ))); do
-    grep -q "$1" "$LOG" && return 0
-    sleep 0.05
-  done
-  fail "no '$1' in the daemon log within $2 s"
-}
+write_config() { mfp_write_daemon_config "" "$@"; }  # extra robot files...
 
-# SIGTERM, then the time to exit [ms] and its status.
+# SIGTERM, then the time to exit [ms]; the exit status must be 0.
 terminate() {
-  local t0 t1 status=0
-  t0=$(date +%s%N)
-  kill -TERM "$DAEMON_PID"
-  wait "$DAEMON_PID" || status=$?
-  t1=$(date +%s%N)
-  DAEMON_PID=""
-  EXIT_MS=$(( (t1 - t0) / 1000000 ))
-  [ "$status" -eq 0 ] || fail "mfp-daemon exited with $status on SIGTERM"
+  mfp_sigterm_daemon
+  [ "$EXIT_STATUS" -eq 0 ] || fail "mfp-daemon exited with $EXIT_STATUS on SIGTERM"
   echo "SIGTERM to exit: $EXIT_MS ms"
 }
 
@@ -80,7 +52,7 @@ mfp_start_logger "$WORK/extraction_replies.lcmlog"
 mfp_start_daemon "$WORK/daemon1.log" --config "$WORK/daemon.yaml"
 write_config "$WORK/bad_robot.yaml"
 kill -HUP "$DAEMON_PID"
-wait_for_log "SIGHUP: reload failed, keeping the previous configuration" 20
+mfp_wait_for_log "SIGHUP: reload failed, keeping the previous configuration" 20
 kill -0 "$DAEMON_PID" 2>/dev/null || fail "mfp-daemon died on a failed reload"
 grep "SIGHUP: reload failed" "$LOG"
 write_config  # the good one again, for mfp-check-replies
@@ -88,7 +60,7 @@ write_config  # the good one again, for mfp-check-replies
 lcm-logplayer --lcm-url="$URL" "$WORK/extraction.lcmlog" &
 PLAYER_PID=$!
 wait "$PLAYER_PID"; PLAYER_PID=""
-wait_for_log "request 2 rejected (no_map)" 10
+mfp_wait_for_log "request 2 rejected (no_map)" 10
 sleep 0.3
 grep -q "map accepted" "$LOG" && fail "the map was read before SIGTERM: make fine_map.yaml slower"
 terminate
@@ -123,7 +95,7 @@ write_config
 mfp_start_daemon "$WORK/daemon3.log" --config "$WORK/daemon.yaml"
 write_config "$WORK/sixteen_legs.urdf"
 kill -HUP "$DAEMON_PID"
-wait_for_log "SIGHUP: reloading" 10
+mfp_wait_for_log "SIGHUP: reloading" 10
 sleep 0.2
 grep -q "SIGHUP: configuration reloaded\|SIGHUP: reload failed" "$LOG" \
   && fail "the reload ended before SIGTERM: make the robot slower to derive"
