@@ -43,7 +43,8 @@ bool ProvenIncomplete(const SearchState& state, const Eigen::VectorXd& proposal)
 // Each proposal offered as it is (a heuristic's own plan is kept even when no time is
 // left for its QP), then completed: its integers fixed and the QP left solved, a round
 // of workers at a time, warm-started from the relaxation point x. With bound propagation
-// on, proposals that propagation proves incomplete get no QP.
+// on, proposals that propagation proves incomplete get no QP; with
+// rounding_stops_at_first_plan, no QP is started once the search holds a plan.
 void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& all, const Eigen::VectorXd& x) {
   const Miqp& p = state->problem();
   for (const Eigen::VectorXd& proposal : all) state->OfferIncumbent(proposal);
@@ -54,6 +55,7 @@ void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& al
   const int workers = state->workers();
   for (size_t first = 0; first < proposals.size(); first += workers) {
     if (state->Active().Expired()) return;
+    if (state->options().rounding_stops_at_first_plan && state->HasIncumbent()) return;
     const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
     std::vector<RelaxationResult> results(count);
     const RelaxationRequest request = state->Request(Eigen::VectorXd(), Eigen::VectorXd(), &x);
@@ -61,14 +63,9 @@ void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& al
       results[k] = SolveWithIntegersFixed(p, proposals[first + k], state->solver(k), request);
     });
     state->result().relaxations += count;
-    bool completed = false;
     for (RelaxationResult& rel : results) {
-      if (rel.status != RelaxationStatus::kSolved) continue;
-      const double before = state->HasIncumbent() ? state->result().objective : kInfinity;
-      state->OfferIncumbent(std::move(rel.x));
-      completed = completed || (state->HasIncumbent() && state->result().objective < before);
+      if (rel.status == RelaxationStatus::kSolved) state->OfferIncumbent(std::move(rel.x));
     }
-    if (completed && state->options().rounding_stops_at_first_plan) return;
   }
 }
 
