@@ -367,6 +367,49 @@ TEST(BranchAndBound, ExtraRoundingProposalsAreUsed) {
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
 }
 
+// Root-only searches of the knapsack whose rounding proposes `proposals` (then the
+// search's own simple rounding).
+BranchAndBoundResult RootWithProposals(const std::vector<Eigen::VectorXd>& proposals, bool propagation,
+                                       bool stop_at_first_plan) {
+  const auto solver = MakeIpoptRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.max_nodes = 1;
+  options.bound_propagation = propagation;
+  options.rounding_stops_at_first_plan = stop_at_first_plan;
+  const RoundingHeuristic propose = [&proposals](const Eigen::VectorXd&) { return proposals; };
+  return SolveBranchAndBound(Knapsack().problem, *solver, options, propose);
+}
+
+Eigen::VectorXd Choice(double a, double b, double c) {
+  Eigen::VectorXd x(3);
+  x << a, b, c;
+  return x;
+}
+
+TEST(BranchAndBound, AProposalThatPropagationRulesOutGetsNoQp) {
+  // {a, b, c} weighs 6 > 5: propagation over the capacity row proves that no point
+  // completes it, so it costs no QP; {a, b} is the optimum either way.
+  const std::vector<Eigen::VectorXd> proposals = {Choice(1, 1, 1), Choice(1, 1, 0)};
+  const BranchAndBoundResult with = RootWithProposals(proposals, true, false);
+  const BranchAndBoundResult without = RootWithProposals(proposals, false, false);
+  EXPECT_NEAR(with.objective, -9.0, 1e-6);
+  EXPECT_NEAR(without.objective, -9.0, 1e-6);
+  EXPECT_LE(with.relaxations + 1, without.relaxations);
+}
+
+TEST(BranchAndBound, RoundingsCanStopAtTheFirstPlan) {
+  // Both proposals are plans as they are ({a, c}: -8, {a, b}: -9), so the search holds
+  // the optimum before any rounding QP: stopping at the first plan solves none of them
+  // (the root's relaxation only); completing every proposal solves one each.
+  const std::vector<Eigen::VectorXd> proposals = {Choice(1, 0, 1), Choice(1, 1, 0)};
+  const BranchAndBoundResult first = RootWithProposals(proposals, true, true);
+  const BranchAndBoundResult all = RootWithProposals(proposals, true, false);
+  EXPECT_NEAR(first.objective, -9.0, 1e-6);
+  EXPECT_NEAR(all.objective, -9.0, 1e-6);
+  EXPECT_EQ(first.relaxations, 1);
+  EXPECT_GE(all.relaxations, 3);
+}
+
 TEST(BranchAndBound, AStalledSearchEndsWithItsIncumbent) {
   // The root's proposal {a, c} (value -8) is not optimal; the search finds -9 by
   // branching. With a stall limit shorter than any node, the search ends right after the

@@ -140,6 +140,7 @@ RelaxAndFixOptions DiveOptions(RelaxAndFixOptions options) {
   options.nodes_per_stage = 1;
   options.stage_rounding = true;
   options.stage.rounding_heuristic = true;
+  options.stage.rounding_stops_at_first_plan = true;
   options.stage.branching = BranchingRule::kGroupOrder;
   return options;
 }

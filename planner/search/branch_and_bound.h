@@ -61,6 +61,10 @@ struct BranchAndBoundOptions {
   int strong_branching_lookahead = 4;   // kReliability: stop after this many trials without a better score
   bool rounding_heuristic = true;  // round and solve the fixed QP at the root and on dives
   int rounding_frequency = 10;     // also try rounding every this many nodes (0 = root only)
+  // The roundings' QPs are solved in order (a round of workers at a time) and none is
+  // started once the search holds a plan, instead of completing them all: a quick plan
+  // rather than the best rounding (relax-and-fix's dive).
+  bool rounding_stops_at_first_plan = false;
   // Optional slow primal heuristic (relax-and-fix's seed), run once at the root with the
   // root relaxation point when rounding_heuristic is on, and only after the root's
   // roundings have been completed: the search holds their plan before this starts, so a

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "planner/qp/fixed_integer_qp.h"
+#include "planner/search/internal/bound_propagation.h"
 #include "planner/search/internal/parallel_for.h"
 
 namespace mfp {
@@ -26,15 +27,35 @@ Eigen::VectorXd SimpleRounding(const Miqp& p, const Branching& branching, const 
   return simple;
 }
 
+// True when bound propagation with the proposal's integers fixed proves that no point
+// completes it: its QP would end infeasible, and an interior point takes many iterations
+// to say so (docs/measurements.md). The tolerance is the incumbent's, so a proposal whose
+// QP could end within it is never skipped.
+bool ProvenIncomplete(const SearchState& state, const Eigen::VectorXd& proposal) {
+  const Miqp& p = state.problem();
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  for (int j = 0; j < p.num_variables(); ++j) {
+    if (p.is_integer[j]) lower(j) = upper(j) = std::clamp(std::round(proposal(j)), p.var_lower(j), p.var_upper(j));
+  }
+  return PropagateBounds(p, &lower, &upper, 3, state.options().feasibility_tolerance).infeasible;
+}
+
 // Each proposal offered as it is (a heuristic's own plan is kept even when no time is
 // left for its QP), then completed: its integers fixed and the QP left solved, a round
-// of workers at a time, warm-started from the relaxation point x.
-void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& proposals, const Eigen::VectorXd& x) {
+// of workers at a time, warm-started from the relaxation point x. With bound propagation
+// on, proposals that propagation proves incomplete get no QP; with
+// rounding_stops_at_first_plan, no QP is started once the search holds a plan.
+void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& all, const Eigen::VectorXd& x) {
   const Miqp& p = state->problem();
-  for (const Eigen::VectorXd& proposal : proposals) state->OfferIncumbent(proposal);
+  for (const Eigen::VectorXd& proposal : all) state->OfferIncumbent(proposal);
+  std::vector<Eigen::VectorXd> proposals;
+  for (const Eigen::VectorXd& proposal : all) {
+    if (!state->options().bound_propagation || !ProvenIncomplete(*state, proposal)) proposals.push_back(proposal);
+  }
   const int workers = state->workers();
   for (size_t first = 0; first < proposals.size(); first += workers) {
     if (state->Active().Expired()) return;
+    if (state->options().rounding_stops_at_first_plan && state->HasIncumbent()) return;
     const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
     std::vector<RelaxationResult> results(count);
     const RelaxationRequest request = state->Request(Eigen::VectorXd(), Eigen::VectorXd(), &x);
