@@ -42,7 +42,7 @@ struct RegionExtractorOptions {
   // In maps that store free space: unseen floor enclosed by seen floor of one height
   // within this many cells along all 8 grid directions is floor
   // (SurfaceLayerOptions::enclosed_unseen_radius_cells; docs/unseen_floor.md). 0: off.
-  int enclosed_unseen_radius_cells = 0;
+  int enclosed_unseen_radius_cells = 3;
   double max_slope_rad = 0.45;     // steeper patches are rejected [rad]
   double min_region_area_m2 = 0.0016;  // smaller regions (of foot centres) are dropped [m^2]
   // ... but never more than this many voxels' area (0: min_region_area_m2 alone). Every
