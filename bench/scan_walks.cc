@@ -6,12 +6,15 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 #include <vector>
 
+#include "io/map_file.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
@@ -271,6 +274,19 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
 
 std::string BaseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
+// The scan's regions and seen surface as LoadScenarioTerrain makes them, with the walks'
+// extractor options.
+ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, const ScanWalkOptions& o) {
+  RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot);
+  if (o.enclosed_unseen_radius_cells >= 0) options.enclosed_unseen_radius_cells = o.enclosed_unseen_radius_cells;
+  RegionExtractionResult result = ExtractRegionsFromMapFile(scenario.map_path, options);
+  ScenarioTerrain terrain;
+  terrain.regions = std::move(result.regions);
+  terrain.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen));
+  terrain.note = result.message;
+  return terrain;
+}
+
 }  // namespace
 
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
@@ -291,7 +307,7 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       Scenario scenario;
       scenario.map_path = scan;
       scenario.robot_path = robot_path;
-      const ScenarioTerrain terrain = LoadScenarioTerrain(scenario, robot);
+      const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
       const std::vector<Walk> walks = DrawWalks(robot, judge, map.resolution_m, o, seed);

@@ -20,6 +20,8 @@ struct ScanWalkOptions {
   // 1 cm + one voxel around it), not merely on a seen floor cell: walks whose ends any
   // sound extractor could cover.
   bool certifiable_ends = false;
+  // The extractor's enclosed_unseen_radius_cells for the walks' regions (-1: its default).
+  int enclosed_unseen_radius_cells = -1;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on

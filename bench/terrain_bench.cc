@@ -100,6 +100,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.01, 1.0));
   app.add_option("--noise-max-cells", options.noise_max_cells, "largest group of off-plane cells kept in a patch")
       ->check(CLI::Range(0, 1000));
+  app.add_option("--enclosed-unseen-radius", options.enclosed_unseen_radius_cells,
+                 "unseen floor enclosed by seen floor within this many cells is floor (0: off) [cells]")
+      ->check(CLI::Range(0, 64));
   app.add_option("--edge-uncertainty", options.edge_uncertainty_voxels,
                  "how far inside its outermost voxel a surface may end at a drop [voxels]")
       ->check(CLI::Range(0.0, 10.0));
@@ -121,6 +124,9 @@ int main(int argc, char** argv) {
   app.add_option("--walks", walks.walks, "walks per scan and robot")->check(CLI::Range(1, 1000));
   app.add_option("--walk-time-limit", walks.time_limit_s, "time limit of each walk's plan [s]")
       ->check(CLI::Range(0.1, 3600.0));
+  app.add_option("--walk-enclosed-unseen-radius", walks.enclosed_unseen_radius_cells,
+                 "the walks' extractor: --enclosed-unseen-radius (-1: its default) [cells]")
+      ->check(CLI::Range(-1, 64));
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "

@@ -138,6 +138,9 @@ void DaemonCore::RecordOutcome(const PlanJob& job, const Plan& plan, bool abando
   if (plan.status == SolveStatus::kInternalError) ++counters_.internal_errors;
   if (plan.status == SolveStatus::kTimeLimit) ++counters_.time_limit_endings;
   if (plan.status == SolveStatus::kDropped) ++counters_.dropped_requests;
+  // The goal is checked by the planner (ValidateRequest leaves a far goal to it): an
+  // input error all the same.
+  if (plan.status == SolveStatus::kInvalidGoal) ++counters_.invalid_requests;
   if (abandoned) ++counters_.abandoned_solves;
   // Only a plan on the map still current: a map that arrived meanwhile cleared the rest.
   const int keep = job.setup->config.limits.warm_start_plans;

@@ -55,7 +55,7 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     }
     // The surface layers the regions were cut from: where a start foot may stand.
     return MapTerrain{std::move(result.regions),
-                      std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers))};
+                      std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen))};
   };
 }
 

@@ -95,8 +95,12 @@ ValidatedRequest ValidateRequest(const plan_request_t& m,
   request.seen_surface = std::move(seen_surface);
 
   // The planner's own checks (ranges, start feet on regions or the seen surface, the goal
-  // within reach).
-  if (const RequestCheck check = CheckPlanRequest(robot, *regions, request, options); !check.ok())
+  // within reach). A goal beyond reach of every region is left to the planning thread:
+  // the planner answers it invalid_goal naming the nearest stance on regions, a search of
+  // up to goal_search.report_radius that runs there under the request's deadline, not on
+  // the intake thread.
+  if (const RequestCheck check = CheckPlanRequest(robot, *regions, request, options);
+      !check.ok() && check.status != SolveStatus::kInvalidGoal)
     return Reject(check.status, check.message, name);
 
   ValidatedRequest result;

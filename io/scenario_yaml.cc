@@ -192,11 +192,13 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
-SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers) {
+SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers, const std::vector<HeightMap>& moved_as_seen) {
   SeenSurface seen;
-  for (const HeightMap& layer : layers) {
-    if (layer.rows <= 0 || layer.cols <= 0) continue;
-    seen.grids.push_back(SurfaceGrid{layer.resolution_m, layer.origin_world_m, layer.rows, layer.cols, layer.height_m});
+  for (const std::vector<HeightMap>* list : {&layers, &moved_as_seen}) {
+    for (const HeightMap& layer : *list) {
+      if (layer.rows <= 0 || layer.cols <= 0) continue;
+      seen.grids.push_back(SurfaceGrid{layer.resolution_m, layer.origin_world_m, layer.rows, layer.cols, layer.height_m});
+    }
   }
   return seen;
 }
@@ -230,7 +232,7 @@ ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& 
     RegionExtractionResult from_map = ExtractRegionsFromMapFile(scenario.map_path, options);
     out.note = from_map.message;
     out.regions = std::move(from_map.regions);
-    out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers));
+    out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers, from_map.moved_as_seen));
     return out;
   }
   // The boxes' true top faces are the surface a sensor sees from above.

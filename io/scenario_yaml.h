@@ -71,8 +71,11 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
                                           const Deadline& deadline = Deadline());
 
 // A map's surface layers (RegionExtractionResult::layers: every surface seen from above
-// with room above it) as the seen surface the planner accepts start feet on.
-SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers);
+// with room above it) as the seen surface the planner accepts start feet on, with the
+// cells the noise repair moved at the height they were seen (RegionExtractionResult::
+// moved_as_seen): a robot stands on the voxel's top it is on.
+SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers,
+                                const std::vector<HeightMap>& moved_as_seen = {});
 
 // A scenario's terrain for one robot: its regions and the surface seen from above that they
 // came from (PlanRequest::seen_surface): a map's surface layers, a box terrain's uninset

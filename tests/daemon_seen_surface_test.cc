@@ -1,7 +1,9 @@
 // Issue 25 in the daemon: its map stage keeps the surface the map saw from above beside the
 // regions, and its requests accept a start foot on that surface where no region holds it
 // (the robot stands there), as mfp-plan does; a foot in the air is still invalid_start,
-// naming the nearest seen surface. Driven over memq:// with the real map reader and planner.
+// naming the nearest seen surface; a goal beyond reach of every region is answered from the
+// planning thread naming the nearest stance on regions, as mfp-plan answers it. Driven over
+// memq:// with the real map reader and planner.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,6 +26,7 @@
 #include "mfp/plan_request_t.hpp"
 #include "mfp/plan_t.hpp"
 #include "mfp/terrain_map_t.hpp"
+#include "planner/qp/relaxation_solver_factory.h"
 #include "terrain/extraction/map_simulation.h"
 #include "terrain/octomap/octomap_io.h"
 
@@ -181,6 +184,36 @@ TEST_F(DaemonSeenSurfaceTest, AStartFootInTheAirIsInvalidStartNamingTheNearestSe
   ASSERT_NE(reply.status, -1) << "no reply";
   EXPECT_EQ(reply.status, int{plan_t::STATUS_INVALID_START}) << reply.message;
   EXPECT_NE(reply.message.find("nearest seen surface"), std::string::npos) << reply.message;
+}
+
+TEST_F(DaemonSeenSurfaceTest, AFarGoalIsInvalidGoalNamingTheNearestStanceAsThePlannerDoes) {
+  // The goal 1.5 m beyond the slab's +x end (x = 2): farther than any foot reaches from
+  // every region, and the slab within goal_search.report_radius (2 m).
+  plan_request_t request = StanceRequest(robot(), 0.0, 9);
+  request.goal_x = 3.5;
+  const plan_t reply = PlanOnFloor(request);
+  ASSERT_NE(reply.status, -1) << "no reply";
+  EXPECT_EQ(reply.status, int{plan_t::STATUS_INVALID_GOAL}) << reply.message;
+  EXPECT_NE(reply.message.find("from the nearest region"), std::string::npos) << reply.message;
+  const std::string kNamed = "the nearest stance on regions is (";
+  const size_t named = reply.message.find(kNamed);
+  ASSERT_NE(named, std::string::npos) << reply.message;
+
+  // The planner itself, as mfp-plan calls it, names the same stance.
+  const MapTerrain terrain = MakeOctomapMapFunction(*setup_)(map_bytes_, "bt", "floor");
+  PlanRequest direct;
+  for (const auto& f : request.start_feet) direct.start_feet_world_m.emplace_back(f[0], f[1], f[2]);
+  direct.goal_x_m = request.goal_x;
+  direct.goal_y_m = request.goal_y;
+  direct.time_limit_s = request.time_limit_s;
+  direct.seen_surface = terrain.seen_surface;
+  const PlannerOptions& options = setup_->config.planner;
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
+  const Plan plan = PlanFootsteps(robot(), terrain.regions, direct, options, solvers.workers());
+  EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
+  const size_t direct_named = plan.message.find(kNamed);
+  ASSERT_NE(direct_named, std::string::npos) << plan.message;
+  EXPECT_EQ(reply.message.substr(named), plan.message.substr(direct_named));
 }
 
 }  // namespace

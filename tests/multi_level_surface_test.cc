@@ -2,7 +2,10 @@
 // where a foot can really stand, judged against the boxes the maps were made from.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "terrain/extraction/internal/surface_layers.h"
 #include "terrain/extraction/map_simulation.h"
@@ -204,6 +207,107 @@ TEST(MultiLevelSurfaceTest, ScannedCorridorWithAVoxelOfNoiseCoversItsWholeFloor)
     ExpectSound(t, scan, options.foot_radius_m);
     EXPECT_GE(FaceCoverageOf(scan.regions, t, "floor", 0.5, options.foot_radius_m, true), 0.85) << "seed " << seed;
   }
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+// A scanned floor of n x n columns of 5 cm voxels, its top at z = 0, rays having freed the
+// 12 voxels above it. Columns listed in `unseen` hold nothing and no ray reached their
+// floor voxel (only the voxels from 5 cm up are free); those in `erased` have their floor
+// voxel freed by a ray and nothing under it; those in `raised` have their top a voxel up.
+struct ScanFloor {
+  int n = 15;
+  std::vector<std::pair<int, int>> unseen, erased, raised;
+  OccupancyMap Map() const {
+    const double r = 0.05;
+    OccupancyMap map;
+    map.resolution_m = r;
+    auto has = [](const std::vector<std::pair<int, int>>& list, int i, int j) {
+      return std::find(list.begin(), list.end(), std::make_pair(i, j)) != list.end();
+    };
+    auto voxel = [r](int i, int j, int k) { return OccupiedLeaf{{(i + 0.5) * r, (j + 0.5) * r, (k + 0.5) * r}, r}; };
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const bool empty = has(unseen, i, j) || has(erased, i, j);
+        const int top = has(raised, i, j) ? 0 : -1;  // voxel index of the top
+        if (!empty) {
+          for (int k = -3; k <= top; ++k) map.leaves.push_back(voxel(i, j, k));
+        }
+        for (int k = has(unseen, i, j) ? 1 : (has(erased, i, j) ? -1 : top + 1); k <= 12; ++k) {
+          map.free_leaves.push_back(voxel(i, j, k));
+        }
+      }
+    }
+    return map;
+  }
+};
+
+SurfaceLayers ScanLayers(const ScanFloor& floor, int radius_cells) {
+  SurfaceLayerOptions options;
+  options.clearance_m = 0.4;
+  options.step_gate_m = 0.06;
+  options.enclosed_unseen_radius_cells = radius_cells;
+  return BuildSurfaceLayers(floor.Map(), options);
+}
+
+std::vector<std::pair<int, int>> Block(int i0, int j0, int size) {
+  std::vector<std::pair<int, int>> cells;
+  for (int i = i0; i < i0 + size; ++i) {
+    for (int j = j0; j < j0 + size; ++j) cells.emplace_back(i, j);
+  }
+  return cells;
+}
+
+float HeightAt(const SurfaceLayers& layers, int i, int j) {
+  const HeightMap& layer = layers.layers.front();
+  const int col = static_cast<int>(std::floor(((i + 0.5) * 0.05 - layer.origin_world_m.x()) / 0.05));
+  const int row = static_cast<int>(std::floor(((j + 0.5) * 0.05 - layer.origin_world_m.y()) / 0.05));
+  return layer.height_m[static_cast<size_t>(layer.Index(row, col))];
+}
+
+// docs/unseen_floor.md: a 3 x 3 block of floor nobody saw, seen floor of one height all
+// round within 3 cells, is floor at that height; so it is not when the radius is too short,
+// nor when rays freed the floor's voxels there (erased), nor when the unseen block reaches
+// the map's edge (not enclosed).
+TEST(MultiLevelSurfaceTest, UnseenFloorEnclosedBySeenFloorIsFloorButErasedFloorIsNot) {
+  ScanFloor floor;
+  floor.unseen = Block(6, 6, 3);
+  const SurfaceLayers filled = ScanLayers(floor, 3);
+  EXPECT_EQ(filled.enclosed_unseen_filled, 9);
+  for (const auto& [i, j] : floor.unseen) EXPECT_EQ(HeightAt(filled, i, j), 0.0f) << i << ", " << j;
+  EXPECT_EQ(ScanLayers(floor, 1).enclosed_unseen_filled, 0);  // the centre sees no floor within one cell
+  EXPECT_EQ(ScanLayers(floor, 0).enclosed_unseen_filled, 0);
+
+  ScanFloor erased;
+  erased.erased = Block(6, 6, 3);
+  const SurfaceLayers not_filled = ScanLayers(erased, 3);
+  EXPECT_EQ(not_filled.enclosed_unseen_filled, 0);
+  EXPECT_TRUE(std::isnan(HeightAt(not_filled, 7, 7)));
+
+  ScanFloor at_edge;
+  at_edge.unseen = Block(0, 6, 3);
+  EXPECT_EQ(ScanLayers(at_edge, 3).enclosed_unseen_filled, 0);
+}
+
+// A cell the noise repair moves down a voxel keeps its seen height beside the layers: a
+// foot standing on that voxel's top stands on seen surface (the fr_079 start foot).
+TEST(MultiLevelSurfaceTest, ACellTheNoiseRepairMovesKeepsItsSeenHeight) {
+  ScanFloor floor;
+  floor.raised = {{7, 7}};
+  const SurfaceLayers layers = ScanLayers(floor, 0);
+  EXPECT_EQ(HeightAt(layers, 7, 7), 0.0f);  // repaired to the floor's height
+  ASSERT_EQ(layers.moved_as_seen.size(), 1u);
+  const HeightMap& seen = layers.moved_as_seen.front();
+  int moved = 0;
+  for (float h : seen.height_m) moved += std::isnan(h) ? 0 : 1;
+  EXPECT_EQ(moved, 1);
+  const int col = static_cast<int>(std::floor((7.5 * 0.05 - seen.origin_world_m.x()) / 0.05));
+  const int row = static_cast<int>(std::floor((7.5 * 0.05 - seen.origin_world_m.y()) / 0.05));
+  EXPECT_NEAR(seen.height_m[static_cast<size_t>(seen.Index(row, col))], 0.05f, 1e-6);
 }
 
 }  // namespace

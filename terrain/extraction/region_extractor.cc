@@ -44,6 +44,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("max_residual_voxels", o.max_residual_voxels, 0.0, 10.0, true);
   RequireRange("noise_tolerance_voxels", o.noise_tolerance_voxels, 0.0, 10.0, false);
   RequireRange("noise_max_cells", o.noise_max_cells, 0, 1000, false);
+  RequireRange("enclosed_unseen_radius_cells", o.enclosed_unseen_radius_cells, 0, 64, false);
   RequireRange("seed_roughness_voxels", o.seed_roughness_voxels, 0.0, 10.0, true);
   RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
   RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
@@ -58,6 +59,7 @@ SurfaceLayers LayersOf(const OccupancyMap& map, const RegionExtractorOptions& op
   SurfaceLayerOptions layer_options;
   layer_options.clearance_m = options.clearance_m;
   layer_options.require_seen_from_above = options.require_seen_from_above;
+  layer_options.enclosed_unseen_radius_cells = options.enclosed_unseen_radius_cells;
   layer_options.max_cells = options.max_height_map_cells;
   // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
   layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
@@ -267,6 +269,7 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   RegionExtractionStats& stats = result.stats;
   SurfaceLayers layers = LayersOf(map, options);
   result.layers = std::move(layers.layers);
+  result.moved_as_seen = std::move(layers.moved_as_seen);
   result.height_map = result.layers.front();
   stats.layers = static_cast<int>(result.layers.size());
   stats.no_room_above = layers.no_room_above;
@@ -290,6 +293,7 @@ RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
   const Clock::time_point start = Clock::now();
   RegionExtractionResult result;
   result.layers = std::move(layers.layers);
+  result.moved_as_seen = std::move(layers.moved_as_seen);
   result.height_map = result.layers.front();
   result.stats.layers = static_cast<int>(result.layers.size());
   result.stats.surface_cells = layers.candidates;

@@ -39,6 +39,10 @@ struct RegionExtractorOptions {
   double clearance_m = std::numeric_limits<double>::infinity();
   // In maps that store free space, a surface must have been seen from above.
   bool require_seen_from_above = true;
+  // In maps that store free space: unseen floor enclosed by seen floor of one height
+  // within this many cells along all 8 grid directions is floor
+  // (SurfaceLayerOptions::enclosed_unseen_radius_cells; docs/unseen_floor.md). 0: off.
+  int enclosed_unseen_radius_cells = 3;
   double max_slope_rad = 0.45;     // steeper patches are rejected [rad]
   double min_region_area_m2 = 0.0016;  // smaller regions (of foot centres) are dropped [m^2]
   // ... but never more than this many voxels' area (0: min_region_area_m2 alone). Every
@@ -114,6 +118,9 @@ struct RegionExtractionResult {
   HeightMap height_map;               // layer 0, for display
   std::vector<HeightMap> layers;      // every surface layer (mfp-regions --svg shows them apart)
   std::vector<int> region_layer;      // per region, the layer it lies on
+  // Cells whose seen height the noise repair moved, at that seen height (SurfaceLayers::
+  // moved_as_seen): with `layers`, the surface the map saw from above.
+  std::vector<HeightMap> moved_as_seen;
   // With record_cell_fates: per layer and height map cell, a CellFate (cell_fate.h).
   std::vector<std::vector<CellFate>> cell_fates;
   std::string message;                // why there are no regions, when there are none

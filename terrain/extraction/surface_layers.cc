@@ -287,12 +287,27 @@ std::vector<HeightMap> StackSheets(const HeightMap& grid, const Candidates& cand
   return layers;
 }
 
+// Voxels of room a surface needs above it (SurfaceLayerOptions::clearance_m).
+long long RoomVoxels(double clearance_m, double res) {
+  return std::isfinite(clearance_m) ? static_cast<long long>(std::ceil(clearance_m / res - 1e-6))
+                                    : std::numeric_limits<long long>::max() / 4;
+}
+
+// SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
+uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
+  const long long top_voxel = std::llround(level / res) - 1;
+  if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
+  // A ray through the voxel under the floor's level went into a hole: a drop.
+  if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
+  const bool erased = free != nullptr && ColumnHas(*free, col, top_voxel, top_voxel + 1);
+  return static_cast<uint8_t>(kEmptyColumn | (erased ? 0 : kNotErased));
+}
+
 // SurfaceLayers::unseen of one layer.
 std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m) {
   const double res = layer.resolution_m;
   std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
-  const long long room = std::isfinite(clearance_m) ? static_cast<long long>(std::ceil(clearance_m / res - 1e-6))
-                                                    : std::numeric_limits<long long>::max() / 4;
+  const long long room = RoomVoxels(clearance_m, res);
   for (int r = 0; r < layer.rows; ++r) {
     for (int c = 0; c < layer.cols; ++c) {
       const size_t i = static_cast<size_t>(layer.Index(r, c));
@@ -304,16 +319,61 @@ std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, con
         level = std::max(level, layer.height_m[static_cast<size_t>(layer.Index(r + dr[k], c + dc[k]))]);
       }
       if (!std::isfinite(level)) continue;
-      const long long top_voxel = std::llround(level / res) - 1;
-      const int col = layer.Index(r, c);
-      if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) continue;
-      // A ray through the voxel under the floor's level went into a hole: a drop.
-      if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) continue;
-      const bool erased = free != nullptr && ColumnHas(*free, col, top_voxel, top_voxel + 1);
-      unseen[i] = static_cast<uint8_t>(kEmptyColumn | (erased ? 0 : kNotErased));
+      unseen[i] = UnseenBits(occ, free, layer.Index(r, c), level, res, room);
     }
   }
   return unseen;
+}
+
+// The heights of the nearest surface cell along each of the 8 grid directions from (r, c),
+// at most radius cells away; false when a direction has none (or leaves the grid).
+bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hits[8]) {
+  int k = 0;
+  for (int dr = -1; dr <= 1; ++dr) {
+    for (int dc = -1; dc <= 1; ++dc) {
+      if (dr == 0 && dc == 0) continue;
+      bool found = false;
+      for (int step = 1; step <= radius && !found; ++step) {
+        if (!layer.Inside(r + step * dr, c + step * dc)) return false;
+        const float h = layer.height_m[static_cast<size_t>(layer.Index(r + step * dr, c + step * dc))];
+        if (!std::isnan(h)) hits[k] = h, found = true;
+      }
+      if (!found) return false;
+      ++k;
+    }
+  }
+  return true;
+}
+
+// Unseen floor enclosed by seen floor (docs/unseen_floor.md): an empty cell whose nearest
+// surface along every one of the 8 grid directions lies within radius cells, all of them
+// within one voxel of each other, and whose column is unseen at that level (nothing
+// occupied down to the map's bottom or within the clearance above, no ray through the
+// floor's voxel or the one under it: SurfaceLayers::unseen's kEmptyColumn | kNotErased)
+// gets the lower of the surrounding heights' middle pair. Heights are read from the layer
+// as it was, so fills do not chain. Returns the number of cells filled.
+int FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free, double clearance_m, int radius) {
+  const double res = layer->resolution_m;
+  const long long room = RoomVoxels(clearance_m, res);
+  const HeightMap seen = *layer;
+  int filled = 0;
+  for (int r = 0; r < seen.rows; ++r) {
+    for (int c = 0; c < seen.cols; ++c) {
+      const size_t i = static_cast<size_t>(seen.Index(r, c));
+      if (!std::isnan(seen.height_m[i])) continue;
+      float hits[8];
+      if (!SurfaceAllRound(seen, r, c, radius, hits)) continue;
+      std::sort(hits, hits + 8);
+      if (hits[7] - hits[0] > res * (1.0 + 1e-3)) continue;
+      const float level = hits[3];
+      const int col = seen.Index(r, c);
+      if (UnseenBits(occ, &free, col, level, res, room) != (kEmptyColumn | kNotErased)) continue;
+      if (UnseenBits(occ, &free, col, hits[7], res, room) != (kEmptyColumn | kNotErased)) continue;
+      layer->height_m[i] = level;
+      ++filled;
+    }
+  }
+  return filled;
 }
 
 // Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
@@ -342,6 +402,18 @@ std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
   return bits;
 }
 
+// The cells of `as_seen` whose height `repaired` changed (not those it filled), at their
+// seen height; NaN elsewhere.
+HeightMap MovedCellsAsSeen(const HeightMap& as_seen, const HeightMap& repaired) {
+  HeightMap moved = as_seen;
+  for (size_t i = 0; i < moved.height_m.size(); ++i) {
+    if (std::isnan(as_seen.height_m[i]) || as_seen.height_m[i] == repaired.height_m[i]) {
+      moved.height_m[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+  return moved;
+}
+
 }  // namespace
 
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
@@ -367,11 +439,21 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   const Columns* free_or_null = know_free ? &free : nullptr;
   if (options.fill_single_cell_noise) {
     for (HeightMap& layer : out.layers) {
+      const HeightMap as_seen = layer;
       // Twice: a hole beside a displaced cell is filled once that cell is back.
+      int changed = 0;
       for (int pass = 0; pass < 2; ++pass) {
         const std::vector<uint8_t> unseen = UnseenCells(layer, occ, free_or_null, options.clearance_m);
-        out.noise_cells_filled += FillSingleCellNoise(&layer, &unseen);
+        changed += FillSingleCellNoise(&layer, &unseen);
       }
+      out.noise_cells_filled += changed;
+      if (changed > 0) out.moved_as_seen.push_back(MovedCellsAsSeen(as_seen, layer));
+    }
+  }
+  if (know_free && options.enclosed_unseen_radius_cells > 0) {
+    for (HeightMap& layer : out.layers) {
+      out.enclosed_unseen_filled +=
+          FillEnclosedUnseen(&layer, occ, free, options.clearance_m, options.enclosed_unseen_radius_cells);
     }
   }
   for (const HeightMap& layer : out.layers) {

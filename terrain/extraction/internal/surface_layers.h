@@ -28,6 +28,10 @@ struct SurfaceLayerOptions {
   bool require_seen_from_above = true;  // applies only when the map stores free space
   bool drop_isolated_voxels = true;
   bool fill_single_cell_noise = true;   // FillSingleCellNoise on every layer
+  // In maps that store free space: an unseen empty cell whose nearest surface along each
+  // of the 8 grid directions is at most this many cells away, all within a voxel of one
+  // height, is floor at that height (docs/unseen_floor.md). 0: off.
+  int enclosed_unseen_radius_cells = 0;
   size_t max_cells = kDefaultMaxHeightMapCells;
   uint64_t max_leaf_columns = kDefaultMaxLeafColumns;  // CheckLeafColumnBudget (leaf_budget.h)
 };
@@ -62,11 +66,17 @@ struct SurfaceLayers {
   // Per layer and cell, bits saying what is known of a cell empty in the layer
   // (kEmptyColumn, kNotErased); 0 for a cell with a surface. Empty when not computed.
   std::vector<std::vector<uint8_t>> unseen;
+  // Per layer, the cells whose seen height FillSingleCellNoise moved by a voxel, at the
+  // height the map saw (NaN elsewhere); empty when none moved. The repaired height is
+  // what regions are fitted to; the seen one is where a robot may stand all the same
+  // (a start foot on the voxel's top: geometry/seen_surface.h).
+  std::vector<HeightMap> moved_as_seen;
   int candidates = 0;             // surfaces that passed every test
   int no_room_above = 0;          // surfaces with an occupied voxel within the clearance
   int not_seen_from_above = 0;    // surfaces whose top voxel is not known free
   int isolated_voxels = 0;        // single voxels with no occupied neighbour, ignored
   int noise_cells_filled = 0;     // cells FillSingleCellNoise changed
+  int enclosed_unseen_filled = 0; // unseen cells filled as enclosed floor
 };
 
 // Scan noise on a level surface, undone: a cell whose 8 neighbours all have one height
