@@ -6,13 +6,14 @@
 #include <deque>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/noise_patches.h"
 #include "terrain/extraction/internal/surface_layers.h"
 
 namespace mfp {
 namespace {
 
 constexpr int kUnvisited = -1;
-constexpr int kDropped = -2;  // left out of a patch: may join a later one, never seeds one
+constexpr int kDropped = -2;  // left out of a patch: may join or seed a later one
 
 // Running least-squares sums for z = a x + b y + c, in coordinates relative to the seed.
 struct PlaneSums {
@@ -176,7 +177,10 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const Surface
   std::vector<int> members;
   std::vector<uint8_t> kind(hm.height_m.size(), kFree);
   for (int seed = 0; seed < static_cast<int>(label.size()); ++seed) {
-    if (label[seed] != kUnvisited || !(surface.roughness_m[seed] <= options.max_seed_roughness_m)) {
+    // A cell a patch's fit left out (a stone one voxel above the floor the patch grew
+    // over) starts a patch of its own when smooth.
+    if ((label[seed] != kUnvisited && label[seed] != kDropped) ||
+        !(surface.roughness_m[seed] <= options.max_seed_roughness_m)) {
       continue;
     }
     const int patch_id = static_cast<int>(patches.size());
@@ -219,6 +223,7 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const Surface
     PlanarPatch patch = FinishPatch(hm, members, patch_id, plane, options, &label, &kind);
     patches.push_back(std::move(patch));
   }
+  JoinNoisePatches(hm, options, &patches);
   return patches;
 }
 

@@ -29,6 +29,11 @@ struct SegmentationOptions {
   // Per height map cell, kEmptyColumn | kNotErased where an empty cell may be floor nobody saw (nothing occupied
   // in its column, not known free: SurfaceLayers::unseen bits); nullptr: no empty cell is.
   const std::vector<uint8_t>* unseen = nullptr;
+  // A patch none of whose cells holds a disk of this radius on the patch's own cells
+  // (the foot, its margin and the edge uncertainty) holds no foot: it is noise of the
+  // surface around it when within noise_tolerance_m of that surface (noise_patches.h);
+  // 0: patches stay as grown [m].
+  double noise_patch_foot_radius_m = 0.0;
 };
 
 struct PlanarPatch {
