@@ -129,7 +129,7 @@ TEST(ScanNoise, AStoneOneVoxelAboveTheFloorIsARegionOfItsOwn) {
   FloorSpec spec;
   spec.n = 60;
   // A 0.2 m square stone, room for a foot on it, one voxel up in a floor with scattered noise.
-  spec.offset = [](int i, int j) { return i >= 25 && i < 35 && j >= 25 && j < 35 ? 1 : 0; };
+  spec.offset = [](int i, int j) { return i >= 25 && i < 35 && j >= 25 && j < 35 ? 1 : ScatteredNoise(i, j); };
   const RegionExtractionResult r = Extract(Floor(spec));
   bool stone = false;
   for (const ConvexRegion& region : r.regions) {

@@ -99,8 +99,9 @@ bool WithinPlane(const HeightMap& hm, const PlanarPatch& plane, const std::vecto
                      [&](int cell) { return std::abs(Residual(hm, plane, cell)) <= tolerance_m; });
 }
 
-// Fits the plane z = a x + b y + c (world) to the seen cells; false when they do not fix one.
-bool FitPlane(const HeightMap& hm, const std::vector<int>& cells, PlanarPatch* plane) {
+}  // namespace
+
+bool FitPlaneToSeenCells(const HeightMap& hm, const std::vector<int>& cells, PlanarPatch* plane) {
   std::vector<Eigen::Vector3d> points;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int cell : cells) {
@@ -129,6 +130,8 @@ bool FitPlane(const HeightMap& hm, const std::vector<int>& cells, PlanarPatch* p
   return true;
 }
 
+namespace {
+
 // The joined patch's residual and noise figures: cells beyond max_residual_m are noise.
 void CountNoise(const HeightMap& hm, double max_residual_m, PlanarPatch* patch) {
   patch->max_residual_m = 0.0;
@@ -151,7 +154,7 @@ void JoinSmallGroup(const HeightMap& hm, const SegmentationOptions& options, std
   for (int attempt = 0; attempt < 2 && members.size() > 1; ++attempt) {
     PlanarPatch joined;
     for (const PlanarPatch* m : members) joined.cells.insert(joined.cells.end(), m->cells.begin(), m->cells.end());
-    if (!FitPlane(hm, joined.cells, &joined)) break;
+    if (!FitPlaneToSeenCells(hm, joined.cells, &joined)) break;
     std::vector<PlanarPatch*> off, on;
     for (PlanarPatch* m : members) (WithinPlane(hm, joined, m->cells, options.noise_tolerance_m) ? on : off).push_back(m);
     if (off.empty()) {

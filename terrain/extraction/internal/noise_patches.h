@@ -22,6 +22,10 @@
 
 namespace mfp {
 
+// Fits the plane z = a x + b y + c (world) of `plane` to the cells seen in the height
+// map (NaN cells are left out); false, and `plane` unchanged, when they do not fix one.
+bool FitPlaneToSeenCells(const HeightMap& height_map, const std::vector<int>& cells, PlanarPatch* plane);
+
 // Replaces `patches` by the joined ones (order: as the first member of each group);
 // nothing changes when options.noise_patch_foot_radius_m is 0.
 void JoinNoisePatches(const HeightMap& height_map, const SegmentationOptions& options,
