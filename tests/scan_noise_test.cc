@@ -102,12 +102,12 @@ TEST(ScanNoise, GroupsOfOneVoxelPitsAndBumpsStayInTheFloorsRegion) {
   for (const ConvexRegion& r : b.regions) EXPECT_NEAR(r.HeightAt(0.6, 0.6), kRes, 0.1 * kRes);
 }
 
-// Scattered one-voxel pits and bumps, a fifth of the cells each way, placed by a hash:
+// Scattered one-voxel pits and bumps, a tenth of the cells each way, placed by a hash:
 // the floor's top voxel jumps as on a real scan, in groups of every size and shape.
 int ScatteredNoise(int i, int j) {
   const unsigned h = (static_cast<unsigned>(i) * 73856093u) ^ (static_cast<unsigned>(j) * 19349663u);
   const unsigned bucket = (h ^ (h >> 13)) * 2654435761u >> 24;  // 0..255
-  return bucket < 51 ? -1 : bucket < 102 ? 1 : 0;
+  return bucket < 26 ? -1 : bucket < 52 ? 1 : 0;
 }
 
 TEST(ScanNoise, AFloorWithScatteredOneVoxelPitsAndBumpsIsOneSurface) {

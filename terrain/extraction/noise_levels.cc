@@ -35,6 +35,32 @@ std::vector<int8_t> OffSides(const HeightMap& hm, const std::vector<float>& medi
   return side;
 }
 
+// Whether a group of cells off their neighbourhood on `side` stands alone: every seen cell
+// around it lies at least half a voxel beyond the group on the other side (a bump above
+// all around it, a pit below). A corner of a voxelised tilt's staircase has cells of its
+// own level or beyond beside it, so it is not noise.
+bool Isolated(const HeightMap& hm, const std::vector<int>& group, int side) {
+  float lo = INFINITY, hi = -INFINITY;
+  for (int cell : group) {
+    lo = std::min(lo, hm.height_m[static_cast<size_t>(cell)]);
+    hi = std::max(hi, hm.height_m[static_cast<size_t>(cell)]);
+  }
+  const double half = 0.5 * hm.resolution_m;
+  for (int cell : group) {
+    const int row = cell / hm.cols, col = cell % hm.cols;
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        if (!hm.Inside(row + dr, col + dc)) continue;
+        const int nb = hm.Index(row + dr, col + dc);
+        const float h = hm.height_m[static_cast<size_t>(nb)];
+        if (std::isnan(h) || std::find(group.begin(), group.end(), nb) != group.end()) continue;
+        if (side > 0 ? h > lo - half : h < hi + half) return false;
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 NoiseLevels NoiseFreeLevels(const HeightMap& hm, double tolerance_m, int max_cells) {
@@ -54,16 +80,17 @@ NoiseLevels NoiseFreeLevels(const HeightMap& hm, double tolerance_m, int max_cel
     visited[static_cast<size_t>(start)] = 1;
     for (size_t next = 0; next < group.size(); ++next) {
       const int row = group[next] / hm.cols, col = group[next] % hm.cols;
-      const int drow[4] = {1, -1, 0, 0}, dcol[4] = {0, 0, 1, -1};
-      for (int k = 0; k < 4; ++k) {
-        if (!hm.Inside(row + drow[k], col + dcol[k])) continue;
-        const int nb = hm.Index(row + drow[k], col + dcol[k]);
-        if (visited[static_cast<size_t>(nb)] || side[static_cast<size_t>(nb)] != side[static_cast<size_t>(start)]) continue;
-        visited[static_cast<size_t>(nb)] = 1;
-        group.push_back(nb);
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if (!hm.Inside(row + dr, col + dc)) continue;
+          const int nb = hm.Index(row + dr, col + dc);
+          if (visited[static_cast<size_t>(nb)] || side[static_cast<size_t>(nb)] != side[static_cast<size_t>(start)]) continue;
+          visited[static_cast<size_t>(nb)] = 1;
+          group.push_back(nb);
+        }
       }
     }
-    if (static_cast<int>(group.size()) > max_cells) continue;
+    if (static_cast<int>(group.size()) > max_cells || !Isolated(hm, group, side[static_cast<size_t>(start)])) continue;
     for (int cell : group) {
       out.levels.height_m[static_cast<size_t>(cell)] = median[static_cast<size_t>(cell)];
       out.denoised[static_cast<size_t>(cell)] = 1;

@@ -2,9 +2,11 @@
 // The levels a noisy surface is segmented on (issue 25). A real floor's top voxel jumps
 // by a voxel about the surface, so region growing from a seed at one level stops two
 // voxels away and the local fits are too rough to seed. A cell one voxel off the median
-// of its 3 x 3 neighbourhood, in a 4-connected group of at most max_cells such cells on
-// the same side, is noise: its level is that median. A larger group, or a cell further
-// off, keeps its height: a riser is a run of cells, a drop lies further down.
+// of its 3 x 3 neighbourhood, in an 8-connected group of at most max_cells such cells on
+// the same side that stands alone (every seen cell around it beyond it on the other
+// side: a bump, a pit), is noise: its level is that median. A larger group, a group with
+// cells of its level beside it (a riser is a run of cells; a voxelised tilt's staircase),
+// or a cell further off (a drop) keeps its height.
 #include <cstdint>
 #include <vector>
 

@@ -8,7 +8,11 @@
 // growth do not lift it. Sensor noise stays in the patch: a small group of cells one
 // voxel off the plane (a pit or a bump), or of unseen cells, enclosed on all sides by
 // the patch's own cells, is part of the surface; a longer run (a riser) or a group at the
-// patch's border (an edge) is not.
+// patch's border (an edge) is not. With noise_patch_foot_radius_m, a noisier surface is
+// grown on noise-free levels (noise_levels.h: small groups of cells one voxel off their
+// neighbourhood's median count at that median) and its patches too small to hold a foot
+// join the surface around them (noise_patches.h); the planes stay fitted to the cells'
+// own heights.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
