@@ -102,6 +102,44 @@ TEST(ScanNoise, GroupsOfOneVoxelPitsAndBumpsStayInTheFloorsRegion) {
   for (const ConvexRegion& r : b.regions) EXPECT_NEAR(r.HeightAt(0.6, 0.6), kRes, 0.1 * kRes);
 }
 
+// Scattered one-voxel pits and bumps, a tenth of the cells each way, placed by a hash:
+// the floor's top voxel jumps as on a real scan, in groups of every size and shape.
+int ScatteredNoise(int i, int j) {
+  const unsigned h = (static_cast<unsigned>(i) * 73856093u) ^ (static_cast<unsigned>(j) * 19349663u);
+  const unsigned bucket = (h ^ (h >> 13)) * 2654435761u >> 24;  // 0..255
+  return bucket < 26 ? -1 : bucket < 52 ? 1 : 0;
+}
+
+TEST(ScanNoise, AFloorWithScatteredOneVoxelPitsAndBumpsIsOneSurface) {
+  FloorSpec clean;
+  clean.n = 60;
+  FloorSpec noisy = clean;
+  noisy.offset = ScatteredNoise;
+  const RegionExtractionResult a = Extract(Floor(clean)), b = Extract(Floor(noisy));
+  ASSERT_FALSE(a.regions.empty());
+  ASSERT_FALSE(b.regions.empty());
+  EXPECT_GE(TotalArea(b), 0.85 * TotalArea(a));
+  // Every region is the floor's, at its height (the noise averages out), none a level of it.
+  for (const ConvexRegion& r : b.regions) EXPECT_NEAR(r.HeightAt(0.6, 0.6), kRes, 0.25 * kRes);
+  // Cutting the noise out (noise_max_cells 0) shatters the floor: the test tells them apart.
+  EXPECT_LT(TotalArea(Extract(Floor(noisy), 0)), 0.5 * TotalArea(a));
+}
+
+TEST(ScanNoise, AStoneOneVoxelAboveTheFloorIsARegionOfItsOwn) {
+  FloorSpec spec;
+  spec.n = 60;
+  // A 0.2 m square stone, room for a foot on it, one voxel up in a floor with scattered noise.
+  spec.offset = [](int i, int j) { return i >= 25 && i < 35 && j >= 25 && j < 35 ? 1 : ScatteredNoise(i, j); };
+  const RegionExtractionResult r = Extract(Floor(spec));
+  bool stone = false;
+  for (const ConvexRegion& region : r.regions) {
+    if (PlanDistanceToRegion(region, CellCentre(30, 30)) > 0.0) continue;
+    EXPECT_NEAR(region.HeightAt(0.6, 0.6), 2 * kRes, 0.05 * kRes) << "a region at the stone is not the stone's";
+    stone = true;
+  }
+  EXPECT_TRUE(stone);
+}
+
 TEST(ScanNoise, ARegionBesideAHigherStoneKeepsItsOwnHeight) {
   FloorSpec spec;
   spec.n = 60;

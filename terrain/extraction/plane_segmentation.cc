@@ -6,13 +6,15 @@
 #include <deque>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/noise_levels.h"
+#include "terrain/extraction/internal/noise_patches.h"
 #include "terrain/extraction/internal/surface_layers.h"
 
 namespace mfp {
 namespace {
 
 constexpr int kUnvisited = -1;
-constexpr int kDropped = -2;  // left out of a patch: may join a later one, never seeds one
+constexpr int kDropped = -2;  // left out of a patch: may join or seed a later one
 
 // Running least-squares sums for z = a x + b y + c, in coordinates relative to the seed.
 struct PlaneSums {
@@ -164,9 +166,37 @@ PlanarPatch FinishPatch(const HeightMap& hm, const std::vector<int>& members, in
 
 double PlanarPatch::SlopeRad() const { return std::acos(std::min(1.0, normal_world.z())); }
 
-std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const SurfaceAnalysis& surface,
+namespace {
+
+// A patch grown on noise-free levels takes the plane of its cells' own heights (the
+// surface's height: the noise averages out), with the residual of its cells within
+// max_residual_m of it. Patches without a denoised cell are left as they are.
+void RefitOnHeights(const HeightMap& raw, const NoiseLevels& noise, double max_residual_m,
+                    std::vector<PlanarPatch>* patches) {
+  for (PlanarPatch& patch : *patches) {
+    const bool any = std::any_of(patch.cells.begin(), patch.cells.end(),
+                                 [&](int cell) { return noise.denoised[static_cast<size_t>(cell)] != 0; });
+    if (!any || !FitPlaneToSeenCells(raw, patch.cells, &patch)) continue;
+    patch.max_residual_m = 0.0;
+    for (int cell : patch.cells) {
+      const float h = raw.height_m[static_cast<size_t>(cell)];
+      if (std::isnan(h)) continue;
+      const double r = std::abs(h - patch.HeightAt(raw.CellCenter(cell / raw.cols, cell % raw.cols)));
+      if (r <= max_residual_m) patch.max_residual_m = std::max(patch.max_residual_m, r);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const SurfaceAnalysis& surface,
                                               const SegmentationOptions& options) {
-  MFP_CHECK(surface.roughness_m.size() == hm.height_m.size());
+  MFP_CHECK(surface.roughness_m.size() == raw.height_m.size());
+  // Grown on noise-free levels where the surface is noisy (noise_levels.h).
+  const bool noise_levels = options.noise_patch_foot_radius_m > 0.0 && options.noise_max_cells > 0;
+  const NoiseLevels noise =
+      noise_levels ? NoiseFreeLevels(raw, options.noise_tolerance_m, options.noise_max_cells) : NoiseLevels{};
+  const HeightMap& hm = noise.denoised_cells > 0 ? noise.levels : raw;
   std::vector<int> label(hm.height_m.size(), kUnvisited);
   std::vector<PlanarPatch> patches;
   const double res = hm.resolution_m;
@@ -176,15 +206,18 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const Surface
   std::vector<int> members;
   std::vector<uint8_t> kind(hm.height_m.size(), kFree);
   for (int seed = 0; seed < static_cast<int>(label.size()); ++seed) {
-    if (label[seed] != kUnvisited || !(surface.roughness_m[seed] <= options.max_seed_roughness_m)) {
-      continue;
-    }
+    // A cell a patch's fit left out (a stone one voxel above the floor the patch grew
+    // over) starts a patch of its own when smooth.
+    if (label[seed] != kUnvisited && label[seed] != kDropped) continue;
+    const bool smooth = surface.roughness_m[seed] <= options.max_seed_roughness_m;
+    if (!smooth && !(noise.denoised_cells > 0 && FlatLevel(hm, seed))) continue;
     const int patch_id = static_cast<int>(patches.size());
     const int seed_row = seed / hm.cols, seed_col = seed % hm.cols;
     const double z0 = hm.height_m[seed];
     // Start from the cell's local plane, in cells relative to the seed.
     const Eigen::Vector3f& n0 = surface.normal_world[seed];
     Eigen::Vector3d abc(-n0.x() / n0.z() * res, -n0.y() / n0.z() * res, 0.0);
+    if (!smooth) abc.setZero();  // a flat level: the local fit saw the noise
     PlaneSums sums;
     int next_refit = 8;
     members.clear();
@@ -219,6 +252,8 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& hm, const Surface
     PlanarPatch patch = FinishPatch(hm, members, patch_id, plane, options, &label, &kind);
     patches.push_back(std::move(patch));
   }
+  if (noise.denoised_cells > 0) RefitOnHeights(raw, noise, options.max_residual_m, &patches);
+  JoinNoisePatches(raw, options, &patches);
   return patches;
 }
 

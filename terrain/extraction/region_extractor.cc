@@ -100,6 +100,12 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
   seg.max_seed_roughness_m = options.seed_roughness_voxels * res;
   seg.noise_tolerance_m = options.noise_tolerance_voxels * res;
   seg.noise_max_cells = options.noise_max_cells;
+  // A patch holds a foot when one of its cells holds the disk a foot needs: its radius
+  // with the margin and the edge uncertainty (the inset beside a drop).
+  if (options.noise_max_cells > 0) {
+    seg.noise_patch_foot_radius_m =
+        options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * res;
+  }
   std::vector<LayerPatch> patches;
   for (size_t l = 0; l < layers.size(); ++l) {
     seg.unseen = l < unseen.size() ? &unseen[l] : nullptr;

@@ -60,6 +60,10 @@ struct RegionExtractorOptions {
   // patch's own cells, stays in the patch instead of being cut out and inset by the foot
   // and margin. A longer run (a riser) or a group at the patch's edge is a real edge; a
   // cell further off (a deeper pit) or with a lower surface seen below is a drop.
+  // The same groups off their 3 x 3 neighbourhood's median are grown at that median, and
+  // patches too small to hold a foot (with margin and edge uncertainty) join the surface
+  // around them within noise_tolerance_voxels (noise_levels.h, noise_patches.h): a
+  // scanned floor is one surface, a stone one voxel up that holds a foot stays a step.
   // noise_max_cells 0: no noise kept.
   double noise_tolerance_voxels = 1.4;
   int noise_max_cells = 4;

@@ -6,6 +6,8 @@
 #include <map>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
+#include <vector>
 
 #include "base/check.h"
 #include "terrain/quality/leaf_set.h"
@@ -51,6 +53,25 @@ int64_t DominantLevel(const std::vector<SurfaceVoxel>& surfaces) {
     if (c > best_count) best_count = c, best = s.k;
   }
   return best;
+}
+
+// The column offsets the erosion checks, for the floor as a set (every column whose
+// square comes closer than erosion_m to the centre) or centre to centre (every column
+// whose centre lies within erosion_m).
+std::vector<std::pair<int, int>> ErosionOffsets(double erosion_m, double r, bool as_set) {
+  const int reach = static_cast<int>(std::floor(erosion_m / r + (as_set ? 0.5 : 0.0) + 1e-9)) + 1;
+  std::vector<std::pair<int, int>> offsets;
+  for (int di = -reach; di <= reach; ++di) {
+    for (int dj = -reach; dj <= reach; ++dj) {
+      if (as_set) {
+        const double ex = std::max(std::abs(di) - 0.5, 0.0) * r, ey = std::max(std::abs(dj) - 0.5, 0.0) * r;
+        if (ex * ex + ey * ey < erosion_m * erosion_m - 1e-12) offsets.emplace_back(di, dj);
+      } else if ((di * di + dj * dj) * r * r <= erosion_m * erosion_m + 1e-12) {
+        offsets.emplace_back(di, dj);
+      }
+    }
+  }
+  return offsets;
 }
 
 struct RegionBox {
@@ -105,7 +126,14 @@ VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions,
   if (!surfaces.empty()) {
     const int64_t floor_k = DominantLevel(surfaces);
     q.floor_height_m = (static_cast<double>(floor_k) + 1.0) * r;
-    const int reach = static_cast<int>(std::floor(options.erosion_m / r + 1e-9));
+    const std::vector<std::pair<int, int>> as_set = ErosionOffsets(options.erosion_m, r, true);
+    const std::vector<std::pair<int, int>> centres = ErosionOffsets(options.erosion_m, r, false);
+    auto eroded_in = [&](const SurfaceVoxel& s, double top, const std::vector<std::pair<int, int>>& offsets) {
+      for (const auto& [di, dj] : offsets) {
+        if (!surface_near(s.i + di, s.j + dj, top, r)) return false;
+      }
+      return true;
+    };
     int seen_covered = 0;
     for (const SurfaceVoxel& s : surfaces) {
       const double top = (static_cast<double>(s.k) + 1.0) * r;
@@ -114,20 +142,20 @@ VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions,
       const Eigen::Vector2d xy((static_cast<double>(s.i) + 0.5) * r, (static_cast<double>(s.j) + 0.5) * r);
       const bool covered = CoveredAt(regions, boxes, xy, top, r);
       seen_covered += covered ? 1 : 0;
-      bool certifiable = true;
-      for (int di = -reach; di <= reach && certifiable; ++di) {
-        for (int dj = -reach; dj <= reach && certifiable; ++dj) {
-          if ((di * di + dj * dj) * r * r > options.erosion_m * options.erosion_m + 1e-12) continue;
-          certifiable = surface_near(s.i + di, s.j + dj, top, r);
-        }
-      }
-      if (!certifiable) continue;
+      if (!eroded_in(s, top, centres)) continue;  // the set erosion checks these columns too
+      ++q.certifiable_centre_floor_cells;
+      q.certifiable_centre_covered_cells += covered ? 1 : 0;
+      if (!eroded_in(s, top, as_set)) continue;
       ++q.certifiable_floor_cells;
       q.certifiable_covered_cells += covered ? 1 : 0;
       if (!covered && options.list_missed) q.missed_certifiable.emplace_back(xy.x(), xy.y(), top);
     }
     q.seen_floor_m2 = q.seen_floor_cells * r * r;
     q.seen_floor_coverage = q.seen_floor_cells > 0 ? static_cast<double>(seen_covered) / q.seen_floor_cells : 0.0;
+    q.certifiable_centre_coverage =
+        q.certifiable_centre_floor_cells > 0
+            ? static_cast<double>(q.certifiable_centre_covered_cells) / q.certifiable_centre_floor_cells
+            : 0.0;
     q.certifiable_coverage = q.certifiable_floor_cells > 0
                                  ? static_cast<double>(q.certifiable_covered_cells) / q.certifiable_floor_cells
                                  : 0.0;

@@ -8,10 +8,13 @@
 //   above it: seen from above) and no voxel within the clearance above it is occupied;
 // - the *seen floor* is the seen surface voxels of the map's dominant level (the most
 //   common surface height, within floor_band_m);
-// - the *certifiable floor* is the seen floor eroded by erosion_m in plan view: every
-//   column within erosion_m holds a seen surface voxel within one voxel of its height.
-//   No sound extractor can certify more (a foot plus margin plus a voxel of edge
-//   uncertainty must fit on seen surface);
+// - the *certifiable floor* is the seen floor eroded by erosion_m in plan view, the floor
+//   taken as a set (the union of its columns' squares): a floor column's centre is
+//   certifiable when every column whose square comes closer than erosion_m to it holds a
+//   seen surface voxel within one voxel of its height. No sound extractor can certify
+//   more (a foot plus margin plus a voxel of edge uncertainty must fit on seen surface).
+//   The figure of the older, half a voxel more lenient judge (only columns whose
+//   *centre* lies within erosion_m) is kept beside it (certifiable_centre_*);
 // - a region point is *sound* when its column holds a seen surface voxel whose top lies
 //   within one voxel plus the region's plane tolerance of the point.
 #include <Eigen/Core>
@@ -39,6 +42,11 @@ struct VoxelQuality {
   int certifiable_floor_cells = 0;
   int certifiable_covered_cells = 0;  // certifiable floor cells inside a region at their height
   double certifiable_coverage = 0.0;  // covered / certifiable (0 when nothing is certifiable)
+  // The same by the centre-to-centre erosion (a column is certifiable when every column
+  // whose centre lies within erosion_m of its centre holds floor): a superset.
+  int certifiable_centre_floor_cells = 0;
+  int certifiable_centre_covered_cells = 0;
+  double certifiable_centre_coverage = 0.0;
   double seen_floor_coverage = 0.0;   // seen floor cells inside a region / seen floor cells
   int region_samples = 0;
   int sound_samples = 0;

@@ -8,7 +8,11 @@
 // growth do not lift it. Sensor noise stays in the patch: a small group of cells one
 // voxel off the plane (a pit or a bump), or of unseen cells, enclosed on all sides by
 // the patch's own cells, is part of the surface; a longer run (a riser) or a group at the
-// patch's border (an edge) is not.
+// patch's border (an edge) is not. With noise_patch_foot_radius_m, a noisier surface is
+// grown on noise-free levels (noise_levels.h: small groups of cells one voxel off their
+// neighbourhood's median count at that median) and its patches too small to hold a foot
+// join the surface around them (noise_patches.h); the planes stay fitted to the cells'
+// own heights.
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -29,6 +33,11 @@ struct SegmentationOptions {
   // Per height map cell, kEmptyColumn | kNotErased where an empty cell may be floor nobody saw (nothing occupied
   // in its column, not known free: SurfaceLayers::unseen bits); nullptr: no empty cell is.
   const std::vector<uint8_t>* unseen = nullptr;
+  // A patch none of whose cells holds a disk of this radius on the patch's own cells
+  // (the foot, its margin and the edge uncertainty) holds no foot: it is noise of the
+  // surface around it when within noise_tolerance_m of that surface (noise_patches.h);
+  // 0: patches stay as grown [m].
+  double noise_patch_foot_radius_m = 0.0;
 };
 
 struct PlanarPatch {

@@ -1,0 +1,216 @@
+#include <Eigen/Core>
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "terrain/extraction/internal/patch_cover.h"
+
+namespace mfp {
+namespace {
+
+double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+bool Inside(const std::array<Eigen::Vector2d, 4>& poly, const Eigen::Vector2d& p) {  // counter-clockwise
+  for (int i = 0; i < 4; ++i) {
+    if (Cross(poly[(i + 1) % 4] - poly[i], p - poly[i]) < 0.0) return false;
+  }
+  return true;
+}
+
+// Distance between two convex quadrilaterals (counter-clockwise); 0 when they overlap.
+double QuadDistance(const std::array<Eigen::Vector2d, 4>& p, const std::array<Eigen::Vector2d, 4>& q) {
+  for (int i = 0; i < 4; ++i) {
+    if (Inside(p, q[i]) || Inside(q, p[i])) return 0.0;
+  }
+  double d = INFINITY;
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % 4];
+    for (int j = 0; j < 4; ++j) {
+      const Eigen::Vector2d &c = q[j], &e = q[(j + 1) % 4];
+      const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, e - a);
+      const double d3 = Cross(e - c, a - c), d4 = Cross(e - c, b - c);
+      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return 0.0;
+      d = std::min({d, PointSegmentDistance(a, c, e), PointSegmentDistance(b, c, e),
+                    PointSegmentDistance(c, a, b), PointSegmentDistance(e, a, b)});
+    }
+  }
+  return d;
+}
+
+// The rotated grid: u along the principal direction, v across, in steps of half a cell,
+// spanning the dual squares' bounding box.
+struct RotatedFrame {
+  static constexpr double kStep = 0.5;
+  Eigen::Vector2d eu, ev;
+  double umin = INFINITY, umax = -INFINITY, vmin = INFINITY, vmax = -INFINITY;
+
+  RotatedFrame(double angle, const LocalGrid& dual)
+      : eu(std::cos(angle), std::sin(angle)), ev(-std::sin(angle), std::cos(angle)) {
+    for (double x : {0.0, double(dual.cols)}) {
+      for (double y : {0.0, double(dual.rows)}) {
+        const Eigen::Vector2d p(x, y);
+        umin = std::min(umin, p.dot(eu));
+        umax = std::max(umax, p.dot(eu));
+        vmin = std::min(vmin, p.dot(ev));
+        vmax = std::max(vmax, p.dot(ev));
+      }
+    }
+  }
+  // Rotated-grid corner -> centre units.
+  Eigen::Vector2d Corner(double a, double b) const {
+    return Eigen::Vector2d(eu * (umin + a * kStep) + ev * (vmin + b * kStep));
+  }
+};
+
+struct Box2d {
+  double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
+  void Add(const Eigen::Vector2d& p) {
+    xmin = std::min(xmin, p.x());
+    xmax = std::max(xmax, p.x());
+    ymin = std::min(ymin, p.y());
+    ymax = std::max(ymax, p.y());
+  }
+};
+
+// A rotated-grid cell is kept when its bounding box lies in complete dual squares.
+LocalGrid RotatedGrid(const RotatedFrame& frame, const LocalGrid& dual) {
+  LocalGrid rotated;
+  rotated.cols = static_cast<int>(std::ceil((frame.umax - frame.umin) / RotatedFrame::kStep));
+  rotated.rows = static_cast<int>(std::ceil((frame.vmax - frame.vmin) / RotatedFrame::kStep));
+  rotated.cells.assign(static_cast<size_t>(rotated.rows) * rotated.cols, 0);
+  for (int b = 0; b < rotated.rows; ++b) {
+    for (int a = 0; a < rotated.cols; ++a) {
+      Box2d box;
+      for (int k = 0; k < 4; ++k) box.Add(frame.Corner(a + (k & 1), b + (k >> 1)));
+      const int c0 = static_cast<int>(std::floor(box.xmin + 1e-9));
+      const int c1 = static_cast<int>(std::ceil(box.xmax - 1e-9));
+      const int r0 = static_cast<int>(std::floor(box.ymin + 1e-9));
+      const int r1 = static_cast<int>(std::ceil(box.ymax - 1e-9));
+      if (c0 < 0 || r0 < 0 || c1 > dual.cols || r1 > dual.rows) continue;
+      bool inside = true;
+      for (int r = r0; r < r1 && inside; ++r) {
+        for (int c = c0; c < c1 && inside; ++c) inside = dual.At(r, c);
+      }
+      rotated.At(b, a) = inside;
+    }
+  }
+  return rotated;
+}
+
+// A cell outside the patch near it (holes, and a ring around the bounding box), with its
+// inset.
+struct OutsideCell {
+  int r, c;
+  double inset_cells;
+};
+
+// The outside cells row by row (rows from -ring, each in column order), so a test near
+// a rectangle visits only the rows and columns within reach of it.
+struct OutsideCells {
+  int row0 = 0;
+  std::vector<std::vector<OutsideCell>> rows;
+};
+
+OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
+  OutsideCells outside;
+  outside.row0 = -inset.ring();
+  for (int r = -inset.ring(); r < mask.rows + inset.ring(); ++r) {
+    std::vector<OutsideCell>& row = outside.rows.emplace_back();
+    for (int c = -inset.ring(); c < mask.cols + inset.ring(); ++c) {
+      if (mask.Contains(r, c)) continue;
+      row.push_back({r, c, inset.At(r, c)});
+    }
+  }
+  return outside;
+}
+
+// Whether a rectangle keeps `out`'s inset from the cell's square (false) or not (true).
+bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out,
+              double u0, double u1, double v0, double v1) {
+  const int r = out.r, c = out.c;
+  const double step = RotatedFrame::kStep;
+  // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
+  const Eigen::Vector2d centre(c, r);
+  const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
+  const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+  if (centre_dist >= out.inset_cells + 0.7072) return false;
+  if (centre_dist < out.inset_cells - 0.7072) return true;
+  const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
+                                               Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
+  return QuadDistance(quad, cell) < out.inset_cells - 1e-9;
+}
+
+// Whether the rotated rectangle [u0, u1] x [v0, v1] (rotated-grid steps) keeps the inset
+// from every cell square outside the patch: an exact test.
+bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells, double u0,
+                     double u1, double v0, double v1) {
+  const std::array<Eigen::Vector2d, 4> quad = {frame.Corner(u0, v0), frame.Corner(u1, v0),
+                                               frame.Corner(u1, v1), frame.Corner(u0, v1)};
+  Box2d box;
+  for (const Eigen::Vector2d& p : quad) box.Add(p);
+  // Cells further than the largest inset plus a cell from the box cannot be too close.
+  const double reach = max_inset_cells + 1;
+  const int n_rows = static_cast<int>(outside.rows.size());
+  const int first = std::max(0, static_cast<int>(std::ceil(box.ymin - reach)) - outside.row0);
+  const int last = std::min(n_rows - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
+  for (int i = first; i <= last; ++i) {
+    const std::vector<OutsideCell>& row = outside.rows[static_cast<size_t>(i)];
+    auto it = std::lower_bound(row.begin(), row.end(), box.xmin - reach,
+                               [](const OutsideCell& cell, double x) { return cell.c < x; });
+    for (; it != row.end() && it->c <= box.xmax + reach; ++it) {
+      if (TooClose(frame, quad, *it, u0, u1, v0, v1)) return false;
+    }
+  }
+  return true;
+}
+
+// Each side of a safe rotated rectangle moves out (in rotated-grid steps, up to one cell)
+// while the rectangle stays safe, by bisection.
+void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside,
+                     double max_inset_cells, double* a0, double* a1, double* b0, double* b1) {
+  const double most = 1.0 / RotatedFrame::kStep;  // one cell, in rotated-grid steps
+  auto grow = [&](double* side, double sign) {
+    double lo = 0.0, hi = most;
+    const double base = *side;
+    for (int it = 0; it < 8; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      *side = base + sign * mid;
+      (RotatedRectSafe(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
+    }
+    *side = base + sign * lo;
+  };
+  grow(a0, -1.0);
+  grow(a1, 1.0);
+  grow(b0, -1.0);
+  grow(b1, 1.0);
+}
+
+}  // namespace
+
+std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const PatchDecompositionOptions& options) {
+  const RotatedFrame frame(angle, *in.dual);
+  const LocalGrid rotated = RotatedGrid(frame, *in.dual);
+  const OutsideCells outside = ListOutsideCells(*in.mask, *in.inset);
+  RectangleCoverOptions cover = options.cover;
+  const double step = RotatedFrame::kStep;
+  cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, step * step * in.res * in.res);
+  std::vector<Quad2d> quads;
+  for (const CellRect& rect : GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
+    double a0 = rect.col0, a1 = rect.col0 + rect.cols;
+    double b0 = rect.row0, b1 = rect.row0 + rect.rows;
+    if (in.max_inset_cells > 0.0 && RotatedRectSafe(frame, outside, in.max_inset_cells, a0, a1, b0, b1)) {
+      GrowRotatedRect(frame, outside, in.max_inset_cells, &a0, &a1, &b0, &b1);
+    }
+    quads.push_back({in.ToWorld(frame.Corner(a0, b0)), in.ToWorld(frame.Corner(a1, b0)),
+                     in.ToWorld(frame.Corner(a1, b1)), in.ToWorld(frame.Corner(a0, b1))});
+  }
+  return quads;
+}
+
+}  // namespace mfp

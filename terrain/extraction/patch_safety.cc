@@ -1,0 +1,123 @@
+#include "terrain/extraction/internal/patch_safety.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "terrain/extraction/internal/surface_layers.h"
+
+namespace mfp {
+
+InsetsInCells InsetsToCells(const PatchDecompositionOptions& options, double res) {
+  InsetsInCells insets;
+  insets.base = options.inset_m / res;
+  insets.drop = options.drop_inset_m / res;
+  // A riser with no uncertainty is kept strictly off (by 0.1 um): a foot disk touching a
+  // wall is not on free surface.
+  insets.riser = (options.riser_inset_m > 0.0 ? options.riser_inset_m : 1e-7) / res;
+  insets.max = insets.base + std::max(insets.drop, insets.riser);
+  return insets;
+}
+
+std::vector<DiskOffset> DiskOffsets(double max_inset_cells, double res) {
+  std::vector<DiskOffset> offsets;
+  const int reach = static_cast<int>(std::ceil(max_inset_cells + 0.5));
+  for (int dr = -reach; dr <= reach; ++dr) {
+    for (int dc = -reach; dc <= reach; ++dc) {
+      const double ex = std::max(std::abs(dc) - 0.5, 0.0), ey = std::max(std::abs(dr) - 0.5, 0.0);
+      const double d = std::sqrt(ex * ex + ey * ey);
+      if (d < max_inset_cells - 1e-12 / res) offsets.push_back({dr, dc, d});
+    }
+  }
+  return offsets;
+}
+
+// The patch's cells over its bounding box.
+LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch) {
+  LocalGrid mask;
+  int rmin = hm.rows, rmax = -1, cmin = hm.cols, cmax = -1;
+  for (int cell : patch.cells) {
+    rmin = std::min(rmin, cell / hm.cols);
+    rmax = std::max(rmax, cell / hm.cols);
+    cmin = std::min(cmin, cell % hm.cols);
+    cmax = std::max(cmax, cell % hm.cols);
+  }
+  mask.row0 = rmin;
+  mask.col0 = cmin;
+  mask.rows = rmax - rmin + 1;
+  mask.cols = cmax - cmin + 1;
+  mask.cells.assign(static_cast<size_t>(mask.rows) * mask.cols, 0);
+  for (int cell : patch.cells) mask.At(cell / hm.cols - rmin, cell % hm.cols - cmin) = 1;
+  return mask;
+}
+
+// The edge uncertainty is added where the patch may end inside its boundary cell next to
+// it - every neighbour unless material rises there (solid_beside).
+InsetField::InsetField(const HeightMap& hm, const LocalGrid& mask,
+                       const PatchDecompositionOptions& options, const InsetsInCells& insets)
+    : ring_(static_cast<int>(std::ceil(insets.max)) + 2),
+      rows_(mask.rows),
+      cols_(mask.cols),
+      ext_cols_(mask.cols + 2 * ring_),
+      max_(insets.max),
+      grid_(static_cast<size_t>(mask.rows + 2 * ring_) * ext_cols_, insets.base) {
+  for (int r = -ring_; r < mask.rows + ring_; ++r) {
+    for (int c = -ring_; c < mask.cols + ring_; ++c) {
+      double& inset = grid_[static_cast<size_t>(r + ring_) * ext_cols_ + (c + ring_)];
+      if (mask.Contains(r, c)) {
+        inset = -1.0;
+        continue;
+      }
+      bool next_to_patch = false, drop = false;
+      for (int dr = -1; dr <= 1 && !drop; ++dr) {
+        for (int dc = -1; dc <= 1 && !drop; ++dc) {
+          if ((dr == 0 && dc == 0) || !mask.Contains(r + dr, c + dc)) continue;
+          next_to_patch = true;
+          // From the patch cell (r + dr, c + dc), this cell is neighbour (-dr, -dc).
+          const int p = hm.Index(mask.row0 + r + dr, mask.col0 + c + dc);
+          drop = options.solid_beside == nullptr ||
+                 !((*options.solid_beside)[static_cast<size_t>(p)] & (1u << NeighbourBit(-dr, -dc)));
+        }
+      }
+      if (next_to_patch) inset += drop ? insets.drop : insets.riser;
+      // A cell asking no inset (point feet, no margin) still keeps regions off its
+      // interior: the side and rotated-rectangle tests need a positive inset.
+      inset = std::max(inset, 1e-6);
+    }
+  }
+}
+
+// Eroded mask: cells whose centre holds a whole foot disk.
+LocalGrid ErodedMask(const LocalGrid& mask, const InsetField& inset, const std::vector<DiskOffset>& offsets,
+                     double res) {
+  LocalGrid eroded = mask;
+  for (int r = 0; r < mask.rows; ++r) {
+    for (int c = 0; c < mask.cols; ++c) {
+      if (!mask.At(r, c)) continue;
+      for (const DiskOffset& o : offsets) {
+        const double cell_inset = inset.At(r + o.dr, c + o.dc);
+        if (cell_inset >= 0.0 && res * o.dist_cells < res * cell_inset - 1e-12) {
+          eroded.At(r, c) = 0;
+          break;
+        }
+      }
+    }
+  }
+  return eroded;
+}
+
+// Dual squares: spanned by the centres of cells (r, c) .. (r + 1, c + 1), all kept.
+LocalGrid DualSquares(const LocalGrid& eroded) {
+  LocalGrid dual;
+  dual.rows = eroded.rows - 1;
+  dual.cols = eroded.cols - 1;
+  dual.cells.assign(static_cast<size_t>(dual.rows) * dual.cols, 0);
+  for (int r = 0; r < dual.rows; ++r) {
+    for (int c = 0; c < dual.cols; ++c) {
+      dual.At(r, c) = eroded.At(r, c) && eroded.At(r + 1, c) && eroded.At(r, c + 1) &&
+                      eroded.At(r + 1, c + 1);
+    }
+  }
+  return dual;
+}
+
+}  // namespace mfp
