@@ -50,25 +50,32 @@ std::vector<FreeRegion2d> WindowBodyRegions(const PlanContext& context, const Fo
                                    Eigen::Vector2d(body.max_m.x(), body.min_m.y())}) {
     radius = std::max(radius, c.norm());
   }
+  const int n = robot.num_legs();
+  const int configurations = (problem.num_new_steps + n - 1) / n;
+  // The highest ground the window can stand on: its start feet, and its regions within
+  // the height its configurations can climb.
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
-  double ground_lo = INFINITY, ground_hi = -INFINITY;
+  double ground_hi = -INFINITY;
   for (const Eigen::Vector3d& f : problem.start_feet_world_m) {
     lo = lo.cwiseMin(f.head<2>());
     hi = hi.cwiseMax(f.head<2>());
-    ground_lo = std::min(ground_lo, f.z() - robot.dz_max_m);
-    ground_hi = std::max(ground_hi, f.z() + robot.dz_max_m);
+    ground_hi = std::max(ground_hi, f.z());
   }
+  const double climb_limit = ground_hi + configurations * robot.dz_max_m;
   for (const ConvexRegion& region : problem.regions) {
     for (const Eigen::Vector3d& v : region.vertices_world_m) {
       lo = lo.cwiseMin(v.head<2>());
       hi = hi.cwiseMax(v.head<2>());
+      if (v.z() <= climb_limit) ground_hi = std::max(ground_hi, v.z());
     }
   }
   lo -= Eigen::Vector2d::Constant(radius);
   hi += Eigen::Vector2d::Constant(radius);
   std::vector<std::vector<Eigen::Vector2d>> near;
   for (const BodyObstacle& obstacle : context.request.body_obstacles) {
-    if (!(obstacle.top_z_m > ground_lo + body.bottom_m && obstacle.bottom_z_m < ground_hi + body.top_m)) continue;
+    // In the band over every ground the window can stand on: walls, not the stones and
+    // steps it walks on (those are left to the after-the-fact check, window_body_check.h).
+    if (!InBodyBand(body, obstacle, ground_hi)) continue;
     Eigen::Vector2d olo = Eigen::Vector2d::Constant(INFINITY), ohi = Eigen::Vector2d::Constant(-INFINITY);
     for (const Eigen::Vector2d& v : obstacle.polygon_world_m) {
       olo = olo.cwiseMin(v);
@@ -77,8 +84,6 @@ std::vector<FreeRegion2d> WindowBodyRegions(const PlanContext& context, const Fo
     if ((olo - hi).maxCoeff() < 0.0 && (lo - ohi).maxCoeff() < 0.0) near.push_back(obstacle.polygon_world_m);
   }
   if (near.empty()) return {};
-  const int n = robot.num_legs();
-  const int configurations = (problem.num_new_steps + n - 1) / n;
   const double reach = configurations * 2.0 * robot.d_lim_m;
   const double spacing = 0.5 * std::min(body.length_m(), body.width_m());
   std::vector<FreeRegion2d> regions;

@@ -16,8 +16,9 @@ namespace mfp {
 
 // At most options.formulation.max_body_regions regions; empty (no body rows) when the
 // option is off, the body unknown, or no obstacle in the band is near the window's
-// regions. The window's ground is its start feet's heights, dz_max either way: an
-// obstacle counts when it reaches into the band over some ground in that range.
+// regions. An obstacle counts when it reaches into the body's band over the highest
+// ground the window can stand on (its start feet, and its regions no higher than its
+// configurations can climb at dz_max each): walls, not the stones and steps it walks on.
 std::vector<FreeRegion2d> WindowBodyRegions(const PlanContext& context, const FootstepProblem& problem);
 
 }  // namespace mfp
