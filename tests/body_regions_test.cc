@@ -147,5 +147,18 @@ TEST_F(BodyRowsTest, WithoutBodyRegionsTheMiqpIsUnchanged) {
   EXPECT_GT(with_rows.miqp().num_rows(), with_none.miqp().num_rows());
 }
 
+// The hexapod's nearly square body has 1.5-2.7 cm a side in this door: its windows must
+// turn the body to the door's heading before the wall, which the window's body regions
+// (the door's strip, the half-plane before the wall) make them do. Before the body
+// regions a window stopped half-turned and the plan ended short of the goal.
+TEST(BodyRegionCourses, TheHexapodTurnsThroughATightDoorBodyClear) {
+  const RobotModel robot = LoadRobot(RobotPath("hexapod"));
+  const Course course = GenerateCourse(robot, RobotPath("hexapod"), CourseKind::kDoorway, 5);
+  const CourseOutcome out = PlanCourse(course, robot, 30.0);
+  EXPECT_TRUE(out.verdict.valid) << out.verdict.cause << " " << out.plan.message;
+  EXPECT_TRUE(out.verdict.body_clear) << out.verdict.body_overlap_share;
+  EXPECT_TRUE(out.verdict.reaches_goal) << ToString(out.plan.status) << " " << out.plan.message;
+}
+
 }  // namespace
 }  // namespace mfp
