@@ -163,6 +163,12 @@ void AddFormulationKeys(Table* t) {
                    In(&P::formulation, &F::trimmed_configurations_hold_yaw),
                    "a configuration whose first step is trimmed keeps the yaw of the one before")
                    .Alias("trimmed_configurations_hold_yaw").Advanced());
+  t->push_back(Opt("formulation.body_regions", In(&P::formulation, &F::body_regions),
+                   "keep the body's plan box in obstacle-free body regions in the windows (with body obstacles)"));
+  t->push_back(Opt("formulation.body_margin", In(&P::formulation, &F::body_margin_m), 0, 0.5,
+                   "the body box is kept this far inside its body region").Unit("m").Advanced());
+  t->push_back(Opt("formulation.max_body_regions", In(&P::formulation, &F::max_body_regions), 1, 64,
+                   "body regions grown per window (one binary per configuration each)").Advanced());
 }
 
 void AddSearchKeys(Table* t) {

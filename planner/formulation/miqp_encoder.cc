@@ -1,8 +1,17 @@
 #include "planner/formulation/internal/miqp_encoder.h"
 
 #include "base/check.h"
+#include "planner/robot/nominal_foot.h"
 
 namespace mfp {
+
+StepExpr MiqpEncoder::Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const {
+  MFP_CHECK(i >= e_.num_legs());
+  const int cfg = i / e_.num_legs();
+  const LinExpr zero;
+  return axis == 0 ? NominalFootX(zero, e_.Sin(cfg), e_.Cos(cfg), offset_body_m)
+                   : NominalFootY(zero, e_.Sin(cfg), e_.Cos(cfg), offset_body_m);
+}
 
 void MiqpEncoder::AddRow(RowKind /*kind*/, const std::string& name, const StepExpr& expr, double lower,
                          double upper) {

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "base/check.h"
+#include "planner/formulation/body_region_faces.h"
 #include "planner/formulation/centre_of_contacts.h"
 #include "planner/formulation/internal/cost.h"
 #include "planner/formulation/internal/miqp_encoder.h"
@@ -36,6 +37,9 @@ std::vector<std::vector<int>> OneOfGroupsInPlanOrder(const FootstepVariables& va
         if (h >= 0) members.push_back(h);
       }
       if (!members.empty()) groups.push_back(members);
+    }
+    if (cfg < static_cast<int>(vars.body_region.size()) && !vars.body_region[cfg].empty()) {
+      groups.push_back(vars.body_region[cfg]);
     }
   }
   return groups;
@@ -106,6 +110,8 @@ void MiqpFormulation::Build(const Deadline& deadline) {
   if (out_of_time_) return;
   region_rows_ = std::move(regions.rows);
   infeasible_reason_ = std::move(regions.infeasible_reason);
+  AddBodyRegionChoice(encoder, problem_, options_, ChordPointError(LargestSegment(yaw_.breakpoints)), box, num_steps_,
+                      &b, &vars_);
   AddCost(e, problem_, num_steps_, num_configurations_, vars_, &b);
   miqp_ = b.Build();
   miqp_.sos1_groups = OneOfGroupsInPlanOrder(vars_, n_, num_steps_);
@@ -295,6 +301,13 @@ bool MiqpFormulation::RoundWithTrimming(const Eigen::VectorXd& relaxed, int firs
     for (size_t r = 0; r < problem_.regions.size(); ++r) {
       const int h = vars_.region[i][r];
       if (h >= 0) (*rounded)(h) = static_cast<int>(r) == best ? 1.0 : 0.0;
+    }
+  }
+  // Body regions: the one that holds the configuration's body boxes at the relaxed point.
+  for (int cfg = 1; cfg < static_cast<int>(vars_.body_region.size()) && !vars_.body_region[cfg].empty(); ++cfg) {
+    const int chosen = BodyRegionHolding(problem_, vars_, relaxed, cfg, num_steps_);
+    for (size_t r = 0; r < vars_.body_region[cfg].size(); ++r) {
+      (*rounded)(vars_.body_region[cfg][r]) = static_cast<int>(r) == chosen ? 1.0 : 0.0;
     }
   }
   return true;

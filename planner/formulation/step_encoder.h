@@ -27,8 +27,9 @@ enum class RowKind {
   kHeightChange,   // |z_i - z_i-n| <= dz_max [m]
   kYawChange,      // |theta_b - theta_b-1| <= max_yaw_change [rad]
   kRegionFace,     // a_k . f_i <= b_k of the step's region [m]
+  kBodyRegion,     // a_k . (p_i + R(theta_b(i)) k) <= b_k for a body corner k [m]
 };
-constexpr int kNumRowKinds = 5;
+constexpr int kNumRowKinds = 6;
 
 // An offset turned by the exact rotation of a yaw: coefficient (R(yaw) o)_axis. yaw_var
 // indexes the encoder's own variables; yaw_var < 0: the yaw is the constant fixed_yaw_rad.
@@ -67,6 +68,9 @@ class StepEncoder {
   virtual StepExpr NominalFoot(int i, int axis) const = 0;
   // theta_b, the yaw of configuration cfg (cfg 0: the start yaw).
   virtual StepExpr Yaw(int cfg) const = 0;
+  // R(theta_b(i)) o on axis 0 or 1: a body-frame offset turned by the yaw of new step i's
+  // configuration (i >= n).
+  virtual StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const = 0;
 
   // lower <= expr <= upper. name: the MIQP's row name.
   virtual void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) = 0;

@@ -90,6 +90,26 @@ Chord ChordOf(bool sine, double a, double e) {
   return {slope, va - slope * a};
 }
 
+double ChordPointError(double width_rad) {
+  // The chord point at fraction t of a segment of width h, against the arc's point at
+  // the same yaw (segment centred on 0): (cos(h/2) - cos(phi), (2t - 1) sin(h/2) - sin(phi)),
+  // phi = (2t - 1) h / 2. Its largest length over a fine grid of t, plus the grid's
+  // possible miss (the length's slope is below 1, the step below 1e-4 rad).
+  double worst = 0.0;
+  const int samples = 4096;
+  for (int k = 0; k <= samples; ++k) {
+    const double u = 2.0 * k / samples - 1.0, phi = 0.5 * u * width_rad;
+    worst = std::max(worst, std::hypot(std::cos(0.5 * width_rad) - std::cos(phi), u * std::sin(0.5 * width_rad) - std::sin(phi)));
+  }
+  return worst + width_rad / samples;
+}
+
+double LargestSegment(const std::vector<double>& bp) {
+  double width = 0.0;
+  for (size_t k = 1; k < bp.size(); ++k) width = std::max(width, bp[k] - bp[k - 1]);
+  return width;
+}
+
 YawGrid MakeYawGrid(double start_yaw_rad, double goal_yaw_rad, double max_yaw_change_rad, int num_configurations,
                     const FormulationOptions& options) {
   YawGrid grid;

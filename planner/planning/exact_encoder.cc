@@ -117,6 +117,19 @@ StepExpr ExactEncoder::NominalFoot(int i, int axis) const {
   return out;
 }
 
+StepExpr ExactEncoder::Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const {
+  const int cfg = i / f_.num_legs();
+  MFP_CHECK(cfg >= 1);
+  RotatedOffset rotation;
+  rotation.offset_body_m = offset_body_m;
+  rotation.axis = axis;
+  rotation.yaw_var = theta_var_[cfg];  // < 0: a held yaw of configuration 1, the start yaw
+  rotation.fixed_yaw_rad = f_.problem().start_yaw_rad;
+  StepExpr out;
+  out.rotations.push_back(rotation);
+  return out;
+}
+
 StepExpr ExactEncoder::Yaw(int cfg) const {
   return theta_var_[cfg] >= 0 ? LinExpr::Var(theta_var_[cfg]) : LinExpr::Constant(f_.problem().start_yaw_rad);
 }

@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
 #include "base/check.h"
 #include "planner/formulation/centre_of_contacts.h"
 #include "planner/formulation/step_encoder.h"
@@ -33,6 +35,11 @@ class FootstepRowExcess final : public StepEncoder {
     const Eigen::Vector2d p = Centre(j);
     const Footstep& step = steps_[std::max(j, 0)];
     return LinExpr::Constant(NominalFootXY(robot_, step.leg, p.x(), p.y(), step.yaw_rad)(axis));
+  }
+  StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const override {
+    const double yaw = steps_[static_cast<size_t>(i)].yaw_rad;
+    const Eigen::Vector2d turned = Eigen::Rotation2Dd(yaw) * offset_body_m;
+    return LinExpr::Constant(turned(axis));
   }
   StepExpr Yaw(int cfg) const override {
     return LinExpr::Constant(steps_[std::min<size_t>(cfg * n_, steps_.size() - 1)].yaw_rad);

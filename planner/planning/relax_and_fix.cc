@@ -12,13 +12,14 @@
 namespace mfp {
 namespace {
 
-// The integer variables of each configuration: its yaw segments, and the region
-// and trim binaries of its steps.
+// The integer variables of each configuration: its yaw segments and body regions, and
+// the region and trim binaries of its steps.
 std::vector<std::vector<int>> IntegersByConfiguration(const MiqpFormulation& f) {
   const FootstepVariables& v = f.vars();
   std::vector<std::vector<int>> integers(f.num_configurations());
   for (int cfg = 0; cfg < f.num_configurations(); ++cfg) {
     for (int s : v.segment[cfg]) integers[cfg].push_back(s);
+    for (int g : v.body_region[cfg]) integers[cfg].push_back(g);
   }
   for (int i = f.num_legs(); i < f.num_steps(); ++i) {
     std::vector<int>& members = integers[f.ConfigurationOfStep(i)];

@@ -9,6 +9,7 @@
 #include <Eigen/Sparse>
 
 #include "base/check.h"
+#include "planner/formulation/internal/yaw_chords.h"
 #include "planner/nlp/nonlinear_program.h"
 #include "planner/planning/internal/window_program.h"
 #include "planner/qp/interior_point_qp.h"
@@ -165,22 +166,10 @@ void Reject(const WindowProgram& program, const Eigen::VectorXd& x, double time_
 }  // namespace
 
 double ChordErrorBound(const MiqpFormulation& formulation) {
-  const std::vector<double>& bp = formulation.yaw_breakpoints();
-  double width = 0.0;
-  for (size_t k = 1; k < bp.size(); ++k) width = std::max(width, bp[k] - bp[k - 1]);
-  // The chord point at fraction t of a segment of width h, against the arc's point at
-  // the same yaw (segment centred on 0): (cos(h/2) - cos(phi), (2t - 1) sin(h/2) - sin(phi)),
-  // phi = (2t - 1) h / 2. Its largest length over a fine grid of t, plus the grid's
-  // possible miss (the length's slope is below 1, the step below 1e-4 rad).
-  double worst = 0.0;
-  const int samples = 4096;
-  for (int k = 0; k <= samples; ++k) {
-    const double u = 2.0 * k / samples - 1.0, phi = 0.5 * u * width;
-    worst = std::max(worst, std::hypot(std::cos(0.5 * width) - std::cos(phi), u * std::sin(0.5 * width) - std::sin(phi)));
-  }
+  const double worst = ChordPointError(LargestSegment(formulation.yaw_breakpoints()));
   double offset = 0.0;
   for (const LegModel& leg : formulation.problem().robot->legs) offset = std::max(offset, leg.nominal_offset_body_m.norm());
-  return (worst + width / samples) * offset;
+  return worst * offset;
 }
 
 PolishedWindow PolishWindow(const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x,

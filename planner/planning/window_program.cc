@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "base/check.h"
+#include "planner/formulation/body_region_faces.h"
 #include "planner/formulation/region_faces.h"
 #include "planner/formulation/step_limits.h"
 #include "planner/formulation/workspace_box.h"
@@ -26,6 +27,7 @@ WindowProgram::WindowProgram(const MiqpFormulation& formulation, const Eigen::Ve
     }
   }
   for (int cfg = 1; cfg < f_.num_configurations(); ++cfg) AddYawChangeLimit(encoder_, *problem.robot, cfg);
+  AddChosenBodyRegions(box);
   const std::vector<ExactRow>& rows = encoder_.rows();
   for (int r = 0; r < static_cast<int>(rows.size()); ++r) {
     if (std::isfinite(rows[r].upper)) sides_.emplace_back(r, true);
@@ -37,6 +39,23 @@ WindowProgram::WindowProgram(const MiqpFormulation& formulation, const Eigen::Ve
     for (int axis = 0; axis < 3; ++axis) full_map_.emplace_back(xs[axis], encoder_.Position(i, axis).lin);
     full_map_.emplace_back(v.px[i], encoder_.CentreOfContacts(i, 0).lin);
     full_map_.emplace_back(v.py[i], encoder_.CentreOfContacts(i, 1).lin);
+  }
+}
+
+void WindowProgram::AddChosenBodyRegions(const Box3& box) {
+  const FootstepProblem& problem = f_.problem();
+  const std::vector<std::vector<int>>& body_region = f_.vars().body_region;
+  const int n = f_.num_legs();
+  for (int cfg = 1; cfg < static_cast<int>(body_region.size()); ++cfg) {
+    for (int r = 0; r < static_cast<int>(body_region[cfg].size()); ++r) {
+      const int g = body_region[cfg][r];
+      if (miqp_x_(g) < 0.5) continue;
+      for (int i = cfg * n; i < std::min(f_.num_steps(), (cfg + 1) * n); ++i) {
+        // Exact rotation: no chord error.
+        AddBodyRegionFaces(encoder_, problem.robot->body, problem.body_regions[r], r, i, g, 0.0,
+                           f_.options().body_margin_m, box);
+      }
+    }
   }
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/convex_region.h"
+#include "geometry/free_region_2d.h"
 #include "planner/robot/robot_model.h"
 
 namespace mfp {
@@ -41,6 +42,14 @@ struct FormulationOptions {
   // (AddTrimmedConfigurationsHoldYaw): the goal cost then weighs the yaw of the last step
   // taken, the plan's final body yaw.
   bool trimmed_configurations_hold_yaw = true;
+  // Body regions (body_region_faces.h): each configuration's body plan box in one of the
+  // problem's body regions, chosen by binaries. Off: body_regions are ignored.
+  bool body_regions = true;
+  // The body box is kept this far inside its region [m] (above the chords' own error).
+  double body_margin_m = 0.002;
+  // At most this many body regions per window (the planner grows them; each costs one
+  // binary per configuration and 4 n rows per face).
+  int max_body_regions = 6;
 };
 
 struct FootstepProblem {
@@ -59,6 +68,10 @@ struct FootstepProblem {
   double goal_y_m = 0.0;
   double goal_yaw_rad = 0.0;
   int num_new_steps = 0;  // N - n
+  // Convex regions of the plan free of the body obstacles in the body's band (world
+  // frame). Empty (as without obstacles or without a known body): no body rows, the
+  // MIQP is the seed paper's.
+  std::vector<FreeRegion2d> body_regions;
 };
 
 // Index of each decision variable in the Miqp (-1 where absent).
@@ -72,6 +85,9 @@ struct FootstepVariables {
   std::vector<std::vector<int>> segment_theta;  // [configuration][segment] -> theta_k (hull encoding)
   // Convex-hull encoding only: [step][region] -> first of 3 copies (x, y, z) or -1.
   std::vector<std::vector<int>> region_copy;
+  // [configuration][body region] -> G_br, the body's region (empty without body regions;
+  // none for configuration 0, the start).
+  std::vector<std::vector<int>> body_region;
 };
 
 }  // namespace mfp

@@ -25,6 +25,14 @@ struct Chord {
 };
 Chord ChordOf(bool sine, double a, double e);
 
+// Largest distance between the chords' point (cos, sin) at a yaw of a segment of width
+// width_rad and the circle's point at that yaw (a bound: a fine grid's largest plus what
+// the grid can miss).
+double ChordPointError(double width_rad);
+
+// Largest segment width of breakpoints bp [rad] (0 for fewer than two).
+double LargestSegment(const std::vector<double>& bp);
+
 struct YawGrid {
   // Breakpoints of the uniform grid over the whole yaw range [rad] (segments + 1 values).
   std::vector<double> breakpoints;

@@ -58,6 +58,7 @@ class ExactEncoder final : public StepEncoder {
   StepExpr CentreOfContacts(int i, int axis) const override;
   StepExpr NominalFoot(int i, int axis) const override;
   StepExpr Yaw(int cfg) const override;
+  StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const override;
   void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) override;
   void AddImpliedRow(RowKind kind, const std::string& name, int indicator, const StepExpr& expr, double upper,
                      double big_m) override;

@@ -12,6 +12,8 @@
 //   height change   |z_i - z_i-n| <= dz_max
 //   yaw change      |theta_b - theta_b-1| <= max_yaw_change, theta_b within its MIQP bounds
 //   regions         A_r f_i <= b_r for the region the MIQP chose for step i
+//   body regions    the body box's corners p_i + R(theta_b(i)) k in the body region the
+//                   MIQP chose for configuration b (body_region_faces.h), when it has them
 //   trimming        a trimmed step stays where its leg stood (f_i = f_i-n, by substitution)
 // p_i is the centre of contacts of the n latest footsteps (paper eq. 2). These rows are
 // the formulation's own families written through the ExactEncoder (exact_encoder.h,

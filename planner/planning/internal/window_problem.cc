@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "geometry/region_reachability.h"
+#include "planner/planning/internal/window_body_regions.h"
 
 namespace mfp {
 
@@ -54,6 +55,7 @@ FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState
     problem.history_feet_world_m = state.history;
     problem.start_step_yaw_rad = state.stance_yaw;
   }
+  problem.body_regions = WindowBodyRegions(context, problem);
   return problem;
 }
 

@@ -12,6 +12,7 @@
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/formulation/plan.h"
+#include "planner/formulation/workspace_box.h"
 #include "planner/planning/internal/exact_encoder.h"
 
 namespace mfp {
@@ -64,6 +65,9 @@ class WindowProgram {
   double Yaw(const Eigen::VectorXd& x, int cfg) const;
   // The region the MIQP point chose for step i (its largest binary).
   int ChosenRegion(int i) const;
+  // The body rows (body_region_faces.h) of the body region each configuration's MIQP
+  // point chose, with the exact rotation.
+  void AddChosenBodyRegions(const Box3& box);
 
   const MiqpFormulation& f_;
   const Eigen::VectorXd& miqp_x_;
