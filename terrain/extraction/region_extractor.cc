@@ -280,6 +280,11 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   }
   stats.surface_cells = layers.candidates;
   ExtractFromLayers(layers, options, start, &result);
+  if (options.body_obstacles) {
+    MapObstacleOptions body = *options.body_obstacles;
+    body.deadline = options.deadline;
+    result.body_obstacles = MapBodyObstacles(map, body);
+  }
   return result;
 }
 
