@@ -132,8 +132,8 @@ MapObstacles Incomplete(const std::string& why, Clock::time_point start) {
 MapObstacles MapBodyObstacles(const OccupancyMap& map, const MapObstacleOptions& options) {
   const Clock::time_point start = Clock::now();
   if (!std::isfinite(options.floor_band_m) || options.floor_band_m < 0.0 || !std::isfinite(options.ground_radius_m) ||
-      options.ground_radius_m < 0.0) {
-    throw InputError("body obstacles from a map: the floor band and the ground radius must be finite and >= 0 m");
+      options.ground_radius_m < 0.0 || !std::isfinite(options.grow_m) || options.grow_m < 0.0) {
+    throw InputError("body obstacles from a map: the floor band, the ground radius and the growth must be finite and >= 0 m");
   }
   const double res = map.resolution_m;
   MapObstacles out;
@@ -186,8 +186,9 @@ MapObstacles MapBodyObstacles(const OccupancyMap& map, const MapObstacleOptions&
   }
   out.prisms.reserve(cell_prisms.size());
   for (const CellPrism& p : cell_prisms) {
-    out.prisms.push_back({Eigen::Vector2d(p.ix0 * res, p.iy0 * res), Eigen::Vector2d((p.ix1 + 1) * res, (p.iy1 + 1) * res),
-                          p.kb * res, (p.kt + 1) * res});
+    const Eigen::Vector2d grow = Eigen::Vector2d::Constant(options.grow_m);
+    out.prisms.push_back({Eigen::Vector2d(p.ix0 * res, p.iy0 * res) - grow,
+                          Eigen::Vector2d((p.ix1 + 1) * res, (p.iy1 + 1) * res) + grow, p.kb * res, (p.kt + 1) * res});
   }
   out.time_s = std::chrono::duration<double>(Clock::now() - start).count();
   return out;

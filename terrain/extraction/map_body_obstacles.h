@@ -25,6 +25,10 @@ struct MapObstacleOptions {
   // How far from any point of the body's plan box a foot may stand [m] (the ground below
   // a body is the mean height of its feet).
   double ground_radius_m = 0.5;
+  // Each prism's plan rectangle grown by this on every side [m]: 0 for a map whose voxel
+  // is occupied when any point of it is (a sensor's), half a voxel for a voxelisation
+  // that marks a voxel when its centre is inside (a true edge up to that far outside).
+  double grow_m = 0.0;
   // Budgets, checked before anything is expanded or allocated: column cells the leaves
   // cover (leaf_budget.h) and cells of the plan grid over the map's extent; and prisms made.
   uint64_t max_leaf_columns = uint64_t{1} << 25;
@@ -50,7 +54,7 @@ struct MapObstacles {
   double time_s = 0.0;
 };
 
-// Throws InputError when floor_band_m or ground_radius_m is negative or not finite.
+// Throws InputError when floor_band_m, ground_radius_m or grow_m is negative or not finite.
 MapObstacles MapBodyObstacles(const OccupancyMap& map, const MapObstacleOptions& options);
 
 }  // namespace mfp

@@ -319,6 +319,10 @@ RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terra
     // surface's top voxel would have occupied the voxel above it.
     own.riser_uncertainty_voxels = 0.0;
   }
+  if (terrain.scan.sensors_world_m.empty() && own.body_obstacles) {
+    // The same for the body's obstacles: a wall's true face up to half a voxel outside.
+    own.body_obstacles->grow_m = std::max(own.body_obstacles->grow_m, 0.5 * terrain.resolution_m);
+  }
   return ExtractRegions(MakeTerrainMap(terrain), own);
 }
 
