@@ -38,6 +38,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
   if (robot_paths.empty()) {
     for (const std::string name : {"littledog", "hexapod", "octopod"}) robot_paths.push_back(o.robots_dir + "/" + name + ".yaml");
   }
+  robot_paths.insert(robot_paths.end(), o.extra_robot_paths.begin(), o.extra_robot_paths.end());
   std::vector<RobotModel> robots;
   for (const std::string& path : robot_paths) robots.push_back(LoadRobot(path));
   if (!o.write_dir.empty()) std::filesystem::create_directories(o.write_dir);
@@ -85,9 +86,18 @@ int RunCourseBench(const CourseBenchOptions& o) {
     int windows = 0, inexact = 0, replanned = 0;
     double polish_s = 0.0, max_polish_ratio = 0.0;
     try {
-      regions = o.top_face_regions ? TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad)
-                                   : ScenarioRegions(scenario, robot);
-      PlanRequest request = ScenarioRequest(scenario, robot, regions);
+      PlanRequest request;
+      if (o.top_face_regions) {
+        regions = TopFaceRegions(course.terrain, course.edge_margin_m, robot.max_slope_rad);
+        request = ScenarioRequest(scenario, robot, regions);
+      } else {
+        // On the voxel map the body keeps clear of the map's obstacles (the checker still
+        // judges it against the true boxes).
+        ScenarioTerrain terrain = LoadScenarioTerrain(scenario, robot);
+        regions = terrain.regions;
+        request = ScenarioRequest(scenario, robot, regions);
+        if (terrain.map_body_obstacles) request.body_obstacles = std::move(*terrain.map_body_obstacles);
+      }
       if (!o.body_check) request.body_obstacles.clear();
       const RelaxationSolverSet solvers = MakeRelaxationSolvers(scenario.options.solvers.backend, 1);
       plan = PlanFootsteps(robot, regions, request, scenario.options, solvers.workers(), [&](const PlanProgress& p) {

@@ -19,6 +19,8 @@ struct CourseBenchOptions {
   // Robot files (YAML or URDF) the courses cycle through; empty: robots_dir's littledog,
   // hexapod and octopod.
   std::vector<std::string> robot_paths;
+  // Robot files added to the rotation after robot_paths (or the default three).
+  std::vector<std::string> extra_robot_paths;
   // Regions the planner gets: the map pipeline (voxelised boxes, as on the robot), or the
   // boxes' exact top faces inset by the checker's edge margin (perfect perception: separates
   // planning failures from perception ones).

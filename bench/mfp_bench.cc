@@ -332,6 +332,11 @@ int main(int argc, char** argv) {
                  "generated courses: robot files (YAML or URDF) to cycle through (default: config/robots' littledog, "
                  "hexapod, octopod)")
       ->check(CLI::ExistingFile);
+  std::vector<std::string> course_extra_robots;
+  app.add_option("--course-extra-robots", course_extra_robots,
+                 "generated courses: robot files (YAML or URDF, e.g. the zoo's Go1 and ANYmal C) added to the "
+                 "rotation after --course-robots' (or the default three)")
+      ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
   try {
     if (courses > 0) {
@@ -341,6 +346,7 @@ int main(int argc, char** argv) {
       o.time_limit_s = course_time_limit;
       o.robots_dir = std::string(MFP_SOURCE_DIR) + "/config/robots";
       o.robot_paths = course_robots;
+      o.extra_robot_paths = course_extra_robots;
       o.write_dir = write_courses;
       o.top_face_regions = course_top_faces;
       o.only = course_only;

@@ -54,6 +54,11 @@ using PlanFunction = std::function<Plan(const RobotModel& robot,
 struct MapTerrain {
   std::vector<ConvexRegion> regions;
   std::shared_ptr<const SeenSurface> seen_surface;
+  // The body's obstacles in the map (PlanRequest::body_obstacles; null: none, as for a
+  // height map or with the planner key map_body_obstacles off), and why there are none
+  // when the extraction could not make them (empty otherwise).
+  std::shared_ptr<const std::vector<BodyObstacle>> body_obstacles;
+  std::string body_note;
 };
 
 // Turns the bytes of a map file into its terrain; throws InputError on a bad map. `what`
@@ -166,6 +171,7 @@ class DaemonCore {
     std::shared_ptr<const DaemonSetup> setup;
     std::shared_ptr<const std::vector<ConvexRegion>> regions;
     std::shared_ptr<const SeenSurface> seen_surface;  // of the same map as regions
+    std::shared_ptr<const std::vector<BodyObstacle>> body_obstacles;  // of the same map; null: none
     int64_t map_utime = 0;
     std::vector<std::vector<Footstep>> warm_start;
     double limit_s = 0.0;   // the request's time limit, from its arrival [s]
@@ -231,6 +237,7 @@ class DaemonCore {
   // new map replaces them.
   std::shared_ptr<const std::vector<ConvexRegion>> regions_;
   std::shared_ptr<const SeenSurface> seen_surface_;  // of the current map; null: none
+  std::shared_ptr<const std::vector<BodyObstacle>> body_obstacles_;  // of the current map; null: none
   int64_t map_utime_ = 0;          // terrain_map_t.utime of the current map
   int64_t map_receive_utime_ = 0;  // clock when it arrived
   RequestQueue queue_;

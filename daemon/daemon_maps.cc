@@ -100,6 +100,7 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
       regions = std::make_shared<const std::vector<ConvexRegion>>(std::move(extracted->regions));
       regions_ = regions;
       seen_surface_ = std::move(extracted->seen_surface);
+      body_obstacles_ = std::move(extracted->body_obstacles);
       map_utime_ = map_utime;
       last_plans_.clear();
       map_receive_utime_ = now;
@@ -118,7 +119,9 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
   }
   Publish(kRegionsChannel, ToRegionSetMessage(*regions, frame, now, map_utime));
   Log("map accepted (" + what + "): " + std::to_string(bytes.size()) + " bytes, " +
-      std::to_string(regions->size()) + " regions");
+      std::to_string(regions->size()) + " regions" +
+      (extracted->body_obstacles ? ", " + std::to_string(extracted->body_obstacles->size()) + " body obstacles" : ""));
+  if (!extracted->body_note.empty()) Log("map (" + what + "): " + extracted->body_note);
 }
 
 }  // namespace mfp

@@ -40,6 +40,7 @@ std::optional<DaemonCore::PlanJob> DaemonCore::TakeNextJob() {
     job.setup = setup_;
     job.regions = regions_;
     job.seen_surface = seen_surface_;
+    job.body_obstacles = body_obstacles_;
     job.map_utime = map_utime_;
     planning_ = true;
     if (job.setup->config.limits.warm_start_plans > 0) {
@@ -62,6 +63,7 @@ Plan DaemonCore::RunPlanner(PlanJob& job, const RobotModel& robot, bool* abandon
   request.time_limit_s = remaining_s - margin_s;
   request.warm_start = std::move(job.warm_start);
   request.seen_surface = job.seen_surface;  // the map planned on, which may be newer than the validated one
+  if (job.body_obstacles) request.body_obstacles = *job.body_obstacles;
   // The planner checks this flag inside its solves: set when the core stops waiting
   // (a stop, or the deadline passed), so an abandoned plan ends at its next check
   // instead of running on. The task holds the flag, so it outlives the core's wait.

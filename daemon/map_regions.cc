@@ -8,6 +8,7 @@
 #include "base/check.h"
 #include "base/format.h"
 #include "daemon/height_map_message.h"
+#include "io/body_obstacles.h"
 #include "io/scenario_yaml.h"
 #include "terrain/extraction/height_grid.h"
 #include "terrain/extraction/region_extractor.h"
@@ -42,6 +43,12 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
   }
   if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
+  if (setup.config.planner.map_body_obstacles) {
+    // One obstacle set for every robot: the lowest body band and the farthest reach.
+    std::vector<const RobotModel*> robots;
+    for (const auto& entry : setup.robots) robots.push_back(&entry.second);
+    options.body_obstacles = BodyMapObstacleOptions(robots);
+  }
   const size_t max_map_bytes = setup.config.limits.max_map_bytes;
   return [options, max_map_bytes](const std::string& bytes, const std::string& format,
                                    const std::string& what) {
@@ -54,8 +61,16 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
       result = ExtractRegions(LoadMapBytes(data, what), options);
     }
     // The surface layers the regions were cut from: where a start foot may stand.
-    return MapTerrain{std::move(result.regions),
-                      std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen))};
+    MapTerrain terrain{std::move(result.regions),
+                       std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen)),
+                       nullptr, ""};
+    if (result.body_obstacles && result.body_obstacles->complete) {
+      terrain.body_obstacles =
+          std::make_shared<const std::vector<BodyObstacle>>(PrismBodyObstacles(result.body_obstacles->prisms));
+    } else if (result.body_obstacles) {
+      terrain.body_note = result.body_obstacles->message;
+    }
+    return terrain;
   };
 }
 

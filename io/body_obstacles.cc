@@ -35,4 +35,36 @@ std::vector<BodyObstacle> BoxBodyObstacles(const std::vector<TerrainBox>& boxes)
   return obstacles;
 }
 
+std::vector<BodyObstacle> PrismBodyObstacles(const std::vector<MapPrism>& prisms) {
+  std::vector<BodyObstacle> obstacles;
+  obstacles.reserve(prisms.size());
+  for (const MapPrism& p : prisms) {
+    BodyObstacle o;
+    o.polygon_world_m = {p.min_world_m, Eigen::Vector2d(p.max_world_m.x(), p.min_world_m.y()), p.max_world_m,
+                         Eigen::Vector2d(p.min_world_m.x(), p.max_world_m.y())};
+    o.bottom_z_m = p.bottom_z_m;
+    o.top_z_m = p.top_z_m;
+    obstacles.push_back(std::move(o));
+  }
+  return obstacles;
+}
+
+std::optional<MapObstacleOptions> BodyMapObstacleOptions(const std::vector<const RobotModel*>& robots) {
+  std::optional<MapObstacleOptions> options;
+  for (const RobotModel* robot : robots) {
+    const BodyExtent& body = robot->body;
+    if (!body.known()) continue;
+    const double box_radius = body.min_m.cwiseAbs().cwiseMax(body.max_m.cwiseAbs()).norm();
+    const double radius = box_radius + LegReach(*robot) + std::sqrt(2.0) * (robot->l_bnd_m + robot->d_lim_m);
+    if (!options) {
+      options = MapObstacleOptions();
+      options->floor_band_m = std::max(0.0, body.bottom_m);
+      options->ground_radius_m = radius;
+    }
+    options->floor_band_m = std::min(options->floor_band_m, std::max(0.0, body.bottom_m));
+    options->ground_radius_m = std::max(options->ground_radius_m, radius);
+  }
+  return options;
+}
+
 }  // namespace mfp

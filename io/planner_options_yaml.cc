@@ -110,6 +110,9 @@ void AddRouteKeys(Table* t) {
                    "share of the body's plan box an obstacle may cover before a pose is unusable").Advanced());
   t->push_back(Opt("stance_search.body_margin", In(&P::stance_search, &S::body_margin_m), 0.0, 1.0,
                    "room the route keeps between the body's plan box and obstacles where it can").Unit("m").Advanced());
+  t->push_back(Opt("map_body_obstacles", At(&P::map_body_obstacles),
+                   "on an occupancy map, the body keeps clear of the map's occupied voxels above the floor "
+                   "(when the robot's body is known)"));
   t->push_back(Opt("route.step_budget", At(&P::route_step_budget), 1.0, 1000.0,
                    "default step budget: configurations for this many times the route's length at d_lim each")
                    .Alias("route_step_budget").Advanced());

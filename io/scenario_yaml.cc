@@ -218,8 +218,22 @@ RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const Rob
     options.min_region_area_voxels = 0.0;
   }
   if (scenario.overlapping_regions) options.overlapping_regions = *scenario.overlapping_regions;
+  if (scenario.options.map_body_obstacles) options.body_obstacles = BodyMapObstacleOptions({&robot});
   return options;
 }
+
+namespace {
+
+void TakeBodyObstacles(const RegionExtractionResult& result, ScenarioTerrain* terrain) {
+  if (!result.body_obstacles) return;
+  if (result.body_obstacles->complete) {
+    terrain->map_body_obstacles = PrismBodyObstacles(result.body_obstacles->prisms);
+  } else {
+    terrain->body_note = result.body_obstacles->message;
+  }
+}
+
+}  // namespace
 
 ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot, const Deadline& deadline) {
   ScenarioTerrain out;
@@ -233,6 +247,7 @@ ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& 
     out.note = from_map.message;
     out.regions = std::move(from_map.regions);
     out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers, from_map.moved_as_seen));
+    TakeBodyObstacles(from_map, &out);
     return out;
   }
   // The boxes' true top faces are the surface a sensor sees from above.
@@ -248,6 +263,7 @@ ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& 
   RegionExtractionResult result = ExtractRegionsFromTerrain(scenario.terrain, options);
   out.note = result.message;
   out.regions = std::move(result.regions);
+  TakeBodyObstacles(result, &out);
   return out;
 }
 
@@ -276,6 +292,7 @@ PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot,
 
 PlanRequest ScenarioRequest(const Scenario& scenario, const RobotModel& robot, const ScenarioTerrain& terrain) {
   PlanRequest request = ScenarioRequest(scenario, robot, terrain.regions);
+  if (terrain.map_body_obstacles) request.body_obstacles = *terrain.map_body_obstacles;
   for (Eigen::Vector3d& foot : request.start_feet_world_m) {
     if (FindRegionBelow(terrain.regions, foot.x(), foot.y(), 0.0) >= 0) continue;
     if (const std::optional<double> z = HighestSeenSurfaceAt(*terrain.seen_surface, foot.head<2>())) foot.z() = *z;

@@ -84,6 +84,11 @@ struct ScenarioTerrain {
   std::vector<ConvexRegion> regions;
   std::shared_ptr<const SeenSurface> seen_surface = std::make_shared<const SeenSurface>();  // never null
   std::string note;  // the extractor's message when it found no region or ran out of time
+  // From an occupancy map (a map file or a voxelised `terrain:`), with the planner key
+  // map_body_obstacles and a known body: the map's obstacles to the body
+  // (map_body_obstacles.h); ScenarioRequest passes them instead of the boxes' own.
+  std::optional<std::vector<BodyObstacle>> map_body_obstacles;
+  std::string body_note;  // why the map gave no body obstacles (a budget or the time ran out)
 };
 ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot,
                                     const Deadline& deadline = Deadline());

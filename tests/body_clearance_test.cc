@@ -244,6 +244,24 @@ TEST(BodyCourses, AUShapedPocketIsWalkedAroundNotThrough) {
   EXPECT_GT(widest, 0.2);
 }
 
+// On the course's voxel map the planner knows only the map's obstacles (occupied voxels
+// above the floor, merged into prisms), never the true boxes; the checker judges the body
+// against the true boxes. The baffles' openings are a few per cent of the floor, kept by
+// the region cover's necks.
+TEST(BodyCourses, AVoxelMapPlanThroughABaffleSlalomKeepsTheBodyClearOfTheTrueBoxes) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  const Course course = GenerateCourse(robot, RobotPath("littledog"), CourseKind::kBaffles, 37);
+  const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s, /*from_map=*/true);
+  ASSERT_FALSE(out.body_obstacles.empty());
+  for (const BodyObstacle& o : out.body_obstacles) {
+    // The map's prisms stand above the floor (top at z = 0): walls only.
+    EXPECT_GT(o.top_z_m, robot.body.bottom_m);
+  }
+  EXPECT_TRUE(out.verdict.valid) << out.verdict.cause << " " << out.plan.message;
+  EXPECT_TRUE(out.verdict.body_clear) << out.verdict.body_overlap_share;
+  EXPECT_TRUE(out.verdict.reaches_goal) << ToString(out.plan.status) << " " << out.plan.message;
+}
+
 TEST(WindowBodyCheck, NamesTheFirstConfigurationWhoseBodyMeetsAnObstacle) {
   const RobotModel robot = LoadRobot(RobotPath("littledog"));
   const std::vector<ConvexRegion> regions = {Rect(0, -0.5, -1.0, 1.5, 1.0)};

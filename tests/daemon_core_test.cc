@@ -65,7 +65,7 @@ class RecordingPublisher final : public Publisher {
 // Test maps: "flat" is one 4 m square at z = 0 (no seen surface); anything else is unreadable.
 MapTerrain FakeMap(const std::string& bytes, const std::string& /*format*/, const std::string& what) {
   if (bytes != "flat") throw InputError(what + ": not a test map");
-  return {{MakeRegionFromPolygon(0, {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}, 0.01)}, nullptr};
+  return {{MakeRegionFromPolygon(0, {{-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}}, 0.01)}, nullptr, nullptr, ""};
 }
 
 // Plans nothing: returns the start stance as an optimal plan.

@@ -79,5 +79,26 @@ TEST(RectangleCoverTest, LargestRectangleOfAnLShape) {
   EXPECT_EQ(cover[1].Area(), 6);
 }
 
+// A floor cut by a wall with an opening at one end (a baffle): the opening is 2 % of the
+// mask, under the 97 % target, yet the only way from one side to the other. The cover
+// takes it, so the rectangles stay connected.
+TEST(RectangleCover, CoversANeckThatJoinsTwoPiecesPastTheTargetCoverage) {
+  const int rows = 50, cols = 101;
+  std::vector<uint8_t> mask(static_cast<size_t>(rows) * cols, 1);
+  for (int r = 0; r < 45; ++r) mask[static_cast<size_t>(r) * cols + 50] = 0;  // the wall; rows 45-49 open
+  RectangleCoverOptions options;
+  options.grow_over_covered = false;
+  const std::vector<CellRect> cover = GreedyRectangleCover(mask, rows, cols, options);
+  bool opening_covered = false;
+  for (const CellRect& r : cover) {
+    opening_covered |= r.col0 <= 50 && r.col0 + r.cols > 50 && r.row0 + r.rows > 45;
+  }
+  EXPECT_TRUE(opening_covered);
+  options.connect_pieces = false;  // the cover as before: the two halves alone reach 97 %
+  for (const CellRect& r : GreedyRectangleCover(mask, rows, cols, options)) {
+    EXPECT_FALSE(r.col0 <= 50 && r.col0 + r.cols > 50) << r.row0 << " " << r.col0 << " " << r.rows << " " << r.cols;
+  }
+}
+
 }  // namespace
 }  // namespace mfp

@@ -252,6 +252,10 @@ int Run(const Flags& f, const Log& log) {
   const mfp::ScenarioTerrain terrain = mfp::LoadScenarioTerrain(scenario, robot, run_deadline);
   const std::vector<mfp::ConvexRegion>& regions = terrain.regions;
   if (!terrain.note.empty()) log("terrain: " + terrain.note);
+  if (!terrain.body_note.empty()) log("terrain: " + terrain.body_note);
+  if (terrain.map_body_obstacles) {
+    log("terrain: " + std::to_string(terrain.map_body_obstacles->size()) + " body obstacles from the map");
+  }
   log("robot '" + robot.name + "' (" + std::to_string(robot.num_legs()) + " legs), " +
       std::to_string(regions.size()) + " regions");
   mfp::PlannerOptions& options = scenario.options;

@@ -1,5 +1,6 @@
 // mfp-regions MAP: the convex safe regions of an OctoMap map (.bt or .ot) or a height map, as a table,
-// JSON ({"regions": [...]}) and SVG; --region ID prints one region's faces and vertices.
+// JSON ({"regions": [...]}) and SVG; --region ID prints one region's faces and vertices;
+// --body-of ROBOT also finds the map's obstacles to that robot's body and prints their count.
 // Exit 0 on success (also when the map has no regions: the reason is printed), 2 on bad
 // input with the problem on stderr.
 #include <CLI/CLI.hpp>
@@ -10,8 +11,10 @@
 #include <iostream>
 
 #include "base/check.h"
+#include "io/body_obstacles.h"
 #include "io/height_map_file.h"
 #include "io/region_json.h"
+#include "io/robot_loader.h"
 #include "io/text_output.h"
 #include "terrain/extraction/height_grid.h"
 #include "terrain/extraction/region_extractor.h"
@@ -24,6 +27,17 @@ Eigen::Vector3d Centroid(const mfp::ConvexRegion& r) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& v : r.vertices_world_m) c += v;
   return c / static_cast<double>(r.vertices_world_m.size());
+}
+
+void PrintBodyObstacles(const mfp::MapObstacles& o) {
+  if (!o.complete) {
+    std::printf("%s\n", o.message.c_str());
+    return;
+  }
+  std::printf("body obstacles: %zu prisms over %lld of %lld occupied column runs (the others within the floor band) "
+              "in %.1f ms\n",
+              o.prisms.size(), static_cast<long long>(o.runs_above_floor), static_cast<long long>(o.voxel_runs),
+              1e3 * o.time_s);
 }
 
 }  // namespace
@@ -52,6 +66,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.001, 1000.0));
   app.add_option("--edge-margin", options.edge_margin_m, "real surface kept around a foot [m]")
       ->check(CLI::Range(0.0, 1.0));
+  std::string body_robot_path;
+  app.add_option("--body-of", body_robot_path,
+                 "robot file (YAML or URDF): also find the map's obstacles to its body and print their count");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -59,6 +76,11 @@ int main(int argc, char** argv) {
   }
   if (time_limit_s > 0) options.deadline = mfp::Deadline::After(time_limit_s);
   try {
+    if (!body_robot_path.empty()) {
+      const mfp::RobotModel robot = mfp::LoadRobot(body_robot_path);
+      options.body_obstacles = mfp::BodyMapObstacleOptions({&robot});
+      if (!options.body_obstacles) throw mfp::InputError("--body-of " + body_robot_path + ": the robot's body is unknown");
+    }
     const bool height_map = mfp::IsHeightMapPath(map_path);
     const mfp::OccupancyMap map = height_map ? mfp::OccupancyMap() : mfp::LoadMapFile(map_path);
     const mfp::RegionExtractionResult result =
@@ -101,6 +123,7 @@ int main(int argc, char** argv) {
                 result.stats.patches_too_steep, result.stats.patches_too_small, result.regions.size(),
                 1e3 * result.stats.total_s);
     }
+    if (result.body_obstacles) PrintBodyObstacles(*result.body_obstacles);
     if (result.regions.empty() || result.stopped) std::printf("%s\n", result.message.c_str());
     if (result.regions.empty()) return 0;
     std::printf("%4s %10s %9s %9s %8s %6s\n", "id", "area_m2", "slope_deg", "height_m", "vertices", "level");

@@ -90,6 +90,10 @@ struct PlannerOptions {
   // Region extraction for this robot keeps surfaces with the stance height plus this much
   // free space above them (RegionExtractorOptions::clearance_m) [m].
   double body_clearance_margin_m = 0.1;
+  // On an occupancy map, PlanRequest::body_obstacles are the map's occupied voxels that
+  // may reach the body's band (terrain/extraction/map_body_obstacles.h), when the robot's
+  // body is known. The callers that read a map fill them; PlanFootsteps does not read it.
+  bool map_body_obstacles = true;
   // Which relaxation solvers and how many workers. PlanFootsteps does not read it: callers
   // make the solvers from it (MakeRelaxationSolvers) and pass them in; it rides here so
   // that one `planner:` block configures a whole plan.

@@ -75,6 +75,90 @@ void GrowInside(const std::vector<uint8_t>& mask, int rows, int cols, CellRect* 
   }
 }
 
+// Marks the rectangle's cells covered (0 in `uncovered`), counting those newly covered.
+size_t MarkCovered(const CellRect& rect, int cols, std::vector<uint8_t>* uncovered) {
+  size_t newly = 0;
+  for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
+    for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
+      uint8_t& u = (*uncovered)[static_cast<size_t>(r) * cols + c];
+      if (u) {
+        u = 0;
+        ++newly;
+      }
+    }
+  }
+  return newly;
+}
+
+int Find(std::vector<int>* parent, int i) {
+  while ((*parent)[i] != i) i = (*parent)[i] = (*parent)[(*parent)[i]];
+  return i;
+}
+
+// The cells of one 4-connected piece of uncovered mask that touches two or more pieces
+// of the cover that do not touch each other (a neck of the mask, such as the opening
+// past a wall, that the cover left out); empty when there is none.
+std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, const std::vector<CellRect>& rects, int rows,
+                                     int cols) {
+  const size_t n = static_cast<size_t>(rows) * cols;
+  std::vector<int> owner(n, -1);  // cell -> rectangle
+  for (size_t k = 0; k < rects.size(); ++k) {
+    const CellRect& rect = rects[k];
+    for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
+      for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) owner[static_cast<size_t>(r) * cols + c] = static_cast<int>(k);
+    }
+  }
+  std::vector<int> parent(rects.size());
+  for (size_t k = 0; k < rects.size(); ++k) parent[k] = static_cast<int>(k);
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const int a = owner[static_cast<size_t>(r) * cols + c];
+      if (a < 0) continue;
+      if (c + 1 < cols && owner[static_cast<size_t>(r) * cols + c + 1] >= 0) {
+        parent[Find(&parent, a)] = Find(&parent, owner[static_cast<size_t>(r) * cols + c + 1]);
+      }
+      if (r + 1 < rows && owner[static_cast<size_t>(r + 1) * cols + c] >= 0) {
+        parent[Find(&parent, a)] = Find(&parent, owner[static_cast<size_t>(r + 1) * cols + c]);
+      }
+    }
+  }
+  std::vector<uint8_t> seen(n, 0), piece;
+  std::vector<size_t> stack, cells;
+  for (size_t start = 0; start < n; ++start) {
+    if (!uncovered[start] || seen[start]) continue;
+    cells.clear();
+    stack = {start};
+    seen[start] = 1;
+    int first_root = -1;
+    bool bridge = false;
+    while (!stack.empty()) {
+      const size_t i = stack.back();
+      stack.pop_back();
+      cells.push_back(i);
+      const int r = static_cast<int>(i / cols), c = static_cast<int>(i % cols);
+      const int dr[4] = {-1, 1, 0, 0}, dc[4] = {0, 0, -1, 1};
+      for (int d = 0; d < 4; ++d) {
+        const int rr = r + dr[d], cc = c + dc[d];
+        if (rr < 0 || rr >= rows || cc < 0 || cc >= cols) continue;
+        const size_t j = static_cast<size_t>(rr) * cols + cc;
+        if (owner[j] >= 0) {
+          const int root = Find(&parent, owner[j]);
+          if (first_root < 0) first_root = root;
+          bridge |= root != first_root;
+        } else if (uncovered[j] && !seen[j]) {
+          seen[j] = 1;
+          stack.push_back(j);
+        }
+      }
+    }
+    if (!bridge) continue;
+    piece.assign(n, 0);
+    for (size_t i : cells) piece[i] = 1;
+    return piece;
+  }
+  return piece;
+}
+
 }  // namespace
 
 std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
@@ -90,15 +174,18 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
     CellRect rect = LargestRectangle(uncovered, rows, cols);
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;
     if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
-    for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
-      for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
-        uint8_t& u = uncovered[static_cast<size_t>(r) * cols + c];
-        if (u) {
-          u = 0;
-          --left;
-        }
-      }
-    }
+    left -= MarkCovered(rect, cols, &uncovered);
+    rects.push_back(rect);
+  }
+  // Covered enough, but the part left may hold the only way between two pieces of the
+  // cover (a wall's opening, a few per cent of a floor): cover those too.
+  while (options.connect_pieces && left > 0 && static_cast<int>(rects.size()) < options.max_rects) {
+    const std::vector<uint8_t> bridge = UncoveredBridge(uncovered, rects, rows, cols);
+    if (bridge.empty()) break;
+    CellRect rect = LargestRectangle(bridge, rows, cols);
+    if (rect.Area() < std::max(1, options.min_rect_cells)) break;
+    if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
+    left -= MarkCovered(rect, cols, &uncovered);
     rects.push_back(rect);
   }
   return rects;

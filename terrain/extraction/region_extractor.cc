@@ -289,6 +289,11 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   }
   stats.surface_cells = layers.candidates;
   ExtractFromLayers(layers, options, start, &result);
+  if (options.body_obstacles) {
+    MapObstacleOptions body = *options.body_obstacles;
+    body.deadline = options.deadline;
+    result.body_obstacles = MapBodyObstacles(map, body);
+  }
   return result;
 }
 
@@ -323,6 +328,10 @@ RegionExtractionResult ExtractRegionsFromTerrain(const TerrainDescription& terra
     // Occupancy from rays: a voxel any ray hits is occupied, so a wall reaching into a
     // surface's top voxel would have occupied the voxel above it.
     own.riser_uncertainty_voxels = 0.0;
+  }
+  if (terrain.scan.sensors_world_m.empty() && own.body_obstacles) {
+    // The same for the body's obstacles: a wall's true face up to half a voxel outside.
+    own.body_obstacles->grow_m = std::max(own.body_obstacles->grow_m, 0.5 * terrain.resolution_m);
   }
   return ExtractRegions(MakeTerrainMap(terrain), own);
 }

@@ -8,6 +8,7 @@
 // apart). Plain Eigen; one entry point with Options / Result types.
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "terrain/extraction/cell_fate.h"
 #include "terrain/extraction/height_map.h"
 #include "terrain/extraction/internal/surface_layers.h"
+#include "terrain/extraction/map_body_obstacles.h"
 #include "terrain/extraction/occupancy_map.h"
 
 namespace mfp {
@@ -98,6 +100,9 @@ struct RegionExtractorOptions {
   // Ends the extraction (checked every height map row and every patch): the regions of
   // the patches done so far are returned, with a message saying the time ran out.
   Deadline deadline;
+  // When set, ExtractRegions also finds the body's obstacles in the map
+  // (map_body_obstacles.h; its deadline is this one).
+  std::optional<MapObstacleOptions> body_obstacles;
 };
 
 struct RegionExtractionStats {
@@ -129,6 +134,8 @@ struct RegionExtractionResult {
   std::vector<std::vector<CellFate>> cell_fates;
   std::string message;                // why there are no regions, when there are none
   bool stopped = false;               // the deadline ended it early (message says where)
+  // With RegionExtractorOptions::body_obstacles, from an occupancy map (not a height map).
+  std::optional<MapObstacles> body_obstacles;
 };
 
 // Every region point f keeps a disk of radius foot_radius_m + edge_margin_m on the map's

@@ -22,6 +22,9 @@ struct RectangleCoverOptions {
   // Grow each rectangle over cells already covered (overlapping rectangles); false: the
   // rectangles only share sides, so a point lies in one of them but on a shared side.
   bool grow_over_covered = true;
+  // After the target coverage, keep covering uncovered pieces that touch two pieces of the
+  // cover that do not touch each other (a mask's necks), up to max_rects.
+  bool connect_pieces = true;
 };
 
 // mask is row-major rows x cols, non-zero = inside.
