@@ -1,6 +1,7 @@
 #include "planner/qp/relaxation_solver_factory.h"
 
 #include "base/check.h"
+#include "planner/qp/internal/dual_active_set_relaxation_solver.h"
 #include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "planner/qp/internal/ipopt_relaxation_solver.h"
 
@@ -38,16 +39,20 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
 RelaxationBackend ParseRelaxationBackend(const std::string& name) {
   if (name == "ipm") return RelaxationBackend::kInteriorPointWithIpoptFallback;
   if (name == "ipopt") return RelaxationBackend::kIpopt;
-  throw InputError("relaxation solver '" + name + "' is not one of ipm, ipopt");
+  if (name == "dualqp") return RelaxationBackend::kDualActiveSetWithFallbacks;
+  throw InputError("relaxation solver '" + name + "' is not one of ipm, ipopt, dualqp");
 }
 
 std::string ToString(RelaxationBackend backend) {
-  return backend == RelaxationBackend::kIpopt ? "ipopt" : "ipm";
+  if (backend == RelaxationBackend::kIpopt) return "ipopt";
+  return backend == RelaxationBackend::kDualActiveSetWithFallbacks ? "dualqp" : "ipm";
 }
 
 std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend) {
   if (backend == RelaxationBackend::kIpopt) return MakeIpoptRelaxationSolver();
-  return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+  auto ipm = std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+  if (backend == RelaxationBackend::kInteriorPointWithIpoptFallback) return ipm;
+  return std::make_unique<FallbackRelaxationSolver>(MakeDualActiveSetRelaxationSolver(), std::move(ipm));
 }
 
 std::vector<RelaxationSolver*> RelaxationSolverSet::workers() const {

@@ -14,9 +14,13 @@ enum class RelaxationBackend {
   // (docs/measurements.md).
   kInteriorPointWithIpoptFallback,
   kIpopt,  // Ipopt alone
+  // mfp's dense dual active-set method warm-started from the worker's last node
+  // (dual_active_set_qp.h); a node it does not finish (too many variables, found
+  // infeasible, step cap) goes to the interior point, then Ipopt.
+  kDualActiveSetWithFallbacks,
 };
 
-// "ipm" or "ipopt"; throws InputError naming the allowed values otherwise.
+// "ipm", "ipopt" or "dualqp"; throws InputError naming the allowed values otherwise.
 RelaxationBackend ParseRelaxationBackend(const std::string& name);
 std::string ToString(RelaxationBackend backend);
 
