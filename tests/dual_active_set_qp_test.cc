@@ -68,7 +68,7 @@ void ExpectAgrees(const Miqp& p, const RelaxationResult& dual, const RelaxationR
   ASSERT_EQ(ipm.status, RelaxationStatus::kSolved);
   ASSERT_EQ(dual.status, RelaxationStatus::kSolved);
   const double scale = 1.0 + std::abs(ipm.objective);
-  EXPECT_NEAR(dual.objective, ipm.objective, 1e-6 * scale);
+  EXPECT_NEAR(dual.objective, ipm.objective, 1e-5 * scale);
   EXPECT_LE(dual.cost_floor, ipm.objective + 1e-7 * scale);
   EXPECT_GE(dual.cost_floor, ipm.objective - 1e-4 * scale);
   EXPECT_LE(p.MaxViolationOfRows(dual.x), 1e-6);

@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 #include "base/check.h"
 
@@ -32,8 +34,10 @@ void RotateColumns(Eigen::MatrixXd* m, int i, int j, double cs, double sn) {
   }
 }
 
-// A fingerprint of the problem's data (position-weighted sums, infinite bounds skipped):
-// the factors are reused only for the same data.
+// A fingerprint of the problem's data but its variable bounds (position-weighted sums,
+// infinite bounds skipped): the factors are reused only for the same data. (Other
+// variable bounds are another node of the same problem; the regularisation's floor
+// correction holds for any box.)
 double Fingerprint(const Miqp& p) {
   double f = 0.0;
   auto add = [&f](const double* v, Eigen::Index size) {
@@ -46,8 +50,6 @@ double Fingerprint(const Miqp& p) {
   add(p.c.data(), p.c.size());
   add(p.row_lower.data(), p.row_lower.size());
   add(p.row_upper.data(), p.row_upper.size());
-  add(p.var_lower.data(), p.var_lower.size());
-  add(p.var_upper.data(), p.var_upper.size());
   return f + p.constant;
 }
 
@@ -62,6 +64,8 @@ bool DualActiveSetQp::Prepare(const Miqp& p, const Eigen::VectorXd& lower, const
                     key_nnz_a_ == p.A.nonZeros() && key_fingerprint_ == fingerprint && n_ == p.num_variables();
   if (same) return true;
   warm_valid_ = false;
+  snapshots_.assign(options_.snapshots, Snapshot());
+  live_slot_ = -1;
   problem_ = &p;
   key_rows_ = p.num_rows();
   key_nnz_q_ = p.Q.nonZeros();
@@ -84,7 +88,7 @@ bool DualActiveSetQp::FactorHessian(const Miqp& p) {
   eps_.resize(n_);
   for (int j = 0; j < n_; ++j) {
     const double range2 = std::max({1.0, p.var_lower(j) * p.var_lower(j), p.var_upper(j) * p.var_upper(j)});
-    eps_(j) = options_.regularisation / range2;
+    eps_(j) = (getenv("DQP_EPS") ? atof(getenv("DQP_EPS")) : options_.regularisation) / range2;
   }
   H_ = Eigen::MatrixXd(p.Q);
   H_.diagonal() += eps_;
@@ -158,6 +162,58 @@ bool DualActiveSetQp::WarmStart() {
     ++steps_;
     SolveForActiveSet();
   }
+}
+
+int DualActiveSetQp::BoundsChanged(const Snapshot& snapshot) const {
+  int changed = 0;
+  for (int j = 0; j < n_; ++j) changed += (snapshot.lower(j) != lower_(j)) + (snapshot.upper(j) != upper_(j));
+  return changed;
+}
+
+// The stored state whose box differs from the new one in the fewest bounds becomes the
+// live one (a copy unless it is the live one already).
+void DualActiveSetQp::RestoreNearest() {
+  int best = -1, best_changed = 0;
+  for (int s = 0; s < static_cast<int>(snapshots_.size()); ++s) {
+    if (snapshots_[s].used < 0) continue;
+    const int changed = BoundsChanged(snapshots_[s]);
+    if (best < 0 || changed < best_changed) {
+      best = s;
+      best_changed = changed;
+    }
+  }
+  warm_valid_ = best >= 0;
+  if (best < 0 || best == live_slot_) return;
+  const Snapshot& snap = snapshots_[best];
+  J_ = snap.J;
+  R_ = snap.R;
+  active_ = snap.active;
+  is_active_.assign(2 * n_ + 2 * m_, 0);
+  for (int con : active_) is_active_[con] = 1;
+  warm_solves_ = snap.warm_solves;
+  live_slot_ = best;
+}
+
+// The live state stored for later nodes: over the slot of the same box, else the least
+// recently used one.
+void DualActiveSetQp::SaveSnapshot() {
+  int slot = 0;
+  for (int s = 0; s < static_cast<int>(snapshots_.size()); ++s) {
+    if (snapshots_[s].used >= 0 && BoundsChanged(snapshots_[s]) == 0) {
+      slot = s;
+      break;
+    }
+    if (snapshots_[s].used < snapshots_[slot].used) slot = s;
+  }
+  Snapshot& snap = snapshots_[slot];
+  snap.lower = lower_;
+  snap.upper = upper_;
+  snap.J = J_;
+  snap.R = R_;
+  snap.active = active_;
+  snap.warm_solves = warm_solves_;
+  snap.used = ++clock_;
+  live_slot_ = slot;
 }
 
 double DualActiveSetQp::Slack(int con) const {
@@ -298,6 +354,50 @@ DualActiveSetQp::Step DualActiveSetQp::Iterate(double cutoff, const Deadline& de
   }
 }
 
+// H x + c - N u over the active set (the stationarity residual).
+Eigen::VectorXd DualActiveSetQp::StationarityResidual(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd res = H_ * x_ + c_;
+  for (size_t i = 0; i < active_.size(); ++i) {
+    const int con = active_[i];
+    if (con < n_) {
+      res(con) -= u(i);
+    } else if (con < 2 * n_) {
+      res(con - n_) += u(i);
+    } else {
+      const bool upper_side = con >= 2 * n_ + m_;
+      const int row = upper_side ? con - 2 * n_ - m_ : con - 2 * n_;
+      const double signed_u = upper_side ? -u(i) : u(i);
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(*A_, row); it; ++it) {
+        res(it.col()) -= signed_u * it.value();
+      }
+    }
+  }
+  return res;
+}
+
+// Iterative refinement of the multipliers: the updated factors lose digits on the
+// planner's badly scaled QPs, and the floor pays for every unit of residual times the
+// box's width. With J1'N = R, the correction R^-1 J1' res removes the residual's part in
+// the active constraints' span.
+void DualActiveSetQp::RefineMultipliers() {
+  const int k = static_cast<int>(active_.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::VectorXd res = StationarityResidual(u_);
+    u_ += R_.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(J_.leftCols(k).transpose() * res);
+  }
+}
+
+// At the optimum: x and the multipliers again straight from the factors (the steps'
+// updates accumulate rounding), the constraints checked again, the multipliers refined.
+DualActiveSetQp::Step DualActiveSetQp::Polish(Step step, double cutoff, const Deadline& deadline) {
+  for (int round = 0; round < 2 && step == Step::kOptimal; ++round) {
+    SolveForActiveSet();
+    step = Iterate(cutoff, deadline);
+  }
+  if (step == Step::kOptimal) RefineMultipliers();
+  return step;
+}
+
 double DualActiveSetQp::RegularisedObjective() const {
   return 0.5 * x_.dot((*Q_) * x_) + 0.5 * x_.cwiseAbs2().dot(eps_) + c_.dot(x_) + constant_;
 }
@@ -332,31 +432,21 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
   result->status = RelaxationStatus::kSolved;
   result->x = x_.cwiseMax(lower_).cwiseMin(upper_);
   result->objective = problem.Objective(result->x);
-  Eigen::VectorXd res = H_ * x_ + c_;
   result->lower_cost_rate = Eigen::VectorXd::Zero(n_);
   result->upper_cost_rate = Eigen::VectorXd::Zero(n_);
+  Eigen::VectorXd u = u_;
   double activity = 0.0;
   for (size_t i = 0; i < active_.size(); ++i) {
     const int con = active_[i];
-    const double u = is_equality_[con] ? u_(i) : std::max(0.0, u_(i));
-    activity += u * (NormalDot(con, x_) - rhs_(con));
-    if (con < n_) {
-      res(con) -= u;
-      result->lower_cost_rate(con) = u;
-    } else if (con < 2 * n_) {
-      res(con - n_) += u;
-      result->upper_cost_rate(con - n_) = u;
-    } else {
-      const bool upper_side = con >= 2 * n_ + m_;
-      const int row = upper_side ? con - 2 * n_ - m_ : con - 2 * n_;
-      const double signed_u = upper_side ? -u : u;
-      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(*A_, row); it; ++it) {
-        res(it.col()) -= signed_u * it.value();
-      }
-    }
+    if (!is_equality_[con]) u(i) = std::max(0.0, u(i));
+    activity += u(i) * (NormalDot(con, x_) - rhs_(con));
+    if (con < n_) result->lower_cost_rate(con) = u(i);
+    if (con >= n_ && con < 2 * n_) result->upper_cost_rate(con - n_) = u(i);
   }
+  const Eigen::VectorXd res = StationarityResidual(u);
   const double slop = res.cwiseAbs().dot(upper_ - lower_);
   const double floor = f_eps - FloorCorrection() - activity - slop;
+  if (getenv("DQP_DEBUG")) fprintf(stderr, "f_eps %.9g corr %.3g activity %.3g slop %.3g resmax %.3g k %zu\n", f_eps, FloorCorrection(), activity, slop, res.cwiseAbs().maxCoeff(), active_.size());
   result->cost_floor = std::min(result->objective, floor - 1e-9 * (1.0 + std::abs(floor)));
 }
 
@@ -366,26 +456,41 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
   SetBounds(lower, upper);
+  RestoreNearest();
   const bool warm = warm_valid_ && warm_solves_ < options_.warm_solves_before_rebuild;
+  int diff = 0;
+  static int dbg = getenv("DQP_TRACE") ? 1 : 0;
+  if (dbg && warm_valid_) for (int j = 0; j < n_; ++j) diff += (lower(j) != prev_lower_(j)) + (upper(j) != prev_upper_(j));
+  if (dbg) { prev_lower_ = lower; prev_upper_ = upper; }
+  int drops0 = 0, k0 = 0;
   if (warm) {
+    k0 = static_cast<int>(active_.size());
     WarmStart();
+    drops0 = steps_;
   } else {
     ColdStart();
   }
   warm_valid_ = true;
-  Step step = Iterate(cutoff, deadline);
+  Step step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
   FillResult(problem, step, &result);
   // A warm solve whose floor lies far below its objective (drifted factors): once more cold.
   const double loose = 1e-6 * (1.0 + std::abs(result.objective)) + FloorCorrection();
   if (warm && step == Step::kOptimal && result.objective - result.cost_floor > loose) {
     const int steps = steps_;
     ColdStart();
-    step = Iterate(cutoff, deadline);
+    step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
     result = RelaxationResult();
     FillResult(problem, step, &result);
     result.iterations += steps;
   }
   if (step == Step::kLimit) warm_valid_ = false;
+  if (dbg) fprintf(stderr, "DQP n %d warm %d diff %d k0 %d wdrops %d steps %d k %zu status %d cut %d\n", n_, warm, diff, k0, drops0, result.iterations, active_.size(), (int)step, std::isfinite(cutoff) ? 1 : 0);
+  if (step == Step::kLimit) warm_valid_ = false;
+  if (warm_valid_) {
+    SaveSnapshot();
+  } else {
+    live_slot_ = -1;
+  }
   return result;
 }
 

@@ -42,6 +42,10 @@ struct DualActiveSetOptions {
   int warm_solves_before_rebuild = 200;
   // Steps (additions plus drops) of one solve, as a multiple of variables + rows.
   int max_steps_per_size = 4;
+  // Active sets (with their factors, 2 n^2 numbers each) kept for later solves; each
+  // solve starts from the one whose box differs from its own in the fewest bounds, so
+  // that a heuristic's QP between two nodes does not cost the next node its start.
+  int snapshots = 4;
 };
 
 class DualActiveSetQp {
@@ -56,6 +60,16 @@ class DualActiveSetQp {
 
  private:
   enum class Step { kOptimal, kInfeasible, kCutoff, kLimit, kFailed };
+  struct Snapshot {
+    Eigen::VectorXd lower, upper;
+    Eigen::MatrixXd J, R;
+    std::vector<int> active;
+    int warm_solves = 0;
+    long used = -1;  // when last saved; -1: empty
+  };
+  int BoundsChanged(const Snapshot& snapshot) const;
+  void RestoreNearest();
+  void SaveSnapshot();
 
   bool Prepare(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
   bool FactorHessian(const Miqp& problem);
@@ -73,6 +87,9 @@ class DualActiveSetQp {
   double Slack(int constraint) const;
   bool IsEquality(int constraint) const;
   void FillResult(const Miqp& problem, Step step, RelaxationResult* result) const;
+  Eigen::VectorXd StationarityResidual(const Eigen::VectorXd& u) const;
+  void RefineMultipliers();
+  Step Polish(Step step, double cutoff, const Deadline& deadline);
   double RegularisedObjective() const;
   double FloorCorrection() const;
 
@@ -95,7 +112,7 @@ class DualActiveSetQp {
   double constant_ = 0.0;
   // Constraint c: c < n: x_c >= l; c < 2n: -x >= -u; c < 2n+m: row >= row_lower; else -row >= -row_upper.
   Eigen::VectorXd rhs_;
-  Eigen::VectorXd lower_, upper_;
+  Eigen::VectorXd lower_, upper_, prev_lower_, prev_upper_;
   std::vector<int> active_;      // constraint per factor column
   std::vector<char> is_active_;
   Eigen::VectorXd u_;            // multipliers of active_
@@ -103,6 +120,9 @@ class DualActiveSetQp {
   int steps_ = 0;
   int warm_solves_ = 0;
   bool warm_valid_ = false;
+  std::vector<Snapshot> snapshots_;
+  int live_slot_ = -1;  // the snapshot the live factors equal, or -1
+  long clock_ = 0;
   const Eigen::SparseMatrix<double, Eigen::RowMajor>* A_ = nullptr;
 };
 
