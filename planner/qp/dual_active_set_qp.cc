@@ -3,8 +3,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 
 #include "base/check.h"
 
@@ -88,7 +86,7 @@ bool DualActiveSetQp::FactorHessian(const Miqp& p) {
   eps_.resize(n_);
   for (int j = 0; j < n_; ++j) {
     const double range2 = std::max({1.0, p.var_lower(j) * p.var_lower(j), p.var_upper(j) * p.var_upper(j)});
-    eps_(j) = (getenv("DQP_EPS") ? atof(getenv("DQP_EPS")) : options_.regularisation) / range2;
+    eps_(j) = options_.regularisation / range2;
   }
   H_ = Eigen::MatrixXd(p.Q);
   H_.diagonal() += eps_;
@@ -446,7 +444,6 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
   const Eigen::VectorXd res = StationarityResidual(u);
   const double slop = res.cwiseAbs().dot(upper_ - lower_);
   const double floor = f_eps - FloorCorrection() - activity - slop;
-  if (getenv("DQP_DEBUG")) fprintf(stderr, "f_eps %.9g corr %.3g activity %.3g slop %.3g resmax %.3g k %zu\n", f_eps, FloorCorrection(), activity, slop, res.cwiseAbs().maxCoeff(), active_.size());
   result->cost_floor = std::min(result->objective, floor - 1e-9 * (1.0 + std::abs(floor)));
 }
 
@@ -458,15 +455,8 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   SetBounds(lower, upper);
   RestoreNearest();
   const bool warm = warm_valid_ && warm_solves_ < options_.warm_solves_before_rebuild;
-  int diff = 0;
-  static int dbg = getenv("DQP_TRACE") ? 1 : 0;
-  if (dbg && warm_valid_) for (int j = 0; j < n_; ++j) diff += (lower(j) != prev_lower_(j)) + (upper(j) != prev_upper_(j));
-  if (dbg) { prev_lower_ = lower; prev_upper_ = upper; }
-  int drops0 = 0, k0 = 0;
   if (warm) {
-    k0 = static_cast<int>(active_.size());
     WarmStart();
-    drops0 = steps_;
   } else {
     ColdStart();
   }
@@ -476,15 +466,11 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   // A warm solve whose floor lies far below its objective (drifted factors): once more cold.
   const double loose = 1e-6 * (1.0 + std::abs(result.objective)) + FloorCorrection();
   if (warm && step == Step::kOptimal && result.objective - result.cost_floor > loose) {
-    const int steps = steps_;
-    ColdStart();
+    ColdStart();  // steps_ keeps counting: iterations report both attempts
     step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
     result = RelaxationResult();
     FillResult(problem, step, &result);
-    result.iterations += steps;
   }
-  if (step == Step::kLimit) warm_valid_ = false;
-  if (dbg) fprintf(stderr, "DQP n %d warm %d diff %d k0 %d wdrops %d steps %d k %zu status %d cut %d\n", n_, warm, diff, k0, drops0, result.iterations, active_.size(), (int)step, std::isfinite(cutoff) ? 1 : 0);
   if (step == Step::kLimit) warm_valid_ = false;
   if (warm_valid_) {
     SaveSnapshot();

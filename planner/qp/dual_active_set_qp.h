@@ -112,7 +112,7 @@ class DualActiveSetQp {
   double constant_ = 0.0;
   // Constraint c: c < n: x_c >= l; c < 2n: -x >= -u; c < 2n+m: row >= row_lower; else -row >= -row_upper.
   Eigen::VectorXd rhs_;
-  Eigen::VectorXd lower_, upper_, prev_lower_, prev_upper_;
+  Eigen::VectorXd lower_, upper_;
   std::vector<int> active_;      // constraint per factor column
   std::vector<char> is_active_;
   Eigen::VectorXd u_;            // multipliers of active_
