@@ -131,8 +131,10 @@ void AddSolverKeys(Table* t) {
   t->push_back(EnumOpt("solvers.relaxation_solver", In(&P::solvers, &RelaxationSolverOptions::backend),
                        std::vector<std::pair<std::string, RelaxationBackend>>{
                            {"ipm", RelaxationBackend::kInteriorPointWithIpoptFallback},
-                           {"ipopt", RelaxationBackend::kIpopt}},
-                       "QP solver of the relaxations: mfp's interior point (Ipopt as fallback), or Ipopt alone")
+                           {"ipopt", RelaxationBackend::kIpopt},
+                           {"dualqp", RelaxationBackend::kDualActiveSetWithFallbacks}},
+                       "QP solver of the relaxations: mfp's interior point (Ipopt as fallback), Ipopt alone, or "
+                       "mfp's dual active set warm-started from the last node (interior point as fallback)")
                    .Alias("relaxation_solver"));
   t->push_back(Opt("solvers.threads", In(&P::solvers, &RelaxationSolverOptions::threads), 1, 64,
                    "branch-and-bound workers solving node relaxations at once")

@@ -88,6 +88,8 @@ TEST(PlannerOptionsYaml, SolverKeysReachTheSolverOptions) {
   const std::string bad = ErrorOf("relaxation_solver: gurobi\n");
   EXPECT_NE(bad.find("relaxation_solver"), std::string::npos);
   EXPECT_NE(bad.find("ipm, ipopt"), std::string::npos);  // lists what is allowed
+  EXPECT_EQ(Read("relaxation_solver: dualqp\n").solvers.backend, RelaxationBackend::kDualActiveSetWithFallbacks);
+  EXPECT_EQ(MakeRelaxationSolver(RelaxationBackend::kDualActiveSetWithFallbacks)->Name(), "dualqp+ipm+ipopt");
 }
 
 TEST(PlannerOptionsYaml, FormulationAndHeuristicOptionsArrive) {

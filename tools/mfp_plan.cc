@@ -76,7 +76,7 @@ void AddFlags(CLI::App* app, Flags* f) {
   app->add_option("--json", f->json_path, "write the plan JSON here ('-' = stdout)");
   app->add_option("--svg", f->svg_path, "write a picture of the plan here");
   app->add_option("--write-mps", f->mps_path, "write the first window's MIQP as free MPS (constant left out)");
-  app->add_option("--relaxation-solver", f->relaxation_solver, "ipm (default: mfp's interior point, Ipopt fallback) or ipopt");
+  app->add_option("--relaxation-solver", f->relaxation_solver, "ipm (default: mfp's interior point, Ipopt fallback), ipopt, or dualqp (dual active set, ipm fallback)");
   app->add_option("--threads", f->threads, "branch-and-bound workers solving node relaxations at once (default 1)")
       ->check(CLI::Range(1, 64));
   app->add_flag("--validate", f->validate, "re-check the plan constraint by constraint; exit 3 on a violation");

@@ -1,6 +1,7 @@
 #include "planner/qp/relaxation_solver_factory.h"
 
 #include "base/check.h"
+#include "planner/qp/internal/dual_active_set_relaxation_solver.h"
 #include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "planner/qp/internal/ipopt_relaxation_solver.h"
 
@@ -33,21 +34,55 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   std::unique_ptr<RelaxationSolver> fallback_;
 };
 
+// The dual active set for node relaxations (some integer still free), the interior point
+// for QPs whose integers are all fixed (the heuristics' roundings: far from any node the
+// dual method has seen, often infeasible, and small once the fixed variables are removed,
+// which the interior point does first).
+class NodesToDualActiveSet final : public RelaxationSolver {
+ public:
+  NodesToDualActiveSet(std::unique_ptr<RelaxationSolver> nodes, std::unique_ptr<RelaxationSolver> fixed)
+      : nodes_(std::move(nodes)), fixed_(std::move(fixed)) {}
+
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    const Eigen::VectorXd& lower = request.LowerOr(problem);
+    const Eigen::VectorXd& upper = request.UpperOr(problem);
+    for (int j = 0; j < problem.num_variables(); ++j) {
+      if (problem.is_integer[j] && lower(j) < upper(j)) return nodes_->Solve(problem, request);
+    }
+    return fixed_->Solve(problem, request);
+  }
+
+  std::string Name() const override { return nodes_->Name(); }
+
+ private:
+  std::unique_ptr<RelaxationSolver> nodes_;
+  std::unique_ptr<RelaxationSolver> fixed_;
+};
+
+std::unique_ptr<RelaxationSolver> MakeInteriorPointWithIpoptFallback() {
+  return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+}
+
 }  // namespace
 
 RelaxationBackend ParseRelaxationBackend(const std::string& name) {
   if (name == "ipm") return RelaxationBackend::kInteriorPointWithIpoptFallback;
   if (name == "ipopt") return RelaxationBackend::kIpopt;
-  throw InputError("relaxation solver '" + name + "' is not one of ipm, ipopt");
+  if (name == "dualqp") return RelaxationBackend::kDualActiveSetWithFallbacks;
+  throw InputError("relaxation solver '" + name + "' is not one of ipm, ipopt, dualqp");
 }
 
 std::string ToString(RelaxationBackend backend) {
-  return backend == RelaxationBackend::kIpopt ? "ipopt" : "ipm";
+  if (backend == RelaxationBackend::kIpopt) return "ipopt";
+  return backend == RelaxationBackend::kDualActiveSetWithFallbacks ? "dualqp" : "ipm";
 }
 
 std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend) {
   if (backend == RelaxationBackend::kIpopt) return MakeIpoptRelaxationSolver();
-  return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+  if (backend == RelaxationBackend::kInteriorPointWithIpoptFallback) return MakeInteriorPointWithIpoptFallback();
+  auto nodes =
+      std::make_unique<FallbackRelaxationSolver>(MakeDualActiveSetRelaxationSolver(), MakeInteriorPointWithIpoptFallback());
+  return std::make_unique<NodesToDualActiveSet>(std::move(nodes), MakeInteriorPointWithIpoptFallback());
 }
 
 std::vector<RelaxationSolver*> RelaxationSolverSet::workers() const {

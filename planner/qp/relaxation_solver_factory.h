@@ -14,9 +14,14 @@ enum class RelaxationBackend {
   // (docs/measurements.md).
   kInteriorPointWithIpoptFallback,
   kIpopt,  // Ipopt alone
+  // mfp's dense dual active-set method warm-started from the worker's nearest recent node
+  // (dual_active_set_qp.h) for node relaxations; a node it does not finish (too many
+  // variables, found infeasible, step cap) goes to the interior point, then Ipopt. QPs
+  // with every integer fixed (the heuristics') go to the interior point directly.
+  kDualActiveSetWithFallbacks,
 };
 
-// "ipm" or "ipopt"; throws InputError naming the allowed values otherwise.
+// "ipm", "ipopt" or "dualqp"; throws InputError naming the allowed values otherwise.
 RelaxationBackend ParseRelaxationBackend(const std::string& name);
 std::string ToString(RelaxationBackend backend);
 

@@ -1,0 +1,129 @@
+#pragma once
+// A dual active-set QP solver (Goldfarb and Idnani's method, dense, in plain Eigen) for
+// the node relaxations of one Miqp, warm-started from the last solve:
+//   minimise 0.5 x'Qx + c'x + constant  s.t.  row bounds,  lower <= x <= upper.
+//
+// Q is only positive semidefinite here (binaries and some continuous variables carry no
+// cost), so the method works on Q + diag(eps_j) with eps_j = regularisation /
+// max(1, l_j^2, u_j^2) over the problem's own (root) bounds. For every x of a node's box
+// the two objectives differ by at most 0.5 sum_j eps_j max(l_j^2, u_j^2) (at most
+// 0.5 * regularisation * n); that amount is subtracted from every floor reported, so
+// cost_floor and the cutoff's objective stay true lower bounds of the unregularised
+// node optimum.
+//
+// Warm start: the object keeps the factorisation of the regularised Hessian, the last
+// solve's active set and its QR factors. The next solve of the same problem changes the
+// bounds' right-hand sides in place, drops the active constraints whose multipliers turn
+// negative (the remaining set is then a dual-feasible start) and adds violated
+// constraints from there. A child solved right after its parent costs a few O(n^2)
+// steps. This is a cache only: the answer does not depend on what was solved before
+// (up to ties and rounding).
+//
+// Infeasibility is not reported: a node the method finds infeasible ends kFailed, for a
+// sound solver to decide (the factory hands it to the interior point).
+#include <Eigen/Core>
+#include <vector>
+
+#include "base/deadline.h"
+#include "planner/miqp/miqp.h"
+#include "planner/qp/relaxation_solver.h"
+
+namespace mfp {
+
+struct DualActiveSetOptions {
+  // Hessian regularisation scale (objective units per unit of a variable's squared range).
+  double regularisation = 1e-7;
+  // A constraint violated by more than this (relative to 1 + |its bound|, rows scaled to
+  // unit norm) is not met.
+  double feasibility_tolerance = 1e-9;
+  // Dense method: problems with more variables end kFailed at once (another solver takes them).
+  int max_variables = 1500;
+  // Rebuild the factors from scratch after this many warm solves (rounding drift).
+  int warm_solves_before_rebuild = 200;
+  // Steps (additions plus drops) of one solve, as a multiple of variables + rows.
+  int max_steps_per_size = 4;
+  // Active sets (with their factors, 2 n^2 numbers each) kept for later solves; each
+  // solve starts from the one whose box differs from its own in the fewest bounds, so
+  // that a heuristic's QP between two nodes does not cost the next node its start.
+  int snapshots = 4;
+};
+
+class DualActiveSetQp {
+ public:
+  explicit DualActiveSetQp(const DualActiveSetOptions& options = {}) : options_(options) {}
+
+  // kSolved with the reduced costs (bound multipliers) and cost_floor, kCutoff once the
+  // floor reaches cutoff, kIterationLimit on the deadline or the step cap, kFailed on a
+  // problem it does not take or a node it finds infeasible.
+  RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                         double cutoff, const Deadline& deadline);
+
+ private:
+  enum class Step { kOptimal, kInfeasible, kCutoff, kLimit, kFailed };
+  struct Snapshot {
+    Eigen::VectorXd lower, upper;
+    Eigen::MatrixXd J, R;
+    std::vector<int> active;
+    int warm_solves = 0;
+    long used = -1;  // when last saved; -1: empty
+  };
+  int BoundsChanged(const Snapshot& snapshot) const;
+  void RestoreNearest();
+  void SaveSnapshot();
+
+  bool Prepare(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
+  bool FactorHessian(const Miqp& problem);
+  void ColdStart();
+  void SetBounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
+  bool WarmStart();
+  Step Iterate(double cutoff, const Deadline& deadline);
+  int MostViolated() const;
+  Step AddConstraint(int p, const Deadline& deadline);
+  void AppendToFactors(int p, Eigen::VectorXd d);
+  void DropFromFactors(int position);
+  void SolveForActiveSet();
+  Eigen::VectorXd TransposedJTimesNormal(int constraint) const;
+  double NormalDot(int constraint, const Eigen::VectorXd& v) const;
+  double Slack(int constraint) const;
+  bool IsEquality(int constraint) const;
+  void FillResult(const Miqp& problem, Step step, RelaxationResult* result) const;
+  Eigen::VectorXd StationarityResidual(const Eigen::VectorXd& u) const;
+  void RefineMultipliers();
+  Step Polish(Step step, double cutoff, const Deadline& deadline);
+  double RegularisedObjective() const;
+  double FloorCorrection() const;
+
+  DualActiveSetOptions options_;
+  // The problem the factors belong to (address, shape and a fingerprint of its data: a
+  // cache key; the pointers below are dereferenced only inside Solve).
+  const Miqp* problem_ = nullptr;
+  long key_rows_ = -1, key_nnz_q_ = -1, key_nnz_a_ = -1;
+  double key_fingerprint_ = 0.0;
+  int n_ = 0, m_ = 0;
+  Eigen::VectorXd eps_;          // regularisation per variable
+  Eigen::VectorXd c_;            // linear cost
+  Eigen::MatrixXd H_;            // Q + diag(eps)
+  Eigen::MatrixXd J_;            // L^-T times the active set's orthogonal factor
+  Eigen::MatrixXd R_;            // upper triangular, active columns first
+  Eigen::MatrixXd J0_;           // L^-T: J_ of the empty active set
+  Eigen::VectorXd row_norm_;
+  std::vector<char> is_equality_;  // per constraint: a side of an equality row
+  const Eigen::SparseMatrix<double>* Q_ = nullptr;
+  double constant_ = 0.0;
+  // Constraint c: c < n: x_c >= l; c < 2n: -x >= -u; c < 2n+m: row >= row_lower; else -row >= -row_upper.
+  Eigen::VectorXd rhs_;
+  Eigen::VectorXd lower_, upper_;
+  std::vector<int> active_;      // constraint per factor column
+  std::vector<char> is_active_;
+  Eigen::VectorXd u_;            // multipliers of active_
+  Eigen::VectorXd x_, ax_;
+  int steps_ = 0;
+  int warm_solves_ = 0;
+  bool warm_valid_ = false;
+  std::vector<Snapshot> snapshots_;
+  int live_slot_ = -1;  // the snapshot the live factors equal, or -1
+  long clock_ = 0;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor>* A_ = nullptr;
+};
+
+}  // namespace mfp

@@ -1,0 +1,173 @@
+// mfp's dual active-set QP against the interior point: random convex QPs with a
+// singular Hessian, sequences of branch-and-bound-like bound changes (warm starts),
+// infeasible nodes, and the root relaxations of Table I instances.
+#include "planner/qp/dual_active_set_qp.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/miqp/miqp_builder.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "tests/test_qps.h"
+#include "tests/test_scenarios.h"
+
+namespace mfp {
+namespace {
+
+// A convex QP whose Hessian is singular, as the planner's are: chained squared
+// differences of the continuous variables (constant shifts cost nothing), binaries in
+// [0, 1] with no quadratic cost, two-sided and equality rows met by a random point of the
+// box (so it is feasible).
+Miqp RandomSingularQp(int n, int rows, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  MiqpBuilder b;
+  std::vector<int> x;
+  Eigen::VectorXd point(n);
+  for (int j = 0; j < n; ++j) {
+    const bool binary = j % 3 == 2;
+    x.push_back(binary ? b.AddBinary("b" + std::to_string(j)) : b.AddVariable("x" + std::to_string(j), -3, 3, false));
+    point(j) = binary ? 0.5 * (u(rng) + 1.0) : 2.0 * u(rng);
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    b.AddSquaredCost(LinExpr::Var(x[j + 1]) - LinExpr::Var(x[j]) - LinExpr::Constant(u(rng)), 1.0 + u(rng));
+    b.AddLinearCost(LinExpr::Var(x[j], 0.3 * u(rng)));
+  }
+  for (int k = 0; k < rows; ++k) {
+    LinExpr row;
+    double at_point = 0.0;
+    for (int j = 0; j < n; ++j) {
+      if (u(rng) > 0.7) {
+        const double a = u(rng);
+        row += LinExpr::Var(x[j], a);
+        at_point += a * point(j);
+      }
+    }
+    if (k == 0) {
+      b.AddRow("eq", row, at_point, at_point);
+    } else {
+      b.AddRow("r" + std::to_string(k), row, k % 2 ? -kInfinity : at_point - 0.5, at_point + 0.1 * (u(rng) + 1.0));
+    }
+  }
+  return b.Build();
+}
+
+RelaxationResult Ipm(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+  RelaxationRequest request;
+  request.lower = lower;
+  request.upper = upper;
+  return MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback)->Solve(p, request);
+}
+
+// The two agree on the optimum to 1e-6 relative, and the dual active set's cost floor
+// (with its reduced costs) is a true floor: at most the interior point's objective.
+void ExpectAgrees(const Miqp& p, const RelaxationResult& dual, const RelaxationResult& ipm) {
+  ASSERT_EQ(ipm.status, RelaxationStatus::kSolved);
+  ASSERT_EQ(dual.status, RelaxationStatus::kSolved);
+  const double scale = 1.0 + std::abs(ipm.objective);
+  EXPECT_NEAR(dual.objective, ipm.objective, 1e-5 * scale);
+  EXPECT_LE(dual.cost_floor, ipm.objective + 1e-7 * scale);
+  EXPECT_GE(dual.cost_floor, ipm.objective - 1e-4 * scale);
+  EXPECT_LE(p.MaxViolationOfRows(dual.x), 1e-6);
+  ASSERT_EQ(dual.lower_cost_rate.size(), p.num_variables());
+  EXPECT_GE(dual.lower_cost_rate.minCoeff(), 0.0);
+  EXPECT_GE(dual.upper_cost_rate.minCoeff(), 0.0);
+}
+
+TEST(DualActiveSetQp, AgreesWithTheInteriorPointOnRandomSingularQps) {
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE(seed);
+    const Miqp p = RandomSingularQp(30 + 5 * static_cast<int>(seed), 40, seed);
+    DualActiveSetQp qp;
+    const RelaxationResult dual = qp.Solve(p, p.var_lower, p.var_upper, kInfinity, Deadline());
+    ExpectAgrees(p, dual, Ipm(p, p.var_lower, p.var_upper));
+  }
+}
+
+TEST(DualActiveSetQp, WarmStartsAlongADiveAndAfterJumpsMatchTheInteriorPoint) {
+  // Branch-and-bound-like: each node fixes one more binary of its parent's (a dive), and
+  // every fourth node jumps back to the root's box with one other fixing (bounds loosen).
+  const Miqp p = RandomSingularQp(60, 50, 42);
+  DualActiveSetQp qp;
+  std::mt19937 rng(3);
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  int compared = 0;
+  for (int node = 0; node < 24; ++node) {
+    SCOPED_TRACE(node);
+    if (node % 4 == 3) {
+      lower = p.var_lower;
+      upper = p.var_upper;
+    }
+    const int j = 3 * static_cast<int>(rng() % 20) + 2;
+    (rng() % 2 ? lower(j) : upper(j)) = rng() % 2 ? 1.0 : 0.0;
+    if (lower(j) > upper(j)) std::swap(lower(j), upper(j));
+    const RelaxationResult ipm = Ipm(p, lower, upper);
+    const RelaxationResult dual = qp.Solve(p, lower, upper, kInfinity, Deadline());
+    if (ipm.status == RelaxationStatus::kInfeasible) {
+      EXPECT_NE(dual.status, RelaxationStatus::kSolved);
+      continue;
+    }
+    ExpectAgrees(p, dual, ipm);
+    ++compared;
+  }
+  EXPECT_GE(compared, 12);
+}
+
+TEST(DualActiveSetQp, AnInfeasibleNodeIsNeverSolvedAndTheFactoryCallsItInfeasible) {
+  // x + y <= 2 with x, y >= 1.5: no point. The dual method ends without a solution; the
+  // factory's chain hands the node to the interior point, which proves it infeasible.
+  const Miqp p = Projection();
+  Eigen::VectorXd lower = p.var_lower;
+  lower << 1.5, 1.5;
+  DualActiveSetQp qp;
+  const RelaxationResult dual = qp.Solve(p, lower, p.var_upper, kInfinity, Deadline());
+  EXPECT_EQ(dual.status, RelaxationStatus::kFailed);
+  RelaxationRequest request;
+  request.lower = lower;
+  const RelaxationResult chained = MakeRelaxationSolver(RelaxationBackend::kDualActiveSetWithFallbacks)->Solve(p, request);
+  EXPECT_EQ(chained.status, RelaxationStatus::kInfeasible);
+  // The same solver object then solves the feasible box again (its factors survive).
+  const RelaxationResult again = qp.Solve(p, p.var_lower, p.var_upper, kInfinity, Deadline());
+  ASSERT_EQ(again.status, RelaxationStatus::kSolved);
+  EXPECT_NEAR(again.objective, 0.5, 1e-6);
+}
+
+TEST(DualActiveSetQp, ACutoffBelowTheOptimumEndsWithATrueFloor) {
+  const Miqp p = RandomSingularQp(45, 40, 5);
+  const RelaxationResult ipm = Ipm(p, p.var_lower, p.var_upper);
+  ASSERT_EQ(ipm.status, RelaxationStatus::kSolved);
+  const double cutoff = ipm.objective - 1e-3 * (1.0 + std::abs(ipm.objective));
+  DualActiveSetQp qp;
+  const RelaxationResult r = qp.Solve(p, p.var_lower, p.var_upper, cutoff, Deadline());
+  ASSERT_EQ(r.status, RelaxationStatus::kCutoff);
+  EXPECT_GE(r.objective, cutoff);
+  EXPECT_LE(r.objective, ipm.objective + 1e-7 * (1.0 + std::abs(ipm.objective)));
+}
+
+Miqp TableIRoot(const std::string& course, int steps) {
+  Course c = LoadCourse(course);
+  c.request.max_steps = steps;
+  c.request.window_steps = steps;
+  c.request.max_windows = 1;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  return formulation.miqp();
+}
+
+TEST(DualActiveSetQp, AgreesWithTheInteriorPointOnTableIRoots) {
+  for (const char* course : {"hexapod_stepping_stones_45.yaml", "littledog_stepping_stones_45.yaml"}) {
+    for (int steps : {12, 24}) {
+      SCOPED_TRACE(std::string(course) + " " + std::to_string(steps));
+      const Miqp p = TableIRoot(course, steps);
+      DualActiveSetQp qp;
+      const RelaxationResult dual = qp.Solve(p, p.var_lower, p.var_upper, kInfinity, Deadline());
+      ExpectAgrees(p, dual, Ipm(p, p.var_lower, p.var_upper));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mfp
