@@ -224,6 +224,8 @@ RegionExtractorOptions ScenarioRegionOptions(const Scenario& scenario, const Rob
 
 namespace {
 
+}  // namespace
+
 void TakeBodyObstacles(const RegionExtractionResult& result, ScenarioTerrain* terrain) {
   if (!result.body_obstacles) return;
   if (result.body_obstacles->complete) {
@@ -232,8 +234,6 @@ void TakeBodyObstacles(const RegionExtractionResult& result, ScenarioTerrain* te
     terrain->body_note = result.body_obstacles->message;
   }
 }
-
-}  // namespace
 
 ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot, const Deadline& deadline) {
   ScenarioTerrain out;

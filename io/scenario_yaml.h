@@ -92,6 +92,9 @@ struct ScenarioTerrain {
 };
 ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& robot,
                                     const Deadline& deadline = Deadline());
+// An extraction's body obstacles into terrain (map_body_obstacles), or why there are none
+// (body_note); nothing when the extraction made none (the key off, or no body).
+void TakeBodyObstacles(const RegionExtractionResult& result, ScenarioTerrain* terrain);
 
 // The extractor options ScenarioRegions uses for a map or boxes: the robot's foot radius,
 // slope limit and clearance, the scenario's terrain settings, the deadline.

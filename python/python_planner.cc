@@ -58,7 +58,8 @@ PythonPlanResult PlanOnTerrain(const RobotModel& robot, const PythonTerrain& ter
       terrain.grid ? ExtractRegionsFromHeightGrid(*terrain.grid, extraction) : ExtractRegions(*terrain.map, extraction);
   ScenarioTerrain scenario_terrain{std::move(extracted.regions),
                                    std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(extracted.layers, extracted.moved_as_seen)),
-                                   extracted.message};
+                                   extracted.message, std::nullopt, ""};
+  TakeBodyObstacles(extracted, &scenario_terrain);
   out.regions = scenario_terrain.regions;
   PlannerOptions& options = scenario.options;
   if (!inputs.relaxation_solver.empty()) options.solvers.backend = ParseRelaxationBackend(inputs.relaxation_solver);
