@@ -9,7 +9,6 @@
 #include <Eigen/Sparse>
 
 #include "base/check.h"
-#include "planner/formulation/internal/yaw_chords.h"
 #include "planner/nlp/nonlinear_program.h"
 #include "planner/planning/internal/window_program.h"
 #include "planner/qp/interior_point_qp.h"

@@ -43,8 +43,11 @@ struct FormulationOptions {
   // taken, the plan's final body yaw.
   bool trimmed_configurations_hold_yaw = true;
   // Body regions (body_region_faces.h): each configuration's body plan box in one of the
-  // problem's body regions, chosen by binaries. Off: body_regions are ignored.
-  bool body_regions = true;
+  // problem's body regions, chosen by binaries. Off (the default): body_regions are
+  // ignored. Off by default because with a scanned map's obstacles a window can be
+  // infeasible at its start (docs/body_clearance.md); the route and the window body check
+  // keep the body clear without them.
+  bool body_regions = false;
   // The body box is kept this far inside its region [m] (above the chords' own error).
   double body_margin_m = 0.002;
   // At most this many body regions per window (the planner grows them; each costs one

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "geometry/free_region_2d.h"
-#include "planner/formulation/internal/footstep_problem.h"
+#include "planner/formulation/miqp_formulation.h"
 #include "planner/planning/internal/plan_context.h"
 
 namespace mfp {
