@@ -490,12 +490,15 @@ TEST(BranchAndBound, AnEquivalentPointWithIntegralChoicesEndsTheNode) {
 
 TEST(BranchAndBound, AProposalThatIsAPlanIsKeptWhenNoTimeIsLeftForItsQp) {
   // A heuristic that uses up the time (as relax-and-fix may) and returns a complete
-  // plan: the search keeps it although no time is left to solve the proposal's QP.
+  // plan: the search keeps it although no time is left to solve the proposal's QP. The
+  // limit leaves the root's relaxation ample time on a loaded machine (with 0.05 s it
+  // sometimes ran out before the heuristic was called); the heuristic sleeps past it.
   const auto solver = MakeIpoptRelaxationSolver();
   BranchAndBoundOptions options;
-  options.time_limit_s = 0.05;
-  const RoundingHeuristic slow = [](const Eigen::VectorXd& relaxed) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  options.time_limit_s = 2.0;
+  const auto past_the_limit = std::chrono::steady_clock::now() + std::chrono::milliseconds(2100);
+  const RoundingHeuristic slow = [past_the_limit](const Eigen::VectorXd& relaxed) {
+    std::this_thread::sleep_until(past_the_limit);
     Eigen::VectorXd x = relaxed;
     x << 1, 1, 0;
     return std::vector<Eigen::VectorXd>{x};
