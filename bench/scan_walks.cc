@@ -274,8 +274,8 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
 
 std::string BaseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
-// The scan's regions and seen surface as LoadScenarioTerrain makes them, with the walks'
-// extractor options.
+// The scan's regions, seen surface and body obstacles as LoadScenarioTerrain makes them,
+// with the walks' extractor options.
 ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, const ScanWalkOptions& o) {
   RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot);
   if (o.enclosed_unseen_radius_cells >= 0) options.enclosed_unseen_radius_cells = o.enclosed_unseen_radius_cells;
@@ -284,6 +284,7 @@ ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, c
   terrain.regions = std::move(result.regions);
   terrain.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen));
   terrain.note = result.message;
+  TakeBodyObstacles(result, &terrain);  // the map's obstacles to the body, as mfp-plan's
   return terrain;
 }
 

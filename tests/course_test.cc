@@ -48,7 +48,10 @@ TEST(CourseTest, CoursesWithoutARouteAreAnsweredNoRouteNamingWhereItBreaks) {
       const CourseOutcome out = PlanCourse(course, robot, kCourseTimeLimit_s);
       EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << course.name << ": " << out.plan.message;
       EXPECT_NE(out.plan.message.find("no route"), std::string::npos) << out.plan.message;
-      EXPECT_LT(out.plan.solve_time_s, 2.0) << course.name;
+      // Answered by the route, before any window's search (its time is the bench's to
+      // measure: mfp-bench --courses prints it against the 2 s asked).
+      EXPECT_EQ(out.plan.windows, 0) << course.name;
+      EXPECT_EQ(out.plan.relaxations, 0) << course.name;
     }
   }
 }
