@@ -49,13 +49,7 @@ void AddBodyRegionChoice(StepEncoder& e, const FootstepProblem& problem, const F
   if (!UsesBodyRegions(problem, options)) return;
   const int R = static_cast<int>(problem.body_regions.size());
   for (int cfg = 1; cfg < B; ++cfg) {
-    LinExpr one_region;
-    for (int r = 0; r < R; ++r) {
-      const int g = b->AddBinary("G_" + std::to_string(cfg) + "_" + std::to_string(r));
-      vars->body_region[cfg].push_back(g);
-      one_region += LinExpr::Var(g);
-    }
-    b->AddRow(StepName("one_body_region", cfg), one_region, 1.0, 1.0);
+    vars->body_region[cfg] = AddExactlyOneBinaries("G", "one_body_region", cfg, R, b);
     for (int i = cfg * n; i < std::min(num_steps, (cfg + 1) * n); ++i) {
       for (int r = 0; r < R; ++r) {
         AddBodyRegionFaces(e, problem.robot->body, problem.body_regions[r], r, i, vars->body_region[cfg][r], chord_error,

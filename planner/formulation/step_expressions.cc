@@ -15,6 +15,19 @@ int LegOfStep(const FootstepProblem& problem, int step) {
 
 std::string StepName(const char* what, int i) { return std::string(what) + "_" + std::to_string(i); }
 
+std::vector<int> AddExactlyOneBinaries(const char* binary_prefix, const char* row_name, int i, int count,
+                                       MiqpBuilder* b) {
+  std::vector<int> binaries;
+  binaries.reserve(count);
+  LinExpr sum;
+  for (int k = 0; k < count; ++k) {
+    binaries.push_back(b->AddBinary(StepName(binary_prefix, i) + "_" + std::to_string(k)));
+    sum += LinExpr::Var(binaries.back());
+  }
+  b->AddRow(StepName(row_name, i), sum, 1.0, 1.0);
+  return binaries;
+}
+
 StepExpressions::StepExpressions(const FootstepProblem& problem, const FootstepVariables& vars)
     : problem_(problem), vars_(vars), n_(problem.robot->num_legs()) {}
 

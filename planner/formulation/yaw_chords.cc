@@ -166,13 +166,7 @@ void AddYawChords(const StepExpressions& e, const YawGrid& grid, int cfg, YawEnc
                   FootstepVariables* vars) {
   const std::vector<double>& bp = grid.configuration_breakpoints[cfg];
   const int K = static_cast<int>(bp.size()) - 1;
-  LinExpr one_segment;
-  for (int k = 0; k < K; ++k) {
-    const int sk = b->AddBinary("seg_" + std::to_string(cfg) + "_" + std::to_string(k));
-    vars->segment[cfg].push_back(sk);
-    one_segment += LinExpr::Var(sk);
-  }
-  b->AddRow(StepName("one_segment", cfg), one_segment, 1.0, 1.0);
+  vars->segment[cfg] = AddExactlyOneBinaries("seg", "one_segment", cfg, K, b);
   if (encoding == YawEncoding::kConvexHull) {
     AddConvexHullChords(bp, cfg, b, vars);
   } else {

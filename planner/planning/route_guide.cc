@@ -300,25 +300,8 @@ void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>&
   }
   start /= static_cast<double>(start_feet.size());
   ground_z /= static_cast<double>(start_feet.size());
-  StanceRoute stances =
-      PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
-  if (!stances.found && !stances.out_of_time) {
-    // Where no pose has every reference box surely on support, poses whose boxes may
-    // meet it (an octopod on stones laid for its feet: the region graph's route through
-    // region centres zig-zagged across the tracks, 2.45 m short).
-    StanceRouteOptions loose = options;
-    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
-    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy, goal_yaw_rad,
-                              loose, deadline);
-  }
-  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
-      options.body_blocked_cell_m < options.cell_m) {
-    StanceRouteOptions fine = options;
-    fine.cell_m = options.body_blocked_cell_m;
-    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z, start, start_yaw_rad, goal_xy,
-                                        goal_yaw_rad, fine, deadline);
-    if (finer.found || finer.out_of_time) stances = std::move(finer);
-  }
+  StanceRoute stances = PlanStanceRouteWithFallbacks(robot, regions, body_obstacles, ground_z, start, start_yaw_rad,
+                                                     goal_xy, goal_yaw_rad, options, deadline);
   guide->out_of_time = stances.out_of_time;
   if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0) {
     RefuseBodyBlockedRoute(robot, regions, start, start_yaw_rad, goal_xy, goal_yaw_rad, options, stances, guide,

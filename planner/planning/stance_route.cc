@@ -7,6 +7,7 @@
 #include <optional>
 #include <queue>
 #include <unordered_map>
+#include <utility>
 
 namespace mfp {
 namespace {
@@ -207,6 +208,34 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
     if (finer.found || !route.found) route = std::move(finer);
   }
   return route;
+}
+
+StanceRoute PlanStanceRouteWithFallbacks(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                                         const Eigen::Vector2d& start_xy, double start_yaw_rad,
+                                         const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
+                                         const StanceRouteOptions& options, const Deadline& deadline) {
+  StanceRoute stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, options, deadline);
+  if (!stances.found && !stances.out_of_time) {
+    // Where no pose has every reference box surely on support, poses whose boxes may
+    // meet it (an octopod on stones laid for its feet: the region graph's route through
+    // region centres zig-zagged across the tracks, 2.45 m short).
+    StanceRouteOptions loose = options;
+    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
+    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                              goal_yaw_rad, loose, deadline);
+  }
+  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
+      options.body_blocked_cell_m < options.cell_m) {
+    // A passage only a little wider than the body: a finer grid of body positions.
+    StanceRouteOptions fine = options;
+    fine.cell_m = options.body_blocked_cell_m;
+    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, fine, deadline);
+    if (finer.found || finer.out_of_time) stances = std::move(finer);
+  }
+  return stances;
 }
 
 namespace {

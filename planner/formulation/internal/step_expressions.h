@@ -18,6 +18,12 @@ int LegOfStep(const FootstepProblem& problem, int step);
 // "what_i".
 std::string StepName(const char* what, int i);
 
+// A choice of one among `count` options at index i (a configuration's yaw segment, its body
+// region): adds binaries named "<binary_prefix>_<i>_<k>" for k = 0..count-1, in that order,
+// then the row "<row_name>_<i>": their sum = 1. Returns the binaries' indices.
+std::vector<int> AddExactlyOneBinaries(const char* binary_prefix, const char* row_name, int i, int count,
+                                       MiqpBuilder* b);
+
 class StepExpressions {
  public:
   // Both must outlive this object; vars is read at each call, so expressions use the

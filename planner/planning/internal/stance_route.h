@@ -77,5 +77,14 @@ StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexReg
                             const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
                             double goal_yaw_rad, const StanceRouteOptions& options = {},
                             const Deadline& deadline = {});
+// The same, with the fallbacks a planner wants before it calls a route missing: where no
+// route is found (and time is left), poses whose reference boxes may meet support
+// (support_radius_l_bnd at least sqrt(2)); then, where the body check refused poses, the
+// finer grid options.body_blocked_cell_m, taken if it finds a route or runs out of time.
+StanceRoute PlanStanceRouteWithFallbacks(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                                         const Eigen::Vector2d& start_xy, double start_yaw_rad,
+                                         const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
+                                         const StanceRouteOptions& options, const Deadline& deadline);
 
 }  // namespace mfp
