@@ -223,6 +223,9 @@ void AddSearchKeys(Table* t) {
                    .Alias("reduced_cost_fixing").Advanced());
   t->push_back(Opt("search.early_cutoff", in(&B::early_cutoff),
                    "a node's relaxation stops once it cannot beat the incumbent").Alias("early_cutoff").Advanced());
+  t->push_back(Opt("search.root_cut_rounds", in(&B::root_cut_rounds), 0, 1000,
+                   "rounds of c-MIR cuts separated at the root before the search (0: off)")
+                   .Alias("root_cut_rounds").Advanced());
 }
 
 // relax_and_fix: the seed of each window's search. Its stage searches take the search:

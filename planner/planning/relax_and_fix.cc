@@ -114,6 +114,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     bnb.on_incumbent = nullptr;
     bnb.root_heuristic = nullptr;  // a stage is itself part of the root heuristic
     bnb.first_plan_heuristic = nullptr;
+    bnb.root_cut_rounds = 0;  // the stages are heuristics: the cut loop is the full search's
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;

@@ -12,6 +12,7 @@
 #include "planner/search/internal/pseudo_costs.h"
 #include "planner/search/internal/reduced_cost_fixing.h"
 #include "planner/search/internal/reliability_branching.h"
+#include "planner/search/internal/root_cuts.h"
 #include "planner/search/internal/search_heuristics.h"
 #include "planner/search/internal/search_state.h"
 
@@ -281,8 +282,31 @@ BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, const std::vector<
   CheckMiqpShape(problem);
   MFP_CHECK_MSG(!solvers.empty(), "branch-and-bound needs at least one relaxation solver");
   for (const RelaxationSolver* s : solvers) MFP_CHECK(s != nullptr);
-  Search search(problem, solvers, options, extra_rounding);
-  return search.Run();
+  if (options.root_cut_rounds <= 0 || problem.num_integer() == 0) {
+    Search search(problem, solvers, options, extra_rounding);
+    return search.Run();
+  }
+  // The cut loop spends part of the search's time: the search gets the rest.
+  const auto start = std::chrono::steady_clock::now();
+  const RootCutLoopResult loop =
+      RunRootCutLoop(problem, *solvers.front(), options, options.deadline.Within(options.time_limit_s));
+  const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  BranchAndBoundOptions rest = options;
+  rest.time_limit_s = std::max(0.0, options.time_limit_s - loop_s);
+  if (options.on_incumbent) {  // progress times count from the start of the loop
+    rest.on_incumbent = [&options, loop_s](const BranchAndBoundResult& so_far) {
+      BranchAndBoundResult shifted = so_far;
+      shifted.solve_time_s += loop_s;
+      options.on_incumbent(shifted);
+    };
+  }
+  Search search(loop.problem, solvers, rest, extra_rounding);
+  BranchAndBoundResult result = search.Run();
+  result.root_cuts = loop.cuts;
+  result.root_bound_before_cuts = loop.bound_before;
+  result.relaxations += loop.relaxations;
+  result.solve_time_s += loop_s;
+  return result;
 }
 
 BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,

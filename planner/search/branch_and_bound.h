@@ -78,6 +78,14 @@ struct BranchAndBoundOptions {
   // and completed as root_heuristic's. A search whose roundings succeed never calls it.
   std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> first_plan_heuristic;
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
+  // Root cut loop (root_cuts.h): rounds of c-MIR separation at the root before the search
+  // (0: off). The search then runs on the problem with the cuts added as rows; its plans
+  // and optimum are those of the problem (the cuts are valid), its bound is higher.
+  int root_cut_rounds = 0;
+  int root_cuts_per_round = 100;        // most cuts added per round
+  double root_cut_min_efficacy = 1e-4;  // violation per unit coefficient norm for a cut to count
+  // The loop ends when a round raises the root bound by less than this fraction of |bound|.
+  double root_cut_min_progress = 1e-4;
   // Reduced-cost fixing: when the relaxation solver certifies how fast the objective
   // grows away from a bound (RelaxationResult::cost_floor and rates), integer values
   // that cannot beat the incumbent are ruled out for the node's subtree.
@@ -106,7 +114,9 @@ struct BranchAndBoundResult {
   Eigen::VectorXd x;            // incumbent (empty when none)
   double objective = kInfinity;  // incumbent objective, incl. constant
   double bound = -kInfinity;     // proven lower bound
-  double root_bound = -kInfinity;  // the root relaxation's bound (after propagation)
+  double root_bound = -kInfinity;  // the root relaxation's bound (after propagation and root cuts)
+  double root_bound_before_cuts = -kInfinity;  // the root relaxation's bound before the cut loop (when it ran)
+  int root_cuts = 0;                           // cut rows added by the root cut loop
   double gap = kInfinity;        // (objective - bound) / max(1, |objective|)
   int nodes = 0;
   int relaxations = 0;

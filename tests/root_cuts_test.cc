@@ -1,0 +1,186 @@
+// The root cut loop's c-MIR cuts are valid: on a hand-built MIQP (one foot position, a
+// one-of choice of three stones by big-M rows, a one-of choice of a side) every cut holds
+// at every vertex of every integer assignment's polygon, found by enumerating the integer
+// points and the polygons' vertices; on the Table I instances the proven optimum meets
+// every cut row and the search with cuts proves the same optimum.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <vector>
+
+#include "planner/formulation/miqp_formulation.h"
+#include "planner/planning/internal/exact_window.h"
+#include "planner/qp/relaxation_solver_factory.h"
+#include "planner/search/branch_and_bound.h"
+#include "planner/search/internal/mir_cuts.h"
+#include "planner/search/internal/root_cuts.h"
+#include "tests/test_scenarios.h"
+
+namespace mfp {
+namespace {
+
+// Variables: px, py (continuous, in [-2, 2]), H0..H2 (stones), S0, S1 (side of x = 0).
+// Stone r is the box [xmin, xmax] x [ymin, ymax], enforced by big-M rows when H_r = 1;
+// S0 = 1 means px <= 0, S1 = 1 means px >= 0. The objective pulls the foot to (0.1, -1.6),
+// outside the hull of the stones (whose y >= -1); the big-M rows (M = 4, looser than the
+// box needs) let the relaxation reach it by spreading H.
+Miqp StonesInstance() {
+  const double M = 4.0;  // the box [-2, 2]^2 bounds every row's violation
+  struct Box {
+    double xmin, xmax, ymin, ymax;
+  };
+  const std::vector<Box> stones = {{-1.5, -0.5, -1.0, 1.0}, {0.5, 1.5, -1.0, 0.2}, {-0.3, 0.35, 0.8, 1.5}};
+  const int n = 7;
+  Miqp p;
+  p.Q = Eigen::SparseMatrix<double>(n, n);
+  p.Q.insert(0, 0) = 2.0;
+  p.Q.insert(1, 1) = 2.0;
+  p.c = Eigen::VectorXd::Zero(n);
+  p.c(0) = -0.2;
+  p.c(1) = 3.2;
+  p.var_lower = Eigen::VectorXd::Zero(n);
+  p.var_upper = Eigen::VectorXd::Ones(n);
+  p.var_lower.head(2).setConstant(-2.0);
+  p.var_upper.head(2).setConstant(2.0);
+  p.is_integer = {false, false, true, true, true, true, true};
+  p.var_names = {"px", "py", "H0", "H1", "H2", "S0", "S1"};
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> lo, up;
+  const auto row = [&](std::vector<std::pair<int, double>> terms, double l, double u) {
+    const int i = static_cast<int>(lo.size());
+    for (const auto& [j, v] : terms) t.emplace_back(i, j, v);
+    lo.push_back(l);
+    up.push_back(u);
+    p.row_names.push_back("r" + std::to_string(i));
+  };
+  for (int r = 0; r < 3; ++r) {
+    const Box& b = stones[r];
+    const int h = 2 + r;
+    row({{0, 1.0}, {h, M}}, -kInfinity, b.xmax + M);    // px <= xmax + M (1 - H)
+    row({{0, -1.0}, {h, M}}, -kInfinity, -b.xmin + M);  // px >= xmin - M (1 - H)
+    row({{1, 1.0}, {h, M}}, -kInfinity, b.ymax + M);
+    row({{1, -1.0}, {h, M}}, -kInfinity, -b.ymin + M);
+  }
+  row({{2, 1.0}, {3, 1.0}, {4, 1.0}}, 1.0, 1.0);
+  row({{0, 1.0}, {5, 2.0}}, -kInfinity, 2.0);   // px <= 2 (1 - S0)
+  row({{0, -1.0}, {6, 2.0}}, -kInfinity, 2.0);  // px >= -2 (1 - S1)
+  row({{5, 1.0}, {6, 1.0}}, 1.0, 1.0);
+  p.A.resize(static_cast<int>(lo.size()), n);
+  p.A.setFromTriplets(t.begin(), t.end());
+  p.row_lower = Eigen::Map<Eigen::VectorXd>(lo.data(), static_cast<int>(lo.size()));
+  p.row_upper = Eigen::Map<Eigen::VectorXd>(up.data(), static_cast<int>(up.size()));
+  p.sos1_groups = {{2, 3, 4}, {5, 6}};
+  CheckMiqpShape(p);
+  return p;
+}
+
+// The vertices of {(px, py) : rows and bounds of p with the integers fixed to z}: every
+// pair of constraint lines' intersection that meets all constraints.
+std::vector<Eigen::VectorXd> Vertices(const Miqp& p, const Eigen::VectorXd& z) {
+  struct Line {
+    double a, b, c;  // a px + b py = c
+  };
+  std::vector<Line> lines = {{1, 0, p.var_lower(0)}, {1, 0, p.var_upper(0)}, {0, 1, p.var_lower(1)},
+                             {0, 1, p.var_upper(1)}};
+  for (int i = 0; i < p.num_rows(); ++i) {
+    Eigen::VectorXd x = z;
+    x(0) = x(1) = 0.0;
+    const double fixed = p.A.row(i).dot(x);
+    const double a = p.A.coeff(i, 0), b = p.A.coeff(i, 1);
+    if (a == 0.0 && b == 0.0) continue;
+    for (double bound : {p.row_lower(i), p.row_upper(i)}) {
+      if (std::isfinite(bound)) lines.push_back({a, b, bound - fixed});
+    }
+  }
+  std::vector<Eigen::VectorXd> vertices;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    for (size_t k = i + 1; k < lines.size(); ++k) {
+      const double det = lines[i].a * lines[k].b - lines[i].b * lines[k].a;
+      if (std::abs(det) < 1e-12) continue;
+      Eigen::VectorXd x = z;
+      x(0) = (lines[i].c * lines[k].b - lines[i].b * lines[k].c) / det;
+      x(1) = (lines[i].a * lines[k].c - lines[i].c * lines[k].a) / det;
+      if (p.MaxViolation(x) <= 1e-9) vertices.push_back(x);
+    }
+  }
+  return vertices;
+}
+
+// Every integer assignment of the 0/1 variables 2..6 (all 32, feasible or not).
+std::vector<Eigen::VectorXd> IntegerPoints() {
+  std::vector<Eigen::VectorXd> points;
+  for (int bits = 0; bits < 32; ++bits) {
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(7);
+    for (int k = 0; k < 5; ++k) z(2 + k) = (bits >> k) & 1;
+    points.push_back(z);
+  }
+  return points;
+}
+
+TEST(RootCuts, EveryCutHoldsAtEveryVertexOfEveryIntegerAssignment) {
+  const Miqp p = StonesInstance();
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(RelaxationBackend::kInteriorPointWithIpoptFallback, 1);
+  BranchAndBoundOptions options;
+  options.root_cut_rounds = 10;
+  const RootCutLoopResult loop = RunRootCutLoop(p, *solvers.workers().front(), options, Deadline());
+  ASSERT_GT(loop.cuts, 0) << "no cut separated: the instance no longer tests anything";
+  EXPECT_GT(loop.bound_after, loop.bound_before);
+  const Miqp& q = loop.problem;
+  int vertices_checked = 0;
+  for (const Eigen::VectorXd& z : IntegerPoints()) {
+    for (const Eigen::VectorXd& v : Vertices(p, z)) {
+      ++vertices_checked;
+      const Eigen::VectorXd activity = q.A * v;
+      for (int i = p.num_rows(); i < q.num_rows(); ++i) {
+        EXPECT_LE(activity(i), q.row_upper(i) + 1e-9) << q.row_names[i] << " cuts off a feasible vertex";
+      }
+    }
+  }
+  EXPECT_GT(vertices_checked, 0);
+  // The search with the cuts proves the optimum of the search without them.
+  BranchAndBoundOptions plain;
+  const BranchAndBoundResult without = SolveBranchAndBound(p, *solvers.workers().front(), plain);
+  const BranchAndBoundResult with = SolveBranchAndBound(p, *solvers.workers().front(), options);
+  ASSERT_EQ(without.status, SolveStatus::kOptimal);
+  ASSERT_EQ(with.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(with.objective, without.objective, 1e-6);
+  EXPECT_EQ(with.root_cuts, loop.cuts);
+  EXPECT_GT(with.root_bound, with.root_bound_before_cuts);
+}
+
+// A Table I instance: the optimum proven without cuts meets every cut row of the loop,
+// and the search with cuts ends at the same objective.
+void ExpectOptimumMeetsCuts(const std::string& scenario, int steps) {
+  Course c = LoadCourse(scenario);
+  c.request.max_steps = steps;
+  c.request.window_steps = steps;
+  c.request.max_windows = 1;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
+                                    c.scenario.options.formulation);
+  const Miqp& m = formulation.miqp();
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(RelaxationBackend::kInteriorPointWithIpoptFallback, 1);
+  BranchAndBoundOptions bnb = c.scenario.options.branch_and_bound;
+  bnb.time_limit_s = 120.0;
+  const RoundingHeuristic rounding = [&](const Eigen::VectorXd& relaxed) { return formulation.RoundAlongPlan(relaxed); };
+  bnb.root_cut_rounds = 0;
+  const BranchAndBoundResult without = SolveBranchAndBound(m, solvers.workers(), bnb, rounding);
+  ASSERT_EQ(without.status, SolveStatus::kOptimal);
+  bnb.root_cut_rounds = 5;
+  const RootCutLoopResult loop = RunRootCutLoop(m, *solvers.workers().front(), bnb, Deadline());
+  EXPECT_GT(loop.cuts, 0);
+  const Eigen::VectorXd activity = loop.problem.A * without.x;
+  for (int i = m.num_rows(); i < loop.problem.num_rows(); ++i) {
+    EXPECT_LE(activity(i), loop.problem.row_upper(i) + 1e-6) << loop.problem.row_names[i] << " cuts off the optimum";
+  }
+  const BranchAndBoundResult with = SolveBranchAndBound(m, solvers.workers(), bnb, rounding);
+  ASSERT_EQ(with.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(with.objective, without.objective, 1e-4 * std::abs(without.objective));
+}
+
+TEST(RootCuts, LittleDog12OptimumMeetsEveryCut) { ExpectOptimumMeetsCuts("littledog_stepping_stones_45.yaml", 12); }
+
+TEST(RootCuts, Hexapod12OptimumMeetsEveryCut) { ExpectOptimumMeetsCuts("hexapod_stepping_stones_45.yaml", 12); }
+
+}  // namespace
+}  // namespace mfp
