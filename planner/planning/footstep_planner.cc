@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -213,13 +214,20 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       EndOnInexactWindow(exact, &state);
       break;
     }
-    if (const std::optional<std::string> clash = WindowBodyClash(context, exact.polished.footsteps,
-                                                                     state.KeptSteps(exact.Used(formulation), exact.result))) {
-      // Between the route's clear poses the window's yaw is free: closer local goals.
-      if (policy.ReplanCloser(state.WindowName() + ": " + *clash, &state)) continue;
+    int clear_steps = std::numeric_limits<int>::max();
+    if (const std::optional<BodyClash> clash = WindowBodyClash(context, exact.polished.footsteps,
+                                                               state.KeptSteps(exact.Used(formulation), exact.result))) {
+      // The steps before the clash are clear and a plan: kept, the next window starts at
+      // the clash (a window's search is the plan's dearest part). A clash at the first
+      // step: between the route's clear poses the window's yaw is free, closer local goals.
+      if (clash->clear_steps > 0) {
+        clear_steps = clash->clear_steps;
+      } else if (policy.ReplanCloser(state.WindowName() + ": " + clash->why, &state)) {
+        continue;
+      }
     }
     RecordExactness(exact, &state.plan);
-    const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps);
+    const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps, clear_steps);
     ReportWindow(context, state, kept, exact, on_progress);
     state.NoteProgress(RemainingWay(context, state.plan.footsteps), MinProgressGain(context));
     if (const std::optional<std::string> stuck = policy.Stuck(state, kept)) {
