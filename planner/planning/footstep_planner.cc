@@ -217,11 +217,13 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
     int clear_steps = std::numeric_limits<int>::max();
     if (const std::optional<BodyClash> clash = WindowBodyClash(context, exact.polished.footsteps,
                                                                state.KeptSteps(exact.Used(formulation), exact.result))) {
-      // The steps before the clash are clear and a plan: kept, the next window starts at
-      // the clash (a window's search is the plan's dearest part). A clash at the first
-      // step: between the route's clear poses the window's yaw is free, closer local goals.
-      if (clash->clear_steps > 0) {
-        clear_steps = clash->clear_steps;
+      // The steps before the clash are clear and a plan: kept up to one step per leg short
+      // of it (a window's search is the plan's dearest part; a next window that starts
+      // against the obstacle clashes at its first step). A clash sooner: between the
+      // route's clear poses the window's yaw is free, closer local goals.
+      const int keep = clash->clear_steps - context.robot.num_legs();
+      if (keep > 0) {
+        clear_steps = keep;
       } else if (policy.ReplanCloser(state.WindowName() + ": " + clash->why, &state)) {
         continue;
       }
