@@ -10,12 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "planner/formulation/miqp_formulation.h"
-#include "planner/planning/footstep_planner.h"
 #include "planner/planning/internal/horizon_state.h"
 #include "planner/planning/internal/plan_context.h"
 #include "planner/planning/internal/plan_progress.h"
-#include "planner/search/branch_and_bound.h"
 #include "tests/test_scenarios.h"
 
 namespace mfp {
@@ -202,33 +199,6 @@ TEST_F(HorizonPolicyTest, AnInfeasibleWindowAtTheLongestLookIsPlannedAgainFromTh
   // From the start there is no earlier point.
   state_->TakeSnapshot();
   EXPECT_FALSE(policy.RetryLonger("window 5: infeasible", state_.get(), true));
-}
-
-// A window whose later configurations put the body into a wall keeps the steps before
-// the clash (footstep_planner.cc): Accept keeps at most the prefix it is given.
-TEST_F(HorizonPolicyTest, AcceptKeepsAtMostThePrefixAskedFor) {
-  SetUpContext(2);
-  const FootstepProblem problem = FirstWindowProblem(course_->robot, course_->regions, request_, options_);
-  const MiqpFormulation window(problem, options_.formulation);
-  BranchAndBoundResult result;
-  result.status = SolveStatus::kOptimal;
-  result.objective = 0.0;
-  result.x = Eigen::VectorXd::Zero(window.miqp().num_variables());  // no step trimmed
-  std::vector<Footstep> steps = state_->plan.footsteps;
-  for (int i = n(); i < window.num_steps(); ++i) {
-    Footstep f = steps[static_cast<size_t>(i - n())];
-    f.position_world_m.x() += 0.05;
-    steps.push_back(f);
-  }
-  const int all = window.num_steps() - n();
-  ASSERT_GT(all, 2);
-  EXPECT_EQ(state_->KeptSteps(window, result), all);
-  state_->plan.window_records.emplace_back();
-  EXPECT_EQ(state_->Accept(window, result, steps, 2), 2);
-  EXPECT_EQ(state_->planned, 2);
-  ASSERT_EQ(state_->plan.footsteps.size(), static_cast<size_t>(n() + 2));
-  EXPECT_EQ(state_->plan.footsteps.back().position_world_m, steps[static_cast<size_t>(n() + 1)].position_world_m);
-  EXPECT_EQ(state_->plan.window_records.back().kept_steps, 2);
 }
 
 }  // namespace

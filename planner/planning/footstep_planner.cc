@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -214,22 +213,13 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       EndOnInexactWindow(exact, &state);
       break;
     }
-    int clear_steps = std::numeric_limits<int>::max();
-    if (const std::optional<BodyClash> clash = WindowBodyClash(context, exact.polished.footsteps,
-                                                               state.KeptSteps(exact.Used(formulation), exact.result))) {
-      // The steps before the clash are clear and a plan: kept up to one step per leg short
-      // of it (a window's search is the plan's dearest part; a next window that starts
-      // against the obstacle clashes at its first step). A clash sooner: between the
-      // route's clear poses the window's yaw is free, closer local goals.
-      const int keep = clash->clear_steps - context.robot.num_legs();
-      if (keep > 0) {
-        clear_steps = keep;
-      } else if (policy.ReplanCloser(state.WindowName() + ": " + clash->why, &state)) {
-        continue;
-      }
+    if (const std::optional<std::string> clash = WindowBodyClash(context, exact.polished.footsteps,
+                                                                     state.KeptSteps(exact.Used(formulation), exact.result))) {
+      // Between the route's clear poses the window's yaw is free: closer local goals.
+      if (policy.ReplanCloser(state.WindowName() + ": " + *clash, &state)) continue;
     }
     RecordExactness(exact, &state.plan);
-    const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps, clear_steps);
+    const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps);
     ReportWindow(context, state, kept, exact, on_progress);
     state.NoteProgress(RemainingWay(context, state.plan.footsteps), MinProgressGain(context));
     if (const std::optional<std::string> stuck = policy.Stuck(state, kept)) {

@@ -78,12 +78,12 @@ void HorizonState::RecordWindow(const WindowRecord& record) {
 }
 
 int HorizonState::Accept(const MiqpFormulation& used, const BranchAndBoundResult& result,
-                         const std::vector<Footstep>& steps, int at_most) {
+                         const std::vector<Footstep>& steps) {
   const int n = context.robot.num_legs();
   plan.status = Combine(plan.status, result.status);
   plan.objective += result.objective;
   plan.bound += result.bound;
-  const int kept = std::min(KeptSteps(used, result), at_most);
+  const int kept = KeptSteps(used, result);
   for (int i = n; i < n + kept; ++i) {
     Footstep f = steps[i];
     f.index = static_cast<int>(plan.footsteps.size());

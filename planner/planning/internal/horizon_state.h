@@ -4,7 +4,6 @@
 // at each window's start that a retry backs up to. Private to planner/planning.
 #include <Eigen/Core>
 #include <cstddef>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,11 +45,8 @@ struct HorizonState {
   // Adds a window's plan to the plan (status, objective, bound), keeps its untrimmed
   // steps (a suffix of trimmed steps leaves the feet where they are), moves the stance
   // to their end and returns how many were kept (also in the window's record, the last).
-  // used: the MIQP that result.x solves; steps: its footsteps (start stance first);
-  // at_most: keep no more than this many (a prefix of a window's plan is a plan: each
-  // step is constrained by those before it only).
-  int Accept(const MiqpFormulation& used, const BranchAndBoundResult& result, const std::vector<Footstep>& steps,
-             int at_most = std::numeric_limits<int>::max());
+  // used: the MIQP that result.x solves; steps: its footsteps (start stance first).
+  int Accept(const MiqpFormulation& used, const BranchAndBoundResult& result, const std::vector<Footstep>& steps);
   // The window's untrimmed new steps that Accept would keep (those up to its last untrimmed one).
   int KeptSteps(const MiqpFormulation& used, const BranchAndBoundResult& result) const;
   // After an accepted window: the way its stance has left (RemainingWay). A stance that

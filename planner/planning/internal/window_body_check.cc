@@ -7,7 +7,7 @@
 
 namespace mfp {
 
-std::optional<BodyClash> WindowBodyClash(const PlanContext& context, const std::vector<Footstep>& steps, int kept) {
+std::optional<std::string> WindowBodyClash(const PlanContext& context, const std::vector<Footstep>& steps, int kept) {
   const RobotModel& robot = context.robot;
   const std::vector<BodyObstacle>& obstacles = context.request.body_obstacles;
   const size_t n = static_cast<size_t>(robot.num_legs());
@@ -28,7 +28,7 @@ std::optional<BodyClash> WindowBodyClash(const PlanContext& context, const std::
       why.precision(3);
       why << "the body at step " << i - n + 1 << " of the window (" << centre.x() << ", " << centre.y() << ") m, yaw "
           << steps[i].yaw_rad << " rad overlaps an obstacle (" << 100.0 * share << " % of its footprint)";
-      return BodyClash{static_cast<int>(i - n), why.str()};
+      return why.str();
     }
   }
   return std::nullopt;

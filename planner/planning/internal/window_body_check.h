@@ -12,15 +12,10 @@
 
 namespace mfp {
 
-struct BodyClash {
-  int clear_steps = 0;  // the window's new steps before the clashing one: their configurations are clear
-  std::string why;      // the clashing configuration, for the plan's message
-};
-
 // The first configuration of `steps` (start stance first, n of them), among the first
 // `kept` new steps (those the plan keeps; trimmed steps are never walked), whose body box
-// overlaps a body obstacle in its band; nullopt when every configuration is clear, the
-// body is unknown or there are no obstacles.
-std::optional<BodyClash> WindowBodyClash(const PlanContext& context, const std::vector<Footstep>& steps, int kept);
+// overlaps a body obstacle in its band, described for the plan's message; nullopt when
+// every configuration is clear, the body is unknown or there are no obstacles.
+std::optional<std::string> WindowBodyClash(const PlanContext& context, const std::vector<Footstep>& steps, int kept);
 
 }  // namespace mfp
