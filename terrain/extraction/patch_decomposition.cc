@@ -57,18 +57,25 @@ CellFate InsetFate(const InsetField& inset, const std::vector<DiskOffset>& offse
   return CellFate::kInsetBeyond;
 }
 
-bool InsideQuad(const Quad2d& quad, const Eigen::Vector2d& p) {  // counter-clockwise
-  for (int i = 0; i < 4; ++i) {
-    if (Cross(quad[(i + 1) % 4] - quad[i], p - quad[i]) < -1e-12) return false;
+bool InsidePolygon(const Polygon2d& polygon, const Eigen::Vector2d& p) {  // counter-clockwise
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    if (Cross(polygon[(i + 1) % polygon.size()] - polygon[i], p - polygon[i]) < -1e-12) return false;
   }
   return true;
+}
+
+std::vector<Polygon2d> AsPolygons(const std::vector<Quad2d>& quads) {
+  std::vector<Polygon2d> polygons;
+  polygons.reserve(quads.size());
+  for (const Quad2d& q : quads) polygons.emplace_back(q.begin(), q.end());
+  return polygons;
 }
 
 // Per patch cell: inset (and why), covered by a quad, or neither.
 std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& patch, const LocalGrid& mask,
                                      const LocalGrid& eroded, const InsetField& inset,
                                      const std::vector<DiskOffset>& offsets, double certify_radius_cells,
-                                     const std::vector<Quad2d>& quads) {
+                                     const std::vector<Polygon2d>& polygons) {
   std::vector<CellFate> fates;
   fates.reserve(patch.cells.size());
   for (int cell : patch.cells) {
@@ -78,7 +85,8 @@ std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& pat
       continue;
     }
     const Eigen::Vector2d centre = hm.CellCenter(cell / hm.cols, cell % hm.cols);
-    const bool covered = std::any_of(quads.begin(), quads.end(), [&](const Quad2d& q) { return InsideQuad(q, centre); });
+    const bool covered =
+        std::any_of(polygons.begin(), polygons.end(), [&](const Polygon2d& q) { return InsidePolygon(q, centre); });
     fates.push_back(covered ? CellFate::kCovered : CellFate::kUncovered);
   }
   return fates;
@@ -86,7 +94,7 @@ std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& pat
 
 }  // namespace
 
-std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
+std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
                                    const PatchDecompositionOptions& options, std::vector<CellFate>* fates) {
   if (fates != nullptr) fates->assign(patch.cells.size(), CellFate::kSmallPatch);
   if (patch.cells.empty()) return {};
@@ -101,11 +109,12 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
   const double angle = PrincipalAngleRad(hm, patch);
   const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
-  std::vector<Quad2d> quads = use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
+  std::vector<Polygon2d> polygons = options.convex_pieces ? CoverConvex(in, options)
+                                    : AsPolygons(use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options));
   if (fates != nullptr) {
-    *fates = PatchCellFates(hm, patch, mask, eroded, inset, offsets, insets.base + insets.drop, quads);
+    *fates = PatchCellFates(hm, patch, mask, eroded, inset, offsets, insets.base + insets.drop, polygons);
   }
-  return quads;
+  return polygons;
 }
 
 }  // namespace mfp

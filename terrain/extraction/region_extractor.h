@@ -83,6 +83,11 @@ struct RegionExtractorOptions {
   // ones for the branch-and-bound to tell apart (ANYmal C down the scanned corridor:
   // 1.6 s with all 17 windows proven, against 33 s with 3 windows at the node cap).
   bool overlapping_regions = false;
+  // A patch's certified cells are covered by convex pieces grown along their outline
+  // (diagonals between holes, chords of a ring) instead of rectangles; each piece has at
+  // most max_region_vertices vertices (more rows for the planner per region).
+  bool convex_cover = false;
+  int max_region_vertices = 8;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
   // footholds the route needed: the planner answered 'no route' where one existed.
