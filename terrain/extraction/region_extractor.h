@@ -84,9 +84,10 @@ struct RegionExtractorOptions {
   // 1.6 s with all 17 windows proven, against 33 s with 3 windows at the node cap).
   bool overlapping_regions = false;
   // A patch's certified cells are covered by convex pieces grown along their outline
-  // (diagonals between holes, chords of a ring) instead of rectangles; each piece has at
-  // most max_region_vertices vertices (more rows for the planner per region).
-  bool convex_cover = false;
+  // (diagonals between holes, chords of a ring; convex_cover.h) instead of rectangles on
+  // the grid or the patch's principal frame; each piece has at most max_region_vertices
+  // vertices (rows for the planner per region). Off: the rectangles.
+  bool convex_cover = true;
   int max_region_vertices = 8;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
