@@ -99,6 +99,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1e4));
   app.add_option("--target-coverage", options.target_coverage, "a patch's cover stops at this share")
       ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--convex-cover", options.convex_cover,
+                 "cover patches by convex pieces along their outline (1) or by rectangles (0)");
+  app.add_option("--max-region-vertices", options.max_region_vertices, "vertices of a convex piece at most")
+      ->check(CLI::Range(3, 64));
   app.add_option("--noise-max-cells", options.noise_max_cells, "largest group of off-plane cells kept in a patch")
       ->check(CLI::Range(0, 1000));
   app.add_option("--enclosed-unseen-radius", options.enclosed_unseen_radius_cells,

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 
 #include "base/check.h"
 #include "terrain/extraction/cell_fate.h"
@@ -373,6 +374,67 @@ TEST(RegionExtractorCover, CellFatesSayWhatBecameOfEachFloorCell) {
   EXPECT_EQ(fate_at(1.03, 1.01), CellFate::kInsetOffPatch);     // beside it
   EXPECT_EQ(fate_at(1.11, 1.11), CellFate::kCovered);           // between four holes
   EXPECT_EQ(fate_at(0.01, 1.51), CellFate::kInsetOffPatch);     // at the floor's border
+}
+
+}  // namespace
+}  // namespace mfp
+
+namespace mfp {
+namespace {
+
+// A half-ring walkway 0.6 m wide of 12 boxes rotated to the arc's tangent, meeting at the
+// outer edge (issue 29's ring), top at z = 0.
+TerrainDescription HalfRingWalkway() {
+  TerrainDescription terrain;
+  const int n = 12;
+  const double mid = 1.2, width = 0.6, length = 2 * (mid + width / 2) * std::tan(M_PI / (2 * n));
+  for (int k = 0; k < n; ++k) {
+    const double a = (k + 0.5) * M_PI / n;
+    TerrainBox box;
+    box.center_world_m = Eigen::Vector3d(mid * std::cos(a), mid * std::sin(a), -0.05);
+    box.size_m = Eigen::Vector3d(length, width, 0.1);
+    box.rpy_rad = Eigen::Vector3d(0, 0, a + M_PI / 2);
+    terrain.boxes.push_back(box);
+  }
+  return terrain;
+}
+
+// Share of the ring's certifiable surface (foot + margin + half a voxel inside the true
+// surface, sampled every 2 cm) inside a region at the surface's height.
+double RingCoverage(const TerrainDescription& ring, const std::vector<ConvexRegion>& regions, double margin_m) {
+  long surface = 0, covered = 0;
+  for (double x = -1.6; x <= 1.6; x += 0.02) {
+    for (double y = -0.1; y <= 1.6; y += 0.02) {
+      if (!FootOnTrueSurface(ring, {x, y, 0.0}, margin_m, 0.5, 1e-3)) continue;
+      ++surface;
+      const int r = FindRegionBelow(regions, x, y, 0.0);
+      if (r >= 0 && std::abs(regions[static_cast<size_t>(r)].HeightAt(x, y)) < kRes) ++covered;
+    }
+  }
+  return surface > 0 ? double(covered) / surface : 0.0;
+}
+
+// Issue 29: convex pieces follow the ring's curve where rectangles leave its outer and
+// inner edges in steps; both stay on the true surface.
+TEST(RegionExtractorCover, ARingWalkwayIsCoveredByConvexPiecesAlongItsCurve) {
+  const TerrainDescription ring = HalfRingWalkway();
+  const double foot = 0.01, margin = foot + 0.01;
+  double share[2] = {0.0, 0.0};
+  size_t count[2] = {0, 0};
+  for (const bool convex : {false, true}) {
+    RegionExtractorOptions options;
+    options.foot_radius_m = foot;
+    options.max_slope_rad = 0.45;
+    options.convex_cover = convex;
+    const RegionExtractionResult result = ExtractRegionsFromTerrain(ring, options);
+    const RegionSoundness sound = MeasureSoundness(result.regions, ring, margin, kRes);
+    EXPECT_EQ(sound.sound, sound.samples) << "convex " << convex << ": unsound point at " << sound.worst_point.transpose();
+    share[convex] = RingCoverage(ring, result.regions, margin + 0.5 * kRes);
+    count[convex] = result.regions.size();
+  }
+  std::printf("ring walkway: rectangles %zu regions cover %.1f %%, convex pieces %zu regions cover %.1f %%\n", count[0],
+              100 * share[0], count[1], 100 * share[1]);
+  EXPECT_GT(share[1], share[0]);
 }
 
 }  // namespace

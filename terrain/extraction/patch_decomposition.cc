@@ -57,18 +57,25 @@ CellFate InsetFate(const InsetField& inset, const std::vector<DiskOffset>& offse
   return CellFate::kInsetBeyond;
 }
 
-bool InsideQuad(const Quad2d& quad, const Eigen::Vector2d& p) {  // counter-clockwise
-  for (int i = 0; i < 4; ++i) {
-    if (Cross(quad[(i + 1) % 4] - quad[i], p - quad[i]) < -1e-12) return false;
+bool InsidePolygon(const Polygon2d& polygon, const Eigen::Vector2d& p) {  // counter-clockwise
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    if (Cross(polygon[(i + 1) % polygon.size()] - polygon[i], p - polygon[i]) < -1e-12) return false;
   }
   return true;
+}
+
+std::vector<Polygon2d> AsPolygons(const std::vector<Quad2d>& quads) {
+  std::vector<Polygon2d> polygons;
+  polygons.reserve(quads.size());
+  for (const Quad2d& q : quads) polygons.emplace_back(q.begin(), q.end());
+  return polygons;
 }
 
 // Per patch cell: inset (and why), covered by a quad, or neither.
 std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& patch, const LocalGrid& mask,
                                      const LocalGrid& eroded, const InsetField& inset,
                                      const std::vector<DiskOffset>& offsets, double certify_radius_cells,
-                                     const std::vector<Quad2d>& quads) {
+                                     const std::vector<Polygon2d>& polygons) {
   std::vector<CellFate> fates;
   fates.reserve(patch.cells.size());
   for (int cell : patch.cells) {
@@ -78,15 +85,41 @@ std::vector<CellFate> PatchCellFates(const HeightMap& hm, const PlanarPatch& pat
       continue;
     }
     const Eigen::Vector2d centre = hm.CellCenter(cell / hm.cols, cell % hm.cols);
-    const bool covered = std::any_of(quads.begin(), quads.end(), [&](const Quad2d& q) { return InsideQuad(q, centre); });
+    const bool covered =
+        std::any_of(polygons.begin(), polygons.end(), [&](const Polygon2d& q) { return InsidePolygon(q, centre); });
     fates.push_back(covered ? CellFate::kCovered : CellFate::kUncovered);
   }
   return fates;
 }
 
+// How many kept (eroded) cells have their centre in a polygon.
+int CentresCovered(const HeightMap& hm, const LocalGrid& eroded, const std::vector<Polygon2d>& polygons) {
+  std::vector<uint8_t> covered(eroded.cells.size(), 0);
+  const double res = hm.resolution_m;
+  const Eigen::Vector2d origin = hm.CellCenter(eroded.row0, eroded.col0);
+  for (const Polygon2d& polygon : polygons) {
+    Eigen::Vector2d lo = polygon.front(), hi = polygon.front();
+    for (const Eigen::Vector2d& p : polygon) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const int c0 = std::max(0, static_cast<int>(std::floor((lo.x() - origin.x()) / res)));
+    const int c1 = std::min(eroded.cols - 1, static_cast<int>(std::ceil((hi.x() - origin.x()) / res)));
+    const int r0 = std::max(0, static_cast<int>(std::floor((lo.y() - origin.y()) / res)));
+    const int r1 = std::min(eroded.rows - 1, static_cast<int>(std::ceil((hi.y() - origin.y()) / res)));
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) {
+        const size_t i = static_cast<size_t>(r) * eroded.cols + c;
+        if (eroded.cells[i] && !covered[i]) covered[i] = InsidePolygon(polygon, origin + res * Eigen::Vector2d(c, r));
+      }
+    }
+  }
+  return static_cast<int>(std::count(covered.begin(), covered.end(), 1));
+}
+
 }  // namespace
 
-std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
+std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
                                    const PatchDecompositionOptions& options, std::vector<CellFate>* fates) {
   if (fates != nullptr) fates->assign(patch.cells.size(), CellFate::kSmallPatch);
   if (patch.cells.empty()) return {};
@@ -101,11 +134,23 @@ std::vector<Quad2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch
   const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
   const double angle = PrincipalAngleRad(hm, patch);
   const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
-  std::vector<Quad2d> quads = use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options);
-  if (fates != nullptr) {
-    *fates = PatchCellFates(hm, patch, mask, eroded, inset, offsets, insets.base + insets.drop, quads);
+  std::vector<Polygon2d> polygons =
+      AsPolygons(use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options));
+  if (options.convex_pieces) {
+    // The rectangles reach past the dual squares up to the exact inset, the convex pieces
+    // follow a ragged outline: keep the pieces only where they hold more kept cells'
+    // centres (by more than 1 % of the kept cells), so no patch loses.
+    std::vector<Polygon2d> pieces = CoverConvex(in, options);
+    const auto kept =
+        static_cast<int>(std::count_if(eroded.cells.begin(), eroded.cells.end(), [](uint8_t v) { return v != 0; }));
+    if (CentresCovered(hm, eroded, pieces) > CentresCovered(hm, eroded, polygons) + kept / 100) {
+      polygons = std::move(pieces);
+    }
   }
-  return quads;
+  if (fates != nullptr) {
+    *fates = PatchCellFates(hm, patch, mask, eroded, inset, offsets, insets.base + insets.drop, polygons);
+  }
+  return polygons;
 }
 
 }  // namespace mfp

@@ -1,5 +1,7 @@
 #include "terrain/extraction/internal/rectangle_cover.h"
 
+#include <algorithm>
+
 #include "base/check.h"
 
 namespace mfp {
@@ -95,21 +97,27 @@ int Find(std::vector<int>* parent, int i) {
   return i;
 }
 
-// The cells of one 4-connected piece of uncovered mask that touches two or more pieces
-// of the cover that do not touch each other (a neck of the mask, such as the opening
-// past a wall, that the cover left out); empty when there is none.
-std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, const std::vector<CellRect>& rects, int rows,
-                                     int cols) {
-  const size_t n = static_cast<size_t>(rows) * cols;
-  std::vector<int> owner(n, -1);  // cell -> rectangle
+// Per cell, the last rectangle holding it (-1: none).
+std::vector<int> RectOwners(const std::vector<CellRect>& rects, int rows, int cols) {
+  std::vector<int> owner(static_cast<size_t>(rows) * cols, -1);
   for (size_t k = 0; k < rects.size(); ++k) {
     const CellRect& rect = rects[k];
     for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
       for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) owner[static_cast<size_t>(r) * cols + c] = static_cast<int>(k);
     }
   }
-  std::vector<int> parent(rects.size());
-  for (size_t k = 0; k < rects.size(); ++k) parent[k] = static_cast<int>(k);
+  return owner;
+}
+
+}  // namespace
+
+std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, const std::vector<int>& owner, int rows,
+                                     int cols) {
+  const size_t n = static_cast<size_t>(rows) * cols;
+  MFP_CHECK(uncovered.size() == n && owner.size() == n);
+  const int pieces = owner.empty() ? 0 : *std::max_element(owner.begin(), owner.end()) + 1;
+  std::vector<int> parent(static_cast<size_t>(std::max(0, pieces)));
+  for (size_t k = 0; k < parent.size(); ++k) parent[k] = static_cast<int>(k);
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
       const int a = owner[static_cast<size_t>(r) * cols + c];
@@ -159,8 +167,6 @@ std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, cons
   return piece;
 }
 
-}  // namespace
-
 std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
                                            const RectangleCoverOptions& options) {
   MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
@@ -180,7 +186,7 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
   // Covered enough, but the part left may hold the only way between two pieces of the
   // cover (a wall's opening, a few per cent of a floor): cover those too.
   while (options.connect_pieces && left > 0 && static_cast<int>(rects.size()) < options.max_rects) {
-    const std::vector<uint8_t> bridge = UncoveredBridge(uncovered, rects, rows, cols);
+    const std::vector<uint8_t> bridge = UncoveredBridge(uncovered, RectOwners(rects, rows, cols), rows, cols);
     if (bridge.empty()) break;
     CellRect rect = LargestRectangle(bridge, rows, cols);
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;

@@ -49,6 +49,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("plane_tolerance_voxels", o.plane_tolerance_voxels, 0.0, 10.0, false);
   RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
   RequireRange("max_regions_per_patch", o.max_regions_per_patch, 1, 10000, false);
+  RequireRange("max_region_vertices", o.max_region_vertices, 3, 64, false);
   RequireRange("regions_per_m2", o.regions_per_m2, 0.0, 1e4, false);
   RequireRange("max_regions", o.max_regions, 0, 100000, false);
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
@@ -130,6 +131,8 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   dec.cover.target_coverage = options.target_coverage;
   dec.cover.max_rects = options.max_regions_per_patch;
   dec.cover.grow_over_covered = options.overlapping_regions;
+  dec.convex_pieces = options.convex_cover;
+  dec.max_piece_vertices = options.max_region_vertices;
   return dec;
 }
 
@@ -181,22 +184,22 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
     dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
     dec.cover.max_rects = static_cast<int>(std::min(
         1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
-    const std::vector<Quad2d> quads = DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch,
+    const std::vector<Polygon2d> polygons = DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch,
                                                      dec, record ? &patch_fates : nullptr);
-    if (quads.empty()) ++stats.patches_too_small;
+    if (polygons.empty()) ++stats.patches_too_small;
     if (record) {
       for (size_t i = 0; i < patch.cells.size(); ++i) {
-        const CellFate fate = quads.empty() ? CellFate::kSmallPatch : patch_fates[i];
+        const CellFate fate = polygons.empty() ? CellFate::kSmallPatch : patch_fates[i];
         result->cell_fates[static_cast<size_t>(layer_patch.layer)][static_cast<size_t>(patch.cells[i])] = fate;
       }
     }
-    for (const Quad2d& quad : quads) {
+    for (const Polygon2d& polygon : polygons) {
       if (static_cast<int>(result->regions.size()) >= options.max_regions) {
         capped = true;
         break;
       }
       std::vector<Eigen::Vector3d> vertices;
-      for (const Eigen::Vector2d& xy : quad) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
+      for (const Eigen::Vector2d& xy : polygon) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
       result->regions.push_back(
           MakeRegionFromPolygon(static_cast<int>(result->regions.size()), vertices, plane_tolerance_m));
       result->region_layer.push_back(layer_patch.layer);

@@ -81,7 +81,9 @@ struct RegionBox {
 bool CoveredAt(const std::vector<ConvexRegion>& regions, const std::vector<RegionBox>& boxes,
                const Eigen::Vector2d& xy, double top_m, double height_tolerance_m) {
   for (size_t n = 0; n < regions.size(); ++n) {
-    if ((xy.array() < boxes[n].lo.array()).any() || (xy.array() > boxes[n].hi.array()).any()) continue;
+    // The box with the containment test's own 1e-9 m: a point on a region's side (a
+    // cell centre on an edge of a convex piece) counts whichever way its vertices round.
+    if ((xy.array() < boxes[n].lo.array() - 1e-9).any() || (xy.array() > boxes[n].hi.array() + 1e-9).any()) continue;
     if (std::abs(regions[n].HeightAt(xy.x(), xy.y()) - top_m) > height_tolerance_m) continue;
     if (PlanDistanceToRegion(regions[n], xy) <= 1e-9) return true;
   }

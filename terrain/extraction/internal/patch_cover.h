@@ -1,7 +1,7 @@
 #pragma once
-// The two rectangle covers of a patch's complete dual squares (patch_safety.h): on the
-// height map's grid, or on a grid rotated into the patch's principal frame. Each keeps
-// the inset of every outside cell exactly. Private to the extraction library.
+// The covers of a patch's complete dual squares (patch_safety.h): on the
+// height map's grid, or on a grid rotated into the patch's principal frame (each keeps
+// the inset of every outside cell exactly), or by convex pieces of the dual squares. Private to the extraction library.
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -35,5 +35,8 @@ std::vector<Quad2d> CoverOnGrid(const CoverInput& in, const PatchDecompositionOp
 
 // The cover on a grid rotated by angle [rad] into the patch's principal frame.
 std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const PatchDecompositionOptions& options);
+
+// Convex pieces of the complete dual squares (ConvexCoverOfSquares), in world x-y.
+std::vector<Polygon2d> CoverConvex(const CoverInput& in, const PatchDecompositionOptions& options);
 
 }  // namespace mfp

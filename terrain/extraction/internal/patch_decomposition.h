@@ -18,6 +18,7 @@
 
 #include "terrain/extraction/cell_fate.h"
 #include "terrain/extraction/height_map.h"
+#include "terrain/extraction/internal/convex_cover.h"
 #include "terrain/extraction/internal/plane_segmentation.h"
 #include "terrain/extraction/internal/rectangle_cover.h"
 
@@ -38,15 +39,20 @@ struct PatchDecompositionOptions {
   double min_area_xy_m2 = 0.0;      // smallest rectangle kept, projected on x-y [m^2]
   double axis_snap_rad = 0.05;      // principal frames this close to the grid use the grid
   RectangleCoverOptions cover;      // min_rect_cells is derived from min_area_xy_m2
+  // Cover the complete dual squares by convex pieces grown along their outline
+  // (convex_cover.h) instead of rectangles on the grid or the principal frame.
+  bool convex_pieces = false;
+  int max_piece_vertices = 8;       // vertices of a convex piece at most
 };
 
 using Quad2d = std::array<Eigen::Vector2d, 4>;  // counter-clockwise x-y corners [m, world]
 
-// fates (optional): per patch cell (in patch.cells' order), what the decomposition did
+// The regions: counter-clockwise convex polygons in x-y [m, world] (quads unless
+// convex_pieces). fates (optional): per patch cell (in patch.cells' order), what the decomposition did
 // with it - kInsetOffPatch, kInsetBeyond, kUncovered or kCovered (all kSmallPatch when
 // the patch is too thin to decompose). The certification radius of kInsetOffPatch is
 // inset_m + drop_inset_m, centre to centre.
-std::vector<Quad2d> DecomposePatch(const HeightMap& height_map, const PlanarPatch& patch,
+std::vector<Polygon2d> DecomposePatch(const HeightMap& height_map, const PlanarPatch& patch,
                                    const PatchDecompositionOptions& options, std::vector<CellFate>* fates = nullptr);
 
 // Angle in [0, pi/2) of the smallest-area bounding rectangle of the patch's cells.

@@ -31,6 +31,13 @@ struct RectangleCoverOptions {
 std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
                                            const RectangleCoverOptions& options);
 
+// The cells of one 4-connected piece of `uncovered` that touches two or more pieces of a
+// cover that do not touch each other (a neck of the mask, such as the opening past a
+// wall, that the cover left out); empty when there is none. owner: per cell, the cover's
+// piece holding it, -1 when none; pieces touch when their cells are 4-neighbours.
+std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, const std::vector<int>& owner, int rows,
+                                     int cols);
+
 // The largest rectangle of non-zero cells (area 0 when there is none).
 CellRect LargestRectangle(const std::vector<uint8_t>& mask, int rows, int cols);
 

@@ -1,0 +1,227 @@
+#include "terrain/extraction/internal/convex_cover.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include "base/check.h"
+#include "geometry/free_region_2d.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kEps = 1e-9;  // rounding allowance in square units
+
+double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+Polygon2d RectPolygon(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+bool Contains(const Polygon2d& polygon, const Eigen::Vector2d& p) {
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+    if (Cross(b - a, p - a) < -kEps * std::max(1.0, (b - a).norm())) return false;
+  }
+  return true;
+}
+
+// Drops vertices that add (almost) no area, then, while more than max_vertices remain, the
+// vertex whose triangle with its neighbours is smallest: the hull of the rest lies inside.
+Polygon2d Simplify(Polygon2d polygon, int max_vertices) {
+  auto triangle = [&](size_t i) {
+    const size_t n = polygon.size();
+    const Eigen::Vector2d& prev = polygon[(i + n - 1) % n];
+    return std::abs(Cross(polygon[i] - prev, polygon[(i + 1) % n] - prev));
+  };
+  while (polygon.size() > 3) {
+    size_t smallest = 0;
+    for (size_t i = 1; i < polygon.size(); ++i) {
+      if (triangle(i) < triangle(smallest)) smallest = i;
+    }
+    if (static_cast<int>(polygon.size()) <= max_vertices && triangle(smallest) > 1e-9) break;
+    polygon.erase(polygon.begin() + static_cast<long>(smallest));
+  }
+  return polygon;
+}
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool Meets(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+Box BoundingBox(const Polygon2d& polygon) {
+  Box box{INFINITY, INFINITY, -INFINITY, -INFINITY};
+  for (const Eigen::Vector2d& p : polygon) {
+    box.x0 = std::min(box.x0, p.x());
+    box.y0 = std::min(box.y0, p.y());
+    box.x1 = std::max(box.x1, p.x());
+    box.y1 = std::max(box.y1, p.y());
+  }
+  return box;
+}
+
+// The cover so far over the lattice.
+class CoverState {
+ public:
+  CoverState(const std::vector<uint8_t>& squares, int rows, int cols, const ConvexCoverOptions& options)
+      : squares_(squares), rows_(rows), cols_(cols), options_(options), open_(squares),
+        owner_(squares.size(), -1), obstacle_(squares.size(), 0) {
+    for (uint8_t s : squares) total_ += s ? 1 : 0;
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) obstacle_[Index(r, c)] = !squares[Index(r, c)] && TouchesSet(r, c);
+    }
+  }
+
+  size_t total() const { return total_; }
+  size_t covered() const { return covered_; }
+  const std::vector<uint8_t>& open() const { return open_; }
+  const std::vector<int>& owner() const { return owner_; }
+  const std::vector<Polygon2d>& pieces() const { return pieces_; }
+
+  // Grows pieces about the seed rectangle and about its middle half and quarter (a seed
+  // flush with the set's outline on a side keeps that side straight; a smaller one lets
+  // the cuts turn toward the obstacles around it), adds the one that holds the most new
+  // squares; false when none holds a new square.
+  bool AddPiece(const CellRect& seed) {
+    Polygon2d best;
+    size_t best_new = 0;
+    for (const double keep : {1.0, 0.5, 0.25}) {
+      const Polygon2d piece = Grow(Shrunk(seed, keep));
+      const size_t newly = Mark(piece, /*dry_run=*/true);
+      if (newly > best_new) {
+        best_new = newly;
+        best = piece;
+      }
+    }
+    if (best_new == 0) {
+      best = RectPolygon(seed.col0, seed.row0, seed.col0 + seed.cols, seed.row0 + seed.rows);
+      if (Mark(best, /*dry_run=*/true) == 0) return false;
+    }
+    covered_ += Mark(best, /*dry_run=*/false);
+    boxes_.push_back(BoundingBox(best));
+    pieces_.push_back(std::move(best));
+    return true;
+  }
+
+ private:
+  size_t Index(int r, int c) const { return static_cast<size_t>(r) * cols_ + c; }
+  bool InSet(int r, int c) const { return r >= 0 && r < rows_ && c >= 0 && c < cols_ && squares_[Index(r, c)]; }
+  bool TouchesSet(int r, int c) const {
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        if (InSet(r + dr, c + dc)) return true;
+      }
+    }
+    return false;
+  }
+
+  // The seed's middle `keep` share of each side (at least one square).
+  static Polygon2d Shrunk(const CellRect& seed, double keep) {
+    const double w = std::max(1.0, keep * seed.cols), h = std::max(1.0, keep * seed.rows);
+    const double x0 = seed.col0 + std::floor(0.5 * (seed.cols - w)), y0 = seed.row0 + std::floor(0.5 * (seed.rows - h));
+    return RectPolygon(x0, y0, x0 + std::round(w), y0 + std::round(h));
+  }
+
+  // The convex region about the seed among the obstacle squares (and the earlier pieces
+  // when pieces may not overlap) within the seed's reach, its vertices thinned.
+  Polygon2d Grow(const Polygon2d& seed_polygon) const {
+    const Box seed = BoundingBox(seed_polygon);
+    const int reach = std::max({options_.reach_cells, int(seed.x1 - seed.x0), int(seed.y1 - seed.y0)});
+    const int c0 = std::max(0, int(seed.x0) - reach), c1 = std::min(cols_, int(seed.x1) + reach);
+    const int r0 = std::max(0, int(seed.y0) - reach), r1 = std::min(rows_, int(seed.y1) + reach);
+    std::vector<Polygon2d> obstacles;
+    for (int r = r0; r < r1; ++r) {
+      for (int c = c0; c < c1; ++c) {
+        if (obstacle_[Index(r, c)]) obstacles.push_back(RectPolygon(c, r, c + 1, r + 1));
+      }
+    }
+    if (!options_.cover.grow_over_covered) {
+      const Box window{double(c0), double(r0), double(c1), double(r1)};
+      for (size_t k = 0; k < pieces_.size(); ++k) {
+        if (boxes_[k].Meets(window)) obstacles.push_back(pieces_[k]);
+      }
+    }
+    const std::optional<FreeRegion2d> region =
+        GrowFreeRegion(seed_polygon, obstacles, Eigen::Vector2d(c0, r0), Eigen::Vector2d(c1, r1));
+    if (!region || region->polygon.size() < 3) return seed_polygon;
+    return Simplify(region->polygon, std::max(3, options_.max_vertices));
+  }
+
+  // Squares the piece holds wholly become owned; without overlap, squares it meets close
+  // for seeds. Returns the squares newly held (dry_run: counts, changes nothing).
+  size_t Mark(const Polygon2d& piece, bool dry_run) {
+    const Box box = BoundingBox(piece);
+    const int c0 = std::max(0, static_cast<int>(std::floor(box.x0))), c1 = std::min(cols_, static_cast<int>(std::ceil(box.x1)));
+    const int r0 = std::max(0, static_cast<int>(std::floor(box.y0))), r1 = std::min(rows_, static_cast<int>(std::ceil(box.y1)));
+    size_t newly = 0;
+    for (int r = r0; r < r1; ++r) {
+      for (int c = c0; c < c1; ++c) {
+        const size_t i = Index(r, c);
+        if (!squares_[i]) continue;
+        const bool whole = Contains(piece, {c, r}) && Contains(piece, {c + 1, r}) && Contains(piece, {c + 1, r + 1}) &&
+                           Contains(piece, {c, r + 1});
+        if (whole && owner_[i] < 0) ++newly;
+        if (dry_run) continue;
+        if (whole) {
+          if (owner_[i] < 0) owner_[i] = static_cast<int>(pieces_.size());
+          open_[i] = 0;
+        } else if (!options_.cover.grow_over_covered && PolygonMeetsSquare(piece, r, c)) {
+          open_[i] = 0;
+        }
+      }
+    }
+    return newly;
+  }
+
+  const std::vector<uint8_t>& squares_;
+  int rows_, cols_;
+  const ConvexCoverOptions& options_;
+  std::vector<uint8_t> open_;  // squares a seed may use
+  std::vector<int> owner_;     // a piece holding the square wholly, -1 when none does
+  std::vector<uint8_t> obstacle_;  // outside the set, touching it
+  std::vector<Polygon2d> pieces_;
+  std::vector<Box> boxes_;
+  size_t total_ = 0, covered_ = 0;
+};
+
+}  // namespace
+
+bool PolygonMeetsSquare(const Polygon2d& polygon, int r, int c) {
+  const Box box = BoundingBox(polygon);
+  if (box.x1 <= c + kEps || box.x0 >= c + 1 - kEps || box.y1 <= r + kEps || box.y0 >= r + 1 - kEps) return false;
+  const Polygon2d square = RectPolygon(c, r, c + 1, r + 1);
+  for (size_t i = 0; i < polygon.size(); ++i) {  // a polygon edge's line separating the square
+    const Eigen::Vector2d e = polygon[(i + 1) % polygon.size()] - polygon[i];
+    const double length = e.norm();
+    if (length < 1e-12) continue;
+    const Eigen::Vector2d n(e.y() / length, -e.x() / length);  // outward
+    double lowest = INFINITY;
+    for (const Eigen::Vector2d& q : square) lowest = std::min(lowest, n.dot(q - polygon[i]));
+    if (lowest >= -kEps) return false;
+  }
+  return true;
+}
+
+std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares, int rows, int cols,
+                                            const ConvexCoverOptions& options) {
+  MFP_CHECK(squares.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  CoverState state(squares, rows, cols, options);
+  const RectangleCoverOptions& cover = options.cover;
+  const int min_seed = std::max(1, cover.min_rect_cells);
+  auto room = [&] { return static_cast<int>(state.pieces().size()) < cover.max_rects; };
+  while (room() && state.covered() < state.total() &&
+         static_cast<double>(state.covered()) < cover.target_coverage * static_cast<double>(state.total())) {
+    const CellRect seed = LargestRectangle(state.open(), rows, cols);
+    if (seed.Area() < min_seed || !state.AddPiece(seed)) break;
+  }
+  // As the rectangle cover: the part left may hold the only way between two pieces.
+  while (cover.connect_pieces && room() && state.covered() < state.total()) {
+    std::vector<uint8_t> bridge = UncoveredBridge(state.open(), state.owner(), rows, cols);
+    if (bridge.empty()) break;
+    const CellRect seed = LargestRectangle(bridge, rows, cols);
+    if (seed.Area() < min_seed || !state.AddPiece(seed)) break;
+  }
+  return state.pieces();
+}
+
+}  // namespace mfp

@@ -1,0 +1,40 @@
+#pragma once
+// Cover of a set of unit lattice squares by convex polygons lying wholly in the set's
+// union: from a seed (the largest rectangle of squares not yet covered), a convex region
+// is grown among the squares outside the set by half-plane cuts (GrowFreeRegion, the
+// IRIS manner), so a piece follows the set's outline - diagonals between holes, the
+// chords of a ring - where a rectangle stops at the first square outside in its row or
+// column. Private to the extraction library.
+//
+// Soundness: a piece avoids the interior of every square outside the set that touches a
+// square of the set (corner or side) and stays in the lattice box. A convex piece with
+// area that reached into any other square outside the set would have to pass through one
+// of those first (its interior is connected and starts in the set), so the piece lies in
+// the closed union of the set's squares.
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "terrain/extraction/internal/rectangle_cover.h"
+
+namespace mfp {
+
+// A convex polygon, counter-clockwise.
+using Polygon2d = std::vector<Eigen::Vector2d>;
+
+struct ConvexCoverOptions {
+  RectangleCoverOptions cover;  // coverage target, the smallest seed, the most pieces, overlap, necks
+  int max_vertices = 8;         // a piece keeps at most this many vertices (dropping one shrinks it)
+  int reach_cells = 24;         // a piece reaches at most this far (and its seed's size) beyond its seed
+};
+
+// squares: row-major rows x cols, non-zero = in the set; square (r, c) spans
+// [c, c + 1] x [r, r + 1]. Pieces in those units. With cover.grow_over_covered false the
+// pieces meet in no area (each later piece is grown with the earlier ones as obstacles).
+std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares, int rows, int cols,
+                                            const ConvexCoverOptions& options);
+
+// The area of a convex polygon's part inside square (r, c) is positive (more than rounding).
+bool PolygonMeetsSquare(const Polygon2d& polygon, int r, int c);
+
+}  // namespace mfp

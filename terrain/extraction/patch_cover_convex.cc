@@ -1,0 +1,23 @@
+#include <algorithm>
+
+#include "terrain/extraction/internal/convex_cover.h"
+#include "terrain/extraction/internal/patch_cover.h"
+
+namespace mfp {
+
+// Dual square (r, c) spans [c, c + 1] x [r, r + 1] in centre units, the frame CoverInput
+// maps to the world; the pieces lie in complete dual squares, so they are safe by the
+// argument in patch_decomposition.h.
+std::vector<Polygon2d> CoverConvex(const CoverInput& in, const PatchDecompositionOptions& options) {
+  ConvexCoverOptions convex;
+  convex.cover = options.cover;
+  convex.cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, in.res * in.res);
+  convex.max_vertices = std::max(3, options.max_piece_vertices);
+  std::vector<Polygon2d> pieces = ConvexCoverOfSquares(in.dual->cells, in.dual->rows, in.dual->cols, convex);
+  for (Polygon2d& piece : pieces) {
+    for (Eigen::Vector2d& p : piece) p = in.ToWorld(p);
+  }
+  return pieces;
+}
+
+}  // namespace mfp
