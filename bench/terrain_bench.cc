@@ -24,6 +24,7 @@
 #include "base/check.h"
 #include "bench/coverage_breakdown.h"
 #include "bench/height_map_bench.h"
+#include "bench/region_digest.h"
 #include "bench/scan_walks.h"
 #include "terrain/extraction/map_simulation.h"
 #include "terrain/extraction/region_extractor.h"
@@ -136,7 +137,15 @@ int main(int argc, char** argv) {
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
+  bool digest = false;
+  app.add_flag("--digest", digest,
+               "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
+               "maps: equal digests, equal regions");
   CLI11_PARSE(app, argc, argv);
+  if (digest) {
+    mfp::PrintRegionDigests(scans, options, runs);
+    return 0;
+  }
   if (!walk_robots.empty()) {
     mfp::BenchScanWalks(scans, walk_robots, walks);
     return 0;

@@ -4,6 +4,8 @@
 // against the true boxes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
@@ -20,6 +22,7 @@
 #include "planner/planning/internal/window_body_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/robot/body_clearance.h"
+#include "planner/robot/body_obstacle_index.h"
 #include "tests/plan_course.h"
 
 namespace mfp {
@@ -82,6 +85,47 @@ TEST(BodyClearance, ASubsetOfObstaclesByIndexIsJudgedAsThatSubset) {
   EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, {2}, 0.0, 0.0, 0.0, 0.0), 0.0);
   EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, std::vector<int>{}, 0.0, 0.0, 0.0, 0.0), 0.0);
   EXPECT_LT(BodyOverlapShare(robot.body, obstacles, {0}, 0.0, 0.0, 0.0, 0.0), all);  // the wide one decides
+}
+
+// The index's nearby obstacles judge every pose as all the obstacles do: many small
+// prisms (a scan's), a few long walls over several buckets and one larger than the bucket
+// limit, poses at random headings and heights.
+TEST(BodyObstacleIndex, TheObstaclesNearAPoseJudgeItAsAllObstaclesDo) {
+  const RobotModel robot = LoadRobot(RobotPath("littledog"));
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> xy(-3.0, 3.0), size(0.02, 0.2), z(-0.1, 0.4), yaw(-M_PI, M_PI);
+  std::vector<TerrainBox> boxes;
+  for (int k = 0; k < 400; ++k) {
+    TerrainBox b;
+    b.center_world_m = {xy(rng), xy(rng), z(rng)};
+    b.size_m = {size(rng), size(rng), 0.3};
+    b.rpy_rad.z() = k % 3 == 0 ? yaw(rng) : 0.0;
+    boxes.push_back(b);
+  }
+  TerrainBox wall;
+  wall.center_world_m = {0.0, 1.0, 0.2};
+  wall.size_m = {4.0, 0.05, 0.4};
+  boxes.push_back(wall);
+  TerrainBox huge;  // more buckets than the index lists an obstacle in
+  huge.center_world_m = {0.0, 0.0, 2.0};
+  huge.size_m = {500.0, 500.0, 0.1};
+  boxes.push_back(huge);
+  const std::vector<BodyObstacle> obstacles = BoxBodyObstacles(boxes);
+  const BodyObstacleIndex index(obstacles, 0.25);
+  EXPECT_EQ(index.size(), obstacles.size());
+  const double radius = BodyRadius(robot.body);
+  int met = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Eigen::Vector2d c(xy(rng), xy(rng));
+    const double heading = yaw(rng), ground = z(rng);
+    const std::vector<int> near = index.Near(c, radius);
+    EXPECT_TRUE(std::is_sorted(near.begin(), near.end()));
+    const double all = BodyOverlapShare(robot.body, obstacles, c.x(), c.y(), heading, ground);
+    EXPECT_EQ(BodyOverlapShare(robot.body, obstacles, near, c.x(), c.y(), heading, ground), all) << c.transpose();
+    met += all > 0.0;
+    EXPECT_LT(near.size(), obstacles.size() / 4);
+  }
+  EXPECT_GT(met, 100);
 }
 
 ConvexRegion Rect(int id, double x0, double y0, double x1, double y1) {

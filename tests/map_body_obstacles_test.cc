@@ -3,6 +3,7 @@
 // and the surfaces the feet stand on left out, few prisms.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -50,6 +51,12 @@ bool AnyPrismOverColumn(const std::vector<MapPrism>& prisms, int ix, int iy) {
   return false;
 }
 
+// On a floor whose top is z = 0: a body's band starts floor_band_m above its ground, and
+// its ground is at most a voxel below the floor's top.
+bool MayReachABand(const Voxel& v, const MapObstacleOptions& options) {
+  return (v.iz + 1) * kRes > options.floor_band_m - kRes + 1e-9;
+}
+
 MapObstacleOptions Options() {
   MapObstacleOptions o;
   o.floor_band_m = 0.10;
@@ -72,8 +79,14 @@ TEST(MapBodyObstacles, CoverAWallATableAndItsLegsButNotTheFloorOrTheSteps) {
   for (int k = 0; k < 3; ++k) AddBlock(&map, &steps, 80 + 6 * k, 99, 0, 49, 0, 1 + 2 * k);  // tops 0.04, 0.08, 0.12
   const MapObstacles out = MapBodyObstacles(map, Options());
   ASSERT_TRUE(out.complete) << out.message;
-  for (const Voxel& v : wall) EXPECT_TRUE(Covered(out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
-  for (const Voxel& v : table) EXPECT_TRUE(Covered(out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
+  for (const Voxel& v : wall) {
+    if (!MayReachABand(v, Options())) continue;
+    EXPECT_TRUE(Covered(out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
+  }
+  for (const Voxel& v : table) {
+    if (!MayReachABand(v, Options())) continue;  // a leg's voxels below any band
+    EXPECT_TRUE(Covered(out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
+  }
   // Floor columns with nothing on them and the steps (each 4 cm above the surfaces around
   // it, less than the band) are in no prism.
   for (int ix = 0; ix < 100; ++ix) {
@@ -128,7 +141,7 @@ TEST(MapBodyObstacles, EveryVoxelAboveTheFloorBandIsInAPrismAmongRandomPosts) {
   ASSERT_TRUE(out.complete) << out.message;
   int above = 0;
   for (const Voxel& v : posts) {
-    if ((v.iz + 1) * kRes <= options.floor_band_m - kRes + 1e-9) continue;  // never reaches a band
+    if (!MayReachABand(v, options)) continue;
     ++above;
     EXPECT_TRUE(Covered(out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
   }
@@ -144,6 +157,62 @@ TEST(MapBodyObstacles, EveryVoxelAboveTheFloorBandIsInAPrismAmongRandomPosts) {
       }
     }
   }
+}
+
+// A scanned wall and clutter: per column a random top and a floor with missing voxels.
+// With bands on 0.1 m steps, every voxel that may reach a body's band lies in a prism,
+// every prism's band is on the steps (or starts at the lowest level a band reaches), no
+// column without such a voxel is under a prism, and there are far fewer prisms than with
+// exact bands (a third fewer at least).
+TEST(MapBodyObstacles, BandsOnStepsHoldEveryVoxelOfANoisyWallInFewerPrisms) {
+  std::mt19937 rng(25);
+  std::uniform_int_distribution<int> top(20, 27), coin(0, 9), at(0, 59), height(5, 15);
+  OccupancyMap map;
+  map.resolution_m = kRes;
+  std::vector<Voxel> tall;
+  for (int ix = 0; ix < 60; ++ix) {
+    for (int iy = 0; iy < 60; ++iy) {
+      if (coin(rng) > 0) AddBlock(&map, nullptr, ix, ix, iy, iy, -1, -1);  // a floor with holes
+    }
+  }
+  for (int ix = 20; ix < 23; ++ix) {
+    for (int iy = 0; iy < 60; ++iy) AddBlock(&map, &tall, ix, ix, iy, iy, coin(rng) > 7 ? 1 : 0, top(rng));
+  }
+  for (int k = 0; k < 30; ++k) {
+    const int x = at(rng), y = at(rng);
+    AddBlock(&map, &tall, x, x, y, y, 0, height(rng));
+  }
+  MapObstacleOptions exact = Options();
+  exact.band_step_m = kRes;
+  MapObstacleOptions stepped = Options();
+  stepped.band_step_m = 0.1;
+  const MapObstacles exact_out = MapBodyObstacles(map, exact);
+  const MapObstacles out = MapBodyObstacles(map, stepped);
+  ASSERT_TRUE(out.complete && exact_out.complete) << out.message << exact_out.message;
+  int checked = 0;
+  std::vector<std::vector<bool>> reaching(60, std::vector<bool>(60, false));
+  for (const Voxel& v : tall) {
+    if (!MayReachABand(v, stepped)) continue;
+    ++checked;
+    reaching[v.ix][v.iy] = true;
+    EXPECT_TRUE(Covered(out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
+    EXPECT_TRUE(Covered(exact_out.prisms, v)) << v.ix << " " << v.iy << " " << v.iz;
+  }
+  EXPECT_GT(checked, 1000);
+  for (int ix = 0; ix < 60; ++ix) {
+    for (int iy = 0; iy < 60; ++iy) {
+      if (!reaching[ix][iy]) {
+        EXPECT_FALSE(AnyPrismOverColumn(out.prisms, ix, iy)) << ix << " " << iy;
+      }
+    }
+  }
+  const double step = stepped.band_step_m;
+  for (const MapPrism& p : out.prisms) {
+    EXPECT_NEAR(std::remainder(p.top_z_m, step), 0.0, 1e-9) << p.top_z_m;
+    EXPECT_NEAR(std::remainder(p.bottom_z_m, step), 0.0, 1e-9) << p.bottom_z_m;
+    EXPECT_GE(p.bottom_z_m, -kRes - 1e-9);  // nothing below the floor's voxels
+  }
+  EXPECT_LT(3 * out.prisms.size(), 2 * exact_out.prisms.size()) << out.prisms.size() << " vs " << exact_out.prisms.size();
 }
 
 TEST(MapBodyObstacles, ABudgetOrAnExpiredDeadlineGivesNoPrismsAndSaysWhy) {

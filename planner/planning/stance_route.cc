@@ -9,6 +9,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "planner/robot/body_obstacle_index.h"
+
 namespace mfp {
 namespace {
 
@@ -99,31 +101,9 @@ class BodyGate {
     grown_ = body;
     grown_.min_m -= Eigen::Vector2d::Constant(std::max(0.0, margin_m));
     grown_.max_m += Eigen::Vector2d::Constant(std::max(0.0, margin_m));
-    radius_m_ = std::max({grown_.min_m.norm(), grown_.max_m.norm(),
-                          Eigen::Vector2d(grown_.min_m.x(), grown_.max_m.y()).norm(),
-                          Eigen::Vector2d(grown_.max_m.x(), grown_.min_m.y()).norm()});
-    for (const BodyObstacle& o : obstacles) {
-      Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf), hi = -lo;
-      for (const Eigen::Vector2d& v : o.polygon_world_m) {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-      }
-      bounds_.emplace_back(lo, hi);
-    }
-    // Buckets of obstacles by plan cell: a pose looks only at the cells its radius reaches
-    // (a scanned map has tens of thousands of prisms).
-    bucket_m_ = std::max(radius_m_, 0.25);
-    for (size_t k = 0; k < bounds_.size(); ++k) {
-      const Eigen::Vector2d span = (bounds_[k].second - bounds_[k].first) / bucket_m_;
-      if (!span.allFinite() || span.prod() > 1e5) {  // huge or unbounded: looked at from everywhere
-        everywhere_.push_back(static_cast<int>(k));
-        continue;
-      }
-      const Eigen::Vector2i lo = CellOf(bounds_[k].first), hi = CellOf(bounds_[k].second);
-      for (int x = lo.x(); x <= hi.x(); ++x) {
-        for (int y = lo.y(); y <= hi.y(); ++y) buckets_[Key(x, y)].push_back(static_cast<int>(k));
-      }
-    }
+    radius_m_ = BodyRadius(grown_);
+    // A pose looks only at the buckets its radius reaches.
+    if (active_) index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, 0.25));
   }
   bool active() const { return active_; }
 
@@ -131,22 +111,7 @@ class BodyGate {
   // grown body does.
   Room RoomAt(const Eigen::Vector2d& c, double yaw) const {
     if (!active_) return Room::kClear;
-    std::vector<int> near = everywhere_;  // indices: the obstacles (and their polygons) are not copied per pose
-    const Eigen::Vector2i lo = CellOf(c - Eigen::Vector2d::Constant(radius_m_));
-    const Eigen::Vector2i hi = CellOf(c + Eigen::Vector2d::Constant(radius_m_));
-    for (int x = lo.x(); x <= hi.x(); ++x) {
-      for (int y = lo.y(); y <= hi.y(); ++y) {
-        const auto bucket = buckets_.find(Key(x, y));
-        if (bucket == buckets_.end()) continue;
-        for (int k : bucket->second) {
-          const Eigen::Vector2d gap =
-              (bounds_[k].first - c).cwiseMax(c - bounds_[k].second).cwiseMax(Eigen::Vector2d::Zero());
-          if (gap.norm() < radius_m_) near.push_back(k);
-        }
-      }
-    }
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
+    const std::vector<int> near = index_.Near(c, radius_m_);
     if (near.empty()) return Room::kClear;
     const double ground = Ground(c, yaw);
     if (BodyOverlapShare(grown_, obstacles_, near, c.x(), c.y(), yaw, ground) <= 0.0) return Room::kClear;
@@ -155,11 +120,6 @@ class BodyGate {
   }
 
  private:
-  Eigen::Vector2i CellOf(const Eigen::Vector2d& p) const {
-    return Eigen::Vector2i(static_cast<int>(std::floor(p.x() / bucket_m_)), static_cast<int>(std::floor(p.y() / bucket_m_)));
-  }
-  static int64_t Key(int x, int y) { return (static_cast<int64_t>(x) << 32) ^ static_cast<uint32_t>(y); }
-
   // Mean height of the regions under the nominal feet; the fallback where none is.
   double Ground(const Eigen::Vector2d& c, double yaw) const {
     double sum = 0.0;
@@ -179,10 +139,7 @@ class BodyGate {
   BodyExtent grown_;  // the body box grown by the margin in plan view
   double ground_z_m_, share_, radius_m_ = 0.0;
   bool active_ = false;
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> bounds_;
-  double bucket_m_ = 1.0;                                // bucket side [m]
-  std::unordered_map<int64_t, std::vector<int>> buckets_;  // cell key -> obstacles whose bounds meet it
-  std::vector<int> everywhere_;                            // obstacles in no bucket
+  BodyObstacleIndex index_;
 };
 
 }  // namespace

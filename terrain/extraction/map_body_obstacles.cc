@@ -5,8 +5,10 @@
 #include <climits>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <tuple>
+#include <utility>
 
 #include "base/check.h"
 #include "terrain/extraction/leaf_budget.h"
@@ -119,6 +121,99 @@ void MergeRow(std::vector<Run> row, int32_t iy, std::map<SpanKey, size_t>* open,
   *open = std::move(next);
 }
 
+// Rounds a kept run's band outward to multiples of `step` voxels: its top up; its bottom
+// down where it lies above the lowest level a body's band can reach over this column (the
+// lowest ground within the ground radius plus the floor band), else it starts at that
+// level rounded down (the voxels below that level never meet a body's band, as the runs
+// left out whole), so that walls and clutter standing on one floor share their bottoms.
+struct BandRounding {
+  int32_t step = 1;              // voxels
+  double floor_band_voxels = 0;  // MapObstacleOptions::floor_band_m in voxels
+
+  static int32_t Down(int32_t k, int32_t step) {
+    return step * static_cast<int32_t>(std::floor(static_cast<double>(k) / step));
+  }
+  // low: the lowest run top within the ground radius (LowGrid), of a run kept for reaching
+  // above low + floor band - 1 voxel.
+  Run Round(Run r, int32_t low) const {
+    // The ground is at most a voxel below the top of voxel `low`, i.e. no lower than voxel
+    // `low`'s bottom; a body's band starts the floor band above its ground.
+    const int32_t lowest_band_voxel = static_cast<int32_t>(std::floor(low + floor_band_voxels));
+    r.kb = Down(std::max(r.kb, lowest_band_voxel), step);
+    r.kt = Down(r.kt, step) + step - 1;
+    return r;
+  }
+};
+
+// The band step in voxels: at least one voxel.
+int32_t BandStepVoxels(double band_step_m, double res) {
+  const double n = std::floor(band_step_m / res + 1e-9);
+  return static_cast<int32_t>(std::max(1.0, std::min(n, 1e6)));
+}
+
+// Appends a rounded run (runs arrive by row, column, lowest first), joining it to
+// the previous run of the same column when their rounded bands touch.
+void AddRounded(const Run& r, std::vector<Run>* row) {
+  if (!row->empty() && row->back().ix == r.ix && row->back().iy == r.iy && r.kb <= row->back().kt + 1) {
+    row->back().kt = std::max(row->back().kt, r.kt);
+    return;
+  }
+  row->push_back(r);
+}
+
+// The runs that may reach a body's band, their bands rounded (BandRounding), sorted by
+// (iy, ix, kb) with a column's touching rounded runs joined. A foot stands on a surface
+// no lower than a voxel below its top voxel's top, so a run whose top is within the floor
+// band of that never reaches the band. Counts the runs kept in *kept_count.
+std::vector<Run> KeptRuns(const std::vector<Run>& runs, LowGrid* grid, const MapObstacleOptions& options, double res,
+                          int64_t* kept_count) {
+  const double band_voxels = options.floor_band_m / res - 1.0;
+  const BandRounding rounding{BandStepVoxels(options.band_step_m, res), options.floor_band_m / res};
+  std::vector<Run> kept;
+  for (const Run& r : runs) {  // sorted by (iy, ix, kb): so are the rounded runs
+    const int32_t low = grid->at(r.ix, r.iy);
+    if (r.kt - low <= band_voxels) continue;
+    ++*kept_count;
+    AddRounded(rounding.Round(r, low), &kept);
+  }
+  return kept;
+}
+
+// The runs with x and y swapped, sorted by (iy, ix, kb) again.
+std::vector<Run> Transposed(std::vector<Run> runs) {
+  for (Run& r : runs) std::swap(r.ix, r.iy);
+  std::sort(runs.begin(), runs.end(),
+            [](const Run& a, const Run& b) { return std::tie(a.iy, a.ix, a.kb) < std::tie(b.iy, b.ix, b.kb); });
+  return runs;
+}
+
+// Prisms of the runs (sorted by (iy, ix, kb), one band per cell and level) merged row by
+// row (MergeRow); nullopt, saying why, when the deadline passes or there are more than
+// max_prisms.
+std::optional<std::vector<CellPrism>> MergeRows(const std::vector<Run>& runs, const MapObstacleOptions& options,
+                                                std::string* why) {
+  std::vector<CellPrism> prisms;
+  std::map<SpanKey, size_t> open;
+  int32_t previous_iy = INT32_MIN;
+  for (size_t i = 0; i < runs.size();) {
+    if (options.deadline.Expired()) {
+      *why = "the time ran out";
+      return std::nullopt;
+    }
+    const int32_t iy = runs[i].iy;
+    std::vector<Run> row;
+    for (; i < runs.size() && runs[i].iy == iy; ++i) row.push_back(runs[i]);
+    if (previous_iy == INT32_MIN || iy != previous_iy + 1) open.clear();  // a row without runs ends every prism
+    previous_iy = iy;
+    MergeRow(std::move(row), iy, &open, &prisms);
+    if (prisms.size() > options.max_prisms) {
+      *why = "more than " + std::to_string(options.max_prisms) + " prisms";
+      return std::nullopt;
+    }
+  }
+  return prisms;
+}
+
 MapObstacles Incomplete(const std::string& why, Clock::time_point start) {
   MapObstacles out;
   out.complete = false;
@@ -164,26 +259,19 @@ MapObstacles MapBodyObstacles(const OccupancyMap& map, const MapObstacleOptions&
   grid.low.assign(nx * ny, INT32_MAX);
   for (const Run& r : runs) grid.at(r.ix, r.iy) = std::min(grid.at(r.ix, r.iy), r.kt);
   LowestAround(&grid, static_cast<int32_t>(std::ceil(options.ground_radius_m / res)));
-  // A foot stands on a surface no lower than a voxel below its top voxel's top, so a run
-  // whose top is within the floor band of that never reaches the band.
-  const double band_voxels = options.floor_band_m / res - 1.0;
-  std::vector<CellPrism> cell_prisms;
-  std::map<SpanKey, size_t> open;
-  size_t i = 0;
-  for (int32_t iy = grid.y0; iy <= y1; ++iy) {
-    if (options.deadline.Expired()) return Incomplete("the time ran out", start);
-    std::vector<Run> row;
-    for (; i < runs.size() && runs[i].iy == iy; ++i) {
-      if (runs[i].kt - grid.at(runs[i].ix, iy) > band_voxels) row.push_back(runs[i]);
-    }
-    out.runs_above_floor += static_cast<int64_t>(row.size());
-    MergeRow(std::move(row), iy, &open, &cell_prisms);
-    if (cell_prisms.size() > options.max_prisms) {
-      std::ostringstream why;
-      why << "more than " << options.max_prisms << " prisms";
-      return Incomplete(why.str(), start);
-    }
+  const std::vector<Run> kept = KeptRuns(runs, &grid, options, res, &out.runs_above_floor);
+  if (options.deadline.Expired()) return Incomplete("the time ran out", start);
+  // Rows merged along x, then along y; the fewer prisms kept (a wall along y merges along y).
+  std::string why;
+  std::optional<std::vector<CellPrism>> along_x = MergeRows(kept, options, &why);
+  if (!along_x && options.deadline.Expired()) return Incomplete(why, start);
+  std::optional<std::vector<CellPrism>> along_y = MergeRows(Transposed(kept), options, &why);
+  if (!along_x && !along_y) return Incomplete(why, start);
+  if (along_y && (!along_x || along_y->size() < along_x->size())) {
+    for (CellPrism& p : *along_y) p = {p.iy0, p.iy1, p.ix0, p.ix1, p.kb, p.kt};
+    along_x = std::move(along_y);
   }
+  const std::vector<CellPrism>& cell_prisms = *along_x;
   out.prisms.reserve(cell_prisms.size());
   for (const CellPrism& p : cell_prisms) {
     const Eigen::Vector2d grow = Eigen::Vector2d::Constant(options.grow_m);

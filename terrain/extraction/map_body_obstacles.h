@@ -29,6 +29,14 @@ struct MapObstacleOptions {
   // is occupied when any point of it is (a sensor's), half a voxel for a voxelisation
   // that marks a voxel when its centre is inside (a true edge up to that far outside).
   double grow_m = 0.0;
+  // Prism bands on multiples of this [m] (at least a voxel), so that the columns of a noisy
+  // wall or of clutter share bands and merge into fewer prisms: a band's top rises by less
+  // than a step; a bottom above the lowest level a body's band can reach over its column
+  // (the lowest ground within ground_radius_m plus floor_band_m) sinks by less than a
+  // step, a bottom below it starts at it rounded down (no body's band goes lower). 0: a
+  // voxel, exact tops (a coarser step makes a stair's steps taller obstacles: a hexapod's
+  // stairs course became no_route at 0.1 m, docs/measurements.md stop 28).
+  double band_step_m = 0.0;
   // Budgets, checked before anything is expanded or allocated: column cells the leaves
   // cover (leaf_budget.h) and cells of the plan grid over the map's extent; and prisms made.
   uint64_t max_leaf_columns = uint64_t{1} << 25;

@@ -100,32 +100,52 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 }  // namespace
 
+namespace {
+
+// Whether FillSingleCellNoise may change the cell whose height is `centre` (NaN: empty)
+// given its 8 neighbours: an empty cell needs all 8 present; a surface cell needs 7 and a
+// neighbour one voxel off it (the most common neighbour height is one of them). A cheap
+// necessary condition: most cells of a floor fail it after 8 reads.
+bool MayRepair(float centre, const float neighbours[8], double res) {
+  int present = 0;
+  bool voxel_off = false;
+  for (int k = 0; k < 8; ++k) {
+    if (std::isnan(neighbours[k])) continue;
+    ++present;
+    voxel_off = voxel_off || std::abs(std::abs(centre - neighbours[k]) - res) < 0.01 * res;
+  }
+  return std::isnan(centre) ? present == 8 : present >= 7 && voxel_off;
+}
+
+}  // namespace
+
 int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen) {
   const double res = hm->resolution_m;
   const std::vector<float> in = hm->height_m;
   int changed = 0;
   for (int r = 1; r + 1 < hm->rows; ++r) {
     for (int c = 1; c + 1 < hm->cols; ++c) {
-      // The most common neighbour height and how many of the 8 have it.
-      float h0 = std::numeric_limits<float>::quiet_NaN();
-      int best = 0, present = 0;
-      for (int k = 0; k < 9; ++k) {
-        if (k == 4) continue;
-        const float h = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
-        if (std::isnan(h)) continue;
-        ++present;
-        int same = 0;
-        for (int j = 0; j < 9; ++j) {
-          if (j == 4) continue;
-          const float g = in[static_cast<size_t>(hm->Index(r + j / 3 - 1, c + j % 3 - 1))];
-          same += !std::isnan(g) && std::abs(g - h) < 0.01 * res;
-        }
-        if (same > best) {
-          best = same;
-          h0 = h;
-        }
+      float around[8];
+      for (int k = 0, j = 0; k < 9; ++k) {
+        if (k != 4) around[j++] = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
       }
       float& h = hm->height_m[static_cast<size_t>(hm->Index(r, c))];
+      if (!MayRepair(h, around, res)) continue;
+      // The most common neighbour height (the first of the most common, in row order) and
+      // how many of the 8 have it.
+      float h0 = std::numeric_limits<float>::quiet_NaN();
+      int best = 0, present = 0;
+      for (int k = 0; k < 8; ++k) {
+        const float g = around[k];
+        if (std::isnan(g)) continue;
+        ++present;
+        int same = 0;
+        for (int j = 0; j < 8; ++j) same += !std::isnan(around[j]) && std::abs(around[j] - g) < 0.01 * res;
+        if (same > best) {
+          best = same;
+          h0 = g;
+        }
+      }
       if (std::isnan(h)) {
         const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(hm->Index(r, c))] & kEmptyColumn);
         if (best == 8 && may_fill) {  // a one-cell hole in a level surface

@@ -4,6 +4,7 @@
 // default window, time limit); the regions the start stance can reach; the route guide;
 // and the plan's clock. Private to planner/planning.
 #include <Eigen/Core>
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/internal/goal.h"
 #include "planner/planning/internal/route_guide.h"
+#include "planner/robot/body_obstacle_index.h"
 
 namespace mfp {
 
@@ -25,7 +27,11 @@ struct PlanContext {
   PlanContext(const RobotModel& robot_, const std::vector<ConvexRegion>& regions_, const PlanRequest& request_,
               const PlannerOptions& options_, const std::vector<RelaxationSolver*>& solvers_)
       : robot(robot_), regions(regions_), request(request_), options(options_), solvers(solvers_),
-        start_time(PlanClock::now()) {}
+        start_time(PlanClock::now()) {
+    if (robot.body.known() && !request.body_obstacles.empty()) {
+      body_index = BodyObstacleIndex(request.body_obstacles, std::max(BodyRadius(robot.body), kBodyBucketMinM));
+    }
+  }
 
   const RobotModel& robot;
   const std::vector<ConvexRegion>& regions;
@@ -33,6 +39,9 @@ struct PlanContext {
   const PlannerOptions& options;
   const std::vector<RelaxationSolver*>& solvers;
   PlanClock::time_point start_time;
+  // The request's body obstacles by plan bucket (empty without a known body or obstacles).
+  BodyObstacleIndex body_index;
+  static constexpr double kBodyBucketMinM = 0.25;  // smallest bucket side [m]: few buckets per obstacle
 
   // Set by SetUpPlan.
   int max_steps = 0;           // new footsteps in the whole plan

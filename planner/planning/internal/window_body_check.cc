@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "planner/robot/body_clearance.h"
+#include "planner/robot/body_obstacle_index.h"
 
 namespace mfp {
 
@@ -14,6 +15,7 @@ std::optional<std::string> WindowBodyClash(const PlanContext& context, const std
   if (obstacles.empty() || !robot.body.known() || steps.size() <= n) return std::nullopt;
   // The configuration after step i stands on the n footsteps ending at i.
   const size_t end = std::min(steps.size(), n + static_cast<size_t>(std::max(0, kept)));
+  const double radius_m = BodyRadius(robot.body);
   for (size_t i = n; i < end; ++i) {
     std::vector<Eigen::Vector3d> stance;
     double ground_z = 0.0;
@@ -22,7 +24,9 @@ std::optional<std::string> WindowBodyClash(const PlanContext& context, const std
       ground_z += steps[k].position_world_m.z() / static_cast<double>(n);
     }
     const Eigen::Vector2d centre = StanceCentreXY(stance);
-    const double share = BodyOverlapShare(robot.body, obstacles, centre.x(), centre.y(), steps[i].yaw_rad, ground_z);
+    // Only obstacles within the body's radius of its centre can meet its plan box.
+    const std::vector<int> near = context.body_index.Near(centre, radius_m);
+    const double share = BodyOverlapShare(robot.body, obstacles, near, centre.x(), centre.y(), steps[i].yaw_rad, ground_z);
     if (share > 0.0) {
       std::ostringstream why;
       why.precision(3);
