@@ -326,7 +326,9 @@ void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>&
   }
   if (!stances.found) return;
   guide->route = stances.route;
-  if (stances.body_blocked_poses > 0) guide->yaws_rad = stances.yaws_rad;
+  // The route's yaws where the yaw matters: the body check refused poses, or some route
+  // pose is usable only turned away from the goal's heading (windows otherwise aim at it).
+  if (stances.body_blocked_poses > 0 || stances.goal_yaw_unusable_poses > 0) guide->yaws_rad = stances.yaws_rad;
   guide->length_m = stances.length_m;
   guide->from_stances = true;
 }

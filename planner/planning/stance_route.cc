@@ -281,7 +281,6 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     return out;
   }
   const SupportRaster& support = *raster;
-
   const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
@@ -392,14 +391,21 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   // Positions and the yaw the body leaves each with (a turn in place keeps the later).
   std::vector<Eigen::Vector2d> cells;
   std::vector<double> yaws;
+  // Route poses the body cannot hold at the goal's heading (a foot off support or the body
+  // blocked; not counted in body_blocked_poses): windows aiming at that yaw leave the route.
+  const long blocked_by_search = out.body_blocked_poses;
   for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
     const size_t c = s / H;
-    const Eigen::Vector2d p = centre_of(static_cast<int>(c % nx), static_cast<int>(c / nx));
+    const int ci = static_cast<int>(c % nx), cj = static_cast<int>(c / nx);
+    const Eigen::Vector2d p = centre_of(ci, cj);
     if (cells.empty() || (cells.back() - p).norm() > 1e-12) {
       cells.push_back(p);
       yaws.push_back(static_cast<double>(s % H) * 2 * M_PI / H);
+      const bool inner = !(ci == si && cj == sj) && !(ci == gi && cj == gj);
+      out.goal_yaw_unusable_poses += inner && pose_class(ci, cj, gh) == 3;
     }
   }
+  out.body_blocked_poses = blocked_by_search;
   std::reverse(cells.begin(), cells.end());
   std::reverse(yaws.begin(), yaws.end());
   SetRoute(cells, yaws, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);
