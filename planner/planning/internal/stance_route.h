@@ -62,6 +62,7 @@ struct StanceRoute {
   // body must hold the route's own yaw (a long, narrow stance crabbing along a field's
   // edge at the goal's yaw has feet off it).
   long goal_yaw_unusable_poses = 0;
+  std::vector<bool> goal_yaw_unusable;  // per route point: not usable at the goal's heading
   long classified_poses = 0;    // poses judged usable or not (each once)
   long expanded_poses = 0;      // poses expanded by the A* (each at most once)
 };
