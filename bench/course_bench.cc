@@ -11,6 +11,7 @@
 
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
+#include "io/plan_json.h"
 #include "io/robot_loader.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/planning/plan_validation.h"
@@ -42,6 +43,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
   std::vector<RobotModel> robots;
   for (const std::string& path : robot_paths) robots.push_back(LoadRobot(path));
   if (!o.write_dir.empty()) std::filesystem::create_directories(o.write_dir);
+  if (!o.plan_dir.empty()) std::filesystem::create_directories(o.plan_dir);
   std::vector<CourseKind> kinds = AllCourseKinds();
   for (CourseKind kind : AllCourseKinds()) {
     if (ToString(kind) == o.only) kinds = {kind};
@@ -118,6 +120,7 @@ int RunCourseBench(const CourseBenchOptions& o) {
       plan.message = e.what();
     }
     const double time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!o.plan_dir.empty()) std::ofstream(o.plan_dir + "/" + course.name + ".json") << PlanToJson(plan, robot, regions).dump(1) << "\n";
     const int steps = std::max<int>(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
     std::string verdict;
     if (course.route_exists) {

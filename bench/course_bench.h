@@ -27,6 +27,7 @@ struct CourseBenchOptions {
   bool top_face_regions = false;
   bool print_windows = false;      // one line per window solved under each course's row
   std::string write_dir;           // write each course's scenario YAML here ("" = no)
+  std::string plan_dir;            // write each course's plan JSON (NAME.json, io/plan_json.h) here ("" = no)
   // Plan only courses whose name contains this ("" = all); a kind's exact name
   // (ToString(CourseKind), e.g. "doorway") makes every course of that kind.
   std::string only;

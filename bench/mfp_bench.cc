@@ -334,6 +334,8 @@ int main(int argc, char** argv) {
   bool course_windows = false;
   app.add_flag("--course-windows", course_windows, "generated courses: one line per window (size, binaries, nodes, time)");
   app.add_option("--write-courses", write_courses, "write each generated course as a scenario YAML here");
+  std::string course_plans;
+  app.add_option("--course-plans", course_plans, "write each generated course's plan JSON (NAME.json) here");
   std::string course_only;
   bool course_verbose = false;
   bool no_body_check = false;
@@ -363,6 +365,7 @@ int main(int argc, char** argv) {
       o.robot_paths = course_robots;
       o.extra_robot_paths = course_extra_robots;
       o.write_dir = write_courses;
+      o.plan_dir = course_plans;
       o.top_face_regions = course_top_faces;
       o.only = course_only;
       o.body_check = !no_body_check;

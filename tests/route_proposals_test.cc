@@ -80,6 +80,32 @@ TEST_F(RouteProposalsTest, TheBestProposalWalksTheRoute) {
   EXPECT_GT(centre_x - 0.15, 0.5 * robot_.d_lim_m * configurations);
 }
 
+TEST_F(RouteProposalsTest, AStanceOffTheRouteWalksBackToIt) {
+  // The stance stands 0.15 m beside the route (more than d_lim + l_bnd): proposals that put
+  // the body on the route at once move every foot farther than a step reaches; walking
+  // back at the proposal's speed, one is a plan (go1_rough_turn_109 swerved round the
+  // field's corner and stalled with no proposal that fitted).
+  const PlannerOptions options;
+  PlanRequest request = request_;
+  for (Eigen::Vector3d& f : request.start_feet_world_m) f.x() += 0.15;
+  RouteGuide beside = guide_;
+  beside.route = {{0.0, -0.15}, {1.9, -0.15}};
+  ASSERT_GT(0.15, robot_.d_lim_m + robot_.l_bnd_m);
+  const MiqpFormulation formulation(FirstWindowProblem(robot_, regions_, request, options), options.formulation);
+  const std::vector<Eigen::VectorXd> proposals = RouteProposals(formulation, beside, 0.15);
+  ASSERT_FALSE(proposals.empty());
+  const auto solver = MakeRelaxationSolver(RelaxationBackend::kInteriorPointWithIpoptFallback);
+  const std::optional<Eigen::VectorXd> best = SolveWarmStart(formulation, proposals, *solver, Deadline::After(10.0), 1e-5);
+  ASSERT_TRUE(best.has_value()) << "no proposal is a plan";
+  // The last configuration's centre has come closer to the route.
+  const int n = formulation.num_legs();
+  double centre_y = 0.0;
+  for (int i = formulation.num_steps() - n; i < formulation.num_steps(); ++i) {
+    centre_y += (*best)(formulation.vars().y[static_cast<size_t>(i)]) / n;
+  }
+  EXPECT_LT(centre_y, -0.02);
+}
+
 TEST_F(RouteProposalsTest, NoRouteNoProposals) {
   const PlannerOptions options;
   const MiqpFormulation formulation(FirstWindowProblem(robot_, regions_, request_, options), options.formulation);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 
 #include "io/robot_loader.h"
 #include "planner/planning/internal/route_guide.h"
@@ -82,6 +83,60 @@ TEST(StanceRoute, EndsOutOfTimeWhenTheDeadlineHasPassedOrTheStopFlagIsSet) {
   EXPECT_TRUE(stopped.out_of_time);
   const StanceRoute free = PlanStanceRoute(robot, regions, {0.2, 0}, 0.0, {3.8, 0}, 0.0);
   EXPECT_FALSE(free.out_of_time);
+}
+
+// LittleDog's legs moved to a long, narrow stance (feet 0.38 m apart along the body,
+// 0.08 m across, as the zoo's Go1): turned across a strip, its feet stand off it.
+RobotModel LongNarrowQuadruped() {
+  RobotModel robot = Littledog();
+  for (LegModel& leg : robot.legs) {
+    const Eigen::Vector2d o = leg.nominal_offset_body_m;
+    leg.nominal_offset_body_m = Eigen::Vector2d(o.x() > 0 ? 0.19 : -0.19, o.y() > 0 ? 0.04 : -0.04);
+  }
+  return robot;
+}
+
+// Start pad, a strip along x of the given width, goal pad; the goal turned a quarter.
+RouteGuide GuideAlongStrip(const RobotModel& robot, double strip_width_m) {
+  const double w = strip_width_m / 2;
+  const std::vector<ConvexRegion> regions = {Rect(0, -0.35, -0.35, 0.35, 0.35), Rect(1, 0.35, -w, 1.25, w),
+                                             Rect(2, 1.25, -0.35, 1.95, 0.35)};
+  std::vector<Eigen::Vector3d> feet;
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d xy = NominalFootXY(robot, leg, 0.0, 0.0, 0.0);
+    feet.emplace_back(xy.x(), xy.y(), 0.0);
+  }
+  RouteGuide guide;
+  guide.connected = true;
+  guide.route = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1.6, 0)};
+  FollowStanceRoute(robot, regions, {}, feet, 0.0, {1.6, 0}, M_PI / 2, StanceRouteOptions{}, &guide);
+  return guide;
+}
+
+TEST(RouteGuide, CarriesTheRouteYawsWhereTheGoalsHeadingLeavesFeetOffTheRoute) {
+  // Turned to the goal's heading on the 0.2 m strip, the front and hind feet stand 0.09 m
+  // beyond its edges (more than l_bnd): the windows must hold the route's heading there
+  // (the zoo's Go1 and ANYmal C crabbed along an uneven field's edge at the goal's yaw
+  // and stalled, go1_rough_turn_29).
+  const RobotModel robot = LongNarrowQuadruped();
+  const RouteGuide guide = GuideAlongStrip(robot, 0.2);
+  ASSERT_TRUE(guide.from_stances);
+  ASSERT_EQ(guide.yaws_rad.size(), guide.route.size());
+  int on_strip = 0;
+  for (size_t k = 0; k < guide.route.size(); ++k) {
+    if (guide.route[k].x() < 0.6 || guide.route[k].x() > 1.0) continue;
+    ++on_strip;
+    EXPECT_LT(std::abs(std::remainder(guide.yaws_rad[k], M_PI)), 0.1) << guide.route[k].transpose();
+  }
+  EXPECT_GT(on_strip, 0);
+}
+
+TEST(RouteGuide, LeavesTheYawToTheWindowsWhereTheGoalsHeadingFitsTheRoute) {
+  // On a strip 0.7 m wide the goal's heading fits every route pose: no yaws (the windows
+  // turn toward the goal's yaw as they walk).
+  const RouteGuide guide = GuideAlongStrip(LongNarrowQuadruped(), 0.7);
+  ASSERT_TRUE(guide.from_stances);
+  EXPECT_TRUE(guide.yaws_rad.empty());
 }
 
 TEST(RouteGuide, TheRegionGraphEndsOutOfTimeAndSaysSoRatherThanNoRoute) {

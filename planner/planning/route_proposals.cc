@@ -29,6 +29,11 @@ std::vector<Eigen::VectorXd> RouteProposals(const MiqpFormulation& formulation, 
   const int n = formulation.num_legs();
   const double start_yaw = problem.start_yaw_rad;
   const double max_turn = options.yaw_rate_fraction * robot.max_yaw_change_rad;
+  // A stance off the route by more than l_bnd (a window that swerved round a corner) walks
+  // back toward it at the proposal's speed: a body put on the route at once would move
+  // each foot farther than a step reaches, and no proposal would fit.
+  const Eigen::Vector2d from = StanceCentreXY(problem.start_feet_world_m);
+  const bool off_route = (from - RoutePoint(guide, progress_m)).norm() > robot.l_bnd_m;
   // Yaw targets: held, the route's heading ahead, the goal's.
   enum class YawTarget { kHold, kRoute, kGoal };
   for (double fraction : options.advance_fractions) {
@@ -45,7 +50,9 @@ std::vector<Eigen::VectorXd> RouteProposals(const MiqpFormulation& formulation, 
         if (target == YawTarget::kGoal) aim = problem.goal_yaw_rad;
         const double turn = std::clamp(std::remainder(aim - start_yaw, 2 * M_PI), -max_turn * cfg, max_turn * cfg);
         const double yaw = start_yaw + turn;
-        const Eigen::Vector2d body = RoutePoint(guide, s);
+        Eigen::Vector2d body = RoutePoint(guide, s);
+        const double walk = advance * configurations;
+        if (off_route && (body - from).norm() > walk) body = from + walk * (body - from).normalized();
         const int leg = formulation.LegOfStep(i);
         const Eigen::Vector2d foot = NominalFootXY(robot, leg, body.x(), body.y(), yaw);
         point(vars.x[i]) = foot.x();

@@ -233,16 +233,20 @@ BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& 
 // The found route: the given start and goal poses with the searched cells' centres and
 // yaws between them (cells and yaws from the start's cell to the goal's).
 void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<double>& yaws,
-              const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-              double goal_yaw_rad, StanceRoute* out) {
+              const std::vector<bool>& goal_yaw_unusable, const Eigen::Vector2d& start_xy, double start_yaw_rad,
+              const Eigen::Vector2d& goal_xy, double goal_yaw_rad, StanceRoute* out) {
   out->route.push_back(start_xy);
   out->yaws_rad.push_back(cells.size() > 1 ? yaws.front() : start_yaw_rad);
+  out->goal_yaw_unusable.push_back(false);
   for (size_t k = 1; k + 1 < cells.size(); ++k) {
     out->route.push_back(cells[k]);
     out->yaws_rad.push_back(yaws[k]);
+    out->goal_yaw_unusable.push_back(goal_yaw_unusable[k]);
+    out->goal_yaw_unusable_poses += goal_yaw_unusable[k];
   }
   out->route.push_back(goal_xy);
   out->yaws_rad.push_back(goal_yaw_rad);
+  out->goal_yaw_unusable.push_back(false);
   for (size_t k = 1; k < out->route.size(); ++k) out->length_m += (out->route[k] - out->route[k - 1]).norm();
   out->found = true;
 }
@@ -267,7 +271,6 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     return out;
   }
   const SupportRaster& support = *raster;
-
   const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
@@ -378,17 +381,24 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   // Positions and the yaw the body leaves each with (a turn in place keeps the later).
   std::vector<Eigen::Vector2d> cells;
   std::vector<double> yaws;
+  std::vector<bool> unusable;  // not usable at the goal's heading (not a body_blocked_pose)
+  const long blocked_by_search = out.body_blocked_poses;
   for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
     const size_t c = s / H;
-    const Eigen::Vector2d p = centre_of(static_cast<int>(c % nx), static_cast<int>(c / nx));
+    const int ci = static_cast<int>(c % nx), cj = static_cast<int>(c / nx);
+    const Eigen::Vector2d p = centre_of(ci, cj);
     if (cells.empty() || (cells.back() - p).norm() > 1e-12) {
       cells.push_back(p);
       yaws.push_back(static_cast<double>(s % H) * 2 * M_PI / H);
+      const bool inner = !(ci == si && cj == sj) && !(ci == gi && cj == gj);
+      unusable.push_back(inner && pose_class(ci, cj, gh) == 3);
     }
   }
+  out.body_blocked_poses = blocked_by_search;
   std::reverse(cells.begin(), cells.end());
   std::reverse(yaws.begin(), yaws.end());
-  SetRoute(cells, yaws, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);
+  std::reverse(unusable.begin(), unusable.end());
+  SetRoute(cells, yaws, unusable, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);
   return out;
 }
 

@@ -58,6 +58,11 @@ struct StanceRoute {
   std::vector<double> yaws_rad;        // body yaw at each route point [rad]
   double length_m = 0.0;
   long body_blocked_poses = 0;  // poses the search met that only the body check refused
+  // Route poses (start and goal cells aside) not usable at the goal's heading: there the
+  // body must hold the route's own yaw (a long, narrow stance crabbing along a field's
+  // edge at the goal's yaw has feet off it).
+  long goal_yaw_unusable_poses = 0;
+  std::vector<bool> goal_yaw_unusable;  // per route point: not usable at the goal's heading
   long classified_poses = 0;    // poses judged usable or not (each once)
   long expanded_poses = 0;      // poses expanded by the A* (each at most once)
 };
