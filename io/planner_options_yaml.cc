@@ -99,6 +99,11 @@ void AddRouteKeys(Table* t) {
                    "body yaws that search tries, evenly spaced over a full turn").Advanced());
   t->push_back(Opt("stance_search.fine_headings", In(&P::stance_search, &S::fine_headings), 1, 360,
                    "... and where the body check refused poses, again with this many (when more)").Advanced());
+  t->push_back(Opt("stance_search.route_yaw_unusable_share",
+                   In(&P::stance_search, &S::route_yaw_unusable_share), 0.0, 1.0,
+                   "windows hold the route's yaws when this share of its poses cannot stand at the goal's "
+                   "heading (else they aim at the goal's heading)")
+                   .Advanced());
   t->push_back(Opt("stance_search.turn_cost", In(&P::stance_search, &S::turn_cost_m), 0.0, 100.0,
                    "cost of turning by one heading, as a distance walked").Unit("m").Advanced());
   t->push_back(Opt("stance_search.tight_cost_factor", In(&P::stance_search, &S::tight_cost_factor), 1.0, 1000.0,

@@ -309,16 +309,15 @@ void FollowStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>&
   }
   if (!stances.found) return;
   guide->route = stances.route;
-  // The route's yaws where the yaw matters: all of them where the body check refused
-  // poses; else at the route poses usable only turned away from the goal's heading (windows
-  // elsewhere aim at the goal's heading, as without a route yaw: NaN).
-  if (stances.body_blocked_poses > 0) {
+  // The route's yaws where the yaw matters: the body check refused poses, or enough route
+  // poses are usable only turned away from the goal's heading that windows aiming at it
+  // would leave the route (one or two such poses on a long route: the goal's pull guides
+  // better than the search's coarse headings).
+  const double unusable_share =
+      stances.route.empty() ? 0.0 : static_cast<double>(stances.goal_yaw_unusable_poses) / stances.route.size();
+  if (stances.body_blocked_poses > 0 ||
+      (stances.goal_yaw_unusable_poses > 0 && unusable_share >= options.route_yaw_unusable_share)) {
     guide->yaws_rad = stances.yaws_rad;
-  } else if (stances.goal_yaw_unusable_poses > 0) {
-    guide->yaws_rad = stances.yaws_rad;
-    for (size_t k = 0; k < guide->yaws_rad.size(); ++k) {
-      if (!stances.goal_yaw_unusable[k]) guide->yaws_rad[k] = std::numeric_limits<double>::quiet_NaN();
-    }
   }
   guide->length_m = stances.length_m;
   guide->from_stances = true;
@@ -337,14 +336,13 @@ Eigen::Vector2d RoutePoint(const RouteGuide& guide, double s_m) {
 
 std::optional<double> RouteYaw(const RouteGuide& guide, double s_m) {
   if (guide.yaws_rad.size() != guide.route.size() || guide.route.empty()) return std::nullopt;
-  auto yaw_or_none = [](double yaw) { return std::isnan(yaw) ? std::nullopt : std::optional<double>(yaw); };
   double s = std::max(0.0, s_m);
   for (size_t k = 1; k < guide.route.size(); ++k) {
     const double len = (guide.route[k] - guide.route[k - 1]).norm();
-    if (s < len) return yaw_or_none(guide.yaws_rad[k - 1]);
+    if (s < len) return guide.yaws_rad[k - 1];
     s -= len;
   }
-  return yaw_or_none(guide.yaws_rad.back());
+  return guide.yaws_rad.back();
 }
 
 double RouteProgress(const RouteGuide& guide, const Eigen::Vector2d& p) {

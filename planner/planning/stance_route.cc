@@ -233,20 +233,16 @@ BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& 
 // The found route: the given start and goal poses with the searched cells' centres and
 // yaws between them (cells and yaws from the start's cell to the goal's).
 void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<double>& yaws,
-              const std::vector<bool>& goal_yaw_unusable, const Eigen::Vector2d& start_xy, double start_yaw_rad,
-              const Eigen::Vector2d& goal_xy, double goal_yaw_rad, StanceRoute* out) {
+              const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+              double goal_yaw_rad, StanceRoute* out) {
   out->route.push_back(start_xy);
   out->yaws_rad.push_back(cells.size() > 1 ? yaws.front() : start_yaw_rad);
-  out->goal_yaw_unusable.push_back(false);
   for (size_t k = 1; k + 1 < cells.size(); ++k) {
     out->route.push_back(cells[k]);
     out->yaws_rad.push_back(yaws[k]);
-    out->goal_yaw_unusable.push_back(goal_yaw_unusable[k]);
-    out->goal_yaw_unusable_poses += goal_yaw_unusable[k];
   }
   out->route.push_back(goal_xy);
   out->yaws_rad.push_back(goal_yaw_rad);
-  out->goal_yaw_unusable.push_back(false);
   for (size_t k = 1; k < out->route.size(); ++k) out->length_m += (out->route[k] - out->route[k - 1]).norm();
   out->found = true;
 }
@@ -381,7 +377,8 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   // Positions and the yaw the body leaves each with (a turn in place keeps the later).
   std::vector<Eigen::Vector2d> cells;
   std::vector<double> yaws;
-  std::vector<bool> unusable;  // not usable at the goal's heading (not a body_blocked_pose)
+  // Route poses the body cannot hold at the goal's heading (a foot off support or the body
+  // blocked; not counted in body_blocked_poses): windows aiming at that yaw leave the route.
   const long blocked_by_search = out.body_blocked_poses;
   for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
     const size_t c = s / H;
@@ -391,14 +388,13 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
       cells.push_back(p);
       yaws.push_back(static_cast<double>(s % H) * 2 * M_PI / H);
       const bool inner = !(ci == si && cj == sj) && !(ci == gi && cj == gj);
-      unusable.push_back(inner && pose_class(ci, cj, gh) == 3);
+      out.goal_yaw_unusable_poses += inner && pose_class(ci, cj, gh) == 3;
     }
   }
   out.body_blocked_poses = blocked_by_search;
   std::reverse(cells.begin(), cells.end());
   std::reverse(yaws.begin(), yaws.end());
-  std::reverse(unusable.begin(), unusable.end());
-  SetRoute(cells, yaws, unusable, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);
+  SetRoute(cells, yaws, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);
   return out;
 }
 

@@ -21,9 +21,7 @@ double MetresPerRadian(const RobotModel& robot) {
 double RouteLeft(const RouteGuide& guide, const Eigen::Vector2d& centre, double yaw_rad, double metres_per_radian) {
   const size_t m = guide.route.size();
   if (m == 0) return 0.0;
-  // Yaw counts where the route holds a yaw at every point (NaN: the goal's heading there).
-  const bool with_yaw = guide.yaws_rad.size() == m && metres_per_radian > 0.0 &&
-                        std::none_of(guide.yaws_rad.begin(), guide.yaws_rad.end(), [](double y) { return std::isnan(y); });
+  const bool with_yaw = guide.yaws_rad.size() == m && metres_per_radian > 0.0;
   // The route's points in (x, y, rho yaw), its yaws unwrapped along it.
   std::vector<Eigen::Vector3d> points(m);
   double unwrapped = with_yaw ? guide.yaws_rad[0] : 0.0;

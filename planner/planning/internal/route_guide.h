@@ -31,9 +31,8 @@ struct RouteGuide {
   std::vector<Eigen::Vector2d> route;
   double length_m = 0.0;
   bool from_stances = false;  // route from the stance search (FollowStanceRoute)
-  // Body yaw at each route point where the yaw matters [rad]: every point's when the body
-  // check refused some pose; else, when some route pose is usable only turned away from the
-  // goal's heading, those poses' yaws and NaN elsewhere (the goal's heading); else empty.
+  // Body yaw at each route point, when the route keeps the body clear of obstacles and
+  // the body check refused some pose (the yaw then matters); else empty [rad].
   std::vector<double> yaws_rad;
 };
 

@@ -35,6 +35,9 @@ struct StanceRouteOptions {
   // than the body can fall between the cells of the coarser grid [m].
   double body_blocked_cell_m = 0.02;
   double turn_cost_m = 0.05;      // cost of turning by one heading, as distance [m]
+  // The windows hold the route's yaws (not the goal's heading) when at least this share of
+  // the route's poses cannot be held at the goal's heading (route_guide.h).
+  double route_yaw_unusable_share = 0.05;
   // Cost factor of moving through a pose where some nominal foot is off every region
   // (only its reference box meets one): the route keeps room where it can.
   double tight_cost_factor = 3.0;
@@ -62,7 +65,6 @@ struct StanceRoute {
   // body must hold the route's own yaw (a long, narrow stance crabbing along a field's
   // edge at the goal's yaw has feet off it).
   long goal_yaw_unusable_poses = 0;
-  std::vector<bool> goal_yaw_unusable;  // per route point: not usable at the goal's heading
   long classified_poses = 0;    // poses judged usable or not (each once)
   long expanded_poses = 0;      // poses expanded by the A* (each at most once)
 };
