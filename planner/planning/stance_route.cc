@@ -6,7 +6,6 @@
 #include <limits>
 #include <optional>
 #include <queue>
-#include <unordered_map>
 #include <utility>
 
 #include "planner/robot/body_obstacle_index.h"
@@ -103,7 +102,7 @@ class BodyGate {
     grown_.max_m += Eigen::Vector2d::Constant(std::max(0.0, margin_m));
     radius_m_ = BodyRadius(grown_);
     // A pose looks only at the buckets its radius reaches.
-    if (active_) index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, 0.25));
+    if (active_) index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, kBodyBucketMinM));
   }
   bool active() const { return active_; }
 

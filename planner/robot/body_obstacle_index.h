@@ -38,4 +38,8 @@ class BodyObstacleIndex {
 // The radius of the body's plan box about its reference point [m]: its farthest corner.
 double BodyRadius(const BodyExtent& body);
 
+// Smallest bucket side for a body's index [m]: buckets of the body's radius, but not so
+// small that one obstacle spans many of them.
+constexpr double kBodyBucketMinM = 0.25;
+
 }  // namespace mfp

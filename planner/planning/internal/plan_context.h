@@ -41,7 +41,6 @@ struct PlanContext {
   PlanClock::time_point start_time;
   // The request's body obstacles by plan bucket (empty without a known body or obstacles).
   BodyObstacleIndex body_index;
-  static constexpr double kBodyBucketMinM = 0.25;  // smallest bucket side [m]: few buckets per obstacle
 
   // Set by SetUpPlan.
   int max_steps = 0;           // new footsteps in the whole plan
