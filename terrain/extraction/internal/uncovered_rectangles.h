@@ -1,0 +1,44 @@
+#pragma once
+// The largest rectangle of a binary cell mask, kept up to date while rectangles of it are
+// cleared: what a greedy rectangle cover asks once per rectangle. Recomputing the largest
+// rectangle over the whole mask costs O(rows * cols) per rectangle; here a clear recomputes
+// only the rows whose column-run heights it changed (the cleared rows, and below them the
+// rows until each cleared column's run is broken), and the answer is the best of the rows'
+// cached bests. The answer is the rectangle LargestRectangle (rectangle_cover.h) returns on
+// the same cells, ties included: the first of the largest in its row-by-row scan.
+// Private to the extraction library.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "terrain/extraction/internal/rectangle_cover.h"
+
+namespace mfp {
+
+class UncoveredRectangles {
+ public:
+  // mask is row-major rows x cols, non-zero = set.
+  UncoveredRectangles(const std::vector<uint8_t>& mask, int rows, int cols);
+
+  // The largest rectangle of set cells (area 0 when none is set).
+  CellRect Largest() const;
+
+  // Clears the rectangle's cells (it must lie in the grid); returns how many were set.
+  size_t Clear(const CellRect& rect);
+
+  // The cells still set (1) or not (0).
+  const std::vector<uint8_t>& cells() const { return cells_; }
+
+ private:
+  // The first largest rectangle whose bottom row is r (LargestRectangle's scan of that row).
+  void ScanRow(int r);
+
+  int rows_, cols_;
+  std::vector<uint8_t> cells_;
+  std::vector<int> height_;     // per cell: set cells in its column ending at it
+  std::vector<CellRect> row_best_;
+  std::vector<int> stack_;      // ScanRow's work space
+  std::vector<int> row_height_;  // ScanRow's work space: the row's heights and a sentinel
+};
+
+}  // namespace mfp

@@ -1,0 +1,86 @@
+#include "terrain/extraction/internal/uncovered_rectangles.h"
+
+#include <algorithm>
+
+#include "base/check.h"
+
+namespace mfp {
+
+UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int rows, int cols)
+    : rows_(rows),
+      cols_(cols),
+      cells_(mask.size()),
+      height_(mask.size(), 0),
+      row_best_(static_cast<size_t>(std::max(rows, 0))),
+      row_height_(static_cast<size_t>(std::max(cols, 0)) + 1, 0) {
+  MFP_CHECK(rows >= 0 && cols >= 0 && mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  stack_.reserve(static_cast<size_t>(cols) + 1);
+  for (size_t i = 0; i < mask.size(); ++i) cells_[i] = mask[i] ? 1 : 0;
+  for (int r = 0; r < rows_; ++r) {
+    for (int c = 0; c < cols_; ++c) {
+      const size_t i = static_cast<size_t>(r) * cols_ + c;
+      height_[i] = cells_[i] ? (r > 0 ? height_[i - cols_] : 0) + 1 : 0;
+    }
+    ScanRow(r);
+  }
+}
+
+void UncoveredRectangles::ScanRow(int r) {
+  // The stack scan of LargestRectangle, over this row's histogram only.
+  CellRect best;
+  const int* heights = &height_[static_cast<size_t>(r) * cols_];
+  std::copy(heights, heights + cols_, row_height_.begin());
+  row_height_[static_cast<size_t>(cols_)] = 0;  // sentinel flushes the stack
+  stack_.clear();
+  for (int c = 0; c <= cols_; ++c) {
+    while (!stack_.empty() && row_height_[static_cast<size_t>(stack_.back())] >= row_height_[static_cast<size_t>(c)]) {
+      const int h = row_height_[static_cast<size_t>(stack_.back())];
+      stack_.pop_back();
+      const int left = stack_.empty() ? 0 : stack_.back() + 1;
+      const int width = c - left;
+      if (h * width > best.Area()) best = CellRect{r - h + 1, left, h, width};
+    }
+    stack_.push_back(c);
+  }
+  row_best_[static_cast<size_t>(r)] = best;
+}
+
+CellRect UncoveredRectangles::Largest() const {
+  CellRect best;
+  for (const CellRect& rect : row_best_) {
+    if (rect.Area() > best.Area()) best = rect;
+  }
+  return best;
+}
+
+size_t UncoveredRectangles::Clear(const CellRect& rect) {
+  MFP_CHECK(rect.row0 >= 0 && rect.col0 >= 0 && rect.rows >= 0 && rect.cols >= 0 &&
+            rect.row0 + rect.rows <= rows_ && rect.col0 + rect.cols <= cols_);
+  if (rect.Area() == 0) return 0;
+  size_t cleared = 0;
+  for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
+    for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
+      uint8_t& cell = cells_[static_cast<size_t>(r) * cols_ + c];
+      cleared += cell;
+      cell = 0;
+    }
+  }
+  if (cleared == 0) return 0;
+  // Heights change in the cleared columns from the first cleared row down, until a row
+  // below the rectangle keeps its height (then every row below it keeps it too).
+  const int last_row = rect.row0 + rect.rows - 1;
+  int last_changed = last_row;
+  for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
+    for (int r = rect.row0; r < rows_; ++r) {
+      const size_t i = static_cast<size_t>(r) * cols_ + c;
+      const int h = cells_[i] ? (r > 0 ? height_[i - cols_] : 0) + 1 : 0;
+      if (r > last_row && h == height_[i]) break;
+      height_[i] = h;
+      last_changed = std::max(last_changed, r);
+    }
+  }
+  for (int r = rect.row0; r <= last_changed; ++r) ScanRow(r);
+  return cleared;
+}
+
+}  // namespace mfp
