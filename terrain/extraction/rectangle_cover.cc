@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/uncovered_rectangles.h"
 
 namespace mfp {
 
@@ -75,21 +76,6 @@ void GrowInside(const std::vector<uint8_t>& mask, int rows, int cols, CellRect* 
       for (const bool before : {true, false}) grew |= GrowSide(mask, rows, cols, along_rows, before, rect);
     }
   }
-}
-
-// Marks the rectangle's cells covered (0 in `uncovered`), counting those newly covered.
-size_t MarkCovered(const CellRect& rect, int cols, std::vector<uint8_t>* uncovered) {
-  size_t newly = 0;
-  for (int r = rect.row0; r < rect.row0 + rect.rows; ++r) {
-    for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
-      uint8_t& u = (*uncovered)[static_cast<size_t>(r) * cols + c];
-      if (u) {
-        u = 0;
-        ++newly;
-      }
-    }
-  }
-  return newly;
 }
 
 int Find(std::vector<int>* parent, int i) {
@@ -170,28 +156,28 @@ std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, cons
 std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int rows, int cols,
                                            const RectangleCoverOptions& options) {
   MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
-  std::vector<uint8_t> uncovered = mask;
+  UncoveredRectangles uncovered(mask, rows, cols);
   size_t total = 0;
   for (uint8_t m : mask) total += m ? 1 : 0;
   size_t left = total;
   std::vector<CellRect> rects;
   while (left > 0 && static_cast<int>(rects.size()) < options.max_rects &&
          static_cast<double>(total - left) < options.target_coverage * static_cast<double>(total)) {
-    CellRect rect = LargestRectangle(uncovered, rows, cols);
+    CellRect rect = uncovered.Largest();
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;
     if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
-    left -= MarkCovered(rect, cols, &uncovered);
+    left -= uncovered.Clear(rect);
     rects.push_back(rect);
   }
   // Covered enough, but the part left may hold the only way between two pieces of the
   // cover (a wall's opening, a few per cent of a floor): cover those too.
   while (options.connect_pieces && left > 0 && static_cast<int>(rects.size()) < options.max_rects) {
-    const std::vector<uint8_t> bridge = UncoveredBridge(uncovered, RectOwners(rects, rows, cols), rows, cols);
+    const std::vector<uint8_t> bridge = UncoveredBridge(uncovered.cells(), RectOwners(rects, rows, cols), rows, cols);
     if (bridge.empty()) break;
     CellRect rect = LargestRectangle(bridge, rows, cols);
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;
     if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
-    left -= MarkCovered(rect, cols, &uncovered);
+    left -= uncovered.Clear(rect);
     rects.push_back(rect);
   }
   return rects;
