@@ -102,6 +102,30 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 namespace {
 
+// Per cell, 1 when a surface lies in its 3 x 3 neighbourhood (itself included): the only
+// cells the noise repair and the unseen bits can change, as both look at neighbours only.
+std::vector<uint8_t> NearSurface(const HeightMap& hm) {
+  const size_t cols = static_cast<size_t>(hm.cols);
+  std::vector<uint8_t> across(hm.height_m.size(), 0), near(hm.height_m.size(), 0);
+  for (size_t row = 0; row < static_cast<size_t>(hm.rows); ++row) {
+    const float* h = &hm.height_m[row * cols];
+    uint8_t* out = &across[row * cols];
+    for (size_t c = 0; c < cols; ++c) {
+      if (std::isnan(h[c])) continue;
+      out[c] = 1;
+      if (c > 0) out[c - 1] = 1;
+      if (c + 1 < cols) out[c + 1] = 1;
+    }
+  }
+  for (size_t row = 0; row < static_cast<size_t>(hm.rows); ++row) {
+    const size_t lo = row > 0 ? row - 1 : row, hi = row + 1 < static_cast<size_t>(hm.rows) ? row + 1 : row;
+    for (size_t r = lo; r <= hi; ++r) {
+      for (size_t c = 0; c < cols; ++c) near[row * cols + c] |= across[r * cols + c];
+    }
+  }
+  return near;
+}
+
 // Whether FillSingleCellNoise may change the cell whose height is `centre` (NaN: empty)
 // given its 8 neighbours: an empty cell needs all 8 present; a surface cell needs 7 and a
 // neighbour one voxel off it (the most common neighbour height is one of them). A cheap
@@ -122,9 +146,11 @@ bool MayRepair(float centre, const float neighbours[8], double res) {
 int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen) {
   const double res = hm->resolution_m;
   const std::vector<float> in = hm->height_m;
+  const std::vector<uint8_t> near = NearSurface(*hm);
   int changed = 0;
   for (int r = 1; r + 1 < hm->rows; ++r) {
     for (int c = 1; c + 1 < hm->cols; ++c) {
+      if (!near[static_cast<size_t>(hm->Index(r, c))]) continue;  // no neighbour: nothing to repair
       float around[8];
       for (int k = 0, j = 0; k < 9; ++k) {
         if (k != 4) around[j++] = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
@@ -328,10 +354,11 @@ std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, con
   const double res = layer.resolution_m;
   std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
   const long long room = RoomVoxels(clearance_m, res);
+  const std::vector<uint8_t> near = NearSurface(layer);
   for (int r = 0; r < layer.rows; ++r) {
     for (int c = 0; c < layer.cols; ++c) {
       const size_t i = static_cast<size_t>(layer.Index(r, c));
-      if (!std::isnan(layer.height_m[i])) continue;
+      if (!near[i] || !std::isnan(layer.height_m[i])) continue;
       float level = -std::numeric_limits<float>::infinity();
       const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
       for (int k = 0; k < 4; ++k) {
@@ -377,10 +404,21 @@ int FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free
   const long long room = RoomVoxels(clearance_m, res);
   const HeightMap seen = *layer;
   int filled = 0;
+  std::vector<int> next_right(static_cast<size_t>(seen.cols));
   for (int r = 0; r < seen.rows; ++r) {
+    // The nearest surface at or right of each column, and the last one left of it: a cell
+    // without one within radius on both sides of its row is not enclosed.
+    const float* row = &seen.height_m[static_cast<size_t>(seen.Index(r, 0))];
+    int next = std::numeric_limits<int>::max() / 2;
+    for (int c = seen.cols - 1; c >= 0; --c) next_right[static_cast<size_t>(c)] = next = std::isnan(row[c]) ? next : c;
+    int last_left = std::numeric_limits<int>::min() / 2;
     for (int c = 0; c < seen.cols; ++c) {
       const size_t i = static_cast<size_t>(seen.Index(r, c));
-      if (!std::isnan(seen.height_m[i])) continue;
+      if (!std::isnan(seen.height_m[i])) {
+        last_left = c;
+        continue;
+      }
+      if (c - last_left > radius || next_right[static_cast<size_t>(c)] - c > radius) continue;
       float hits[8];
       if (!SurfaceAllRound(seen, r, c, radius, hits)) continue;
       std::sort(hits, hits + 8);
