@@ -143,7 +143,7 @@ bool MayRepair(float centre, const float neighbours[8], double res) {
 
 }  // namespace
 
-int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen) {
+int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::vector<int>* changed_cells) {
   const double res = hm->resolution_m;
   const std::vector<float> in = hm->height_m;
   const std::vector<uint8_t> near = NearSurface(*hm);
@@ -177,10 +177,12 @@ int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen) {
         if (best == 8 && may_fill) {  // a one-cell hole in a level surface
           h = h0;
           ++changed;
+          if (changed_cells != nullptr) changed_cells->push_back(hm->Index(r, c));
         }
       } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
         h = h0;  // one voxel off a level neighbourhood
         ++changed;
+        if (changed_cells != nullptr) changed_cells->push_back(hm->Index(r, c));
       }
     }
   }
@@ -349,27 +351,47 @@ uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level
   return static_cast<uint8_t>(kEmptyColumn | (erased ? 0 : kNotErased));
 }
 
+// SurfaceLayers::unseen bits of cell (r, c) of layer: 0 unless it is empty beside a surface.
+uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* free, int r, int c, long long room) {
+  if (!std::isnan(layer.height_m[static_cast<size_t>(layer.Index(r, c))])) return 0;
+  float level = -std::numeric_limits<float>::infinity();
+  const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
+  for (int k = 0; k < 4; ++k) {
+    if (!layer.HasSurface(r + dr[k], c + dc[k])) continue;
+    level = std::max(level, layer.height_m[static_cast<size_t>(layer.Index(r + dr[k], c + dc[k]))]);
+  }
+  if (!std::isfinite(level)) return 0;
+  return UnseenBits(occ, free, layer.Index(r, c), level, layer.resolution_m, room);
+}
+
 // SurfaceLayers::unseen of one layer.
 std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m) {
-  const double res = layer.resolution_m;
   std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
-  const long long room = RoomVoxels(clearance_m, res);
+  const long long room = RoomVoxels(clearance_m, layer.resolution_m);
   const std::vector<uint8_t> near = NearSurface(layer);
   for (int r = 0; r < layer.rows; ++r) {
     for (int c = 0; c < layer.cols; ++c) {
       const size_t i = static_cast<size_t>(layer.Index(r, c));
-      if (!near[i] || !std::isnan(layer.height_m[i])) continue;
-      float level = -std::numeric_limits<float>::infinity();
-      const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
-      for (int k = 0; k < 4; ++k) {
-        if (!layer.HasSurface(r + dr[k], c + dc[k])) continue;
-        level = std::max(level, layer.height_m[static_cast<size_t>(layer.Index(r + dr[k], c + dc[k]))]);
-      }
-      if (!std::isfinite(level)) continue;
-      unseen[i] = UnseenBits(occ, free, layer.Index(r, c), level, res, room);
+      if (near[i]) unseen[i] = UnseenCell(layer, occ, free, r, c, room);
     }
   }
   return unseen;
+}
+
+// `unseen` (UnseenCells of the layer before the cells `changed` got a surface or a new
+// height) brought up to date: only those cells and their 4-neighbours can differ.
+void UpdateUnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
+                       const int* changed, size_t n_changed, std::vector<uint8_t>* unseen) {
+  const long long room = RoomVoxels(clearance_m, layer.resolution_m);
+  for (size_t k = 0; k < n_changed; ++k) {
+    const int r = changed[k] / layer.cols, c = changed[k] % layer.cols;
+    const int dr[5] = {0, 1, -1, 0, 0}, dc[5] = {0, 0, 0, 1, -1};
+    for (int d = 0; d < 5; ++d) {
+      if (!layer.Inside(r + dr[d], c + dc[d])) continue;
+      (*unseen)[static_cast<size_t>(layer.Index(r + dr[d], c + dc[d]))] =
+          UnseenCell(layer, occ, free, r + dr[d], c + dc[d], room);
+    }
+  }
 }
 
 // The heights of the nearest surface cell along each of the 8 grid directions from (r, c),
@@ -398,12 +420,12 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // occupied down to the map's bottom or within the clearance above, no ray through the
 // floor's voxel or the one under it: SurfaceLayers::unseen's kEmptyColumn | kNotErased)
 // gets the lower of the surrounding heights' middle pair. Heights are read from the layer
-// as it was, so fills do not chain. Returns the number of cells filled.
-int FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free, double clearance_m, int radius) {
+// as it was, so fills do not chain. Appends the cells filled to *filled_cells.
+void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free, double clearance_m, int radius,
+                        std::vector<int>* filled_cells) {
   const double res = layer->resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
   const HeightMap seen = *layer;
-  int filled = 0;
   std::vector<int> next_right(static_cast<size_t>(seen.cols));
   for (int r = 0; r < seen.rows; ++r) {
     // The nearest surface at or right of each column, and the last one left of it: a cell
@@ -428,10 +450,9 @@ int FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free
       if (UnseenBits(occ, &free, col, level, res, room) != (kEmptyColumn | kNotErased)) continue;
       if (UnseenBits(occ, &free, col, hits[7], res, room) != (kEmptyColumn | kNotErased)) continue;
       layer->height_m[i] = level;
-      ++filled;
+      filled_cells->push_back(col);
     }
   }
-  return filled;
 }
 
 // Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
@@ -495,27 +516,36 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   out.candidates = static_cast<int>(cand.height.size());
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
   const Columns* free_or_null = know_free ? &free : nullptr;
+  // The unseen bits once per layer, then brought up to date after each change.
+  for (const HeightMap& layer : out.layers) {
+    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m));
+  }
+  std::vector<int> changed_cells;
   if (options.fill_single_cell_noise) {
-    for (HeightMap& layer : out.layers) {
+    for (size_t l = 0; l < out.layers.size(); ++l) {
+      HeightMap& layer = out.layers[l];
       const HeightMap as_seen = layer;
       // Twice: a hole beside a displaced cell is filled once that cell is back.
       int changed = 0;
       for (int pass = 0; pass < 2; ++pass) {
-        const std::vector<uint8_t> unseen = UnseenCells(layer, occ, free_or_null, options.clearance_m);
-        changed += FillSingleCellNoise(&layer, &unseen);
+        changed_cells.clear();
+        changed += FillSingleCellNoise(&layer, &out.unseen[l], &changed_cells);
+        UpdateUnseenCells(layer, occ, free_or_null, options.clearance_m, changed_cells.data(), changed_cells.size(),
+                          &out.unseen[l]);
       }
       out.noise_cells_filled += changed;
       if (changed > 0) out.moved_as_seen.push_back(MovedCellsAsSeen(as_seen, layer));
     }
   }
   if (know_free && options.enclosed_unseen_radius_cells > 0) {
-    for (HeightMap& layer : out.layers) {
-      out.enclosed_unseen_filled +=
-          FillEnclosedUnseen(&layer, occ, free, options.clearance_m, options.enclosed_unseen_radius_cells);
+    for (size_t l = 0; l < out.layers.size(); ++l) {
+      changed_cells.clear();
+      FillEnclosedUnseen(&out.layers[l], occ, free, options.clearance_m, options.enclosed_unseen_radius_cells,
+                         &changed_cells);
+      out.enclosed_unseen_filled += static_cast<int>(changed_cells.size());
+      UpdateUnseenCells(out.layers[l], occ, free_or_null, options.clearance_m, changed_cells.data(),
+                        changed_cells.size(), &out.unseen[l]);
     }
-  }
-  for (const HeightMap& layer : out.layers) {
-    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m));
   }
   // From the final (noise-repaired) heights.
   for (const HeightMap& layer : out.layers) out.solid_beside.push_back(SolidBeside(layer, occ));

@@ -85,8 +85,9 @@ struct SurfaceLayers {
 // voxel with floor seen all round and nothing below is floor (docs/unseen_floor.md); a cell exactly one voxel above or
 // below a neighbourhood of which at least 7 of 8 agree is set to their height. Only holes
 // with all 8 neighbours present are filled, so no surface grows past its edge. Returns the
-// number of cells changed.
-int FillSingleCellNoise(HeightMap* height_map, const std::vector<uint8_t>* unseen = nullptr);
+// number of cells changed; `changed_cells` (optional) gets their indices appended.
+int FillSingleCellNoise(HeightMap* height_map, const std::vector<uint8_t>* unseen = nullptr,
+                        std::vector<int>* changed_cells = nullptr);
 
 // Throws InputError as BuildHeightMap does (bad resolution or leaves, too many cells).
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options);
