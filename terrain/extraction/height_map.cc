@@ -90,6 +90,15 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
   const double res = hm.resolution_m;
   const double tan_slope = std::tan(max_slope_rad);
   const int w = window_half_cells;
+  // Per window offset, the largest height difference a neighbour on the surface may have.
+  const int side = 2 * w + 1;
+  std::vector<double> gate(static_cast<size_t>(side) * side);
+  for (int dr = -w; dr <= w; ++dr) {
+    for (int dc = -w; dc <= w; ++dc) {
+      const double dist_m = res * std::sqrt(double(dr * dr + dc * dc));
+      gate[static_cast<size_t>((dr + w) * side + (dc + w))] = step_gate_m + dist_m * tan_slope;
+    }
+  }
   for (int r = 0; r < hm.rows; ++r) {
     if (deadline.Expired()) {
       out.stopped = true;
@@ -109,8 +118,7 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
           const float h = hm.height_m[static_cast<size_t>(hm.Index(r + dr, c + dc))];
           if (std::isnan(h)) continue;
           const double dz = h - hc;
-          const double dist_m = res * std::sqrt(double(dr * dr + dc * dc));
-          if (std::abs(dz) > step_gate_m + dist_m * tan_slope) continue;
+          if (std::abs(dz) > gate[static_cast<size_t>((dr + w) * side + (dc + w))]) continue;
           const Eigen::Vector3d a(dc, dr, 1.0);
           AtA += a * a.transpose();
           Atz += a * dz;

@@ -141,12 +141,12 @@ bool MayRepair(float centre, const float neighbours[8], double res) {
   return std::isnan(centre) ? present == 8 : present >= 7 && voxel_off;
 }
 
-}  // namespace
-
-int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::vector<int>* changed_cells) {
+// FillSingleCellNoise given NearSurface(*hm) (which no repair changes: a filled cell's 8
+// neighbours are surface cells already).
+int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, const std::vector<uint8_t>& near,
+                          std::vector<int>* changed_cells) {
   const double res = hm->resolution_m;
   const std::vector<float> in = hm->height_m;
-  const std::vector<uint8_t> near = NearSurface(*hm);
   int changed = 0;
   for (int r = 1; r + 1 < hm->rows; ++r) {
     for (int c = 1; c + 1 < hm->cols; ++c) {
@@ -187,6 +187,12 @@ int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::
     }
   }
   return changed;
+}
+
+}  // namespace
+
+int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::vector<int>* changed_cells) {
+  return RepairSingleCellNoise(hm, unseen, NearSurface(*hm), changed_cells);
 }
 
 namespace {
@@ -365,10 +371,11 @@ uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* fr
 }
 
 // SurfaceLayers::unseen of one layer.
-std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m) {
+// near: NearSurface(layer).
+std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
+                                 const std::vector<uint8_t>& near) {
   std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
   const long long room = RoomVoxels(clearance_m, layer.resolution_m);
-  const std::vector<uint8_t> near = NearSurface(layer);
   for (int r = 0; r < layer.rows; ++r) {
     for (int c = 0; c < layer.cols; ++c) {
       const size_t i = static_cast<size_t>(layer.Index(r, c));
@@ -517,25 +524,23 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
   const Columns* free_or_null = know_free ? &free : nullptr;
   // The unseen bits once per layer, then brought up to date after each change.
-  for (const HeightMap& layer : out.layers) {
-    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m));
-  }
   std::vector<int> changed_cells;
-  if (options.fill_single_cell_noise) {
-    for (size_t l = 0; l < out.layers.size(); ++l) {
-      HeightMap& layer = out.layers[l];
-      const HeightMap as_seen = layer;
-      // Twice: a hole beside a displaced cell is filled once that cell is back.
-      int changed = 0;
-      for (int pass = 0; pass < 2; ++pass) {
-        changed_cells.clear();
-        changed += FillSingleCellNoise(&layer, &out.unseen[l], &changed_cells);
-        UpdateUnseenCells(layer, occ, free_or_null, options.clearance_m, changed_cells.data(), changed_cells.size(),
-                          &out.unseen[l]);
-      }
-      out.noise_cells_filled += changed;
-      if (changed > 0) out.moved_as_seen.push_back(MovedCellsAsSeen(as_seen, layer));
+  for (size_t l = 0; l < out.layers.size(); ++l) {
+    HeightMap& layer = out.layers[l];
+    const std::vector<uint8_t> near = NearSurface(layer);
+    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m, near));
+    if (!options.fill_single_cell_noise) continue;
+    const HeightMap as_seen = layer;
+    // Twice: a hole beside a displaced cell is filled once that cell is back.
+    int changed = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      changed_cells.clear();
+      changed += RepairSingleCellNoise(&layer, &out.unseen[l], near, &changed_cells);
+      UpdateUnseenCells(layer, occ, free_or_null, options.clearance_m, changed_cells.data(), changed_cells.size(),
+                        &out.unseen[l]);
     }
+    out.noise_cells_filled += changed;
+    if (changed > 0) out.moved_as_seen.push_back(MovedCellsAsSeen(as_seen, layer));
   }
   if (know_free && options.enclosed_unseen_radius_cells > 0) {
     for (size_t l = 0; l < out.layers.size(); ++l) {
