@@ -51,8 +51,8 @@ Polygon2d SimplifyConvex(Polygon2d polygon, int max_vertices);
 using CellInset = std::function<double(int, int)>;
 
 struct SideSlackOptions {
-  double most_cells = 1.0;  // a side moves out at most this far [cells]
-  int bisections = 8;       // steps of the bisection on each side's move
+  double most_cells = 2.0;  // a side moves out at most this far [cells]
+  int bisections = 9;       // steps of the bisection on each side's move
   bool may_overlap = false;  // false: a moved side enters no other piece
   int max_vertices = 8;     // a moved piece keeps at most this many vertices
   Deadline deadline;        // checked before each piece: the pieces left keep their sides
