@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -160,6 +161,173 @@ TEST(ConvexCover, PolygonMeetsSquareOnlyWithArea) {
   EXPECT_FALSE(PolygonMeetsSquare(triangle, 1, 1));  // touches its corner (1, 1) only
   EXPECT_FALSE(PolygonMeetsSquare(triangle, 0, 2));  // beside it
   EXPECT_TRUE(PolygonMeetsSquare(triangle, 0, 1));
+}
+
+// A surface of cells (cell (r, c) spans [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]) whose
+// outside cells each ask an inset [cells]: the kept cells (centre at least each outside
+// cell's inset from its square) and their complete dual squares, computed by brute force.
+struct Surface {
+  SquareSet cells;                // the surface's cells
+  std::vector<double> inset;      // per cell of the box, the inset it asks when outside
+  double max_inset = 0.0;
+  double InsetAt(int r, int c) const {
+    if (cells.In(r, c)) return -1.0;
+    if (r < 0 || r >= cells.rows || c < 0 || c >= cells.cols) return max_inset;
+    return inset[size_t(r) * cells.cols + c];
+  }
+};
+
+double PointSquareDistance(const Eigen::Vector2d& p, int r, int c) {
+  const double dx = std::max({0.0, (c - 0.5) - p.x(), p.x() - (c + 0.5)});
+  const double dy = std::max({0.0, (r - 0.5) - p.y(), p.y() - (r + 0.5)});
+  return std::hypot(dx, dy);
+}
+
+// The smallest margin (distance to an outside cell's square minus its inset) of a point.
+double WorstMargin(const Surface& s, const Eigen::Vector2d& p) {
+  const int reach = int(std::ceil(s.max_inset)) + 2;
+  double worst = INFINITY;
+  for (int r = int(std::floor(p.y())) - reach; r <= int(std::ceil(p.y())) + reach; ++r) {
+    for (int c = int(std::floor(p.x())) - reach; c <= int(std::ceil(p.x())) + reach; ++c) {
+      const double inset = s.InsetAt(r, c);
+      if (inset > 0.0) worst = std::min(worst, PointSquareDistance(p, r, c) - inset);
+    }
+  }
+  return worst;
+}
+
+SquareSet DualSquaresOf(const Surface& s) {
+  const int rows = s.cells.rows, cols = s.cells.cols;
+  const SquareSet kept = MakeSet(rows, cols, [&](int r, int c) {
+    return s.cells.In(r, c) && WorstMargin(s, Eigen::Vector2d(c, r)) >= 0.0;
+  });
+  return MakeSet(rows - 1, cols - 1, [&](int r, int c) {
+    return kept.In(r, c) && kept.In(r + 1, c) && kept.In(r, c + 1) && kept.In(r + 1, c + 1);
+  });
+}
+
+double Area(const Polygon2d& polygon) {
+  double twice = 0.0;
+  for (size_t i = 0; i < polygon.size(); ++i) twice += Cross(polygon[i], polygon[(i + 1) % polygon.size()]);
+  return 0.5 * twice;
+}
+
+struct SlackJudged {
+  long samples = 0, unsafe = 0, overlapping = 0;
+  int not_convex = 0;
+};
+
+// Samples every piece (offsets off the lattice) and checks each sample's margin.
+SlackJudged JudgeSlack(const Surface& s, const std::vector<Polygon2d>& pieces) {
+  SlackJudged j;
+  for (const Polygon2d& piece : pieces) {
+    for (size_t i = 0; i < piece.size(); ++i) {
+      const Eigen::Vector2d& a = piece[i];
+      if (Cross(piece[(i + 1) % piece.size()] - a, piece[(i + 2) % piece.size()] - a) < -1e-9) ++j.not_convex;
+    }
+    Eigen::Vector2d lo = piece.front(), hi = piece.front();
+    for (const Eigen::Vector2d& p : piece) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    for (double y = lo.y() + 0.0037; y <= hi.y(); y += 0.07) {
+      for (double x = lo.x() + 0.0051; x <= hi.x(); x += 0.07) {
+        const Eigen::Vector2d p(x, y);
+        if (!InsideBy(piece, p, 0.0)) continue;
+        ++j.samples;
+        if (WorstMargin(s, p) < -1e-7) ++j.unsafe;
+      }
+    }
+    // The piece's vertices too: the farthest points a side moved to.
+    for (const Eigen::Vector2d& v : piece) j.unsafe += WorstMargin(s, v) < -1e-7 ? 1 : 0;
+  }
+  // Overlap: samples well inside two pieces.
+  for (double y = -1.0137; y < s.cells.rows + 1; y += 0.05) {
+    for (double x = -1.0093; x < s.cells.cols + 1; x += 0.05) {
+      int well_inside = 0;
+      for (const Polygon2d& piece : pieces) well_inside += InsideBy(piece, Eigen::Vector2d(x, y), 1e-6) ? 1 : 0;
+      if (well_inside > 1) ++j.overlapping;
+    }
+  }
+  return j;
+}
+
+// Random surfaces with holes and ragged outlines, each outside cell asking its own inset
+// (0.6 - 2.4 cells): every point of every piece with side slack keeps every inset, the
+// pieces stay convex, meet in no area, and the slack adds area.
+TEST(ConvexCoverSlack, PiecesWithSideSlackKeepEveryOutsideCellsInset) {
+  uint32_t state = 777;
+  auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+  for (int trial = 0; trial < 10; ++trial) {
+    Surface s;
+    const int rows = 14 + int(next() % 16), cols = 14 + int(next() % 16);
+    const int holes = 1 + int(next() % 4);  // per cent of cells off the surface
+    s.cells = MakeSet(rows, cols, [&](int r, int c) {
+      const bool edge = r == 0 || c == 0 || r == rows - 1 || c == cols - 1;
+      return !edge && int(next() % 100) >= holes;
+    });
+    s.inset.resize(size_t(rows) * cols);
+    for (double& v : s.inset) v = 0.6 + 0.01 * double(next() % 181);
+    s.max_inset = 2.4;
+    const SquareSet dual = DualSquaresOf(s);
+    std::vector<Polygon2d> pieces = ConvexCoverOfSquares(dual.cells, dual.rows, dual.cols, Options(30, false));
+    double before = 0.0, after = 0.0;
+    for (const Polygon2d& p : pieces) before += Area(p);
+    SideSlackOptions slack;
+    AddSideSlack(&pieces, [&](int r, int c) { return s.InsetAt(r, c); }, s.max_inset, slack);
+    for (const Polygon2d& p : pieces) after += Area(p);
+    const SlackJudged j = JudgeSlack(s, pieces);
+    EXPECT_GT(j.samples, 0) << "trial " << trial;
+    EXPECT_EQ(j.unsafe, 0) << "trial " << trial;
+    EXPECT_EQ(j.not_convex, 0) << "trial " << trial;
+    EXPECT_EQ(j.overlapping, 0) << "trial " << trial;
+    for (const Polygon2d& piece : pieces) EXPECT_LE(piece.size(), 8u);
+    if (!pieces.empty()) {
+      EXPECT_GT(after, before) << "trial " << trial;
+    }
+  }
+}
+
+// One square pit in a floor, inset 1.3 cells: the dual squares stop at the kept cells'
+// centres, 0.2 cells short of the exact inset from the border and up to a cell short
+// around the pit; with slack the sides reach the exact inset.
+TEST(ConvexCoverSlack, SidesReachTheExactInsetAroundAPit) {
+  Surface s;
+  const int n = 24;
+  s.cells = MakeSet(n, n, [&](int r, int c) { return r > 0 && c > 0 && r < n - 1 && c < n - 1 && !(r == 11 && c == 12); });
+  s.inset.assign(size_t(n) * n, 1.3);
+  s.max_inset = 1.3;
+  const SquareSet dual = DualSquaresOf(s);
+  std::vector<Polygon2d> pieces = ConvexCoverOfSquares(dual.cells, dual.rows, dual.cols, Options(16, false));
+  double before = 0.0, after = 0.0;
+  for (const Polygon2d& p : pieces) before += Area(p);
+  AddSideSlack(&pieces, [&](int r, int c) { return s.InsetAt(r, c); }, s.max_inset, SideSlackOptions());
+  for (const Polygon2d& p : pieces) after += Area(p);
+  // The floor's cells span [0.5, n - 1.5] on each axis; inset 1.3 from the border cells
+  // leaves [1.8, n - 2.8]; the pit's square grown by 1.3 (rounded corners) takes 11.5.
+  const double exact = (n - 4.6) * (n - 4.6) - 11.5;
+  std::printf("pit: %zu pieces, area %.2f without slack, %.2f with, exact inset floor %.2f\n", pieces.size(), before,
+              after, exact);
+  EXPECT_EQ(JudgeSlack(s, pieces).unsafe, 0);
+  EXPECT_LE(after, exact + 1e-6);
+  EXPECT_GT(after, before + 0.2 * 4 * (n - 6.0));  // 0.2 cells along the border at least
+}
+
+// A deadline that has passed ends both covers before their first piece: what they return
+// (nothing) is sound; the slack leaves the pieces as they are.
+TEST(ConvexCoverSlack, AnExpiredDeadlineEndsTheCoversAndTheSlack) {
+  const SquareSet s = MakeSet(20, 20, [](int r, int c) { return (r * 7 + c * 13) % 37 != 0; });
+  ConvexCoverOptions o = Options(30, false);
+  EXPECT_FALSE(ConvexCoverOfSquares(s.cells, s.rows, s.cols, o).empty());
+  EXPECT_FALSE(GreedyRectangleCover(s.cells, s.rows, s.cols, o.cover).empty());
+  o.cover.deadline = Deadline::After(0.0);
+  EXPECT_TRUE(ConvexCoverOfSquares(s.cells, s.rows, s.cols, o).empty());
+  EXPECT_TRUE(GreedyRectangleCover(s.cells, s.rows, s.cols, o.cover).empty());
+  std::vector<Polygon2d> pieces = {{{2, 2}, {5, 2}, {5, 5}, {2, 5}}};
+  SideSlackOptions slack;
+  slack.deadline = Deadline::After(0.0);
+  AddSideSlack(&pieces, [](int, int) { return 1.0; }, 1.0, slack);
+  EXPECT_EQ(pieces.front(), (Polygon2d{{2, 2}, {5, 2}, {5, 5}, {2, 5}}));
 }
 
 }  // namespace

@@ -25,25 +25,6 @@ bool Contains(const Polygon2d& polygon, const Eigen::Vector2d& p) {
   return true;
 }
 
-// Drops vertices that add (almost) no area, then, while more than max_vertices remain, the
-// vertex whose triangle with its neighbours is smallest: the hull of the rest lies inside.
-Polygon2d Simplify(Polygon2d polygon, int max_vertices) {
-  auto triangle = [&](size_t i) {
-    const size_t n = polygon.size();
-    const Eigen::Vector2d& prev = polygon[(i + n - 1) % n];
-    return std::abs(Cross(polygon[i] - prev, polygon[(i + 1) % n] - prev));
-  };
-  while (polygon.size() > 3) {
-    size_t smallest = 0;
-    for (size_t i = 1; i < polygon.size(); ++i) {
-      if (triangle(i) < triangle(smallest)) smallest = i;
-    }
-    if (static_cast<int>(polygon.size()) <= max_vertices && triangle(smallest) > 1e-9) break;
-    polygon.erase(polygon.begin() + static_cast<long>(smallest));
-  }
-  return polygon;
-}
-
 struct Box {
   double x0, y0, x1, y1;
   bool Meets(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
@@ -144,7 +125,7 @@ class CoverState {
     const std::optional<FreeRegion2d> region =
         GrowFreeRegion(seed_polygon, obstacles, Eigen::Vector2d(c0, r0), Eigen::Vector2d(c1, r1));
     if (!region || region->polygon.size() < 3) return seed_polygon;
-    return Simplify(region->polygon, std::max(3, options_.max_vertices));
+    return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
   }
 
   // Squares the piece holds wholly become owned; without overlap, squares it meets close
@@ -186,6 +167,25 @@ class CoverState {
 
 }  // namespace
 
+// Drops vertices that add (almost) no area, then, while more than max_vertices remain, the
+// vertex whose triangle with its neighbours is smallest: the hull of the rest lies inside.
+Polygon2d SimplifyConvex(Polygon2d polygon, int max_vertices) {
+  auto triangle = [&](size_t i) {
+    const size_t n = polygon.size();
+    const Eigen::Vector2d& prev = polygon[(i + n - 1) % n];
+    return std::abs(Cross(polygon[i] - prev, polygon[(i + 1) % n] - prev));
+  };
+  while (polygon.size() > 3) {
+    size_t smallest = 0;
+    for (size_t i = 1; i < polygon.size(); ++i) {
+      if (triangle(i) < triangle(smallest)) smallest = i;
+    }
+    if (static_cast<int>(polygon.size()) <= max_vertices && triangle(smallest) > 1e-9) break;
+    polygon.erase(polygon.begin() + static_cast<long>(smallest));
+  }
+  return polygon;
+}
+
 bool PolygonMeetsSquare(const Polygon2d& polygon, int r, int c) {
   const Box box = BoundingBox(polygon);
   if (box.x1 <= c + kEps || box.x0 >= c + 1 - kEps || box.y1 <= r + kEps || box.y0 >= r + 1 - kEps) return false;
@@ -208,7 +208,7 @@ std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares,
   CoverState state(squares, rows, cols, options);
   const RectangleCoverOptions& cover = options.cover;
   const int min_seed = std::max(1, cover.min_rect_cells);
-  auto room = [&] { return static_cast<int>(state.pieces().size()) < cover.max_rects; };
+  auto room = [&] { return static_cast<int>(state.pieces().size()) < cover.max_rects && !cover.deadline.Expired(); };
   while (room() && state.covered() < state.total() &&
          static_cast<double>(state.covered()) < cover.target_coverage * static_cast<double>(state.total())) {
     const CellRect seed = LargestRectangle(state.open(), rows, cols);

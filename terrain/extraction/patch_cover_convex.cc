@@ -7,13 +7,21 @@ namespace mfp {
 
 // Dual square (r, c) spans [c, c + 1] x [r, r + 1] in centre units, the frame CoverInput
 // maps to the world; the pieces lie in complete dual squares, so they are safe by the
-// argument in patch_decomposition.h.
+// argument in patch_decomposition.h. Each side then moves out while what it adds keeps
+// every outside cell's inset exactly (AddSideSlack), as the rectangles' sides do.
 std::vector<Polygon2d> CoverConvex(const CoverInput& in, const PatchDecompositionOptions& options) {
   ConvexCoverOptions convex;
   convex.cover = options.cover;
   convex.cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, in.res * in.res);
   convex.max_vertices = std::max(3, options.max_piece_vertices);
   std::vector<Polygon2d> pieces = ConvexCoverOfSquares(in.dual->cells, in.dual->rows, in.dual->cols, convex);
+  if (in.max_inset_cells > 0.0) {
+    SideSlackOptions slack;
+    slack.may_overlap = options.cover.grow_over_covered;
+    slack.max_vertices = convex.max_vertices;
+    slack.deadline = options.cover.deadline;
+    AddSideSlack(&pieces, [&](int r, int c) { return in.inset->At(r, c); }, in.max_inset_cells, slack);
+  }
   for (Polygon2d& piece : pieces) {
     for (Eigen::Vector2d& p : piece) p = in.ToWorld(p);
   }

@@ -161,8 +161,8 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
   for (uint8_t m : mask) total += m ? 1 : 0;
   size_t left = total;
   std::vector<CellRect> rects;
-  while (left > 0 && static_cast<int>(rects.size()) < options.max_rects &&
-         static_cast<double>(total - left) < options.target_coverage * static_cast<double>(total)) {
+  auto more = [&] { return left > 0 && static_cast<int>(rects.size()) < options.max_rects && !options.deadline.Expired(); };
+  while (more() && static_cast<double>(total - left) < options.target_coverage * static_cast<double>(total)) {
     CellRect rect = uncovered.Largest();
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;
     if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
@@ -171,7 +171,7 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
   }
   // Covered enough, but the part left may hold the only way between two pieces of the
   // cover (a wall's opening, a few per cent of a floor): cover those too.
-  while (options.connect_pieces && left > 0 && static_cast<int>(rects.size()) < options.max_rects) {
+  while (options.connect_pieces && more()) {
     const std::vector<uint8_t> bridge = UncoveredBridge(uncovered.cells(), RectOwners(rects, rows, cols), rows, cols);
     if (bridge.empty()) break;
     CellRect rect = LargestRectangle(bridge, rows, cols);

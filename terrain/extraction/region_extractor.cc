@@ -131,6 +131,7 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   dec.cover.target_coverage = options.target_coverage;
   dec.cover.max_rects = options.max_regions_per_patch;
   dec.cover.grow_over_covered = options.overlapping_regions;
+  dec.cover.deadline = options.deadline;
   dec.convex_pieces = options.convex_cover;
   dec.max_piece_vertices = options.max_region_vertices;
   return dec;

@@ -13,8 +13,10 @@
 // the closed union of the set's squares.
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
+#include "base/deadline.h"
 #include "terrain/extraction/internal/rectangle_cover.h"
 
 namespace mfp {
@@ -36,5 +38,31 @@ std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares,
 
 // The area of a convex polygon's part inside square (r, c) is positive (more than rounding).
 bool PolygonMeetsSquare(const Polygon2d& polygon, int r, int c);
+
+// The convex polygon with at most max_vertices vertices left by dropping, one at a time,
+// the vertex whose triangle with its neighbours is smallest (and every vertex adding no
+// area): it lies inside the given one.
+Polygon2d SimplifyConvex(Polygon2d polygon, int max_vertices);
+
+// Side slack: the pieces end at the dual squares, while a foot centre is safe up to each
+// outside cell's exact inset. inset_at(r, c): the inset [cells] cell (r, c) asks, its
+// square spanning [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5] (the dual squares' frame);
+// zero or negative for a cell of the surface.
+using CellInset = std::function<double(int, int)>;
+
+struct SideSlackOptions {
+  double most_cells = 2.0;  // a side moves out at most this far [cells]
+  int bisections = 9;       // steps of the bisection on each side's move
+  bool may_overlap = false;  // false: a moved side enters no other piece
+  int max_vertices = 8;     // a moved piece keeps at most this many vertices
+  Deadline deadline;        // checked before each piece: the pieces left keep their sides
+};
+
+// Moves each side of each piece (in order) out along its normal as far as every point it
+// adds keeps every cell's inset from that cell's square (exact test) and, unless
+// may_overlap, enters no other piece. The pieces must keep the insets already (pieces of
+// complete dual squares do); then so do the moved ones.
+void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, double max_inset_cells,
+                  const SideSlackOptions& options);
 
 }  // namespace mfp

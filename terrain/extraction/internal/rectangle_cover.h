@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/deadline.h"
+
 namespace mfp {
 
 struct CellRect {
@@ -25,6 +27,9 @@ struct RectangleCoverOptions {
   // After the target coverage, keep covering uncovered pieces that touch two pieces of the
   // cover that do not touch each other (a mask's necks), up to max_rects.
   bool connect_pieces = true;
+  // Checked before each new piece: an expired one ends the cover early (what it holds is
+  // still sound, only less is covered).
+  Deadline deadline;
 };
 
 // mask is row-major rows x cols, non-zero = inside.

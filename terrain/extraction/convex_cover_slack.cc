@@ -1,0 +1,178 @@
+#include <algorithm>
+#include <cmath>
+
+#include "terrain/extraction/internal/convex_cover.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kEps = 1e-9;  // rounding allowance [cells]
+
+struct Bounds {
+  Eigen::Vector2d lo, hi;
+  bool Meets(const Bounds& o) const {
+    return lo.x() < o.hi.x() && o.lo.x() < hi.x() && lo.y() < o.hi.y() && o.lo.y() < hi.y();
+  }
+};
+
+Bounds BoundsOf(const Polygon2d& polygon) {
+  Bounds b{polygon.front(), polygon.front()};
+  for (const Eigen::Vector2d& p : polygon) {
+    b.lo = b.lo.cwiseMin(p);
+    b.hi = b.hi.cwiseMax(p);
+  }
+  return b;
+}
+
+// The part of a convex polygon where n . x <= d (Sutherland-Hodgman against one line).
+Polygon2d ClipKeepingBelow(const Polygon2d& polygon, const Eigen::Vector2d& n, double d) {
+  Polygon2d out;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
+    const double fa = n.dot(a) - d, fb = n.dot(b) - d;
+    if (fa <= 0.0) out.push_back(a);
+    if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) out.push_back(a + (fa / (fa - fb)) * (b - a));
+  }
+  return out;
+}
+
+// An edge's outward unit normal and offset: the polygon lies where normal . x <= offset.
+struct HalfPlane {
+  Eigen::Vector2d normal;
+  double offset;
+};
+
+std::vector<HalfPlane> HalfPlanesOf(const Polygon2d& polygon) {
+  std::vector<HalfPlane> planes;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const Eigen::Vector2d e = polygon[(i + 1) % polygon.size()] - polygon[i];
+    const double length = e.norm();
+    if (length < 1e-12) {
+      planes.push_back({Eigen::Vector2d::Zero(), 0.0});  // a degenerate edge: no constraint
+      continue;
+    }
+    const Eigen::Vector2d n(e.y() / length, -e.x() / length);
+    planes.push_back({n, n.dot(polygon[i])});
+  }
+  return planes;
+}
+
+// The polygon's half-planes with edge `moved` pushed out by `shift`, within `box`.
+Polygon2d Intersection(const std::vector<HalfPlane>& planes, size_t moved, double shift, const Bounds& box) {
+  Polygon2d polygon = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
+  for (size_t j = 0; j < planes.size() && polygon.size() >= 3; ++j) {
+    if (planes[j].normal.isZero()) continue;
+    polygon = ClipKeepingBelow(polygon, planes[j].normal, planes[j].offset + (j == moved ? shift : 0.0));
+  }
+  return polygon;
+}
+
+// Whether two convex polygons' interiors are apart: some edge of either separates them.
+bool InteriorsApart(const Polygon2d& p, const Polygon2d& q) {
+  for (const Polygon2d* a : {&p, &q}) {
+    const Polygon2d* b = a == &p ? &q : &p;
+    for (const HalfPlane& h : HalfPlanesOf(*a)) {
+      if (h.normal.isZero()) continue;
+      double lowest = INFINITY;
+      for (const Eigen::Vector2d& v : *b) lowest = std::min(lowest, h.normal.dot(v) - h.offset);
+      if (lowest >= -kEps) return true;
+    }
+  }
+  return false;
+}
+
+double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (a + t * ab - p).norm();
+}
+
+// Distance between two convex polygons (0 when they meet): apart, the nearest points lie
+// on a vertex of one and an edge of the other.
+double PolygonDistance(const Polygon2d& p, const Polygon2d& q) {
+  if (!InteriorsApart(p, q)) return 0.0;
+  double d = INFINITY;
+  for (const Polygon2d* a : {&p, &q}) {
+    const Polygon2d* b = a == &p ? &q : &p;
+    for (const Eigen::Vector2d& v : *a) {
+      for (size_t i = 0; i < b->size(); ++i) d = std::min(d, PointSegmentDistance(v, (*b)[i], (*b)[(i + 1) % b->size()]));
+    }
+  }
+  return d;
+}
+
+// Whether every point of `part` keeps each outside cell's inset from the cell's square
+// (cell (r, c) spans [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]): the exact test.
+bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells) {
+  const Bounds b = BoundsOf(part);
+  const double reach = max_inset_cells + 0.5;
+  const int r0 = static_cast<int>(std::floor(b.lo.y() - reach)), r1 = static_cast<int>(std::ceil(b.hi.y() + reach));
+  const int c0 = static_cast<int>(std::floor(b.lo.x() - reach)), c1 = static_cast<int>(std::ceil(b.hi.x() + reach));
+  for (int r = r0; r <= r1; ++r) {
+    const double dy = std::max({0.0, (r - 0.5) - b.hi.y(), b.lo.y() - (r + 0.5)});
+    for (int c = c0; c <= c1; ++c) {
+      const double inset = inset_at(r, c);
+      if (inset <= 0.0) continue;  // a patch cell, or no inset asked
+      const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
+      if (std::hypot(dx, dy) >= inset) continue;  // the boxes are far enough apart
+      const Polygon2d cell = {{c - 0.5, r - 0.5}, {c + 0.5, r - 0.5}, {c + 0.5, r + 0.5}, {c - 0.5, r + 0.5}};
+      if (PolygonDistance(part, cell) < inset - kEps) return false;
+    }
+  }
+  return true;
+}
+
+// Whether `part` overlaps no other piece's interior.
+bool ClearOfOthers(const Polygon2d& part, const std::vector<Polygon2d>& pieces, const std::vector<Bounds>& bounds,
+                   size_t self) {
+  const Bounds b = BoundsOf(part);
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    if (k != self && bounds[k].Meets(b) && !InteriorsApart(part, pieces[k])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, double max_inset_cells,
+                  const SideSlackOptions& options) {
+  std::vector<Bounds> bounds;
+  for (const Polygon2d& piece : *pieces) bounds.push_back(BoundsOf(piece));
+  const double finest = options.most_cells / std::ldexp(1.0, std::max(0, options.bisections));
+  for (size_t k = 0; k < pieces->size() && !options.deadline.Expired(); ++k) {
+    Polygon2d& piece = (*pieces)[k];
+    if (piece.size() < 3) continue;
+    std::vector<HalfPlane> planes = HalfPlanesOf(piece);
+    Bounds box = BoundsOf(piece);  // every side moves at most most_cells
+    box.lo.array() -= options.most_cells;
+    box.hi.array() += options.most_cells;
+    bool moved_any = false;
+    for (size_t j = 0; j < planes.size(); ++j) {
+      if (planes[j].normal.isZero()) continue;
+      // What moving side j out by `shift` adds: the moved polygon beyond the side's line.
+      auto sound = [&](double shift) {
+        const Polygon2d part =
+            ClipKeepingBelow(Intersection(planes, j, shift, box), -planes[j].normal, -planes[j].offset);
+        if (part.size() < 3) return true;
+        return KeepsInsets(part, inset_at, max_inset_cells) &&
+               (options.may_overlap || ClearOfOthers(part, *pieces, bounds, k));
+      };
+      if (!sound(finest)) continue;  // no room: skip the bisection
+      double lo = finest, hi = options.most_cells;
+      for (int it = 1; it < options.bisections; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (sound(mid) ? lo : hi) = mid;
+      }
+      planes[j].offset += lo;
+      moved_any = true;
+      // Later sides are judged against the piece as moved so far.
+      piece = Intersection(planes, planes.size(), 0.0, box);
+      bounds[k] = BoundsOf(piece);
+    }
+    if (moved_any) piece = SimplifyConvex(std::move(piece), options.max_vertices);
+    bounds[k] = BoundsOf(piece);
+  }
+}
+
+}  // namespace mfp
