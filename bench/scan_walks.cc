@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/coverage_breakdown.h"
 #include "io/map_file.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
@@ -29,9 +30,12 @@ namespace {
 // (occupied, the voxel above known free) with `clearance_m` of no occupied voxel above.
 class SeenVoxelJudge {
  public:
-  SeenVoxelJudge(const OccupancyMap& map, double clearance_m) : r_(map.resolution_m) {
-    const LeafSet occupied(map.leaves, r_), free(map.free_leaves, r_);
-    const int room = std::max(1, static_cast<int>(std::ceil(clearance_m / r_ - 1e-9)));
+  SeenVoxelJudge(const OccupancyMap& map, double clearance_m)
+      : r_(map.resolution_m), occupied_(map.leaves, r_), free_(map.free_leaves, r_),
+        room_(std::max(1, static_cast<int>(std::ceil(clearance_m / r_ - 1e-9)))) {
+    const LeafSet& occupied = occupied_;
+    const LeafSet& free = free_;
+    const int room = room_;
     std::unordered_map<int64_t, int> level_count;
     for (const OccupiedLeaf& leaf : map.leaves) {
       const int64_t n = int64_t{1} << occupied.LevelOf(leaf.size_m);
@@ -106,12 +110,93 @@ class SeenVoxelJudge {
     const int64_t i = (key >> 21) - (1 << 20), j = (key & ((int64_t{1} << 21) - 1)) - (1 << 20);
     return {(i + 0.5) * r_, (j + 0.5) * r_};
   }
+  // What the raw voxels hold in the column of xy about a floor whose top is z0_m (the top
+  // of voxel k0): the reason a column is or is not floor a foot at that height can use.
+  const char* ColumnKind(const Eigen::Vector2d& xy, double z0_m) const {
+    const int64_t i = Index(xy.x()), j = Index(xy.y()), k0 = std::llround(z0_m / r_) - 1;
+    const auto it = tops_.find(VoxelColumnKey(i, j));
+    if (it != tops_.end()) {
+      for (int64_t k : it->second) {
+        if (std::abs(k - k0) <= 1) return "floor";
+      }
+    }
+    for (int d = 2; d <= room_; ++d) {
+      if (occupied_.Contains(i, j, k0 + d)) return "obstacle above";
+    }
+    if (it != tops_.end()) return "surface 2+ voxels off";
+    if (occupied_.Contains(i, j, k0 + 1) || occupied_.Contains(i, j, k0) || occupied_.Contains(i, j, k0 - 1)) {
+      return "floor seen, no room/free above";
+    }
+    for (int d = 2; d <= 8; ++d) {
+      if (occupied_.Contains(i, j, k0 - d)) return "drop (lower surface)";
+    }
+    if (free_.Contains(i, j, k0)) return free_.Contains(i, j, k0 - 1) ? "free below floor (hole)" : "erased";
+    if (free_.Contains(i, j, k0 - 1)) return "free below floor (hole)";
+    return "unseen";
+  }
+  // Distance from xy to the nearest cell centre (within max_m) where a foot is
+  // certifiable at the floor height z0_m within a voxel; max_m + 1 when none.
+  double NearestCertifiableM(const Eigen::Vector2d& xy, double z0_m, double radius_m, double max_m,
+                             Eigen::Vector3d* nearest) const {
+    const int64_t ci = Index(xy.x()), cj = Index(xy.y()), cells = static_cast<int64_t>(std::ceil(max_m / r_));
+    double best = max_m + 1.0, z = 0.0;
+    for (int64_t i = ci - cells; i <= ci + cells; ++i) {
+      for (int64_t j = cj - cells; j <= cj + cells; ++j) {
+        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
+        const double d = (c - xy).norm();
+        if (d > max_m || d >= best) continue;
+        if (!FloorTop(c, &z) || std::abs(z - z0_m) > r_ + 1e-9) continue;
+        if (Certifiable(c, radius_m)) best = d, *nearest = {c.x(), c.y(), z};
+      }
+    }
+    return best;
+  }
+  // Counts of ColumnKind over the columns whose centres lie within radius_m of xy.
+  std::map<std::string, int> KindsAround(const Eigen::Vector2d& xy, double z0_m, double radius_m) const {
+    std::map<std::string, int> kinds;
+    const int64_t ci = Index(xy.x()), cj = Index(xy.y()), cells = static_cast<int64_t>(std::ceil(radius_m / r_));
+    for (int64_t i = ci - cells; i <= ci + cells; ++i) {
+      for (int64_t j = cj - cells; j <= cj + cells; ++j) {
+        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
+        if ((c - xy).norm() <= radius_m) ++kinds[ColumnKind(c, z0_m)];
+      }
+    }
+    return kinds;
+  }
+  // Occupied voxels of the columns whose centres lie in the body's plan box at the pose
+  // that reach into its band (ground_z_m + bottom .. + top); *lowest_m: the lowest such
+  // voxel's bottom above the ground.
+  int BodyVoxels(const BodyExtent& body, const Pose2D& pose, double ground_z_m, double* lowest_m) const {
+    const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+    const double reach = std::max(body.max_m.norm(), body.min_m.norm());
+    const int64_t i0 = Index(pose.x_m - reach), i1 = Index(pose.x_m + reach);
+    const int64_t j0 = Index(pose.y_m - reach), j1 = Index(pose.y_m + reach);
+    const int64_t k0 = static_cast<int64_t>(std::floor((ground_z_m + body.bottom_m) / r_));
+    const int64_t k1 = static_cast<int64_t>(std::floor((ground_z_m + body.top_m) / r_));
+    int count = 0;
+    *lowest_m = 1e9;
+    for (int64_t i = i0; i <= i1; ++i) {
+      for (int64_t j = j0; j <= j1; ++j) {
+        const double dx = (i + 0.5) * r_ - pose.x_m, dy = (j + 0.5) * r_ - pose.y_m;
+        const double bx = c * dx + s * dy, by = -s * dx + c * dy;
+        if (bx < body.min_m.x() || bx > body.max_m.x() || by < body.min_m.y() || by > body.max_m.y()) continue;
+        for (int64_t k = k0; k <= k1; ++k) {
+          if (!occupied_.Contains(i, j, k)) continue;
+          ++count;
+          *lowest_m = std::min(*lowest_m, k * r_ - ground_z_m);
+        }
+      }
+    }
+    return count;
+  }
   bool empty() const { return floor_cells_.empty(); }
   double resolution_m() const { return r_; }
 
  private:
   int64_t Index(double v) const { return static_cast<int64_t>(std::floor(v / r_)); }
   double r_;
+  LeafSet occupied_, free_;
+  int room_;
   int64_t floor_k_ = 0;
   std::unordered_map<int64_t, std::vector<int64_t>> tops_;
   std::vector<std::pair<int64_t, int64_t>> floor_cells_;
@@ -166,6 +251,8 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
 
 // Where one end's nominal feet stand: on no region, and of those on certifiable floor.
 struct EndFeet {
+  std::vector<std::string> details;  // per foot on no region, and the body's room
+  int body_voxels = 0;               // occupied voxels in the body's band at the end pose
   int off_regions = 0;
   int certifiable = 0;     // of the feet off regions
   double farthest_m = 0.0; // of the feet off regions, from the nearest region (plan view)
@@ -189,15 +276,50 @@ double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vec
 }
 
 EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const SeenVoxelJudge& judge,
-                    const Pose2D& pose) {
+                    const RegionExtractionResult& result, const Pose2D& pose) {
   EndFeet end;
+  double ground = 0.0, z = 0.0;
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    judge.FloorTop(NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad), &z);
+    ground += z / robot.num_legs();
+  }
+  if (robot.body.known()) {
+    double lowest = 0.0;
+    end.body_voxels = judge.BodyVoxels(robot.body, pose, ground, &lowest);
+    if (end.body_voxels > 0) {
+      char line[200];
+      std::snprintf(line, sizeof(line), "body: %d occupied voxels in its band (%.2f-%.2f m), lowest %.2f m above the feet",
+                    end.body_voxels, robot.body.bottom_m, robot.body.top_m, lowest);
+      end.details.push_back(line);
+    }
+  }
   for (int leg = 0; leg < robot.num_legs(); ++leg) {
     const Eigen::Vector2d xy = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
     const double d = NearestRegionM(regions, xy);
     if (d <= 1e-6) continue;
     ++end.off_regions;
     end.farthest_m = std::max(end.farthest_m, d);
-    end.certifiable += judge.Certifiable(xy, CertifyRadiusM(robot, judge.resolution_m())) ? 1 : 0;
+    const double radius = CertifyRadiusM(robot, judge.resolution_m());
+    const bool certifiable = judge.Certifiable(xy, radius);
+    end.certifiable += certifiable ? 1 : 0;
+    double z0 = 0.0;
+    if (!judge.FloorTop(xy, &z0)) continue;
+    std::string kinds;
+    for (const auto& [kind, count] : judge.KindsAround(xy, z0, radius)) {
+      if (kind != "floor") kinds += (kinds.empty() ? "" : ", ") + kind + " " + std::to_string(count);
+    }
+    Eigen::Vector3d nearest(xy.x(), xy.y(), z0);
+    const double nearest_m = judge.NearestCertifiableM(xy, z0, radius, 0.6, &nearest);
+    const int fate = FateUnder(Eigen::Vector3d(xy.x(), xy.y(), z0), result);
+    const int nearest_fate = nearest_m <= 0.6 ? FateUnder(nearest, result) : -1;
+    auto name = [](int f) { return f < 0 ? "no layer" : CellFateName(static_cast<CellFate>(f)); };
+    char line[400];
+    std::snprintf(line, sizeof(line),
+                  "leg %d (%.2f, %.2f, %.2f): region %.2f m, certifiable %s, nearest certifiable %.2f m; fate %s, "
+                  "nearest's %s%s%s",
+                  leg, xy.x(), xy.y(), z0, d, certifiable ? "yes" : "no", nearest_m, name(fate), name(nearest_fate),
+                  kinds.empty() ? "" : "; around: ", kinds.c_str());
+    end.details.push_back(line);
   }
   return end;
 }
@@ -232,7 +354,8 @@ std::string FailureCause(const WalkResult& r) {
 }
 
 WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTerrain& terrain,
-                   const SeenVoxelJudge& judge, const Walk& walk, const ScanWalkOptions& o) {
+                   const SeenVoxelJudge& judge, const RegionExtractionResult& diagnosis, const Walk& walk,
+                   const ScanWalkOptions& o) {
   scenario.start = walk.start;
   scenario.goal = walk.goal;
   PlanRequest request = ScenarioRequest(scenario, robot, terrain);
@@ -266,8 +389,8 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   }
   r.valid_to_goal = HasPlan(plan.status) && plan.reaches_goal && r.feet_off == 0;
   if (!r.valid_to_goal) {
-    r.start = DiagnoseEnd(robot, terrain.regions, judge, walk.start);
-    r.goal = DiagnoseEnd(robot, terrain.regions, judge, walk.goal);
+    r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start);
+    r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
   }
   return r;
 }
@@ -275,13 +398,18 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
 std::string BaseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 // The scan's regions, seen surface and body obstacles as LoadScenarioTerrain makes them,
-// with the walks' extractor options.
-ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, const ScanWalkOptions& o) {
+// with the walks' extractor options; *diagnosis keeps the layers and each cell's fate
+// (record_cell_fates: the regions do not depend on it) for the failed walks' causes.
+ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, const ScanWalkOptions& o,
+                            RegionExtractionResult* diagnosis) {
   RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot);
   if (o.enclosed_unseen_radius_cells >= 0) options.enclosed_unseen_radius_cells = o.enclosed_unseen_radius_cells;
-  RegionExtractionResult result = ExtractRegionsFromMapFile(scenario.map_path, options);
+  if (o.convex_cover >= 0) options.convex_cover = o.convex_cover == 1;
+  options.record_cell_fates = true;
+  RegionExtractionResult& result = *diagnosis;
+  result = ExtractRegionsFromMapFile(scenario.map_path, options);
   ScenarioTerrain terrain;
-  terrain.regions = std::move(result.regions);
+  terrain.regions = result.regions;
   terrain.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen));
   terrain.note = result.message;
   TakeBodyObstacles(result, &terrain);  // the map's obstacles to the body, as mfp-plan's
@@ -308,14 +436,15 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       Scenario scenario;
       scenario.map_path = scan;
       scenario.robot_path = robot_path;
-      const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o);
+      RegionExtractionResult diagnosis;
+      const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o, &diagnosis);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
       const std::vector<Walk> walks = DrawWalks(robot, judge, map.resolution_m, o, seed);
       int valid = 0, moved = 0, feet_off = 0, start_off = 0;
       std::map<std::string, int> statuses;
       for (const Walk& w : walks) {
-        const WalkResult r = RunWalk(robot, scenario, terrain, judge, w, o);
+        const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
         valid += r.valid_to_goal ? 1 : 0;
         moved += r.goal_moved ? 1 : 0;
         start_off += r.start_off_regions ? 1 : 0;
@@ -330,6 +459,8 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
           if (!r.valid_to_goal) {
             std::printf("    cause: %s; %s; %s\n", FailureCause(r).c_str(), EndText("start", r.start).c_str(),
                         EndText("goal", r.goal).c_str());
+            for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
+            for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
           }
         }
       }

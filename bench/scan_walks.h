@@ -22,6 +22,8 @@ struct ScanWalkOptions {
   bool certifiable_ends = false;
   // The extractor's enclosed_unseen_radius_cells for the walks' regions (-1: its default).
   int enclosed_unseen_radius_cells = -1;
+  // The extractor's convex_cover for the walks' regions (-1: its default, 0 off, 1 on).
+  int convex_cover = -1;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on

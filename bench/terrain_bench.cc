@@ -133,6 +133,9 @@ int main(int argc, char** argv) {
   app.add_option("--walk-enclosed-unseen-radius", walks.enclosed_unseen_radius_cells,
                  "the walks' extractor: --enclosed-unseen-radius (-1: its default) [cells]")
       ->check(CLI::Range(-1, 64));
+  app.add_option("--walk-convex-cover", walks.convex_cover,
+                 "the walks' extractor: --convex-cover (-1: its default, 0 rectangles, 1 convex pieces)")
+      ->check(CLI::Range(-1, 1));
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
