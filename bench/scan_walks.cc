@@ -227,7 +227,18 @@ std::vector<Eigen::Vector3d> FloorStance(const RobotModel& robot, const SeenVoxe
 struct Walk {
   Pose2D start, goal;
   std::vector<Eigen::Vector3d> start_feet;
+  int start_body_voxels = 0, goal_body_voxels = 0;  // occupied voxels in the body's band at each end
 };
+
+// Occupied voxels in the body's band over its plan box at the pose, the body's ground
+// being the mean height of the stance's feet (0 without a known body).
+int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
+                 const std::vector<Eigen::Vector3d>& feet) {
+  if (!robot.body.known() || feet.empty()) return 0;
+  double ground = 0.0, lowest = 0.0;
+  for (const Eigen::Vector3d& f : feet) ground += f.z() / static_cast<double>(feet.size());
+  return judge.BodyVoxels(robot.body, pose, ground, &lowest);
+}
 
 std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double resolution_m,
                             const ScanWalkOptions& o, unsigned seed) {
@@ -243,7 +254,11 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
     if (w.start_feet.empty()) continue;
     const double heading = yaw(rng), d = length(rng);
     w.goal = {s.x() + d * std::cos(heading), s.y() + d * std::sin(heading), yaw(rng)};
-    if (FloorStance(robot, judge, w.goal, resolution_m, certify).empty()) continue;
+    const std::vector<Eigen::Vector3d> goal_feet = FloorStance(robot, judge, w.goal, resolution_m, certify);
+    if (goal_feet.empty()) continue;
+    w.start_body_voxels = BodyVoxelsAt(robot, judge, w.start, w.start_feet);
+    w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
+    if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
     walks.push_back(w);
   }
   return walks;
@@ -425,8 +440,8 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
               "seen from above with room above it, within a voxel plus its region's plane tolerance (raw voxels)\n",
               o.walks, o.min_length_m, o.max_length_m, o.certifiable_ends ? "certifiable-floor" : "seen-floor",
               o.time_limit_s);
-  std::printf("%-20s %-10s %5s %6s %9s %6s %8s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
-              "feet_off", "statuses");
+  std::printf("%-20s %-10s %5s %6s %9s %6s %8s %9s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
+              "feet_off", "body_ends", "statuses");
   int valid_total = 0, walks_total = 0;
   std::map<std::string, int> causes;  // of the walks that failed
   for (const std::string& scan : scans) {
@@ -441,21 +456,24 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
       const std::vector<Walk> walks = DrawWalks(robot, judge, map.resolution_m, o, seed);
-      int valid = 0, moved = 0, feet_off = 0, start_off = 0;
+      int valid = 0, moved = 0, feet_off = 0, start_off = 0, body_blocked = 0;
       std::map<std::string, int> statuses;
       for (const Walk& w : walks) {
         const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
         valid += r.valid_to_goal ? 1 : 0;
+        body_blocked += w.start_body_voxels + w.goal_body_voxels > 0 ? 1 : 0;
         moved += r.goal_moved ? 1 : 0;
         start_off += r.start_off_regions ? 1 : 0;
         feet_off += r.feet_off;
         ++statuses[ToString(r.status)];
         if (!r.valid_to_goal) ++causes[FailureCause(r)];
         if (o.verbose) {
-          std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s: %s\n",
+          std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s, body voxels "
+                      "%d / %d: %s\n",
                       BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad,
                       w.goal.x_m, w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(),
-                      r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, r.message.substr(0, 300).c_str());
+                      r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, w.start_body_voxels,
+                      w.goal_body_voxels, r.message.substr(0, 300).c_str());
           if (!r.valid_to_goal) {
             std::printf("    cause: %s; %s; %s\n", FailureCause(r).c_str(), EndText("start", r.start).c_str(),
                         EndText("goal", r.goal).c_str());
@@ -466,8 +484,8 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       }
       std::string list;
       for (const auto& [name, count] : statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
-      std::printf("%-20s %-10s %5zu %6d %9d %6d %8d  %s\n", BaseName(scan).c_str(), robot.name.c_str(), walks.size(),
-                  valid, start_off, moved, feet_off, list.c_str());
+      std::printf("%-20s %-10s %5zu %6d %9d %6d %8d %9d  %s\n", BaseName(scan).c_str(), robot.name.c_str(),
+                  walks.size(), valid, start_off, moved, feet_off, body_blocked, list.c_str());
       std::fflush(stdout);
       valid_total += valid;
       walks_total += static_cast<int>(walks.size());

@@ -140,6 +140,8 @@ int main(int argc, char** argv) {
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
+  app.add_flag("--walk-body-room", walks.body_room_ends,
+               "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
   bool digest = false;
   app.add_flag("--digest", digest,
                "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
