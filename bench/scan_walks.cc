@@ -87,8 +87,10 @@ class SeenVoxelJudge {
     }
     return false;
   }
-  // True when every column within radius_m of xy (cell centres) is seen floor within a
-  // voxel of the floor at xy: any sound extractor could certify a foot there.
+  // True when every column whose square comes closer than radius_m to xy is seen floor
+  // within a voxel of the floor at xy: the disk lies on the seen floor, the floor being
+  // the union of its columns' squares (the set erosion of voxel_quality.h's certifiable
+  // floor); any sound extractor could certify a foot there.
   bool Certifiable(const Eigen::Vector2d& xy, double radius_m) const {
     double z0 = 0.0, z = 0.0;
     if (!FloorTop(xy, &z0)) return false;
@@ -96,12 +98,17 @@ class SeenVoxelJudge {
     const int64_t cells = static_cast<int64_t>(std::ceil(radius_m / r_));
     for (int64_t i = ci - cells; i <= ci + cells; ++i) {
       for (int64_t j = cj - cells; j <= cj + cells; ++j) {
-        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
-        if ((c - xy).norm() > radius_m) continue;
-        if (!FloorTop(c, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
+        if (SquareDistanceM(i, j, xy) >= radius_m - 1e-9) continue;
+        if (!FloorTop({(i + 0.5) * r_, (j + 0.5) * r_}, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
       }
     }
     return true;
+  }
+  // Plan distance from xy to the square of column (i, j) (0 inside).
+  double SquareDistanceM(int64_t i, int64_t j, const Eigen::Vector2d& xy) const {
+    const double dx = std::max({i * r_ - xy.x(), 0.0, xy.x() - (i + 1) * r_});
+    const double dy = std::max({j * r_ - xy.y(), 0.0, xy.y() - (j + 1) * r_});
+    return std::hypot(dx, dy);
   }
   // Centre of a random floor cell.
   Eigen::Vector2d RandomFloorPoint(std::mt19937* rng) const {
@@ -151,14 +158,13 @@ class SeenVoxelJudge {
     }
     return best;
   }
-  // Counts of ColumnKind over the columns whose centres lie within radius_m of xy.
+  // Counts of ColumnKind over the columns whose squares come closer than radius_m to xy.
   std::map<std::string, int> KindsAround(const Eigen::Vector2d& xy, double z0_m, double radius_m) const {
     std::map<std::string, int> kinds;
     const int64_t ci = Index(xy.x()), cj = Index(xy.y()), cells = static_cast<int64_t>(std::ceil(radius_m / r_));
     for (int64_t i = ci - cells; i <= ci + cells; ++i) {
       for (int64_t j = cj - cells; j <= cj + cells; ++j) {
-        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
-        if ((c - xy).norm() <= radius_m) ++kinds[ColumnKind(c, z0_m)];
+        if (SquareDistanceM(i, j, xy) < radius_m - 1e-9) ++kinds[ColumnKind({(i + 0.5) * r_, (j + 0.5) * r_}, z0_m)];
       }
     }
     return kinds;
