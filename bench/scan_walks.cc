@@ -195,6 +195,53 @@ class SeenVoxelJudge {
     }
     return count;
   }
+  // Whether certifiable floor (Certifiable at cell centres) joins the ends a and b by
+  // hops of at most span_m in plan and dz_m in height: from any certifiable cell within
+  // near_m of a to one within near_m of b. The cells searched lie in the box about a and
+  // b grown by margin_m. What a sound extractor's regions could at best connect.
+  bool CertifiableFloorJoins(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius_m, double span_m,
+                             double dz_m, double near_m, double margin_m) const {
+    const int64_t i0 = Index(std::min(a.x(), b.x()) - margin_m), i1 = Index(std::max(a.x(), b.x()) + margin_m);
+    const int64_t j0 = Index(std::min(a.y(), b.y()) - margin_m), j1 = Index(std::max(a.y(), b.y()) + margin_m);
+    const int64_t nx = i1 - i0 + 1, ny = j1 - j0 + 1;
+    std::vector<float> top(static_cast<size_t>(nx * ny), std::nanf(""));  // NaN: not certifiable
+    double z = 0.0;
+    for (int64_t i = i0; i <= i1; ++i) {
+      for (int64_t j = j0; j <= j1; ++j) {
+        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
+        if (FloorTop(c, &z) && Certifiable(c, radius_m)) top[static_cast<size_t>((j - j0) * nx + (i - i0))] = static_cast<float>(z);
+      }
+    }
+    const int64_t reach = static_cast<int64_t>(std::floor(span_m / r_));
+    std::vector<std::pair<int64_t, int64_t>> hops;
+    for (int64_t di = -reach; di <= reach; ++di) {
+      for (int64_t dj = -reach; dj <= reach; ++dj) {
+        if ((di != 0 || dj != 0) && std::hypot(di, dj) * r_ <= span_m) hops.push_back({di, dj});
+      }
+    }
+    std::vector<char> seen(top.size(), 0);
+    std::vector<int64_t> queue;
+    auto centre = [&](int64_t id) { return Eigen::Vector2d((id % nx + i0 + 0.5) * r_, (id / nx + j0 + 0.5) * r_); };
+    for (int64_t id = 0; id < nx * ny; ++id) {
+      if (!std::isnan(top[static_cast<size_t>(id)]) && (centre(id) - a).norm() <= near_m) {
+        seen[static_cast<size_t>(id)] = 1;
+        queue.push_back(id);
+      }
+    }
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int64_t id = queue[q], ci = id % nx, cj = id / nx;
+      if ((centre(id) - b).norm() <= near_m) return true;
+      for (const auto& [di, dj] : hops) {
+        const int64_t ni = ci + di, nj = cj + dj;
+        if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
+        const size_t n = static_cast<size_t>(nj * nx + ni);
+        if (seen[n] || std::isnan(top[n]) || std::abs(top[n] - top[static_cast<size_t>(id)]) > dz_m + 1e-6) continue;
+        seen[n] = 1;
+        queue.push_back(static_cast<int64_t>(n));
+      }
+    }
+    return false;
+  }
   bool empty() const { return floor_cells_.empty(); }
   double resolution_m() const { return r_; }
 
@@ -288,6 +335,8 @@ struct WalkResult {
   double time_s = 0.0;
   std::string message;
   EndFeet start, goal;  // filled for walks that fail
+  // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins).
+  bool certifiable_route = false;
 };
 
 double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy) {
@@ -370,7 +419,10 @@ std::string FailureCause(const WalkResult& r) {
   if (Contains(r.message, "no stance on regions within")) {
     return std::string("goal: no stance on regions within the goal tolerances") + tag(r.goal);
   }
-  if (Contains(r.message, "regions reachable from the start end")) return "route: the reachable regions end short of the goal";
+  if (Contains(r.message, "regions reachable from the start end")) {
+    return std::string("route: the reachable regions end short of the goal") +
+           (r.certifiable_route ? " [certifiable floor joins the ends]" : " [certifiable floor does not join the ends]");
+  }
   return "other: " + ToString(r.status);
 }
 
@@ -412,6 +464,12 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   if (!r.valid_to_goal) {
     r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start);
     r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
+    // Hops of the planner's region graph (MaxStepSpan, route_guide.cc) and dz_max; ends:
+    // certifiable floor within a step span of the pose (the robot may move its goal).
+    const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
+    r.certifiable_route = judge.CertifiableFloorJoins({walk.start.x_m, walk.start.y_m}, {walk.goal.x_m, walk.goal.y_m},
+                                                      CertifyRadiusM(robot, judge.resolution_m()), span,
+                                                      robot.dz_max_m, span, 1.5);
   }
   return r;
 }
@@ -481,8 +539,9 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
                       r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, w.start_body_voxels,
                       w.goal_body_voxels, r.message.substr(0, 300).c_str());
           if (!r.valid_to_goal) {
-            std::printf("    cause: %s; %s; %s\n", FailureCause(r).c_str(), EndText("start", r.start).c_str(),
-                        EndText("goal", r.goal).c_str());
+            std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
+                        EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
+                        r.certifiable_route ? "yes" : "no");
             for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
             for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
           }
