@@ -172,27 +172,38 @@ class SeenVoxelJudge {
   // Occupied voxels of the columns whose centres lie in the body's plan box at the pose
   // that reach into its band (ground_z_m + bottom .. + top); *lowest_m: the lowest such
   // voxel's bottom above the ground.
-  int BodyVoxels(const BodyExtent& body, const Pose2D& pose, double ground_z_m, double* lowest_m) const {
+  int BodyVoxels(const BodyExtent& body, const Pose2D& pose, double ground_z_m, double* lowest_m, int* columns = nullptr,
+                 double* highest_m = nullptr) const {
     const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
     const double reach = std::max(body.max_m.norm(), body.min_m.norm());
     const int64_t i0 = Index(pose.x_m - reach), i1 = Index(pose.x_m + reach);
     const int64_t j0 = Index(pose.y_m - reach), j1 = Index(pose.y_m + reach);
     const int64_t k0 = static_cast<int64_t>(std::floor((ground_z_m + body.bottom_m) / r_));
     const int64_t k1 = static_cast<int64_t>(std::floor((ground_z_m + body.top_m) / r_));
-    int count = 0;
+    int count = 0, hit_columns = 0;
+    double highest = -1e9;
     *lowest_m = 1e9;
     for (int64_t i = i0; i <= i1; ++i) {
       for (int64_t j = j0; j <= j1; ++j) {
         const double dx = (i + 0.5) * r_ - pose.x_m, dy = (j + 0.5) * r_ - pose.y_m;
         const double bx = c * dx + s * dy, by = -s * dx + c * dy;
         if (bx < body.min_m.x() || bx > body.max_m.x() || by < body.min_m.y() || by > body.max_m.y()) continue;
+        const int before = count;
         for (int64_t k = k0; k <= k1; ++k) {
           if (!occupied_.Contains(i, j, k)) continue;
           ++count;
           *lowest_m = std::min(*lowest_m, k * r_ - ground_z_m);
         }
+        if (count == before) continue;
+        ++hit_columns;
+        // The column's occupied voxels above the band, up to 2 m: a wall or furniture's height.
+        for (int64_t k = k1; k <= k1 + static_cast<int64_t>(2.0 / r_); ++k) {
+          if (occupied_.Contains(i, j, k)) highest = std::max(highest, (k + 1) * r_ - ground_z_m);
+        }
       }
     }
+    if (columns != nullptr) *columns = hit_columns;
+    if (highest_m != nullptr) *highest_m = highest;
     return count;
   }
   // Whether certifiable floor (Certifiable at cell centres) joins the ends a and b by
@@ -354,12 +365,15 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
     ground += z / robot.num_legs();
   }
   if (robot.body.known()) {
-    double lowest = 0.0;
-    end.body_voxels = judge.BodyVoxels(robot.body, pose, ground, &lowest);
+    double lowest = 0.0, highest = 0.0;
+    int columns = 0;
+    end.body_voxels = judge.BodyVoxels(robot.body, pose, ground, &lowest, &columns, &highest);
     if (end.body_voxels > 0) {
-      char line[200];
-      std::snprintf(line, sizeof(line), "body: %d occupied voxels in its band (%.2f-%.2f m), lowest %.2f m above the feet",
-                    end.body_voxels, robot.body.bottom_m, robot.body.top_m, lowest);
+      char line[240];
+      std::snprintf(line, sizeof(line),
+                    "body: %d occupied voxels in its band (%.2f-%.2f m) in %d columns, lowest %.2f m above the feet, "
+                    "those columns occupied up to %.2f m",
+                    end.body_voxels, robot.body.bottom_m, robot.body.top_m, columns, lowest, highest);
       end.details.push_back(line);
     }
   }
