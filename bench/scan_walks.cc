@@ -288,6 +288,25 @@ std::vector<Eigen::Vector3d> FloorStance(const RobotModel& robot, const SeenVoxe
   return feet;
 }
 
+// Whether a stance whose every nominal foot stands on certifiable floor lies within
+// shift_m and turn_rad of the pose (poses on a grid of half a voxel, at least 2 cm, and
+// turns 0.05 rad apart): what a sound extractor could offer as a goal within the tolerances.
+bool CertifiableStanceNear(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose, double shift_m,
+                           double turn_rad) {
+  const double r = judge.resolution_m(), step = std::max(0.02, 0.5 * r);
+  const int n = static_cast<int>(std::floor(shift_m / step)), turns = static_cast<int>(std::floor(turn_rad / 0.05));
+  for (int i = -n; i <= n; ++i) {
+    for (int j = -n; j <= n; ++j) {
+      if (std::hypot(i, j) * step > shift_m) continue;
+      for (int t = -turns; t <= turns; ++t) {
+        const Pose2D p{pose.x_m + i * step, pose.y_m + j * step, pose.yaw_rad + t * 0.05};
+        if (!FloorStance(robot, judge, p, r, CertifyRadiusM(robot, r)).empty()) return true;
+      }
+    }
+  }
+  return false;
+}
+
 struct Walk {
   Pose2D start, goal;
   std::vector<Eigen::Vector3d> start_feet;
@@ -331,11 +350,12 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
 // Where one end's nominal feet stand: on no region, and of those on certifiable floor.
 struct EndFeet {
   std::vector<std::string> details;  // per foot on no region, and the body's room
+  int within_step = 0;  // of the feet off regions, with certifiable floor within d_lim of the spot
+  bool certifiable_stance_near = false;  // a stance on certifiable floor within the goal tolerances
   int body_voxels = 0;               // occupied voxels in the body's band at the end pose
   int off_regions = 0;
   int certifiable = 0;     // of the feet off regions
   double farthest_m = 0.0; // of the feet off regions, from the nearest region (plan view)
-  bool Coverage() const { return off_regions > 0 && certifiable == off_regions; }
 };
 
 struct WalkResult {
@@ -394,6 +414,7 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
     }
     Eigen::Vector3d nearest(xy.x(), xy.y(), z0);
     const double nearest_m = judge.NearestCertifiableM(xy, z0, radius, 0.6, &nearest);
+    end.within_step += nearest_m <= robot.d_lim_m ? 1 : 0;
     const int fate = FateUnder(Eigen::Vector3d(xy.x(), xy.y(), z0), result);
     const int nearest_fate = nearest_m <= 0.6 ? FateUnder(nearest, result) : -1;
     auto name = [](int f) { return f < 0 ? "no layer" : CellFateName(static_cast<CellFate>(f)); };
@@ -417,22 +438,30 @@ std::string EndText(const char* name, const EndFeet& e) {
 
 bool Contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
 
-// The cause of a failed walk, from its status and message and where its ends stand:
-// "[coverage]" when every foot of the failing end that is on no region stands on
-// certifiable floor (a sound extractor could have covered it), "[uncertifiable floor]"
-// when one stands beside unseen or uneven floor.
+// The cause of a failed walk, from its status and message, tagged with what a sound
+// extractor could have offered there: for a start, certifiable floor within d_lim of each
+// start foot on no region (the first step's box); for a goal, a stance on certifiable
+// floor within the goal tolerances; for a route, certifiable floor joining the ends.
 std::string FailureCause(const WalkResult& r) {
   if (r.feet_off > 0) return "footsteps off the seen voxels";
-  auto tag = [](const EndFeet& e) { return e.Coverage() ? " [coverage]" : " [uncertifiable floor]"; };
-  if (Contains(r.message, "no region lies within one step")) {
-    return std::string("start: a start foot with no region within one step") + tag(r.start);
+  auto start_tag = [](const EndFeet& e) {
+    return e.within_step == e.off_regions ? " [certifiable floor within d_lim of every such foot]"
+                                          : " [a foot with no certifiable floor within d_lim]";
+  };
+  auto goal_tag = [](const EndFeet& e) {
+    return e.certifiable_stance_near ? " [a certifiable stance within the tolerances]"
+                                     : " [no certifiable stance within the tolerances]";
+  };
+  if (Contains(r.message, "no region lies within one step") || Contains(r.message, "its first step")) {
+    return std::string("start: a start foot's first step meets no region") + start_tag(r.start);
   }
   if (Contains(r.message, "m from the nearest region")) {
-    return std::string("goal: farther than a leg's reach from every region") + tag(r.goal);
+    return std::string("goal: farther than a leg's reach from every region") + goal_tag(r.goal);
   }
   if (Contains(r.message, "no stance on regions within")) {
-    return std::string("goal: no stance on regions within the goal tolerances") + tag(r.goal);
+    return std::string("goal: no stance on regions within the goal tolerances") + goal_tag(r.goal);
   }
+  if (Contains(r.message, "no route for the body")) return "body: no route for the body";
   if (Contains(r.message, "regions reachable from the start end")) {
     return std::string("route: the reachable regions end short of the goal") +
            (r.certifiable_route ? " [certifiable floor joins the ends]" : " [certifiable floor does not join the ends]");
@@ -478,6 +507,8 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   if (!r.valid_to_goal) {
     r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start);
     r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
+    r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
+                                                           scenario.options.goal_heading_tolerance_rad);
     // Hops of the planner's region graph (MaxStepSpan, route_guide.cc) and dz_max; ends:
     // certifiable floor within a step span of the pose (the robot may move its goal).
     const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
@@ -571,8 +602,8 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
     }
   }
   std::printf("valid to the goal: %d of %d walks\n", valid_total, walks_total);
-  std::printf("failures by cause ([coverage]: every foot of that end on no region stands on certifiable floor, "
-              "seen for the foot radius + 1 cm + one voxel around it):\n");
+  std::printf("failures by cause (certifiable floor: seen floor within a voxel of the foot's height for the foot "
+              "radius + 1 cm + one voxel around it, as the union of its columns' squares):\n");
   for (const auto& [cause, count] : causes) std::printf("  %3d  %s\n", count, cause.c_str());
   return valid_total;
 }
