@@ -529,6 +529,8 @@ ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, c
   RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot);
   if (o.enclosed_unseen_radius_cells >= 0) options.enclosed_unseen_radius_cells = o.enclosed_unseen_radius_cells;
   if (o.convex_cover >= 0) options.convex_cover = o.convex_cover == 1;
+  if (o.target_coverage >= 0.0) options.target_coverage = o.target_coverage;
+  if (o.regions_per_m2 >= 0.0) options.regions_per_m2 = o.regions_per_m2;
   options.record_cell_fates = true;
   RegionExtractionResult& result = *diagnosis;
   result = ExtractRegionsFromMapFile(scenario.map_path, options);

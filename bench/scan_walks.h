@@ -27,6 +27,9 @@ struct ScanWalkOptions {
   int enclosed_unseen_radius_cells = -1;
   // The extractor's convex_cover for the walks' regions (-1: its default, 0 off, 1 on).
   int convex_cover = -1;
+  // The extractor's cover target and regions per m^2 (negative: its defaults).
+  double target_coverage = -1.0;
+  double regions_per_m2 = -1.0;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on

@@ -136,6 +136,10 @@ int main(int argc, char** argv) {
   app.add_option("--walk-convex-cover", walks.convex_cover,
                  "the walks' extractor: --convex-cover (-1: its default, 0 rectangles, 1 convex pieces)")
       ->check(CLI::Range(-1, 1));
+  app.add_option("--walk-target-coverage", walks.target_coverage,
+                 "the walks' extractor: --target-coverage (negative: its default)");
+  app.add_option("--walk-regions-per-m2", walks.regions_per_m2,
+                 "the walks' extractor: --regions-per-m2 (negative: its default)");
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
