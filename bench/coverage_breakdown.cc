@@ -4,10 +4,7 @@
 #include <cstdio>
 
 namespace mfp {
-namespace {
 
-// The fate of the layer cell under a missed floor point, or nothing (-1) when no layer
-// has a surface (or a patch's unseen cell) within a voxel of the point's height.
 int FateUnder(const Eigen::Vector3d& point, const RegionExtractionResult& result) {
   const HeightMap& grid = result.layers.front();
   const double res = grid.resolution_m;
@@ -25,8 +22,6 @@ int FateUnder(const Eigen::Vector3d& point, const RegionExtractionResult& result
   }
   return fate;
 }
-
-}  // namespace
 
 CoverageBreakdown BreakDownMissedFloor(const VoxelQuality& quality, const RegionExtractionResult& result) {
   CoverageBreakdown b;

@@ -19,6 +19,11 @@ struct CoverageBreakdown {
   int no_layer_surface = 0;  // no layer has a surface within a voxel of the judge's floor there
 };
 
+// The fate of the layer cell under a floor point (the furthest fate of the layers with a
+// surface, or a patch's unseen cell, within a voxel of the point's height), or -1 when
+// none has; `result` extracted with record_cell_fates.
+int FateUnder(const Eigen::Vector3d& point, const RegionExtractionResult& result);
+
 // `quality` judged with list_missed; `result` extracted with record_cell_fates.
 CoverageBreakdown BreakDownMissedFloor(const VoxelQuality& quality, const RegionExtractionResult& result);
 

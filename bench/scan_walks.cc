@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench/coverage_breakdown.h"
 #include "io/map_file.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
@@ -29,9 +30,12 @@ namespace {
 // (occupied, the voxel above known free) with `clearance_m` of no occupied voxel above.
 class SeenVoxelJudge {
  public:
-  SeenVoxelJudge(const OccupancyMap& map, double clearance_m) : r_(map.resolution_m) {
-    const LeafSet occupied(map.leaves, r_), free(map.free_leaves, r_);
-    const int room = std::max(1, static_cast<int>(std::ceil(clearance_m / r_ - 1e-9)));
+  SeenVoxelJudge(const OccupancyMap& map, double clearance_m)
+      : r_(map.resolution_m), occupied_(map.leaves, r_), free_(map.free_leaves, r_),
+        room_(std::max(1, static_cast<int>(std::ceil(clearance_m / r_ - 1e-9)))) {
+    const LeafSet& occupied = occupied_;
+    const LeafSet& free = free_;
+    const int room = room_;
     std::unordered_map<int64_t, int> level_count;
     for (const OccupiedLeaf& leaf : map.leaves) {
       const int64_t n = int64_t{1} << occupied.LevelOf(leaf.size_m);
@@ -83,8 +87,10 @@ class SeenVoxelJudge {
     }
     return false;
   }
-  // True when every column within radius_m of xy (cell centres) is seen floor within a
-  // voxel of the floor at xy: any sound extractor could certify a foot there.
+  // True when every column whose square comes closer than radius_m to xy is seen floor
+  // within a voxel of the floor at xy: the disk lies on the seen floor, the floor being
+  // the union of its columns' squares (the set erosion of voxel_quality.h's certifiable
+  // floor); any sound extractor could certify a foot there.
   bool Certifiable(const Eigen::Vector2d& xy, double radius_m) const {
     double z0 = 0.0, z = 0.0;
     if (!FloorTop(xy, &z0)) return false;
@@ -92,12 +98,17 @@ class SeenVoxelJudge {
     const int64_t cells = static_cast<int64_t>(std::ceil(radius_m / r_));
     for (int64_t i = ci - cells; i <= ci + cells; ++i) {
       for (int64_t j = cj - cells; j <= cj + cells; ++j) {
-        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
-        if ((c - xy).norm() > radius_m) continue;
-        if (!FloorTop(c, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
+        if (SquareDistanceM(i, j, xy) >= radius_m - 1e-9) continue;
+        if (!FloorTop({(i + 0.5) * r_, (j + 0.5) * r_}, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
       }
     }
     return true;
+  }
+  // Plan distance from xy to the square of column (i, j) (0 inside).
+  double SquareDistanceM(int64_t i, int64_t j, const Eigen::Vector2d& xy) const {
+    const double dx = std::max({i * r_ - xy.x(), 0.0, xy.x() - (i + 1) * r_});
+    const double dy = std::max({j * r_ - xy.y(), 0.0, xy.y() - (j + 1) * r_});
+    return std::hypot(dx, dy);
   }
   // Centre of a random floor cell.
   Eigen::Vector2d RandomFloorPoint(std::mt19937* rng) const {
@@ -106,12 +117,150 @@ class SeenVoxelJudge {
     const int64_t i = (key >> 21) - (1 << 20), j = (key & ((int64_t{1} << 21) - 1)) - (1 << 20);
     return {(i + 0.5) * r_, (j + 0.5) * r_};
   }
+  // What the raw voxels hold in the column of xy about a floor whose top is z0_m (the top
+  // of voxel k0): the reason a column is or is not floor a foot at that height can use.
+  const char* ColumnKind(const Eigen::Vector2d& xy, double z0_m) const {
+    const int64_t i = Index(xy.x()), j = Index(xy.y()), k0 = std::llround(z0_m / r_) - 1;
+    const auto it = tops_.find(VoxelColumnKey(i, j));
+    if (it != tops_.end()) {
+      for (int64_t k : it->second) {
+        if (std::abs(k - k0) <= 1) return "floor";
+      }
+    }
+    for (int d = 2; d <= room_; ++d) {
+      if (occupied_.Contains(i, j, k0 + d)) return "obstacle above";
+    }
+    if (it != tops_.end()) return "surface 2+ voxels off";
+    if (occupied_.Contains(i, j, k0 + 1) || occupied_.Contains(i, j, k0) || occupied_.Contains(i, j, k0 - 1)) {
+      return "floor seen, no room/free above";
+    }
+    for (int d = 2; d <= 8; ++d) {
+      if (occupied_.Contains(i, j, k0 - d)) return "drop (lower surface)";
+    }
+    if (free_.Contains(i, j, k0)) return free_.Contains(i, j, k0 - 1) ? "free below floor (hole)" : "erased";
+    if (free_.Contains(i, j, k0 - 1)) return "free below floor (hole)";
+    return "unseen";
+  }
+  // Distance from xy to the nearest cell centre (within max_m) where a foot is
+  // certifiable at the floor height z0_m within a voxel; max_m + 1 when none.
+  double NearestCertifiableM(const Eigen::Vector2d& xy, double z0_m, double radius_m, double max_m,
+                             Eigen::Vector3d* nearest) const {
+    const int64_t ci = Index(xy.x()), cj = Index(xy.y()), cells = static_cast<int64_t>(std::ceil(max_m / r_));
+    double best = max_m + 1.0, z = 0.0;
+    for (int64_t i = ci - cells; i <= ci + cells; ++i) {
+      for (int64_t j = cj - cells; j <= cj + cells; ++j) {
+        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
+        const double d = (c - xy).norm();
+        if (d > max_m || d >= best) continue;
+        if (!FloorTop(c, &z) || std::abs(z - z0_m) > r_ + 1e-9) continue;
+        if (Certifiable(c, radius_m)) best = d, *nearest = {c.x(), c.y(), z};
+      }
+    }
+    return best;
+  }
+  // Counts of ColumnKind over the columns whose squares come closer than radius_m to xy.
+  std::map<std::string, int> KindsAround(const Eigen::Vector2d& xy, double z0_m, double radius_m) const {
+    std::map<std::string, int> kinds;
+    const int64_t ci = Index(xy.x()), cj = Index(xy.y()), cells = static_cast<int64_t>(std::ceil(radius_m / r_));
+    for (int64_t i = ci - cells; i <= ci + cells; ++i) {
+      for (int64_t j = cj - cells; j <= cj + cells; ++j) {
+        if (SquareDistanceM(i, j, xy) < radius_m - 1e-9) ++kinds[ColumnKind({(i + 0.5) * r_, (j + 0.5) * r_}, z0_m)];
+      }
+    }
+    return kinds;
+  }
+  // Occupied voxels of the columns whose centres lie in the body's plan box at the pose
+  // that reach into its band (ground_z_m + bottom .. + top); *lowest_m: the lowest such
+  // voxel's bottom above the ground.
+  int BodyVoxels(const BodyExtent& body, const Pose2D& pose, double ground_z_m, double* lowest_m, int* columns = nullptr,
+                 double* highest_m = nullptr) const {
+    const double c = std::cos(pose.yaw_rad), s = std::sin(pose.yaw_rad);
+    const double reach = std::max(body.max_m.norm(), body.min_m.norm());
+    const int64_t i0 = Index(pose.x_m - reach), i1 = Index(pose.x_m + reach);
+    const int64_t j0 = Index(pose.y_m - reach), j1 = Index(pose.y_m + reach);
+    const int64_t k0 = static_cast<int64_t>(std::floor((ground_z_m + body.bottom_m) / r_));
+    const int64_t k1 = static_cast<int64_t>(std::floor((ground_z_m + body.top_m) / r_));
+    int count = 0, hit_columns = 0;
+    double highest = -1e9;
+    *lowest_m = 1e9;
+    for (int64_t i = i0; i <= i1; ++i) {
+      for (int64_t j = j0; j <= j1; ++j) {
+        const double dx = (i + 0.5) * r_ - pose.x_m, dy = (j + 0.5) * r_ - pose.y_m;
+        const double bx = c * dx + s * dy, by = -s * dx + c * dy;
+        if (bx < body.min_m.x() || bx > body.max_m.x() || by < body.min_m.y() || by > body.max_m.y()) continue;
+        const int before = count;
+        for (int64_t k = k0; k <= k1; ++k) {
+          if (!occupied_.Contains(i, j, k)) continue;
+          ++count;
+          *lowest_m = std::min(*lowest_m, k * r_ - ground_z_m);
+        }
+        if (count == before) continue;
+        ++hit_columns;
+        // The column's occupied voxels above the band, up to 2 m: a wall or furniture's height.
+        for (int64_t k = k1; k <= k1 + static_cast<int64_t>(2.0 / r_); ++k) {
+          if (occupied_.Contains(i, j, k)) highest = std::max(highest, (k + 1) * r_ - ground_z_m);
+        }
+      }
+    }
+    if (columns != nullptr) *columns = hit_columns;
+    if (highest_m != nullptr) *highest_m = highest;
+    return count;
+  }
+  // Whether certifiable floor (Certifiable at cell centres) joins the ends a and b by
+  // hops of at most span_m in plan and dz_m in height: from any certifiable cell within
+  // near_m of a to one within near_m of b. The cells searched lie in the box about a and
+  // b grown by margin_m. What a sound extractor's regions could at best connect.
+  bool CertifiableFloorJoins(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius_m, double span_m,
+                             double dz_m, double near_m, double margin_m) const {
+    const int64_t i0 = Index(std::min(a.x(), b.x()) - margin_m), i1 = Index(std::max(a.x(), b.x()) + margin_m);
+    const int64_t j0 = Index(std::min(a.y(), b.y()) - margin_m), j1 = Index(std::max(a.y(), b.y()) + margin_m);
+    const int64_t nx = i1 - i0 + 1, ny = j1 - j0 + 1;
+    std::vector<float> top(static_cast<size_t>(nx * ny), std::nanf(""));  // NaN: not certifiable
+    double z = 0.0;
+    for (int64_t i = i0; i <= i1; ++i) {
+      for (int64_t j = j0; j <= j1; ++j) {
+        const Eigen::Vector2d c((i + 0.5) * r_, (j + 0.5) * r_);
+        if (FloorTop(c, &z) && Certifiable(c, radius_m)) top[static_cast<size_t>((j - j0) * nx + (i - i0))] = static_cast<float>(z);
+      }
+    }
+    const int64_t reach = static_cast<int64_t>(std::floor(span_m / r_));
+    std::vector<std::pair<int64_t, int64_t>> hops;
+    for (int64_t di = -reach; di <= reach; ++di) {
+      for (int64_t dj = -reach; dj <= reach; ++dj) {
+        if ((di != 0 || dj != 0) && std::hypot(di, dj) * r_ <= span_m) hops.push_back({di, dj});
+      }
+    }
+    std::vector<char> seen(top.size(), 0);
+    std::vector<int64_t> queue;
+    auto centre = [&](int64_t id) { return Eigen::Vector2d((id % nx + i0 + 0.5) * r_, (id / nx + j0 + 0.5) * r_); };
+    for (int64_t id = 0; id < nx * ny; ++id) {
+      if (!std::isnan(top[static_cast<size_t>(id)]) && (centre(id) - a).norm() <= near_m) {
+        seen[static_cast<size_t>(id)] = 1;
+        queue.push_back(id);
+      }
+    }
+    for (size_t q = 0; q < queue.size(); ++q) {
+      const int64_t id = queue[q], ci = id % nx, cj = id / nx;
+      if ((centre(id) - b).norm() <= near_m) return true;
+      for (const auto& [di, dj] : hops) {
+        const int64_t ni = ci + di, nj = cj + dj;
+        if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
+        const size_t n = static_cast<size_t>(nj * nx + ni);
+        if (seen[n] || std::isnan(top[n]) || std::abs(top[n] - top[static_cast<size_t>(id)]) > dz_m + 1e-6) continue;
+        seen[n] = 1;
+        queue.push_back(static_cast<int64_t>(n));
+      }
+    }
+    return false;
+  }
   bool empty() const { return floor_cells_.empty(); }
   double resolution_m() const { return r_; }
 
  private:
   int64_t Index(double v) const { return static_cast<int64_t>(std::floor(v / r_)); }
   double r_;
+  LeafSet occupied_, free_;
+  int room_;
   int64_t floor_k_ = 0;
   std::unordered_map<int64_t, std::vector<int64_t>> tops_;
   std::vector<std::pair<int64_t, int64_t>> floor_cells_;
@@ -139,10 +288,40 @@ std::vector<Eigen::Vector3d> FloorStance(const RobotModel& robot, const SeenVoxe
   return feet;
 }
 
+// Whether a stance whose every nominal foot stands on certifiable floor lies within
+// shift_m and turn_rad of the pose (poses on a grid of half a voxel, at least 2 cm, and
+// turns 0.05 rad apart): what a sound extractor could offer as a goal within the tolerances.
+bool CertifiableStanceNear(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose, double shift_m,
+                           double turn_rad) {
+  const double r = judge.resolution_m(), step = std::max(0.02, 0.5 * r);
+  const int n = static_cast<int>(std::floor(shift_m / step)), turns = static_cast<int>(std::floor(turn_rad / 0.05));
+  for (int i = -n; i <= n; ++i) {
+    for (int j = -n; j <= n; ++j) {
+      if (std::hypot(i, j) * step > shift_m) continue;
+      for (int t = -turns; t <= turns; ++t) {
+        const Pose2D p{pose.x_m + i * step, pose.y_m + j * step, pose.yaw_rad + t * 0.05};
+        if (!FloorStance(robot, judge, p, r, CertifyRadiusM(robot, r)).empty()) return true;
+      }
+    }
+  }
+  return false;
+}
+
 struct Walk {
   Pose2D start, goal;
   std::vector<Eigen::Vector3d> start_feet;
+  int start_body_voxels = 0, goal_body_voxels = 0;  // occupied voxels in the body's band at each end
 };
+
+// Occupied voxels in the body's band over its plan box at the pose, the body's ground
+// being the mean height of the stance's feet (0 without a known body).
+int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
+                 const std::vector<Eigen::Vector3d>& feet) {
+  if (!robot.body.known() || feet.empty()) return 0;
+  double ground = 0.0, lowest = 0.0;
+  for (const Eigen::Vector3d& f : feet) ground += f.z() / static_cast<double>(feet.size());
+  return judge.BodyVoxels(robot.body, pose, ground, &lowest);
+}
 
 std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double resolution_m,
                             const ScanWalkOptions& o, unsigned seed) {
@@ -158,7 +337,11 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
     if (w.start_feet.empty()) continue;
     const double heading = yaw(rng), d = length(rng);
     w.goal = {s.x() + d * std::cos(heading), s.y() + d * std::sin(heading), yaw(rng)};
-    if (FloorStance(robot, judge, w.goal, resolution_m, certify).empty()) continue;
+    const std::vector<Eigen::Vector3d> goal_feet = FloorStance(robot, judge, w.goal, resolution_m, certify);
+    if (goal_feet.empty()) continue;
+    w.start_body_voxels = BodyVoxelsAt(robot, judge, w.start, w.start_feet);
+    w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
+    if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
     walks.push_back(w);
   }
   return walks;
@@ -166,10 +349,13 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
 
 // Where one end's nominal feet stand: on no region, and of those on certifiable floor.
 struct EndFeet {
+  std::vector<std::string> details;  // per foot on no region, and the body's room
+  int within_step = 0;  // of the feet off regions, with certifiable floor within d_lim of the spot
+  bool certifiable_stance_near = false;  // a stance on certifiable floor within the goal tolerances
+  int body_voxels = 0;               // occupied voxels in the body's band at the end pose
   int off_regions = 0;
   int certifiable = 0;     // of the feet off regions
   double farthest_m = 0.0; // of the feet off regions, from the nearest region (plan view)
-  bool Coverage() const { return off_regions > 0 && certifiable == off_regions; }
 };
 
 struct WalkResult {
@@ -180,6 +366,8 @@ struct WalkResult {
   double time_s = 0.0;
   std::string message;
   EndFeet start, goal;  // filled for walks that fail
+  // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins).
+  bool certifiable_route = false;
 };
 
 double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy) {
@@ -189,15 +377,54 @@ double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vec
 }
 
 EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const SeenVoxelJudge& judge,
-                    const Pose2D& pose) {
+                    const RegionExtractionResult& result, const Pose2D& pose) {
   EndFeet end;
+  double ground = 0.0, z = 0.0;
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    judge.FloorTop(NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad), &z);
+    ground += z / robot.num_legs();
+  }
+  if (robot.body.known()) {
+    double lowest = 0.0, highest = 0.0;
+    int columns = 0;
+    end.body_voxels = judge.BodyVoxels(robot.body, pose, ground, &lowest, &columns, &highest);
+    if (end.body_voxels > 0) {
+      char line[240];
+      std::snprintf(line, sizeof(line),
+                    "body: %d occupied voxels in its band (%.2f-%.2f m) in %d columns, lowest %.2f m above the feet, "
+                    "those columns occupied up to %.2f m",
+                    end.body_voxels, robot.body.bottom_m, robot.body.top_m, columns, lowest, highest);
+      end.details.push_back(line);
+    }
+  }
   for (int leg = 0; leg < robot.num_legs(); ++leg) {
     const Eigen::Vector2d xy = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
     const double d = NearestRegionM(regions, xy);
     if (d <= 1e-6) continue;
     ++end.off_regions;
     end.farthest_m = std::max(end.farthest_m, d);
-    end.certifiable += judge.Certifiable(xy, CertifyRadiusM(robot, judge.resolution_m())) ? 1 : 0;
+    const double radius = CertifyRadiusM(robot, judge.resolution_m());
+    const bool certifiable = judge.Certifiable(xy, radius);
+    end.certifiable += certifiable ? 1 : 0;
+    double z0 = 0.0;
+    if (!judge.FloorTop(xy, &z0)) continue;
+    std::string kinds;
+    for (const auto& [kind, count] : judge.KindsAround(xy, z0, radius)) {
+      if (kind != "floor") kinds += (kinds.empty() ? "" : ", ") + kind + " " + std::to_string(count);
+    }
+    Eigen::Vector3d nearest(xy.x(), xy.y(), z0);
+    const double nearest_m = judge.NearestCertifiableM(xy, z0, radius, 0.6, &nearest);
+    end.within_step += nearest_m <= robot.d_lim_m ? 1 : 0;
+    const int fate = FateUnder(Eigen::Vector3d(xy.x(), xy.y(), z0), result);
+    const int nearest_fate = nearest_m <= 0.6 ? FateUnder(nearest, result) : -1;
+    auto name = [](int f) { return f < 0 ? "no layer" : CellFateName(static_cast<CellFate>(f)); };
+    char line[400];
+    std::snprintf(line, sizeof(line),
+                  "leg %d (%.2f, %.2f, %.2f): region %.2f m, certifiable %s, nearest certifiable %.2f m; fate %s, "
+                  "nearest's %s%s%s",
+                  leg, xy.x(), xy.y(), z0, d, certifiable ? "yes" : "no", nearest_m, name(fate), name(nearest_fate),
+                  kinds.empty() ? "" : "; around: ", kinds.c_str());
+    end.details.push_back(line);
   }
   return end;
 }
@@ -211,28 +438,40 @@ std::string EndText(const char* name, const EndFeet& e) {
 
 bool Contains(const std::string& text, const char* part) { return text.find(part) != std::string::npos; }
 
-// The cause of a failed walk, from its status and message and where its ends stand:
-// "[coverage]" when every foot of the failing end that is on no region stands on
-// certifiable floor (a sound extractor could have covered it), "[uncertifiable floor]"
-// when one stands beside unseen or uneven floor.
+// The cause of a failed walk, from its status and message, tagged with what a sound
+// extractor could have offered there: for a start, certifiable floor within d_lim of each
+// start foot on no region (the first step's box); for a goal, a stance on certifiable
+// floor within the goal tolerances; for a route, certifiable floor joining the ends.
 std::string FailureCause(const WalkResult& r) {
   if (r.feet_off > 0) return "footsteps off the seen voxels";
-  auto tag = [](const EndFeet& e) { return e.Coverage() ? " [coverage]" : " [uncertifiable floor]"; };
-  if (Contains(r.message, "no region lies within one step")) {
-    return std::string("start: a start foot with no region within one step") + tag(r.start);
+  auto start_tag = [](const EndFeet& e) {
+    return e.within_step == e.off_regions ? " [certifiable floor within d_lim of every such foot]"
+                                          : " [a foot with no certifiable floor within d_lim]";
+  };
+  auto goal_tag = [](const EndFeet& e) {
+    return e.certifiable_stance_near ? " [a certifiable stance within the tolerances]"
+                                     : " [no certifiable stance within the tolerances]";
+  };
+  if (Contains(r.message, "no region lies within one step") || Contains(r.message, "its first step")) {
+    return std::string("start: a start foot's first step meets no region") + start_tag(r.start);
   }
   if (Contains(r.message, "m from the nearest region")) {
-    return std::string("goal: farther than a leg's reach from every region") + tag(r.goal);
+    return std::string("goal: farther than a leg's reach from every region") + goal_tag(r.goal);
   }
   if (Contains(r.message, "no stance on regions within")) {
-    return std::string("goal: no stance on regions within the goal tolerances") + tag(r.goal);
+    return std::string("goal: no stance on regions within the goal tolerances") + goal_tag(r.goal);
   }
-  if (Contains(r.message, "regions reachable from the start end")) return "route: the reachable regions end short of the goal";
+  if (Contains(r.message, "no route for the body")) return "body: no route for the body";
+  if (Contains(r.message, "regions reachable from the start end")) {
+    return std::string("route: the reachable regions end short of the goal") +
+           (r.certifiable_route ? " [certifiable floor joins the ends]" : " [certifiable floor does not join the ends]");
+  }
   return "other: " + ToString(r.status);
 }
 
 WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTerrain& terrain,
-                   const SeenVoxelJudge& judge, const Walk& walk, const ScanWalkOptions& o) {
+                   const SeenVoxelJudge& judge, const RegionExtractionResult& diagnosis, const Walk& walk,
+                   const ScanWalkOptions& o) {
   scenario.start = walk.start;
   scenario.goal = walk.goal;
   PlanRequest request = ScenarioRequest(scenario, robot, terrain);
@@ -266,8 +505,16 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   }
   r.valid_to_goal = HasPlan(plan.status) && plan.reaches_goal && r.feet_off == 0;
   if (!r.valid_to_goal) {
-    r.start = DiagnoseEnd(robot, terrain.regions, judge, walk.start);
-    r.goal = DiagnoseEnd(robot, terrain.regions, judge, walk.goal);
+    r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start);
+    r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
+    r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
+                                                           scenario.options.goal_heading_tolerance_rad);
+    // Hops of the planner's region graph (MaxStepSpan, route_guide.cc) and dz_max; ends:
+    // certifiable floor within a step span of the pose (the robot may move its goal).
+    const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
+    r.certifiable_route = judge.CertifiableFloorJoins({walk.start.x_m, walk.start.y_m}, {walk.goal.x_m, walk.goal.y_m},
+                                                      CertifyRadiusM(robot, judge.resolution_m()), span,
+                                                      robot.dz_max_m, span, 1.5);
   }
   return r;
 }
@@ -275,13 +522,20 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
 std::string BaseName(const std::string& path) { return path.substr(path.find_last_of('/') + 1); }
 
 // The scan's regions, seen surface and body obstacles as LoadScenarioTerrain makes them,
-// with the walks' extractor options.
-ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, const ScanWalkOptions& o) {
+// with the walks' extractor options; *diagnosis keeps the layers and each cell's fate
+// (record_cell_fates: the regions do not depend on it) for the failed walks' causes.
+ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, const ScanWalkOptions& o,
+                            RegionExtractionResult* diagnosis) {
   RegionExtractorOptions options = ScenarioRegionOptions(scenario, robot);
   if (o.enclosed_unseen_radius_cells >= 0) options.enclosed_unseen_radius_cells = o.enclosed_unseen_radius_cells;
-  RegionExtractionResult result = ExtractRegionsFromMapFile(scenario.map_path, options);
+  if (o.convex_cover >= 0) options.convex_cover = o.convex_cover == 1;
+  if (o.target_coverage >= 0.0) options.target_coverage = o.target_coverage;
+  if (o.regions_per_m2 >= 0.0) options.regions_per_m2 = o.regions_per_m2;
+  options.record_cell_fates = true;
+  RegionExtractionResult& result = *diagnosis;
+  result = ExtractRegionsFromMapFile(scenario.map_path, options);
   ScenarioTerrain terrain;
-  terrain.regions = std::move(result.regions);
+  terrain.regions = result.regions;
   terrain.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen));
   terrain.note = result.message;
   TakeBodyObstacles(result, &terrain);  // the map's obstacles to the body, as mfp-plan's
@@ -297,8 +551,8 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
               "seen from above with room above it, within a voxel plus its region's plane tolerance (raw voxels)\n",
               o.walks, o.min_length_m, o.max_length_m, o.certifiable_ends ? "certifiable-floor" : "seen-floor",
               o.time_limit_s);
-  std::printf("%-20s %-10s %5s %6s %9s %6s %8s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
-              "feet_off", "statuses");
+  std::printf("%-20s %-10s %5s %6s %9s %6s %8s %9s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
+              "feet_off", "body_ends", "statuses");
   int valid_total = 0, walks_total = 0;
   std::map<std::string, int> causes;  // of the walks that failed
   for (const std::string& scan : scans) {
@@ -308,43 +562,50 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       Scenario scenario;
       scenario.map_path = scan;
       scenario.robot_path = robot_path;
-      const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o);
+      RegionExtractionResult diagnosis;
+      const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o, &diagnosis);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
       const std::vector<Walk> walks = DrawWalks(robot, judge, map.resolution_m, o, seed);
-      int valid = 0, moved = 0, feet_off = 0, start_off = 0;
+      int valid = 0, moved = 0, feet_off = 0, start_off = 0, body_blocked = 0;
       std::map<std::string, int> statuses;
       for (const Walk& w : walks) {
-        const WalkResult r = RunWalk(robot, scenario, terrain, judge, w, o);
+        const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
         valid += r.valid_to_goal ? 1 : 0;
+        body_blocked += w.start_body_voxels + w.goal_body_voxels > 0 ? 1 : 0;
         moved += r.goal_moved ? 1 : 0;
         start_off += r.start_off_regions ? 1 : 0;
         feet_off += r.feet_off;
         ++statuses[ToString(r.status)];
         if (!r.valid_to_goal) ++causes[FailureCause(r)];
         if (o.verbose) {
-          std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s: %s\n",
+          std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s, body voxels "
+                      "%d / %d: %s\n",
                       BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad,
                       w.goal.x_m, w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(),
-                      r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, r.message.substr(0, 300).c_str());
+                      r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, w.start_body_voxels,
+                      w.goal_body_voxels, r.message.substr(0, 300).c_str());
           if (!r.valid_to_goal) {
-            std::printf("    cause: %s; %s; %s\n", FailureCause(r).c_str(), EndText("start", r.start).c_str(),
-                        EndText("goal", r.goal).c_str());
+            std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
+                        EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
+                        r.certifiable_route ? "yes" : "no");
+            for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
+            for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
           }
         }
       }
       std::string list;
       for (const auto& [name, count] : statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
-      std::printf("%-20s %-10s %5zu %6d %9d %6d %8d  %s\n", BaseName(scan).c_str(), robot.name.c_str(), walks.size(),
-                  valid, start_off, moved, feet_off, list.c_str());
+      std::printf("%-20s %-10s %5zu %6d %9d %6d %8d %9d  %s\n", BaseName(scan).c_str(), robot.name.c_str(),
+                  walks.size(), valid, start_off, moved, feet_off, body_blocked, list.c_str());
       std::fflush(stdout);
       valid_total += valid;
       walks_total += static_cast<int>(walks.size());
     }
   }
   std::printf("valid to the goal: %d of %d walks\n", valid_total, walks_total);
-  std::printf("failures by cause ([coverage]: every foot of that end on no region stands on certifiable floor, "
-              "seen for the foot radius + 1 cm + one voxel around it):\n");
+  std::printf("failures by cause (certifiable floor: seen floor within a voxel of the foot's height for the foot "
+              "radius + 1 cm + one voxel around it, as the union of its columns' squares):\n");
   for (const auto& [cause, count] : causes) std::printf("  %3d  %s\n", count, cause.c_str());
   return valid_total;
 }

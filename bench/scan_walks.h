@@ -20,13 +20,21 @@ struct ScanWalkOptions {
   // 1 cm + one voxel around it), not merely on a seen floor cell: walks whose ends any
   // sound extractor could cover.
   bool certifiable_ends = false;
+  // Both ends with room for the body: no occupied voxel in the body's height band (above
+  // the mean height of the stance's feet) over its plan box (robots with a known body).
+  bool body_room_ends = false;
   // The extractor's enclosed_unseen_radius_cells for the walks' regions (-1: its default).
   int enclosed_unseen_radius_cells = -1;
+  // The extractor's convex_cover for the walks' regions (-1: its default, 0 off, 1 on).
+  int convex_cover = -1;
+  // The extractor's cover target and regions per m^2 (negative: its defaults).
+  double target_coverage = -1.0;
+  double regions_per_m2 = -1.0;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on
 // no region (accepted on the seen surface), goals moved, footsteps off the seen voxels,
-// statuses. Returns the number of
+// walks with an end whose body band holds occupied voxels (body_ends), statuses. Returns the number of
 // walks that ended valid at their goal (or at the goal moved within its tolerance).
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
                    const ScanWalkOptions& options);

@@ -133,10 +133,19 @@ int main(int argc, char** argv) {
   app.add_option("--walk-enclosed-unseen-radius", walks.enclosed_unseen_radius_cells,
                  "the walks' extractor: --enclosed-unseen-radius (-1: its default) [cells]")
       ->check(CLI::Range(-1, 64));
+  app.add_option("--walk-convex-cover", walks.convex_cover,
+                 "the walks' extractor: --convex-cover (-1: its default, 0 rectangles, 1 convex pieces)")
+      ->check(CLI::Range(-1, 1));
+  app.add_option("--walk-target-coverage", walks.target_coverage,
+                 "the walks' extractor: --target-coverage (negative: its default)");
+  app.add_option("--walk-regions-per-m2", walks.regions_per_m2,
+                 "the walks' extractor: --regions-per-m2 (negative: its default)");
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
+  app.add_flag("--walk-body-room", walks.body_room_ends,
+               "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
   bool digest = false;
   app.add_flag("--digest", digest,
                "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
