@@ -161,6 +161,11 @@ void AddFormulationKeys(Table* t) {
                        std::vector<std::pair<std::string, YawEncoding>>{
                            {"big_m", YawEncoding::kBigM}, {"convex_hull", YawEncoding::kConvexHull}},
                        "how a configuration's sin/cos segment is written").Alias("yaw_encoding").Advanced());
+  t->push_back(EnumOpt("formulation.group_order", In(&P::formulation, &F::group_order),
+                       std::vector<std::pair<std::string, GroupOrder>>{
+                           {"plan", GroupOrder::kPlan}, {"segments_first", GroupOrder::kSegmentsFirst}},
+                       "order of the one-of groups that search.branching group_order follows")
+                   .Advanced());
   t->push_back(Opt("formulation.prune_unreachable_regions", In(&P::formulation, &F::prune_unreachable_regions),
                    "drop region binaries a step cannot reach from the start stance")
                    .Alias("prune_unreachable_regions").Advanced());
