@@ -228,6 +228,10 @@ void AddSearchKeys(Table* t) {
                    .Alias("rounding_frequency").Advanced());
   t->push_back(Opt("search.bound_propagation", in(&B::bound_propagation),
                    "tighten bounds over the rows at every node first").Alias("bound_propagation").Advanced());
+  t->push_back(Opt("search.group_probing", in(&B::group_probing),
+                   "at every node, fix each open member of each one-of group in turn and propagate: rule out the "
+                   "infeasible ones, shrink bounds to the hull of the rest")
+                   .Advanced());
   t->push_back(Opt("search.reduced_cost_fixing", in(&B::reduced_cost_fixing),
                    "rule out integer values that the relaxation proves cannot beat the incumbent")
                    .Alias("reduced_cost_fixing").Advanced());

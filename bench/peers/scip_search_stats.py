@@ -2,7 +2,7 @@
 """How SCIP searches one MPS file: nodes, depth, what it branches on, and its bound curve.
 
     scip_search_stats.py FILE.mps [--time-limit 120] [--stats OUT.txt] [--trace OUT.csv]
-                         [--set name=value ...]
+                         [--write-sol OUT.sol] [--set name=value ...]
 
 Prints one JSON line: status, time, nodes, max depth, objective, dual bound, the root's
 dual bound, the branchings per variable family (the name's prefix before the first
@@ -65,6 +65,7 @@ def main():
     ap.add_argument("--time-limit", type=float, default=120.0)
     ap.add_argument("--stats")
     ap.add_argument("--trace")
+    ap.add_argument("--write-sol", help="write SCIP's best solution here (SCIP's .sol format)")
     ap.add_argument("--set", action="append", default=[], help="SCIP parameter name=value")
     a = ap.parse_args()
     m = pyscipopt.Model()
@@ -110,6 +111,8 @@ def main():
                 f.write(",".join(str(v) for v in row) + "\n")
     if a.stats:
         m.writeStatistics(a.stats)
+    if a.write_sol and m.getNSols():
+        m.writeBestSol(a.write_sol)
 
 
 if __name__ == "__main__":

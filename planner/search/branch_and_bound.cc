@@ -8,6 +8,7 @@
 #include "base/check.h"
 #include "planner/search/internal/bound_propagation.h"
 #include "planner/search/internal/branching.h"
+#include "planner/search/internal/group_probing.h"
 #include "planner/search/internal/parallel_for.h"
 #include "planner/search/internal/pseudo_costs.h"
 #include "planner/search/internal/reduced_cost_fixing.h"
@@ -102,6 +103,10 @@ class Search {
       e.upper(ch.index) = ch.upper;
     }
     if (opt_.bound_propagation && PropagateBounds(p_, &e.lower, &e.upper).infeasible) {
+      e.propagation_infeasible = true;
+      return e;
+    }
+    if (opt_.group_probing && ProbeOneOfGroups(p_, &e.lower, &e.upper).infeasible) {
       e.propagation_infeasible = true;
       return e;
     }
