@@ -59,7 +59,7 @@ TEST(GroupProbing, AFootIsBoundedByTheHullOfTheStonesItMayStillUse) {
   ASSERT_FALSE(PropagateBounds(p, &lower, &upper).infeasible);
   EXPECT_NEAR(lower(0), 0.0, kTol);  // propagation alone: nothing
   EXPECT_NEAR(upper(0), 10.0, kTol);
-  const GroupProbingResult r = ProbeOneOfGroups(p, &lower, &upper);
+  const GroupProbingResult r = GroupProber(p).Probe(&lower, &upper);
   EXPECT_FALSE(r.infeasible);
   EXPECT_EQ(r.members_ruled_out, 0);
   EXPECT_NEAR(lower(0), 1.0, kTol);
@@ -69,7 +69,7 @@ TEST(GroupProbing, AFootIsBoundedByTheHullOfTheStonesItMayStillUse) {
   lower = p.var_lower;
   upper = p.var_upper;
   upper(3) = 0.0;
-  ASSERT_FALSE(ProbeOneOfGroups(p, &lower, &upper).infeasible);
+  ASSERT_FALSE(GroupProber(p).Probe(&lower, &upper).infeasible);
   EXPECT_NEAR(lower(0), 1.0, kTol);
   EXPECT_NEAR(upper(0), 5.0, kTol);
 }
@@ -77,7 +77,7 @@ TEST(GroupProbing, AFootIsBoundedByTheHullOfTheStonesItMayStillUse) {
 TEST(GroupProbing, StonesAnotherRowExcludesAreRuledOutAndTheLastOneIsChosen) {
   const Miqp p = ThreeStones(6.0);  // x >= 6: only the third stone
   Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
-  const GroupProbingResult r = ProbeOneOfGroups(p, &lower, &upper);
+  const GroupProbingResult r = GroupProber(p).Probe(&lower, &upper);
   EXPECT_FALSE(r.infeasible);
   EXPECT_EQ(r.members_ruled_out, 2);
   EXPECT_EQ(upper(1), 0.0);
@@ -91,7 +91,7 @@ TEST(GroupProbing, AGroupWithNoFeasibleMemberMakesTheNodeInfeasible) {
   const Miqp p = ThreeStones(6.0);
   Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
   upper(3) = 0.0;  // the only stone the row allows is ruled out
-  EXPECT_TRUE(ProbeOneOfGroups(p, &lower, &upper).infeasible);
+  EXPECT_TRUE(GroupProber(p).Probe(&lower, &upper).infeasible);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "base/check.h"
@@ -35,7 +36,9 @@ class Search {
         state_(problem, solvers, options),
         branching_(problem, options),
         pseudo_(problem.num_variables()),
-        reliability_(&state_, &branching_, &pseudo_) {}
+        reliability_(&state_, &branching_, &pseudo_) {
+    if (options.group_probing) prober_ = std::make_unique<GroupProber>(problem);
+  }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -106,7 +109,7 @@ class Search {
       e.propagation_infeasible = true;
       return e;
     }
-    if (opt_.group_probing && ProbeOneOfGroups(p_, &e.lower, &e.upper).infeasible) {
+    if (prober_ && prober_->Probe(&e.lower, &e.upper).infeasible) {
       e.propagation_infeasible = true;
       return e;
     }
@@ -272,6 +275,7 @@ class Search {
   Branching branching_;
   PseudoCosts pseudo_;
   ReliabilityBranching reliability_;
+  std::unique_ptr<GroupProber> prober_;  // with options.group_probing
   bool root_done_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
