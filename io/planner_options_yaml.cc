@@ -161,6 +161,11 @@ void AddFormulationKeys(Table* t) {
                        std::vector<std::pair<std::string, YawEncoding>>{
                            {"big_m", YawEncoding::kBigM}, {"convex_hull", YawEncoding::kConvexHull}},
                        "how a configuration's sin/cos segment is written").Alias("yaw_encoding").Advanced());
+  t->push_back(EnumOpt("formulation.group_order", In(&P::formulation, &F::group_order),
+                       std::vector<std::pair<std::string, GroupOrder>>{
+                           {"plan", GroupOrder::kPlan}, {"segments_first", GroupOrder::kSegmentsFirst}},
+                       "order of the one-of groups that search.branching group_order follows")
+                   .Advanced());
   t->push_back(Opt("formulation.prune_unreachable_regions", In(&P::formulation, &F::prune_unreachable_regions),
                    "drop region binaries a step cannot reach from the start stance")
                    .Alias("prune_unreachable_regions").Advanced());
@@ -223,6 +228,10 @@ void AddSearchKeys(Table* t) {
                    .Alias("rounding_frequency").Advanced());
   t->push_back(Opt("search.bound_propagation", in(&B::bound_propagation),
                    "tighten bounds over the rows at every node first").Alias("bound_propagation").Advanced());
+  t->push_back(Opt("search.group_probing", in(&B::group_probing),
+                   "at every node, fix each open member of each one-of group in turn and propagate: rule out the "
+                   "infeasible ones, shrink bounds to the hull of the rest")
+                   .Advanced());
   t->push_back(Opt("search.reduced_cost_fixing", in(&B::reduced_cost_fixing),
                    "rule out integer values that the relaxation proves cannot beat the incumbent")
                    .Alias("reduced_cost_fixing").Advanced());

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "base/check.h"
 #include "tests/test_robots.h"
@@ -319,6 +320,35 @@ TEST_F(FormulationTest, PruningDropsRegionsOutOfReach) {
   const MiqpFormulation pruned(p, FormulationOptions());
   for (int i = 4; i < 8; ++i) EXPECT_EQ(pruned.vars().region[i][2], -1) << i;
   EXPECT_GE(pruned.vars().region[4][0], 0);
+}
+
+// The group order that search.branching group_order follows: per configuration its yaw
+// segments then its steps' regions, or (segments_first) every configuration's segments
+// before any region; the same groups either way.
+TEST_F(FormulationTest, SegmentsFirstListsEveryYawSegmentGroupBeforeTheRegions) {
+  problem_.num_new_steps = 8;  // configurations 1 and 2 choose a yaw segment
+  FormulationOptions options;
+  options.prune_unreachable_regions = false;
+  const MiqpFormulation plan_order(problem_, options);
+  options.group_order = GroupOrder::kSegmentsFirst;
+  const MiqpFormulation segments_first(problem_, options);
+  const FootstepVariables& v = plan_order.vars();
+  ASSERT_FALSE(v.segment[1].empty());
+  ASSERT_FALSE(v.segment[2].empty());
+  const std::vector<int> regions_of_step_4 = {v.region[4][0], v.region[4][1]};
+  const std::vector<std::vector<int>>& plan = plan_order.miqp().sos1_groups;
+  const std::vector<std::vector<int>>& first = segments_first.miqp().sos1_groups;
+  ASSERT_EQ(plan.size(), 10u);  // two segment groups and eight steps' regions
+  EXPECT_EQ(plan[0], v.segment[1]);
+  EXPECT_EQ(plan[1], regions_of_step_4);
+  EXPECT_EQ(plan[5], v.segment[2]);
+  EXPECT_EQ(first[0], v.segment[1]);
+  EXPECT_EQ(first[1], v.segment[2]);
+  EXPECT_EQ(first[2], regions_of_step_4);
+  std::vector<std::vector<int>> a = plan, b = first;
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
 }
 
 TEST_F(FormulationTest, RegionsRelaxedToTheirHullFromAStep) {

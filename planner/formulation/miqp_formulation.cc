@@ -25,12 +25,18 @@ double WrapToPi(double a) { return std::remainder(a, 2.0 * M_PI); }
 
 // One-of groups in plan order (a configuration's yaw segments, then its steps' regions),
 // so that branching rules that follow the group order decide the plan from its start
-// outwards.
-std::vector<std::vector<int>> OneOfGroupsInPlanOrder(const FootstepVariables& vars, int n, int num_steps) {
+// outwards; with kSegmentsFirst every configuration's segments come before any region.
+std::vector<std::vector<int>> OneOfGroups(const FootstepVariables& vars, int n, int num_steps, GroupOrder order) {
   std::vector<std::vector<int>> groups;
   const int num_configurations = static_cast<int>(vars.segment.size());
+  const bool segments_first = order == GroupOrder::kSegmentsFirst;
+  if (segments_first) {
+    for (int cfg = 0; cfg < num_configurations; ++cfg) {
+      if (!vars.segment[cfg].empty()) groups.push_back(vars.segment[cfg]);
+    }
+  }
   for (int cfg = 0; cfg < num_configurations; ++cfg) {
-    if (!vars.segment[cfg].empty()) groups.push_back(vars.segment[cfg]);
+    if (!segments_first && !vars.segment[cfg].empty()) groups.push_back(vars.segment[cfg]);
     for (int i = std::max(n, cfg * n); i < std::min(num_steps, (cfg + 1) * n); ++i) {
       std::vector<int> members;
       for (int h : vars.region[i]) {
@@ -114,7 +120,7 @@ void MiqpFormulation::Build(const Deadline& deadline) {
                       &b, &vars_);
   AddCost(e, problem_, num_steps_, num_configurations_, vars_, &b);
   miqp_ = b.Build();
-  miqp_.sos1_groups = OneOfGroupsInPlanOrder(vars_, n_, num_steps_);
+  miqp_.sos1_groups = OneOfGroups(vars_, n_, num_steps_, options_.group_order);
 }
 
 Miqp MiqpFormulation::WithRegionsRelaxedFrom(int first_step) const {

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "base/check.h"
 #include "planner/search/internal/bound_propagation.h"
 #include "planner/search/internal/branching.h"
+#include "planner/search/internal/group_probing.h"
 #include "planner/search/internal/parallel_for.h"
 #include "planner/search/internal/pseudo_costs.h"
 #include "planner/search/internal/reduced_cost_fixing.h"
@@ -34,7 +36,9 @@ class Search {
         state_(problem, solvers, options),
         branching_(problem, options),
         pseudo_(problem.num_variables()),
-        reliability_(&state_, &branching_, &pseudo_) {}
+        reliability_(&state_, &branching_, &pseudo_) {
+    if (options.group_probing) prober_ = std::make_unique<GroupProber>(problem);
+  }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -102,6 +106,10 @@ class Search {
       e.upper(ch.index) = ch.upper;
     }
     if (opt_.bound_propagation && PropagateBounds(p_, &e.lower, &e.upper).infeasible) {
+      e.propagation_infeasible = true;
+      return e;
+    }
+    if (prober_ && prober_->Probe(&e.lower, &e.upper).infeasible) {
       e.propagation_infeasible = true;
       return e;
     }
@@ -267,6 +275,7 @@ class Search {
   Branching branching_;
   PseudoCosts pseudo_;
   ReliabilityBranching reliability_;
+  std::unique_ptr<GroupProber> prober_;  // with options.group_probing
   bool root_done_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;

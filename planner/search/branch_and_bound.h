@@ -78,6 +78,11 @@ struct BranchAndBoundOptions {
   // and completed as root_heuristic's. A search whose roundings succeed never calls it.
   std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> first_plan_heuristic;
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
+  // After bound propagation, probe every open one-of group at every node (group_probing.h):
+  // each member fixed in turn and propagated; members that cannot be 1 are ruled out and
+  // every bound shrinks to the hull of the members' cases. Costs one propagation per open
+  // member per node.
+  bool group_probing = false;
   // Root cut loop (root_cuts.h): rounds of c-MIR separation at the root before the search
   // (0: off). The search then runs on the problem with the cuts added as rows; its plans
   // and optimum are those of the problem (the cuts are valid), its bound is higher.

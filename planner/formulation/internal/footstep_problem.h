@@ -23,11 +23,18 @@ enum class YawEncoding {
   kConvexHull,  // disaggregated theta_k per segment: the relaxation is the hull of the curves
 };
 
+// The order of the Miqp's one-of groups, which the group_order branching rule follows.
+enum class GroupOrder {
+  kPlan,           // per configuration: its yaw segments, then its steps' regions
+  kSegmentsFirst,  // every configuration's yaw segments, then the regions in plan order
+};
+
 struct FormulationOptions {
   double yaw_segment_rad = 0.3927;   // width of one sin/cos chord segment [rad] (pi/8)
   double yaw_margin_rad = 0.3927;    // yaw range = [min(start, goal) - m, max(start, goal) + m]
   RegionEncoding region_encoding = RegionEncoding::kBigM;
   YawEncoding yaw_encoding = YawEncoding::kConvexHull;
+  GroupOrder group_order = GroupOrder::kPlan;
   // Drop region binaries a step cannot use: regions farther from the start stance than
   // the step's configuration could travel at d_lim + l_bnd per configuration.
   bool prune_unreachable_regions = true;

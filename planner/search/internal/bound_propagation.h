@@ -5,6 +5,7 @@
 // every node: an assignment of regions that no foot can satisfy is usually caught here,
 // in microseconds, instead of by a relaxation solve.
 #include <Eigen/Core>
+#include <vector>
 
 #include "planner/miqp/miqp.h"
 
@@ -14,6 +15,12 @@ struct PropagationResult {
   bool infeasible = false;  // some row cannot be met, or some bounds crossed
   int tightened = 0;        // number of bound changes made
 };
+
+// One row's step of PropagateBounds: tightens the bounds of the row's variables by the
+// row's activity range, appending each variable it moved to moved_vars. Returns false when
+// the row cannot be met within the bounds.
+bool TightenByRow(const Miqp& problem, int row, double tolerance, Eigen::VectorXd* lower, Eigen::VectorXd* upper,
+                  std::vector<int>* moved_vars);
 
 // Tightens lower/upper in place. max_passes bounds the work; tolerance is the slack
 // allowed before a crossing counts as infeasible.

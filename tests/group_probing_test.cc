@@ -1,0 +1,98 @@
+// Probing over one-of groups on a hand-built MIQP: a foot coordinate x in [0, 10] stands
+// on one of three stones [1, 2], [4, 5], [8, 9] (big-M rows, M = 10), H0 + H1 + H2 = 1.
+// Row-by-row propagation leaves x in [0, 10] while the H are open; probing gives the hull
+// of the stones still open, and rules out a stone that another row excludes.
+#include "planner/search/internal/group_probing.h"
+
+#include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
+
+#include "planner/search/internal/bound_propagation.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kTol = 1e-6;
+
+// extra_x_min: a row x >= extra_x_min (0: none that binds).
+Miqp ThreeStones(double extra_x_min) {
+  const double M = 10.0;
+  const double stones[3][2] = {{1.0, 2.0}, {4.0, 5.0}, {8.0, 9.0}};
+  const int n = 4;  // x, H0, H1, H2
+  Miqp p;
+  p.Q = Eigen::SparseMatrix<double>(n, n);
+  p.c = Eigen::VectorXd::Zero(n);
+  p.var_lower = Eigen::VectorXd::Zero(n);
+  p.var_upper = Eigen::VectorXd::Ones(n);
+  p.var_upper(0) = 10.0;
+  p.is_integer = {false, true, true, true};
+  p.var_names = {"x", "H0", "H1", "H2"};
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<double> lo, up;
+  const auto row = [&](std::vector<std::pair<int, double>> terms, double l, double u) {
+    const int i = static_cast<int>(lo.size());
+    for (const auto& [j, v] : terms) t.emplace_back(i, j, v);
+    lo.push_back(l);
+    up.push_back(u);
+    p.row_names.push_back("r" + std::to_string(i));
+  };
+  for (int r = 0; r < 3; ++r) {
+    row({{0, 1.0}, {1 + r, M}}, -kInfinity, stones[r][1] + M);    // x <= max + M (1 - H)
+    row({{0, -1.0}, {1 + r, M}}, -kInfinity, -stones[r][0] + M);  // x >= min - M (1 - H)
+  }
+  row({{1, 1.0}, {2, 1.0}, {3, 1.0}}, 1.0, 1.0);
+  row({{0, 1.0}}, extra_x_min, kInfinity);
+  p.A.resize(static_cast<int>(lo.size()), n);
+  p.A.setFromTriplets(t.begin(), t.end());
+  p.row_lower = Eigen::Map<Eigen::VectorXd>(lo.data(), static_cast<int>(lo.size()));
+  p.row_upper = Eigen::Map<Eigen::VectorXd>(up.data(), static_cast<int>(up.size()));
+  p.sos1_groups = {{1, 2, 3}};
+  CheckMiqpShape(p);
+  return p;
+}
+
+TEST(GroupProbing, AFootIsBoundedByTheHullOfTheStonesItMayStillUse) {
+  const Miqp p = ThreeStones(0.0);
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  ASSERT_FALSE(PropagateBounds(p, &lower, &upper).infeasible);
+  EXPECT_NEAR(lower(0), 0.0, kTol);  // propagation alone: nothing
+  EXPECT_NEAR(upper(0), 10.0, kTol);
+  const GroupProbingResult r = GroupProber(p).Probe(&lower, &upper);
+  EXPECT_FALSE(r.infeasible);
+  EXPECT_EQ(r.members_ruled_out, 0);
+  EXPECT_NEAR(lower(0), 1.0, kTol);
+  EXPECT_NEAR(upper(0), 9.0, kTol);
+
+  // The far stone ruled out by a branch: x within the first two stones.
+  lower = p.var_lower;
+  upper = p.var_upper;
+  upper(3) = 0.0;
+  ASSERT_FALSE(GroupProber(p).Probe(&lower, &upper).infeasible);
+  EXPECT_NEAR(lower(0), 1.0, kTol);
+  EXPECT_NEAR(upper(0), 5.0, kTol);
+}
+
+TEST(GroupProbing, StonesAnotherRowExcludesAreRuledOutAndTheLastOneIsChosen) {
+  const Miqp p = ThreeStones(6.0);  // x >= 6: only the third stone
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  const GroupProbingResult r = GroupProber(p).Probe(&lower, &upper);
+  EXPECT_FALSE(r.infeasible);
+  EXPECT_EQ(r.members_ruled_out, 2);
+  EXPECT_EQ(upper(1), 0.0);
+  EXPECT_EQ(upper(2), 0.0);
+  EXPECT_EQ(lower(3), 1.0);
+  EXPECT_NEAR(lower(0), 8.0, kTol);
+  EXPECT_NEAR(upper(0), 9.0, kTol);
+}
+
+TEST(GroupProbing, AGroupWithNoFeasibleMemberMakesTheNodeInfeasible) {
+  const Miqp p = ThreeStones(6.0);
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  upper(3) = 0.0;  // the only stone the row allows is ruled out
+  EXPECT_TRUE(GroupProber(p).Probe(&lower, &upper).infeasible);
+}
+
+}  // namespace
+}  // namespace mfp
