@@ -45,7 +45,7 @@ struct DualActiveSetOptions {
   // Active sets (with their factors, 2 n^2 numbers each) kept for later solves; each
   // solve starts from the one whose box differs from its own in the fewest bounds, so
   // that a heuristic's QP between two nodes does not cost the next node its start.
-  int snapshots = 4;
+  int snapshots = 8;
 };
 
 class DualActiveSetQp {
@@ -57,6 +57,22 @@ class DualActiveSetQp {
   // problem it does not take or a node it finds infeasible.
   RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                          double cutoff, const Deadline& deadline);
+  // The same from the active set `start` (a parent node's: its result's warm_token, or
+  // ActiveSetAt of its point), not from the nearest box: the factors of `start` are built
+  // from the stored state nearest to it in active constraints (one factor update per
+  // constraint of the difference), the constraints whose multipliers are negative are
+  // dropped, and the method goes on from there. Never a cold solve of the whole set: a
+  // result whose floor drifted from its objective ends kFailed, for the interior point.
+  RelaxationResult SolveFrom(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                             double cutoff, const Deadline& deadline, const std::vector<int>& start);
+
+  // The constraints a solved point meets with equality, by complementarity, in the
+  // indexing of warm tokens (j: x_j >= lower_j; n + j: x_j <= upper_j; 2n + i: row i's
+  // lower side; 2n + m + i: its upper side). A variable at both bounds takes the side of
+  // its larger reduced cost (rates may be empty). For seeding the dual method from an
+  // interior point's answer.
+  static std::vector<int> ActiveSetAt(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                      const RelaxationResult& solved);
 
  private:
   enum class Step { kOptimal, kInfeasible, kCutoff, kLimit, kFailed };
@@ -69,6 +85,9 @@ class DualActiveSetQp {
   };
   int BoundsChanged(const Snapshot& snapshot) const;
   void RestoreNearest();
+  int ActiveSetDistance(const std::vector<int>& from, const std::vector<int>& to);
+  void LoadSnapshot(int slot);
+  void BuildActiveSet(const std::vector<int>& target);
   void SaveSnapshot();
 
   bool Prepare(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
@@ -115,6 +134,7 @@ class DualActiveSetQp {
   Eigen::VectorXd lower_, upper_;
   std::vector<int> active_;      // constraint per factor column
   std::vector<char> is_active_;
+  std::vector<char> mark_;       // scratch, per constraint
   Eigen::VectorXd u_;            // multipliers of active_
   Eigen::VectorXd x_, ax_;
   int steps_ = 0;
