@@ -163,9 +163,17 @@ TEST(DualActiveSetQp, AgreesWithTheInteriorPointOnTableIRoots) {
     for (int steps : {12, 24}) {
       SCOPED_TRACE(std::string(course) + " " + std::to_string(steps));
       const Miqp p = TableIRoot(course, steps);
-      DualActiveSetQp qp;
+      DualActiveSetOptions options;  // every size and step count: agreement, not speed, is tested
+      options.max_variables = 1500;
+      options.max_warm_steps_per_variable = 1e3;
+      DualActiveSetQp qp(options);
       const RelaxationResult dual = qp.Solve(p, p.var_lower, p.var_upper, kInfinity, Deadline());
-      ExpectAgrees(p, dual, Ipm(p, p.var_lower, p.var_upper));
+      const RelaxationResult ipm = Ipm(p, p.var_lower, p.var_upper);
+      ExpectAgrees(p, dual, ipm);
+      const std::vector<int> seed = DualActiveSetQp::ActiveSetAt(p, p.var_lower, p.var_upper, ipm);
+      DualActiveSetQp fresh(options);  // from the interior point's active set
+      const RelaxationResult seeded = fresh.SolveFrom(p, p.var_lower, p.var_upper, kInfinity, Deadline(), seed);
+      ExpectAgrees(p, seeded, ipm);
     }
   }
 }

@@ -199,6 +199,10 @@ void DualActiveSetQp::LoadSnapshot(int slot) {
 }
 
 // The size of the symmetric difference of two active sets.
+int DualActiveSetQp::WarmStepBudget() const {
+  return static_cast<int>(std::ceil(options_.max_warm_steps_per_variable * n_));
+}
+
 int DualActiveSetQp::ActiveSetDistance(const std::vector<int>& from, const std::vector<int>& to) {
   for (int con : to) mark_[con] = 1;
   int distance = static_cast<int>(to.size());
@@ -365,9 +369,8 @@ void DualActiveSetQp::DropFromFactors(int position) {
 // (then p joins the active set), dropping blocking constraints on the way.
 DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& deadline) {
   double u_plus = 0.0;
-  const int max_steps = options_.max_steps_per_size * (n_ + m_);
   for (;;) {
-    if (++steps_ > max_steps || deadline.Expired()) return Step::kLimit;
+    if (++steps_ > step_limit_ || deadline.Expired()) return Step::kLimit;
     const int k = static_cast<int>(active_.size());
     const Eigen::VectorXd d = TransposedJTimesNormal(p);
     const Eigen::VectorXd z = J_.rightCols(n_ - k) * d.tail(n_ - k);
@@ -521,6 +524,7 @@ RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::Ve
   SetBounds(lower, upper);
   BuildActiveSet(start);
   WarmStart();
+  step_limit_ = steps_ + WarmStepBudget();
   warm_valid_ = true;
   const Step step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
   FillResult(problem, step, &result);
@@ -531,7 +535,8 @@ RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::Ve
     result.iterations = steps;
     warm_valid_ = false;
   }
-  if (step == Step::kLimit) warm_valid_ = false;
+  // A solve stopped on its budget, its deadline or an infeasible node leaves consistent
+  // factors (each step updates them whole): they stay a start for later solves.
   if (warm_valid_) {
     SaveSnapshot();
   } else {
@@ -544,14 +549,26 @@ std::vector<int> DualActiveSetQp::ActiveSetAt(const Miqp& problem, const Eigen::
                                               const Eigen::VectorXd& upper, const RelaxationResult& solved) {
   const int n = problem.num_variables(), m = problem.num_rows();
   const Eigen::VectorXd& x = solved.x;
-  const bool rates = solved.lower_cost_rate.size() == n && solved.upper_cost_rate.size() == n;
-  const double tol = 1e-7;
+  const bool rates = solved.lower_cost_rate.size() == n && solved.row_lower_rate.size() == m;
+  const double tol = 1e-5;  // relative distance to a side: the interior point stops at 1e-8 in mu, not at the side
+  const double thr = 1e-6;  // multiplier relative to the largest: above the interior point's mu / slack of inactive sides
+  double largest = 1.0;
+  if (rates) {
+    largest += std::max({solved.lower_cost_rate.maxCoeff(), solved.upper_cost_rate.maxCoeff(),
+                         m ? solved.row_lower_rate.maxCoeff() : 0.0, m ? solved.row_upper_rate.maxCoeff() : 0.0});
+  }
+  // A side is active when x is on it and (if multipliers are given) its multiplier is
+  // not negligible: a degenerate vertex has many more sides met than multipliers.
+  auto active_side = [&](double distance, double bound, double rate) {
+    return distance <= tol * (1.0 + std::abs(bound)) && (!rates || rate > thr * largest);
+  };
   std::vector<int> active;
   for (int j = 0; j < n; ++j) {
-    const bool at_lower = x(j) - lower(j) <= tol * (1.0 + std::abs(lower(j)));
-    const bool at_upper = upper(j) - x(j) <= tol * (1.0 + std::abs(upper(j)));
+    const double lo_rate = rates ? solved.lower_cost_rate(j) : 0.0, up_rate = rates ? solved.upper_cost_rate(j) : 0.0;
+    const bool at_lower = active_side(x(j) - lower(j), lower(j), lo_rate);
+    const bool at_upper = active_side(upper(j) - x(j), upper(j), up_rate);
     if (at_lower && at_upper) {
-      active.push_back(rates && solved.upper_cost_rate(j) > solved.lower_cost_rate(j) ? n + j : j);
+      active.push_back(up_rate > lo_rate ? n + j : j);
     } else if (at_lower) {
       active.push_back(j);
     } else if (at_upper) {
@@ -561,9 +578,11 @@ std::vector<int> DualActiveSetQp::ActiveSetAt(const Miqp& problem, const Eigen::
   const Eigen::VectorXd ax = problem.A * x;
   for (int i = 0; i < m; ++i) {
     const double scale = std::max(1e-12, problem.A.row(i).norm());
-    if (std::abs(ax(i) - problem.row_lower(i)) <= tol * (scale + std::abs(problem.row_lower(i)))) {
+    const double lo = problem.row_lower(i), up = problem.row_upper(i);
+    if (std::isfinite(lo) && active_side((ax(i) - lo) / scale, lo / scale, rates ? solved.row_lower_rate(i) : 0.0)) {
       active.push_back(2 * n + i);
-    } else if (std::abs(problem.row_upper(i) - ax(i)) <= tol * (scale + std::abs(problem.row_upper(i)))) {
+    } else if (std::isfinite(up) &&
+               active_side((up - ax(i)) / scale, up / scale, rates ? solved.row_upper_rate(i) : 0.0)) {
       active.push_back(2 * n + m + i);
     }
   }
@@ -575,6 +594,7 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   RelaxationResult result;
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  step_limit_ = options_.max_steps_per_size * (n_ + m_);
   SetBounds(lower, upper);
   RestoreNearest();
   const bool warm = warm_valid_ && warm_solves_ < options_.warm_solves_before_rebuild;

@@ -36,12 +36,18 @@ struct DualActiveSetOptions {
   // A constraint violated by more than this (relative to 1 + |its bound|, rows scaled to
   // unit norm) is not met.
   double feasibility_tolerance = 1e-9;
-  // Dense method: problems with more variables end kFailed at once (another solver takes them).
-  int max_variables = 1500;
+  // Dense method: problems with more variables end kFailed at once (another solver takes
+  // them). Each step is O(n^2) dense work and a node takes some 40-300 of them: measured
+  // against the interior point on Table I (docs/measurements.md, issue 26, dualqp2), it
+  // wins per node at n = 110-260 and loses from n = 354 on.
+  int max_variables = 300;
   // Rebuild the factors from scratch after this many warm solves (rounding drift).
   int warm_solves_before_rebuild = 200;
   // Steps (additions plus drops) of one solve, as a multiple of variables + rows.
   int max_steps_per_size = 4;
+  // Steps of one SolveFrom after its start is built, per variable: past it the solve ends
+  // kIterationLimit (the interior point takes the node) rather than cost several of its solves.
+  double max_warm_steps_per_variable = 2.0;
   // Active sets (with their factors, 2 n^2 numbers each) kept for later solves; each
   // solve starts from the one whose box differs from its own in the fewest bounds, so
   // that a heuristic's QP between two nodes does not cost the next node its start.
@@ -85,6 +91,7 @@ class DualActiveSetQp {
   };
   int BoundsChanged(const Snapshot& snapshot) const;
   void RestoreNearest();
+  int WarmStepBudget() const;
   int ActiveSetDistance(const std::vector<int>& from, const std::vector<int>& to);
   void LoadSnapshot(int slot);
   void BuildActiveSet(const std::vector<int>& target);
@@ -138,6 +145,7 @@ class DualActiveSetQp {
   Eigen::VectorXd u_;            // multipliers of active_
   Eigen::VectorXd x_, ax_;
   int steps_ = 0;
+  int step_limit_ = 0;  // steps_ at which the solve ends kIterationLimit
   int warm_solves_ = 0;
   bool warm_valid_ = false;
   std::vector<Snapshot> snapshots_;

@@ -39,6 +39,9 @@ struct RelaxationResult {
   // rule out integer values that cannot beat the incumbent. Empty rates: not given.
   double cost_floor = -kInfinity;
   Eigen::VectorXd lower_cost_rate, upper_cost_rate;
+  // Optional, with the rates above: the multipliers (>= 0) of each row's lower and upper
+  // side at x, for seeding an active-set solver. Empty: not given.
+  Eigen::VectorXd row_lower_rate, row_upper_rate;
   // kFailed because the problem exceeds the solver's work budget (it was not attempted):
   // no other solver is tried on it either, as none finishes such a problem in a plan's time.
   bool over_work_budget = false;
