@@ -1,6 +1,7 @@
 // mfp's dual active-set QP against the interior point: random convex QPs with a
 // singular Hessian, sequences of branch-and-bound-like bound changes (warm starts),
-// infeasible nodes, and the root relaxations of Table I instances.
+// infeasible nodes, the root relaxations of Table I instances, and children started from
+// their parent's active set (warm tokens).
 #include "planner/qp/dual_active_set_qp.h"
 
 #include <gtest/gtest.h>
@@ -162,10 +163,105 @@ TEST(DualActiveSetQp, AgreesWithTheInteriorPointOnTableIRoots) {
     for (int steps : {12, 24}) {
       SCOPED_TRACE(std::string(course) + " " + std::to_string(steps));
       const Miqp p = TableIRoot(course, steps);
-      DualActiveSetQp qp;
+      DualActiveSetOptions options;  // every size and step count: agreement, not speed, is tested
+      options.max_variables = 1500;
+      options.max_warm_steps_per_variable = 1e3;
+      DualActiveSetQp qp(options);
       const RelaxationResult dual = qp.Solve(p, p.var_lower, p.var_upper, kInfinity, Deadline());
-      ExpectAgrees(p, dual, Ipm(p, p.var_lower, p.var_upper));
+      const RelaxationResult ipm = Ipm(p, p.var_lower, p.var_upper);
+      ExpectAgrees(p, dual, ipm);
+      const std::vector<int> seed = DualActiveSetQp::ActiveSetAt(p, p.var_lower, p.var_upper, ipm);
+      DualActiveSetQp fresh(options);  // from the interior point's active set
+      const RelaxationResult seeded = fresh.SolveFrom(p, p.var_lower, p.var_upper, kInfinity, Deadline(), seed);
+      ExpectAgrees(p, seeded, ipm);
     }
+  }
+}
+
+// A small branch-and-bound tree on a random QP, every node started from its parent's
+// active set (the root's read off the interior point's answer), nodes taken in a random
+// order (jumps between subtrees): each agrees with the interior point, and the starts from
+// the parents take fewer steps in all than the same nodes started from nothing.
+TEST(DualActiveSetQp, ChildrenStartedFromTheirParentsActiveSetMatchTheInteriorPoint) {
+  const Miqp p = RandomSingularQp(60, 50, 7);
+  struct Open {
+    Eigen::VectorXd lower, upper;
+    std::vector<int> parent_active;
+  };
+  const RelaxationResult root = Ipm(p, p.var_lower, p.var_upper);
+  ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+  std::vector<Open> open{{p.var_lower, p.var_upper, DualActiveSetQp::ActiveSetAt(p, p.var_lower, p.var_upper, root)}};
+  DualActiveSetQp qp, cold;
+  std::mt19937 rng(5);
+  int compared = 0;
+  long warm_steps = 0, cold_steps = 0;
+  while (!open.empty() && compared < 30) {
+    const size_t pick = rng() % open.size();
+    const Open node = open[pick];
+    open.erase(open.begin() + static_cast<long>(pick));
+    const RelaxationResult ipm = Ipm(p, node.lower, node.upper);
+    const RelaxationResult dual = qp.SolveFrom(p, node.lower, node.upper, kInfinity, Deadline(), node.parent_active);
+    if (ipm.status == RelaxationStatus::kInfeasible) {
+      EXPECT_NE(dual.status, RelaxationStatus::kSolved);
+      continue;
+    }
+    SCOPED_TRACE(compared);
+    ExpectAgrees(p, dual, ipm);
+    ASSERT_TRUE(dual.warm_token);
+    const RelaxationResult from_nothing = cold.SolveFrom(p, node.lower, node.upper, kInfinity, Deadline(), {});
+    ExpectAgrees(p, from_nothing, ipm);
+    warm_steps += dual.iterations;
+    cold_steps += from_nothing.iterations;
+    ++compared;
+    for (int j = 2; j < p.num_variables(); j += 3) {  // branch on the first fractional binary
+      if (std::abs(dual.x(j) - std::round(dual.x(j))) < 1e-6) continue;
+      for (double side : {0.0, 1.0}) {
+        Open child{node.lower, node.upper, *dual.warm_token};
+        child.lower(j) = child.upper(j) = side;
+        open.push_back(child);
+      }
+      break;
+    }
+  }
+  EXPECT_GE(compared, 10);
+  EXPECT_LT(warm_steps, cold_steps);
+}
+
+// The planner's node relaxations through the factory: the root (no token) is the
+// interior point's answer and hands its active set on; a child given it agrees with the
+// interior point, through the factory and by the dual method alone.
+TEST(DualActiveSetQp, TheFactorysDualSolverStartsTableIChildrenFromTheRootsActiveSet) {
+  for (const char* course : {"hexapod_stepping_stones_45.yaml", "littledog_stepping_stones_45.yaml"}) {
+    SCOPED_TRACE(course);
+    const Miqp p = TableIRoot(course, 12);
+    auto solver = MakeRelaxationSolver(RelaxationBackend::kDualActiveSetWithFallbacks);
+    RelaxationRequest request;
+    const RelaxationResult root = solver->Solve(p, request);
+    ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+    ASSERT_TRUE(root.warm_token);
+    int children = 0;
+    for (int j = 0; j < p.num_variables() && children < 4; ++j) {
+      if (!p.is_integer[j] || std::abs(root.x(j) - std::round(root.x(j))) < 1e-3) continue;
+      for (double side : {0.0, 1.0}) {
+        RelaxationRequest child;
+        child.lower = p.var_lower;
+        child.upper = p.var_upper;
+        child.lower(j) = child.upper(j) = side;
+        child.warm_token = root.warm_token;
+        const RelaxationResult ipm = Ipm(p, child.lower, child.upper);
+        const RelaxationResult dual = solver->Solve(p, child);
+        if (ipm.status == RelaxationStatus::kInfeasible) {
+          EXPECT_EQ(dual.status, RelaxationStatus::kInfeasible);
+          continue;
+        }
+        ExpectAgrees(p, dual, ipm);
+        EXPECT_TRUE(dual.warm_token);
+        DualActiveSetQp qp;  // the dual method alone, from the root's active set
+        ExpectAgrees(p, qp.SolveFrom(p, child.lower, child.upper, kInfinity, Deadline(), *root.warm_token), ipm);
+        ++children;
+      }
+    }
+    EXPECT_GE(children, 2);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "base/check.h"
 
@@ -147,6 +148,7 @@ bool DualActiveSetQp::WarmStart() {
   ++warm_solves_;
   SolveForActiveSet();
   for (;;) {
+    if (active_.empty()) return true;
     int worst = -1;
     double worst_u = -1e-12 * (1.0 + u_.cwiseAbs().maxCoeff());
     for (int i = 0; i < static_cast<int>(active_.size()); ++i) {
@@ -182,14 +184,80 @@ void DualActiveSetQp::RestoreNearest() {
   }
   warm_valid_ = best >= 0;
   if (best < 0 || best == live_slot_) return;
-  const Snapshot& snap = snapshots_[best];
+  LoadSnapshot(best);
+}
+
+void DualActiveSetQp::LoadSnapshot(int slot) {
+  const Snapshot& snap = snapshots_[slot];
   J_ = snap.J;
   R_ = snap.R;
   active_ = snap.active;
   is_active_.assign(2 * n_ + 2 * m_, 0);
   for (int con : active_) is_active_[con] = 1;
   warm_solves_ = snap.warm_solves;
-  live_slot_ = best;
+  live_slot_ = slot;
+}
+
+// The size of the symmetric difference of two active sets.
+int DualActiveSetQp::WarmStepBudget() const {
+  return static_cast<int>(std::ceil(options_.max_warm_steps_per_variable * n_));
+}
+
+int DualActiveSetQp::ActiveSetDistance(const std::vector<int>& from, const std::vector<int>& to) {
+  for (int con : to) mark_[con] = 1;
+  int distance = static_cast<int>(to.size());
+  for (int con : from) distance += mark_[con] ? -1 : 1;
+  for (int con : to) mark_[con] = 0;
+  return distance;
+}
+
+// The factors of the active set target (less constraints dependent on those before it),
+// built from the stored state nearest to it: its extra constraints dropped (the last
+// first, the cheapest), the missing ones appended. The multipliers are left to
+// SolveForActiveSet.
+void DualActiveSetQp::BuildActiveSet(const std::vector<int>& target) {
+  const int total = 2 * n_ + 2 * m_;
+  std::vector<int> wanted;
+  wanted.reserve(target.size());
+  mark_.assign(total, 0);
+  for (int con : target) {
+    if (con < 0 || con >= total || mark_[con] || !std::isfinite(rhs_(con))) continue;
+    mark_[con] = 1;
+    wanted.push_back(con);
+  }
+  for (int con : wanted) mark_[con] = 0;
+  int best = -1, best_distance = static_cast<int>(wanted.size());  // -1: the empty set
+  for (int s = 0; s < static_cast<int>(snapshots_.size()); ++s) {
+    if (snapshots_[s].used < 0 || snapshots_[s].warm_solves >= options_.warm_solves_before_rebuild) continue;
+    const int distance = ActiveSetDistance(snapshots_[s].active, wanted);
+    if (distance < best_distance || (distance == best_distance && s == live_slot_)) {
+      best = s;
+      best_distance = distance;
+    }
+  }
+  if (best < 0) {
+    ColdStart();
+  } else if (best != live_slot_) {
+    LoadSnapshot(best);
+  }
+  live_slot_ = -1;  // the factors change below
+  u_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(active_.size()));
+  for (int con : wanted) mark_[con] = 1;
+  for (int i = static_cast<int>(active_.size()) - 1; i >= 0; --i) {
+    if (mark_[active_[i]]) continue;
+    DropFromFactors(i);
+    ++steps_;
+  }
+  for (int con : wanted) {
+    mark_[con] = 0;
+    const int k = static_cast<int>(active_.size());
+    if (is_active_[con] || k == n_) continue;
+    const Eigen::VectorXd d = TransposedJTimesNormal(con);
+    if (d.tail(n_ - k).squaredNorm() <= 1e-10 * d.squaredNorm()) continue;  // dependent
+    AppendToFactors(con, d);
+    ++steps_;
+  }
+  u_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(active_.size()));
 }
 
 // The live state stored for later nodes: over the slot of the same box, else the least
@@ -301,9 +369,8 @@ void DualActiveSetQp::DropFromFactors(int position) {
 // (then p joins the active set), dropping blocking constraints on the way.
 DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& deadline) {
   double u_plus = 0.0;
-  const int max_steps = options_.max_steps_per_size * (n_ + m_);
   for (;;) {
-    if (++steps_ > max_steps || deadline.Expired()) return Step::kLimit;
+    if (++steps_ > step_limit_ || deadline.Expired()) return Step::kLimit;
     const int k = static_cast<int>(active_.size());
     const Eigen::VectorXd d = TransposedJTimesNormal(p);
     const Eigen::VectorXd z = J_.rightCols(n_ - k) * d.tail(n_ - k);
@@ -445,6 +512,81 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
   const double slop = res.cwiseAbs().dot(upper_ - lower_);
   const double floor = f_eps - FloorCorrection() - activity - slop;
   result->cost_floor = std::min(result->objective, floor - 1e-9 * (1.0 + std::abs(floor)));
+  result->warm_token = std::make_shared<const std::vector<int>>(active_);
+}
+
+RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::VectorXd& lower,
+                                            const Eigen::VectorXd& upper, double cutoff, const Deadline& deadline,
+                                            const std::vector<int>& start) {
+  RelaxationResult result;
+  steps_ = 0;
+  if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  SetBounds(lower, upper);
+  BuildActiveSet(start);
+  WarmStart();
+  step_limit_ = steps_ + WarmStepBudget();
+  warm_valid_ = true;
+  const Step step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
+  FillResult(problem, step, &result);
+  const double loose = 1e-6 * (1.0 + std::abs(result.objective)) + FloorCorrection();
+  if (step == Step::kOptimal && result.objective - result.cost_floor > loose) {
+    const int steps = result.iterations;
+    result = RelaxationResult();  // kFailed: drifted factors
+    result.iterations = steps;
+    warm_valid_ = false;
+  }
+  // A solve stopped on its budget, its deadline or an infeasible node leaves consistent
+  // factors (each step updates them whole): they stay a start for later solves.
+  if (warm_valid_) {
+    SaveSnapshot();
+  } else {
+    live_slot_ = -1;
+  }
+  return result;
+}
+
+std::vector<int> DualActiveSetQp::ActiveSetAt(const Miqp& problem, const Eigen::VectorXd& lower,
+                                              const Eigen::VectorXd& upper, const RelaxationResult& solved) {
+  const int n = problem.num_variables(), m = problem.num_rows();
+  const Eigen::VectorXd& x = solved.x;
+  const bool rates = solved.lower_cost_rate.size() == n && solved.row_lower_rate.size() == m;
+  const double tol = 1e-5;  // relative distance to a side: the interior point stops at 1e-8 in mu, not at the side
+  const double thr = 1e-6;  // multiplier relative to the largest: above the interior point's mu / slack of inactive sides
+  double largest = 1.0;
+  if (rates) {
+    largest += std::max({solved.lower_cost_rate.maxCoeff(), solved.upper_cost_rate.maxCoeff(),
+                         m ? solved.row_lower_rate.maxCoeff() : 0.0, m ? solved.row_upper_rate.maxCoeff() : 0.0});
+  }
+  // A side is active when x is on it and (if multipliers are given) its multiplier is
+  // not negligible: a degenerate vertex has many more sides met than multipliers.
+  auto active_side = [&](double distance, double bound, double rate) {
+    return distance <= tol * (1.0 + std::abs(bound)) && (!rates || rate > thr * largest);
+  };
+  std::vector<int> active;
+  for (int j = 0; j < n; ++j) {
+    const double lo_rate = rates ? solved.lower_cost_rate(j) : 0.0, up_rate = rates ? solved.upper_cost_rate(j) : 0.0;
+    const bool at_lower = active_side(x(j) - lower(j), lower(j), lo_rate);
+    const bool at_upper = active_side(upper(j) - x(j), upper(j), up_rate);
+    if (at_lower && at_upper) {
+      active.push_back(up_rate > lo_rate ? n + j : j);
+    } else if (at_lower) {
+      active.push_back(j);
+    } else if (at_upper) {
+      active.push_back(n + j);
+    }
+  }
+  const Eigen::VectorXd ax = problem.A * x;
+  for (int i = 0; i < m; ++i) {
+    const double scale = std::max(1e-12, problem.A.row(i).norm());
+    const double lo = problem.row_lower(i), up = problem.row_upper(i);
+    if (std::isfinite(lo) && active_side((ax(i) - lo) / scale, lo / scale, rates ? solved.row_lower_rate(i) : 0.0)) {
+      active.push_back(2 * n + i);
+    } else if (std::isfinite(up) &&
+               active_side((up - ax(i)) / scale, up / scale, rates ? solved.row_upper_rate(i) : 0.0)) {
+      active.push_back(2 * n + m + i);
+    }
+  }
+  return active;
 }
 
 RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::VectorXd& lower,
@@ -452,6 +594,7 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   RelaxationResult result;
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  step_limit_ = options_.max_steps_per_size * (n_ + m_);
   SetBounds(lower, upper);
   RestoreNearest();
   const bool warm = warm_valid_ && warm_solves_ < options_.warm_solves_before_rebuild;

@@ -36,16 +36,22 @@ struct DualActiveSetOptions {
   // A constraint violated by more than this (relative to 1 + |its bound|, rows scaled to
   // unit norm) is not met.
   double feasibility_tolerance = 1e-9;
-  // Dense method: problems with more variables end kFailed at once (another solver takes them).
-  int max_variables = 1500;
+  // Dense method: problems with more variables end kFailed at once (another solver takes
+  // them). Each step is O(n^2) dense work and a node takes some 40-300 of them: measured
+  // against the interior point on Table I (docs/measurements.md, issue 26, dualqp2), it
+  // wins per node at n = 110-260 and loses from n = 354 on.
+  int max_variables = 300;
   // Rebuild the factors from scratch after this many warm solves (rounding drift).
   int warm_solves_before_rebuild = 200;
   // Steps (additions plus drops) of one solve, as a multiple of variables + rows.
   int max_steps_per_size = 4;
+  // Steps of one SolveFrom after its start is built, per variable: past it the solve ends
+  // kIterationLimit (the interior point takes the node) rather than cost several of its solves.
+  double max_warm_steps_per_variable = 2.0;
   // Active sets (with their factors, 2 n^2 numbers each) kept for later solves; each
   // solve starts from the one whose box differs from its own in the fewest bounds, so
   // that a heuristic's QP between two nodes does not cost the next node its start.
-  int snapshots = 4;
+  int snapshots = 8;
 };
 
 class DualActiveSetQp {
@@ -57,6 +63,22 @@ class DualActiveSetQp {
   // problem it does not take or a node it finds infeasible.
   RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                          double cutoff, const Deadline& deadline);
+  // The same from the active set `start` (a parent node's: its result's warm_token, or
+  // ActiveSetAt of its point), not from the nearest box: the factors of `start` are built
+  // from the stored state nearest to it in active constraints (one factor update per
+  // constraint of the difference), the constraints whose multipliers are negative are
+  // dropped, and the method goes on from there. Never a cold solve of the whole set: a
+  // result whose floor drifted from its objective ends kFailed, for the interior point.
+  RelaxationResult SolveFrom(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                             double cutoff, const Deadline& deadline, const std::vector<int>& start);
+
+  // The constraints a solved point meets with equality, by complementarity, in the
+  // indexing of warm tokens (j: x_j >= lower_j; n + j: x_j <= upper_j; 2n + i: row i's
+  // lower side; 2n + m + i: its upper side). A variable at both bounds takes the side of
+  // its larger reduced cost (rates may be empty). For seeding the dual method from an
+  // interior point's answer.
+  static std::vector<int> ActiveSetAt(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                      const RelaxationResult& solved);
 
  private:
   enum class Step { kOptimal, kInfeasible, kCutoff, kLimit, kFailed };
@@ -69,6 +91,10 @@ class DualActiveSetQp {
   };
   int BoundsChanged(const Snapshot& snapshot) const;
   void RestoreNearest();
+  int WarmStepBudget() const;
+  int ActiveSetDistance(const std::vector<int>& from, const std::vector<int>& to);
+  void LoadSnapshot(int slot);
+  void BuildActiveSet(const std::vector<int>& target);
   void SaveSnapshot();
 
   bool Prepare(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper);
@@ -115,9 +141,11 @@ class DualActiveSetQp {
   Eigen::VectorXd lower_, upper_;
   std::vector<int> active_;      // constraint per factor column
   std::vector<char> is_active_;
+  std::vector<char> mark_;       // scratch, per constraint
   Eigen::VectorXd u_;            // multipliers of active_
   Eigen::VectorXd x_, ax_;
   int steps_ = 0;
+  int step_limit_ = 0;  // steps_ at which the solve ends kIterationLimit
   int warm_solves_ = 0;
   bool warm_valid_ = false;
   std::vector<Snapshot> snapshots_;

@@ -1,27 +1,57 @@
 #include "planner/qp/internal/dual_active_set_relaxation_solver.h"
 
+#include <utility>
+#include <vector>
+
 namespace mfp {
 namespace {
 
+bool SomeIntegerFree(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
+  for (int j = 0; j < problem.num_variables(); ++j) {
+    if (problem.is_integer[j] && lower(j) < upper(j)) return true;
+  }
+  return false;
+}
+
 class DualActiveSetRelaxationSolver final : public RelaxationSolver {
  public:
-  explicit DualActiveSetRelaxationSolver(const DualActiveSetOptions& options) : qp_(options) {}
+  DualActiveSetRelaxationSolver(std::unique_ptr<RelaxationSolver> interior, const DualActiveSetOptions& options)
+      : qp_(options), interior_(std::move(interior)) {}
 
-  // The warm start point is not used: the solver restarts from its own last active set.
+  // The warm start point is not used: the dual method starts from the token's active set.
   RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
-    return qp_.Solve(problem, request.LowerOr(problem), request.UpperOr(problem), request.cutoff, request.deadline);
+    const Eigen::VectorXd& lower = request.LowerOr(problem);
+    const Eigen::VectorXd& upper = request.UpperOr(problem);
+    int dual_steps = 0;
+    if (request.warm_token && SomeIntegerFree(problem, lower, upper)) {
+      RelaxationResult dual = qp_.SolveFrom(problem, lower, upper, request.cutoff, request.deadline, *request.warm_token);
+      if (dual.status == RelaxationStatus::kSolved || dual.status == RelaxationStatus::kCutoff ||
+          request.deadline.Expired()) {
+        return dual;
+      }
+      dual_steps = dual.iterations;
+    }
+    RelaxationResult result = interior_->Solve(problem, request);
+    result.iterations += dual_steps;
+    if (result.status == RelaxationStatus::kSolved) {
+      result.warm_token =
+          std::make_shared<const std::vector<int>>(DualActiveSetQp::ActiveSetAt(problem, lower, upper, result));
+    }
+    return result;
   }
 
-  std::string Name() const override { return "dualqp"; }
+  std::string Name() const override { return "dualqp+" + interior_->Name(); }
 
  private:
   DualActiveSetQp qp_;
+  std::unique_ptr<RelaxationSolver> interior_;
 };
 
 }  // namespace
 
-std::unique_ptr<RelaxationSolver> MakeDualActiveSetRelaxationSolver(const DualActiveSetOptions& options) {
-  return std::make_unique<DualActiveSetRelaxationSolver>(options);
+std::unique_ptr<RelaxationSolver> MakeDualActiveSetRelaxationSolver(std::unique_ptr<RelaxationSolver> interior,
+                                                                    const DualActiveSetOptions& options) {
+  return std::make_unique<DualActiveSetRelaxationSolver>(std::move(interior), options);
 }
 
 }  // namespace mfp

@@ -102,6 +102,7 @@ ReducedQp ReduceFixedVariables(const Miqp& p, const Eigen::VectorXd& lower,
     }
     row_lo.push_back(lo);
     row_hi.push_back(hi);
+    r.row_index.push_back(row);
   }
   out.A.resize(static_cast<Eigen::Index>(row_lo.size()), nf);
   out.A.setFromTriplets(a_triplets.begin(), a_triplets.end());

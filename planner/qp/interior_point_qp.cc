@@ -199,6 +199,17 @@ bool Converged(const Residuals& r, const InteriorPointOptions& opt, double scale
   return primal_ok && complementary && (dual_ok || dual_acceptable);
 }
 
+// The rows' multipliers: the duals of their one-sided rows, in Build's order.
+void SetRowRates(const Miqp& p, const Eigen::VectorXd& z, RelaxationResult* result) {
+  result->row_lower_rate = Eigen::VectorXd::Zero(p.num_rows());
+  result->row_upper_rate = Eigen::VectorXd::Zero(p.num_rows());
+  int k = 0;
+  for (int i = 0; i < p.num_rows(); ++i) {
+    if (std::isfinite(p.row_upper(i))) result->row_upper_rate(i) = std::max(0.0, z(k++));
+    if (std::isfinite(p.row_lower(i))) result->row_lower_rate(i) = std::max(0.0, z(k++));
+  }
+}
+
 // The result at a converged iterate: infeasible when an elastic variable stays above
 // the threshold, else solved with its reduced-cost certificate.
 RelaxationResult ConvergedResult(const InequalityForm& f, const Miqp& p, const Eigen::VectorXd& lower,
@@ -212,7 +223,10 @@ RelaxationResult ConvergedResult(const InequalityForm& f, const Miqp& p, const E
   const double threshold =
       std::max(opt.infeasible_violation, opt.infeasible_violation_per_tolerance * opt.tolerance * scale_d);
   result.status = violation > threshold ? RelaxationStatus::kInfeasible : RelaxationStatus::kSolved;
-  if (result.status == RelaxationStatus::kSolved) SetCostRates(f, lower, upper, w, s, z, r.r_d, r.r_p, &result);
+  if (result.status == RelaxationStatus::kSolved) {
+    SetCostRates(f, lower, upper, w, s, z, r.r_d, r.r_p, &result);
+    SetRowRates(p, z, &result);
+  }
   return result;
 }
 

@@ -44,6 +44,14 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
         result.lower_cost_rate(reduced.free_index[k]) = r.lower_cost_rate(static_cast<Eigen::Index>(k));
         result.upper_cost_rate(reduced.free_index[k]) = r.upper_cost_rate(static_cast<Eigen::Index>(k));
       }
+      if (r.row_lower_rate.size() > 0) {  // rows the reduction dropped are inactive: rate 0
+        result.row_lower_rate = Eigen::VectorXd::Zero(problem.num_rows());
+        result.row_upper_rate = Eigen::VectorXd::Zero(problem.num_rows());
+        for (size_t k = 0; k < reduced.row_index.size(); ++k) {
+          result.row_lower_rate(reduced.row_index[k]) = r.row_lower_rate(static_cast<Eigen::Index>(k));
+          result.row_upper_rate(reduced.row_index[k]) = r.row_upper_rate(static_cast<Eigen::Index>(k));
+        }
+      }
     }
     return result;
   }

@@ -3,12 +3,20 @@
 // variable bounds replaced by the branch-and-bound node's). Implementations are final
 // classes in their own adapter files (Ipopt: ipopt_relaxation_solver.h).
 #include <Eigen/Core>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "base/deadline.h"
 #include "planner/miqp/miqp.h"
 
 namespace mfp {
+
+// A solver's opaque hint from one solve for a related later one (a branch-and-bound
+// node's result for its children): immutable, shared, small (an index list, never
+// factors). What it holds is the solver's business (the dual active set: its active
+// constraints); solvers that keep none leave it null and ignore it.
+using WarmStartToken = std::shared_ptr<const std::vector<int>>;
 
 enum class RelaxationStatus {
   kSolved,          // converged to the tolerance: x is optimal for the relaxation
@@ -31,9 +39,14 @@ struct RelaxationResult {
   // rule out integer values that cannot beat the incumbent. Empty rates: not given.
   double cost_floor = -kInfinity;
   Eigen::VectorXd lower_cost_rate, upper_cost_rate;
+  // Optional, with the rates above: the multipliers (>= 0) of each row's lower and upper
+  // side at x, for seeding an active-set solver. Empty: not given.
+  Eigen::VectorXd row_lower_rate, row_upper_rate;
   // kFailed because the problem exceeds the solver's work budget (it was not attempted):
   // no other solver is tried on it either, as none finishes such a problem in a plan's time.
   bool over_work_budget = false;
+  // For a later related solve (RelaxationRequest::warm_token); null: none.
+  WarmStartToken warm_token;
 };
 
 // One solve's whole contract, as Drake's Solve(program, initial_guess, options): a
@@ -44,6 +57,8 @@ struct RelaxationRequest {
   Eigen::VectorXd lower, upper;
   // A point to start from (the parent node's relaxation point). Empty: a cold start.
   Eigen::VectorXd warm_start;
+  // The warm_token of a related solve (the parent node's); null: none.
+  WarmStartToken warm_token;
   // The solve stops, with status kIterationLimit, at its first check (every iteration)
   // after the deadline passes or its stop flag is set: a time limit holds inside one
   // solve, not only between solves. Solvers that cannot check ignore it; solvers that cap

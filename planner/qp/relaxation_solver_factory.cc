@@ -34,31 +34,6 @@ class FallbackRelaxationSolver final : public RelaxationSolver {
   std::unique_ptr<RelaxationSolver> fallback_;
 };
 
-// The dual active set for node relaxations (some integer still free), the interior point
-// for QPs whose integers are all fixed (the heuristics' roundings: far from any node the
-// dual method has seen, often infeasible, and small once the fixed variables are removed,
-// which the interior point does first).
-class NodesToDualActiveSet final : public RelaxationSolver {
- public:
-  NodesToDualActiveSet(std::unique_ptr<RelaxationSolver> nodes, std::unique_ptr<RelaxationSolver> fixed)
-      : nodes_(std::move(nodes)), fixed_(std::move(fixed)) {}
-
-  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
-    const Eigen::VectorXd& lower = request.LowerOr(problem);
-    const Eigen::VectorXd& upper = request.UpperOr(problem);
-    for (int j = 0; j < problem.num_variables(); ++j) {
-      if (problem.is_integer[j] && lower(j) < upper(j)) return nodes_->Solve(problem, request);
-    }
-    return fixed_->Solve(problem, request);
-  }
-
-  std::string Name() const override { return nodes_->Name(); }
-
- private:
-  std::unique_ptr<RelaxationSolver> nodes_;
-  std::unique_ptr<RelaxationSolver> fixed_;
-};
-
 std::unique_ptr<RelaxationSolver> MakeInteriorPointWithIpoptFallback() {
   return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
 }
@@ -80,9 +55,7 @@ std::string ToString(RelaxationBackend backend) {
 std::unique_ptr<RelaxationSolver> MakeRelaxationSolver(RelaxationBackend backend) {
   if (backend == RelaxationBackend::kIpopt) return MakeIpoptRelaxationSolver();
   if (backend == RelaxationBackend::kInteriorPointWithIpoptFallback) return MakeInteriorPointWithIpoptFallback();
-  auto nodes =
-      std::make_unique<FallbackRelaxationSolver>(MakeDualActiveSetRelaxationSolver(), MakeInteriorPointWithIpoptFallback());
-  return std::make_unique<NodesToDualActiveSet>(std::move(nodes), MakeInteriorPointWithIpoptFallback());
+  return MakeDualActiveSetRelaxationSolver(MakeInteriorPointWithIpoptFallback());
 }
 
 std::vector<RelaxationSolver*> RelaxationSolverSet::workers() const {

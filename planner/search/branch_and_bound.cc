@@ -118,7 +118,9 @@ class Search {
     // soon as that is proven.
     const double cutoff = state_.HasIncumbent() ? state_.result().objective - state_.GapTolerance() : kInfinity;
     const auto start = std::chrono::steady_clock::now();
-    e.relaxation = state_.SolveWith(solver, e.lower, e.upper, warm, cutoff);
+    RelaxationRequest request = state_.Request(e.lower, e.upper, warm, cutoff);
+    request.warm_token = node.warm_token;
+    e.relaxation = solver.Solve(p_, request);
     ++e.solves;
     e.iterations += e.relaxation.iterations;
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
@@ -221,6 +223,7 @@ class Search {
       child.parent_bound = bound;
       child.depth = node.depth + 1;
       child.warm_start = x;
+      child.warm_token = rel.warm_token;
       child.branch_var = j;
       child.branch_up = up == 1;
       child.parent_objective = rel.objective;

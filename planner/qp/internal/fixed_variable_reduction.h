@@ -17,6 +17,7 @@ struct ReducedQp {
   Miqp problem;                   // over the free variables only (names left empty)
   Eigen::VectorXd lower, upper;   // bounds of the free variables
   std::vector<int> free_index;    // reduced variable -> original variable
+  std::vector<int> row_index;     // reduced row -> original row
   Eigen::VectorXd fixed_x;        // original-size point holding the fixed values
 
   // The original-size point for a reduced solution.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "planner/miqp/miqp.h"
+#include "planner/qp/relaxation_solver.h"
 
 namespace mfp {
 
@@ -23,6 +24,9 @@ struct SearchNode {
   double branch_distance = 0.0;
   double parent_objective = 0.0;
   Eigen::VectorXd warm_start;  // parent's relaxation point
+  // The parent's solver hint (RelaxationResult::warm_token), shared by both children; at
+  // most one int per variable, so no more than warm_start's size.
+  WarmStartToken warm_token;
 };
 
 }  // namespace mfp
