@@ -92,5 +92,22 @@ TEST_F(BeamDeadEnd, APlanThatStopsMakingProgressEndsWithinTwoWindowsOfItsBestPoi
   EXPECT_LE(plan.windows, 40) << plan.message;
 }
 
+// A stopped plan says what keeps it from the goal in the goal test's terms: its farthest final
+// foot from its goal spot and its yaw, each beside its tolerance, and one of them is beyond it.
+TEST_F(BeamDeadEnd, APartialPlanNamesItsFarthestFootAndYawAgainstTheGoalTolerances) {
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options_.solvers.backend, 1);
+  const Plan plan = PlanFootsteps(robot_, regions_, request_, options_, solvers.workers());
+  ASSERT_EQ(plan.status, SolveStatus::kPartial) << plan.message;
+  const std::string& m = plan.message;
+  const size_t foot = m.find("farthest foot ");
+  const size_t yaw = m.find("; yaw ");
+  ASSERT_NE(foot, std::string::npos) << m;
+  ASSERT_NE(yaw, std::string::npos) << m;
+  EXPECT_NE(m.find("goal_tolerance " + std::to_string(options_.goal_tolerance_m).substr(0, 4)), std::string::npos) << m;
+  const double foot_m = std::stod(m.substr(foot + 14));
+  const double yaw_rad = std::stod(m.substr(yaw + 6));
+  EXPECT_TRUE(foot_m > options_.goal_tolerance_m || yaw_rad > options_.goal_yaw_tolerance_rad) << m;
+}
+
 }  // namespace
 }  // namespace mfp

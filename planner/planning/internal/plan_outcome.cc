@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
+
+#include "planner/planning/internal/goal.h"
 
 namespace mfp {
 namespace {
@@ -87,6 +91,23 @@ void ReportWindow(const PlanContext& context, const HorizonState& state, int kep
   }
 }
 
+namespace {
+
+// What keeps a stopped plan's last stance from the goal, in the goal test's own terms (the
+// centre's distance alone can be far inside the tolerance while a foot or the yaw is not).
+std::string GoalMiss(const PlanContext& context, const std::vector<Footstep>& footsteps) {
+  if (footsteps.size() < static_cast<size_t>(context.robot.num_legs())) return "";
+  const GoalDistances d = DistancesToGoal(context.robot, footsteps, context.goal);
+  const double farthest_foot_m = d.foot_m.empty() ? 0.0 : *std::max_element(d.foot_m.begin(), d.foot_m.end());
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << " (farthest foot " << farthest_foot_m << " m from its goal spot, goal_tolerance " << context.goal.tolerance_m
+      << " m; yaw " << d.yaw_rad << " rad off, goal_yaw_tolerance " << context.goal.yaw_tolerance_rad << " rad)";
+  return msg.str();
+}
+
+}  // namespace
+
 Plan FinishPlan(const PlanContext& context, HorizonState* state) {
   Plan& plan = state->plan;
   const PlanRequest& request = context.request;
@@ -106,7 +127,7 @@ Plan FinishPlan(const PlanContext& context, HorizonState* state) {
     std::ostringstream msg;
     msg.precision(3);
     msg << "partial plan: " << state->planned << " steps, stopped " << (centre - context.GoalXY()).norm()
-        << " m from the goal: " << plan.message;
+        << " m from the goal" << GoalMiss(context, plan.footsteps) << ": " << plan.message;
     plan.message = msg.str();
     plan.status = SolveStatus::kPartial;
   }
