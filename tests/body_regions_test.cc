@@ -155,7 +155,7 @@ TEST_F(BodyRowsTest, WithoutBodyRegionsTheMiqpIsUnchanged) {
 TEST(BodyRegionCourses, TheHexapodTurnsThroughATightDoorBodyClear) {
   const RobotModel robot = LoadRobot(RobotPath("hexapod"));
   const Course course = GenerateCourse(robot, RobotPath("hexapod"), CourseKind::kDoorway, 5);
-  const CourseOutcome out = PlanCourse(course, robot, 30.0);
+  const CourseOutcome out = PlanCourse(course, robot, 120.0);
   EXPECT_TRUE(out.verdict.valid) << out.verdict.cause << " " << out.plan.message;
   EXPECT_TRUE(out.verdict.body_clear) << out.verdict.body_overlap_share;
   EXPECT_TRUE(out.verdict.reaches_goal) << ToString(out.plan.status) << " " << out.plan.message;
