@@ -139,8 +139,8 @@ void AddSolverKeys(Table* t) {
                            {"ipopt", RelaxationBackend::kIpopt},
                            {"dualqp", RelaxationBackend::kDualActiveSetWithFallbacks}},
                        "QP solver of the relaxations: mfp's interior point (Ipopt as fallback), Ipopt alone, or "
-                       "mfp's dual active set started from the parent node's active set (interior point for roots, QPs over "
-                       "300 variables and as fallback)")
+                       "mfp's dual active set started from the parent node's active set (interior point for roots, large QPs "
+                       "and as fallback)")
                    .Alias("relaxation_solver"));
   t->push_back(Opt("solvers.threads", In(&P::solvers, &RelaxationSolverOptions::threads), 1, 64,
                    "branch-and-bound workers solving node relaxations at once")

@@ -198,11 +198,12 @@ void DualActiveSetQp::LoadSnapshot(int slot) {
   live_slot_ = slot;
 }
 
-// The size of the symmetric difference of two active sets.
+// Steps a warm solve may take before the interior point takes the node.
 int DualActiveSetQp::WarmStepBudget() const {
   return static_cast<int>(std::ceil(options_.max_warm_steps_per_variable * n_));
 }
 
+// The size of the symmetric difference of two active sets.
 int DualActiveSetQp::ActiveSetDistance(const std::vector<int>& from, const std::vector<int>& to) {
   for (int con : to) mark_[con] = 1;
   int distance = static_cast<int>(to.size());

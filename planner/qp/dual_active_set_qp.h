@@ -37,9 +37,8 @@ struct DualActiveSetOptions {
   // unit norm) is not met.
   double feasibility_tolerance = 1e-9;
   // Dense method: problems with more variables end kFailed at once (another solver takes
-  // them). Each step is O(n^2) dense work and a node takes some 40-300 of them: measured
-  // against the interior point on Table I (docs/measurements.md, issue 26, dualqp2), it
-  // wins per node at n = 110-260 and loses from n = 354 on.
+  // them). Each step is O(n^2) dense work, so large problems lose to the interior point
+  // per node (the crossover on Table I: docs/measurements.md, issue 26, dualqp2).
   int max_variables = 300;
   // Rebuild the factors from scratch after this many warm solves (rounding drift).
   int warm_solves_before_rebuild = 200;

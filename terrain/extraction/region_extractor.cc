@@ -187,10 +187,19 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
         1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
     const std::vector<Polygon2d> polygons = DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch,
                                                      dec, record ? &patch_fates : nullptr);
-    if (polygons.empty()) ++stats.patches_too_small;
+    // The cover checks the deadline before each piece: one that expired during this patch
+    // may have cut its cover short, which the result must say (not count as a small patch).
+    const bool cut_short = options.deadline.Expired();
+    if (cut_short && !result->stopped) {
+      result->stopped = true;
+      result->message = "time limit reached during planar patch " + std::to_string(patches_done) + " of " +
+                        std::to_string(patches.size()) + " (the largest first); its cover may be incomplete";
+    }
+    if (polygons.empty() && !cut_short) ++stats.patches_too_small;
     if (record) {
+      const CellFate empty_fate = cut_short ? CellFate::kNotDecomposed : CellFate::kSmallPatch;
       for (size_t i = 0; i < patch.cells.size(); ++i) {
-        const CellFate fate = polygons.empty() ? CellFate::kSmallPatch : patch_fates[i];
+        const CellFate fate = polygons.empty() ? empty_fate : patch_fates[i];
         result->cell_fates[static_cast<size_t>(layer_patch.layer)][static_cast<size_t>(patch.cells[i])] = fate;
       }
     }

@@ -88,10 +88,8 @@ struct RegionExtractorOptions {
   // to the exact inset as the rectangles' are, instead of rectangles on the grid or the
   // patch's principal frame; each piece has at most max_region_vertices vertices (rows
   // for the planner per region); kept per patch only where they hold more kept cells'
-  // centres than the rectangles. Off (the default): the rectangles. Not the default yet
-  // (docs/measurements.md, stop 29): on the noisy synthetic floor of the ScanNoise test
-  // the pieces' areas add up to 0.987 m^2 against the test's 0.991 (the rectangles' 1.06
-  // counts their overlaps; the floor they cover is 0.985 m^2).
+  // centres than the rectangles. Off (the default): the rectangles. Why it is not the
+  // default yet: docs/measurements.md, "Convex pieces with the rectangles' side slack".
   bool convex_cover = false;
   int max_region_vertices = 8;
   // At most this many regions, the largest patches first (a bound on the work of the
