@@ -379,11 +379,15 @@ double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vec
 EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const SeenVoxelJudge& judge,
                     const RegionExtractionResult& result, const Pose2D& pose) {
   EndFeet end;
-  double ground = 0.0, z = 0.0;
+  // The ground under the body: the mean floor top of the feet that have one.
+  double ground_sum = 0.0, z = 0.0;
+  int on_floor = 0;
   for (int leg = 0; leg < robot.num_legs(); ++leg) {
-    judge.FloorTop(NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad), &z);
-    ground += z / robot.num_legs();
+    if (!judge.FloorTop(NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad), &z)) continue;
+    ground_sum += z;
+    ++on_floor;
   }
+  const double ground = on_floor > 0 ? ground_sum / on_floor : 0.0;
   if (robot.body.known()) {
     double lowest = 0.0, highest = 0.0;
     int columns = 0;
@@ -445,6 +449,7 @@ bool Contains(const std::string& text, const char* part) { return text.find(part
 std::string FailureCause(const WalkResult& r) {
   if (r.feet_off > 0) return "footsteps off the seen voxels";
   auto start_tag = [](const EndFeet& e) {
+    if (e.off_regions == 0) return " [every start foot on a region]";
     return e.within_step == e.off_regions ? " [certifiable floor within d_lim of every such foot]"
                                           : " [a foot with no certifiable floor within d_lim]";
   };
