@@ -19,13 +19,7 @@
 namespace mfp {
 namespace {
 
-Course LittleDogTableI(int steps) {
-  Course c = LoadCourse("littledog_stepping_stones_45.yaml");
-  c.request.max_steps = steps;
-  c.request.window_steps = steps;
-  c.request.max_windows = 1;  // one MIQP, as in Table I
-  return c;
-}
+Course LittleDogTableI(int steps) { return LoadTableICourse("littledog_stepping_stones_45.yaml", steps); }
 
 Course LittleDog24() { return LittleDogTableI(24); }
 

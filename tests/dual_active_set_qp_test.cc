@@ -149,10 +149,7 @@ TEST(DualActiveSetQp, ACutoffBelowTheOptimumEndsWithATrueFloor) {
 }
 
 Miqp TableIRoot(const std::string& course, int steps) {
-  Course c = LoadCourse(course);
-  c.request.max_steps = steps;
-  c.request.window_steps = steps;
-  c.request.max_windows = 1;
+  const Course c = LoadTableICourse(course, steps);
   const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
                                     c.scenario.options.formulation);
   return formulation.miqp();

@@ -6,9 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include <utility>
+#include <string>
 #include <vector>
 
+#include "planner/miqp/miqp_builder.h"
 #include "planner/search/internal/bound_propagation.h"
 
 namespace mfp {
@@ -20,37 +21,20 @@ constexpr double kTol = 1e-6;
 Miqp ThreeStones(double extra_x_min) {
   const double M = 10.0;
   const double stones[3][2] = {{1.0, 2.0}, {4.0, 5.0}, {8.0, 9.0}};
-  const int n = 4;  // x, H0, H1, H2
-  Miqp p;
-  p.Q = Eigen::SparseMatrix<double>(n, n);
-  p.c = Eigen::VectorXd::Zero(n);
-  p.var_lower = Eigen::VectorXd::Zero(n);
-  p.var_upper = Eigen::VectorXd::Ones(n);
-  p.var_upper(0) = 10.0;
-  p.is_integer = {false, true, true, true};
-  p.var_names = {"x", "H0", "H1", "H2"};
-  std::vector<Eigen::Triplet<double>> t;
-  std::vector<double> lo, up;
-  const auto row = [&](std::vector<std::pair<int, double>> terms, double l, double u) {
-    const int i = static_cast<int>(lo.size());
-    for (const auto& [j, v] : terms) t.emplace_back(i, j, v);
-    lo.push_back(l);
-    up.push_back(u);
-    p.row_names.push_back("r" + std::to_string(i));
-  };
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", 0.0, 10.0, false);
+  std::vector<int> h;
+  for (int r = 0; r < 3; ++r) h.push_back(b.AddBinary("H" + std::to_string(r)));
   for (int r = 0; r < 3; ++r) {
-    row({{0, 1.0}, {1 + r, M}}, -kInfinity, stones[r][1] + M);    // x <= max + M (1 - H)
-    row({{0, -1.0}, {1 + r, M}}, -kInfinity, -stones[r][0] + M);  // x >= min - M (1 - H)
+    const std::string stone = "stone" + std::to_string(r);
+    const LinExpr big_m = LinExpr::Var(h[r], M);
+    b.AddRow(stone + "_max", LinExpr::Var(x) + big_m, -kInfinity, stones[r][1] + M);         // x <= max + M (1 - H)
+    b.AddRow(stone + "_min", LinExpr::Var(x, -1.0) + big_m, -kInfinity, -stones[r][0] + M);  // x >= min - M (1 - H)
   }
-  row({{1, 1.0}, {2, 1.0}, {3, 1.0}}, 1.0, 1.0);
-  row({{0, 1.0}}, extra_x_min, kInfinity);
-  p.A.resize(static_cast<int>(lo.size()), n);
-  p.A.setFromTriplets(t.begin(), t.end());
-  p.row_lower = Eigen::Map<Eigen::VectorXd>(lo.data(), static_cast<int>(lo.size()));
-  p.row_upper = Eigen::Map<Eigen::VectorXd>(up.data(), static_cast<int>(up.size()));
-  p.sos1_groups = {{1, 2, 3}};
-  CheckMiqpShape(p);
-  return p;
+  b.AddRow("one_stone", LinExpr::Var(h[0]) + LinExpr::Var(h[1]) + LinExpr::Var(h[2]), 1.0, 1.0);
+  b.AddRow("x_min", LinExpr::Var(x), extra_x_min, kInfinity);
+  b.AddSos1Group(h);
+  return b.Build();
 }
 
 TEST(GroupProbing, AFootIsBoundedByTheHullOfTheStonesItMayStillUse) {

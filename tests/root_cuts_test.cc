@@ -7,9 +7,11 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "planner/formulation/miqp_formulation.h"
+#include "planner/miqp/miqp_builder.h"
 #include "planner/planning/internal/exact_window.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
@@ -31,48 +33,31 @@ Miqp StonesInstance() {
     double xmin, xmax, ymin, ymax;
   };
   const std::vector<Box> stones = {{-1.5, -0.5, -1.0, 1.0}, {0.5, 1.5, -1.0, 0.2}, {-0.3, 0.35, 0.8, 1.5}};
-  const int n = 7;
-  Miqp p;
-  p.Q = Eigen::SparseMatrix<double>(n, n);
-  p.Q.insert(0, 0) = 2.0;
-  p.Q.insert(1, 1) = 2.0;
-  p.c = Eigen::VectorXd::Zero(n);
-  p.c(0) = -0.2;
-  p.c(1) = 3.2;
-  p.var_lower = Eigen::VectorXd::Zero(n);
-  p.var_upper = Eigen::VectorXd::Ones(n);
-  p.var_lower.head(2).setConstant(-2.0);
-  p.var_upper.head(2).setConstant(2.0);
-  p.is_integer = {false, false, true, true, true, true, true};
-  p.var_names = {"px", "py", "H0", "H1", "H2", "S0", "S1"};
-  std::vector<Eigen::Triplet<double>> t;
-  std::vector<double> lo, up;
-  const auto row = [&](std::vector<std::pair<int, double>> terms, double l, double u) {
-    const int i = static_cast<int>(lo.size());
-    for (const auto& [j, v] : terms) t.emplace_back(i, j, v);
-    lo.push_back(l);
-    up.push_back(u);
-    p.row_names.push_back("r" + std::to_string(i));
-  };
+  MiqpBuilder b;
+  const int px = b.AddVariable("px", -2.0, 2.0, false), py = b.AddVariable("py", -2.0, 2.0, false);
+  std::vector<int> h;
+  for (int r = 0; r < 3; ++r) h.push_back(b.AddBinary("H" + std::to_string(r)));
+  const int s0 = b.AddBinary("S0"), s1 = b.AddBinary("S1");
+  // (px - 0.1)^2 + (py + 1.6)^2 without its constant.
+  b.AddSquaredCost(LinExpr::Var(px), 1.0);
+  b.AddSquaredCost(LinExpr::Var(py), 1.0);
+  b.AddLinearCost(LinExpr::Var(px, -0.2) + LinExpr::Var(py, 3.2));
   for (int r = 0; r < 3; ++r) {
-    const Box& b = stones[r];
-    const int h = 2 + r;
-    row({{0, 1.0}, {h, M}}, -kInfinity, b.xmax + M);    // px <= xmax + M (1 - H)
-    row({{0, -1.0}, {h, M}}, -kInfinity, -b.xmin + M);  // px >= xmin - M (1 - H)
-    row({{1, 1.0}, {h, M}}, -kInfinity, b.ymax + M);
-    row({{1, -1.0}, {h, M}}, -kInfinity, -b.ymin + M);
+    const Box& box = stones[r];
+    const std::string stone = "stone" + std::to_string(r);
+    const LinExpr big_m = LinExpr::Var(h[r], M);
+    b.AddRow(stone + "_xmax", LinExpr::Var(px) + big_m, -kInfinity, box.xmax + M);  // px <= xmax + M (1 - H)
+    b.AddRow(stone + "_xmin", LinExpr::Var(px, -1.0) + big_m, -kInfinity, -box.xmin + M);  // px >= xmin - M (1 - H)
+    b.AddRow(stone + "_ymax", LinExpr::Var(py) + big_m, -kInfinity, box.ymax + M);
+    b.AddRow(stone + "_ymin", LinExpr::Var(py, -1.0) + big_m, -kInfinity, -box.ymin + M);
   }
-  row({{2, 1.0}, {3, 1.0}, {4, 1.0}}, 1.0, 1.0);
-  row({{0, 1.0}, {5, 2.0}}, -kInfinity, 2.0);   // px <= 2 (1 - S0)
-  row({{0, -1.0}, {6, 2.0}}, -kInfinity, 2.0);  // px >= -2 (1 - S1)
-  row({{5, 1.0}, {6, 1.0}}, 1.0, 1.0);
-  p.A.resize(static_cast<int>(lo.size()), n);
-  p.A.setFromTriplets(t.begin(), t.end());
-  p.row_lower = Eigen::Map<Eigen::VectorXd>(lo.data(), static_cast<int>(lo.size()));
-  p.row_upper = Eigen::Map<Eigen::VectorXd>(up.data(), static_cast<int>(up.size()));
-  p.sos1_groups = {{2, 3, 4}, {5, 6}};
-  CheckMiqpShape(p);
-  return p;
+  b.AddRow("one_stone", LinExpr::Var(h[0]) + LinExpr::Var(h[1]) + LinExpr::Var(h[2]), 1.0, 1.0);
+  b.AddRow("side0", LinExpr::Var(px) + LinExpr::Var(s0, 2.0), -kInfinity, 2.0);        // px <= 2 (1 - S0)
+  b.AddRow("side1", LinExpr::Var(px, -1.0) + LinExpr::Var(s1, 2.0), -kInfinity, 2.0);  // px >= -2 (1 - S1)
+  b.AddRow("one_side", LinExpr::Var(s0) + LinExpr::Var(s1), 1.0, 1.0);
+  b.AddSos1Group(h);
+  b.AddSos1Group({s0, s1});
+  return b.Build();
 }
 
 // The vertices of {(px, py) : rows and bounds of p with the integers fixed to z}: every
@@ -152,10 +137,7 @@ TEST(RootCuts, EveryCutHoldsAtEveryVertexOfEveryIntegerAssignment) {
 // A Table I instance: the optimum proven without cuts meets every cut row of the loop,
 // and the search with cuts ends at the same objective.
 void ExpectOptimumMeetsCuts(const std::string& scenario, int steps) {
-  Course c = LoadCourse(scenario);
-  c.request.max_steps = steps;
-  c.request.window_steps = steps;
-  c.request.max_windows = 1;
+  const Course c = LoadTableICourse(scenario, steps);
   const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, c.scenario.options),
                                     c.scenario.options.formulation);
   const Miqp& m = formulation.miqp();

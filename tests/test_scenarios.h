@@ -26,4 +26,13 @@ inline Course LoadCourse(const std::string& file_name) {
   return c;
 }
 
+// A scenario's first window alone, `steps` long: one MIQP, as in the seed paper's Table I.
+inline Course LoadTableICourse(const std::string& file_name, int steps) {
+  Course c = LoadCourse(file_name);
+  c.request.max_steps = steps;
+  c.request.window_steps = steps;
+  c.request.max_windows = 1;
+  return c;
+}
+
 }  // namespace mfp
