@@ -128,15 +128,19 @@ double RegionViolation(const ConvexRegion& region, const Eigen::Vector3d& point_
   return (region.A * point_world_m - region.b).maxCoeff();
 }
 
+Eigen::Vector2d ClosestPointOnSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return a + t * d;
+}
+
 Eigen::Vector2d ClosestBoundaryPoint(const std::vector<Eigen::Vector2d>& polygon_m, const Eigen::Vector2d& xy_m) {
   MFP_CHECK(!polygon_m.empty());
   Eigen::Vector2d best = polygon_m.front();
   double best_d = std::numeric_limits<double>::infinity();
   for (size_t k = 0; k < polygon_m.size(); ++k) {
-    const Eigen::Vector2d a = polygon_m[k], d = polygon_m[(k + 1) % polygon_m.size()] - a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((xy_m - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    const Eigen::Vector2d q = a + t * d;
+    const Eigen::Vector2d q = ClosestPointOnSegment(xy_m, polygon_m[k], polygon_m[(k + 1) % polygon_m.size()]);
     if ((q - xy_m).norm() < best_d) {
       best_d = (q - xy_m).norm();
       best = q;

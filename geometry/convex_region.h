@@ -46,6 +46,14 @@ double RegionViolation(const ConvexRegion& region, const Eigen::Vector3d& point_
 // leaves them.
 double PlanDistanceToRegion(const ConvexRegion& region, const Eigen::Vector2d& xy_m);
 
+// The point of segment [a, b] nearest to p (a itself when the segment has no length).
+Eigen::Vector2d ClosestPointOnSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
+// Distance from p to segment [a, b], in the units of the points.
+inline double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (ClosestPointOnSegment(p, a, b) - p).norm();
+}
+
 // The point of a closed polygon's boundary (vertices in order, either way round) nearest
 // to xy_m in plan view [m]. Inside or out: callers that want xy_m itself when inside
 // check that first.

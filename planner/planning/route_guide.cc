@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "geometry/convex_region.h"
 #include "geometry/region_reachability.h"
 #include "planner/planning/internal/stance_route.h"
 
@@ -15,13 +16,6 @@ namespace mfp {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double PointSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
 
 bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
   if (poly.size() < 3) return false;
@@ -36,7 +30,7 @@ bool InsidePolygon(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector
 double PolygonPointDistance(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& p) {
   if (InsidePolygon(poly, p)) return 0.0;
   double d = kInf;
-  for (size_t k = 0; k < poly.size(); ++k) d = std::min(d, PointSegment(p, poly[k], poly[(k + 1) % poly.size()]));
+  for (size_t k = 0; k < poly.size(); ++k) d = std::min(d, PointSegmentDistance(p, poly[k], poly[(k + 1) % poly.size()]));
   return d;
 }
 

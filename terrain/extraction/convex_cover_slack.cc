@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/convex_region.h"
 #include "terrain/extraction/internal/convex_cover.h"
 
 namespace mfp {
@@ -80,12 +81,6 @@ bool InteriorsApart(const Polygon2d& p, const Polygon2d& q) {
     }
   }
   return false;
-}
-
-double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (a + t * ab - p).norm();
 }
 
 // Distance between two convex polygons (0 when they meet): apart, the nearest points lie

@@ -3,16 +3,11 @@
 #include <array>
 #include <cmath>
 
+#include "geometry/convex_region.h"
 #include "terrain/extraction/internal/patch_cover.h"
 
 namespace mfp {
 namespace {
-
-double PointSegmentDistance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (a + t * ab - p).norm();
-}
 
 double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
