@@ -22,8 +22,11 @@ class DualActiveSetRelaxationSolver final : public RelaxationSolver {
   RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
     const Eigen::VectorXd& lower = request.LowerOr(problem);
     const Eigen::VectorXd& upper = request.UpperOr(problem);
+    // A QP whose integers are all fixed (a rounding, a leaf) has no children: it neither
+    // takes nor gives a token.
+    const bool has_children = SomeIntegerFree(problem, lower, upper);
     int dual_steps = 0;
-    if (request.warm_token && SomeIntegerFree(problem, lower, upper)) {
+    if (request.warm_token && has_children) {
       RelaxationResult dual = qp_.SolveFrom(problem, lower, upper, request.cutoff, request.deadline, *request.warm_token);
       if (dual.status == RelaxationStatus::kSolved || dual.status == RelaxationStatus::kCutoff ||
           request.deadline.Expired()) {
@@ -33,7 +36,7 @@ class DualActiveSetRelaxationSolver final : public RelaxationSolver {
     }
     RelaxationResult result = interior_->Solve(problem, request);
     result.iterations += dual_steps;
-    if (result.status == RelaxationStatus::kSolved) {
+    if (result.status == RelaxationStatus::kSolved && has_children) {
       result.warm_token =
           std::make_shared<const std::vector<int>>(DualActiveSetQp::ActiveSetAt(problem, lower, upper, result));
     }

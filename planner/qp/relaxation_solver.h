@@ -31,6 +31,8 @@ struct RelaxationResult {
   RelaxationStatus status = RelaxationStatus::kFailed;
   Eigen::VectorXd x;
   double objective = 0.0;  // 0.5 x'Qx + c'x + constant at x
+  // The solver's own steps, a work count for statistics only: interior-point iterations,
+  // dual active-set steps, or (a solver that falls back from one method to another) their sum.
   int iterations = 0;
   // Optional, from the duals of the variable bounds (reduced costs): every point of the
   // node's box that meets the rows costs at least
