@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "base/check.h"
+#include "base/round.h"
 
 namespace mfp {
 
@@ -36,9 +37,9 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
       throw InputError("occupancy map: a leaf is not a finite cube between one voxel and the "
                        "octree's extent");
     }
-    const long long n = std::llround(cells);
-    const long long x0 = std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
-    const long long y0 = std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
+    const long long n = RoundToLongLong(cells);
+    const long long x0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
+    const long long y0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
     lo_x = std::min(lo_x, x0);
     lo_y = std::min(lo_y, y0);
     hi_x = std::max(hi_x, x0 + n);
@@ -58,11 +59,11 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
   hm.height_m.assign(static_cast<size_t>(hm.rows) * hm.cols,
                      std::numeric_limits<float>::quiet_NaN());
   for (const OccupiedLeaf& leaf : map.leaves) {
-    const int n = static_cast<int>(std::llround(leaf.size_m / res));
+    const int n = static_cast<int>(RoundToLongLong(leaf.size_m / res));
     const int c0 =
-        static_cast<int>(std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - lo_x);
+        static_cast<int>(RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - lo_x);
     const int r0 =
-        static_cast<int>(std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - lo_y);
+        static_cast<int>(RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - lo_y);
     const float top = static_cast<float>(leaf.center_world_m.z() + 0.5 * leaf.size_m);
     for (int r = r0; r < r0 + n; ++r) {
       float* row = &hm.height_m[static_cast<size_t>(r) * hm.cols];

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "base/check.h"
+#include "base/round.h"
 
 namespace mfp {
 namespace {
@@ -23,72 +24,90 @@ struct Columns {
   const Interval* end(int c) const { return runs.data() + offset[c + 1]; }
 };
 
-// Leaves cut into per-column intervals, sorted and merged (touching runs join).
-Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+// A leaf's cell range on the grid: columns [c0, c0 + n) x rows [r0, r0 + n), voxels
+// [z0, z0 + n) along z.
+struct Footprint {
+  long long z0;
+  int c0, r0, n;
+};
+
+// The footprints of the leaves that overlap the grid (the others add no run), in order.
+std::vector<Footprint> FootprintsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
   const double res = hm.resolution_m;
-  const long long x_lo = std::llround(hm.origin_world_m.x() / res);
-  const long long y_lo = std::llround(hm.origin_world_m.y() / res);
-  const int cells = hm.rows * hm.cols;
-  struct Footprint {
-    long long c0, r0, n, z0;
-  };
+  const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
+  const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
   std::vector<Footprint> prints;
   prints.reserve(leaves.size());
-  std::vector<size_t> count(static_cast<size_t>(cells) + 1, 0);
   for (const OccupiedLeaf& leaf : leaves) {
     const double n_d = leaf.size_m / res;
     if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
-    const long long n = std::llround(n_d);
-    Footprint f{std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo,
-                std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo, n,
-                std::llround((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res)};
-    prints.push_back(f);
-    for (long long r = std::max(0LL, f.r0); r < std::min<long long>(hm.rows, f.r0 + n); ++r) {
-      for (long long c = std::max(0LL, f.c0); c < std::min<long long>(hm.cols, f.c0 + n); ++c) {
-        ++count[static_cast<size_t>(r * hm.cols + c)];
+    const long long n = RoundToLongLong(n_d);
+    const long long c0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo;
+    const long long r0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo;
+    if (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0) continue;
+    prints.push_back({RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res), static_cast<int>(c0),
+                      static_cast<int>(r0), static_cast<int>(n)});
+  }
+  return prints;
+}
+
+// Sorts a column's runs by their lower end: insertion sort, as most columns hold a few.
+void SortRuns(Interval* b, Interval* e) {
+  if (e - b > 24) {
+    std::sort(b, e, [](const Interval& p, const Interval& q) { return p.lo < q.lo; });
+    return;
+  }
+  for (Interval* it = b + 1; it < e; ++it) {
+    const Interval v = *it;
+    Interval* j = it;
+    for (; j > b && (j - 1)->lo > v.lo; --j) *j = *(j - 1);
+    *j = v;
+  }
+}
+
+// Leaves cut into per-column intervals, sorted and merged (touching runs join).
+Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+  const int cells = hm.rows * hm.cols;
+  const std::vector<Footprint> prints = FootprintsOf(leaves, hm);
+  // Per column its run count at offset[c + 1], then the running sum: the column's start.
+  Columns cols;
+  cols.offset.assign(static_cast<size_t>(cells) + 1, 0);
+  for (const Footprint& f : prints) {
+    for (int r = std::max(0, f.r0); r < std::min(hm.rows, f.r0 + f.n); ++r) {
+      for (int c = std::max(0, f.c0); c < std::min(hm.cols, f.c0 + f.n); ++c) {
+        ++cols.offset[static_cast<size_t>(r) * hm.cols + c + 1];
       }
     }
   }
-  Columns cols;
-  cols.offset.assign(static_cast<size_t>(cells) + 1, 0);
-  for (int c = 0; c < cells; ++c) cols.offset[c + 1] = cols.offset[c] + count[c];
+  for (int c = 0; c < cells; ++c) cols.offset[c + 1] += cols.offset[c];
   cols.runs.resize(cols.offset[cells]);
   std::vector<size_t> fill(cols.offset.begin(), cols.offset.end() - 1);
   for (const Footprint& f : prints) {
-    for (long long r = std::max(0LL, f.r0); r < std::min<long long>(hm.rows, f.r0 + f.n); ++r) {
-      for (long long c = std::max(0LL, f.c0); c < std::min<long long>(hm.cols, f.c0 + f.n); ++c) {
-        cols.runs[fill[static_cast<size_t>(r * hm.cols + c)]++] = {f.z0, f.z0 + f.n};
+    for (int r = std::max(0, f.r0); r < std::min(hm.rows, f.r0 + f.n); ++r) {
+      for (int c = std::max(0, f.c0); c < std::min(hm.cols, f.c0 + f.n); ++c) {
+        cols.runs[fill[static_cast<size_t>(r) * hm.cols + c]++] = {f.z0, f.z0 + f.n};
       }
     }
   }
-  // Sort and merge each column in place, then compact.
+  // Sort and merge each column in place, compacting as it goes (a column's new start is
+  // never after its old one).
   size_t out = 0;
-  std::vector<size_t> new_offset(static_cast<size_t>(cells) + 1, 0);
   for (int c = 0; c < cells; ++c) {
-    auto b = cols.runs.begin() + static_cast<std::ptrdiff_t>(cols.offset[c]);
-    auto e = cols.runs.begin() + static_cast<std::ptrdiff_t>(cols.offset[c + 1]);
-    std::sort(b, e, [](const Interval& p, const Interval& q) { return p.lo < q.lo; });
-    new_offset[c] = out;
-    for (auto it = b; it != e; ++it) {
-      if (out > new_offset[c] && it->lo <= cols.runs[out - 1].hi) {
+    Interval* b = cols.runs.data() + cols.offset[c];
+    Interval* e = cols.runs.data() + cols.offset[c + 1];
+    SortRuns(b, e);
+    cols.offset[c] = out;
+    for (Interval* it = b; it != e; ++it) {
+      if (out > cols.offset[c] && it->lo <= cols.runs[out - 1].hi) {
         cols.runs[out - 1].hi = std::max(cols.runs[out - 1].hi, it->hi);
       } else {
         cols.runs[out++] = *it;
       }
     }
   }
-  new_offset[cells] = out;
+  cols.offset[cells] = out;
   cols.runs.resize(out);
-  cols.offset = std::move(new_offset);
   return cols;
-}
-
-// True when voxels [z_lo, z_hi) of column c are all occupied (runs are merged).
-bool ColumnCovers(const Columns& cols, int c, long long z_lo, long long z_hi) {
-  for (const Interval* it = cols.begin(c); it != cols.end(c); ++it) {
-    if (it->lo <= z_lo && it->hi >= z_hi) return true;
-  }
-  return false;
 }
 
 bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
@@ -349,7 +368,7 @@ long long RoomVoxels(double clearance_m, double res) {
 
 // SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
 uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
-  const long long top_voxel = std::llround(level / res) - 1;
+  const long long top_voxel = RoundToLongLong(level / res) - 1;
   if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
   // A ray through the voxel under the floor's level went into a hole: a drop.
   if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
@@ -462,6 +481,14 @@ void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& fre
   }
 }
 
+// The run of column c holding voxel z, or nullptr.
+const Interval* RunHolding(const Columns& cols, int c, long long z) {
+  for (const Interval* it = cols.begin(c); it != cols.end(c) && it->lo <= z; ++it) {
+    if (it->hi > z) return it;
+  }
+  return nullptr;
+}
+
 // Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
 std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
   const double res = layer.resolution_m;
@@ -470,14 +497,15 @@ std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
     for (int c = 0; c < layer.cols; ++c) {
       const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
       if (std::isnan(h)) continue;
-      const long long top_voxel = std::llround(h / res) - 1;
+      const long long top_voxel = RoundToLongLong(h / res) - 1;
       uint8_t b = 0;
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if ((dr == 0 && dc == 0) || !layer.Inside(r + dr, c + dc)) continue;
-          const int n = layer.Index(r + dr, c + dc);
-          if (ColumnCovers(occ, n, top_voxel + 1, top_voxel + 2) &&
-              (ColumnCovers(occ, n, top_voxel, top_voxel + 1) || ColumnCovers(occ, n, top_voxel + 2, top_voxel + 3))) {
+          // Occupied above the top voxel, and at its level or one higher still. Runs are
+          // merged (a gap between any two), so both lie in the run holding the first.
+          const Interval* run = RunHolding(occ, layer.Index(r + dr, c + dc), top_voxel + 1);
+          if (run != nullptr && (run->lo <= top_voxel || run->hi >= top_voxel + 3)) {
             b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
           }
         }
