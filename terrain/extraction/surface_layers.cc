@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <utility>
 
 #include "base/check.h"
 #include "base/round.h"
@@ -121,26 +122,33 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 namespace {
 
-// Per cell, 1 when a surface lies in its 3 x 3 neighbourhood (itself included): the only
-// cells the noise repair and the unseen bits can change, as both look at neighbours only.
-std::vector<uint8_t> NearSurface(const HeightMap& hm) {
-  const size_t cols = static_cast<size_t>(hm.cols);
-  std::vector<uint8_t> across(hm.height_m.size(), 0), near(hm.height_m.size(), 0);
-  for (size_t row = 0; row < static_cast<size_t>(hm.rows); ++row) {
-    const float* h = &hm.height_m[row * cols];
-    uint8_t* out = &across[row * cols];
-    for (size_t c = 0; c < cols; ++c) {
+// The cells with a surface in their 3 x 3 neighbourhood (itself included), in row order:
+// the only cells the noise repair and the unseen bits can change, as both look at
+// neighbours only. `mark` is all 0 and as many cells long, on entry and on return.
+std::vector<int> NearCells(const HeightMap& hm, std::vector<uint8_t>* mark) {
+  std::vector<int> near;
+  for (int r = 0; r < hm.rows; ++r) {
+    const float* h = &hm.height_m[static_cast<size_t>(r) * hm.cols];
+    for (int c = 0; c < hm.cols; ++c) {
       if (std::isnan(h[c])) continue;
-      out[c] = 1;
-      if (c > 0) out[c - 1] = 1;
-      if (c + 1 < cols) out[c + 1] = 1;
+      for (int rr = std::max(0, r - 1); rr <= std::min(hm.rows - 1, r + 1); ++rr) {
+        for (int cc = std::max(0, c - 1); cc <= std::min(hm.cols - 1, c + 1); ++cc) {
+          uint8_t& m = (*mark)[static_cast<size_t>(hm.Index(rr, cc))];
+          if (!m) near.push_back(hm.Index(rr, cc));
+          m = 1;
+        }
+      }
     }
   }
-  for (size_t row = 0; row < static_cast<size_t>(hm.rows); ++row) {
-    const size_t lo = row > 0 ? row - 1 : row, hi = row + 1 < static_cast<size_t>(hm.rows) ? row + 1 : row;
-    for (size_t r = lo; r <= hi; ++r) {
-      for (size_t c = 0; c < cols; ++c) near[row * cols + c] |= across[r * cols + c];
-    }
+  if (near.size() * 16 < mark->size()) {
+    for (int i : near) (*mark)[static_cast<size_t>(i)] = 0;
+    std::sort(near.begin(), near.end());
+    return near;
+  }
+  near.clear();  // many: read them off the marks in order instead of sorting
+  for (size_t i = 0; i < mark->size(); ++i) {
+    if ((*mark)[i]) near.push_back(static_cast<int>(i));
+    (*mark)[i] = 0;
   }
   return near;
 }
@@ -160,60 +168,58 @@ bool MayRepair(float centre, const float neighbours[8], double res) {
   return std::isnan(centre) ? present == 8 : present >= 7 && voxel_off;
 }
 
-// FillSingleCellNoise given NearSurface(*hm) (which no repair changes: a filled cell's 8
-// neighbours are surface cells already).
-int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, const std::vector<uint8_t>& near,
-                          std::vector<int>* changed_cells) {
+// FillSingleCellNoise given NearCells(*hm) (which no repair changes: a filled cell's 8
+// neighbours are surface cells already). Every cell is judged on the heights as they
+// were before the call. `before` (optional) gets each changed cell with its old height.
+int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, const std::vector<int>& near,
+                          std::vector<int>* changed_cells, std::vector<std::pair<int, float>>* before = nullptr) {
   const double res = hm->resolution_m;
-  const std::vector<float> in = hm->height_m;
-  int changed = 0;
-  for (int r = 1; r + 1 < hm->rows; ++r) {
-    for (int c = 1; c + 1 < hm->cols; ++c) {
-      if (!near[static_cast<size_t>(hm->Index(r, c))]) continue;  // no neighbour: nothing to repair
-      float around[8];
-      for (int k = 0, j = 0; k < 9; ++k) {
-        if (k != 4) around[j++] = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
-      }
-      float& h = hm->height_m[static_cast<size_t>(hm->Index(r, c))];
-      if (!MayRepair(h, around, res)) continue;
-      // The most common neighbour height (the first of the most common, in row order) and
-      // how many of the 8 have it.
-      float h0 = std::numeric_limits<float>::quiet_NaN();
-      int best = 0, present = 0;
-      for (int k = 0; k < 8; ++k) {
-        const float g = around[k];
-        if (std::isnan(g)) continue;
-        ++present;
-        int same = 0;
-        for (int j = 0; j < 8; ++j) same += !std::isnan(around[j]) && std::abs(around[j] - g) < 0.01 * res;
-        if (same > best) {
-          best = same;
-          h0 = g;
-        }
-      }
-      if (std::isnan(h)) {
-        const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(hm->Index(r, c))] & kEmptyColumn);
-        if (best == 8 && may_fill) {  // a one-cell hole in a level surface
-          h = h0;
-          ++changed;
-          if (changed_cells != nullptr) changed_cells->push_back(hm->Index(r, c));
-        }
-      } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
-        h = h0;  // one voxel off a level neighbourhood
-        ++changed;
-        if (changed_cells != nullptr) changed_cells->push_back(hm->Index(r, c));
+  std::vector<std::pair<int, float>> repairs;
+  for (int i : near) {
+    const int r = i / hm->cols, c = i % hm->cols;
+    if (r < 1 || r + 1 >= hm->rows || c < 1 || c + 1 >= hm->cols) continue;
+    float around[8];
+    for (int k = 0, j = 0; k < 9; ++k) {
+      if (k != 4) around[j++] = hm->height_m[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
+    }
+    const float h = hm->height_m[static_cast<size_t>(i)];
+    if (!MayRepair(h, around, res)) continue;
+    // The most common neighbour height (the first of the most common, in row order) and
+    // how many of the 8 have it.
+    float h0 = std::numeric_limits<float>::quiet_NaN();
+    int best = 0, present = 0;
+    for (int k = 0; k < 8; ++k) {
+      const float g = around[k];
+      if (std::isnan(g)) continue;
+      ++present;
+      int same = 0;
+      for (int j = 0; j < 8; ++j) same += !std::isnan(around[j]) && std::abs(around[j] - g) < 0.01 * res;
+      if (same > best) {
+        best = same;
+        h0 = g;
       }
     }
+    if (std::isnan(h)) {
+      const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(i)] & kEmptyColumn);
+      if (best == 8 && may_fill) repairs.emplace_back(i, h0);  // a one-cell hole in a level surface
+    } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
+      repairs.emplace_back(i, h0);  // one voxel off a level neighbourhood
+    }
   }
-  return changed;
+  for (const auto& [cell, height] : repairs) {
+    if (before != nullptr) before->emplace_back(cell, hm->height_m[static_cast<size_t>(cell)]);
+    hm->height_m[static_cast<size_t>(cell)] = height;
+    if (changed_cells != nullptr) changed_cells->push_back(cell);
+  }
+  return static_cast<int>(repairs.size());
 }
 
 }  // namespace
 
 int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::vector<int>* changed_cells) {
-  return RepairSingleCellNoise(hm, unseen, NearSurface(*hm), changed_cells);
+  std::vector<uint8_t> mark(hm->height_m.size(), 0);
+  return RepairSingleCellNoise(hm, unseen, NearCells(*hm, &mark), changed_cells);
 }
-
 namespace {
 
 // Isolated single voxels: no occupied voxel in the 26-neighbourhood. One flag per run of
@@ -389,18 +395,12 @@ uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* fr
   return UnseenBits(occ, free, layer.Index(r, c), level, layer.resolution_m, room);
 }
 
-// SurfaceLayers::unseen of one layer.
-// near: NearSurface(layer).
+// SurfaceLayers::unseen of one layer. near: NearCells(layer).
 std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
-                                 const std::vector<uint8_t>& near) {
+                                 const std::vector<int>& near) {
   std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
   const long long room = RoomVoxels(clearance_m, layer.resolution_m);
-  for (int r = 0; r < layer.rows; ++r) {
-    for (int c = 0; c < layer.cols; ++c) {
-      const size_t i = static_cast<size_t>(layer.Index(r, c));
-      if (near[i]) unseen[i] = UnseenCell(layer, occ, free, r, c, room);
-    }
-  }
+  for (int i : near) unseen[static_cast<size_t>(i)] = UnseenCell(layer, occ, free, i / layer.cols, i % layer.cols, room);
   return unseen;
 }
 
@@ -449,9 +449,11 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // as it was, so fills do not chain. Appends the cells filled to *filled_cells.
 void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free, double clearance_m, int radius,
                         std::vector<int>* filled_cells) {
-  const double res = layer->resolution_m;
+  const HeightMap& seen = *layer;  // unchanged until every cell is judged
+  const double res = seen.resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
-  const HeightMap seen = *layer;
+  std::vector<float> levels;
+  const size_t first_fill = filled_cells->size();
   std::vector<int> next_right(static_cast<size_t>(seen.cols));
   for (int r = 0; r < seen.rows; ++r) {
     // The nearest surface at or right of each column, and the last one left of it: a cell
@@ -459,6 +461,7 @@ void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& fre
     const float* row = &seen.height_m[static_cast<size_t>(seen.Index(r, 0))];
     int next = std::numeric_limits<int>::max() / 2;
     for (int c = seen.cols - 1; c >= 0; --c) next_right[static_cast<size_t>(c)] = next = std::isnan(row[c]) ? next : c;
+    if (next >= seen.cols) continue;  // no surface in the row
     int last_left = std::numeric_limits<int>::min() / 2;
     for (int c = 0; c < seen.cols; ++c) {
       const size_t i = static_cast<size_t>(seen.Index(r, c));
@@ -475,9 +478,12 @@ void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& fre
       const int col = seen.Index(r, c);
       if (UnseenBits(occ, &free, col, level, res, room) != (kEmptyColumn | kNotErased)) continue;
       if (UnseenBits(occ, &free, col, hits[7], res, room) != (kEmptyColumn | kNotErased)) continue;
-      layer->height_m[i] = level;
+      levels.push_back(level);
       filled_cells->push_back(col);
     }
+  }
+  for (size_t k = 0; k < levels.size(); ++k) {
+    layer->height_m[static_cast<size_t>((*filled_cells)[first_fill + k])] = levels[k];
   }
 }
 
@@ -516,14 +522,16 @@ std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
   return bits;
 }
 
-// The cells of `as_seen` whose height `repaired` changed (not those it filled), at their
-// seen height; NaN elsewhere.
-HeightMap MovedCellsAsSeen(const HeightMap& as_seen, const HeightMap& repaired) {
-  HeightMap moved = as_seen;
-  for (size_t i = 0; i < moved.height_m.size(); ++i) {
-    if (std::isnan(as_seen.height_m[i]) || as_seen.height_m[i] == repaired.height_m[i]) {
-      moved.height_m[i] = std::numeric_limits<float>::quiet_NaN();
-    }
+// The cells the noise repair changed (not those it filled), at their seen height; NaN
+// elsewhere. changes: each changed cell with its height before that change, in order.
+HeightMap MovedCellsAsSeen(const HeightMap& repaired, const std::vector<std::pair<int, float>>& changes) {
+  HeightMap moved = repaired;
+  std::fill(moved.height_m.begin(), moved.height_m.end(), std::numeric_limits<float>::quiet_NaN());
+  // Latest first, so each cell ends with its height before its first change.
+  for (auto it = changes.rbegin(); it != changes.rend(); ++it) moved.height_m[static_cast<size_t>(it->first)] = it->second;
+  for (const auto& change : changes) {
+    float& seen = moved.height_m[static_cast<size_t>(change.first)];
+    if (seen == repaired.height_m[static_cast<size_t>(change.first)]) seen = std::numeric_limits<float>::quiet_NaN();
   }
   return moved;
 }
@@ -553,22 +561,22 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   const Columns* free_or_null = know_free ? &free : nullptr;
   // The unseen bits once per layer, then brought up to date after each change.
   std::vector<int> changed_cells;
+  std::vector<uint8_t> mark(grid.height_m.size(), 0);
   for (size_t l = 0; l < out.layers.size(); ++l) {
     HeightMap& layer = out.layers[l];
-    const std::vector<uint8_t> near = NearSurface(layer);
+    const std::vector<int> near = NearCells(layer, &mark);
     out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m, near));
     if (!options.fill_single_cell_noise) continue;
-    const HeightMap as_seen = layer;
+    std::vector<std::pair<int, float>> changes;
     // Twice: a hole beside a displaced cell is filled once that cell is back.
-    int changed = 0;
     for (int pass = 0; pass < 2; ++pass) {
       changed_cells.clear();
-      changed += RepairSingleCellNoise(&layer, &out.unseen[l], near, &changed_cells);
+      RepairSingleCellNoise(&layer, &out.unseen[l], near, &changed_cells, &changes);
       UpdateUnseenCells(layer, occ, free_or_null, options.clearance_m, changed_cells.data(), changed_cells.size(),
                         &out.unseen[l]);
     }
-    out.noise_cells_filled += changed;
-    if (changed > 0) out.moved_as_seen.push_back(MovedCellsAsSeen(as_seen, layer));
+    out.noise_cells_filled += static_cast<int>(changes.size());
+    if (!changes.empty()) out.moved_as_seen.push_back(MovedCellsAsSeen(layer, changes));
   }
   if (know_free && options.enclosed_unseen_radius_cells > 0) {
     for (size_t l = 0; l < out.layers.size(); ++l) {
