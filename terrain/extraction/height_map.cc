@@ -108,26 +108,33 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
     for (int c = 0; c < hm.cols; ++c) {
       const float hc = hm.height_m[static_cast<size_t>(hm.Index(r, c))];
       if (std::isnan(hc)) continue;
-      // Least squares in coordinates relative to the cell (x, y in cells, z in m).
-      Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+      // Least squares in coordinates relative to the cell (x, y in cells, z in m): the
+      // rows (dc, dr, 1) of A summed into A^T A (small integers, exact in any order) and
+      // A^T z.
+      int sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, count = 0;
       Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
       double zz = 0.0;
-      int count = 0;
       for (int dr = -w; dr <= w; ++dr) {
+        if (r + dr < 0 || r + dr >= hm.rows) continue;
         for (int dc = -w; dc <= w; ++dc) {
-          if (!hm.Inside(r + dr, c + dc)) continue;
+          if (c + dc < 0 || c + dc >= hm.cols) continue;
           const float h = hm.height_m[static_cast<size_t>(hm.Index(r + dr, c + dc))];
           if (std::isnan(h)) continue;
           const double dz = h - hc;
           if (std::abs(dz) > gate[static_cast<size_t>((dr + w) * side + (dc + w))]) continue;
-          const Eigen::Vector3d a(dc, dr, 1.0);
-          AtA += a * a.transpose();
-          Atz += a * dz;
+          sxx += dc * dc;
+          sxy += dc * dr;
+          syy += dr * dr;
+          sx += dc;
+          sy += dr;
+          Atz += Eigen::Vector3d(dc, dr, 1.0) * dz;
           zz += dz * dz;
           ++count;
         }
       }
       if (count < 3) continue;
+      Eigen::Matrix3d AtA;
+      AtA << sxx, sxy, sx, sxy, syy, sy, sx, sy, count;
       Eigen::LDLT<Eigen::Matrix3d> ldlt(AtA);
       if (ldlt.info() != Eigen::Success || std::abs(AtA.determinant()) < 1e-9) continue;
       const Eigen::Vector3d p = ldlt.solve(Atz);

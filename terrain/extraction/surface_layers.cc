@@ -82,14 +82,16 @@ Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) 
   }
   for (int c = 0; c < cells; ++c) cols.offset[c + 1] += cols.offset[c];
   cols.runs.resize(cols.offset[cells]);
-  std::vector<size_t> fill(cols.offset.begin(), cols.offset.end() - 1);
+  // Each column filled from its end down: offset[c + 1] ends at column c's start.
   for (const Footprint& f : prints) {
     for (int r = std::max(0, f.r0); r < std::min(hm.rows, f.r0 + f.n); ++r) {
       for (int c = std::max(0, f.c0); c < std::min(hm.cols, f.c0 + f.n); ++c) {
-        cols.runs[fill[static_cast<size_t>(r) * hm.cols + c]++] = {f.z0, f.z0 + f.n};
+        cols.runs[--cols.offset[static_cast<size_t>(r) * hm.cols + c + 1]] = {f.z0, f.z0 + f.n};
       }
     }
   }
+  std::copy(cols.offset.begin() + 1, cols.offset.end(), cols.offset.begin());
+  cols.offset[cells] = cols.runs.size();
   // Sort and merge each column in place, compacting as it goes (a column's new start is
   // never after its old one).
   size_t out = 0;
