@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "base/check.h"
+#include "base/round.h"
 
 namespace mfp {
 
@@ -36,9 +37,9 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
       throw InputError("occupancy map: a leaf is not a finite cube between one voxel and the "
                        "octree's extent");
     }
-    const long long n = std::llround(cells);
-    const long long x0 = std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
-    const long long y0 = std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
+    const long long n = RoundToLongLong(cells);
+    const long long x0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
+    const long long y0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
     lo_x = std::min(lo_x, x0);
     lo_y = std::min(lo_y, y0);
     hi_x = std::max(hi_x, x0 + n);
@@ -58,11 +59,11 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
   hm.height_m.assign(static_cast<size_t>(hm.rows) * hm.cols,
                      std::numeric_limits<float>::quiet_NaN());
   for (const OccupiedLeaf& leaf : map.leaves) {
-    const int n = static_cast<int>(std::llround(leaf.size_m / res));
+    const int n = static_cast<int>(RoundToLongLong(leaf.size_m / res));
     const int c0 =
-        static_cast<int>(std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - lo_x);
+        static_cast<int>(RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - lo_x);
     const int r0 =
-        static_cast<int>(std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - lo_y);
+        static_cast<int>(RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - lo_y);
     const float top = static_cast<float>(leaf.center_world_m.z() + 0.5 * leaf.size_m);
     for (int r = r0; r < r0 + n; ++r) {
       float* row = &hm.height_m[static_cast<size_t>(r) * hm.cols];
@@ -107,26 +108,33 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
     for (int c = 0; c < hm.cols; ++c) {
       const float hc = hm.height_m[static_cast<size_t>(hm.Index(r, c))];
       if (std::isnan(hc)) continue;
-      // Least squares in coordinates relative to the cell (x, y in cells, z in m).
-      Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+      // Least squares in coordinates relative to the cell (x, y in cells, z in m): the
+      // rows (dc, dr, 1) of A summed into A^T A (small integers, exact in any order) and
+      // A^T z.
+      int sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, count = 0;
       Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
       double zz = 0.0;
-      int count = 0;
       for (int dr = -w; dr <= w; ++dr) {
+        if (r + dr < 0 || r + dr >= hm.rows) continue;
         for (int dc = -w; dc <= w; ++dc) {
-          if (!hm.Inside(r + dr, c + dc)) continue;
+          if (c + dc < 0 || c + dc >= hm.cols) continue;
           const float h = hm.height_m[static_cast<size_t>(hm.Index(r + dr, c + dc))];
           if (std::isnan(h)) continue;
           const double dz = h - hc;
           if (std::abs(dz) > gate[static_cast<size_t>((dr + w) * side + (dc + w))]) continue;
-          const Eigen::Vector3d a(dc, dr, 1.0);
-          AtA += a * a.transpose();
-          Atz += a * dz;
+          sxx += dc * dc;
+          sxy += dc * dr;
+          syy += dr * dr;
+          sx += dc;
+          sy += dr;
+          Atz += Eigen::Vector3d(dc, dr, 1.0) * dz;
           zz += dz * dz;
           ++count;
         }
       }
       if (count < 3) continue;
+      Eigen::Matrix3d AtA;
+      AtA << sxx, sxy, sx, sxy, syy, sy, sx, sy, count;
       Eigen::LDLT<Eigen::Matrix3d> ldlt(AtA);
       if (ldlt.info() != Eigen::Success || std::abs(AtA.determinant()) < 1e-9) continue;
       const Eigen::Vector3d p = ldlt.solve(Atz);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "base/check.h"
+#include "base/round.h"
 
 namespace mfp {
 namespace {
@@ -18,9 +19,9 @@ struct CellBox {
 bool BoxOf(const OccupiedLeaf& leaf, double res, CellBox* box) {
   const double n = leaf.size_m / res;
   if (!leaf.center_world_m.allFinite() || !std::isfinite(n) || n < 0.5) return false;
-  const double x0 = std::round((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
-  const double y0 = std::round((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
-  const double w = std::round(n);
+  const double x0 = RoundToDouble((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
+  const double y0 = RoundToDouble((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
+  const double w = RoundToDouble(n);
   *box = {x0, y0, x0 + w, y0 + w};
   return true;
 }

@@ -17,19 +17,27 @@ constexpr int kUnvisited = -1;
 constexpr int kDropped = -2;  // left out of a patch: may join or seed a later one
 
 // Running least-squares sums for z = a x + b y + c, in coordinates relative to the seed.
+// x and y are whole cells, so A^T A is summed in integers (exact, and equal to the double
+// sums while they stay below 2^53: a patch of 10^6 cells 10^4 cells wide stays below 2^47).
 struct PlaneSums {
-  Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+  long long sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0;
   Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
   int count = 0;
-  void Add(double x, double y, double z) {
-    const Eigen::Vector3d v(x, y, 1.0);
-    AtA += v * v.transpose();
-    Atz += v * z;
+  void Add(int x, int y, double z) {
+    sxx += static_cast<long long>(x) * x;
+    sxy += static_cast<long long>(x) * y;
+    syy += static_cast<long long>(y) * y;
+    sx += x;
+    sy += y;
+    Atz += Eigen::Vector3d(x, y, 1.0) * z;
     ++count;
   }
   // Returns false when the cells do not fix a plane yet (fewer than 3 or collinear).
   bool Fit(Eigen::Vector3d* abc) const {
     if (count < 3) return false;
+    Eigen::Matrix3d AtA;
+    AtA << static_cast<double>(sxx), static_cast<double>(sxy), static_cast<double>(sx), static_cast<double>(sxy),
+        static_cast<double>(syy), static_cast<double>(sy), static_cast<double>(sx), static_cast<double>(sy), count;
     Eigen::FullPivLU<Eigen::Matrix3d> lu(AtA);
     if (lu.rank() < 3) return false;
     *abc = lu.solve(Atz);
@@ -209,6 +217,7 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const Surfac
     // A cell a patch's fit left out (a stone one voxel above the floor the patch grew
     // over) starts a patch of its own when smooth.
     if (label[seed] != kUnvisited && label[seed] != kDropped) continue;
+    if (std::isnan(hm.height_m[seed])) continue;  // no surface: neither smooth nor a flat level
     const bool smooth = surface.roughness_m[seed] <= options.max_seed_roughness_m;
     if (!smooth && !(noise.denoised_cells > 0 && FlatLevel(hm, seed))) continue;
     const int patch_id = static_cast<int>(patches.size());

@@ -5,8 +5,10 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <utility>
 
 #include "base/check.h"
+#include "base/round.h"
 
 namespace mfp {
 namespace {
@@ -23,72 +25,92 @@ struct Columns {
   const Interval* end(int c) const { return runs.data() + offset[c + 1]; }
 };
 
-// Leaves cut into per-column intervals, sorted and merged (touching runs join).
-Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+// A leaf's cell range on the grid: columns [c0, c0 + n) x rows [r0, r0 + n), voxels
+// [z0, z0 + n) along z.
+struct Footprint {
+  long long z0;
+  int c0, r0, n;
+};
+
+// The footprints of the leaves that overlap the grid (the others add no run), in order.
+std::vector<Footprint> FootprintsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
   const double res = hm.resolution_m;
-  const long long x_lo = std::llround(hm.origin_world_m.x() / res);
-  const long long y_lo = std::llround(hm.origin_world_m.y() / res);
-  const int cells = hm.rows * hm.cols;
-  struct Footprint {
-    long long c0, r0, n, z0;
-  };
+  const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
+  const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
   std::vector<Footprint> prints;
   prints.reserve(leaves.size());
-  std::vector<size_t> count(static_cast<size_t>(cells) + 1, 0);
   for (const OccupiedLeaf& leaf : leaves) {
     const double n_d = leaf.size_m / res;
     if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
-    const long long n = std::llround(n_d);
-    Footprint f{std::llround((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo,
-                std::llround((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo, n,
-                std::llround((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res)};
-    prints.push_back(f);
-    for (long long r = std::max(0LL, f.r0); r < std::min<long long>(hm.rows, f.r0 + n); ++r) {
-      for (long long c = std::max(0LL, f.c0); c < std::min<long long>(hm.cols, f.c0 + n); ++c) {
-        ++count[static_cast<size_t>(r * hm.cols + c)];
-      }
-    }
+    const long long n = RoundToLongLong(n_d);
+    const long long c0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo;
+    const long long r0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo;
+    if (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0) continue;
+    prints.push_back({RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res), static_cast<int>(c0),
+                      static_cast<int>(r0), static_cast<int>(n)});
   }
+  return prints;
+}
+
+// Sorts a column's runs by their lower end: insertion sort, as most columns hold a few.
+void SortRuns(Interval* b, Interval* e) {
+  if (e - b > 24) {
+    std::sort(b, e, [](const Interval& p, const Interval& q) { return p.lo < q.lo; });
+    return;
+  }
+  for (Interval* it = b + 1; it < e; ++it) {
+    const Interval v = *it;
+    Interval* j = it;
+    for (; j > b && (j - 1)->lo > v.lo; --j) *j = *(j - 1);
+    *j = v;
+  }
+}
+
+// Leaves cut into per-column intervals, sorted and merged (touching runs join).
+Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+  const int cells = hm.rows * hm.cols;
+  const std::vector<Footprint> prints = FootprintsOf(leaves, hm);
+  // Per column its run count at offset[c + 1], then the running sum: the column's start.
   Columns cols;
   cols.offset.assign(static_cast<size_t>(cells) + 1, 0);
-  for (int c = 0; c < cells; ++c) cols.offset[c + 1] = cols.offset[c] + count[c];
-  cols.runs.resize(cols.offset[cells]);
-  std::vector<size_t> fill(cols.offset.begin(), cols.offset.end() - 1);
   for (const Footprint& f : prints) {
-    for (long long r = std::max(0LL, f.r0); r < std::min<long long>(hm.rows, f.r0 + f.n); ++r) {
-      for (long long c = std::max(0LL, f.c0); c < std::min<long long>(hm.cols, f.c0 + f.n); ++c) {
-        cols.runs[fill[static_cast<size_t>(r * hm.cols + c)]++] = {f.z0, f.z0 + f.n};
+    for (int r = std::max(0, f.r0); r < std::min(hm.rows, f.r0 + f.n); ++r) {
+      for (int c = std::max(0, f.c0); c < std::min(hm.cols, f.c0 + f.n); ++c) {
+        ++cols.offset[static_cast<size_t>(r) * hm.cols + c + 1];
       }
     }
   }
-  // Sort and merge each column in place, then compact.
+  for (int c = 0; c < cells; ++c) cols.offset[c + 1] += cols.offset[c];
+  cols.runs.resize(cols.offset[cells]);
+  // Each column filled from its end down: offset[c + 1] ends at column c's start.
+  for (const Footprint& f : prints) {
+    for (int r = std::max(0, f.r0); r < std::min(hm.rows, f.r0 + f.n); ++r) {
+      for (int c = std::max(0, f.c0); c < std::min(hm.cols, f.c0 + f.n); ++c) {
+        cols.runs[--cols.offset[static_cast<size_t>(r) * hm.cols + c + 1]] = {f.z0, f.z0 + f.n};
+      }
+    }
+  }
+  std::copy(cols.offset.begin() + 1, cols.offset.end(), cols.offset.begin());
+  cols.offset[cells] = cols.runs.size();
+  // Sort and merge each column in place, compacting as it goes (a column's new start is
+  // never after its old one).
   size_t out = 0;
-  std::vector<size_t> new_offset(static_cast<size_t>(cells) + 1, 0);
   for (int c = 0; c < cells; ++c) {
-    auto b = cols.runs.begin() + static_cast<std::ptrdiff_t>(cols.offset[c]);
-    auto e = cols.runs.begin() + static_cast<std::ptrdiff_t>(cols.offset[c + 1]);
-    std::sort(b, e, [](const Interval& p, const Interval& q) { return p.lo < q.lo; });
-    new_offset[c] = out;
-    for (auto it = b; it != e; ++it) {
-      if (out > new_offset[c] && it->lo <= cols.runs[out - 1].hi) {
+    Interval* b = cols.runs.data() + cols.offset[c];
+    Interval* e = cols.runs.data() + cols.offset[c + 1];
+    SortRuns(b, e);
+    cols.offset[c] = out;
+    for (Interval* it = b; it != e; ++it) {
+      if (out > cols.offset[c] && it->lo <= cols.runs[out - 1].hi) {
         cols.runs[out - 1].hi = std::max(cols.runs[out - 1].hi, it->hi);
       } else {
         cols.runs[out++] = *it;
       }
     }
   }
-  new_offset[cells] = out;
+  cols.offset[cells] = out;
   cols.runs.resize(out);
-  cols.offset = std::move(new_offset);
   return cols;
-}
-
-// True when voxels [z_lo, z_hi) of column c are all occupied (runs are merged).
-bool ColumnCovers(const Columns& cols, int c, long long z_lo, long long z_hi) {
-  for (const Interval* it = cols.begin(c); it != cols.end(c); ++it) {
-    if (it->lo <= z_lo && it->hi >= z_hi) return true;
-  }
-  return false;
 }
 
 bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
@@ -102,26 +124,33 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 namespace {
 
-// Per cell, 1 when a surface lies in its 3 x 3 neighbourhood (itself included): the only
-// cells the noise repair and the unseen bits can change, as both look at neighbours only.
-std::vector<uint8_t> NearSurface(const HeightMap& hm) {
-  const size_t cols = static_cast<size_t>(hm.cols);
-  std::vector<uint8_t> across(hm.height_m.size(), 0), near(hm.height_m.size(), 0);
-  for (size_t row = 0; row < static_cast<size_t>(hm.rows); ++row) {
-    const float* h = &hm.height_m[row * cols];
-    uint8_t* out = &across[row * cols];
-    for (size_t c = 0; c < cols; ++c) {
+// The cells with a surface in their 3 x 3 neighbourhood (itself included), in row order:
+// the only cells the noise repair and the unseen bits can change, as both look at
+// neighbours only. `mark` is all 0 and as many cells long, on entry and on return.
+std::vector<int> NearCells(const HeightMap& hm, std::vector<uint8_t>* mark) {
+  std::vector<int> near;
+  for (int r = 0; r < hm.rows; ++r) {
+    const float* h = &hm.height_m[static_cast<size_t>(r) * hm.cols];
+    for (int c = 0; c < hm.cols; ++c) {
       if (std::isnan(h[c])) continue;
-      out[c] = 1;
-      if (c > 0) out[c - 1] = 1;
-      if (c + 1 < cols) out[c + 1] = 1;
+      for (int rr = std::max(0, r - 1); rr <= std::min(hm.rows - 1, r + 1); ++rr) {
+        for (int cc = std::max(0, c - 1); cc <= std::min(hm.cols - 1, c + 1); ++cc) {
+          uint8_t& m = (*mark)[static_cast<size_t>(hm.Index(rr, cc))];
+          if (!m) near.push_back(hm.Index(rr, cc));
+          m = 1;
+        }
+      }
     }
   }
-  for (size_t row = 0; row < static_cast<size_t>(hm.rows); ++row) {
-    const size_t lo = row > 0 ? row - 1 : row, hi = row + 1 < static_cast<size_t>(hm.rows) ? row + 1 : row;
-    for (size_t r = lo; r <= hi; ++r) {
-      for (size_t c = 0; c < cols; ++c) near[row * cols + c] |= across[r * cols + c];
-    }
+  if (near.size() * 16 < mark->size()) {
+    for (int i : near) (*mark)[static_cast<size_t>(i)] = 0;
+    std::sort(near.begin(), near.end());
+    return near;
+  }
+  near.clear();  // many: read them off the marks in order instead of sorting
+  for (size_t i = 0; i < mark->size(); ++i) {
+    if ((*mark)[i]) near.push_back(static_cast<int>(i));
+    (*mark)[i] = 0;
   }
   return near;
 }
@@ -141,60 +170,58 @@ bool MayRepair(float centre, const float neighbours[8], double res) {
   return std::isnan(centre) ? present == 8 : present >= 7 && voxel_off;
 }
 
-// FillSingleCellNoise given NearSurface(*hm) (which no repair changes: a filled cell's 8
-// neighbours are surface cells already).
-int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, const std::vector<uint8_t>& near,
-                          std::vector<int>* changed_cells) {
+// FillSingleCellNoise given NearCells(*hm) (which no repair changes: a filled cell's 8
+// neighbours are surface cells already). Every cell is judged on the heights as they
+// were before the call. `before` (optional) gets each changed cell with its old height.
+int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, const std::vector<int>& near,
+                          std::vector<int>* changed_cells, std::vector<std::pair<int, float>>* before = nullptr) {
   const double res = hm->resolution_m;
-  const std::vector<float> in = hm->height_m;
-  int changed = 0;
-  for (int r = 1; r + 1 < hm->rows; ++r) {
-    for (int c = 1; c + 1 < hm->cols; ++c) {
-      if (!near[static_cast<size_t>(hm->Index(r, c))]) continue;  // no neighbour: nothing to repair
-      float around[8];
-      for (int k = 0, j = 0; k < 9; ++k) {
-        if (k != 4) around[j++] = in[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
-      }
-      float& h = hm->height_m[static_cast<size_t>(hm->Index(r, c))];
-      if (!MayRepair(h, around, res)) continue;
-      // The most common neighbour height (the first of the most common, in row order) and
-      // how many of the 8 have it.
-      float h0 = std::numeric_limits<float>::quiet_NaN();
-      int best = 0, present = 0;
-      for (int k = 0; k < 8; ++k) {
-        const float g = around[k];
-        if (std::isnan(g)) continue;
-        ++present;
-        int same = 0;
-        for (int j = 0; j < 8; ++j) same += !std::isnan(around[j]) && std::abs(around[j] - g) < 0.01 * res;
-        if (same > best) {
-          best = same;
-          h0 = g;
-        }
-      }
-      if (std::isnan(h)) {
-        const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(hm->Index(r, c))] & kEmptyColumn);
-        if (best == 8 && may_fill) {  // a one-cell hole in a level surface
-          h = h0;
-          ++changed;
-          if (changed_cells != nullptr) changed_cells->push_back(hm->Index(r, c));
-        }
-      } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
-        h = h0;  // one voxel off a level neighbourhood
-        ++changed;
-        if (changed_cells != nullptr) changed_cells->push_back(hm->Index(r, c));
+  std::vector<std::pair<int, float>> repairs;
+  for (int i : near) {
+    const int r = i / hm->cols, c = i % hm->cols;
+    if (r < 1 || r + 1 >= hm->rows || c < 1 || c + 1 >= hm->cols) continue;
+    float around[8];
+    for (int k = 0, j = 0; k < 9; ++k) {
+      if (k != 4) around[j++] = hm->height_m[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
+    }
+    const float h = hm->height_m[static_cast<size_t>(i)];
+    if (!MayRepair(h, around, res)) continue;
+    // The most common neighbour height (the first of the most common, in row order) and
+    // how many of the 8 have it.
+    float h0 = std::numeric_limits<float>::quiet_NaN();
+    int best = 0, present = 0;
+    for (int k = 0; k < 8; ++k) {
+      const float g = around[k];
+      if (std::isnan(g)) continue;
+      ++present;
+      int same = 0;
+      for (int j = 0; j < 8; ++j) same += !std::isnan(around[j]) && std::abs(around[j] - g) < 0.01 * res;
+      if (same > best) {
+        best = same;
+        h0 = g;
       }
     }
+    if (std::isnan(h)) {
+      const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(i)] & kEmptyColumn);
+      if (best == 8 && may_fill) repairs.emplace_back(i, h0);  // a one-cell hole in a level surface
+    } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
+      repairs.emplace_back(i, h0);  // one voxel off a level neighbourhood
+    }
   }
-  return changed;
+  for (const auto& [cell, height] : repairs) {
+    if (before != nullptr) before->emplace_back(cell, hm->height_m[static_cast<size_t>(cell)]);
+    hm->height_m[static_cast<size_t>(cell)] = height;
+    if (changed_cells != nullptr) changed_cells->push_back(cell);
+  }
+  return static_cast<int>(repairs.size());
 }
 
 }  // namespace
 
 int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::vector<int>* changed_cells) {
-  return RepairSingleCellNoise(hm, unseen, NearSurface(*hm), changed_cells);
+  std::vector<uint8_t> mark(hm->height_m.size(), 0);
+  return RepairSingleCellNoise(hm, unseen, NearCells(*hm, &mark), changed_cells);
 }
-
 namespace {
 
 // Isolated single voxels: no occupied voxel in the 26-neighbourhood. One flag per run of
@@ -349,7 +376,7 @@ long long RoomVoxels(double clearance_m, double res) {
 
 // SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
 uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
-  const long long top_voxel = std::llround(level / res) - 1;
+  const long long top_voxel = RoundToLongLong(level / res) - 1;
   if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
   // A ray through the voxel under the floor's level went into a hole: a drop.
   if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
@@ -370,18 +397,12 @@ uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* fr
   return UnseenBits(occ, free, layer.Index(r, c), level, layer.resolution_m, room);
 }
 
-// SurfaceLayers::unseen of one layer.
-// near: NearSurface(layer).
+// SurfaceLayers::unseen of one layer. near: NearCells(layer).
 std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
-                                 const std::vector<uint8_t>& near) {
+                                 const std::vector<int>& near) {
   std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
   const long long room = RoomVoxels(clearance_m, layer.resolution_m);
-  for (int r = 0; r < layer.rows; ++r) {
-    for (int c = 0; c < layer.cols; ++c) {
-      const size_t i = static_cast<size_t>(layer.Index(r, c));
-      if (near[i]) unseen[i] = UnseenCell(layer, occ, free, r, c, room);
-    }
-  }
+  for (int i : near) unseen[static_cast<size_t>(i)] = UnseenCell(layer, occ, free, i / layer.cols, i % layer.cols, room);
   return unseen;
 }
 
@@ -430,9 +451,11 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // as it was, so fills do not chain. Appends the cells filled to *filled_cells.
 void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free, double clearance_m, int radius,
                         std::vector<int>* filled_cells) {
-  const double res = layer->resolution_m;
+  const HeightMap& seen = *layer;  // unchanged until every cell is judged
+  const double res = seen.resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
-  const HeightMap seen = *layer;
+  std::vector<float> levels;
+  const size_t first_fill = filled_cells->size();
   std::vector<int> next_right(static_cast<size_t>(seen.cols));
   for (int r = 0; r < seen.rows; ++r) {
     // The nearest surface at or right of each column, and the last one left of it: a cell
@@ -440,6 +463,7 @@ void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& fre
     const float* row = &seen.height_m[static_cast<size_t>(seen.Index(r, 0))];
     int next = std::numeric_limits<int>::max() / 2;
     for (int c = seen.cols - 1; c >= 0; --c) next_right[static_cast<size_t>(c)] = next = std::isnan(row[c]) ? next : c;
+    if (next >= seen.cols) continue;  // no surface in the row
     int last_left = std::numeric_limits<int>::min() / 2;
     for (int c = 0; c < seen.cols; ++c) {
       const size_t i = static_cast<size_t>(seen.Index(r, c));
@@ -456,10 +480,21 @@ void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& fre
       const int col = seen.Index(r, c);
       if (UnseenBits(occ, &free, col, level, res, room) != (kEmptyColumn | kNotErased)) continue;
       if (UnseenBits(occ, &free, col, hits[7], res, room) != (kEmptyColumn | kNotErased)) continue;
-      layer->height_m[i] = level;
+      levels.push_back(level);
       filled_cells->push_back(col);
     }
   }
+  for (size_t k = 0; k < levels.size(); ++k) {
+    layer->height_m[static_cast<size_t>((*filled_cells)[first_fill + k])] = levels[k];
+  }
+}
+
+// The run of column c holding voxel z, or nullptr.
+const Interval* RunHolding(const Columns& cols, int c, long long z) {
+  for (const Interval* it = cols.begin(c); it != cols.end(c) && it->lo <= z; ++it) {
+    if (it->hi > z) return it;
+  }
+  return nullptr;
 }
 
 // Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
@@ -470,14 +505,15 @@ std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
     for (int c = 0; c < layer.cols; ++c) {
       const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
       if (std::isnan(h)) continue;
-      const long long top_voxel = std::llround(h / res) - 1;
+      const long long top_voxel = RoundToLongLong(h / res) - 1;
       uint8_t b = 0;
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if ((dr == 0 && dc == 0) || !layer.Inside(r + dr, c + dc)) continue;
-          const int n = layer.Index(r + dr, c + dc);
-          if (ColumnCovers(occ, n, top_voxel + 1, top_voxel + 2) &&
-              (ColumnCovers(occ, n, top_voxel, top_voxel + 1) || ColumnCovers(occ, n, top_voxel + 2, top_voxel + 3))) {
+          // Occupied above the top voxel, and at its level or one higher still. Runs are
+          // merged (a gap between any two), so both lie in the run holding the first.
+          const Interval* run = RunHolding(occ, layer.Index(r + dr, c + dc), top_voxel + 1);
+          if (run != nullptr && (run->lo <= top_voxel || run->hi >= top_voxel + 3)) {
             b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
           }
         }
@@ -488,14 +524,16 @@ std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
   return bits;
 }
 
-// The cells of `as_seen` whose height `repaired` changed (not those it filled), at their
-// seen height; NaN elsewhere.
-HeightMap MovedCellsAsSeen(const HeightMap& as_seen, const HeightMap& repaired) {
-  HeightMap moved = as_seen;
-  for (size_t i = 0; i < moved.height_m.size(); ++i) {
-    if (std::isnan(as_seen.height_m[i]) || as_seen.height_m[i] == repaired.height_m[i]) {
-      moved.height_m[i] = std::numeric_limits<float>::quiet_NaN();
-    }
+// The cells the noise repair changed (not those it filled), at their seen height; NaN
+// elsewhere. changes: each changed cell with its height before that change, in order.
+HeightMap MovedCellsAsSeen(const HeightMap& repaired, const std::vector<std::pair<int, float>>& changes) {
+  HeightMap moved = repaired;
+  std::fill(moved.height_m.begin(), moved.height_m.end(), std::numeric_limits<float>::quiet_NaN());
+  // Latest first, so each cell ends with its height before its first change.
+  for (auto it = changes.rbegin(); it != changes.rend(); ++it) moved.height_m[static_cast<size_t>(it->first)] = it->second;
+  for (const auto& change : changes) {
+    float& seen = moved.height_m[static_cast<size_t>(change.first)];
+    if (seen == repaired.height_m[static_cast<size_t>(change.first)]) seen = std::numeric_limits<float>::quiet_NaN();
   }
   return moved;
 }
@@ -525,22 +563,22 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   const Columns* free_or_null = know_free ? &free : nullptr;
   // The unseen bits once per layer, then brought up to date after each change.
   std::vector<int> changed_cells;
+  std::vector<uint8_t> mark(grid.height_m.size(), 0);
   for (size_t l = 0; l < out.layers.size(); ++l) {
     HeightMap& layer = out.layers[l];
-    const std::vector<uint8_t> near = NearSurface(layer);
+    const std::vector<int> near = NearCells(layer, &mark);
     out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m, near));
     if (!options.fill_single_cell_noise) continue;
-    const HeightMap as_seen = layer;
+    std::vector<std::pair<int, float>> changes;
     // Twice: a hole beside a displaced cell is filled once that cell is back.
-    int changed = 0;
     for (int pass = 0; pass < 2; ++pass) {
       changed_cells.clear();
-      changed += RepairSingleCellNoise(&layer, &out.unseen[l], near, &changed_cells);
+      RepairSingleCellNoise(&layer, &out.unseen[l], near, &changed_cells, &changes);
       UpdateUnseenCells(layer, occ, free_or_null, options.clearance_m, changed_cells.data(), changed_cells.size(),
                         &out.unseen[l]);
     }
-    out.noise_cells_filled += changed;
-    if (changed > 0) out.moved_as_seen.push_back(MovedCellsAsSeen(as_seen, layer));
+    out.noise_cells_filled += static_cast<int>(changes.size());
+    if (!changes.empty()) out.moved_as_seen.push_back(MovedCellsAsSeen(layer, changes));
   }
   if (know_free && options.enclosed_unseen_radius_cells > 0) {
     for (size_t l = 0; l < out.layers.size(); ++l) {

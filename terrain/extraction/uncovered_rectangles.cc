@@ -11,10 +11,10 @@ UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int r
       cols_(cols),
       cells_(mask.size()),
       height_(mask.size(), 0),
-      row_best_(static_cast<size_t>(std::max(rows, 0))),
-      row_height_(static_cast<size_t>(std::max(cols, 0)) + 1, 0) {
+      row_best_(static_cast<size_t>(std::max(rows, 0))) {
   MFP_CHECK(rows >= 0 && cols >= 0 && mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
   stack_.reserve(static_cast<size_t>(cols) + 1);
+  active_.reserve(static_cast<size_t>(cols));
   for (size_t i = 0; i < mask.size(); ++i) cells_[i] = mask[i] ? 1 : 0;
   for (int r = 0; r < rows_; ++r) {
     for (int c = 0; c < cols_; ++c) {
@@ -29,12 +29,11 @@ void UncoveredRectangles::ScanRow(int r) {
   // The stack scan of LargestRectangle, over this row's histogram only.
   CellRect best;
   const int* heights = &height_[static_cast<size_t>(r) * cols_];
-  std::copy(heights, heights + cols_, row_height_.begin());
-  row_height_[static_cast<size_t>(cols_)] = 0;  // sentinel flushes the stack
   stack_.clear();
   for (int c = 0; c <= cols_; ++c) {
-    while (!stack_.empty() && row_height_[static_cast<size_t>(stack_.back())] >= row_height_[static_cast<size_t>(c)]) {
-      const int h = row_height_[static_cast<size_t>(stack_.back())];
+    const int hc = c < cols_ ? heights[c] : 0;  // the 0 past the end flushes the stack
+    while (!stack_.empty() && heights[stack_.back()] >= hc) {
+      const int h = heights[stack_.back()];
       stack_.pop_back();
       const int left = stack_.empty() ? 0 : stack_.back() + 1;
       const int width = c - left;
@@ -68,16 +67,22 @@ size_t UncoveredRectangles::Clear(const CellRect& rect) {
   if (cleared == 0) return 0;
   // Heights change in the cleared columns from the first cleared row down, until a row
   // below the rectangle keeps its height (then every row below it keeps it too).
+  // Row by row (the array's order), over the columns still changing.
   const int last_row = rect.row0 + rect.rows - 1;
   int last_changed = last_row;
-  for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) {
-    for (int r = rect.row0; r < rows_; ++r) {
+  active_.clear();
+  for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) active_.push_back(c);
+  for (int r = rect.row0; r < rows_ && !active_.empty(); ++r) {
+    size_t kept = 0;
+    for (const int c : active_) {
       const size_t i = static_cast<size_t>(r) * cols_ + c;
       const int h = cells_[i] ? (r > 0 ? height_[i - cols_] : 0) + 1 : 0;
-      if (r > last_row && h == height_[i]) break;
+      if (r > last_row && h == height_[i]) continue;  // this column keeps its heights below
       height_[i] = h;
       last_changed = std::max(last_changed, r);
+      active_[kept++] = c;
     }
+    active_.resize(kept);
   }
   for (int r = rect.row0; r <= last_changed; ++r) ScanRow(r);
   return cleared;

@@ -37,8 +37,8 @@ class UncoveredRectangles {
   std::vector<uint8_t> cells_;
   std::vector<int> height_;     // per cell: set cells in its column ending at it
   std::vector<CellRect> row_best_;
-  std::vector<int> stack_;      // ScanRow's work space
-  std::vector<int> row_height_;  // ScanRow's work space: the row's heights and a sentinel
+  std::vector<int> stack_;   // ScanRow's work space
+  std::vector<int> active_;  // Clear's work space: the columns whose heights still change
 };
 
 }  // namespace mfp
