@@ -23,6 +23,11 @@ struct ScanWalkOptions {
   // Both ends with room for the body: no occupied voxel in the body's height band (above
   // the mean height of the stance's feet) over its plan box (robots with a known body).
   bool body_room_ends = false;
+  // Keep only walks whose ends certifiable floor joins by steps (the judge's
+  // CertifiableFloorJoins on the raw voxels, independent of mfp's regions): walks a robot
+  // could walk. The unjoined walks drawn on the way (up to `walks` of them) are run as a
+  // second population, where the right answer is a status naming where and why.
+  bool joined_ends = false;
   // The extractor's enclosed_unseen_radius_cells for the walks' regions (-1: its default).
   int enclosed_unseen_radius_cells = -1;
   // The extractor's convex_cover for the walks' regions (-1: its default, 0 off, 1 on).

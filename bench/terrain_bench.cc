@@ -144,6 +144,9 @@ int main(int argc, char** argv) {
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
+  app.add_flag("--walk-joined", walks.joined_ends,
+               "keep walks whose ends certifiable floor joins by steps (judged on the raw voxels); the unjoined walks "
+               "drawn on the way are run and reported as a second population");
   app.add_flag("--walk-body-room", walks.body_room_ends,
                "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
   bool digest = false;
