@@ -378,6 +378,7 @@ struct WalkResult {
   int feet_off = 0;
   double time_s = 0.0;
   std::string message;
+  std::string time_split;  // where the plan's time went: setup, then each window
   EndFeet start, goal;  // filled for walks that fail
   // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins).
   bool certifiable_route = false;
@@ -487,6 +488,20 @@ std::string FailureCause(const WalkResult& r) {
   return "other: " + ToString(r.status);
 }
 
+// "setup S s; windows: steps/status/nodes search+polish s of its share, ..." for a walk's line.
+std::string TimeSplit(const Plan& plan) {
+  char line[160];
+  std::snprintf(line, sizeof(line), "setup %.2f s, %d windows, %d nodes:", plan.setup_s, plan.windows, plan.nodes);
+  std::string text = line;
+  for (const WindowRecord& w : plan.window_records) {
+    std::snprintf(line, sizeof(line), " [%d steps %s %d nodes, build %.2f search %.2f (heur %.2f) polish %.2f of %.2f s]",
+                  w.new_steps, ToString(w.status).c_str(), w.nodes, w.build_s, w.search_s, w.heuristic_s, w.polish_s,
+                  w.time_limit_s);
+    text += line;
+  }
+  return text;
+}
+
 WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTerrain& terrain,
                    const SeenVoxelJudge& judge, const RegionExtractionResult& diagnosis, const Walk& walk,
                    const ScanWalkOptions& o) {
@@ -507,6 +522,7 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   r.goal_moved = plan.goal_moved;
   r.time_s = plan.solve_time_s;
   r.message = plan.message;
+  r.time_split = TimeSplit(plan);
   for (size_t i = static_cast<size_t>(robot.num_legs()); i < plan.footsteps.size(); ++i) {
     const Footstep& step = plan.footsteps[i];
     double slack = 0.0;
@@ -566,6 +582,7 @@ bool NamesPlace(const WalkResult& r) {
 
 // One population's walks (all walks, or the joined or unjoined ones) over the scans and robots.
 struct Population {
+  explicit Population(const char* population_name) : name(population_name) {}
   const char* name;
   int valid = 0, walks = 0;
   int failed_named = 0, failed = 0;  // failed walks whose status names a place
@@ -579,7 +596,9 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
               const ScanWalkOptions& o, Population* population) {
   int valid = 0, moved = 0, feet_off = 0, start_off = 0, body_blocked = 0;
   std::map<std::string, int> statuses;
-  for (const Walk& w : walks) {
+  for (size_t k = 0; k < walks.size(); ++k) {
+    if (o.only_walk >= 0 && static_cast<int>(k) != o.only_walk) continue;
+    const Walk& w = walks[k];
     const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
     valid += r.valid_to_goal ? 1 : 0;
     body_blocked += w.start_body_voxels + w.goal_body_voxels > 0 ? 1 : 0;
@@ -599,6 +618,7 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
                   BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad, w.goal.x_m,
                   w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(), r.valid_to_goal ? " valid to goal" : "",
                   r.feet_off, r.time_s, w.start_body_voxels, w.goal_body_voxels, r.message.substr(0, 300).c_str());
+      std::printf("    time: %s\n", r.time_split.c_str());
       if (!r.valid_to_goal) {
         std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
                     EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
@@ -639,7 +659,7 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
               o.joined_ends ? " joined by certifiable floor (unjoined: a second population)" : "", o.time_limit_s);
   std::printf("%-8s %-20s %-10s %5s %6s %9s %6s %8s %9s  %s\n", "walks", "scan", "robot", "walks", "valid", "start_off",
               "moved", "feet_off", "body_ends", "statuses");
-  Population drawn{o.joined_ends ? "joined" : "all"}, unjoined_walks{"unjoined"};
+  Population drawn(o.joined_ends ? "joined" : "all"), unjoined_walks("unjoined");
   for (const std::string& scan : scans) {
     const OccupancyMap map = LoadMapFile(scan);
     for (const std::string& robot_path : robots) {

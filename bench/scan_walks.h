@@ -28,6 +28,9 @@ struct ScanWalkOptions {
   // could walk. The unjoined walks drawn on the way (up to `walks` of them) are run as a
   // second population, where the right answer is a status naming where and why.
   bool joined_ends = false;
+  // Plan only the walk of this index (0-based) of each scan and robot's draw (-1: all):
+  // to re-run one walk alone, with the same draw.
+  int only_walk = -1;
   // The extractor's enclosed_unseen_radius_cells for the walks' regions (-1: its default).
   int enclosed_unseen_radius_cells = -1;
   // The extractor's convex_cover for the walks' regions (-1: its default, 0 off, 1 on).

@@ -147,6 +147,9 @@ int main(int argc, char** argv) {
   app.add_flag("--walk-joined", walks.joined_ends,
                "keep walks whose ends certifiable floor joins by steps (judged on the raw voxels); the unjoined walks "
                "drawn on the way are run and reported as a second population");
+  app.add_option("--walk-only", walks.only_walk,
+                 "plan only the walk of this index (0-based) of each scan and robot's draw (the same draw)")
+      ->check(CLI::Range(0, 999));
   app.add_flag("--walk-body-room", walks.body_room_ends,
                "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
   bool digest = false;

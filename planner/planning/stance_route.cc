@@ -87,13 +87,14 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
 
 // The body check of a pose (stance_route.h): obstacles near the pose judged against the
 // body's plan box in its height band above the pose's ground, and against that box grown
-// by the route's body margin in plan view.
+// by the route's body margin in plan view. The obstacles near a grid cell do not depend on
+// the heading, so they are looked up once per cell (cells: the body grid's cell count).
 class BodyGate {
  public:
   enum class Room { kClear, kTight, kBlocked };
 
   BodyGate(const RobotModel& robot, const std::vector<BodyObstacle>& obstacles, const SupportRaster& support,
-           double ground_z_m, double overlap_share, double margin_m)
+           double ground_z_m, double overlap_share, double margin_m, size_t cells)
       : robot_(robot), obstacles_(obstacles), support_(support), ground_z_m_(ground_z_m), share_(overlap_share) {
     const BodyExtent& body = robot.body;
     active_ = body.known() && !obstacles.empty();
@@ -102,15 +103,23 @@ class BodyGate {
     grown_.max_m += Eigen::Vector2d::Constant(std::max(0.0, margin_m));
     radius_m_ = BodyRadius(grown_);
     // A pose looks only at the buckets its radius reaches.
-    if (active_) index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, kBodyBucketMinM));
+    if (active_) {
+      index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, kBodyBucketMinM));
+      near_.resize(cells);
+      near_known_.assign(cells, 0);
+    }
   }
   bool active() const { return active_; }
 
-  // kBlocked: the body at (c, yaw) overlaps an obstacle in its band; kTight: only the
-  // grown body does.
-  Room RoomAt(const Eigen::Vector2d& c, double yaw) const {
+  // kBlocked: the body at (c, yaw), c the centre of grid cell `cell`, overlaps an obstacle
+  // in its band; kTight: only the grown body does.
+  Room RoomAt(size_t cell, const Eigen::Vector2d& c, double yaw) {
     if (!active_) return Room::kClear;
-    const std::vector<int> near = index_.Near(c, radius_m_);
+    if (!near_known_[cell]) {
+      near_[cell] = index_.Near(c, radius_m_);
+      near_known_[cell] = 1;
+    }
+    const std::vector<int>& near = near_[cell];
     if (near.empty()) return Room::kClear;
     const double ground = Ground(c, yaw);
     if (BodyOverlapShare(grown_, obstacles_, near, c.x(), c.y(), yaw, ground) <= 0.0) return Room::kClear;
@@ -139,6 +148,8 @@ class BodyGate {
   double ground_z_m_, share_, radius_m_ = 0.0;
   bool active_ = false;
   BodyObstacleIndex index_;
+  std::vector<std::vector<int>> near_;  // per body grid cell: the obstacles near its centre
+  std::vector<uint8_t> near_known_;     // per body grid cell: near_ holds its lookup
 };
 
 }  // namespace
@@ -266,7 +277,8 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     return out;
   }
   const SupportRaster& support = *raster;
-  const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m);
+  BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m,
+                static_cast<size_t>(nx) * ny);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
     return ((static_cast<int>(std::lround(u / (2 * M_PI / H))) % H) + H) % H;
@@ -299,7 +311,7 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
       }
       u = static_cast<uint8_t>(3 - worst);
       if (u < 3) {
-        const BodyGate::Room room = gate.RoomAt(c, yaw);
+        const BodyGate::Room room = gate.RoomAt(static_cast<size_t>(j) * nx + i, c, yaw);
         if (room == BodyGate::Room::kBlocked) {
           u = 3;
           ++out.body_blocked_poses;
