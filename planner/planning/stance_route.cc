@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <utility>
@@ -80,10 +81,41 @@ std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& 
 }
 
 
-StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                          const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                          const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline);
+// The body positions' grid: over the regions, start and goal, padded by how far a body
+// stands beyond its feet (reach + l_bnd), cells coarsened to at most options.max_cells.
+struct BodyGrid {
+  Eigen::Vector2d lo, hi;  // [m, world]
+  double cell = 0.0;       // [m]
+  int nx = 1, ny = 1;
+};
+
+BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                      const Eigen::Vector2d& start_xy, const Eigen::Vector2d& goal_xy,
+                      const StanceRouteOptions& options) {
+  BodyGrid g;
+  double reach = 0.0;
+  for (const auto& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
+  g.lo = start_xy.cwiseMin(goal_xy);
+  g.hi = start_xy.cwiseMax(goal_xy);
+  for (const ConvexRegion& r : regions) {
+    for (const Eigen::Vector3d& v : r.vertices_world_m) {
+      g.lo = g.lo.cwiseMin(v.head<2>());
+      g.hi = g.hi.cwiseMax(v.head<2>());
+    }
+  }
+  const double pad = reach + robot.l_bnd_m;
+  g.lo -= Eigen::Vector2d::Constant(pad);
+  g.hi += Eigen::Vector2d::Constant(pad);
+  g.cell = options.cell_m;
+  const double area = (g.hi - g.lo).prod();
+  if (area / (g.cell * g.cell) > static_cast<double>(options.max_cells)) g.cell = std::sqrt(area / options.max_cells);
+  g.nx = std::max(1, static_cast<int>(std::ceil((g.hi.x() - g.lo.x()) / g.cell)));
+  g.ny = std::max(1, static_cast<int>(std::ceil((g.hi.y() - g.lo.y()) / g.cell)));
+  return g;
+}
+
+// The found route: the given start and goal poses with the searched cells' centres and
+// yaws between them (cells and yaws from the start's cell to the goal's).
 
 // The body check of a pose (stance_route.h): obstacles near the pose judged against the
 // body's plan box in its height band above the pose's ground, and against that box grown
@@ -152,96 +184,54 @@ class BodyGate {
   std::vector<uint8_t> near_known_;     // per body grid cell: near_ holds its lookup
 };
 
-}  // namespace
 
-StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
-  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
-}
+// What the searches of one PlanStanceRoute share (the same body grid and support): the
+// support raster, the body gate with its per-cell obstacle lookups, and each pose's class
+// at the finest heading count searched, so the search with fine headings does not judge
+// again the poses the coarse search judged (their yaws are the same numbers).
+struct StanceSpace {
+  StanceSpace(const RobotModel& robot, const BodyGrid& body_grid, SupportRaster raster,
+              const std::vector<BodyObstacle>& body_obstacles, double ground_z_m, const StanceRouteOptions& options)
+      : grid(body_grid), support(std::move(raster)),
+        gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m,
+             static_cast<size_t>(grid.nx) * grid.ny),
+        headings(std::max({1, options.headings, options.fine_headings})),
+        classes(static_cast<size_t>(grid.nx) * grid.ny * headings, 0) {}
+  StanceSpace(const StanceSpace&) = delete;
+  StanceSpace& operator=(const StanceSpace&) = delete;
 
-StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
-  StanceRoute route = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                    goal_yaw_rad, options, deadline);
-  // Where the body check refused poses, finer headings let the body turn to fit.
-  if (route.body_blocked_poses > 0 && options.headings < options.fine_headings && !route.out_of_time) {
-    StanceRouteOptions fine = options;
-    fine.headings = options.fine_headings;
-    StanceRoute finer = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                      goal_yaw_rad, fine, deadline);
-    if (finer.found || !route.found) route = std::move(finer);
+  // The index into `classes` of heading h of H, or -1 when its yaw is not one of the
+  // shared headings' yaws exactly.
+  int SharedHeading(int h, int H) const {
+    if (headings % H != 0) return -1;
+    const int f = h * (headings / H);
+    return HeadingYaw(h, H) == HeadingYaw(f, headings) ? f : -1;
   }
-  return route;
-}
+  static double HeadingYaw(int h, int H) { return h * 2 * M_PI / H; }
 
-StanceRoute PlanStanceRouteWithFallbacks(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                                         const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                                         const Eigen::Vector2d& start_xy, double start_yaw_rad,
-                                         const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
-                                         const StanceRouteOptions& options, const Deadline& deadline) {
-  StanceRoute stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                        goal_yaw_rad, options, deadline);
-  if (!stances.found && !stances.out_of_time) {
-    // Where no pose has every reference box surely on support, poses whose boxes may
-    // meet it (an octopod on stones laid for its feet: the region graph's route through
-    // region centres zig-zagged across the tracks, 2.45 m short).
-    StanceRouteOptions loose = options;
-    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
-    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                              goal_yaw_rad, loose, deadline);
-  }
-  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
-      options.body_blocked_cell_m < options.cell_m) {
-    // A passage only a little wider than the body: a finer grid of body positions.
-    StanceRouteOptions fine = options;
-    fine.cell_m = options.body_blocked_cell_m;
-    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                        goal_yaw_rad, fine, deadline);
-    if (finer.found || finer.out_of_time) stances = std::move(finer);
-  }
-  return stances;
-}
-
-namespace {
-
-// The body positions' grid: over the regions, start and goal, padded by how far a body
-// stands beyond its feet (reach + l_bnd), cells coarsened to at most options.max_cells.
-struct BodyGrid {
-  Eigen::Vector2d lo, hi;  // [m, world]
-  double cell = 0.0;       // [m]
-  int nx = 1, ny = 1;
+  BodyGrid grid;
+  SupportRaster support;
+  BodyGate gate;
+  int headings;  // of `classes`
+  // Per (cell, heading): 0 not judged yet, 1-3 the search's pose classes (SearchStances),
+  // 4 class 3 by the body check alone.
+  std::vector<uint8_t> classes;
 };
 
-BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                      const Eigen::Vector2d& start_xy, const Eigen::Vector2d& goal_xy,
-                      const StanceRouteOptions& options) {
-  BodyGrid g;
-  double reach = 0.0;
-  for (const auto& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
-  g.lo = start_xy.cwiseMin(goal_xy);
-  g.hi = start_xy.cwiseMax(goal_xy);
-  for (const ConvexRegion& r : regions) {
-    for (const Eigen::Vector3d& v : r.vertices_world_m) {
-      g.lo = g.lo.cwiseMin(v.head<2>());
-      g.hi = g.hi.cwiseMax(v.head<2>());
-    }
-  }
-  const double pad = reach + robot.l_bnd_m;
-  g.lo -= Eigen::Vector2d::Constant(pad);
-  g.hi += Eigen::Vector2d::Constant(pad);
-  g.cell = options.cell_m;
-  const double area = (g.hi - g.lo).prod();
-  if (area / (g.cell * g.cell) > static_cast<double>(options.max_cells)) g.cell = std::sqrt(area / options.max_cells);
-  g.nx = std::max(1, static_cast<int>(std::ceil((g.hi.x() - g.lo.x()) / g.cell)));
-  g.ny = std::max(1, static_cast<int>(std::ceil((g.hi.y() - g.lo.y()) / g.cell)));
-  return g;
+// nullptr when the deadline passes while the support raster is built.
+std::unique_ptr<StanceSpace> MakeStanceSpace(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                             const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                                             const Eigen::Vector2d& start_xy, const Eigen::Vector2d& goal_xy,
+                                             const StanceRouteOptions& options, const Deadline& deadline) {
+  const BodyGrid grid = MakeBodyGrid(robot, regions, start_xy, goal_xy, options);
+  // Support within l_bnd of a foot; the raster finer than the body grid.
+  const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * grid.cell));
+  std::optional<SupportRaster> raster =
+      MakeSupportRaster(regions, grid.lo, grid.hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
+  if (!raster) return nullptr;
+  return std::make_unique<StanceSpace>(robot, grid, std::move(*raster), body_obstacles, ground_z_m, options);
 }
 
-// The found route: the given start and goal poses with the searched cells' centres and
-// yaws between them (cells and yaws from the start's cell to the goal's).
 void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<double>& yaws,
               const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
               double goal_yaw_rad, StanceRoute* out) {
@@ -257,28 +247,22 @@ void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<doubl
   out->found = true;
 }
 
-StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                          const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                          const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+
+// A* over the poses of `space` with `headings` yaws (stance_route.h).
+StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eigen::Vector2d& start_xy,
+                          double start_yaw_rad, const Eigen::Vector2d& goal_xy, double goal_yaw_rad, int headings,
+                          const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute out;
   const int n = robot.num_legs();
-  const int H = std::max(1, options.headings);
-  const BodyGrid grid = MakeBodyGrid(robot, regions, start_xy, goal_xy, options);
-  const Eigen::Vector2d lo = grid.lo, hi = grid.hi;
+  const int H = std::max(1, headings);
+  const BodyGrid& grid = space->grid;
+  const Eigen::Vector2d lo = grid.lo;
   const double cell = grid.cell;
   const int nx = grid.nx, ny = grid.ny;
-  // Support within l_bnd of a foot; the raster finer than the body grid.
-  const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
-  const std::optional<SupportRaster> raster =
-      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
-  if (!raster) {
-    out.out_of_time = true;
-    return out;
-  }
-  const SupportRaster& support = *raster;
-  BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m,
-                static_cast<size_t>(nx) * ny);
+  const SupportRaster& support = space->support;
+  BodyGate& gate = space->gate;
+  std::vector<int> shared(static_cast<size_t>(H));
+  for (int h = 0; h < H; ++h) shared[static_cast<size_t>(h)] = space->SharedHeading(h, H);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
     return ((static_cast<int>(std::lround(u / (2 * M_PI / H))) % H) + H) % H;
@@ -303,22 +287,30 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     uint8_t& u = usable[id(i, j, h)];
     if (u == 0) {
       ++out.classified_poses;
-      const Eigen::Vector2d c = centre_of(i, j);
-      const double yaw = h * 2 * M_PI / H;
-      int worst = 2;
-      for (int leg = 0; leg < n && worst > 0; ++leg) {
-        worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
-      }
-      u = static_cast<uint8_t>(3 - worst);
-      if (u < 3) {
-        const BodyGate::Room room = gate.RoomAt(static_cast<size_t>(j) * nx + i, c, yaw);
-        if (room == BodyGate::Room::kBlocked) {
-          u = 3;
-          ++out.body_blocked_poses;
-        } else if (room == BodyGate::Room::kTight) {
-          u = 2;
+      const size_t cell_id = static_cast<size_t>(j) * nx + i;
+      const int f = shared[static_cast<size_t>(h)];
+      uint8_t* known = f >= 0 ? &space->classes[cell_id * space->headings + f] : nullptr;
+      uint8_t judged = known != nullptr ? *known : 0;
+      if (judged == 0) {
+        const Eigen::Vector2d c = centre_of(i, j);
+        const double yaw = StanceSpace::HeadingYaw(h, H);
+        int worst = 2;
+        for (int leg = 0; leg < n && worst > 0; ++leg) {
+          worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
         }
+        judged = static_cast<uint8_t>(3 - worst);
+        if (judged < 3) {
+          const BodyGate::Room room = gate.RoomAt(cell_id, c, yaw);
+          if (room == BodyGate::Room::kBlocked) {
+            judged = 4;
+          } else if (room == BodyGate::Room::kTight) {
+            judged = 2;
+          }
+        }
+        if (known != nullptr) *known = judged;
       }
+      if (judged == 4) ++out.body_blocked_poses;
+      u = judged == 4 ? 3 : judged;
     }
     return u;
   };
@@ -409,6 +401,63 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   return out;
 }
 
+
 }  // namespace
+
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
+}
+
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+  const std::unique_ptr<StanceSpace> space =
+      MakeStanceSpace(robot, regions, body_obstacles, ground_z_m, start_xy, goal_xy, options, deadline);
+  if (space == nullptr) {
+    StanceRoute out_of_time;
+    out_of_time.out_of_time = true;
+    return out_of_time;
+  }
+  StanceRoute route = SearchStances(robot, space.get(), start_xy, start_yaw_rad, goal_xy, goal_yaw_rad,
+                                    options.headings, options, deadline);
+  // Where the body check refused poses, finer headings let the body turn to fit.
+  if (route.body_blocked_poses > 0 && options.headings < options.fine_headings && !route.out_of_time) {
+    StanceRoute finer = SearchStances(robot, space.get(), start_xy, start_yaw_rad, goal_xy, goal_yaw_rad,
+                                      options.fine_headings, options, deadline);
+    if (finer.found || !route.found) route = std::move(finer);
+  }
+  return route;
+}
+
+StanceRoute PlanStanceRouteWithFallbacks(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                                         const Eigen::Vector2d& start_xy, double start_yaw_rad,
+                                         const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
+                                         const StanceRouteOptions& options, const Deadline& deadline) {
+  StanceRoute stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, options, deadline);
+  if (!stances.found && !stances.out_of_time) {
+    // Where no pose has every reference box surely on support, poses whose boxes may
+    // meet it (an octopod on stones laid for its feet: the region graph's route through
+    // region centres zig-zagged across the tracks, 2.45 m short).
+    StanceRouteOptions loose = options;
+    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
+    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                              goal_yaw_rad, loose, deadline);
+  }
+  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
+      options.body_blocked_cell_m < options.cell_m) {
+    // A passage only a little wider than the body: a finer grid of body positions.
+    StanceRouteOptions fine = options;
+    fine.cell_m = options.body_blocked_cell_m;
+    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, fine, deadline);
+    if (finer.found || finer.out_of_time) stances = std::move(finer);
+  }
+  return stances;
+}
 
 }  // namespace mfp
