@@ -560,6 +560,7 @@ ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, c
   if (o.convex_cover >= 0) options.convex_cover = o.convex_cover == 1;
   if (o.target_coverage >= 0.0) options.target_coverage = o.target_coverage;
   if (o.regions_per_m2 >= 0.0) options.regions_per_m2 = o.regions_per_m2;
+  if (o.max_regions >= 0) options.max_regions = o.max_regions;
   options.record_cell_fates = true;
   RegionExtractionResult& result = *diagnosis;
   result = ExtractRegionsFromMapFile(scenario.map_path, options);

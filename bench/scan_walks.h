@@ -38,6 +38,8 @@ struct ScanWalkOptions {
   // The extractor's cover target and regions per m^2 (negative: its defaults).
   double target_coverage = -1.0;
   double regions_per_m2 = -1.0;
+  // The extractor's max_regions for the walks' regions (-1: its default).
+  int max_regions = -1;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on

@@ -140,6 +140,8 @@ int main(int argc, char** argv) {
                  "the walks' extractor: --target-coverage (negative: its default)");
   app.add_option("--walk-regions-per-m2", walks.regions_per_m2,
                  "the walks' extractor: --regions-per-m2 (negative: its default)");
+  app.add_option("--walk-max-regions", walks.max_regions, "the walks' extractor: --max-regions (-1: its default)")
+      ->check(CLI::Range(-1, 100000));
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
