@@ -209,6 +209,30 @@ struct StanceSpace {
   }
   static double HeadingYaw(int h, int H) { return h * 2 * M_PI / H; }
 
+  // The class of the pose at cell `cell` (centre c) with heading h of H: 1 every nominal
+  // foot on a region, 2 every reference box meets one or the body is tight, 3 a reference
+  // box meets none, 4 refused by the body check alone. shared: SharedHeading(h, H).
+  uint8_t Judge(const RobotModel& robot, size_t cell, const Eigen::Vector2d& c, int h, int H, int shared) {
+    uint8_t* known = shared >= 0 ? &classes[cell * headings + shared] : nullptr;
+    if (known != nullptr && *known != 0) return *known;
+    const double yaw = HeadingYaw(h, H);
+    int worst = 2;
+    for (int leg = 0; leg < robot.num_legs() && worst > 0; ++leg) {
+      worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
+    }
+    uint8_t judged = static_cast<uint8_t>(3 - worst);
+    if (judged < 3) {
+      const BodyGate::Room room = gate.RoomAt(cell, c, yaw);
+      if (room == BodyGate::Room::kBlocked) {
+        judged = 4;
+      } else if (room == BodyGate::Room::kTight) {
+        judged = 2;
+      }
+    }
+    if (known != nullptr) *known = judged;
+    return judged;
+  }
+
   BodyGrid grid;
   SupportRaster support;
   BodyGate gate;
@@ -253,14 +277,11 @@ StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eig
                           double start_yaw_rad, const Eigen::Vector2d& goal_xy, double goal_yaw_rad, int headings,
                           const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute out;
-  const int n = robot.num_legs();
   const int H = std::max(1, headings);
   const BodyGrid& grid = space->grid;
   const Eigen::Vector2d lo = grid.lo;
   const double cell = grid.cell;
   const int nx = grid.nx, ny = grid.ny;
-  const SupportRaster& support = space->support;
-  BodyGate& gate = space->gate;
   std::vector<int> shared(static_cast<size_t>(H));
   for (int h = 0; h < H; ++h) shared[static_cast<size_t>(h)] = space->SharedHeading(h, H);
   auto heading_of = [&](double yaw) {
@@ -287,28 +308,8 @@ StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eig
     uint8_t& u = usable[id(i, j, h)];
     if (u == 0) {
       ++out.classified_poses;
-      const size_t cell_id = static_cast<size_t>(j) * nx + i;
-      const int f = shared[static_cast<size_t>(h)];
-      uint8_t* known = f >= 0 ? &space->classes[cell_id * space->headings + f] : nullptr;
-      uint8_t judged = known != nullptr ? *known : 0;
-      if (judged == 0) {
-        const Eigen::Vector2d c = centre_of(i, j);
-        const double yaw = StanceSpace::HeadingYaw(h, H);
-        int worst = 2;
-        for (int leg = 0; leg < n && worst > 0; ++leg) {
-          worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
-        }
-        judged = static_cast<uint8_t>(3 - worst);
-        if (judged < 3) {
-          const BodyGate::Room room = gate.RoomAt(cell_id, c, yaw);
-          if (room == BodyGate::Room::kBlocked) {
-            judged = 4;
-          } else if (room == BodyGate::Room::kTight) {
-            judged = 2;
-          }
-        }
-        if (known != nullptr) *known = judged;
-      }
+      const uint8_t judged = space->Judge(robot, static_cast<size_t>(j) * nx + i, centre_of(i, j), h, H,
+                                          shared[static_cast<size_t>(h)]);
       if (judged == 4) ++out.body_blocked_poses;
       u = judged == 4 ? 3 : judged;
     }
