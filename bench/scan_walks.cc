@@ -313,6 +313,15 @@ struct Walk {
   int start_body_voxels = 0, goal_body_voxels = 0;  // occupied voxels in the body's band at each end
 };
 
+// Whether certifiable floor joins the walk's ends by hops of the planner's region graph
+// (MaxStepSpan, route_guide.cc) and dz_max, from and to certifiable floor within a step
+// span of each end's centre (the first step and a goal moved within its tolerance).
+bool EndsJoined(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& start, const Pose2D& goal) {
+  const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
+  return judge.CertifiableFloorJoins({start.x_m, start.y_m}, {goal.x_m, goal.y_m},
+                                     CertifyRadiusM(robot, judge.resolution_m()), span, robot.dz_max_m, span, 1.5);
+}
+
 // Occupied voxels in the body's band over its plan box at the pose, the body's ground
 // being the mean height of the stance's feet (0 without a known body).
 int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
@@ -323,13 +332,14 @@ int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pos
   return judge.BodyVoxels(robot.body, pose, ground, &lowest);
 }
 
-std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double resolution_m,
-                            const ScanWalkOptions& o, unsigned seed) {
+// Draws o.walks walks into *walks; with o.joined_ends only walks whose ends certifiable
+// floor joins, and the unjoined ones met on the way (up to o.walks) into *unjoined.
+void DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double resolution_m, const ScanWalkOptions& o,
+               unsigned seed, std::vector<Walk>* walks, std::vector<Walk>* unjoined) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> yaw(-M_PI, M_PI), length(o.min_length_m, o.max_length_m);
   const double certify = o.certifiable_ends ? CertifyRadiusM(robot, resolution_m) : 0.0;
-  std::vector<Walk> walks;
-  for (int attempt = 0; attempt < 200000 && static_cast<int>(walks.size()) < o.walks && !judge.empty(); ++attempt) {
+  for (int attempt = 0; attempt < 200000 && static_cast<int>(walks->size()) < o.walks && !judge.empty(); ++attempt) {
     Walk w;
     const Eigen::Vector2d s = judge.RandomFloorPoint(&rng);
     w.start = {s.x(), s.y(), yaw(rng)};
@@ -342,9 +352,12 @@ std::vector<Walk> DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge
     w.start_body_voxels = BodyVoxelsAt(robot, judge, w.start, w.start_feet);
     w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
     if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
-    walks.push_back(w);
+    if (!o.joined_ends || EndsJoined(robot, judge, w.start, w.goal)) {
+      walks->push_back(w);
+    } else if (static_cast<int>(unjoined->size()) < o.walks) {
+      unjoined->push_back(w);
+    }
   }
-  return walks;
 }
 
 // Where one end's nominal feet stand: on no region, and of those on certifiable floor.
@@ -365,6 +378,7 @@ struct WalkResult {
   int feet_off = 0;
   double time_s = 0.0;
   std::string message;
+  std::string time_split;  // where the plan's time went: setup, then each window
   EndFeet start, goal;  // filled for walks that fail
   // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins).
   bool certifiable_route = false;
@@ -474,6 +488,20 @@ std::string FailureCause(const WalkResult& r) {
   return "other: " + ToString(r.status);
 }
 
+// "setup S s; windows: steps/status/nodes search+polish s of its share, ..." for a walk's line.
+std::string TimeSplit(const Plan& plan) {
+  char line[160];
+  std::snprintf(line, sizeof(line), "setup %.2f s, %d windows, %d nodes:", plan.setup_s, plan.windows, plan.nodes);
+  std::string text = line;
+  for (const WindowRecord& w : plan.window_records) {
+    std::snprintf(line, sizeof(line), " [%d steps %s %d nodes, build %.2f search %.2f (heur %.2f) polish %.2f of %.2f s]",
+                  w.new_steps, ToString(w.status).c_str(), w.nodes, w.build_s, w.search_s, w.heuristic_s, w.polish_s,
+                  w.time_limit_s);
+    text += line;
+  }
+  return text;
+}
+
 WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTerrain& terrain,
                    const SeenVoxelJudge& judge, const RegionExtractionResult& diagnosis, const Walk& walk,
                    const ScanWalkOptions& o) {
@@ -494,6 +522,7 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   r.goal_moved = plan.goal_moved;
   r.time_s = plan.solve_time_s;
   r.message = plan.message;
+  r.time_split = TimeSplit(plan);
   for (size_t i = static_cast<size_t>(robot.num_legs()); i < plan.footsteps.size(); ++i) {
     const Footstep& step = plan.footsteps[i];
     double slack = 0.0;
@@ -514,12 +543,7 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
     r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
     r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
                                                            scenario.options.goal_heading_tolerance_rad);
-    // Hops of the planner's region graph (MaxStepSpan, route_guide.cc) and dz_max; ends:
-    // certifiable floor within a step span of the pose (the robot may move its goal).
-    const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
-    r.certifiable_route = judge.CertifiableFloorJoins({walk.start.x_m, walk.start.y_m}, {walk.goal.x_m, walk.goal.y_m},
-                                                      CertifyRadiusM(robot, judge.resolution_m()), span,
-                                                      robot.dz_max_m, span, 1.5);
+    r.certifiable_route = EndsJoined(robot, judge, walk.start, walk.goal);
   }
   return r;
 }
@@ -536,6 +560,7 @@ ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, c
   if (o.convex_cover >= 0) options.convex_cover = o.convex_cover == 1;
   if (o.target_coverage >= 0.0) options.target_coverage = o.target_coverage;
   if (o.regions_per_m2 >= 0.0) options.regions_per_m2 = o.regions_per_m2;
+  if (o.max_regions >= 0) options.max_regions = o.max_regions;
   options.record_cell_fates = true;
   RegionExtractionResult& result = *diagnosis;
   result = ExtractRegionsFromMapFile(scenario.map_path, options);
@@ -547,19 +572,95 @@ ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, c
   return terrain;
 }
 
+// A failed walk's message names a place: a status that says where (a coordinate).
+bool NamesPlace(const WalkResult& r) {
+  for (size_t i = r.message.find('('); i != std::string::npos; i = r.message.find('(', i + 1)) {
+    const char c = i + 1 < r.message.size() ? r.message[i + 1] : ' ';
+    if (c == '-' || (c >= '0' && c <= '9')) return true;
+  }
+  return false;
+}
+
+// One population's walks (all walks, or the joined or unjoined ones) over the scans and robots.
+struct Population {
+  explicit Population(const char* population_name) : name(population_name) {}
+  const char* name;
+  int valid = 0, walks = 0;
+  int failed_named = 0, failed = 0;  // failed walks whose status names a place
+  std::map<std::string, int> causes;  // of the walks that failed
+  std::map<std::string, int> statuses;  // of the walks that failed
+};
+
+// Plans the walks of one scan and robot, prints their row (and with o.verbose a line per walk).
+void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& scenario, const ScenarioTerrain& terrain,
+              const SeenVoxelJudge& judge, const RegionExtractionResult& diagnosis, const std::vector<Walk>& walks,
+              const ScanWalkOptions& o, Population* population) {
+  int valid = 0, moved = 0, feet_off = 0, start_off = 0, body_blocked = 0;
+  std::map<std::string, int> statuses;
+  for (size_t k = 0; k < walks.size(); ++k) {
+    if (o.only_walk >= 0 && static_cast<int>(k) != o.only_walk) continue;
+    const Walk& w = walks[k];
+    const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
+    valid += r.valid_to_goal ? 1 : 0;
+    body_blocked += w.start_body_voxels + w.goal_body_voxels > 0 ? 1 : 0;
+    moved += r.goal_moved ? 1 : 0;
+    start_off += r.start_off_regions ? 1 : 0;
+    feet_off += r.feet_off;
+    ++statuses[ToString(r.status)];
+    if (!r.valid_to_goal) {
+      ++population->causes[FailureCause(r)];
+      ++population->statuses[ToString(r.status)];
+      ++population->failed;
+      population->failed_named += NamesPlace(r) ? 1 : 0;
+    }
+    if (o.verbose) {
+      std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s, body voxels "
+                  "%d / %d: %s\n",
+                  BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad, w.goal.x_m,
+                  w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(), r.valid_to_goal ? " valid to goal" : "",
+                  r.feet_off, r.time_s, w.start_body_voxels, w.goal_body_voxels, r.message.substr(0, 300).c_str());
+      std::printf("    time: %s\n", r.time_split.c_str());
+      if (!r.valid_to_goal) {
+        std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
+                    EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
+                    r.certifiable_route ? "yes" : "no");
+        for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
+        for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
+      }
+    }
+  }
+  std::string list;
+  for (const auto& [name, count] : statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  std::printf("%-8s %-20s %-10s %5zu %6d %9d %6d %8d %9d  %s\n", population->name, BaseName(scan).c_str(),
+              robot.name.c_str(), walks.size(), valid, start_off, moved, feet_off, body_blocked, list.c_str());
+  std::fflush(stdout);
+  population->valid += valid;
+  population->walks += static_cast<int>(walks.size());
+}
+
+void PrintPopulation(const Population& p) {
+  std::printf("%s: valid to the goal: %d of %d walks; of the %d that failed, %d end with a status naming a place\n",
+              p.name, p.valid, p.walks, p.failed, p.failed_named);
+  std::string list;
+  for (const auto& [name, count] : p.statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  std::printf("  failed statuses: %s\n", list.c_str());
+  std::printf("  failures by cause (certifiable floor: seen floor within a voxel of the foot's height for the foot "
+              "radius + 1 cm + one voxel around it, as the union of its columns' squares):\n");
+  for (const auto& [cause, count] : p.causes) std::printf("  %3d  %s\n", count, cause.c_str());
+}
+
 }  // namespace
 
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
                    const ScanWalkOptions& o) {
-  std::printf("walks on real scans: %d per scan and robot, %.0f-%.0f m between %s stances, %.0f s each; "
+  std::printf("walks on real scans: %d per scan and robot, %.0f-%.0f m between %s stances%s, %.0f s each; "
               "valid = reaches the goal (or the goal moved within its tolerance) with every footstep on a voxel "
               "seen from above with room above it, within a voxel plus its region's plane tolerance (raw voxels)\n",
               o.walks, o.min_length_m, o.max_length_m, o.certifiable_ends ? "certifiable-floor" : "seen-floor",
-              o.time_limit_s);
-  std::printf("%-20s %-10s %5s %6s %9s %6s %8s %9s  %s\n", "scan", "robot", "walks", "valid", "start_off", "moved",
-              "feet_off", "body_ends", "statuses");
-  int valid_total = 0, walks_total = 0;
-  std::map<std::string, int> causes;  // of the walks that failed
+              o.joined_ends ? " joined by certifiable floor (unjoined: a second population)" : "", o.time_limit_s);
+  std::printf("%-8s %-20s %-10s %5s %6s %9s %6s %8s %9s  %s\n", "walks", "scan", "robot", "walks", "valid", "start_off",
+              "moved", "feet_off", "body_ends", "statuses");
+  Population drawn(o.joined_ends ? "joined" : "all"), unjoined_walks("unjoined");
   for (const std::string& scan : scans) {
     const OccupancyMap map = LoadMapFile(scan);
     for (const std::string& robot_path : robots) {
@@ -571,48 +672,15 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o, &diagnosis);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
-      const std::vector<Walk> walks = DrawWalks(robot, judge, map.resolution_m, o, seed);
-      int valid = 0, moved = 0, feet_off = 0, start_off = 0, body_blocked = 0;
-      std::map<std::string, int> statuses;
-      for (const Walk& w : walks) {
-        const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
-        valid += r.valid_to_goal ? 1 : 0;
-        body_blocked += w.start_body_voxels + w.goal_body_voxels > 0 ? 1 : 0;
-        moved += r.goal_moved ? 1 : 0;
-        start_off += r.start_off_regions ? 1 : 0;
-        feet_off += r.feet_off;
-        ++statuses[ToString(r.status)];
-        if (!r.valid_to_goal) ++causes[FailureCause(r)];
-        if (o.verbose) {
-          std::printf("  %s %s (%.2f, %.2f, %.2f) -> (%.2f, %.2f, %.2f): %s%s, %d feet off, %.1f s, body voxels "
-                      "%d / %d: %s\n",
-                      BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad,
-                      w.goal.x_m, w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(),
-                      r.valid_to_goal ? " valid to goal" : "", r.feet_off, r.time_s, w.start_body_voxels,
-                      w.goal_body_voxels, r.message.substr(0, 300).c_str());
-          if (!r.valid_to_goal) {
-            std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
-                        EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
-                        r.certifiable_route ? "yes" : "no");
-            for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
-            for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
-          }
-        }
-      }
-      std::string list;
-      for (const auto& [name, count] : statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
-      std::printf("%-20s %-10s %5zu %6d %9d %6d %8d %9d  %s\n", BaseName(scan).c_str(), robot.name.c_str(),
-                  walks.size(), valid, start_off, moved, feet_off, body_blocked, list.c_str());
-      std::fflush(stdout);
-      valid_total += valid;
-      walks_total += static_cast<int>(walks.size());
+      std::vector<Walk> walks, unjoined;
+      DrawWalks(robot, judge, map.resolution_m, o, seed, &walks, &unjoined);
+      RunWalks(scan, robot, scenario, terrain, judge, diagnosis, walks, o, &drawn);
+      if (o.joined_ends) RunWalks(scan, robot, scenario, terrain, judge, diagnosis, unjoined, o, &unjoined_walks);
     }
   }
-  std::printf("valid to the goal: %d of %d walks\n", valid_total, walks_total);
-  std::printf("failures by cause (certifiable floor: seen floor within a voxel of the foot's height for the foot "
-              "radius + 1 cm + one voxel around it, as the union of its columns' squares):\n");
-  for (const auto& [cause, count] : causes) std::printf("  %3d  %s\n", count, cause.c_str());
-  return valid_total;
+  PrintPopulation(drawn);
+  if (o.joined_ends) PrintPopulation(unjoined_walks);
+  return drawn.valid;
 }
 
 }  // namespace mfp

@@ -23,6 +23,14 @@ struct ScanWalkOptions {
   // Both ends with room for the body: no occupied voxel in the body's height band (above
   // the mean height of the stance's feet) over its plan box (robots with a known body).
   bool body_room_ends = false;
+  // Keep only walks whose ends certifiable floor joins by steps (the judge's
+  // CertifiableFloorJoins on the raw voxels, independent of mfp's regions): walks a robot
+  // could walk. The unjoined walks drawn on the way (up to `walks` of them) are run as a
+  // second population, where the right answer is a status naming where and why.
+  bool joined_ends = false;
+  // Plan only the walk of this index (0-based) of each scan and robot's draw (-1: all):
+  // to re-run one walk alone, with the same draw.
+  int only_walk = -1;
   // The extractor's enclosed_unseen_radius_cells for the walks' regions (-1: its default).
   int enclosed_unseen_radius_cells = -1;
   // The extractor's convex_cover for the walks' regions (-1: its default, 0 off, 1 on).
@@ -30,6 +38,8 @@ struct ScanWalkOptions {
   // The extractor's cover target and regions per m^2 (negative: its defaults).
   double target_coverage = -1.0;
   double regions_per_m2 = -1.0;
+  // The extractor's max_regions for the walks' regions (-1: its default).
+  int max_regions = -1;
 };
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on

@@ -140,10 +140,18 @@ int main(int argc, char** argv) {
                  "the walks' extractor: --target-coverage (negative: its default)");
   app.add_option("--walk-regions-per-m2", walks.regions_per_m2,
                  "the walks' extractor: --regions-per-m2 (negative: its default)");
+  app.add_option("--walk-max-regions", walks.max_regions, "the walks' extractor: --max-regions (-1: its default)")
+      ->check(CLI::Range(-1, 100000));
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
+  app.add_flag("--walk-joined", walks.joined_ends,
+               "keep walks whose ends certifiable floor joins by steps (judged on the raw voxels); the unjoined walks "
+               "drawn on the way are run and reported as a second population");
+  app.add_option("--walk-only", walks.only_walk,
+                 "plan only the walk of this index (0-based) of each scan and robot's draw (the same draw)")
+      ->check(CLI::Range(0, 999));
   app.add_flag("--walk-body-room", walks.body_room_ends,
                "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
   bool digest = false;

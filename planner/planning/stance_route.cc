@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <queue>
 #include <utility>
@@ -80,122 +81,6 @@ std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& 
 }
 
 
-StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                          const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                          const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline);
-
-// The body check of a pose (stance_route.h): obstacles near the pose judged against the
-// body's plan box in its height band above the pose's ground, and against that box grown
-// by the route's body margin in plan view.
-class BodyGate {
- public:
-  enum class Room { kClear, kTight, kBlocked };
-
-  BodyGate(const RobotModel& robot, const std::vector<BodyObstacle>& obstacles, const SupportRaster& support,
-           double ground_z_m, double overlap_share, double margin_m)
-      : robot_(robot), obstacles_(obstacles), support_(support), ground_z_m_(ground_z_m), share_(overlap_share) {
-    const BodyExtent& body = robot.body;
-    active_ = body.known() && !obstacles.empty();
-    grown_ = body;
-    grown_.min_m -= Eigen::Vector2d::Constant(std::max(0.0, margin_m));
-    grown_.max_m += Eigen::Vector2d::Constant(std::max(0.0, margin_m));
-    radius_m_ = BodyRadius(grown_);
-    // A pose looks only at the buckets its radius reaches.
-    if (active_) index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, kBodyBucketMinM));
-  }
-  bool active() const { return active_; }
-
-  // kBlocked: the body at (c, yaw) overlaps an obstacle in its band; kTight: only the
-  // grown body does.
-  Room RoomAt(const Eigen::Vector2d& c, double yaw) const {
-    if (!active_) return Room::kClear;
-    const std::vector<int> near = index_.Near(c, radius_m_);
-    if (near.empty()) return Room::kClear;
-    const double ground = Ground(c, yaw);
-    if (BodyOverlapShare(grown_, obstacles_, near, c.x(), c.y(), yaw, ground) <= 0.0) return Room::kClear;
-    return BodyOverlapShare(robot_.body, obstacles_, near, c.x(), c.y(), yaw, ground) > share_ ? Room::kBlocked
-                                                                                              : Room::kTight;
-  }
-
- private:
-  // Mean height of the regions under the nominal feet; the fallback where none is.
-  double Ground(const Eigen::Vector2d& c, double yaw) const {
-    double sum = 0.0;
-    int count = 0;
-    for (int leg = 0; leg < robot_.num_legs(); ++leg) {
-      const long k = support_.Index(NominalFootXY(robot_, leg, c.x(), c.y(), yaw));
-      if (k < 0 || !std::isfinite(support_.heights[static_cast<size_t>(k)])) continue;
-      sum += support_.heights[static_cast<size_t>(k)];
-      ++count;
-    }
-    return count > 0 ? sum / count : ground_z_m_;
-  }
-
-  const RobotModel& robot_;
-  const std::vector<BodyObstacle>& obstacles_;
-  const SupportRaster& support_;
-  BodyExtent grown_;  // the body box grown by the margin in plan view
-  double ground_z_m_, share_, radius_m_ = 0.0;
-  bool active_ = false;
-  BodyObstacleIndex index_;
-};
-
-}  // namespace
-
-StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
-  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
-}
-
-StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
-  StanceRoute route = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                    goal_yaw_rad, options, deadline);
-  // Where the body check refused poses, finer headings let the body turn to fit.
-  if (route.body_blocked_poses > 0 && options.headings < options.fine_headings && !route.out_of_time) {
-    StanceRouteOptions fine = options;
-    fine.headings = options.fine_headings;
-    StanceRoute finer = SearchStances(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                      goal_yaw_rad, fine, deadline);
-    if (finer.found || !route.found) route = std::move(finer);
-  }
-  return route;
-}
-
-StanceRoute PlanStanceRouteWithFallbacks(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                                         const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                                         const Eigen::Vector2d& start_xy, double start_yaw_rad,
-                                         const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
-                                         const StanceRouteOptions& options, const Deadline& deadline) {
-  StanceRoute stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                        goal_yaw_rad, options, deadline);
-  if (!stances.found && !stances.out_of_time) {
-    // Where no pose has every reference box surely on support, poses whose boxes may
-    // meet it (an octopod on stones laid for its feet: the region graph's route through
-    // region centres zig-zagged across the tracks, 2.45 m short).
-    StanceRouteOptions loose = options;
-    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
-    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                              goal_yaw_rad, loose, deadline);
-  }
-  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
-      options.body_blocked_cell_m < options.cell_m) {
-    // A passage only a little wider than the body: a finer grid of body positions.
-    StanceRouteOptions fine = options;
-    fine.cell_m = options.body_blocked_cell_m;
-    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
-                                        goal_yaw_rad, fine, deadline);
-    if (finer.found || finer.out_of_time) stances = std::move(finer);
-  }
-  return stances;
-}
-
-namespace {
-
 // The body positions' grid: over the regions, start and goal, padded by how far a body
 // stands beyond its feet (reach + l_bnd), cells coarsened to at most options.max_cells.
 struct BodyGrid {
@@ -231,6 +116,146 @@ BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& 
 
 // The found route: the given start and goal poses with the searched cells' centres and
 // yaws between them (cells and yaws from the start's cell to the goal's).
+
+// The body check of a pose (stance_route.h): obstacles near the pose judged against the
+// body's plan box in its height band above the pose's ground, and against that box grown
+// by the route's body margin in plan view. The obstacles near a grid cell do not depend on
+// the heading, so they are looked up once per cell (cells: the body grid's cell count).
+class BodyGate {
+ public:
+  enum class Room { kClear, kTight, kBlocked };
+
+  BodyGate(const RobotModel& robot, const std::vector<BodyObstacle>& obstacles, const SupportRaster& support,
+           double ground_z_m, double overlap_share, double margin_m, size_t cells)
+      : robot_(robot), obstacles_(obstacles), support_(support), ground_z_m_(ground_z_m), share_(overlap_share) {
+    const BodyExtent& body = robot.body;
+    active_ = body.known() && !obstacles.empty();
+    grown_ = body;
+    grown_.min_m -= Eigen::Vector2d::Constant(std::max(0.0, margin_m));
+    grown_.max_m += Eigen::Vector2d::Constant(std::max(0.0, margin_m));
+    radius_m_ = BodyRadius(grown_);
+    // A pose looks only at the buckets its radius reaches.
+    if (active_) {
+      index_ = BodyObstacleIndex(obstacles, std::max(radius_m_, kBodyBucketMinM));
+      near_.resize(cells);
+      near_known_.assign(cells, 0);
+    }
+  }
+  bool active() const { return active_; }
+
+  // kBlocked: the body at (c, yaw), c the centre of grid cell `cell`, overlaps an obstacle
+  // in its band; kTight: only the grown body does.
+  Room RoomAt(size_t cell, const Eigen::Vector2d& c, double yaw) {
+    if (!active_) return Room::kClear;
+    if (!near_known_[cell]) {
+      near_[cell] = index_.Near(c, radius_m_);
+      near_known_[cell] = 1;
+    }
+    const std::vector<int>& near = near_[cell];
+    if (near.empty()) return Room::kClear;
+    const double ground = Ground(c, yaw);
+    if (BodyOverlapShare(grown_, obstacles_, near, c.x(), c.y(), yaw, ground) <= 0.0) return Room::kClear;
+    return BodyOverlapShare(robot_.body, obstacles_, near, c.x(), c.y(), yaw, ground) > share_ ? Room::kBlocked
+                                                                                              : Room::kTight;
+  }
+
+ private:
+  // Mean height of the regions under the nominal feet; the fallback where none is.
+  double Ground(const Eigen::Vector2d& c, double yaw) const {
+    double sum = 0.0;
+    int count = 0;
+    for (int leg = 0; leg < robot_.num_legs(); ++leg) {
+      const long k = support_.Index(NominalFootXY(robot_, leg, c.x(), c.y(), yaw));
+      if (k < 0 || !std::isfinite(support_.heights[static_cast<size_t>(k)])) continue;
+      sum += support_.heights[static_cast<size_t>(k)];
+      ++count;
+    }
+    return count > 0 ? sum / count : ground_z_m_;
+  }
+
+  const RobotModel& robot_;
+  const std::vector<BodyObstacle>& obstacles_;
+  const SupportRaster& support_;
+  BodyExtent grown_;  // the body box grown by the margin in plan view
+  double ground_z_m_, share_, radius_m_ = 0.0;
+  bool active_ = false;
+  BodyObstacleIndex index_;
+  std::vector<std::vector<int>> near_;  // per body grid cell: the obstacles near its centre
+  std::vector<uint8_t> near_known_;     // per body grid cell: near_ holds its lookup
+};
+
+
+// What the searches of one PlanStanceRoute share (the same body grid and support): the
+// support raster, the body gate with its per-cell obstacle lookups, and each pose's class
+// at the finest heading count searched, so the search with fine headings does not judge
+// again the poses the coarse search judged (their yaws are the same numbers).
+struct StanceSpace {
+  StanceSpace(const RobotModel& robot, const BodyGrid& body_grid, SupportRaster raster,
+              const std::vector<BodyObstacle>& body_obstacles, double ground_z_m, const StanceRouteOptions& options)
+      : grid(body_grid), support(std::move(raster)),
+        gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m,
+             static_cast<size_t>(grid.nx) * grid.ny),
+        headings(std::max({1, options.headings, options.fine_headings})),
+        classes(static_cast<size_t>(grid.nx) * grid.ny * headings, 0) {}
+  StanceSpace(const StanceSpace&) = delete;
+  StanceSpace& operator=(const StanceSpace&) = delete;
+
+  // The index into `classes` of heading h of H, or -1 when its yaw is not one of the
+  // shared headings' yaws exactly.
+  int SharedHeading(int h, int H) const {
+    if (headings % H != 0) return -1;
+    const int f = h * (headings / H);
+    return HeadingYaw(h, H) == HeadingYaw(f, headings) ? f : -1;
+  }
+  static double HeadingYaw(int h, int H) { return h * 2 * M_PI / H; }
+
+  // The class of the pose at cell `cell` (centre c) with heading h of H: 1 every nominal
+  // foot on a region, 2 every reference box meets one or the body is tight, 3 a reference
+  // box meets none, 4 refused by the body check alone. shared: SharedHeading(h, H).
+  uint8_t Judge(const RobotModel& robot, size_t cell, const Eigen::Vector2d& c, int h, int H, int shared) {
+    uint8_t* known = shared >= 0 ? &classes[cell * headings + shared] : nullptr;
+    if (known != nullptr && *known != 0) return *known;
+    const double yaw = HeadingYaw(h, H);
+    int worst = 2;
+    for (int leg = 0; leg < robot.num_legs() && worst > 0; ++leg) {
+      worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
+    }
+    uint8_t judged = static_cast<uint8_t>(3 - worst);
+    if (judged < 3) {
+      const BodyGate::Room room = gate.RoomAt(cell, c, yaw);
+      if (room == BodyGate::Room::kBlocked) {
+        judged = 4;
+      } else if (room == BodyGate::Room::kTight) {
+        judged = 2;
+      }
+    }
+    if (known != nullptr) *known = judged;
+    return judged;
+  }
+
+  BodyGrid grid;
+  SupportRaster support;
+  BodyGate gate;
+  int headings;  // of `classes`
+  // Per (cell, heading): 0 not judged yet, 1-3 the search's pose classes (SearchStances),
+  // 4 class 3 by the body check alone.
+  std::vector<uint8_t> classes;
+};
+
+// nullptr when the deadline passes while the support raster is built.
+std::unique_ptr<StanceSpace> MakeStanceSpace(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                             const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                                             const Eigen::Vector2d& start_xy, const Eigen::Vector2d& goal_xy,
+                                             const StanceRouteOptions& options, const Deadline& deadline) {
+  const BodyGrid grid = MakeBodyGrid(robot, regions, start_xy, goal_xy, options);
+  // Support within l_bnd of a foot; the raster finer than the body grid.
+  const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * grid.cell));
+  std::optional<SupportRaster> raster =
+      MakeSupportRaster(regions, grid.lo, grid.hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
+  if (!raster) return nullptr;
+  return std::make_unique<StanceSpace>(robot, grid, std::move(*raster), body_obstacles, ground_z_m, options);
+}
+
 void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<double>& yaws,
               const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
               double goal_yaw_rad, StanceRoute* out) {
@@ -246,27 +271,19 @@ void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<doubl
   out->found = true;
 }
 
-StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                          const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
-                          const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
-                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+
+// A* over the poses of `space` with `headings` yaws (stance_route.h).
+StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eigen::Vector2d& start_xy,
+                          double start_yaw_rad, const Eigen::Vector2d& goal_xy, double goal_yaw_rad, int headings,
+                          const StanceRouteOptions& options, const Deadline& deadline) {
   StanceRoute out;
-  const int n = robot.num_legs();
-  const int H = std::max(1, options.headings);
-  const BodyGrid grid = MakeBodyGrid(robot, regions, start_xy, goal_xy, options);
-  const Eigen::Vector2d lo = grid.lo, hi = grid.hi;
+  const int H = std::max(1, headings);
+  const BodyGrid& grid = space->grid;
+  const Eigen::Vector2d lo = grid.lo;
   const double cell = grid.cell;
   const int nx = grid.nx, ny = grid.ny;
-  // Support within l_bnd of a foot; the raster finer than the body grid.
-  const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * cell));
-  const std::optional<SupportRaster> raster =
-      MakeSupportRaster(regions, lo, hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
-  if (!raster) {
-    out.out_of_time = true;
-    return out;
-  }
-  const SupportRaster& support = *raster;
-  const BodyGate gate(robot, body_obstacles, support, ground_z_m, options.body_overlap_share, options.body_margin_m);
+  std::vector<int> shared(static_cast<size_t>(H));
+  for (int h = 0; h < H; ++h) shared[static_cast<size_t>(h)] = space->SharedHeading(h, H);
   auto heading_of = [&](double yaw) {
     const double u = std::remainder(yaw, 2 * M_PI);
     return ((static_cast<int>(std::lround(u / (2 * M_PI / H))) % H) + H) % H;
@@ -291,22 +308,10 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
     uint8_t& u = usable[id(i, j, h)];
     if (u == 0) {
       ++out.classified_poses;
-      const Eigen::Vector2d c = centre_of(i, j);
-      const double yaw = h * 2 * M_PI / H;
-      int worst = 2;
-      for (int leg = 0; leg < n && worst > 0; ++leg) {
-        worst = std::min(worst, support.At(NominalFootXY(robot, leg, c.x(), c.y(), yaw)));
-      }
-      u = static_cast<uint8_t>(3 - worst);
-      if (u < 3) {
-        const BodyGate::Room room = gate.RoomAt(c, yaw);
-        if (room == BodyGate::Room::kBlocked) {
-          u = 3;
-          ++out.body_blocked_poses;
-        } else if (room == BodyGate::Room::kTight) {
-          u = 2;
-        }
-      }
+      const uint8_t judged = space->Judge(robot, static_cast<size_t>(j) * nx + i, centre_of(i, j), h, H,
+                                          shared[static_cast<size_t>(h)]);
+      if (judged == 4) ++out.body_blocked_poses;
+      u = judged == 4 ? 3 : judged;
     }
     return u;
   };
@@ -397,6 +402,63 @@ StanceRoute SearchStances(const RobotModel& robot, const std::vector<ConvexRegio
   return out;
 }
 
+
 }  // namespace
+
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+  return PlanStanceRoute(robot, regions, {}, 0.0, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, options, deadline);
+}
+
+StanceRoute PlanStanceRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                            const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                            const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
+                          double goal_yaw_rad, const StanceRouteOptions& options, const Deadline& deadline) {
+  const std::unique_ptr<StanceSpace> space =
+      MakeStanceSpace(robot, regions, body_obstacles, ground_z_m, start_xy, goal_xy, options, deadline);
+  if (space == nullptr) {
+    StanceRoute out_of_time;
+    out_of_time.out_of_time = true;
+    return out_of_time;
+  }
+  StanceRoute route = SearchStances(robot, space.get(), start_xy, start_yaw_rad, goal_xy, goal_yaw_rad,
+                                    options.headings, options, deadline);
+  // Where the body check refused poses, finer headings let the body turn to fit.
+  if (route.body_blocked_poses > 0 && options.headings < options.fine_headings && !route.out_of_time) {
+    StanceRoute finer = SearchStances(robot, space.get(), start_xy, start_yaw_rad, goal_xy, goal_yaw_rad,
+                                      options.fine_headings, options, deadline);
+    if (finer.found || !route.found) route = std::move(finer);
+  }
+  return route;
+}
+
+StanceRoute PlanStanceRouteWithFallbacks(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const std::vector<BodyObstacle>& body_obstacles, double ground_z_m,
+                                         const Eigen::Vector2d& start_xy, double start_yaw_rad,
+                                         const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
+                                         const StanceRouteOptions& options, const Deadline& deadline) {
+  StanceRoute stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, options, deadline);
+  if (!stances.found && !stances.out_of_time) {
+    // Where no pose has every reference box surely on support, poses whose boxes may
+    // meet it (an octopod on stones laid for its feet: the region graph's route through
+    // region centres zig-zagged across the tracks, 2.45 m short).
+    StanceRouteOptions loose = options;
+    loose.support_radius_l_bnd = std::max(options.support_radius_l_bnd, std::sqrt(2.0));
+    stances = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                              goal_yaw_rad, loose, deadline);
+  }
+  if (!stances.found && !stances.out_of_time && stances.body_blocked_poses > 0 &&
+      options.body_blocked_cell_m < options.cell_m) {
+    // A passage only a little wider than the body: a finer grid of body positions.
+    StanceRouteOptions fine = options;
+    fine.cell_m = options.body_blocked_cell_m;
+    StanceRoute finer = PlanStanceRoute(robot, regions, body_obstacles, ground_z_m, start_xy, start_yaw_rad, goal_xy,
+                                        goal_yaw_rad, fine, deadline);
+    if (finer.found || finer.out_of_time) stances = std::move(finer);
+  }
+  return stances;
+}
 
 }  // namespace mfp
