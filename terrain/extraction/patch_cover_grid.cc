@@ -34,7 +34,43 @@ double SideSlack(const InsetAt& inset_at, double x0, double y0, double y1, doubl
   return std::max(0.0, s);
 }
 
+// Moves the sides of rects[k] out by their slack (-x, +x, -y, +y, each with the sides
+// moved so far); unless may_overlap, no side moves into another rectangle (the earlier
+// ones with their slack, the later ones without: the later ones then stop at this one).
+void AddSlack(const CoverInput& in, bool may_overlap, size_t k, std::vector<AxisRect>* rects) {
+  const double max_inset = in.max_inset_cells;
+  auto inset_xy = [&](int c, int r) { return in.inset->At(r, c); };
+  auto room = [&](AxisRect::Side side) { return may_overlap ? INFINITY : RoomBeforeOthers(*rects, k, side); };
+  AxisRect& r = (*rects)[k];
+  r.x0 -= std::min(room(AxisRect::kMinusX), SideSlack(inset_xy, r.x0, r.y0, r.y1, max_inset));
+  r.x1 += std::min(room(AxisRect::kPlusX),
+                   SideSlack([&](int c, int rr) { return inset_xy(-c, rr); }, -r.x1, r.y0, r.y1, max_inset));
+  r.y0 -= std::min(room(AxisRect::kMinusY),
+                   SideSlack([&](int c, int rr) { return inset_xy(rr, c); }, r.y0, r.x0, r.x1, max_inset));
+  r.y1 += std::min(room(AxisRect::kPlusY),
+                   SideSlack([&](int c, int rr) { return inset_xy(rr, -c); }, -r.y1, r.x0, r.x1, max_inset));
+}
+
 }  // namespace
+
+double RoomBeforeOthers(const std::vector<AxisRect>& rects, size_t k, AxisRect::Side side) {
+  constexpr double kTouch = 1e-9;  // sides this close count as shared [units]
+  const AxisRect& r = rects[k];
+  double room = INFINITY;
+  for (size_t j = 0; j < rects.size(); ++j) {
+    const AxisRect& o = rects[j];
+    if (j == k) continue;
+    const bool share_y = o.y0 < r.y1 - kTouch && o.y1 > r.y0 + kTouch;
+    const bool share_x = o.x0 < r.x1 - kTouch && o.x1 > r.x0 + kTouch;
+    double gap = INFINITY;
+    if (side == AxisRect::kMinusX && share_y && o.x0 < r.x0 - kTouch) gap = r.x0 - o.x1;
+    if (side == AxisRect::kPlusX && share_y && o.x1 > r.x1 + kTouch) gap = o.x0 - r.x1;
+    if (side == AxisRect::kMinusY && share_x && o.y0 < r.y0 - kTouch) gap = r.y0 - o.y1;
+    if (side == AxisRect::kPlusY && share_x && o.y1 > r.y1 + kTouch) gap = o.y0 - r.y1;
+    room = std::min(room, std::max(0.0, gap));
+  }
+  return room;
+}
 
 // Rectangles of complete dual squares end on cell centres; each side then moves out as
 // far as its strip keeps the inset from every cell outside the patch, so regions lose
@@ -42,20 +78,17 @@ double SideSlack(const InsetAt& inset_at, double x0, double y0, double y1, doubl
 std::vector<Quad2d> CoverOnGrid(const CoverInput& in, const PatchDecompositionOptions& options) {
   RectangleCoverOptions cover = options.cover;
   cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, in.res * in.res);
-  const double max_inset = in.max_inset_cells;
-  auto inset_xy = [&](int c, int r) { return in.inset->At(r, c); };
-  std::vector<Quad2d> quads;
+  std::vector<AxisRect> rects;
   for (const CellRect& rect : GreedyRectangleCover(in.dual->cells, in.dual->rows, in.dual->cols, cover)) {
-    double x0 = rect.col0, x1 = rect.col0 + rect.cols;
-    double y0 = rect.row0, y1 = rect.row0 + rect.rows;
-    if (max_inset > 0.0) {
-      // -x, +x (mirrored), -y and +y (transposed), each with the sides moved so far.
-      x0 -= SideSlack(inset_xy, x0, y0, y1, max_inset);
-      x1 += SideSlack([&](int c, int r) { return inset_xy(-c, r); }, -x1, y0, y1, max_inset);
-      y0 -= SideSlack([&](int c, int r) { return inset_xy(r, c); }, y0, x0, x1, max_inset);
-      y1 += SideSlack([&](int c, int r) { return inset_xy(r, -c); }, -y1, x0, x1, max_inset);
-    }
-    quads.push_back({in.ToWorld({x0, y0}), in.ToWorld({x1, y0}), in.ToWorld({x1, y1}), in.ToWorld({x0, y1})});
+    rects.push_back({double(rect.col0), double(rect.col0 + rect.cols), double(rect.row0), double(rect.row0 + rect.rows)});
+  }
+  if (in.max_inset_cells > 0.0) {
+    for (size_t k = 0; k < rects.size(); ++k) AddSlack(in, cover.grow_over_covered, k, &rects);
+  }
+  std::vector<Quad2d> quads;
+  quads.reserve(rects.size());
+  for (const AxisRect& r : rects) {
+    quads.push_back({in.ToWorld({r.x0, r.y0}), in.ToWorld({r.x1, r.y0}), in.ToWorld({r.x1, r.y1}), in.ToWorld({r.x0, r.y1})});
   }
   return quads;
 }
