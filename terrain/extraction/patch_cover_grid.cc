@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "terrain/extraction/internal/patch_cover.h"
 
@@ -35,8 +37,9 @@ double SideSlack(const InsetAt& inset_at, double x0, double y0, double y1, doubl
 }
 
 // Moves the sides of rects[k] out by their slack (-x, +x, -y, +y, each with the sides
-// moved so far); unless may_overlap, no side moves into another rectangle (the earlier
-// ones with their slack, the later ones without: the later ones then stop at this one).
+// moved so far); unless may_overlap, a side stops at the other rectangles beyond it when
+// they span it (RoomBeforeOthers: the earlier ones with their slack, the later ones
+// without), so neighbours that share a whole side do not overlap.
 void AddSlack(const CoverInput& in, bool may_overlap, size_t k, std::vector<AxisRect>* rects) {
   const double max_inset = in.max_inset_cells;
   auto inset_xy = [&](int c, int r) { return in.inset->At(r, c); };
@@ -56,20 +59,41 @@ void AddSlack(const CoverInput& in, bool may_overlap, size_t k, std::vector<Axis
 double RoomBeforeOthers(const std::vector<AxisRect>& rects, size_t k, AxisRect::Side side) {
   constexpr double kTouch = 1e-9;  // sides this close count as shared [units]
   const AxisRect& r = rects[k];
-  double room = INFINITY;
+  const bool along_y = side == AxisRect::kMinusX || side == AxisRect::kPlusX;  // the side's own extent
+  const double lo = along_y ? r.y0 : r.x0, hi = along_y ? r.y1 : r.x1;
+  // Per rectangle beyond the side sharing a stretch of it: its gap and that stretch.
+  struct Beyond {
+    double gap, from, to;
+  };
+  std::vector<Beyond> beyond;
   for (size_t j = 0; j < rects.size(); ++j) {
     const AxisRect& o = rects[j];
-    if (j == k) continue;
-    const bool share_y = o.y0 < r.y1 - kTouch && o.y1 > r.y0 + kTouch;
-    const bool share_x = o.x0 < r.x1 - kTouch && o.x1 > r.x0 + kTouch;
+    const double from = std::max(lo, along_y ? o.y0 : o.x0), to = std::min(hi, along_y ? o.y1 : o.x1);
+    if (j == k || to - from <= kTouch) continue;
     double gap = INFINITY;
-    if (side == AxisRect::kMinusX && share_y && o.x0 < r.x0 - kTouch) gap = r.x0 - o.x1;
-    if (side == AxisRect::kPlusX && share_y && o.x1 > r.x1 + kTouch) gap = o.x0 - r.x1;
-    if (side == AxisRect::kMinusY && share_x && o.y0 < r.y0 - kTouch) gap = r.y0 - o.y1;
-    if (side == AxisRect::kPlusY && share_x && o.y1 > r.y1 + kTouch) gap = o.y0 - r.y1;
-    room = std::min(room, std::max(0.0, gap));
+    if (side == AxisRect::kMinusX && o.x0 < r.x0 - kTouch) gap = r.x0 - o.x1;
+    if (side == AxisRect::kPlusX && o.x1 > r.x1 + kTouch) gap = o.x0 - r.x1;
+    if (side == AxisRect::kMinusY && o.y0 < r.y0 - kTouch) gap = r.y0 - o.y1;
+    if (side == AxisRect::kPlusY && o.y1 > r.y1 + kTouch) gap = o.y0 - r.y1;
+    if (gap < INFINITY) beyond.push_back({std::max(0.0, gap), from, to});
   }
-  return room;
+  if (beyond.empty()) return INFINITY;
+  const double nearest = std::min_element(beyond.begin(), beyond.end(), [](const Beyond& a, const Beyond& b) {
+                           return a.gap < b.gap;
+                         })->gap;
+  // The nearest ones must span the whole side: then what the side would add past them
+  // lies in them, and stopping there loses no floor. Otherwise the side moves on.
+  std::vector<std::pair<double, double>> stretches;
+  for (const Beyond& b : beyond) {
+    if (b.gap <= nearest + kTouch) stretches.emplace_back(b.from, b.to);
+  }
+  std::sort(stretches.begin(), stretches.end());
+  double reached = lo;
+  for (const auto& [from, to] : stretches) {
+    if (from > reached + kTouch) return INFINITY;
+    reached = std::max(reached, to);
+  }
+  return reached >= hi - kTouch ? nearest : INFINITY;
 }
 
 // Rectangles of complete dual squares end on cell centres; each side then moves out as

@@ -34,8 +34,9 @@ struct AxisRect {
   double x0, x1, y0, y1;
 };
 
-// How far side `side` of rects[k] may move out before it enters the interior of another
-// of `rects` (one beyond that side sharing a stretch of its extent); INFINITY when none.
+// How far side `side` of rects[k] may move out before it enters the interior of the
+// other `rects` beyond it, when the nearest of them span the whole side (so what it would
+// add there is theirs already); INFINITY otherwise.
 double RoomBeforeOthers(const std::vector<AxisRect>& rects, size_t k, AxisRect::Side side);
 
 // Rectangles of complete dual squares end on cell centres; each side then moves out as
