@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <vector>
 
 #include "base/check.h"
+#include "geometry/convex_polygon_distance.h"
 #include "geometry/terrain_description.h"
 
 namespace mfp {
@@ -97,6 +100,31 @@ TEST(ConvexRegion, PlanDistanceIsZeroInsideAndToTheNearestEdgeOrCornerOutside) {
   EXPECT_NEAR(PlanDistanceToRegion(r, Eigen::Vector2d(2.0, 0.5)), 1.0, 1e-15);    // beside an edge
   EXPECT_NEAR(PlanDistanceToRegion(r, Eigen::Vector2d(2.0, 2.0)), std::sqrt(2.0), 1e-15);  // past a corner
   EXPECT_NEAR(PlanDistanceToRegion(r, Eigen::Vector2d(0.5, -0.25)), 0.25, 1e-15);
+}
+
+
+TEST(ConvexPolygonDistance, ZeroWhenTheyMeetOtherwiseVertexToSide) {
+  const std::array<Eigen::Vector2d, 4> square = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1),
+                                                 Eigen::Vector2d(0, 1)};
+  auto moved = [&](double dx, double dy) {
+    std::vector<Eigen::Vector2d> out;
+    for (const Eigen::Vector2d& v : square) out.push_back(v + Eigen::Vector2d(dx, dy));
+    return out;
+  };
+  EXPECT_EQ(ConvexPolygonDistance(square, moved(0.5, 0.5)), 0.0);  // overlapping
+  EXPECT_NEAR(ConvexPolygonDistance(square, moved(1.0, 0.3)), 0.0, 1e-15);  // sharing a side
+  EXPECT_NEAR(ConvexPolygonDistance(square, moved(1.25, 0.3)), 0.25, 1e-15);  // side to side
+  EXPECT_NEAR(ConvexPolygonDistance(moved(1.25, 0.3), square), 0.25, 1e-15);  // either order
+  EXPECT_NEAR(ConvexPolygonDistance(square, moved(2.0, 2.0)), std::sqrt(2.0), 1e-15);  // corner to corner
+  // A diamond whose corner points at the square's side: vertex to side, not corner to corner.
+  const std::vector<Eigen::Vector2d> diamond = {{2.5, 0.5}, {3.5, -0.5}, {4.5, 0.5}, {3.5, 1.5}};
+  EXPECT_NEAR(ConvexPolygonDistance(square, diamond), 1.5, 1e-15);
+  // A triangle through the square's interior with no vertex inside it: they meet.
+  const std::vector<Eigen::Vector2d> crossing = {{-1, 0.4}, {2, 0.4}, {0.5, 3}};
+  EXPECT_EQ(ConvexPolygonDistance(square, crossing), 0.0);
+  // A repeated vertex (a side without length) separates nothing.
+  const std::vector<Eigen::Vector2d> repeated = {{0.2, 0.2}, {0.2, 0.2}, {0.8, 0.2}, {0.5, 0.8}};
+  EXPECT_EQ(ConvexPolygonDistance(square, repeated), 0.0);
 }
 
 }  // namespace

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "geometry/convex_region.h"
@@ -53,13 +55,97 @@ OccupancyMap Floor(const FloorSpec& spec) {
   return map;
 }
 
-RegionExtractionResult Extract(const OccupancyMap& map,
-                               int noise_max_cells = RegionExtractorOptions().noise_max_cells) {
+RegionExtractorOptions TestOptions() {
   RegionExtractorOptions options;
   options.foot_radius_m = 0.03;
   options.clearance_m = 0.4;
+  return options;
+}
+
+RegionExtractionResult Extract(const OccupancyMap& map,
+                               int noise_max_cells = RegionExtractorOptions().noise_max_cells) {
+  RegionExtractorOptions options = TestOptions();
   options.noise_max_cells = noise_max_cells;
   return ExtractRegions(map, options);
+}
+
+// The plan area of the floor [0, side]^2 that the regions cover, each point once however
+// many regions hold it (sampled every 2 mm) [m^2].
+double CoveredArea(const RegionExtractionResult& r, double side_m) {
+  constexpr double kStep = 0.002;
+  const int n = static_cast<int>(std::lround(side_m / kStep));
+  std::vector<Eigen::Vector2d> lo, hi;
+  for (const ConvexRegion& region : r.regions) {
+    Eigen::Vector2d a = region.vertices_world_m.front().head<2>(), b = a;
+    for (const Eigen::Vector3d& v : region.vertices_world_m) a = a.cwiseMin(v.head<2>()), b = b.cwiseMax(v.head<2>());
+    lo.push_back(a);
+    hi.push_back(b);
+  }
+  int covered = 0;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const Eigen::Vector2d p((i + 0.5) * kStep, (j + 0.5) * kStep);
+      for (size_t k = 0; k < r.regions.size(); ++k) {
+        if ((p.array() < lo[k].array()).any() || (p.array() > hi[k].array()).any()) continue;
+        if (PlanDistanceToRegion(r.regions[k], p) <= 0.0) {
+          ++covered;
+          break;
+        }
+      }
+    }
+  }
+  return covered * kStep * kStep;
+}
+
+// What a sound extractor could certify on the n x n floor whose top voxel is moved by
+// offset(i, j) (issue 25: the seen floor eroded by the foot, the edge margin and the edge
+// uncertainty), when only groups of at most noise_max_cells 4-connected cells one voxel
+// off the floor, the same way, are noise; a larger group is an edge: foot centres whose
+// disk of that inset stays on the floor and clear of larger groups' cells (sampled every
+// 2 mm) [m^2].
+double CertifiableArea(int n, const std::function<int(int, int)>& offset, const RegionExtractorOptions& options) {
+  std::vector<int> group(static_cast<size_t>(n) * n, -1), size;
+  for (int start = 0; start < n * n; ++start) {
+    const int level = offset(start / n, start % n);
+    if (level == 0 || group[start] >= 0) continue;
+    std::vector<int> stack = {start};
+    group[start] = static_cast<int>(size.size());
+    size.push_back(0);
+    while (!stack.empty()) {
+      const int k = stack.back();
+      stack.pop_back();
+      ++size.back();
+      const int i = k / n, j = k % n;
+      for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+        const int ii = i + di, jj = j + dj;
+        if (ii < 0 || jj < 0 || ii >= n || jj >= n || group[ii * n + jj] >= 0 || offset(ii, jj) != level) continue;
+        group[ii * n + jj] = group[start];
+        stack.push_back(ii * n + jj);
+      }
+    }
+  }
+  auto edge = [&](int i, int j) { return group[i * n + j] >= 0 && size[group[i * n + j]] > options.noise_max_cells; };
+  const double inset_m = options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * kRes;
+  const int reach = static_cast<int>(std::ceil(inset_m / kRes)) + 1;
+  constexpr double kStep = 0.002;
+  const int samples = static_cast<int>(std::lround(n * kRes / kStep));
+  int certifiable = 0;
+  for (int a = 0; a < samples; ++a) {
+    for (int b = 0; b < samples; ++b) {
+      const Eigen::Vector2d p((a + 0.5) * kStep, (b + 0.5) * kStep);
+      bool ok = p.minCoeff() >= inset_m && p.maxCoeff() <= n * kRes - inset_m;
+      const int pi = static_cast<int>(p.x() / kRes), pj = static_cast<int>(p.y() / kRes);
+      for (int i = std::max(0, pi - reach); ok && i <= std::min(n - 1, pi + reach); ++i) {
+        for (int j = std::max(0, pj - reach); ok && j <= std::min(n - 1, pj + reach); ++j) {
+          const double dx = std::max({0.0, i * kRes - p.x(), p.x() - (i + 1) * kRes});
+          const double dy = std::max({0.0, j * kRes - p.y(), p.y() - (j + 1) * kRes});
+          ok = !(edge(i, j) && std::hypot(dx, dy) < inset_m);
+        }
+      }
+      certifiable += ok;
+    }
+  }
+  return certifiable * kStep * kStep;
 }
 
 double TotalArea(const RegionExtractionResult& r) {
@@ -118,11 +204,17 @@ TEST(ScanNoise, AFloorWithScatteredOneVoxelPitsAndBumpsIsOneSurface) {
   const RegionExtractionResult a = Extract(Floor(clean)), b = Extract(Floor(noisy));
   ASSERT_FALSE(a.regions.empty());
   ASSERT_FALSE(b.regions.empty());
-  EXPECT_GE(TotalArea(b), 0.85 * TotalArea(a));
+  // The floor the regions cover (overlaps once) against what a sound extractor could
+  // certify there: the issue's 85 % of the flat floor.
+  const double certifiable = CertifiableArea(noisy.n, noisy.offset, TestOptions());
+  std::printf("ScanNoise floor: certifiable %.4f m^2, covered clean %.4f, noisy %.4f (%zu regions)\n", certifiable,
+              CoveredArea(a, clean.n * kRes), CoveredArea(b, clean.n * kRes), b.regions.size());
+  EXPECT_NEAR(CoveredArea(a, clean.n * kRes), CertifiableArea(clean.n, clean.offset, TestOptions()), 0.01);
+  EXPECT_GE(CoveredArea(b, clean.n * kRes), 0.85 * certifiable);
   // Every region is the floor's, at its height (the noise averages out), none a level of it.
   for (const ConvexRegion& r : b.regions) EXPECT_NEAR(r.HeightAt(0.6, 0.6), kRes, 0.25 * kRes);
   // Cutting the noise out (noise_max_cells 0) shatters the floor: the test tells them apart.
-  EXPECT_LT(TotalArea(Extract(Floor(noisy), 0)), 0.5 * TotalArea(a));
+  EXPECT_LT(CoveredArea(Extract(Floor(noisy), 0), clean.n * kRes), 0.5 * certifiable);
 }
 
 TEST(ScanNoise, AStoneOneVoxelAboveTheFloorIsARegionOfItsOwn) {

@@ -1,7 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/convex_region.h"
+#include "geometry/convex_polygon_distance.h"
 #include "terrain/extraction/internal/convex_cover.h"
 
 namespace mfp {
@@ -83,20 +83,6 @@ bool InteriorsApart(const Polygon2d& p, const Polygon2d& q) {
   return false;
 }
 
-// Distance between two convex polygons (0 when they meet): apart, the nearest points lie
-// on a vertex of one and an edge of the other.
-double PolygonDistance(const Polygon2d& p, const Polygon2d& q) {
-  if (!InteriorsApart(p, q)) return 0.0;
-  double d = INFINITY;
-  for (const Polygon2d* a : {&p, &q}) {
-    const Polygon2d* b = a == &p ? &q : &p;
-    for (const Eigen::Vector2d& v : *a) {
-      for (size_t i = 0; i < b->size(); ++i) d = std::min(d, PointSegmentDistance(v, (*b)[i], (*b)[(i + 1) % b->size()]));
-    }
-  }
-  return d;
-}
-
 // Whether every point of `part` keeps each outside cell's inset from the cell's square
 // (cell (r, c) spans [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]): the exact test.
 bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells) {
@@ -112,7 +98,7 @@ bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_in
       const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
       if (std::hypot(dx, dy) >= inset) continue;  // the boxes are far enough apart
       const Polygon2d cell = {{c - 0.5, r - 0.5}, {c + 0.5, r - 0.5}, {c + 0.5, r + 0.5}, {c - 0.5, r + 0.5}};
-      if (PolygonDistance(part, cell) < inset - kEps) return false;
+      if (ConvexPolygonDistance(part, cell) < inset - kEps) return false;
     }
   }
   return true;

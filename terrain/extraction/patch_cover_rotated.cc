@@ -3,40 +3,11 @@
 #include <array>
 #include <cmath>
 
-#include "geometry/convex_region.h"
+#include "geometry/convex_polygon_distance.h"
 #include "terrain/extraction/internal/patch_cover.h"
 
 namespace mfp {
 namespace {
-
-double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-bool Inside(const std::array<Eigen::Vector2d, 4>& poly, const Eigen::Vector2d& p) {  // counter-clockwise
-  for (int i = 0; i < 4; ++i) {
-    if (Cross(poly[(i + 1) % 4] - poly[i], p - poly[i]) < 0.0) return false;
-  }
-  return true;
-}
-
-// Distance between two convex quadrilaterals (counter-clockwise); 0 when they overlap.
-double QuadDistance(const std::array<Eigen::Vector2d, 4>& p, const std::array<Eigen::Vector2d, 4>& q) {
-  for (int i = 0; i < 4; ++i) {
-    if (Inside(p, q[i]) || Inside(q, p[i])) return 0.0;
-  }
-  double d = INFINITY;
-  for (int i = 0; i < 4; ++i) {
-    const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % 4];
-    for (int j = 0; j < 4; ++j) {
-      const Eigen::Vector2d &c = q[j], &e = q[(j + 1) % 4];
-      const double d1 = Cross(b - a, c - a), d2 = Cross(b - a, e - a);
-      const double d3 = Cross(e - c, a - c), d4 = Cross(e - c, b - c);
-      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0))) return 0.0;
-      d = std::min({d, PointSegmentDistance(a, c, e), PointSegmentDistance(b, c, e),
-                    PointSegmentDistance(c, a, b), PointSegmentDistance(e, a, b)});
-    }
-  }
-  return d;
-}
 
 // The rotated grid: u along the principal direction, v across, in steps of half a cell,
 // spanning the dual squares' bounding box.
@@ -138,7 +109,7 @@ bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& q
   if (centre_dist < out.inset_cells - 0.7072) return true;
   const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
                                                Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
-  return QuadDistance(quad, cell) < out.inset_cells - 1e-9;
+  return ConvexPolygonDistance(quad, cell) < out.inset_cells - 1e-9;
 }
 
 // Whether the rotated rectangle [u0, u1] x [v0, v1] (rotated-grid steps) keeps the inset
@@ -165,25 +136,28 @@ bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, dou
   return true;
 }
 
-// Each side of a safe rotated rectangle moves out (in rotated-grid steps, up to one cell)
-// while the rectangle stays safe, by bisection.
-void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside,
-                     double max_inset_cells, double* a0, double* a1, double* b0, double* b1) {
-  const double most = 1.0 / RotatedFrame::kStep;  // one cell, in rotated-grid steps
-  auto grow = [&](double* side, double sign) {
+// Each side of a safe rotated rectangle rects[k] moves out (in rotated-grid steps, up to
+// one cell) while the rectangle stays safe, by bisection; unless may_overlap, a side
+// moves no further than the room before the other rectangles (RoomBeforeOthers).
+void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells,
+                     bool may_overlap, size_t k, std::vector<AxisRect>* rects) {
+  AxisRect& r = (*rects)[k];
+  auto grow = [&](double* side, double sign, AxisRect::Side which) {
+    const double most =
+        std::min(1.0 / RotatedFrame::kStep, may_overlap ? INFINITY : RoomBeforeOthers(*rects, k, which));
     double lo = 0.0, hi = most;
     const double base = *side;
-    for (int it = 0; it < 8; ++it) {
+    for (int it = 0; it < 8 && hi > 0.0; ++it) {
       const double mid = 0.5 * (lo + hi);
       *side = base + sign * mid;
-      (RotatedRectSafe(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
+      (RotatedRectSafe(frame, outside, max_inset_cells, r.x0, r.x1, r.y0, r.y1) ? lo : hi) = mid;
     }
     *side = base + sign * lo;
   };
-  grow(a0, -1.0);
-  grow(a1, 1.0);
-  grow(b0, -1.0);
-  grow(b1, 1.0);
+  grow(&r.x0, -1.0, AxisRect::kMinusX);
+  grow(&r.x1, 1.0, AxisRect::kPlusX);
+  grow(&r.y0, -1.0, AxisRect::kMinusY);
+  grow(&r.y1, 1.0, AxisRect::kPlusY);
 }
 
 }  // namespace
@@ -195,15 +169,19 @@ std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const Patch
   RectangleCoverOptions cover = options.cover;
   const double step = RotatedFrame::kStep;
   cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, step * step * in.res * in.res);
-  std::vector<Quad2d> quads;
+  std::vector<AxisRect> rects;  // x along the rotated grid's columns (a), y along its rows (b)
   for (const CellRect& rect : GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
-    double a0 = rect.col0, a1 = rect.col0 + rect.cols;
-    double b0 = rect.row0, b1 = rect.row0 + rect.rows;
-    if (in.max_inset_cells > 0.0 && RotatedRectSafe(frame, outside, in.max_inset_cells, a0, a1, b0, b1)) {
-      GrowRotatedRect(frame, outside, in.max_inset_cells, &a0, &a1, &b0, &b1);
+    rects.push_back({double(rect.col0), double(rect.col0 + rect.cols), double(rect.row0), double(rect.row0 + rect.rows)});
+  }
+  std::vector<Quad2d> quads;
+  quads.reserve(rects.size());
+  for (size_t k = 0; k < rects.size(); ++k) {
+    const AxisRect& r = rects[k];
+    if (in.max_inset_cells > 0.0 && RotatedRectSafe(frame, outside, in.max_inset_cells, r.x0, r.x1, r.y0, r.y1)) {
+      GrowRotatedRect(frame, outside, in.max_inset_cells, cover.grow_over_covered, k, &rects);
     }
-    quads.push_back({in.ToWorld(frame.Corner(a0, b0)), in.ToWorld(frame.Corner(a1, b0)),
-                     in.ToWorld(frame.Corner(a1, b1)), in.ToWorld(frame.Corner(a0, b1))});
+    quads.push_back({in.ToWorld(frame.Corner(r.x0, r.y0)), in.ToWorld(frame.Corner(r.x1, r.y0)),
+                     in.ToWorld(frame.Corner(r.x1, r.y1)), in.ToWorld(frame.Corner(r.x0, r.y1))});
   }
   return quads;
 }

@@ -139,12 +139,15 @@ std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& pa
   if (options.convex_pieces) {
     // The rectangles reach past the dual squares up to the exact inset, the convex pieces
     // follow a ragged outline: keep the pieces only where they hold more kept cells'
-    // centres (by more than 1 % of the kept cells), so no patch loses.
-    std::vector<Polygon2d> pieces = CoverConvex(in, options);
+    // centres (by more than 1 % of the kept cells), so no patch loses. Where the rectangles
+    // leave at most that 1 % uncovered the pieces cannot win: they are not computed.
     const auto kept =
         static_cast<int>(std::count_if(eroded.cells.begin(), eroded.cells.end(), [](uint8_t v) { return v != 0; }));
-    if (CentresCovered(hm, eroded, pieces) > CentresCovered(hm, eroded, polygons) + kept / 100) {
-      polygons = std::move(pieces);
+    const int by_rects = CentresCovered(hm, eroded, polygons);
+    if (kept - by_rects > kept / 100) {
+      std::vector<Polygon2d> pieces = CoverConvex(in, options);
+      const int by_pieces = CentresCovered(hm, eroded, pieces);
+      if (by_pieces > by_rects + kept / 100) polygons = std::move(pieces);
     }
   }
   if (fates != nullptr) {

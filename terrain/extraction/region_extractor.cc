@@ -134,6 +134,9 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   dec.cover.deadline = options.deadline;
   dec.convex_pieces = options.convex_cover;
   dec.max_piece_vertices = options.max_region_vertices;
+  // Slivers along a ragged outline: a piece narrower than the foot's radius (its inscribed
+  // disk smaller than half the foot) adds little floor and one more region to choose.
+  dec.min_piece_width_m = options.foot_radius_m;
   return dec;
 }
 

@@ -87,9 +87,11 @@ struct RegionExtractorOptions {
   // (diagonals between holes, chords of a ring; convex_cover.h), each side then moved out
   // to the exact inset as the rectangles' are, instead of rectangles on the grid or the
   // patch's principal frame; each piece has at most max_region_vertices vertices (rows
-  // for the planner per region); kept per patch only where they hold more kept cells'
-  // centres than the rectangles. Off (the default): the rectangles. Why it is not the
-  // default yet: docs/measurements.md, "Convex pieces with the rectangles' side slack".
+  // for the planner per region), and a piece narrower than foot_radius_m is dropped
+  // unless it is its patch's first; kept per patch only where they hold more kept cells'
+  // centres than the rectangles (computed only where the rectangles leave room for that).
+  // Off (the default): the rectangles. Why it is not the default yet: docs/measurements.md,
+  // "The convex cover as the default? (issue 25, stop 30, convexdefault)".
   bool convex_cover = false;
   int max_region_vertices = 8;
   // At most this many regions, the largest patches first (a bound on the work of the

@@ -43,6 +43,10 @@ struct PatchDecompositionOptions {
   // (convex_cover.h) instead of rectangles on the grid or the principal frame.
   bool convex_pieces = false;
   int max_piece_vertices = 8;       // vertices of a convex piece at most
+  // A convex piece narrower than this (its width: the least distance between two parallel
+  // lines enclosing it) is dropped unless it is the patch's first [m]: slivers along a
+  // ragged outline add little floor and many regions for the planner to choose among.
+  double min_piece_width_m = 0.0;
 };
 
 using Quad2d = std::array<Eigen::Vector2d, 4>;  // counter-clockwise x-y corners [m, world]
