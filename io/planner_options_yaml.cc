@@ -239,8 +239,15 @@ void AddSearchKeys(Table* t) {
   t->push_back(Opt("search.early_cutoff", in(&B::early_cutoff),
                    "a node's relaxation stops once it cannot beat the incumbent").Alias("early_cutoff").Advanced());
   t->push_back(Opt("search.root_cut_rounds", in(&B::root_cut_rounds), 0, 1000,
-                   "rounds of c-MIR cuts separated at the root before the search (0: off)")
+                   "rounds of cuts separated at the root after its first plan, before the search (0: off)")
                    .Alias("root_cut_rounds").Advanced());
+  t->push_back(Opt("search.root_cut_families", in(&B::root_cut_families), 1, kAllRootCutFamilies,
+                   "the root cut loop's families, a sum of 1 (c-MIR), 2 (group bounds), 4 (implied bounds), "
+                   "8 (cliques)")
+                   .Advanced());
+  t->push_back(Opt("search.root_cut_aggregations", in(&B::root_cut_aggregations), 0, 20,
+                   "rows the root cut loop's c-MIR adds to a starting row to cancel continuous variables")
+                   .Advanced());
 }
 
 // relax_and_fix: the seed of each window's search. Its stage searches take the search:

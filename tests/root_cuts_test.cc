@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "planner/planning/internal/exact_window.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "planner/search/branch_and_bound.h"
+#include "planner/search/internal/implied_cuts.h"
 #include "planner/search/internal/mir_cuts.h"
 #include "planner/search/internal/root_cuts.h"
 #include "tests/test_scenarios.h"
@@ -134,6 +136,82 @@ TEST(RootCuts, EveryCutHoldsAtEveryVertexOfEveryIntegerAssignment) {
   EXPECT_GT(with.root_bound, with.root_bound_before_cuts);
 }
 
+// Every cut row of q (rows from p.num_rows() on) holds at every vertex of every integer
+// assignment's polygon of p.
+void ExpectCutsHoldAtEveryVertex(const Miqp& p, const Miqp& q) {
+  int vertices_checked = 0;
+  for (const Eigen::VectorXd& z : IntegerPoints()) {
+    for (const Eigen::VectorXd& v : Vertices(p, z)) {
+      ++vertices_checked;
+      const Eigen::VectorXd activity = q.A * v;
+      for (int i = p.num_rows(); i < q.num_rows(); ++i) {
+        EXPECT_LE(activity(i), q.row_upper(i) + 1e-9) << q.row_names[i] << " cuts off a feasible vertex";
+      }
+    }
+  }
+  EXPECT_GT(vertices_checked, 0);
+}
+
+TEST(RootCuts, ImpliedBoundCutsHoldAtEveryVertexOfEveryIntegerAssignment) {
+  const Miqp p = StonesInstance();
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(RelaxationBackend::kInteriorPointWithIpoptFallback, 1);
+  BranchAndBoundOptions options;
+  options.root_cut_rounds = 10;
+  options.root_cut_families = kImpliedBoundCuts;
+  const RootCutLoopResult loop = RunRootCutLoop(p, *solvers.workers().front(), options, Deadline());
+  ASSERT_GT(loop.cuts, 0) << "no implied-bound cut separated: the instance no longer tests anything";
+  EXPECT_GT(loop.bound_after, loop.bound_before);
+  ExpectCutsHoldAtEveryVertex(p, loop.problem);
+}
+
+// Appends cut as a row "cut" (<= side) to q.
+void AppendRow(const LinearCut& cut, Miqp* q) {
+  const int i = q->num_rows();
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int r = 0; r < i; ++r) {
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(q->A, r); it; ++it) {
+      triplets.emplace_back(r, static_cast<int>(it.col()), it.value());
+    }
+  }
+  for (const auto& [j, c] : cut.coefficients) triplets.emplace_back(i, j, c);
+  q->A.resize(i + 1, q->num_variables());
+  q->A.setFromTriplets(triplets.begin(), triplets.end());
+  q->row_lower.conservativeResize(i + 1);
+  q->row_upper.conservativeResize(i + 1);
+  q->row_lower(i) = -kInfinity;
+  q->row_upper(i) = cut.rhs;
+  q->row_names.push_back("cut");
+}
+
+// Probing finds the conflicts the stones imply (S0 = 1 puts the foot at px <= 0, away
+// from stone 1; S1 = 1 away from stone 0), and a clique cut over them is separated at a
+// point that takes both and holds at every vertex.
+TEST(RootCuts, CliqueCutsFromProbingConflictsHoldAtEveryVertex) {
+  const Miqp p = StonesInstance();
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  const RootProbing probing = ProbeRootBinaries(p, lower, upper);
+  const int h0 = 2, h1 = 3, s0 = 5, s1 = 6;
+  auto conflicts_of = [&](int z) {
+    for (const ProbedBinary& b : probing.binaries) {
+      if (b.z == z) return b.conflicts;
+    }
+    return std::vector<int>{};
+  };
+  const std::vector<int> of_s0 = conflicts_of(s0), of_s1 = conflicts_of(s1);
+  EXPECT_NE(std::find(of_s0.begin(), of_s0.end(), h1), of_s0.end());
+  EXPECT_NE(std::find(of_s1.begin(), of_s1.end(), h0), of_s1.end());
+  EXPECT_EQ(std::find(of_s0.begin(), of_s0.end(), h0), of_s0.end()) << "stone 0 lies at px <= 0: no conflict";
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(7);
+  x(h1) = 0.6;
+  x(s0) = 0.6;
+  const std::vector<LinearCut> cuts = SeparateCliqueCuts(probing, x, 1e-4);
+  ASSERT_FALSE(cuts.empty());
+  EXPECT_GT(cuts.front().Activity(x), cuts.front().rhs);
+  Miqp q = p;
+  for (const LinearCut& cut : cuts) AppendRow(cut, &q);
+  ExpectCutsHoldAtEveryVertex(p, q);
+}
+
 // A Table I instance: the optimum proven without cuts meets every cut row of the loop,
 // and the search with cuts ends at the same objective.
 void ExpectOptimumMeetsCuts(const std::string& scenario, int steps) {
@@ -155,9 +233,36 @@ void ExpectOptimumMeetsCuts(const std::string& scenario, int steps) {
   for (int i = m.num_rows(); i < loop.problem.num_rows(); ++i) {
     EXPECT_LE(activity(i), loop.problem.row_upper(i) + 1e-6) << loop.problem.row_names[i] << " cuts off the optimum";
   }
+  // Given the optimum's objective as the plan in hand, the loop's reduced-cost fixing and
+  // probing keep the optimum within the problem's bounds, and its cuts hold there.
+  const RootCutLoopResult after_plan = RunRootCutLoop(m, *solvers.workers().front(), bnb, Deadline(), without.objective);
+  const Miqp& fixed = after_plan.problem;
+  EXPECT_LE((fixed.var_lower - without.x).maxCoeff(), 1e-6) << "the optimum is below a fixed lower bound";
+  EXPECT_LE((without.x - fixed.var_upper).maxCoeff(), 1e-6) << "the optimum is above a fixed upper bound";
+  const Eigen::VectorXd fixed_activity = fixed.A * without.x;
+  for (int i = m.num_rows(); i < fixed.num_rows(); ++i) {
+    EXPECT_LE(fixed_activity(i), fixed.row_upper(i) + 1e-6) << fixed.row_names[i] << " cuts off the optimum";
+  }
+  // The loop runs after the root's roundings: the first plan is the one found without it,
+  // after the same relaxations.
+  std::vector<BranchAndBoundResult> first_reports;
+  bnb.on_incumbent = [&first_reports](const BranchAndBoundResult& so_far) {
+    if (first_reports.size() < 2) first_reports.push_back(so_far);
+  };
   const BranchAndBoundResult with = SolveBranchAndBound(m, solvers.workers(), bnb, rounding);
   ASSERT_EQ(with.status, SolveStatus::kOptimal);
   EXPECT_NEAR(with.objective, without.objective, 1e-4 * std::abs(without.objective));
+  EXPECT_GT(with.root_cuts, 0);
+  std::vector<BranchAndBoundResult> plain_reports;
+  bnb.root_cut_rounds = 0;
+  bnb.on_incumbent = [&plain_reports](const BranchAndBoundResult& so_far) {
+    if (plain_reports.empty()) plain_reports.push_back(so_far);
+  };
+  SolveBranchAndBound(m, solvers.workers(), bnb, rounding);
+  ASSERT_FALSE(first_reports.empty());
+  ASSERT_FALSE(plain_reports.empty());
+  EXPECT_EQ(first_reports.front().objective, plain_reports.front().objective);
+  EXPECT_EQ(first_reports.front().relaxations, plain_reports.front().relaxations);
 }
 
 TEST(RootCuts, LittleDog12OptimumMeetsEveryCut) { ExpectOptimumMeetsCuts("littledog_stepping_stones_45.yaml", 12); }

@@ -40,6 +40,9 @@ class Search {
     if (options.group_probing) prober_ = std::make_unique<GroupProber>(problem);
   }
 
+  // A plan found before the search (the root cut loop's first pass) becomes its incumbent.
+  void Seed(const Eigen::VectorXd& x) { state_.OfferIncumbent(x); }
+
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
     const BranchAndBoundResult& result = state_.result();
@@ -286,6 +289,74 @@ class Search {
   bool root_failed_ = false;
 };
 
+// options with its time limit shortened by spent_s and its progress times shifted by it.
+BranchAndBoundOptions Remaining(const BranchAndBoundOptions& options, double spent_s) {
+  BranchAndBoundOptions rest = options;
+  rest.time_limit_s = std::max(0.0, options.time_limit_s - spent_s);
+  if (options.on_incumbent) {
+    rest.on_incumbent = [&options, spent_s](const BranchAndBoundResult& so_far) {
+      BranchAndBoundResult shifted = so_far;
+      shifted.solve_time_s += spent_s;
+      options.on_incumbent(shifted);
+    };
+  }
+  return rest;
+}
+
+// The search with the root cut loop (BranchAndBoundOptions::root_cut_rounds): the root
+// alone first (relaxation, roundings, heuristics) on the problem as given, so that the
+// loop cannot delay the first plan; then the loop, with reduced-cost fixing against that
+// plan; then the search on the problem with the cuts, holding that plan.
+BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
+                                       const BranchAndBoundOptions& options, const RoundingHeuristic& extra_rounding) {
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  BranchAndBoundOptions root_only = options;
+  root_only.max_nodes = 1;
+  BranchAndBoundResult root = Search(problem, solvers, root_only, extra_rounding).Run();
+  root.solve_time_s = elapsed();
+  const Deadline deadline = options.deadline.Within(options.time_limit_s);
+  const bool settled = root.status == SolveStatus::kOptimal || root.status == SolveStatus::kInfeasible ||
+                       root.status == SolveStatus::kInternalError;
+  if (settled || options.max_nodes <= 1) return root;
+  if (deadline.Expired()) {
+    if (root.status == SolveStatus::kFeasible) root.status = SolveStatus::kTimeLimit;
+    return root;
+  }
+  const bool has_plan = root.x.size() > 0;
+  // Without a plan the search's dives must find one first: no cuts then.
+  RootCutLoopResult loop;
+  if (has_plan) {
+    loop = RunRootCutLoop(problem, *solvers.front(), options, deadline, root.objective);
+  } else {
+    loop.problem = problem;
+  }
+  // The heuristics have run at the first root: the search's root reruns only its roundings.
+  BranchAndBoundOptions rest = Remaining(options, elapsed());
+  rest.max_nodes = options.max_nodes - root.nodes;
+  rest.root_heuristic = nullptr;
+  rest.first_plan_heuristic = nullptr;
+  Search search(loop.problem, solvers, rest, extra_rounding);
+  if (has_plan) search.Seed(root.x);
+  BranchAndBoundResult result = search.Run();
+  if (has_plan && (result.x.size() == 0 || root.objective < result.objective)) {  // the plan did not meet the cut problem
+    result.x = root.x;
+    result.objective = root.objective;
+    result.bound = std::min(result.bound, root.objective);
+    result.gap = RelativeGap(result.objective, result.bound);
+    if (result.status == SolveStatus::kNoSolution || result.status == SolveStatus::kInfeasible) {
+      result.status = SolveStatus::kFeasible;
+    }
+  }
+  result.root_cuts = loop.cuts;
+  result.root_bound_before_cuts = root.root_bound;
+  result.nodes += root.nodes;
+  result.relaxations += root.relaxations + loop.relaxations;
+  result.reduced_cost_fixings += root.reduced_cost_fixings + loop.reduced_cost_fixings;
+  result.solve_time_s = elapsed();
+  return result;
+}
+
 }  // namespace
 
 BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers,
@@ -298,27 +369,7 @@ BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, const std::vector<
     Search search(problem, solvers, options, extra_rounding);
     return search.Run();
   }
-  // The cut loop spends part of the search's time: the search gets the rest.
-  const auto start = std::chrono::steady_clock::now();
-  const RootCutLoopResult loop =
-      RunRootCutLoop(problem, *solvers.front(), options, options.deadline.Within(options.time_limit_s));
-  const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  BranchAndBoundOptions rest = options;
-  rest.time_limit_s = std::max(0.0, options.time_limit_s - loop_s);
-  if (options.on_incumbent) {  // progress times count from the start of the loop
-    rest.on_incumbent = [&options, loop_s](const BranchAndBoundResult& so_far) {
-      BranchAndBoundResult shifted = so_far;
-      shifted.solve_time_s += loop_s;
-      options.on_incumbent(shifted);
-    };
-  }
-  Search search(loop.problem, solvers, rest, extra_rounding);
-  BranchAndBoundResult result = search.Run();
-  result.root_cuts = loop.cuts;
-  result.root_bound_before_cuts = loop.bound_before;
-  result.relaxations += loop.relaxations;
-  result.solve_time_s += loop_s;
-  return result;
+  return SolveWithRootCuts(problem, solvers, options, extra_rounding);
 }
 
 BranchAndBoundResult SolveBranchAndBound(const Miqp& problem, RelaxationSolver& solver,

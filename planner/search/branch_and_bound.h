@@ -33,6 +33,15 @@ enum class BranchingRule {
 
 struct BranchAndBoundResult;
 
+// The cut families of the root cut loop (BranchAndBoundOptions::root_cut_families).
+enum RootCutFamily : int {
+  kMirCuts = 1,            // c-MIR on aggregated rows (mir_cuts.h)
+  kGroupBoundCuts = 2,     // a variable's bounds over a one-of group (mir_cuts.h)
+  kImpliedBoundCuts = 4,   // bounds implied by probing a binary (implied_cuts.h)
+  kCliqueCuts = 8,         // cliques of the probing's conflict graph (implied_cuts.h)
+};
+constexpr int kAllRootCutFamilies = kMirCuts | kGroupBoundCuts | kImpliedBoundCuts | kCliqueCuts;
+
 struct BranchAndBoundOptions {
   double time_limit_s = 10.0;
   // The caller's deadline (a whole plan's limit, a stop flag): the search ends at the
@@ -83,10 +92,15 @@ struct BranchAndBoundOptions {
   // every bound shrinks to the hull of the members' cases. Costs one propagation per open
   // member per node.
   bool group_probing = false;
-  // Root cut loop (root_cuts.h): rounds of c-MIR separation at the root before the search
-  // (0: off). The search then runs on the problem with the cuts added as rows; its plans
-  // and optimum are those of the problem (the cuts are valid), its bound is higher.
+  // Root cut loop (root_cuts.h): rounds of cut separation at the root (0: off). The root
+  // is solved and its roundings and heuristics run first, on the problem as given, so the
+  // loop never delays the first plan; then the loop (with reduced-cost fixing against that
+  // plan), then the search on the problem with the cuts added as rows, holding that plan.
+  // Its plans and optimum are those of the problem (the cuts are valid), its bound higher.
   int root_cut_rounds = 0;
+  // The families the loop separates: a sum of RootCutFamily values.
+  int root_cut_families = kAllRootCutFamilies;
+  int root_cut_aggregations = 3;  // c-MIR: rows added to a starting row to cancel continuous variables
   int root_cuts_per_round = 100;        // most cuts added per round
   double root_cut_min_efficacy = 1e-4;  // violation per unit coefficient norm for a cut to count
   // The loop ends when a round raises the root bound by less than this fraction of |bound|.
