@@ -230,8 +230,9 @@ void AddSearchKeys(Table* t) {
   t->push_back(Opt("search.bound_propagation", in(&B::bound_propagation),
                    "tighten bounds over the rows at every node first").Alias("bound_propagation").Advanced());
   t->push_back(Opt("search.group_probing", in(&B::group_probing),
-                   "at every node, fix each open member of each one-of group in turn and propagate: rule out the "
-                   "infeasible ones, shrink bounds to the hull of the rest")
+                   "fix each open member of each one-of group in turn and propagate: rule out the infeasible ones, "
+                   "shrink bounds to the hull of the rest (the root after its roundings, then nodes as "
+                   "group_probing_interval; a node's subtree inherits its bounds)")
                    .Advanced());
   t->push_back(Opt("search.group_probing_interval", in(&B::group_probing_interval), 1, 1000,
                    "group probing: probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the root after its "

@@ -217,7 +217,7 @@ class Search {
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
       TryRounding(&state_, branching_, rounding_, rel.x);
     }
-    if (!is_root && opt_.rins_frequency > 0 && result.nodes % opt_.rins_frequency == 0) Rins(rel.x);
+    if (!is_root && opt_.rins_frequency > 0 && result.nodes - last_rins_node_ >= opt_.rins_frequency) Rins(rel.x);
     if (e.probed) {
       ++result.probed_nodes;
       AppendProbedBounds(node, e.lower, e.upper, &fixings);
@@ -226,6 +226,7 @@ class Search {
   }
 
   void Rins(const Eigen::VectorXd& relaxed) {
+    last_rins_node_ = state_.result().nodes;
     const RinsOutcome outcome = RunRins(&state_, relaxed, rounding_);
     BranchAndBoundResult& result = state_.result();
     result.rins_runs += outcome.ran ? 1 : 0;
@@ -369,6 +370,7 @@ class Search {
   PseudoCosts pseudo_;
   ReliabilityBranching reliability_;
   std::unique_ptr<GroupProber> prober_;  // with options.group_probing
+  int last_rins_node_ = 0;  // the node count at the last RINS
   bool root_done_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;

@@ -91,7 +91,8 @@ struct BranchAndBoundOptions {
   // sweep starts at the branched group and goes outwards along the list (the plan's
   // neighbouring steps first) and stops between groups once the cap is spent.
   double group_probing_work = 0.0;
-  // RINS (rins.h): every this many nodes (0: off), and at the root after its heuristics,
+  // RINS (rins.h): at a branched node once this many nodes have passed since the last
+  // run (0: off), and at the root after its heuristics,
   // the integers on which the incumbent and the node's relaxation agree within
   // rins_agreement are fixed to the incumbent's values and the rest searched with at most
   // rins_max_nodes nodes; skipped when fewer than rins_min_fixed_fraction of the integers
