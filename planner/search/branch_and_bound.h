@@ -83,14 +83,14 @@ struct BranchAndBoundOptions {
   // shrinks to the hull of the members' cases. The root's box is probed after its
   // roundings and heuristics (never before the first plan), a node's before its
   // relaxation; the bounds found are handed down to the node's subtree.
-  bool group_probing = false;
+  bool group_probing = true;
   // Probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the others inherit their
   // ancestors' probed bounds and propagate).
   int group_probing_interval = 1;
   // Work cap of one node's probing, in row visits per row of the problem (<= 0: none): the
   // sweep starts at the branched group and goes outwards along the list (the plan's
   // neighbouring steps first) and stops between groups once the cap is spent.
-  double group_probing_work = 0.0;
+  double group_probing_work = 20.0;
   // RINS (rins.h): at a branched node once this many nodes have passed since the last
   // run (0: off), and at the root after its heuristics,
   // the integers on which the incumbent and the node's relaxation agree within
