@@ -90,7 +90,7 @@ struct BranchAndBoundOptions {
   // Work cap of one node's probing, in row visits per row of the problem (<= 0: none): the
   // sweep starts at the branched group and goes outwards along the list (the plan's
   // neighbouring steps first) and stops between groups once the cap is spent.
-  double group_probing_work = 20.0;
+  double group_probing_work = 5.0;
   // RINS (rins.h): at a branched node once this many nodes have passed since the last
   // run (0: off), and at the root after its heuristics,
   // the integers on which the incumbent and the node's relaxation agree within
