@@ -73,6 +73,9 @@ struct Row {
 // Polisher rows, printed after the main tables.
 std::vector<Row> g_polished;
 
+// --print-incumbents: each better plan of the first run as it is found.
+bool g_print_incumbents = false;
+
 // The acceptance: an objective within 0.5 % of the best one.
 constexpr double kAcceptance = 0.005;
 
@@ -187,6 +190,10 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     mfp::PlannerOptions options = scenario.options;
     options.branch_and_bound.on_incumbent = [&](const mfp::BranchAndBoundResult& r) {
       incumbents.emplace_back(r.solve_time_s, r.objective);
+      if (g_print_incumbents && k == 0) {
+        std::printf("  %s incumbent %.4f at %.3f s, bound %.4f, gap %.2e, %d nodes\n", name.c_str(), r.objective,
+                    r.solve_time_s, r.bound, r.gap, r.nodes);
+      }
     };
     mfp::Plan run = mfp::PlanFootsteps(robot, regions, request, options, solvers.workers(),
                                        [&](const mfp::PlanProgress& p) {
@@ -316,6 +323,7 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "planner option KEY=VALUE, as in a scenario's planner: block, e.g. search.max_nodes=100 (docs/options.md; repeatable)");
   app.add_option("--repeat", repeat, "runs per instance; the time printed is their median")->check(CLI::Range(1, 1000));
   app.add_flag("--table-only", table_only, "only the single MIQPs of Table I");
+  app.add_flag("--print-incumbents", g_print_incumbents, "print each better plan of a run's first window as found");
   app.add_flag("--scenarios-only", scenarios_only, "only the scenarios");
   int courses = 0;
   uint64_t course_seed = 1;

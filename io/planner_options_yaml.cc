@@ -230,8 +230,24 @@ void AddSearchKeys(Table* t) {
   t->push_back(Opt("search.bound_propagation", in(&B::bound_propagation),
                    "tighten bounds over the rows at every node first").Alias("bound_propagation").Advanced());
   t->push_back(Opt("search.group_probing", in(&B::group_probing),
-                   "at every node, fix each open member of each one-of group in turn and propagate: rule out the "
-                   "infeasible ones, shrink bounds to the hull of the rest")
+                   "fix each open member of each one-of group in turn and propagate: rule out the infeasible ones, "
+                   "shrink bounds to the hull of the rest (the root after its roundings, then nodes as "
+                   "group_probing_interval; a node's subtree inherits its bounds)")
+                   .Advanced());
+  t->push_back(Opt("search.group_probing_interval", in(&B::group_probing_interval), 1, 1000,
+                   "group probing: probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the root after its "
+                   "roundings); the others inherit the probed bounds")
+                   .Advanced());
+  t->push_back(Opt("search.group_probing_work", in(&B::group_probing_work), 0, 1e6,
+                   "group probing: row visits a node's probing may spend, per row of the problem (0: no cap); the "
+                   "branched step's groups and their neighbours first")
+                   .Advanced());
+  t->push_back(Opt("search.rins_frequency", in(&B::rins_frequency), 0, 1000000,
+                   "every this many nodes (and at the root), fix the integers where the incumbent and the node's "
+                   "relaxation agree and search the rest for a better plan (RINS; 0: off)")
+                   .Advanced());
+  t->push_back(Opt("search.rins_max_nodes", in(&B::rins_max_nodes), 1, 10000000,
+                   "RINS: nodes each of its sub-searches explores at most")
                    .Advanced());
   t->push_back(Opt("search.reduced_cost_fixing", in(&B::reduced_cost_fixing),
                    "rule out integer values that the relaxation proves cannot beat the incumbent")

@@ -323,6 +323,56 @@ TEST(BranchAndBound, EarlyCutoffKeepsEveryOptimum) {
             1);
 }
 
+TEST(BranchAndBound, GroupProbingKeepsEveryOptimum) {
+  // Every node, every second level, and under a work cap; the catalogue's one-of group
+  // (interval_choice) must be probed somewhere.
+  for (const int interval : {1, 2}) {
+    for (const double work : {0.0, 0.5}) {
+      SCOPED_TRACE(interval);
+      SCOPED_TRACE(work);
+      EXPECT_GE(CatalogueWithAndWithout(
+                    [&](BranchAndBoundOptions* o, bool on) {
+                      o->group_probing = on;
+                      o->group_probing_interval = interval;
+                      o->group_probing_work = work;
+                    },
+                    [](const BranchAndBoundResult& r) { return r.probed_nodes; }),
+                1);
+    }
+  }
+}
+
+TEST(BranchAndBound, RinsKeepsEveryOptimum) {
+  EXPECT_GE(CatalogueWithAndWithout(
+                [](BranchAndBoundOptions* o, bool on) {
+                  o->rins_frequency = on ? 1 : 0;
+                  o->rins_min_fixed_fraction = 0.0;
+                  o->rins_agreement = 0.5;
+                },
+                [](const BranchAndBoundResult& r) { return r.rins_runs; }),
+            1);
+}
+
+TEST(BranchAndBound, RinsFromTheRootImprovesTheRoundingsDecoy) {
+  // DecoyInterval: the root's rounding picks h_a (cost 0.24); RINS at the root (where
+  // nothing is fixed with min fraction 0) searches the rest and finds the optimum 0.09
+  // within its own node cap, before the main search's first branching.
+  BranchAndBoundOptions options;
+  options.rins_frequency = 1000;
+  options.rins_min_fixed_fraction = 0.0;
+  options.max_nodes = 1;
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions off = options;
+  off.rins_frequency = 0;
+  const BranchAndBoundResult without = SolveBranchAndBound(DecoyInterval(), *solver, off);
+  EXPECT_NEAR(without.objective, 0.24, 1e-5);
+  const BranchAndBoundResult with = SolveBranchAndBound(DecoyInterval(), *solver, options);
+  EXPECT_EQ(with.rins_runs, 1);
+  EXPECT_EQ(with.rins_improvements, 1);
+  EXPECT_NEAR(with.objective, 0.09, 1e-5);
+  EXPECT_EQ(with.nodes, 1);
+}
+
 TEST(BranchAndBound, TimeLimitWithoutIncumbentSaysSo) {
   const BranchAndBoundResult r =
       SolveWith(Knapsack().problem, true, [](BranchAndBoundOptions* o) { o->time_limit_s = 0.0; });

@@ -78,5 +78,78 @@ TEST(GroupProbing, AGroupWithNoFeasibleMemberMakesTheNodeInfeasible) {
   EXPECT_TRUE(GroupProber(p).Probe(&lower, &upper).infeasible);
 }
 
+// Two feet, each on one of three stones: x0 with the group H0..H2 (group 0), x1 with
+// H3..H5 (group 1).
+Miqp TwoFeet() {
+  const double M = 10.0;
+  const double stones[3][2] = {{1.0, 2.0}, {4.0, 5.0}, {8.0, 9.0}};
+  MiqpBuilder b;
+  for (int foot = 0; foot < 2; ++foot) b.AddVariable("x" + std::to_string(foot), 0.0, 10.0, false);
+  for (int foot = 0; foot < 2; ++foot) {
+    std::vector<int> h;
+    LinExpr one;
+    for (int r = 0; r < 3; ++r) {
+      h.push_back(b.AddBinary("H" + std::to_string(foot) + std::to_string(r)));
+      one += LinExpr::Var(h.back());
+      const std::string stone = "foot" + std::to_string(foot) + "_stone" + std::to_string(r);
+      const LinExpr big_m = LinExpr::Var(h[r], M);
+      b.AddRow(stone + "_max", LinExpr::Var(foot) + big_m, -kInfinity, stones[r][1] + M);
+      b.AddRow(stone + "_min", LinExpr::Var(foot, -1.0) + big_m, -kInfinity, -stones[r][0] + M);
+    }
+    b.AddRow("foot" + std::to_string(foot) + "_one_stone", one, 1.0, 1.0);
+    b.AddSos1Group(h);
+  }
+  return b.Build();
+}
+
+TEST(GroupProbing, ASpentWorkCapOrAnExpiredDeadlineStopsTheSweepBeforeAnyGroup) {
+  const Miqp p = TwoFeet();
+  const GroupProber prober(p);
+  GroupProbingLimits no_work;
+  no_work.max_row_visits = 0;
+  GroupProbingLimits expired;
+  expired.deadline = Deadline::After(0.0);
+  for (const GroupProbingLimits& limits : {no_work, expired}) {
+    Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+    const GroupProbingResult r = prober.Probe(&lower, &upper, limits);
+    EXPECT_TRUE(r.stopped);
+    EXPECT_EQ(r.probes, 0);
+    EXPECT_EQ(lower, p.var_lower);
+    EXPECT_EQ(upper, p.var_upper);
+  }
+}
+
+TEST(GroupProbing, UnderACapTheCentreGroupIsProbedFirst) {
+  const Miqp p = TwoFeet();
+  const GroupProber prober(p);
+  for (int centre : {0, 1}) {
+    SCOPED_TRACE(centre);
+    GroupProbingLimits limits;
+    limits.max_row_visits = 1;  // spent by the first group's cases
+    limits.centre_group = centre;
+    Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+    const GroupProbingResult r = prober.Probe(&lower, &upper, limits);
+    EXPECT_TRUE(r.stopped);
+    EXPECT_EQ(r.probes, 4);  // none and each of the three stones, of one group
+    EXPECT_GE(r.row_visits, 1);
+    const int probed = centre, other = 1 - centre;
+    EXPECT_NEAR(lower(probed), 1.0, kTol);
+    EXPECT_NEAR(upper(probed), 9.0, kTol);
+    EXPECT_EQ(lower(other), 0.0);
+    EXPECT_EQ(upper(other), 10.0);
+  }
+  // Without a cap both feet are probed, in either order.
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  GroupProbingLimits limits;
+  limits.centre_group = 1;
+  const GroupProbingResult r = prober.Probe(&lower, &upper, limits);
+  EXPECT_FALSE(r.stopped);
+  EXPECT_EQ(r.probes, 8);
+  for (int foot = 0; foot < 2; ++foot) {
+    EXPECT_NEAR(lower(foot), 1.0, kTol);
+    EXPECT_NEAR(upper(foot), 9.0, kTol);
+  }
+}
+
 }  // namespace
 }  // namespace mfp

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "base/check.h"
@@ -14,6 +15,7 @@
 #include "planner/search/internal/pseudo_costs.h"
 #include "planner/search/internal/reduced_cost_fixing.h"
 #include "planner/search/internal/reliability_branching.h"
+#include "planner/search/internal/rins.h"
 #include "planner/search/internal/root_cuts.h"
 #include "planner/search/internal/search_heuristics.h"
 #include "planner/search/internal/search_state.h"
@@ -26,6 +28,24 @@ namespace {
 // The parts it composes: the node queue (node_queue.h), the branching rules
 // (branching.h, reliability_branching.h), the rounding heuristic (search_heuristics.h)
 // and the reduced-cost fixing (reduced_cost_fixing.h).
+// Along a path from the root each change of a variable's bounds is at least as tight as
+// the ones before it: only the last one per variable counts. Keeps those, in order of the
+// variables' first change (the probed bounds would otherwise pile up level by level).
+void KeepLastChangePerVariable(int num_variables, std::vector<BoundChange>* changes) {
+  std::vector<int> slot(num_variables, -1);
+  std::vector<BoundChange> kept;
+  kept.reserve(changes->size());
+  for (const BoundChange& ch : *changes) {
+    if (slot[ch.index] < 0) {
+      slot[ch.index] = static_cast<int>(kept.size());
+      kept.push_back(ch);
+    } else {
+      kept[slot[ch.index]] = ch;
+    }
+  }
+  *changes = std::move(kept);
+}
+
 class Search {
  public:
   Search(const Miqp& problem, const std::vector<RelaxationSolver*>& solvers, const BranchAndBoundOptions& options,
@@ -76,6 +96,7 @@ class Search {
   struct NodeEvaluation {
     Eigen::VectorXd lower, upper;
     bool propagation_infeasible = false;
+    bool probed = false;  // lower/upper hold probed bounds, to be handed to the children
     RelaxationResult relaxation;
     int solves = 0;
     int iterations = 0;    // of its solves
@@ -112,9 +133,12 @@ class Search {
       e.propagation_infeasible = true;
       return e;
     }
-    if (prober_ && prober_->Probe(&e.lower, &e.upper).infeasible) {
-      e.propagation_infeasible = true;
-      return e;
+    if (ProbingDue(node.depth)) {
+      e.probed = true;
+      if (Probe(node, &e.lower, &e.upper)) {
+        e.propagation_infeasible = true;
+        return e;
+      }
     }
     const Eigen::VectorXd* warm = node.warm_start.size() ? &node.warm_start : nullptr;
     // A node whose relaxation cannot beat the incumbent is pruned: its solve may stop as
@@ -176,6 +200,8 @@ class Search {
       result.bound = result.root_bound = bound;
       TryRounding(&state_, branching_, rounding_, rel.x);
       RunRootHeuristic(&state_, rel.x);
+      ProbeRootAfterHeuristics(node, &e);
+      if (opt_.rins_frequency > 0) Rins(rel.x);
     }
     if (state_.HasIncumbent() && !state_.Improves(bound)) {
       state_.NoteGapPrune(bound);
@@ -194,7 +220,71 @@ class Search {
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
       TryRounding(&state_, branching_, rounding_, rel.x);
     }
+    if (!is_root && opt_.rins_frequency > 0 && result.nodes - last_rins_node_ >= opt_.rins_frequency) Rins(rel.x);
+    if (e.probed) {
+      ++result.probed_nodes;
+      AppendProbedBounds(node, e.lower, e.upper, &fixings);
+    }
     Branch(node, rel, bound, branch_var, e.lower, e.upper, fixings);
+  }
+
+  void Rins(const Eigen::VectorXd& relaxed) {
+    last_rins_node_ = state_.result().nodes;
+    const RinsOutcome outcome = RunRins(&state_, relaxed, rounding_);
+    BranchAndBoundResult& result = state_.result();
+    result.rins_runs += outcome.ran ? 1 : 0;
+    result.rins_improvements += outcome.improved ? 1 : 0;
+    result.rins_nodes += outcome.nodes;
+  }
+
+  bool ProbingDue(int depth) const {
+    return prober_ && depth >= 1 && (depth - 1) % std::max(1, opt_.group_probing_interval) == 0;
+  }
+
+  // Probes the box lower/upper of `node` under the work cap and the deadline in force;
+  // true when it proves the node infeasible.
+  bool Probe(const SearchNode& node, Eigen::VectorXd* lower, Eigen::VectorXd* upper) const {
+    GroupProbingLimits limits;
+    if (opt_.group_probing_work > 0.0) {
+      limits.max_row_visits = static_cast<long>(std::ceil(opt_.group_probing_work * std::max(1, p_.num_rows())));
+    }
+    limits.deadline = state_.Active();
+    limits.centre_group = node.branch_var >= 0 ? branching_.GroupOf(node.branch_var) : -1;
+    return prober_->Probe(lower, upper, limits).infeasible;
+  }
+
+  // The root is probed only once its roundings and heuristics have run, so that probing
+  // never delays the first plan; its bounds reach the root's children. A root box that
+  // probing finds empty (only possible within tolerances, as the search may hold a plan)
+  // is left as it was.
+  void ProbeRootAfterHeuristics(const SearchNode& root, NodeEvaluation* e) {
+    if (!prober_ || state_.Active().Expired()) return;
+    Eigen::VectorXd lower = e->lower, upper = e->upper;
+    if (Probe(root, &lower, &upper)) return;
+    e->lower = std::move(lower);
+    e->upper = std::move(upper);
+    e->probed = true;
+  }
+
+  // The bounds of a probed node that are tighter than its changes from the root, as
+  // changes for its children to inherit.
+  void AppendProbedBounds(const SearchNode& node, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                          std::vector<BoundChange>* changes) const {
+    Eigen::VectorXd base_lower = p_.var_lower, base_upper = p_.var_upper;
+    for (const BoundChange& ch : node.changes) {
+      base_lower(ch.index) = ch.lower;
+      base_upper(ch.index) = ch.upper;
+    }
+    for (const BoundChange& ch : *changes) {
+      base_lower(ch.index) = ch.lower;
+      base_upper(ch.index) = ch.upper;
+    }
+    constexpr double kMinTightening = 1e-9;
+    for (int j = 0; j < p_.num_variables(); ++j) {
+      if (lower(j) > base_lower(j) + kMinTightening || upper(j) < base_upper(j) - kMinTightening) {
+        changes->push_back({j, lower(j), upper(j)});
+      }
+    }
   }
 
   // The caller's equivalent of a relaxation point, when it meets the node's rows and
@@ -223,6 +313,7 @@ class Search {
       SearchNode& child = children[up];
       child.changes = node.changes;
       child.changes.insert(child.changes.end(), fixings.begin(), fixings.end());
+      if (prober_) KeepLastChangePerVariable(p_.num_variables(), &child.changes);
       child.parent_bound = bound;
       child.depth = node.depth + 1;
       child.warm_start = x;
@@ -282,6 +373,7 @@ class Search {
   PseudoCosts pseudo_;
   ReliabilityBranching reliability_;
   std::unique_ptr<GroupProber> prober_;  // with options.group_probing
+  int last_rins_node_ = 0;  // the node count at the last RINS
   bool root_done_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;

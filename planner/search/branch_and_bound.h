@@ -87,11 +87,29 @@ struct BranchAndBoundOptions {
   // and completed as root_heuristic's. A search whose roundings succeed never calls it.
   std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> first_plan_heuristic;
   bool bound_propagation = true;   // tighten bounds over the rows at every node first
-  // After bound propagation, probe every open one-of group at every node (group_probing.h):
-  // each member fixed in turn and propagated; members that cannot be 1 are ruled out and
-  // every bound shrinks to the hull of the members' cases. Costs one propagation per open
-  // member per node.
-  bool group_probing = false;
+  // After bound propagation, probe the open one-of groups (group_probing.h): each member
+  // fixed in turn and propagated; members that cannot be 1 are ruled out and every bound
+  // shrinks to the hull of the members' cases. The root's box is probed after its
+  // roundings and heuristics (never before the first plan), a node's before its
+  // relaxation; the bounds found are handed down to the node's subtree.
+  bool group_probing = true;
+  // Probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the others inherit their
+  // ancestors' probed bounds and propagate).
+  int group_probing_interval = 1;
+  // Work cap of one node's probing, in row visits per row of the problem (<= 0: none): the
+  // sweep starts at the branched group and goes outwards along the list (the plan's
+  // neighbouring steps first) and stops between groups once the cap is spent.
+  double group_probing_work = 5.0;
+  // RINS (rins.h): at a branched node once this many nodes have passed since the last
+  // run (0: off), and at the root after its heuristics,
+  // the integers on which the incumbent and the node's relaxation agree within
+  // rins_agreement are fixed to the incumbent's values and the rest searched with at most
+  // rins_max_nodes nodes; skipped when fewer than rins_min_fixed_fraction of the integers
+  // (or all of them) agree.
+  int rins_frequency = 0;
+  int rins_max_nodes = 200;
+  double rins_agreement = 0.1;
+  double rins_min_fixed_fraction = 0.5;
   // Root cut loop (root_cuts.h): rounds of cut separation at the root (0: off). The root
   // is solved and its roundings and heuristics run first, on the problem as given, so the
   // loop never delays the first plan; then the loop (with reduced-cost fixing against that
@@ -144,6 +162,10 @@ struct BranchAndBoundResult {
   int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
   int early_cutoffs = 0;            // node relaxations stopped once they could not beat the incumbent
   int equivalent_points = 0;        // relaxation points replaced by options.equivalent_point
+  int probed_nodes = 0;             // nodes whose box group probing tightened (options.group_probing)
+  int rins_runs = 0;                // RINS sub-searches run (options.rins_frequency)
+  int rins_improvements = 0;        // of them, those that found a better incumbent
+  int rins_nodes = 0;               // nodes of the RINS sub-searches (not counted in nodes)
   // The nodes' own relaxation solves (not the heuristics' QPs nor strong branching): their
   // solver iterations and wall time, for the time per node and iterations per node.
   long node_solve_iterations = 0;

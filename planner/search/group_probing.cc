@@ -40,7 +40,7 @@ GroupProber::GroupProber(const Miqp& problem) : p_(problem), rows_of_(problem.nu
 // then the rows of what moved, in turn, until nothing moves or the work bound is spent.
 // Returns false when the case is infeasible.
 bool GroupProber::ProbeCase(const std::vector<int>& open, int one, double tolerance, Eigen::VectorXd* l,
-                            Eigen::VectorXd* u) const {
+                            Eigen::VectorXd* u, long* visits) const {
   std::deque<int> queue;
   std::vector<char> queued(p_.num_rows(), 0);
   const auto enqueue_rows_of = [&](int j) {
@@ -60,6 +60,7 @@ bool GroupProber::ProbeCase(const std::vector<int>& open, int one, double tolera
   std::vector<int> moved;
   long visits_left = 2L * p_.num_rows();
   while (!queue.empty() && visits_left-- > 0) {
+    ++*visits;
     const int row = queue.front();
     queue.pop_front();
     queued[row] = 0;
@@ -70,38 +71,54 @@ bool GroupProber::ProbeCase(const std::vector<int>& open, int one, double tolera
   return true;
 }
 
-GroupProbingResult GroupProber::Probe(Eigen::VectorXd* lower_ptr, Eigen::VectorXd* upper_ptr,
-                                      double tolerance) const {
+bool GroupProber::ProbeGroup(const std::vector<int>& group, double tolerance, Eigen::VectorXd* lower_ptr,
+                             Eigen::VectorXd* upper_ptr, GroupProbingResult* result) const {
   Eigen::VectorXd& lower = *lower_ptr;
   Eigen::VectorXd& upper = *upper_ptr;
-  MFP_CHECK(lower.size() == p_.num_variables() && upper.size() == p_.num_variables());
-  GroupProbingResult result;
   std::vector<int> open;
-  for (const std::vector<int>& group : p_.sos1_groups) {
-    open.clear();
-    bool decided = false;  // a member already at 1 fixes the group
-    for (int j : group) {
-      if (lower(j) >= 1.0) decided = true;
-      if (upper(j) >= 1.0) open.push_back(j);
+  for (int j : group) {
+    if (lower(j) >= 1.0) return true;  // a member already at 1 fixes the group
+    if (upper(j) >= 1.0) open.push_back(j);
+  }
+  if (open.size() < 2) return true;
+  CaseHull hull;
+  for (int k = -1; k < static_cast<int>(open.size()); ++k) {
+    const int one = k < 0 ? -1 : open[k];
+    Eigen::VectorXd l = lower, u = upper;
+    ++result->probes;
+    if (ProbeCase(open, one, tolerance, &l, &u, &result->row_visits)) {
+      hull.Add(l, u);
+    } else if (one >= 0) {
+      ++result->members_ruled_out;
     }
-    if (decided || open.size() < 2) continue;
-    CaseHull hull;
-    for (int k = -1; k < static_cast<int>(open.size()); ++k) {
-      const int one = k < 0 ? -1 : open[k];
-      Eigen::VectorXd l = lower, u = upper;
-      ++result.probes;
-      if (ProbeCase(open, one, tolerance, &l, &u)) {
-        hull.Add(l, u);
-      } else if (one >= 0) {
-        ++result.members_ruled_out;
-      }
+  }
+  if (hull.empty) return false;
+  lower = lower.cwiseMax(hull.lower);
+  upper = upper.cwiseMin(hull.upper);
+  return true;
+}
+
+GroupProbingResult GroupProber::Probe(Eigen::VectorXd* lower, Eigen::VectorXd* upper,
+                                      const GroupProbingLimits& limits, double tolerance) const {
+  MFP_CHECK(lower->size() == p_.num_variables() && upper->size() == p_.num_variables());
+  const int groups = static_cast<int>(p_.sos1_groups.size());
+  const int centre = std::clamp(limits.centre_group, 0, std::max(groups - 1, 0));
+  GroupProbingResult result;
+  // k-th group of the sweep: centre, centre + 1, centre - 1, centre + 2, ... (the list's
+  // order when no centre is given), skipping indices outside the list.
+  for (int k = 0, visited = 0; visited < groups; ++k) {
+    int g = k;
+    if (limits.centre_group >= 0) g = centre + (k % 2 == 1 ? (k + 1) / 2 : -(k / 2));
+    if (g < 0 || g >= groups) continue;
+    ++visited;
+    if ((limits.max_row_visits >= 0 && result.row_visits >= limits.max_row_visits) || limits.deadline.Expired()) {
+      result.stopped = true;
+      return result;
     }
-    if (hull.empty) {
+    if (!ProbeGroup(p_.sos1_groups[g], tolerance, lower, upper, &result)) {
       result.infeasible = true;
       return result;
     }
-    lower = lower.cwiseMax(hull.lower);
-    upper = upper.cwiseMin(hull.upper);
   }
   return result;
 }
