@@ -331,24 +331,5 @@ TEST(ConvexCoverSlack, AnExpiredDeadlineEndsTheCoversAndTheSlack) {
   EXPECT_EQ(pieces.front(), (Polygon2d{{2, 2}, {5, 2}, {5, 5}, {2, 5}}));
 }
 
-
-// A rectangle's side slack stops at the rectangles beyond it only when the nearest of them
-// span the whole side (what it would add lies in them); elsewhere it may overlap them.
-TEST(RectangleSideSlack, StopsOnlyAtNeighboursSpanningTheWholeSide) {
-  const AxisRect a{0, 2, 0, 2};
-  auto room = [&](std::vector<AxisRect> others, AxisRect::Side side) {
-    others.insert(others.begin(), a);
-    return RoomBeforeOthers(others, 0, side);
-  };
-  EXPECT_EQ(room({{2, 4, 0, 2}}, AxisRect::kPlusX), 0.0);         // a whole shared side
-  EXPECT_EQ(room({{2, 4, 0, 2}}, AxisRect::kMinusX), INFINITY);   // nothing beyond -x
-  EXPECT_EQ(room({{2, 4, 0, 1}}, AxisRect::kPlusX), INFINITY);    // half the side
-  EXPECT_EQ(room({{2, 4, 0, 1}, {2, 4, 1, 2}}, AxisRect::kPlusX), 0.0);  // two halves
-  EXPECT_EQ(room({{2, 4, 0, 1}, {2.5, 4, 1, 2}}, AxisRect::kPlusX), INFINITY);  // the nearest span half
-  EXPECT_DOUBLE_EQ(room({{2.5, 4, -1, 3}}, AxisRect::kPlusX), 0.5);   // a gap, then a whole span
-  EXPECT_DOUBLE_EQ(room({{-1, 3, 2.25, 3}}, AxisRect::kPlusY), 0.25);  // along y
-  EXPECT_EQ(room({{-1, 3, -3, -0.5}}, AxisRect::kMinusY), 0.5);
-}
-
 }  // namespace
 }  // namespace mfp

@@ -136,28 +136,25 @@ bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, dou
   return true;
 }
 
-// Each side of a safe rotated rectangle rects[k] moves out (in rotated-grid steps, up to
-// one cell) while the rectangle stays safe, by bisection; unless may_overlap, a side
-// moves no further than the room before the other rectangles (RoomBeforeOthers).
-void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells,
-                     bool may_overlap, size_t k, std::vector<AxisRect>* rects) {
-  AxisRect& r = (*rects)[k];
-  auto grow = [&](double* side, double sign, AxisRect::Side which) {
-    const double most =
-        std::min(1.0 / RotatedFrame::kStep, may_overlap ? INFINITY : RoomBeforeOthers(*rects, k, which));
+// Each side of a safe rotated rectangle moves out (in rotated-grid steps, up to one cell)
+// while the rectangle stays safe, by bisection.
+void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside,
+                     double max_inset_cells, double* a0, double* a1, double* b0, double* b1) {
+  const double most = 1.0 / RotatedFrame::kStep;  // one cell, in rotated-grid steps
+  auto grow = [&](double* side, double sign) {
     double lo = 0.0, hi = most;
     const double base = *side;
-    for (int it = 0; it < 8 && hi > 0.0; ++it) {
+    for (int it = 0; it < 8; ++it) {
       const double mid = 0.5 * (lo + hi);
       *side = base + sign * mid;
-      (RotatedRectSafe(frame, outside, max_inset_cells, r.x0, r.x1, r.y0, r.y1) ? lo : hi) = mid;
+      (RotatedRectSafe(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
     }
     *side = base + sign * lo;
   };
-  grow(&r.x0, -1.0, AxisRect::kMinusX);
-  grow(&r.x1, 1.0, AxisRect::kPlusX);
-  grow(&r.y0, -1.0, AxisRect::kMinusY);
-  grow(&r.y1, 1.0, AxisRect::kPlusY);
+  grow(a0, -1.0);
+  grow(a1, 1.0);
+  grow(b0, -1.0);
+  grow(b1, 1.0);
 }
 
 }  // namespace
@@ -169,19 +166,15 @@ std::vector<Quad2d> CoverRotated(const CoverInput& in, double angle, const Patch
   RectangleCoverOptions cover = options.cover;
   const double step = RotatedFrame::kStep;
   cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, step * step * in.res * in.res);
-  std::vector<AxisRect> rects;  // x along the rotated grid's columns (a), y along its rows (b)
-  for (const CellRect& rect : GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
-    rects.push_back({double(rect.col0), double(rect.col0 + rect.cols), double(rect.row0), double(rect.row0 + rect.rows)});
-  }
   std::vector<Quad2d> quads;
-  quads.reserve(rects.size());
-  for (size_t k = 0; k < rects.size(); ++k) {
-    const AxisRect& r = rects[k];
-    if (in.max_inset_cells > 0.0 && RotatedRectSafe(frame, outside, in.max_inset_cells, r.x0, r.x1, r.y0, r.y1)) {
-      GrowRotatedRect(frame, outside, in.max_inset_cells, cover.grow_over_covered, k, &rects);
+  for (const CellRect& rect : GreedyRectangleCover(rotated.cells, rotated.rows, rotated.cols, cover)) {
+    double a0 = rect.col0, a1 = rect.col0 + rect.cols;
+    double b0 = rect.row0, b1 = rect.row0 + rect.rows;
+    if (in.max_inset_cells > 0.0 && RotatedRectSafe(frame, outside, in.max_inset_cells, a0, a1, b0, b1)) {
+      GrowRotatedRect(frame, outside, in.max_inset_cells, &a0, &a1, &b0, &b1);
     }
-    quads.push_back({in.ToWorld(frame.Corner(r.x0, r.y0)), in.ToWorld(frame.Corner(r.x1, r.y0)),
-                     in.ToWorld(frame.Corner(r.x1, r.y1)), in.ToWorld(frame.Corner(r.x0, r.y1))});
+    quads.push_back({in.ToWorld(frame.Corner(a0, b0)), in.ToWorld(frame.Corner(a1, b0)),
+                     in.ToWorld(frame.Corner(a1, b1)), in.ToWorld(frame.Corner(a0, b1))});
   }
   return quads;
 }

@@ -28,17 +28,6 @@ inline int MinRectCells(double min_area_xy_m2, double cell_area_m2) {
   return std::max(1, static_cast<int>(std::ceil(min_area_xy_m2 / cell_area_m2 - 1e-9)));
 }
 
-// An axis-aligned rectangle [x0, x1] x [y0, y1] in a cover's own units.
-struct AxisRect {
-  enum Side { kMinusX, kPlusX, kMinusY, kPlusY };
-  double x0, x1, y0, y1;
-};
-
-// How far side `side` of rects[k] may move out before it enters the interior of the
-// other `rects` beyond it, when the nearest of them span the whole side (so what it would
-// add there is theirs already); INFINITY otherwise.
-double RoomBeforeOthers(const std::vector<AxisRect>& rects, size_t k, AxisRect::Side side);
-
 // Rectangles of complete dual squares end on cell centres; each side then moves out as
 // far as its strip keeps the inset from every cell outside the patch, so regions lose
 // less than the cell quantisation of the inset.
