@@ -1,7 +1,7 @@
 #pragma once
-// Rounding to the nearest integer, halves away from zero, without a library call: the
-// map readers round a few coordinates per octree leaf and millions of leaves per scan,
-// where libm's llround / round dominated. Std and nothing else.
+// Rounding to the nearest integer, halves away from zero, without a library call, for
+// the map readers' inner loops (a few coordinates per octree leaf, millions of leaves per
+// scan; docs/measurements.md, extraction time round 3). Std and nothing else.
 #include <cmath>
 
 namespace mfp {

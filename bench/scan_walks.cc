@@ -596,9 +596,11 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
               const SeenVoxelJudge& judge, const RegionExtractionResult& diagnosis, const std::vector<Walk>& walks,
               const ScanWalkOptions& o, Population* population) {
   int valid = 0, moved = 0, feet_off = 0, start_off = 0, body_blocked = 0;
+  size_t run = 0;  // walks planned (one with --walk-only)
   std::map<std::string, int> statuses;
   for (size_t k = 0; k < walks.size(); ++k) {
     if (o.only_walk >= 0 && static_cast<int>(k) != o.only_walk) continue;
+    ++run;
     const Walk& w = walks[k];
     const WalkResult r = RunWalk(robot, scenario, terrain, judge, diagnosis, w, o);
     valid += r.valid_to_goal ? 1 : 0;
@@ -632,10 +634,10 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
   std::string list;
   for (const auto& [name, count] : statuses) list += (list.empty() ? "" : ", ") + name + " " + std::to_string(count);
   std::printf("%-8s %-20s %-10s %5zu %6d %9d %6d %8d %9d  %s\n", population->name, BaseName(scan).c_str(),
-              robot.name.c_str(), walks.size(), valid, start_off, moved, feet_off, body_blocked, list.c_str());
+              robot.name.c_str(), run, valid, start_off, moved, feet_off, body_blocked, list.c_str());
   std::fflush(stdout);
   population->valid += valid;
-  population->walks += static_cast<int>(walks.size());
+  population->walks += static_cast<int>(run);
 }
 
 void PrintPopulation(const Population& p) {

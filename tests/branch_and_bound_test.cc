@@ -342,6 +342,44 @@ TEST(BranchAndBound, GroupProbingKeepsEveryOptimum) {
   }
 }
 
+// Two feet x, y in [0, 10] with x + y <= 10 and a one-of choice: z1 = 1 asks x >= 6 and
+// y >= 6 (impossible together, which propagation of single rows does not see and probing
+// does), z2 = 1 costs 10. The relaxation takes z1 = 5/6: both integers fractional. Probing
+// after the root's relaxation fixes z1 = 0 and z2 = 1, so no variable is left to branch on
+// in the probed box: the root must be solved again there, not rounded and dropped.
+Miqp ProbingFixesEveryFractionalInteger() {
+  MiqpBuilder b;
+  const int x = b.AddVariable("x", 0.0, 10.0, false);
+  const int y = b.AddVariable("y", 0.0, 10.0, false);
+  const int z1 = b.AddBinary("z1");
+  const int z2 = b.AddBinary("z2");
+  b.AddRow("x_if_z1", LinExpr::Var(x) + LinExpr::Var(z1, -6.0), 0.0, kInfinity);
+  b.AddRow("y_if_z1", LinExpr::Var(y) + LinExpr::Var(z1, -6.0), 0.0, kInfinity);
+  b.AddRow("room", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 10.0);
+  b.AddRow("one_of", LinExpr::Var(z1) + LinExpr::Var(z2), 1.0, 1.0);
+  b.AddSos1Group({z1, z2});
+  b.AddLinearCost(LinExpr::Var(z2, 10.0));
+  b.AddSquaredCost(LinExpr::Var(x) + LinExpr::Var(y) + LinExpr::Constant(-1.0), 0.01);
+  return b.Build();
+}
+
+TEST(BranchAndBound, ARootWhoseProbingFixesEveryFractionalIntegerIsSolvedAgain) {
+  for (const bool probing : {false, true}) {
+    SCOPED_TRACE(probing);
+    const BranchAndBoundResult r =
+        SolveWith(ProbingFixesEveryFractionalInteger(), false, [&](BranchAndBoundOptions* o) {
+          o->group_probing = probing;
+          o->rounding_heuristic = false;  // no plan but the search's own
+          o->group_probing_work = 0.0;
+        });
+    ASSERT_EQ(r.status, SolveStatus::kOptimal) << ToString(r.status);
+    ASSERT_EQ(r.x.size(), 4);
+    EXPECT_NEAR(r.x(3), 1.0, 1e-6);                     // z2
+    EXPECT_NEAR(r.objective, 10.0, 1e-4);               // z2's cost; x + y = 1 costs nothing
+    EXPECT_LE(r.bound, r.objective + 1e-9);
+  }
+}
+
 TEST(BranchAndBound, RinsKeepsEveryOptimum) {
   EXPECT_GE(CatalogueWithAndWithout(
                 [](BranchAndBoundOptions* o, bool on) {

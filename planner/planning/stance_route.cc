@@ -114,9 +114,6 @@ BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& 
   return g;
 }
 
-// The found route: the given start and goal poses with the searched cells' centres and
-// yaws between them (cells and yaws from the start's cell to the goal's).
-
 // The body check of a pose (stance_route.h): obstacles near the pose judged against the
 // body's plan box in its height band above the pose's ground, and against that box grown
 // by the route's body margin in plan view. The obstacles near a grid cell do not depend on
@@ -256,6 +253,8 @@ std::unique_ptr<StanceSpace> MakeStanceSpace(const RobotModel& robot, const std:
   return std::make_unique<StanceSpace>(robot, grid, std::move(*raster), body_obstacles, ground_z_m, options);
 }
 
+// The found route: the given start and goal poses with the searched cells' centres and
+// yaws between them (cells and yaws from the start's cell to the goal's).
 void SetRoute(const std::vector<Eigen::Vector2d>& cells, const std::vector<double>& yaws,
               const Eigen::Vector2d& start_xy, double start_yaw_rad, const Eigen::Vector2d& goal_xy,
               double goal_yaw_rad, StanceRoute* out) {

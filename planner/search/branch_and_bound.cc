@@ -61,7 +61,9 @@ class Search {
   }
 
   // A plan found before the search (the root cut loop's first pass) becomes its incumbent.
-  void Seed(const Eigen::VectorXd& x) { state_.OfferIncumbent(x); }
+  // The plan of an earlier pass, held without a progress report (it was reported then,
+  // and this search has no bound yet).
+  void Seed(const Eigen::VectorXd& x) { state_.OfferIncumbent(x, /*report=*/false); }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -200,12 +202,14 @@ class Search {
       result.bound = result.root_bound = bound;
       TryRounding(&state_, branching_, rounding_, rel.x);
       RunRootHeuristic(&state_, rel.x);
-      ProbeRootAfterHeuristics(node, &e);
-      if (opt_.rins_frequency > 0) Rins(rel.x);
     }
     if (state_.HasIncumbent() && !state_.Improves(bound)) {
       state_.NoteGapPrune(bound);
       return;
+    }
+    if (is_root) {
+      ProbeRootAfterHeuristics(node, &e);
+      if (opt_.rins_frequency > 0) Rins(rel.x);
     }
     std::vector<BoundChange> fixings;
     if (opt_.reduced_cost_fixing && state_.HasIncumbent()) FixByReducedCosts(rel, &state_, &e.lower, &e.upper, &fixings);
@@ -214,6 +218,12 @@ class Search {
                                : branching_.ChooseVariable(rel.x, e.lower, e.upper);
     if (branch_var == kPruned) return;
     if (branch_var < 0) {
+      // Probing after the root's relaxation may have fixed every integer the relaxation
+      // point left fractional: then the root is solved again in the probed box.
+      if (is_root && e.probed && !IsIntegral(rel.x)) {
+        SolveRootAgain(node, rel, bound, e.lower, e.upper, fixings);
+        return;
+      }
       state_.OfferIncumbent(rel.x);
       return;
     }
@@ -226,6 +236,31 @@ class Search {
       AppendProbedBounds(node, e.lower, e.upper, &fixings);
     }
     Branch(node, rel, bound, branch_var, e.lower, e.upper, fixings);
+  }
+
+  bool IsIntegral(const Eigen::VectorXd& x) const {
+    for (int j = 0; j < p_.num_variables(); ++j) {
+      if (p_.is_integer[j] && std::abs(x(j) - std::round(x(j))) > opt_.integrality_tolerance) return false;
+    }
+    return true;
+  }
+
+  // Queues the root once more with its probed box (lower/upper) as bound changes.
+  void SolveRootAgain(const SearchNode& root, const RelaxationResult& rel, double bound, const Eigen::VectorXd& lower,
+                      const Eigen::VectorXd& upper, std::vector<BoundChange> fixings) {
+    AppendProbedBounds(root, lower, upper, &fixings);
+    SearchNode again;
+    again.changes = root.changes;
+    again.changes.insert(again.changes.end(), fixings.begin(), fixings.end());
+    KeepLastChangePerVariable(p_.num_variables(), &again.changes);
+    again.parent_bound = bound;
+    again.depth = root.depth;  // not probed again before its relaxation
+    again.warm_start = rel.x;
+    again.warm_token = rel.warm_token;
+    again.parent_objective = rel.objective;
+    std::vector<SearchNode> pushed;
+    pushed.push_back(std::move(again));
+    state_.queue().PushChildren(std::move(pushed));
   }
 
   void Rins(const Eigen::VectorXd& relaxed) {
@@ -381,6 +416,23 @@ class Search {
   bool root_failed_ = false;
 };
 
+// Adds the work counters of an earlier pass to `total` (nodes, solves, prunes, heuristics).
+void AddCounters(const BranchAndBoundResult& pass, BranchAndBoundResult* total) {
+  total->nodes += pass.nodes;
+  total->relaxations += pass.relaxations;
+  total->strong_branching_solves += pass.strong_branching_solves;
+  total->propagation_prunes += pass.propagation_prunes;
+  total->early_cutoffs += pass.early_cutoffs;
+  total->reduced_cost_fixings += pass.reduced_cost_fixings;
+  total->equivalent_points += pass.equivalent_points;
+  total->node_solve_iterations += pass.node_solve_iterations;
+  total->node_solve_time_s += pass.node_solve_time_s;
+  total->probed_nodes += pass.probed_nodes;
+  total->rins_runs += pass.rins_runs;
+  total->rins_improvements += pass.rins_improvements;
+  total->rins_nodes += pass.rins_nodes;
+}
+
 // options with its time limit shortened by spent_s and its progress times shifted by it.
 BranchAndBoundOptions Remaining(const BranchAndBoundOptions& options, double spent_s) {
   BranchAndBoundOptions rest = options;
@@ -403,11 +455,13 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
                                        const BranchAndBoundOptions& options, const RoundingHeuristic& extra_rounding) {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const Deadline deadline = options.deadline.Within(options.time_limit_s);  // the whole search's
   BranchAndBoundOptions root_only = options;
   root_only.max_nodes = 1;
+  root_only.group_probing = false;  // its children are not searched: the second pass probes
+  root_only.rins_frequency = 0;
   BranchAndBoundResult root = Search(problem, solvers, root_only, extra_rounding).Run();
   root.solve_time_s = elapsed();
-  const Deadline deadline = options.deadline.Within(options.time_limit_s);
   const bool settled = root.status == SolveStatus::kOptimal || root.status == SolveStatus::kInfeasible ||
                        root.status == SolveStatus::kInternalError;
   if (settled || options.max_nodes <= 1) return root;
@@ -442,9 +496,12 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   }
   result.root_cuts = loop.cuts;
   result.root_bound_before_cuts = root.root_bound;
-  result.nodes += root.nodes;
-  result.relaxations += root.relaxations + loop.relaxations;
-  result.reduced_cost_fixings += root.reduced_cost_fixings + loop.reduced_cost_fixings;
+  // The first pass's root bound holds for the problem: the second may end before its root.
+  if (result.x.size() > 0) result.bound = std::min(result.objective, std::max(result.bound, root.bound));
+  result.gap = result.x.size() > 0 ? RelativeGap(result.objective, result.bound) : result.gap;
+  AddCounters(root, &result);
+  result.relaxations += loop.relaxations;
+  result.reduced_cost_fixings += loop.reduced_cost_fixings;
   result.solve_time_s = elapsed();
   return result;
 }

@@ -162,7 +162,7 @@ struct BranchAndBoundResult {
   int reduced_cost_fixings = 0;     // integer bounds tightened by reduced-cost fixing
   int early_cutoffs = 0;            // node relaxations stopped once they could not beat the incumbent
   int equivalent_points = 0;        // relaxation points replaced by options.equivalent_point
-  int probed_nodes = 0;             // nodes whose box group probing tightened (options.group_probing)
+  int probed_nodes = 0;             // nodes probed (options.group_probing) that went on to branch
   int rins_runs = 0;                // RINS sub-searches run (options.rins_frequency)
   int rins_improvements = 0;        // of them, those that found a better incumbent
   int rins_nodes = 0;               // nodes of the RINS sub-searches (not counted in nodes)

@@ -101,10 +101,17 @@ bool InConflict(const ProbedBinary& b, int other) {
 }  // namespace
 
 RootProbing ProbeRootBinaries(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                              double min_tightening) {
+                              const Deadline& deadline, double min_tightening, long max_implied_bounds) {
   RootProbing probing;
+  long kept = 0;  // implied bounds held
+  auto continuous_only = [&p](std::vector<ImpliedBound>* bounds) {
+    bounds->erase(std::remove_if(bounds->begin(), bounds->end(),
+                                 [&p](const ImpliedBound& ib) { return p.is_integer[ib.variable]; }),
+                  bounds->end());
+  };
   for (int z = 0; z < p.num_variables(); ++z) {
     if (!IsOpenBinary(p, lower, upper, z)) continue;
+    if (deadline.Expired() || kept + 2L * p.num_variables() > max_implied_bounds) break;
     std::optional<std::vector<ImpliedBound>> one = ProbeCase(p, lower, upper, z, 1.0, min_tightening);
     std::optional<std::vector<ImpliedBound>> zero = ProbeCase(p, lower, upper, z, 0.0, min_tightening);
     if (!one || !zero) {  // the other value is forced (both infeasible: the search finds out)
@@ -117,6 +124,9 @@ RootProbing ProbeRootBinaries(const Miqp& p, const Eigen::VectorXd& lower, const
       if (!ib.upper || !IsOpenBinary(p, lower, upper, ib.variable) || ib.value > 0.0) continue;
       b.conflicts.push_back(ib.variable);
     }
+    continuous_only(&*one);
+    continuous_only(&*zero);
+    kept += static_cast<long>(one->size() + zero->size());
     b.when_one = std::move(*one);
     b.when_zero = std::move(*zero);
     probing.binaries.push_back(std::move(b));

@@ -114,7 +114,7 @@ int FamilyIndex(int family) {
 RootProbing ProbeAndFix(const Miqp& p, const BranchAndBoundOptions& options, RelaxationRequest* request,
                         RootCutLoopResult* result) {
   if (!(options.root_cut_families & (kImpliedBoundCuts | kCliqueCuts))) return {};
-  RootProbing probing = ProbeRootBinaries(p, request->lower, request->upper);
+  RootProbing probing = ProbeRootBinaries(p, request->lower, request->upper, request->deadline);
   for (const auto& [z, value] : probing.fixed) request->lower(z) = request->upper(z) = value;
   result->probing_fixings = static_cast<int>(probing.fixed.size());
   return probing;

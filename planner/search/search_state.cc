@@ -28,14 +28,14 @@ double SearchState::GapTolerance() const {
   return std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
 }
 
-void SearchState::OfferIncumbent(Eigen::VectorXd x) {
+void SearchState::OfferIncumbent(Eigen::VectorXd x, bool report) {
   const std::optional<double> objective = FeasibleObjective(p_, &x, opt_.feasibility_tolerance);
   if (!objective) return;
   if (!HasIncumbent() || *objective < result_.objective) {
     result_.x = std::move(x);
     result_.objective = *objective;
     last_improvement_ = Clock::now();
-    if (opt_.on_incumbent) ReportProgress();
+    if (report && opt_.on_incumbent) ReportProgress();
   }
 }
 

@@ -111,7 +111,7 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
       // Least squares in coordinates relative to the cell (x, y in cells, z in m): the
       // rows (dc, dr, 1) of A summed into A^T A (small integers, exact in any order) and
       // A^T z.
-      int sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, count = 0;
+      long long sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, count = 0;
       Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
       double zz = 0.0;
       for (int dr = -w; dr <= w; ++dr) {

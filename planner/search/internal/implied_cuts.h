@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/deadline.h"
 #include "planner/miqp/miqp.h"
 #include "planner/search/internal/mir_cuts.h"
 
@@ -29,7 +30,7 @@ struct ImpliedBound {
 
 struct ProbedBinary {
   int z = -1;
-  std::vector<ImpliedBound> when_one, when_zero;
+  std::vector<ImpliedBound> when_one, when_zero;  // on continuous variables
   std::vector<int> conflicts;  // binaries that z = 1 forces to 0, sorted
 };
 
@@ -40,9 +41,13 @@ struct RootProbing {
 
 // Probes every open 0/1 variable within lower/upper (the root's bounds after
 // propagation). An implied bound counts when it tightens the root's by more than
-// min_tightening (in the variable's units).
+// min_tightening (in the variable's units); only those on continuous variables are kept
+// (the cuts' own), with the conflicts between binaries. Stops between binaries once the
+// deadline passes, or before a probe that could take the kept implied bounds past
+// max_implied_bounds (memory: 16 bytes each): what it found so far stays valid.
 RootProbing ProbeRootBinaries(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                              double min_tightening = 1e-6);
+                              const Deadline& deadline = Deadline(), double min_tightening = 1e-6,
+                              long max_implied_bounds = 1L << 20);
 
 // Violated implied-bound cuts at x on continuous variables, most efficacious first.
 std::vector<LinearCut> SeparateImpliedBoundCuts(const Miqp& problem, const RootProbing& probing,

@@ -46,8 +46,8 @@ class SearchState {
   // How much better than the incumbent a subtree must be able to get to be explored.
   double GapTolerance() const;
   // x with its integers rounded becomes the incumbent when it meets the rows and bounds
-  // and beats the incumbent.
-  void OfferIncumbent(Eigen::VectorXd x);
+  // and beats the incumbent; then, with `report`, options.on_incumbent is told.
+  void OfferIncumbent(Eigen::VectorXd x, bool report = true);
 
   // The request for one relaxation within the node bounds lower/upper, under the
   // deadline in force. cutoff: see BranchAndBoundOptions::early_cutoff.
