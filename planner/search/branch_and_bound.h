@@ -91,8 +91,10 @@ struct BranchAndBoundOptions {
   // fixed in turn and propagated; members that cannot be 1 are ruled out and every bound
   // shrinks to the hull of the members' cases. The root's box is probed after its
   // roundings and heuristics (never before the first plan), a node's before its
-  // relaxation; the bounds found are handed down to the node's subtree.
-  bool group_probing = true;
+  // relaxation; the bounds found are handed down to the node's subtree. Off by default:
+  // fewer nodes to proof on Table I, but a node costs more and the generated courses'
+  // windows run out of their time shares on more courses (docs/measurements.md, stop 30).
+  bool group_probing = false;
   // Probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the others inherit their
   // ancestors' probed bounds and propagate).
   int group_probing_interval = 1;
