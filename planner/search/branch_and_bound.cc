@@ -28,6 +28,15 @@ namespace {
 // The parts it composes: the node queue (node_queue.h), the branching rules
 // (branching.h, reliability_branching.h), the rounding heuristic (search_heuristics.h)
 // and the reduced-cost fixing (reduced_cost_fixing.h).
+
+// Sets the bounds of each changed variable, in order (a later change of one variable wins).
+void ApplyChanges(const std::vector<BoundChange>& changes, Eigen::VectorXd* lower, Eigen::VectorXd* upper) {
+  for (const BoundChange& ch : changes) {
+    (*lower)(ch.index) = ch.lower;
+    (*upper)(ch.index) = ch.upper;
+  }
+}
+
 // Along a path from the root each change of a variable's bounds is at least as tight as
 // the ones before it: only the last one per variable counts. Keeps those, in order of the
 // variables' first change (the probed bounds would otherwise pile up level by level).
@@ -127,10 +136,7 @@ class Search {
     NodeEvaluation e;
     e.lower = p_.var_lower;
     e.upper = p_.var_upper;
-    for (const BoundChange& ch : node.changes) {
-      e.lower(ch.index) = ch.lower;
-      e.upper(ch.index) = ch.upper;
-    }
+    ApplyChanges(node.changes, &e.lower, &e.upper);
     if (opt_.bound_propagation && PropagateBounds(p_, &e.lower, &e.upper).infeasible) {
       e.propagation_infeasible = true;
       return e;
@@ -306,14 +312,8 @@ class Search {
   void AppendProbedBounds(const SearchNode& node, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                           std::vector<BoundChange>* changes) const {
     Eigen::VectorXd base_lower = p_.var_lower, base_upper = p_.var_upper;
-    for (const BoundChange& ch : node.changes) {
-      base_lower(ch.index) = ch.lower;
-      base_upper(ch.index) = ch.upper;
-    }
-    for (const BoundChange& ch : *changes) {
-      base_lower(ch.index) = ch.lower;
-      base_upper(ch.index) = ch.upper;
-    }
+    ApplyChanges(node.changes, &base_lower, &base_upper);
+    ApplyChanges(*changes, &base_lower, &base_upper);
     constexpr double kMinTightening = 1e-9;
     for (int j = 0; j < p_.num_variables(); ++j) {
       if (lower(j) > base_lower(j) + kMinTightening || upper(j) < base_upper(j) - kMinTightening) {
