@@ -170,7 +170,8 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       break;
     }
     state.TakeSnapshot();
-    const FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state), policy.LookaheadScale());
+    FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state), policy.LookaheadScale());
+    if (policy.finishing()) FinishGoalWeights(context, &problem);
     WindowRecord record;
     record.new_steps = problem.num_new_steps;
     record.regions = static_cast<int>(problem.regions.size());
@@ -223,12 +224,14 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
     ReportWindow(context, state, kept, exact, on_progress);
     state.NoteProgress(RemainingWay(context, state.plan.footsteps), MinProgressGain(context));
     if (const std::optional<std::string> stuck = policy.Stuck(state, kept)) {
+      if (policy.FinishAtGoal(&state)) continue;
       if (policy.RetryLonger(*stuck, &state)) continue;
       EndStuck(*stuck, &state);
       break;
     }
     policy.OnStepsKept(&state, kept);
     if (const std::optional<std::string> stalled = policy.Stalled(state)) {
+      if (policy.FinishAtGoal(&state)) continue;
       EndStalled(*stalled, &state);
       break;
     }

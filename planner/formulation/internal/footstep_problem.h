@@ -77,6 +77,10 @@ struct FootstepProblem {
   double goal_x_m = 0.0;
   double goal_y_m = 0.0;
   double goal_yaw_rad = 0.0;
+  // The goal term's weights are at least these (the robot's weights otherwise): a plan's
+  // finishing windows raise them (planner/planning/internal/horizon_policy.h) [per m^2, per rad^2].
+  double min_goal_position_weight = 0.0;
+  double min_goal_yaw_weight = 0.0;
   int num_new_steps = 0;  // N - n
   // Convex regions of the plan free of the body obstacles in the body's band (world
   // frame). Empty (as without obstacles or without a known body): no body rows, the

@@ -81,6 +81,14 @@ bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
   return true;
 }
 
+bool HorizonPolicy::FinishAtGoal(HorizonState* state) {
+  if (finishing_ || state->plan.reaches_goal || context_.TimeLeftSeconds() <= 0.0) return false;
+  if (!(RemainingWay(context_, state->plan.footsteps) <= context_.robot.d_lim_m)) return false;
+  finishing_ = true;
+  state->windows_without_progress = 0;
+  return true;
+}
+
 void HorizonPolicy::OnStepsKept(HorizonState* state, int kept) {
   lookahead_scale_ = 1.0;
   if (state->windows_without_progress == 0) earlier_retries_ = 0;

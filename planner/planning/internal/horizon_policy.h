@@ -45,6 +45,15 @@ class HorizonPolicy {
   // backed up and the retry counted. False at an eighth of the lookahead or when the
   // plan's time is up.
   bool ReplanCloser(const std::string& why, HorizonState* state);
+  // A plan that stalled or is stuck within one step (d_lim) of the goal but outside its
+  // tolerances: with the robot's weights a window's goal term can be worth less than the
+  // trim reward of the steps that would close it (a last foot e off its spot, k steps to
+  // it in the gait: goal_position e^2 < k |trim_step|, e < 6.3 cm for four legs and the
+  // default weights), and each window stands still. True (once per plan) when the
+  // windows from here on finish at the goal (FinishGoalWeights) and the stall count
+  // starts again; false when not near, already finishing, or out of time.
+  bool FinishAtGoal(HorizonState* state);
+  bool finishing() const { return finishing_; }
   // The lookahead of the next window's local goal, as a fraction of the default.
   double LookaheadScale() const { return lookahead_scale_; }
   // A window kept steps: past the last failure the horizon is back to short windows,
@@ -57,6 +66,7 @@ class HorizonPolicy {
   int max_horizon_ = 0;
   int last_failure_ = -1;  // steps planned where a window last failed
   int earlier_retries_ = 0;
+  bool finishing_ = false;
   double lookahead_scale_ = 1.0;  // infeasible windows retried at the longest look since the last gain
 };
 

@@ -59,4 +59,17 @@ FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState
   return problem;
 }
 
+void FinishGoalWeights(const PlanContext& context, FootstepProblem* problem) {
+  const RobotModel& robot = context.robot;
+  const double configuration_reward = robot.num_legs() * std::abs(robot.weights.trim_step);
+  const double half_tolerance_m = 0.5 * context.goal.tolerance_m;
+  const double half_yaw_tolerance_rad = 0.5 * context.goal.yaw_tolerance_rad;
+  if (half_tolerance_m > 0.0) {
+    problem->min_goal_position_weight = configuration_reward / (half_tolerance_m * half_tolerance_m);
+  }
+  if (half_yaw_tolerance_rad > 0.0) {
+    problem->min_goal_yaw_weight = configuration_reward / (half_yaw_tolerance_rad * half_yaw_tolerance_rad);
+  }
+}
+
 }  // namespace mfp

@@ -25,4 +25,10 @@ std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen
 FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps,
                                   double lookahead_scale = 1.0);
 
+// Goal weights for a plan's finishing windows (HorizonPolicy::FinishAtGoal): a foot half
+// the goal tolerance off its spot, or the yaw half its tolerance off, outweighs the trim
+// reward of a whole configuration's steps (n |trim_step|), so that a window closes the
+// last gap whichever leg it needs to move. Never below the robot's own weights.
+void FinishGoalWeights(const PlanContext& context, FootstepProblem* problem);
+
 }  // namespace mfp
