@@ -620,7 +620,7 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
                   "%d / %d: %s\n",
                   BaseName(scan).c_str(), robot.name.c_str(), w.start.x_m, w.start.y_m, w.start.yaw_rad, w.goal.x_m,
                   w.goal.y_m, w.goal.yaw_rad, ToString(r.status).c_str(), r.valid_to_goal ? " valid to goal" : "",
-                  r.feet_off, r.time_s, w.start_body_voxels, w.goal_body_voxels, r.message.substr(0, 300).c_str());
+                  r.feet_off, r.time_s, w.start_body_voxels, w.goal_body_voxels, r.message.substr(0, 800).c_str());
       std::printf("    time: %s\n", r.time_split.c_str());
       if (!r.valid_to_goal) {
         std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),

@@ -232,3 +232,56 @@ TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingT
 
 }  // namespace
 }  // namespace mfp
+
+namespace mfp {
+namespace {
+
+// A goal foot spot just outside a region, within goal_tolerance of it: such a foot could
+// only stop on the region's edge, at the goal test's limit. The goal moves to the nearest
+// stance with every spot inside a region, and the plan reaches it.
+TEST_F(StartGoalTest, AGoalSpotJustOffARegionMovesTheGoalInside) {
+  const PlanRequest request = Request();
+  const PlannerOptions& o = course_->scenario.options;
+  const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 0.03);
+  const GoalPose asked{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
+  ASSERT_LT(0.03, o.goal_tolerance_m);
+  ASSERT_EQ(LegOffRegions(robot(), regions, asked, o.goal_tolerance_m), -1);  // within the tolerance of a region
+  ASSERT_GE(LegOffRegions(robot(), regions, asked, 0.0), 0);                   // but not inside one
+  const Plan plan = PlanOn(regions, request);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  ASSERT_TRUE(plan.goal_moved) << plan.message;
+  EXPECT_EQ(LegOffRegions(robot(), regions, GoalPose{plan.goal_x_m, plan.goal_y_m, plan.goal_yaw_rad}, 0.0), -1);
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
+}
+
+// The robot stands in its goal stance but for the last leg of the gait, 6.5 cm off its
+// spot (beyond the 5 cm goal tolerance): with the robot's weights, closing that gap (1000
+// per m^2: 4.2) is worth less than the trim reward of the six steps up to that leg (6),
+// and every window stands still. The plan finishes at the goal instead of ending partial.
+TEST_F(StartGoalTest, APlanStandingJustOutsideTheGoalToleranceFinishesAtTheGoal) {
+  PlanRequest request = Request();
+  const PlannerOptions& o = course_->scenario.options;
+  const int n = robot().num_legs();
+  const int last = robot().gait[n - 1];
+  const double off_m = 0.065;
+  ASSERT_GT(off_m, o.goal_tolerance_m);
+  ASSERT_LT(robot().weights.goal_position * off_m * off_m, n * std::abs(robot().weights.trim_step));
+  request.goal_x_m = 0.5, request.goal_y_m = 0.0, request.goal_yaw_rad = 0.0;
+  request.start_yaw_rad = 0.0;
+  for (int leg = 0; leg < n; ++leg) {
+    const Eigen::Vector2d xy = NominalFootXY(robot(), leg, request.goal_x_m, request.goal_y_m, 0.0);
+    request.start_feet_world_m[leg] = Eigen::Vector3d(xy.x() + (leg == last ? off_m : 0.0), xy.y(), kFloorZ);
+  }
+  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, 3.0, 1.0)};
+  const Plan plan = PlanOn(regions, request);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  EXPECT_FALSE(plan.goal_moved);
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
+}
+
+}  // namespace
+}  // namespace mfp

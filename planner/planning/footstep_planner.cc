@@ -109,17 +109,18 @@ std::string FartherStanceText(const RobotModel& robot, const std::vector<ConvexR
   return text.str();
 }
 
-// Under route guidance a goal stance must stand on regions (the route guide's test). One
-// with a foot spot on none is moved to the nearest certified stance within the goal
-// tolerances; beyond them the request is invalid_goal, naming the foot and the nearest
-// certified stance farther out. The request has passed CheckPlanRequest.
+// Under route guidance a goal stance must stand on regions. One with a foot spot on none
+// (outside every region, even within goal_tolerance of one: such a foot could only stop
+// at the region's edge, on the goal test's limit, and the windows' exact steps keep inside
+// shrunk regions) is moved to the nearest certified stance within the goal position and
+// heading tolerances; beyond them the request is invalid_goal, naming the foot and the
+// nearest certified stance farther out. The request has passed CheckPlanRequest.
 GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
                       const PlannerOptions& options) {
   GoalChoice choice;
   if (!options.route_guidance || request.max_windows != 0) return choice;
   const GoalPose goal{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
-  const double tol = options.goal_tolerance_m;
-  const int leg = LegOffRegions(robot, regions, goal, tol);
+  const int leg = LegOffRegions(robot, regions, goal, 0.0);
   if (leg < 0) return choice;
   const Eigen::Vector2d spot = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
   std::ostringstream why;
