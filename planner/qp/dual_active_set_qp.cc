@@ -190,7 +190,9 @@ void DualActiveSetQp::RestoreNearest() {
 void DualActiveSetQp::LoadSnapshot(int slot) {
   const Snapshot& snap = snapshots_[slot];
   J_ = snap.J;
-  R_ = snap.R;
+  const Eigen::Index k = static_cast<Eigen::Index>(snap.active.size());
+  R_.setZero();
+  R_.topLeftCorner(k, k) = snap.R.triangularView<Eigen::Upper>();
   active_ = snap.active;
   is_active_.assign(2 * n_ + 2 * m_, 0);
   for (int con : active_) is_active_[con] = 1;
@@ -276,7 +278,8 @@ void DualActiveSetQp::SaveSnapshot() {
   snap.lower = lower_;
   snap.upper = upper_;
   snap.J = J_;
-  snap.R = R_;
+  const Eigen::Index k = static_cast<Eigen::Index>(active_.size());
+  snap.R = R_.topLeftCorner(k, k).triangularView<Eigen::Upper>();  // the rest of R_ is zero
   snap.active = active_;
   snap.warm_solves = warm_solves_;
   snap.used = ++clock_;
