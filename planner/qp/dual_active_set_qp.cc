@@ -22,12 +22,11 @@ void Givens(double a, double b, double* cs, double* sn) {
   *sn = b / r;
 }
 
-// Columns i and j of m replaced by cs m_i + sn m_j and -sn m_i + cs m_j, in rows
-// [0, rows).
-void RotateColumns(Eigen::MatrixXd* m, int i, int j, double cs, double sn, Eigen::Index rows) {
+// Columns i and j of m replaced by cs m_i + sn m_j and -sn m_i + cs m_j.
+void RotateColumns(Eigen::MatrixXd* m, int i, int j, double cs, double sn) {
   double* a = m->col(i).data();
   double* b = m->col(j).data();
-  for (Eigen::Index r = 0; r < rows; ++r) {
+  for (Eigen::Index r = 0; r < m->rows(); ++r) {
     const double ai = a[r], bi = b[r];
     a[r] = cs * ai + sn * bi;
     b[r] = -sn * ai + cs * bi;
@@ -122,10 +121,6 @@ void DualActiveSetQp::SetBounds(const Eigen::VectorXd& lower, const Eigen::Vecto
 
 void DualActiveSetQp::ColdStart() {
   J_ = J0_;
-  row_of_.resize(n_);
-  variable_at_.resize(n_);
-  for (int j = 0; j < n_; ++j) row_of_[j] = variable_at_[j] = j;
-  free_rows_ = n_;
   R_.setZero();
   active_.clear();
   is_active_.assign(2 * n_ + 2 * m_, 0);
@@ -142,47 +137,9 @@ void DualActiveSetQp::SolveForActiveSet() {
   for (int i = 0; i < k; ++i) b(i) = rhs_(active_[i]);
   const auto Rk = R_.topLeftCorner(k, k).triangularView<Eigen::Upper>();
   const Eigen::VectorXd y1 = Rk.transpose().solve(b);
-  const Eigen::VectorXd c = InRowOrder(c_);
-  const Eigen::VectorXd y2 = -(J_.rightCols(n_ - k).transpose() * c);
-  const Eigen::VectorXd x = J_.leftCols(k) * y1 + J_.rightCols(n_ - k) * y2;
-  for (int r = 0; r < n_; ++r) x_(variable_at_[r]) = x(r);
-  u_ = Rk.solve(y1 + J_.leftCols(k).transpose() * c);
-}
-
-// v (indexed by variable) in the order of J_'s rows.
-Eigen::VectorXd DualActiveSetQp::InRowOrder(const Eigen::VectorXd& v) const {
-  Eigen::VectorXd out(n_);
-  for (int r = 0; r < n_; ++r) out(r) = v(variable_at_[r]);
-  return out;
-}
-
-void DualActiveSetQp::SwapRows(int a, int b) {
-  if (a == b) return;
-  J_.row(a).swap(J_.row(b));
-  std::swap(variable_at_[a], variable_at_[b]);
-  row_of_[variable_at_[a]] = a;
-  row_of_[variable_at_[b]] = b;
-}
-
-// After a bound joined the active set as column k: its variable's row leaves the free
-// block, zero in the null-space columns from k + 1 (the rotations made it so, up to
-// rounding).
-void DualActiveSetQp::BoundEntered(int con, int k) {
-  if (con >= 2 * n_) return;
-  const int row = row_of_[con < n_ ? con : con - n_];
-  if (row >= free_rows_) return;
-  J_.row(row).tail(n_ - k - 1).setZero();
-  SwapRows(row, --free_rows_);
-}
-
-// After a constraint left the active set (k columns left): a bound's variable is free
-// again, and the new null-space column k is zero in the rows of bound variables.
-void DualActiveSetQp::BoundLeft(int con, int k) {
-  if (con < 2 * n_) {
-    const int row = row_of_[con < n_ ? con : con - n_];
-    if (row >= free_rows_) SwapRows(row, free_rows_++);
-  }
-  J_.col(k).tail(n_ - free_rows_).setZero();
+  const Eigen::VectorXd y2 = -(J_.rightCols(n_ - k).transpose() * c_);
+  x_ = J_.leftCols(k) * y1 + J_.rightCols(n_ - k) * y2;
+  u_ = Rk.solve(y1 + J_.leftCols(k).transpose() * c_);
 }
 
 // The last active set with the new right-hand sides, less the inequalities whose
@@ -233,9 +190,6 @@ void DualActiveSetQp::RestoreNearest() {
 void DualActiveSetQp::LoadSnapshot(int slot) {
   const Snapshot& snap = snapshots_[slot];
   J_ = snap.J;
-  row_of_ = snap.row_of;
-  variable_at_ = snap.variable_at;
-  free_rows_ = snap.free_rows;
   const Eigen::Index k = static_cast<Eigen::Index>(snap.active.size());
   R_.setZero();
   R_.topLeftCorner(k, k) = snap.R.triangularView<Eigen::Upper>();
@@ -324,9 +278,6 @@ void DualActiveSetQp::SaveSnapshot() {
   snap.lower = lower_;
   snap.upper = upper_;
   snap.J = J_;
-  snap.row_of = row_of_;
-  snap.variable_at = variable_at_;
-  snap.free_rows = free_rows_;
   const Eigen::Index k = static_cast<Eigen::Index>(active_.size());
   snap.R = R_.topLeftCorner(k, k).triangularView<Eigen::Upper>();  // the rest of R_ is zero
   snap.active = active_;
@@ -353,13 +304,13 @@ double DualActiveSetQp::NormalDot(int con, const Eigen::VectorXd& v) const {
 }
 
 Eigen::VectorXd DualActiveSetQp::TransposedJTimesNormal(int con) const {
-  if (con < n_) return J_.row(row_of_[con]).transpose();
-  if (con < 2 * n_) return -J_.row(row_of_[con - n_]).transpose();
+  if (con < n_) return J_.row(con).transpose();
+  if (con < 2 * n_) return -J_.row(con - n_).transpose();
   const bool upper_side = con >= 2 * n_ + m_;
   const int row = upper_side ? con - 2 * n_ - m_ : con - 2 * n_;
   Eigen::VectorXd d = Eigen::VectorXd::Zero(n_);
   for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(*A_, row); it; ++it) {
-    d.noalias() += it.value() * J_.row(row_of_[it.col()]).transpose();
+    d.noalias() += it.value() * J_.row(it.col()).transpose();
   }
   return upper_side ? Eigen::VectorXd(-d) : d;
 }
@@ -389,12 +340,11 @@ void DualActiveSetQp::AppendToFactors(int con, Eigen::VectorXd d) {
     Givens(d(i - 1), d(i), &cs, &sn);
     d(i - 1) = cs * d(i - 1) + sn * d(i);
     d(i) = 0.0;
-    RotateColumns(&J_, i - 1, i, cs, sn, free_rows_);  // the other rows are zero there
+    RotateColumns(&J_, i - 1, i, cs, sn);
   }
   R_.col(k).head(k + 1) = d.head(k + 1);
   active_.push_back(con);
   is_active_[con] = 1;
-  BoundEntered(con, k);
 }
 
 void DualActiveSetQp::DropFromFactors(int position) {
@@ -410,12 +360,10 @@ void DualActiveSetQp::DropFromFactors(int position) {
       R_(i + 1, col) = -sn * a + cs * b;
     }
     R_(i + 1, i) = 0.0;
-    RotateColumns(&J_, i, i + 1, cs, sn, n_);
+    RotateColumns(&J_, i, i + 1, cs, sn);
   }
-  const int dropped = active_[position];
-  is_active_[dropped] = 0;
+  is_active_[active_[position]] = 0;
   active_.erase(active_.begin() + position);
-  BoundLeft(dropped, k - 1);
   Eigen::VectorXd u(k - 1);
   u << u_.head(position), u_.tail(k - 1 - position);
   u_ = u;
@@ -429,8 +377,7 @@ DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& dead
     if (++steps_ > step_limit_ || deadline.Expired()) return Step::kLimit;
     const int k = static_cast<int>(active_.size());
     const Eigen::VectorXd d = TransposedJTimesNormal(p);
-    // x moves in the free variables only (J_'s other rows are zero in these columns).
-    const Eigen::VectorXd z = J_.topRightCorner(free_rows_, n_ - k) * d.tail(n_ - k);
+    const Eigen::VectorXd z = J_.rightCols(n_ - k) * d.tail(n_ - k);
     const Eigen::VectorXd r = R_.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(d.head(k));
     double t1 = kInfinity;
     int drop = -1;
@@ -450,9 +397,7 @@ DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& dead
     if (!std::isfinite(t)) return Step::kInfeasible;
     u_.head(k) -= t * r;
     u_plus += t;
-    if (!dependent) {
-      for (int r = 0; r < free_rows_; ++r) x_(variable_at_[r]) += t * z(r);
-    }
+    if (!dependent) x_ += t * z;
     if (t2 <= t1) {
       AppendToFactors(p, d);
       u_.conservativeResize(k + 1);
@@ -507,7 +452,7 @@ void DualActiveSetQp::RefineMultipliers() {
   const int k = static_cast<int>(active_.size());
   for (int pass = 0; pass < 2; ++pass) {
     const Eigen::VectorXd res = StationarityResidual(u_);
-    u_ += R_.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(J_.leftCols(k).transpose() * InRowOrder(res));
+    u_ += R_.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(J_.leftCols(k).transpose() * res);
   }
 }
 

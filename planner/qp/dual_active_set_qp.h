@@ -89,8 +89,6 @@ class DualActiveSetQp {
     Eigen::VectorXd lower, upper;
     Eigen::MatrixXd J, R;
     std::vector<int> active;
-    std::vector<int> row_of, variable_at;
-    int free_rows = 0;
     int warm_solves = 0;
     long used = -1;  // when last saved; -1: empty
   };
@@ -114,10 +112,6 @@ class DualActiveSetQp {
   void DropFromFactors(int position);
   void SolveForActiveSet();
   Eigen::VectorXd TransposedJTimesNormal(int constraint) const;
-  Eigen::VectorXd InRowOrder(const Eigen::VectorXd& v) const;
-  void SwapRows(int a, int b);
-  void BoundEntered(int constraint, int k);
-  void BoundLeft(int constraint, int k);
   double NormalDot(int constraint, const Eigen::VectorXd& v) const;
   double Slack(int constraint) const;
   bool IsEquality(int constraint) const;
@@ -138,15 +132,7 @@ class DualActiveSetQp {
   Eigen::VectorXd eps_;          // regularisation per variable
   Eigen::VectorXd c_;            // linear cost
   Eigen::MatrixXd H_;            // Q + diag(eps)
-  // L^-T times the active set's orthogonal factor, its rows permuted: bounds by
-  // elimination. Row r of J_ belongs to variable variable_at_[r] (row_of_ the inverse);
-  // the variables without an active bound come first (rows [0, free_rows_)), and the
-  // other rows are zero in the null-space columns (k and on): x moves only in free
-  // variables, so the steps' products and rotations of those columns touch free_rows_
-  // rows, not n.
-  Eigen::MatrixXd J_;
-  std::vector<int> row_of_, variable_at_;
-  int free_rows_ = 0;
+  Eigen::MatrixXd J_;            // L^-T times the active set's orthogonal factor
   Eigen::MatrixXd R_;            // upper triangular, active columns first
   Eigen::MatrixXd J0_;           // L^-T: J_ of the empty active set
   Eigen::VectorXd row_norm_;
