@@ -582,9 +582,10 @@ RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::Ve
     result.iterations = steps;
     warm_valid_ = false;
   }
-  // A solve stopped on its budget, its deadline or an infeasible node leaves consistent
-  // factors (each step updates them whole): they stay a start for later solves.
-  if (warm_valid_) {
+  // Only a solved node has children to start from its state (a cutoff, an infeasible
+  // node or a stopped solve has none; their siblings start from the parent's state):
+  // the others' factors are not copied (a 2 n^2 copy per node).
+  if (warm_valid_ && step == Step::kOptimal) {
     SaveSnapshot();
   } else {
     live_slot_ = -1;
