@@ -1,6 +1,6 @@
 // mfp's dual active-set QP against the interior point: random convex QPs with a
 // singular Hessian, sequences of branch-and-bound-like bound changes (warm starts),
-// infeasible nodes, the root relaxations of Table I instances, and children started from
+// infeasible nodes (certified by the dual method, never a feasible one), the root relaxations of Table I instances, and children started from
 // their parent's active set (warm tokens).
 #include "planner/qp/dual_active_set_qp.h"
 
@@ -117,15 +117,19 @@ TEST(DualActiveSetQp, WarmStartsAlongADiveAndAfterJumpsMatchTheInteriorPoint) {
   EXPECT_GE(compared, 12);
 }
 
-TEST(DualActiveSetQp, AnInfeasibleNodeIsNeverSolvedAndTheFactoryCallsItInfeasible) {
-  // x + y <= 2 with x, y >= 1.5: no point. The dual method ends without a solution; the
-  // factory's chain hands the node to the interior point, which proves it infeasible.
+TEST(DualActiveSetQp, AnInfeasibleNodeIsCertifiedInfeasibleAndTheFactoryCallsItInfeasible) {
+  // x + y <= 2 with x, y >= 1.5: no point. The dual method finds the row dependent on the
+  // two active bounds and checks the certificate; the factory's chain says the same.
   const Miqp p = Projection();
   Eigen::VectorXd lower = p.var_lower;
   lower << 1.5, 1.5;
   DualActiveSetQp qp;
   const RelaxationResult dual = qp.Solve(p, lower, p.var_upper, kInfinity, Deadline());
-  EXPECT_EQ(dual.status, RelaxationStatus::kFailed);
+  EXPECT_EQ(dual.status, RelaxationStatus::kInfeasible);
+  // Barely feasible (x = y = 1 meets x + y <= 2 with equality): never called infeasible.
+  Eigen::VectorXd touching = p.var_lower;
+  touching << 1.0, 1.0;
+  EXPECT_EQ(qp.Solve(p, touching, p.var_upper, kInfinity, Deadline()).status, RelaxationStatus::kSolved);
   RelaxationRequest request;
   request.lower = lower;
   const RelaxationResult chained = MakeRelaxationSolver(RelaxationBackend::kDualActiveSetWithFallbacks)->Solve(p, request);
@@ -134,6 +138,41 @@ TEST(DualActiveSetQp, AnInfeasibleNodeIsNeverSolvedAndTheFactoryCallsItInfeasibl
   const RelaxationResult again = qp.Solve(p, p.var_lower, p.var_upper, kInfinity, Deadline());
   ASSERT_EQ(again.status, RelaxationStatus::kSolved);
   EXPECT_NEAR(again.objective, 0.5, 1e-6);
+}
+
+// Dives that fix binaries at random until the node is infeasible, each child started
+// from its parent's active set: the dual method calls a node infeasible only when the
+// interior point does too, never solves an infeasible one, and certifies most of them.
+TEST(DualActiveSetQp, ChildrenCalledInfeasibleAreInfeasible) {
+  int certified = 0, infeasible = 0;
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    SCOPED_TRACE(seed);
+    const Miqp p = RandomSingularQp(45, 60, 100 + seed);
+    const RelaxationResult root = Ipm(p, p.var_lower, p.var_upper);
+    ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+    std::vector<int> token = DualActiveSetQp::ActiveSetAt(p, p.var_lower, p.var_upper, root);
+    Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+    DualActiveSetQp qp;
+    std::mt19937 rng(seed);
+    for (int j = 2; j < p.num_variables(); j += 3) {
+      lower(j) = upper(j) = static_cast<double>(rng() % 2);
+      const RelaxationResult ipm = Ipm(p, lower, upper);
+      const RelaxationResult dual = qp.SolveFrom(p, lower, upper, kInfinity, Deadline(), token);
+      if (ipm.status == RelaxationStatus::kInfeasible) {
+        EXPECT_NE(dual.status, RelaxationStatus::kSolved);
+        ++infeasible;
+        certified += dual.status == RelaxationStatus::kInfeasible;
+        break;
+      }
+      ASSERT_EQ(ipm.status, RelaxationStatus::kSolved);
+      EXPECT_NE(dual.status, RelaxationStatus::kInfeasible);
+      if (dual.status != RelaxationStatus::kSolved) break;
+      ExpectAgrees(p, dual, ipm);
+      token = *dual.warm_token;
+    }
+  }
+  EXPECT_GE(infeasible, 4);
+  EXPECT_GE(certified, infeasible / 2);
 }
 
 TEST(DualActiveSetQp, ACutoffBelowTheOptimumEndsWithATrueFloor) {

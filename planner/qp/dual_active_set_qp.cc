@@ -190,7 +190,9 @@ void DualActiveSetQp::RestoreNearest() {
 void DualActiveSetQp::LoadSnapshot(int slot) {
   const Snapshot& snap = snapshots_[slot];
   J_ = snap.J;
-  R_ = snap.R;
+  const Eigen::Index k = static_cast<Eigen::Index>(snap.active.size());
+  R_.setZero();
+  R_.topLeftCorner(k, k) = snap.R.triangularView<Eigen::Upper>();
   active_ = snap.active;
   is_active_.assign(2 * n_ + 2 * m_, 0);
   for (int con : active_) is_active_[con] = 1;
@@ -276,7 +278,8 @@ void DualActiveSetQp::SaveSnapshot() {
   snap.lower = lower_;
   snap.upper = upper_;
   snap.J = J_;
-  snap.R = R_;
+  const Eigen::Index k = static_cast<Eigen::Index>(active_.size());
+  snap.R = R_.topLeftCorner(k, k).triangularView<Eigen::Upper>();  // the rest of R_ is zero
   snap.active = active_;
   snap.warm_solves = warm_solves_;
   snap.used = ++clock_;
@@ -391,7 +394,7 @@ DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& dead
     const double slack = NormalDot(p, x_) - rhs_(p);
     const double t2 = dependent ? kInfinity : std::max(0.0, -slack / zn);
     const double t = std::min(t1, t2);
-    if (!std::isfinite(t)) return Step::kInfeasible;
+    if (!std::isfinite(t)) return CertifiesInfeasible(p, r) ? Step::kInfeasible : Step::kFailed;
     u_.head(k) -= t * r;
     u_plus += t;
     if (!dependent) x_ += t * z;
@@ -403,6 +406,45 @@ DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& dead
     }
     DropFromFactors(drop);
   }
+}
+
+// p's normal is (up to rounding) sum_j r_j n_j over the active set, every inequality's
+// r_j <= 0: with y = (1 on p, -r_j on the active set), y_i >= 0 on every inequality (an
+// equality row's side may take either sign), so every x meeting the constraints has
+// sum_i y_i (n_i'x - b_i) >= 0, i.e. w'x >= beta. Checked in the problem's data: w and
+// beta summed again from the rows, max over the box of w'x from the bounds, and a margin
+// for the sums' rounding.
+bool DualActiveSetQp::CertifiesInfeasible(int p, const Eigen::VectorXd& r) const {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n_);
+  double beta = 0.0, magnitude = 0.0;
+  auto add = [&](int con, double y) {
+    if (con < n_) {
+      w(con) += y;
+    } else if (con < 2 * n_) {
+      w(con - n_) -= y;
+    } else {
+      const bool upper_side = con >= 2 * n_ + m_;
+      const int row = upper_side ? con - 2 * n_ - m_ : con - 2 * n_;
+      const double signed_y = upper_side ? -y : y;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(*A_, row); it; ++it) {
+        w(it.col()) += signed_y * it.value();
+        magnitude += std::abs(signed_y * it.value());
+      }
+    }
+    beta += y * rhs_(con);
+    magnitude += std::abs(y * rhs_(con)) + std::abs(y);
+  };
+  add(p, 1.0);
+  for (int j = 0; j < static_cast<int>(active_.size()); ++j) {
+    if (!is_equality_[active_[j]] && r(j) > 0.0) return false;
+    add(active_[j], -r(j));
+  }
+  double best = 0.0;  // max over the box of w'x
+  for (int j = 0; j < n_; ++j) {
+    best += std::max(w(j) * lower_(j), w(j) * upper_(j));
+    magnitude += std::abs(w(j)) * std::max(std::abs(lower_(j)), std::abs(upper_(j)));
+  }
+  return std::isfinite(best) && std::isfinite(beta) && best < beta - 1e-9 * (1.0 + magnitude);
 }
 
 DualActiveSetQp::Step DualActiveSetQp::Iterate(double cutoff, const Deadline& deadline) {
@@ -484,7 +526,11 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
     result->status = RelaxationStatus::kIterationLimit;
     return;
   }
-  if (step == Step::kInfeasible || step == Step::kFailed) {
+  if (step == Step::kInfeasible) {
+    result->status = RelaxationStatus::kInfeasible;
+    return;
+  }
+  if (step == Step::kFailed) {
     result->status = RelaxationStatus::kFailed;
     return;
   }
@@ -536,9 +582,10 @@ RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::Ve
     result.iterations = steps;
     warm_valid_ = false;
   }
-  // A solve stopped on its budget, its deadline or an infeasible node leaves consistent
-  // factors (each step updates them whole): they stay a start for later solves.
-  if (warm_valid_) {
+  // Only a solved node has children to start from its state (a cutoff, an infeasible
+  // node or a stopped solve has none; their siblings start from the parent's state):
+  // the others' factors are not copied (a 2 n^2 copy per node).
+  if (warm_valid_ && step == Step::kOptimal) {
     SaveSnapshot();
   } else {
     live_slot_ = -1;

@@ -19,8 +19,13 @@
 // steps. This is a cache only: the answer does not depend on what was solved before
 // (up to ties and rounding).
 //
-// Infeasibility is not reported: a node the method finds infeasible ends kFailed, for a
-// sound solver to decide (the factory hands it to the interior point).
+// Infeasibility is reported only with a certificate checked in the node's own data: when
+// a violated constraint p depends on the active ones with no inequality to drop, the
+// combination y (1 for p, -r for the active set) gives sum_i y_i n_i = w and
+// sum_i y_i b_i = beta, and every feasible x of the box would have w'x >= beta; the node
+// is kInfeasible when max over the box of w'x falls short of beta by a margin (computed
+// from the data, not from the factors). Otherwise kFailed, for a sound solver to decide
+// (the factory hands it to the interior point).
 #include <Eigen/Core>
 #include <vector>
 
@@ -32,7 +37,11 @@ namespace mfp {
 
 struct DualActiveSetOptions {
   // Hessian regularisation scale (objective units per unit of a variable's squared range).
-  double regularisation = 1e-7;
+  // Larger is better conditioned factors and fewer steps per node (1e-7 -> 1e-5: 75 -> 28
+  // steps on hexapod 24, docs/measurements.md, issue 26, nodeqp3), but the floors lose up
+  // to 0.5 * regularisation per variable (3e-3 on 600 variables, against objectives of
+  // 1e3-2e4 and a gap of 1e-4).
+  double regularisation = 1e-5;
   // A constraint violated by more than this (relative to 1 + |its bound|, rows scaled to
   // unit norm) is not met.
   double feasibility_tolerance = 1e-9;
@@ -58,8 +67,9 @@ class DualActiveSetQp {
   explicit DualActiveSetQp(const DualActiveSetOptions& options = {}) : options_(options) {}
 
   // kSolved with the reduced costs (bound multipliers) and cost_floor, kCutoff once the
-  // floor reaches cutoff, kIterationLimit on the deadline or the step cap, kFailed on a
-  // problem it does not take or a node it finds infeasible.
+  // floor reaches cutoff, kIterationLimit on the deadline or the step cap, kInfeasible
+  // with a checked certificate (above), kFailed on a problem it does not take or a node
+  // it finds infeasible without one.
   RelaxationResult Solve(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                          double cutoff, const Deadline& deadline);
   // The same from the active set `start` (a parent node's: its result's warm_token, or
@@ -104,6 +114,7 @@ class DualActiveSetQp {
   Step Iterate(double cutoff, const Deadline& deadline);
   int MostViolated() const;
   Step AddConstraint(int p, const Deadline& deadline);
+  bool CertifiesInfeasible(int p, const Eigen::VectorXd& r) const;
   void AppendToFactors(int p, Eigen::VectorXd d);
   void DropFromFactors(int position);
   void SolveForActiveSet();

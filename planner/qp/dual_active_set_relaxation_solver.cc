@@ -29,7 +29,7 @@ class DualActiveSetRelaxationSolver final : public RelaxationSolver {
     if (request.warm_token && has_children) {
       RelaxationResult dual = qp_.SolveFrom(problem, lower, upper, request.cutoff, request.deadline, *request.warm_token);
       if (dual.status == RelaxationStatus::kSolved || dual.status == RelaxationStatus::kCutoff ||
-          request.deadline.Expired()) {
+          dual.status == RelaxationStatus::kInfeasible || request.deadline.Expired()) {
         return dual;
       }
       dual_steps = dual.iterations;

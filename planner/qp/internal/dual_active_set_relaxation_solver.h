@@ -5,7 +5,7 @@
 // root and each relax-and-fix stage's first node (their answers' active sets, read by
 // complementarity, become their children's tokens: no cold dual solves), the QPs whose
 // integers are all fixed (the heuristics' roundings), and any node the dual method does
-// not finish (it never reports infeasibility itself). Each solver object keeps its own
+// not finish (it reports infeasibility only with a certificate checked in the data). Each solver object keeps its own
 // factors: each branch-and-bound worker rebuilds from the states it solved last.
 #include <memory>
 
