@@ -249,6 +249,19 @@ void AddSearchKeys(Table* t) {
   t->push_back(Opt("search.rins_max_nodes", in(&B::rins_max_nodes), 1, 10000000,
                    "RINS: nodes each of its sub-searches explores at most")
                    .Advanced());
+  t->push_back(Opt("search.long_search_only", in(&B::long_search_only), 0, kAllLongSearchLevers,
+                   "levers that run only while the search is long (long_search_min_nodes, long_search_nodes_left), a "
+                   "sum of 1 (group probing), 2 (RINS), 4 (root cut loop: the search starts without cuts and restarts "
+                   "with them once long); 0: each lever runs whenever it is on")
+                   .Advanced());
+  t->push_back(Opt("search.long_search_min_nodes", in(&B::long_search_min_nodes), 0, 100000000,
+                   "a search is long once it has processed at least this many nodes and its time left holds "
+                   "long_search_nodes_left more nodes at its mean time per node")
+                   .Advanced());
+  t->push_back(Opt("search.long_search_nodes_left", in(&B::long_search_nodes_left), 0, 1e9,
+                   "a search is long while its time left (to its deadline and its stall limit) would hold at least "
+                   "this many more nodes at its mean time per node so far (with long_search_min_nodes)")
+                   .Advanced());
   t->push_back(Opt("search.reduced_cost_fixing", in(&B::reduced_cost_fixing),
                    "rule out integer values that the relaxation proves cannot beat the incumbent")
                    .Alias("reduced_cost_fixing").Advanced());

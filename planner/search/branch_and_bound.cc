@@ -73,6 +73,9 @@ class Search {
   // The plan of an earlier pass, held without a progress report (it was reported then,
   // and this search has no bound yet).
   void Seed(const Eigen::VectorXd& x) { state_.OfferIncumbent(x, /*report=*/false); }
+  // The search ends (as at a node limit) after its root once it is long
+  // (SearchState::IsLong): the root cut loop kept to long searches runs then.
+  void StopOnceLong() { stop_once_long_ = true; }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -83,7 +86,7 @@ class Search {
         hit_time_limit_ = true;
         break;
       }
-      if (result.nodes >= opt_.max_nodes) {
+      if (result.nodes >= opt_.max_nodes || (stop_once_long_ && root_done_ && state_.IsLong())) {
         hit_node_limit_ = true;
         break;
       }
@@ -215,7 +218,7 @@ class Search {
     }
     if (is_root) {
       ProbeRootAfterHeuristics(node, &e);
-      if (opt_.rins_frequency > 0) Rins(rel.x);
+      if (opt_.rins_frequency > 0 && state_.LeverPays(kLongSearchRins)) Rins(rel.x);
     }
     std::vector<BoundChange> fixings;
     if (opt_.reduced_cost_fixing && state_.HasIncumbent()) FixByReducedCosts(rel, &state_, &e.lower, &e.upper, &fixings);
@@ -236,7 +239,10 @@ class Search {
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
       TryRounding(&state_, branching_, rounding_, rel.x);
     }
-    if (!is_root && opt_.rins_frequency > 0 && result.nodes - last_rins_node_ >= opt_.rins_frequency) Rins(rel.x);
+    if (!is_root && opt_.rins_frequency > 0 && result.nodes - last_rins_node_ >= opt_.rins_frequency &&
+        state_.LeverPays(kLongSearchRins)) {
+      Rins(rel.x);
+    }
     if (e.probed) {
       ++result.probed_nodes;
       AppendProbedBounds(node, e.lower, e.upper, &fixings);
@@ -279,7 +285,8 @@ class Search {
   }
 
   bool ProbingDue(int depth) const {
-    return prober_ && depth >= 1 && (depth - 1) % std::max(1, opt_.group_probing_interval) == 0;
+    return prober_ && depth >= 1 && (depth - 1) % std::max(1, opt_.group_probing_interval) == 0 &&
+           state_.LeverPays(kLongSearchProbing);
   }
 
   // Probes the box lower/upper of `node` under the work cap and the deadline in force;
@@ -299,7 +306,7 @@ class Search {
   // probing finds empty (only possible within tolerances, as the search may hold a plan)
   // is left as it was.
   void ProbeRootAfterHeuristics(const SearchNode& root, NodeEvaluation* e) {
-    if (!prober_ || state_.Active().Expired()) return;
+    if (!prober_ || state_.Active().Expired() || !state_.LeverPays(kLongSearchProbing)) return;
     Eigen::VectorXd lower = e->lower, upper = e->upper;
     if (Probe(root, &lower, &upper)) return;
     e->lower = std::move(lower);
@@ -410,6 +417,7 @@ class Search {
   std::unique_ptr<GroupProber> prober_;  // with options.group_probing
   int last_rins_node_ = 0;  // the node count at the last RINS
   bool root_done_ = false;
+  bool stop_once_long_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
   bool root_infeasible_ = false;
@@ -456,15 +464,23 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   const Deadline deadline = options.deadline.Within(options.time_limit_s);  // the whole search's
-  BranchAndBoundOptions root_only = options;
-  root_only.max_nodes = 1;
-  root_only.group_probing = false;  // its children are not searched: the second pass probes
-  root_only.rins_frequency = 0;
-  BranchAndBoundResult root = Search(problem, solvers, root_only, extra_rounding).Run();
+  // The first pass: the root alone, or with the loop kept to long searches, the search
+  // until it is long (a search that ends sooner never runs the loop).
+  const bool until_long = (options.long_search_only & kLongSearchRootCuts) != 0;
+  BranchAndBoundOptions first_pass = options;
+  first_pass.root_cut_rounds = 0;
+  if (!until_long) {
+    first_pass.max_nodes = 1;
+    first_pass.group_probing = false;  // its children are not searched: the second pass probes
+    first_pass.rins_frequency = 0;
+  }
+  Search first(problem, solvers, first_pass, extra_rounding);
+  if (until_long) first.StopOnceLong();
+  BranchAndBoundResult root = first.Run();
   root.solve_time_s = elapsed();
   const bool settled = root.status == SolveStatus::kOptimal || root.status == SolveStatus::kInfeasible ||
                        root.status == SolveStatus::kInternalError;
-  if (settled || options.max_nodes <= 1) return root;
+  if (settled || root.nodes >= options.max_nodes) return root;
   if (deadline.Expired()) {
     if (root.status == SolveStatus::kFeasible) root.status = SolveStatus::kTimeLimit;
     return root;

@@ -42,6 +42,15 @@ enum RootCutFamily : int {
 };
 constexpr int kAllRootCutFamilies = kMirCuts | kGroupBoundCuts | kImpliedBoundCuts | kCliqueCuts;
 
+// The levers BranchAndBoundOptions::long_search_only may keep to long searches.
+enum LongSearchLever : int {
+  kLongSearchProbing = 1,   // group_probing: a node (or the root) is probed only while the search is long
+  kLongSearchRins = 2,      // rins_frequency: a RINS run is started only while the search is long
+  kLongSearchRootCuts = 4,  // root_cut_rounds: the search runs without cuts until it is long, then the
+                            // cut loop runs at its root and the search starts again with the cuts
+};
+constexpr int kAllLongSearchLevers = kLongSearchProbing | kLongSearchRins | kLongSearchRootCuts;
+
 struct BranchAndBoundOptions {
   double time_limit_s = 10.0;
   // The caller's deadline (a whole plan's limit, a stop flag): the search ends at the
@@ -112,6 +121,17 @@ struct BranchAndBoundOptions {
   int rins_max_nodes = 200;
   double rins_agreement = 0.1;
   double rins_min_fixed_fraction = 0.5;
+  // Where the levers pay: a search is *long* at a moment when it has processed at least
+  // long_search_min_nodes nodes and the time it has left (to the deadline in force, and
+  // to its stall limit once it holds a plan) would hold at least long_search_nodes_left
+  // more nodes at its mean time per node so far (its elapsed time over its nodes, the
+  // root's heuristics included). A search whose time share holds only a few dozen nodes
+  // (a receding window) is never long: the levers' cost per node would not be repaid.
+  // The levers named in long_search_only (a sum of LongSearchLever values) run only while
+  // the search is long; the others whenever they are on.
+  int long_search_min_nodes = 0;
+  double long_search_nodes_left = 200.0;
+  int long_search_only = 0;
   // Root cut loop (root_cuts.h): rounds of cut separation at the root (0: off). The root
   // is solved and its roundings and heuristics run first, on the problem as given, so the
   // loop never delays the first plan; then the loop (with reduced-cost fixing against that

@@ -24,6 +24,18 @@ bool SearchState::Stalled() const {
              opt_.stall_time_fraction * opt_.time_limit_s;
 }
 
+bool SearchState::IsLong() const {
+  const int nodes = result_.nodes;
+  if (nodes < opt_.long_search_min_nodes) return false;
+  double left_s = Active().RemainingSeconds();
+  if (opt_.stall_time_fraction > 0.0 && HasIncumbent()) {
+    const double since_improvement = std::chrono::duration<double>(Clock::now() - last_improvement_).count();
+    left_s = std::min(left_s, opt_.stall_time_fraction * opt_.time_limit_s - since_improvement);
+  }
+  const double per_node_s = Elapsed() / std::max(1, nodes);
+  return left_s >= opt_.long_search_nodes_left * per_node_s;
+}
+
 double SearchState::GapTolerance() const {
   return std::max(opt_.absolute_gap, opt_.relative_gap * std::max(1.0, std::abs(result_.objective)));
 }

@@ -38,6 +38,11 @@ class SearchState {
   const Deadline& Active() const { return !HasIncumbent() ? hard_deadline_ : deadline_; }
   // BranchAndBoundOptions::stall_time_fraction.
   bool Stalled() const;
+  // BranchAndBoundOptions::long_search_min_nodes and long_search_nodes_left.
+  bool IsLong() const;
+  // True when `lever` (a LongSearchLever) may run now: it is not kept to long searches,
+  // or the search is long.
+  bool LeverPays(int lever) const { return (opt_.long_search_only & lever) == 0 || IsLong(); }
   double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   bool HasIncumbent() const { return result_.x.size() > 0; }
