@@ -66,10 +66,9 @@ void SortRuns(Interval* b, Interval* e) {
   }
 }
 
-// Leaves cut into per-column intervals, sorted and merged (touching runs join).
-Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+// Footprints cut into per-column intervals, each column's in the order of prints.
+Columns UnsortedColumnsOf(const std::vector<Footprint>& prints, const HeightMap& hm) {
   const int cells = hm.rows * hm.cols;
-  const std::vector<Footprint> prints = FootprintsOf(leaves, hm);
   // Per column its run count at offset[c + 1], then the running sum: the column's start.
   Columns cols;
   cols.offset.assign(static_cast<size_t>(cells) + 1, 0);
@@ -92,6 +91,13 @@ Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) 
   }
   std::copy(cols.offset.begin() + 1, cols.offset.end(), cols.offset.begin());
   cols.offset[cells] = cols.runs.size();
+  return cols;
+}
+
+// Leaves cut into per-column intervals, sorted and merged (touching runs join).
+Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+  const int cells = hm.rows * hm.cols;
+  Columns cols = UnsortedColumnsOf(FootprintsOf(leaves, hm), hm);
   // Sort and merge each column in place, compacting as it goes (a column's new start is
   // never after its old one).
   size_t out = 0;
@@ -111,6 +117,32 @@ Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) 
   cols.offset[cells] = out;
   cols.runs.resize(out);
   return cols;
+}
+
+// The voxel a surface at height `level` [m] has on top (SurfaceLayers::unseen's rounding).
+long long TopVoxelOf(float level, double res) { return RoundToLongLong(level / res) - 1; }
+
+// Known free space as far as the extraction asks it: ColumnHas of one voxel in a column at
+// a surface candidate's top t (the voxel above the run) or at TopVoxelOf its height or the
+// voxel under that. Layer heights are candidate heights, so every voxel asked lies between
+// those of the lowest and the highest occupied run top; free leaves wholly outside are
+// left out. Runs are neither sorted nor merged (ColumnHas needs neither).
+Columns FreeColumnsOf(const std::vector<OccupiedLeaf>& free_leaves, const Columns& occ, const HeightMap& hm) {
+  long long top_lo = std::numeric_limits<long long>::max(), top_hi = std::numeric_limits<long long>::min();
+  for (const Interval& run : occ.runs) {
+    top_lo = std::min(top_lo, run.hi);
+    top_hi = std::max(top_hi, run.hi);
+  }
+  if (occ.runs.empty()) return UnsortedColumnsOf({}, hm);  // no surface: nothing is asked
+  std::vector<Footprint> prints = FootprintsOf(free_leaves, hm);
+  // TopVoxelOf(float(t * res)) is monotone in t, so its extremes are those of the extreme tops.
+  const double res = hm.resolution_m;
+  const long long z_lo = std::min(top_lo, TopVoxelOf(static_cast<float>(top_lo * res), res) - 1);
+  const long long z_hi = std::max(top_hi, TopVoxelOf(static_cast<float>(top_hi * res), res));
+  prints.erase(std::remove_if(prints.begin(), prints.end(),
+                              [&](const Footprint& f) { return f.z0 > z_hi || f.z0 + f.n <= z_lo; }),
+               prints.end());
+  return UnsortedColumnsOf(prints, hm);
 }
 
 bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
@@ -376,7 +408,7 @@ long long RoomVoxels(double clearance_m, double res) {
 
 // SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
 uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
-  const long long top_voxel = RoundToLongLong(level / res) - 1;
+  const long long top_voxel = TopVoxelOf(level, res);
   if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
   // A ray through the voxel under the floor's level went into a hole: a drop.
   if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
@@ -553,7 +585,7 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   }
   const Columns occ = ColumnsOf(map.leaves, grid);
   const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
-  const Columns free = know_free ? ColumnsOf(map.free_leaves, grid) : Columns{};
+  const Columns free = know_free ? FreeColumnsOf(map.free_leaves, occ, grid) : Columns{};
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
                                            ? IsolatedVoxels(grid, occ, &out.isolated_voxels)
                                            : std::vector<uint8_t>(occ.runs.size(), 0);
