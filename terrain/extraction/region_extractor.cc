@@ -66,6 +66,7 @@ SurfaceLayers LayersOf(const OccupancyMap& map, const RegionExtractorOptions& op
   layer_options.require_seen_from_above = options.require_seen_from_above;
   layer_options.enclosed_unseen_radius_cells = options.enclosed_unseen_radius_cells;
   layer_options.max_cells = options.max_height_map_cells;
+  layer_options.threads = options.threads;
   // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
   layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
                                   ? res_in * (options.grow_tolerance_voxels + std::tan(options.max_slope_rad)) * (1.0 + 1e-3)
