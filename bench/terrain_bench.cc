@@ -100,6 +100,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1e4));
   app.add_option("--target-coverage", options.target_coverage, "a patch's cover stops at this share")
       ->check(CLI::Range(0.01, 1.0));
+  app.add_option("--threads", options.threads, "threads of the fit, segmentation and decomposition (1: one)")
+      ->check(CLI::Range(1, 64));
   app.add_option("--convex-cover", options.convex_cover,
                  "cover patches by convex pieces along their outline (1) or by rectangles (0)");
   app.add_option("--max-region-vertices", options.max_region_vertices, "vertices of a convex piece at most")

@@ -57,9 +57,10 @@ TEST(HeightMapTest, LocalFitRecoversATiltAndIgnoresAStepBeside) {
     }
   }
   const SurfaceAnalysis s = AnalyzeSurface(hm, 1, 0.05, 0.5);
-  const Eigen::Vector3f n = s.normal_world[hm.Index(2, 2)];
+  const Eigen::Vector3f n = s.NormalAt(hm.Index(2, 2));
   EXPECT_NEAR(std::atan2(-n.x(), n.z()), std::atan(0.05), 1e-4);
-  EXPECT_NEAR(s.roughness_m[hm.Index(2, 2)], 0.0, 1e-6);
+  EXPECT_NEAR(s.RoughnessAt(hm.Index(2, 2)), 0.0, 1e-6);
+  EXPECT_EQ(s.cells.size(), hm.height_m.size());  // every cell has a surface
 }
 
 TEST(RectangleCoverTest, LargestRectangleOfAnLShape) {

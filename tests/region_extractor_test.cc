@@ -8,9 +8,12 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <vector>
 
 #include "base/check.h"
 #include "terrain/extraction/cell_fate.h"
+#include "terrain/extraction/internal/parallel_work.h"
 #include "terrain/extraction/voxelize.h"
 #include "terrain/quality/terrain_catalogue.h"
 #include "terrain/quality/terrain_quality.h"
@@ -201,6 +204,60 @@ TEST(RegionExtractorTest, EmptyMapHasNoRegionsAndSaysSo) {
   EXPECT_NE(result.message.find("no occupied voxels"), std::string::npos);
 }
 
+// The fit, the segmentation and the decomposition run on options.threads threads; the
+// regions, their order, the statistics and every cell's fate are those of one thread, with
+// max_regions cutting the patches short too.
+void ExpectSameOnThreads(const TerrainDescription& terrain, int max_regions) {
+  RegionExtractorOptions options;
+  options.foot_radius_m = 0.01;
+  options.max_regions = max_regions;
+  options.record_cell_fates = true;
+  options.threads = 1;
+  const RegionExtractionResult one = ExtractRegionsFromTerrain(terrain, options);
+  ASSERT_FALSE(one.regions.empty());
+  for (int threads : {2, 3}) {
+    options.threads = threads;
+    const RegionExtractionResult many = ExtractRegionsFromTerrain(terrain, options);
+    ASSERT_EQ(many.regions.size(), one.regions.size()) << threads << " threads";
+    for (size_t i = 0; i < one.regions.size(); ++i) {
+      EXPECT_EQ(many.regions[i].vertices_world_m, one.regions[i].vertices_world_m) << "region " << i;
+    }
+    EXPECT_EQ(many.region_layer, one.region_layer);
+    EXPECT_EQ(many.cell_fates, one.cell_fates);
+    EXPECT_EQ(many.message, one.message);
+    EXPECT_EQ(many.stats.patches, one.stats.patches);
+    EXPECT_EQ(many.stats.patches_too_small, one.stats.patches_too_small);
+    EXPECT_EQ(many.stats.patches_too_steep, one.stats.patches_too_steep);
+  }
+}
+
+TEST(RegionExtractorTest, RegionsDoNotDependOnTheThreads) {
+  ExpectSameOnThreads(SteppingStonesTerrain(), 4096);
+  ExpectSameOnThreads(SteppingStonesTerrain(), 5);  // the cap inside the patch list
+  ExpectSameOnThreads(TableTerrain(), 4096);        // two layers
+  ExpectSameOnThreads(TiltTerrain(Deg(15), Deg(30)), 3);
+}
+
+TEST(ParallelForTest, RunsEveryItemOnceAndRethrowsTheFirstError) {
+  for (int threads : {1, 2, 5}) {
+    std::vector<std::atomic<int>> runs(100);
+    ParallelFor(100, threads, [&](int i) { ++runs[static_cast<size_t>(i)]; });
+    for (const std::atomic<int>& r : runs) EXPECT_EQ(r.load(), 1) << threads << " threads";
+  }
+  for (int threads : {1, 2}) {
+    std::atomic<int> started{0};
+    EXPECT_THROW(ParallelFor(1000, threads,
+                             [&](int i) {
+                               ++started;
+                               if (i == 3) throw std::runtime_error("item 3");
+                             }),
+                 std::runtime_error);
+    if (threads == 1) {
+      EXPECT_EQ(started.load(), 4);  // no item starts after an error
+    }
+  }
+}
+
 TEST(RegionExtractorTest, RejectsOptionsOutOfRange) {
   RegionExtractorOptions options;
   options.foot_radius_m = -0.1;
@@ -212,6 +269,9 @@ TEST(RegionExtractorTest, RejectsOptionsOutOfRange) {
   }
   options = RegionExtractorOptions();
   options.max_slope_rad = 2.0;
+  EXPECT_THROW(ExtractRegions(VoxelizeTerrain(FlatTerrain()), options), InputError);
+  options = RegionExtractorOptions();
+  options.threads = 0;
   EXPECT_THROW(ExtractRegions(VoxelizeTerrain(FlatTerrain()), options), InputError);
 }
 

@@ -1,6 +1,7 @@
 #include "terrain/extraction/height_map.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -75,6 +76,22 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
   return hm;
 }
 
+int SurfaceAnalysis::Find(int cell) const {
+  const auto it = std::lower_bound(cells.begin(), cells.end(), cell);
+  return it != cells.end() && *it == cell ? static_cast<int>(it - cells.begin()) : -1;
+}
+
+Eigen::Vector3f SurfaceAnalysis::NormalAt(int cell) const {
+  const int entry = Find(cell);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  return entry < 0 ? Eigen::Vector3f(nan, nan, nan) : normal_world[static_cast<size_t>(entry)];
+}
+
+float SurfaceAnalysis::RoughnessAt(int cell) const {
+  const int entry = Find(cell);
+  return entry < 0 ? std::numeric_limits<float>::infinity() : roughness_m[static_cast<size_t>(entry)];
+}
+
 double FitWork(size_t surface_cells, int window_half_cells) {
   const double side = 2.0 * window_half_cells + 1.0;
   return static_cast<double>(surface_cells) * side * side;
@@ -83,11 +100,13 @@ double FitWork(size_t surface_cells, int window_half_cells) {
 SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, double step_gate_m,
                                double max_slope_rad, const Deadline& deadline) {
   MFP_CHECK(window_half_cells >= 1);
-  const size_t n = hm.height_m.size();
   SurfaceAnalysis out;
+  for (size_t i = 0; i < hm.height_m.size(); ++i) {
+    if (!std::isnan(hm.height_m[i])) out.cells.push_back(static_cast<int>(i));
+  }
   const float nan = std::numeric_limits<float>::quiet_NaN();
-  out.normal_world.assign(n, Eigen::Vector3f(nan, nan, nan));
-  out.roughness_m.assign(n, std::numeric_limits<float>::infinity());
+  out.normal_world.assign(out.cells.size(), Eigen::Vector3f(nan, nan, nan));
+  out.roughness_m.assign(out.cells.size(), std::numeric_limits<float>::infinity());
   const double res = hm.resolution_m;
   const double tan_slope = std::tan(max_slope_rad);
   const int w = window_half_cells;
@@ -100,50 +119,51 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
       gate[static_cast<size_t>((dr + w) * side + (dc + w))] = step_gate_m + dist_m * tan_slope;
     }
   }
-  for (int r = 0; r < hm.rows; ++r) {
-    if (deadline.Expired()) {
-      out.stopped = true;
-      break;
-    }
-    for (int c = 0; c < hm.cols; ++c) {
-      const float hc = hm.height_m[static_cast<size_t>(hm.Index(r, c))];
-      if (std::isnan(hc)) continue;
-      // Least squares in coordinates relative to the cell (x, y in cells, z in m): the
-      // rows (dc, dr, 1) of A summed into A^T A (small integers, exact in any order) and
-      // A^T z.
-      long long sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, count = 0;
-      Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
-      double zz = 0.0;
-      for (int dr = -w; dr <= w; ++dr) {
-        if (r + dr < 0 || r + dr >= hm.rows) continue;
-        for (int dc = -w; dc <= w; ++dc) {
-          if (c + dc < 0 || c + dc >= hm.cols) continue;
-          const float h = hm.height_m[static_cast<size_t>(hm.Index(r + dr, c + dc))];
-          if (std::isnan(h)) continue;
-          const double dz = h - hc;
-          if (std::abs(dz) > gate[static_cast<size_t>((dr + w) * side + (dc + w))]) continue;
-          sxx += dc * dc;
-          sxy += dc * dr;
-          syy += dr * dr;
-          sx += dc;
-          sy += dr;
-          Atz += Eigen::Vector3d(dc, dr, 1.0) * dz;
-          zz += dz * dz;
-          ++count;
-        }
+  int row_checked = -1;  // the deadline is checked once per row holding a surface cell
+  for (size_t entry = 0; entry < out.cells.size(); ++entry) {
+    const int r = out.cells[entry] / hm.cols, c = out.cells[entry] % hm.cols;
+    if (r != row_checked) {
+      row_checked = r;
+      if (deadline.Expired()) {
+        out.stopped = true;
+        break;
       }
-      if (count < 3) continue;
-      Eigen::Matrix3d AtA;
-      AtA << sxx, sxy, sx, sxy, syy, sy, sx, sy, count;
-      Eigen::LDLT<Eigen::Matrix3d> ldlt(AtA);
-      if (ldlt.info() != Eigen::Success || std::abs(AtA.determinant()) < 1e-9) continue;
-      const Eigen::Vector3d p = ldlt.solve(Atz);
-      // Sum of squared residuals = z.z - p.(A^T z) for the least-squares solution.
-      const double sse = std::max(0.0, zz - p.dot(Atz));
-      const size_t i = static_cast<size_t>(hm.Index(r, c));
-      out.normal_world[i] = Eigen::Vector3d(-p.x() / res, -p.y() / res, 1.0).normalized().cast<float>();
-      out.roughness_m[i] = static_cast<float>(std::sqrt(sse / count));
     }
+    const float hc = hm.height_m[static_cast<size_t>(out.cells[entry])];
+    // Least squares in coordinates relative to the cell (x, y in cells, z in m): the
+    // rows (dc, dr, 1) of A summed into A^T A (small integers, exact in any order) and
+    // A^T z.
+    long long sxx = 0, sxy = 0, syy = 0, sx = 0, sy = 0, count = 0;
+    Eigen::Vector3d Atz = Eigen::Vector3d::Zero();
+    double zz = 0.0;
+    for (int dr = -w; dr <= w; ++dr) {
+      if (r + dr < 0 || r + dr >= hm.rows) continue;
+      for (int dc = -w; dc <= w; ++dc) {
+        if (c + dc < 0 || c + dc >= hm.cols) continue;
+        const float h = hm.height_m[static_cast<size_t>(hm.Index(r + dr, c + dc))];
+        if (std::isnan(h)) continue;
+        const double dz = h - hc;
+        if (std::abs(dz) > gate[static_cast<size_t>((dr + w) * side + (dc + w))]) continue;
+        sxx += dc * dc;
+        sxy += dc * dr;
+        syy += dr * dr;
+        sx += dc;
+        sy += dr;
+        Atz += Eigen::Vector3d(dc, dr, 1.0) * dz;
+        zz += dz * dz;
+        ++count;
+      }
+    }
+    if (count < 3) continue;
+    Eigen::Matrix3d AtA;
+    AtA << sxx, sxy, sx, sxy, syy, sy, sx, sy, count;
+    Eigen::LDLT<Eigen::Matrix3d> ldlt(AtA);
+    if (ldlt.info() != Eigen::Success || std::abs(AtA.determinant()) < 1e-9) continue;
+    const Eigen::Vector3d p = ldlt.solve(Atz);
+    // Sum of squared residuals = z.z - p.(A^T z) for the least-squares solution.
+    const double sse = std::max(0.0, zz - p.dot(Atz));
+    out.normal_world[entry] = Eigen::Vector3d(-p.x() / res, -p.y() / res, 1.0).normalized().cast<float>();
+    out.roughness_m[entry] = static_cast<float>(std::sqrt(sse / count));
   }
   return out;
 }

@@ -34,10 +34,18 @@ constexpr size_t kDefaultMaxHeightMapCells = size_t{4096} * 4096;
 HeightMap BuildHeightMap(const OccupancyMap& map,
                          size_t max_cells = kDefaultMaxHeightMapCells);
 
+// The local fit of the surface cells only (a layer of a large grid holds few of them).
 struct SurfaceAnalysis {
-  std::vector<Eigen::Vector3f> normal_world;  // per cell, upward unit normal; NaN if unknown
-  std::vector<float> roughness_m;             // per cell, RMS residual of the fit; inf if unknown
+  std::vector<int> cells;                     // the surface cells (height not NaN), ascending
+  std::vector<Eigen::Vector3f> normal_world;  // per entry of cells, upward unit normal; NaN if unknown
+  std::vector<float> roughness_m;             // per entry of cells, RMS residual of the fit; inf if unknown
   bool stopped = false;  // the deadline ended the analysis; cells not reached are unknown
+
+  // The entry of `cell` in cells, or -1 when it has no surface.
+  int Find(int cell) const;
+  // The cell's normal (NaN if unknown or no surface) and roughness (inf likewise).
+  Eigen::Vector3f NormalAt(int cell) const;
+  float RoughnessAt(int cell) const;
 };
 
 // Fits z = a x + b y + c around each cell over a (2 w + 1)^2 window, w = window_half_cells.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace mfp {
 namespace {
@@ -23,16 +24,31 @@ float NeighbourhoodMedian(const HeightMap& hm, int cell) {
   return seen[n / 2];
 }
 
-// Per cell: +1 or -1 when one voxel (up to the tolerance) above or below its
-// neighbourhood's median, else 0.
-std::vector<int8_t> OffSides(const HeightMap& hm, const std::vector<float>& median, double tolerance_m) {
-  std::vector<int8_t> side(hm.height_m.size(), 0);
-  for (size_t cell = 0; cell < side.size(); ++cell) {
-    const double d = static_cast<double>(hm.height_m[cell]) - median[cell];
+// A cell one voxel (up to the tolerance) above (side +1) or below (-1) its neighbourhood's
+// median.
+struct OffCell {
+  int cell;
+  int8_t side;
+  float median;  // [m]
+};
+
+// The surface cells off their neighbourhood, ascending.
+std::vector<OffCell> OffCells(const HeightMap& hm, double tolerance_m) {
+  std::vector<OffCell> off;
+  for (int cell = 0; cell < static_cast<int>(hm.height_m.size()); ++cell) {
+    if (std::isnan(hm.height_m[static_cast<size_t>(cell)])) continue;
+    const float median = NeighbourhoodMedian(hm, cell);
+    const double d = static_cast<double>(hm.height_m[static_cast<size_t>(cell)]) - median;
     if (std::isnan(d) || std::abs(d) < 0.5 * hm.resolution_m || std::abs(d) > tolerance_m) continue;
-    side[cell] = d > 0.0 ? 1 : -1;
+    off.push_back({cell, static_cast<int8_t>(d > 0.0 ? 1 : -1), median});
   }
-  return side;
+  return off;
+}
+
+// The entry of `cell` in off, or -1.
+int FindOff(const std::vector<OffCell>& off, int cell) {
+  const auto it = std::lower_bound(off.begin(), off.end(), cell, [](const OffCell& o, int c) { return o.cell < c; });
+  return it != off.end() && it->cell == cell ? static_cast<int>(it - off.begin()) : -1;
 }
 
 // Whether a group of cells off their neighbourhood on `side` stands alone: every seen cell
@@ -65,35 +81,38 @@ bool Isolated(const HeightMap& hm, const std::vector<int>& group, int side) {
 
 NoiseLevels NoiseFreeLevels(const HeightMap& hm, double tolerance_m, int max_cells) {
   NoiseLevels out;
-  out.levels = hm;
-  out.denoised.assign(hm.height_m.size(), 0);
-  std::vector<float> median(hm.height_m.size(), NAN);
-  for (int cell = 0; cell < static_cast<int>(median.size()); ++cell) {
-    if (!std::isnan(hm.height_m[static_cast<size_t>(cell)])) median[static_cast<size_t>(cell)] = NeighbourhoodMedian(hm, cell);
-  }
-  const std::vector<int8_t> side = OffSides(hm, median, tolerance_m);
-  std::vector<uint8_t> visited(side.size(), 0);
-  std::vector<int> group;
-  for (int start = 0; start < static_cast<int>(side.size()); ++start) {
-    if (side[static_cast<size_t>(start)] == 0 || visited[static_cast<size_t>(start)]) continue;
-    group.assign(1, start);
-    visited[static_cast<size_t>(start)] = 1;
+  const std::vector<OffCell> off = OffCells(hm, tolerance_m);
+  // 8-connected groups of off cells on one side, each from its lowest cell, in order.
+  std::vector<uint8_t> visited(off.size(), 0);
+  std::vector<int> group, entries;
+  for (size_t start = 0; start < off.size(); ++start) {
+    if (visited[start]) continue;
+    const int8_t side = off[start].side;
+    group.assign(1, off[start].cell);
+    entries.assign(1, static_cast<int>(start));
+    visited[start] = 1;
     for (size_t next = 0; next < group.size(); ++next) {
       const int row = group[next] / hm.cols, col = group[next] % hm.cols;
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if (!hm.Inside(row + dr, col + dc)) continue;
-          const int nb = hm.Index(row + dr, col + dc);
-          if (visited[static_cast<size_t>(nb)] || side[static_cast<size_t>(nb)] != side[static_cast<size_t>(start)]) continue;
-          visited[static_cast<size_t>(nb)] = 1;
-          group.push_back(nb);
+          const int e = FindOff(off, hm.Index(row + dr, col + dc));
+          if (e < 0 || visited[static_cast<size_t>(e)] || off[static_cast<size_t>(e)].side != side) continue;
+          visited[static_cast<size_t>(e)] = 1;
+          group.push_back(off[static_cast<size_t>(e)].cell);
+          entries.push_back(e);
         }
       }
     }
-    if (static_cast<int>(group.size()) > max_cells || !Isolated(hm, group, side[static_cast<size_t>(start)])) continue;
-    for (int cell : group) {
-      out.levels.height_m[static_cast<size_t>(cell)] = median[static_cast<size_t>(cell)];
-      out.denoised[static_cast<size_t>(cell)] = 1;
+    if (static_cast<int>(group.size()) > max_cells || !Isolated(hm, group, side)) continue;
+    if (out.denoised_cells == 0) {
+      out.levels = hm;
+      out.denoised.assign(hm.height_m.size(), 0);
+    }
+    for (int e : entries) {
+      const OffCell& o = off[static_cast<size_t>(e)];
+      out.levels.height_m[static_cast<size_t>(o.cell)] = o.median;
+      out.denoised[static_cast<size_t>(o.cell)] = 1;
       ++out.denoised_cells;
     }
   }

@@ -199,7 +199,7 @@ void RefitOnHeights(const HeightMap& raw, const NoiseLevels& noise, double max_r
 
 std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const SurfaceAnalysis& surface,
                                               const SegmentationOptions& options) {
-  MFP_CHECK(surface.roughness_m.size() == raw.height_m.size());
+  MFP_CHECK(surface.roughness_m.size() == surface.cells.size() && surface.normal_world.size() == surface.cells.size());
   // Grown on noise-free levels where the surface is noisy (noise_levels.h).
   const bool noise_levels = options.noise_patch_foot_radius_m > 0.0 && options.noise_max_cells > 0;
   const NoiseLevels noise =
@@ -213,18 +213,22 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const Surfac
   std::deque<int> queue;
   std::vector<int> members;
   std::vector<uint8_t> kind(hm.height_m.size(), kFree);
+  size_t entry = 0;  // surface.cells[entry] is the first surface cell at or after the seed
   for (int seed = 0; seed < static_cast<int>(label.size()); ++seed) {
     // A cell a patch's fit left out (a stone one voxel above the floor the patch grew
     // over) starts a patch of its own when smooth.
     if (label[seed] != kUnvisited && label[seed] != kDropped) continue;
     if (std::isnan(hm.height_m[seed])) continue;  // no surface: neither smooth nor a flat level
-    const bool smooth = surface.roughness_m[seed] <= options.max_seed_roughness_m;
+    while (entry < surface.cells.size() && surface.cells[entry] < seed) ++entry;
+    // The fit's cells are the raw map's surface cells, which the noise levels keep.
+    MFP_CHECK(entry < surface.cells.size() && surface.cells[entry] == seed);
+    const bool smooth = surface.roughness_m[entry] <= options.max_seed_roughness_m;
     if (!smooth && !(noise.denoised_cells > 0 && FlatLevel(hm, seed))) continue;
     const int patch_id = static_cast<int>(patches.size());
     const int seed_row = seed / hm.cols, seed_col = seed % hm.cols;
     const double z0 = hm.height_m[seed];
     // Start from the cell's local plane, in cells relative to the seed.
-    const Eigen::Vector3f& n0 = surface.normal_world[seed];
+    const Eigen::Vector3f& n0 = surface.normal_world[entry];
     Eigen::Vector3d abc(-n0.x() / n0.z() * res, -n0.y() / n0.z() * res, 0.0);
     if (!smooth) abc.setZero();  // a flat level: the local fit saw the noise
     PlaneSums sums;

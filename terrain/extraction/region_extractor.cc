@@ -1,11 +1,14 @@
 #include "terrain/extraction/region_extractor.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <sstream>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/parallel_work.h"
 #include "terrain/extraction/internal/patch_decomposition.h"
 #include "terrain/extraction/internal/plane_segmentation.h"
 #include "terrain/extraction/internal/surface_layers.h"
@@ -53,6 +56,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("regions_per_m2", o.regions_per_m2, 0.0, 1e4, false);
   RequireRange("max_regions", o.max_regions, 0, 100000, false);
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
+  RequireRange("threads", o.threads, 1, 64, false);
 }
 
 SurfaceLayers LayersOf(const OccupancyMap& map, const RegionExtractorOptions& options) {
@@ -62,6 +66,7 @@ SurfaceLayers LayersOf(const OccupancyMap& map, const RegionExtractorOptions& op
   layer_options.require_seen_from_above = options.require_seen_from_above;
   layer_options.enclosed_unseen_radius_cells = options.enclosed_unseen_radius_cells;
   layer_options.max_cells = options.max_height_map_cells;
+  layer_options.threads = options.threads;
   // Neighbours on one surface differ by a voxel riser plus the slope across a cell.
   layer_options.step_gate_m = std::isfinite(res_in) && res_in > 0
                                   ? res_in * (options.grow_tolerance_voxels + std::tan(options.max_slope_rad)) * (1.0 + 1e-3)
@@ -107,12 +112,17 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
     seg.noise_patch_foot_radius_m =
         options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * res;
   }
+  // Each layer's patches on its own (options.threads threads), then gathered in layer order.
+  std::vector<std::vector<PlanarPatch>> per_layer(layers.size());
+  ParallelFor(static_cast<int>(layers.size()), options.threads, [&](int l) {
+    SegmentationOptions own = seg;
+    own.unseen = static_cast<size_t>(l) < unseen.size() ? &unseen[static_cast<size_t>(l)] : nullptr;
+    per_layer[static_cast<size_t>(l)] =
+        SegmentPlanarPatches(layers[static_cast<size_t>(l)], surfaces[static_cast<size_t>(l)], own);
+  });
   std::vector<LayerPatch> patches;
   for (size_t l = 0; l < layers.size(); ++l) {
-    seg.unseen = l < unseen.size() ? &unseen[l] : nullptr;
-    for (PlanarPatch& p : SegmentPlanarPatches(layers[l], surfaces[l], seg)) {
-      patches.push_back({static_cast<int>(l), std::move(p)});
-    }
+    for (PlanarPatch& p : per_layer[l]) patches.push_back({static_cast<int>(l), std::move(p)});
   }
   std::stable_sort(patches.begin(), patches.end(), [](const LayerPatch& a, const LayerPatch& b) {
     return a.patch.cells.size() > b.patch.cells.size();
@@ -140,27 +150,93 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   return dec;
 }
 
+// What decomposing one planar patch gave, before it is added to the result.
+struct PatchOutcome {
+  enum Kind { kNotStarted, kSteep, kSmall, kDecomposed } kind = kNotStarted;
+  std::vector<Polygon2d> polygons;  // kDecomposed: the patch's regions in the plane's x-y
+  std::vector<CellFate> fates;      // kDecomposed with record_cell_fates: per patch cell
+  bool cut_short = false;           // kDecomposed: the deadline had expired at its end
+};
+
+// The patch's outcome; kNotStarted when the deadline has expired.
+PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<HeightMap>& layers,
+                          const std::vector<std::vector<uint8_t>>& solid_beside, double res,
+                          const RegionExtractorOptions& options, PatchDecompositionOptions dec) {
+  PatchOutcome out;
+  if (options.deadline.Expired()) return out;
+  const PlanarPatch& patch = layer_patch.patch;
+  const double slope = patch.SlopeRad();
+  if (slope > options.max_slope_rad) {
+    out.kind = PatchOutcome::kSteep;
+    return out;
+  }
+  const double cos_slope = std::cos(slope);
+  const double patch_area_m2 = patch.cells.size() * res * res / cos_slope;
+  if (patch_area_m2 < M_PI * options.foot_radius_m * options.foot_radius_m) {
+    out.kind = PatchOutcome::kSmall;
+    return out;
+  }
+  const double min_area_m2 = options.min_region_area_voxels > 0.0
+                                 ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
+                                 : options.min_region_area_m2;
+  // Region area on the plane = projected area / cos(slope).
+  dec.min_area_xy_m2 = min_area_m2 * cos_slope;
+  dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
+  dec.cover.max_rects = static_cast<int>(std::min(
+      1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
+  out.kind = PatchOutcome::kDecomposed;
+  out.polygons = DecomposePatch(layers[static_cast<size_t>(layer_patch.layer)], patch, dec,
+                                options.record_cell_fates ? &out.fates : nullptr);
+  // The cover checks the deadline before each piece: one that expired during this patch
+  // may have cut its cover short, which the result must say (not count as a small patch).
+  out.cut_short = options.deadline.Expired();
+  return out;
+}
+
+// The patches' outcomes in order, on options.threads threads. Patches after the one whose
+// regions pass max_regions are not needed (they stay kNotStarted or are ignored).
+std::vector<PatchOutcome> DecomposeAll(const std::vector<LayerPatch>& patches,
+                                       const std::vector<std::vector<uint8_t>>& solid_beside, double res,
+                                       const RegionExtractorOptions& options, const std::vector<HeightMap>& layers) {
+  const PatchDecompositionOptions dec = DecompositionOptions(res, options);
+  std::vector<PatchOutcome> outcomes(patches.size());
+  // The finished prefix: patches [0, prefix) done, holding prefix_regions polygons.
+  std::mutex progress;
+  std::vector<uint8_t> done(patches.size(), 0);
+  size_t prefix = 0, prefix_regions = 0;
+  std::atomic<bool> enough{false};
+  ParallelFor(static_cast<int>(patches.size()), options.threads, [&](int i) {
+    if (enough) return;
+    PatchOutcome outcome = DecomposeOne(patches[static_cast<size_t>(i)], layers, solid_beside, res, options, dec);
+    const std::lock_guard<std::mutex> lock(progress);
+    outcomes[static_cast<size_t>(i)] = std::move(outcome);
+    done[static_cast<size_t>(i)] = 1;
+    for (; prefix < done.size() && done[prefix]; ++prefix) prefix_regions += outcomes[prefix].polygons.size();
+    if (prefix_regions > static_cast<size_t>(options.max_regions)) enough = true;
+  });
+  return outcomes;
+}
+
 // Decomposes the patches, largest first, into result's regions until the deadline or
 // max_regions; counts the patches too steep or too small in result's stats.
 void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<std::vector<uint8_t>>& solid_beside,
                       double res, const RegionExtractorOptions& options, RegionExtractionResult* result) {
   RegionExtractionStats& stats = result->stats;
-  const double foot_area_m2 = M_PI * options.foot_radius_m * options.foot_radius_m;
-  PatchDecompositionOptions dec = DecompositionOptions(res, options);
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
-  const double min_area_m2 = options.min_region_area_voxels > 0.0
-                                 ? std::min(options.min_region_area_m2, options.min_region_area_voxels * res * res)
-                                 : options.min_region_area_m2;
   const bool record = options.record_cell_fates;
-  std::vector<CellFate> patch_fates;
   auto mark = [&](const LayerPatch& lp, CellFate fate) {
     if (!record) return;
     for (int cell : lp.patch.cells) result->cell_fates[static_cast<size_t>(lp.layer)][static_cast<size_t>(cell)] = fate;
   };
+  std::vector<PatchOutcome> outcomes = DecomposeAll(patches, solid_beside, res, options, result->layers);
   int patches_done = 0;
-  bool capped = false;  // max_regions reached: the patches left are not decomposed
-  for (const LayerPatch& layer_patch : patches) {
-    if (capped || options.deadline.Expired()) {
+  bool capped = false;   // max_regions reached: the patches left are not decomposed
+  bool expired = false;  // a patch found the deadline expired: it and those after are not decomposed
+  for (size_t k = 0; k < patches.size(); ++k) {
+    const LayerPatch& layer_patch = patches[k];
+    PatchOutcome& outcome = outcomes[k];
+    expired = expired || outcome.kind == PatchOutcome::kNotStarted;
+    if (capped || expired) {
       mark(layer_patch, CellFate::kNotDecomposed);
       if (capped || result->stopped) continue;
       result->stopped = true;
@@ -169,44 +245,26 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
       continue;
     }
     ++patches_done;
+    if (outcome.kind == PatchOutcome::kSteep || outcome.kind == PatchOutcome::kSmall) {
+      ++(outcome.kind == PatchOutcome::kSteep ? stats.patches_too_steep : stats.patches_too_small);
+      mark(layer_patch, outcome.kind == PatchOutcome::kSteep ? CellFate::kSteepPatch : CellFate::kSmallPatch);
+      continue;
+    }
     const PlanarPatch& patch = layer_patch.patch;
-    const double slope = patch.SlopeRad();
-    if (slope > options.max_slope_rad) {
-      ++stats.patches_too_steep;
-      mark(layer_patch, CellFate::kSteepPatch);
-      continue;
-    }
-    const double cos_slope = std::cos(slope);
-    const double patch_area_m2 = patch.cells.size() * res * res / cos_slope;
-    if (patch_area_m2 < foot_area_m2) {
-      ++stats.patches_too_small;
-      mark(layer_patch, CellFate::kSmallPatch);
-      continue;
-    }
-    // Region area on the plane = projected area / cos(slope).
-    dec.min_area_xy_m2 = min_area_m2 * cos_slope;
-    dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
-    dec.cover.max_rects = static_cast<int>(std::min(
-        1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
-    const std::vector<Polygon2d> polygons = DecomposePatch(result->layers[static_cast<size_t>(layer_patch.layer)], patch,
-                                                     dec, record ? &patch_fates : nullptr);
-    // The cover checks the deadline before each piece: one that expired during this patch
-    // may have cut its cover short, which the result must say (not count as a small patch).
-    const bool cut_short = options.deadline.Expired();
-    if (cut_short && !result->stopped) {
+    if (outcome.cut_short && !result->stopped) {
       result->stopped = true;
       result->message = "time limit reached during planar patch " + std::to_string(patches_done) + " of " +
                         std::to_string(patches.size()) + " (the largest first); its cover may be incomplete";
     }
-    if (polygons.empty() && !cut_short) ++stats.patches_too_small;
+    if (outcome.polygons.empty() && !outcome.cut_short) ++stats.patches_too_small;
     if (record) {
-      const CellFate empty_fate = cut_short ? CellFate::kNotDecomposed : CellFate::kSmallPatch;
+      const CellFate empty_fate = outcome.cut_short ? CellFate::kNotDecomposed : CellFate::kSmallPatch;
       for (size_t i = 0; i < patch.cells.size(); ++i) {
-        const CellFate fate = polygons.empty() ? empty_fate : patch_fates[i];
+        const CellFate fate = outcome.polygons.empty() ? empty_fate : outcome.fates[i];
         result->cell_fates[static_cast<size_t>(layer_patch.layer)][static_cast<size_t>(patch.cells[i])] = fate;
       }
     }
-    for (const Polygon2d& polygon : polygons) {
+    for (const Polygon2d& polygon : outcome.polygons) {
       if (static_cast<int>(result->regions.size()) >= options.max_regions) {
         capped = true;
         break;
@@ -255,11 +313,12 @@ void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions
   // The fit window is at least a foot wide (and at least 3 cells).
   const int window_half_cells = std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
   CheckFitWork(res, stats.surface_cells, window_half_cells, options);
-  std::vector<SurfaceAnalysis> surfaces;
-  for (const HeightMap& hm : result->layers) {
-    surfaces.push_back(AnalyzeSurface(hm, window_half_cells, options.grow_tolerance_voxels * res,
-                                      options.max_slope_rad, options.deadline));
-  }
+  std::vector<SurfaceAnalysis> surfaces(result->layers.size());
+  ParallelFor(static_cast<int>(surfaces.size()), options.threads, [&](int l) {
+    surfaces[static_cast<size_t>(l)] = AnalyzeSurface(result->layers[static_cast<size_t>(l)], window_half_cells,
+                                                      options.grow_tolerance_voxels * res, options.max_slope_rad,
+                                                      options.deadline);
+  });
   stats.analysis_s = SecondsSince(t);
   if (std::any_of(surfaces.begin(), surfaces.end(), [](const SurfaceAnalysis& s) { return s.stopped; })) {
     result->stopped = true;

@@ -108,6 +108,11 @@ struct RegionExtractorOptions {
   // Record what became of every surface cell (RegionExtractionResult::cell_fates): a
   // diagnostic for benches, off by default.
   bool record_cell_fates = false;
+  // Threads of the surface fit, the segmentation and the decomposition (each layer's fit
+  // and patches, each patch's regions are independent): the calling thread and
+  // threads - 1 more, joined before ExtractRegions returns. The regions do not depend on
+  // it. 2 suits a two-core onboard computer; 1 keeps the extraction on the calling thread.
+  int threads = 2;
   // Ends the extraction (checked every height map row and every patch): the regions of
   // the patches done so far are returned, with a message saying the time ran out.
   Deadline deadline;

@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <optional>
 #include <utility>
 
 #include "base/check.h"
 #include "base/round.h"
+#include "terrain/extraction/internal/parallel_work.h"
 
 namespace mfp {
 namespace {
@@ -32,8 +34,11 @@ struct Footprint {
   int c0, r0, n;
 };
 
-// The footprints of the leaves that overlap the grid (the others add no run), in order.
-std::vector<Footprint> FootprintsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+// The footprints of the leaves that overlap the grid and the voxels [z_lo, z_hi] along z
+// (the others add no run that is asked), in order.
+std::vector<Footprint> FootprintsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm,
+                                    long long z_lo = std::numeric_limits<long long>::min(),
+                                    long long z_hi = std::numeric_limits<long long>::max()) {
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
@@ -43,11 +48,12 @@ std::vector<Footprint> FootprintsOf(const std::vector<OccupiedLeaf>& leaves, con
     const double n_d = leaf.size_m / res;
     if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
     const long long n = RoundToLongLong(n_d);
+    const long long z0 = RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res);
+    if (z0 > z_hi || z0 + n <= z_lo) continue;
     const long long c0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo;
     const long long r0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo;
     if (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0) continue;
-    prints.push_back({RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res), static_cast<int>(c0),
-                      static_cast<int>(r0), static_cast<int>(n)});
+    prints.push_back({z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
   return prints;
 }
@@ -66,10 +72,9 @@ void SortRuns(Interval* b, Interval* e) {
   }
 }
 
-// Leaves cut into per-column intervals, sorted and merged (touching runs join).
-Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) {
+// Footprints cut into per-column intervals, each column's in the order of prints.
+Columns UnsortedColumnsOf(const std::vector<Footprint>& prints, const HeightMap& hm) {
   const int cells = hm.rows * hm.cols;
-  const std::vector<Footprint> prints = FootprintsOf(leaves, hm);
   // Per column its run count at offset[c + 1], then the running sum: the column's start.
   Columns cols;
   cols.offset.assign(static_cast<size_t>(cells) + 1, 0);
@@ -92,6 +97,13 @@ Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) 
   }
   std::copy(cols.offset.begin() + 1, cols.offset.end(), cols.offset.begin());
   cols.offset[cells] = cols.runs.size();
+  return cols;
+}
+
+// Footprints cut into per-column intervals, sorted and merged (touching runs join).
+Columns ColumnsOf(const std::vector<Footprint>& prints, const HeightMap& hm) {
+  const int cells = hm.rows * hm.cols;
+  Columns cols = UnsortedColumnsOf(prints, hm);
   // Sort and merge each column in place, compacting as it goes (a column's new start is
   // never after its old one).
   size_t out = 0;
@@ -111,6 +123,30 @@ Columns ColumnsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm) 
   cols.offset[cells] = out;
   cols.runs.resize(out);
   return cols;
+}
+
+// The voxel a surface at height `level` [m] has on top (SurfaceLayers::unseen's rounding).
+long long TopVoxelOf(float level, double res) { return RoundToLongLong(level / res) - 1; }
+
+// Known free space as far as the extraction asks it: ColumnHas of one voxel in a column at
+// a surface candidate's top t (the voxel above an occupied run) or at TopVoxelOf its height
+// or the voxel under that. Layer heights are candidate heights and every run's top is a
+// leaf's, so every voxel asked lies between those of the lowest and the highest occupied
+// leaf top; free leaves wholly outside are left out. Runs are neither sorted nor merged
+// (ColumnHas needs neither).
+Columns FreeColumnsOf(const std::vector<OccupiedLeaf>& free_leaves, const std::vector<Footprint>& occupied,
+                      const HeightMap& hm) {
+  if (occupied.empty()) return UnsortedColumnsOf({}, hm);  // no surface: nothing is asked
+  long long top_lo = std::numeric_limits<long long>::max(), top_hi = std::numeric_limits<long long>::min();
+  for (const Footprint& f : occupied) {
+    top_lo = std::min(top_lo, f.z0 + f.n);
+    top_hi = std::max(top_hi, f.z0 + f.n);
+  }
+  // TopVoxelOf(float(t * res)) is monotone in t, so its extremes are those of the extreme tops.
+  const double res = hm.resolution_m;
+  const long long z_lo = std::min(top_lo, TopVoxelOf(static_cast<float>(top_lo * res), res) - 1);
+  const long long z_hi = std::max(top_hi, TopVoxelOf(static_cast<float>(top_hi * res), res));
+  return UnsortedColumnsOf(FootprintsOf(free_leaves, hm, z_lo, z_hi), hm);
 }
 
 bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
@@ -376,7 +412,7 @@ long long RoomVoxels(double clearance_m, double res) {
 
 // SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
 uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
-  const long long top_voxel = RoundToLongLong(level / res) - 1;
+  const long long top_voxel = TopVoxelOf(level, res);
   if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
   // A ray through the voxel under the floor's level went into a hole: a drop.
   if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
@@ -540,6 +576,49 @@ HeightMap MovedCellsAsSeen(const HeightMap& repaired, const std::vector<std::pai
 
 }  // namespace
 
+namespace {
+
+// What BuildSurfaceLayers keeps of one layer besides its heights.
+struct LayerFinish {
+  std::vector<uint8_t> unseen, solid_beside;   // SurfaceLayers::unseen, solid_beside of the layer
+  std::optional<HeightMap> moved_as_seen;      // when the noise repair changed a cell
+  int noise_cells_filled = 0, enclosed_unseen_filled = 0;
+};
+
+// One layer's noise repair and enclosed-unseen fill (as options say), its unseen bits
+// (computed once, then brought up to date after each change) and, from the final
+// heights, its solid_beside bits. free: nullptr when free space is not known.
+LayerFinish FinishLayer(HeightMap* layer, const Columns& occ, const Columns* free, const SurfaceLayerOptions& options) {
+  LayerFinish out;
+  std::vector<int> changed_cells;
+  std::vector<uint8_t> mark(layer->height_m.size(), 0);
+  const std::vector<int> near = NearCells(*layer, &mark);
+  out.unseen = UnseenCells(*layer, occ, free, options.clearance_m, near);
+  if (options.fill_single_cell_noise) {
+    std::vector<std::pair<int, float>> changes;
+    // Twice: a hole beside a displaced cell is filled once that cell is back.
+    for (int pass = 0; pass < 2; ++pass) {
+      changed_cells.clear();
+      RepairSingleCellNoise(layer, &out.unseen, near, &changed_cells, &changes);
+      UpdateUnseenCells(*layer, occ, free, options.clearance_m, changed_cells.data(), changed_cells.size(),
+                        &out.unseen);
+    }
+    out.noise_cells_filled = static_cast<int>(changes.size());
+    if (!changes.empty()) out.moved_as_seen = MovedCellsAsSeen(*layer, changes);
+  }
+  if (free != nullptr && options.enclosed_unseen_radius_cells > 0) {
+    changed_cells.clear();
+    FillEnclosedUnseen(layer, occ, *free, options.clearance_m, options.enclosed_unseen_radius_cells, &changed_cells);
+    out.enclosed_unseen_filled = static_cast<int>(changed_cells.size());
+    UpdateUnseenCells(*layer, occ, free, options.clearance_m, changed_cells.data(), changed_cells.size(),
+                      &out.unseen);
+  }
+  out.solid_beside = SolidBeside(*layer, occ);
+  return out;
+}
+
+}  // namespace
+
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
   MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
   SurfaceLayers out;
@@ -551,9 +630,13 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     out.solid_beside.emplace_back();
     return out;
   }
-  const Columns occ = ColumnsOf(map.leaves, grid);
   const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
-  const Columns free = know_free ? ColumnsOf(map.free_leaves, grid) : Columns{};
+  const std::vector<Footprint> occupied = FootprintsOf(map.leaves, grid);
+  Columns occ, free;  // the occupied and the free columns at once, on two threads if allowed
+  ParallelFor(know_free ? 2 : 1, options.threads, [&](int job) {
+    if (job == 0) occ = ColumnsOf(occupied, grid);
+    if (job == 1) free = FreeColumnsOf(map.free_leaves, occupied, grid);
+  });
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
                                            ? IsolatedVoxels(grid, occ, &out.isolated_voxels)
                                            : std::vector<uint8_t>(occ.runs.size(), 0);
@@ -561,37 +644,18 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   out.candidates = static_cast<int>(cand.height.size());
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
   const Columns* free_or_null = know_free ? &free : nullptr;
-  // The unseen bits once per layer, then brought up to date after each change.
-  std::vector<int> changed_cells;
-  std::vector<uint8_t> mark(grid.height_m.size(), 0);
-  for (size_t l = 0; l < out.layers.size(); ++l) {
-    HeightMap& layer = out.layers[l];
-    const std::vector<int> near = NearCells(layer, &mark);
-    out.unseen.push_back(UnseenCells(layer, occ, free_or_null, options.clearance_m, near));
-    if (!options.fill_single_cell_noise) continue;
-    std::vector<std::pair<int, float>> changes;
-    // Twice: a hole beside a displaced cell is filled once that cell is back.
-    for (int pass = 0; pass < 2; ++pass) {
-      changed_cells.clear();
-      RepairSingleCellNoise(&layer, &out.unseen[l], near, &changed_cells, &changes);
-      UpdateUnseenCells(layer, occ, free_or_null, options.clearance_m, changed_cells.data(), changed_cells.size(),
-                        &out.unseen[l]);
-    }
-    out.noise_cells_filled += static_cast<int>(changes.size());
-    if (!changes.empty()) out.moved_as_seen.push_back(MovedCellsAsSeen(layer, changes));
+  // Each layer's repairs and bits on its own (options.threads threads), gathered in order.
+  std::vector<LayerFinish> finished(out.layers.size());
+  ParallelFor(static_cast<int>(out.layers.size()), options.threads, [&](int l) {
+    finished[static_cast<size_t>(l)] = FinishLayer(&out.layers[static_cast<size_t>(l)], occ, free_or_null, options);
+  });
+  for (LayerFinish& f : finished) {
+    out.unseen.push_back(std::move(f.unseen));
+    out.solid_beside.push_back(std::move(f.solid_beside));
+    out.noise_cells_filled += f.noise_cells_filled;
+    out.enclosed_unseen_filled += f.enclosed_unseen_filled;
+    if (f.moved_as_seen) out.moved_as_seen.push_back(std::move(*f.moved_as_seen));
   }
-  if (know_free && options.enclosed_unseen_radius_cells > 0) {
-    for (size_t l = 0; l < out.layers.size(); ++l) {
-      changed_cells.clear();
-      FillEnclosedUnseen(&out.layers[l], occ, free, options.clearance_m, options.enclosed_unseen_radius_cells,
-                         &changed_cells);
-      out.enclosed_unseen_filled += static_cast<int>(changed_cells.size());
-      UpdateUnseenCells(out.layers[l], occ, free_or_null, options.clearance_m, changed_cells.data(),
-                        changed_cells.size(), &out.unseen[l]);
-    }
-  }
-  // From the final (noise-repaired) heights.
-  for (const HeightMap& layer : out.layers) out.solid_beside.push_back(SolidBeside(layer, occ));
   return out;
 }
 

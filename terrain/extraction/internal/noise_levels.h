@@ -15,6 +15,7 @@
 namespace mfp {
 
 struct NoiseLevels {
+  // Both empty when denoised_cells is 0 (the levels are the heights then).
   HeightMap levels;               // the height map with noise cells at their neighbourhood's level
   std::vector<uint8_t> denoised;  // per cell, 1 where the level differs from the height
   int denoised_cells = 0;
