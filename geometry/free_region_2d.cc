@@ -28,12 +28,13 @@ Eigen::Vector2d Centroid(const Polygon& polygon) {
   return c / static_cast<double>(polygon.size());
 }
 
-// Outward unit normals of a counter-clockwise polygon's edges.
-void AddEdgeNormals(const Polygon& polygon, std::vector<Eigen::Vector2d>* normals) {
-  for (size_t k = 0; k < polygon.size(); ++k) {
-    const Eigen::Vector2d e = polygon[(k + 1) % polygon.size()] - polygon[k];
-    if (e.norm() > 1e-12) normals->push_back(Eigen::Vector2d(e.y(), -e.x()).normalized());
-  }
+// The outward unit normal of a counter-clockwise polygon's edge k; false for an edge too
+// short to have one.
+bool EdgeNormal(const Polygon& polygon, size_t k, Eigen::Vector2d* normal) {
+  const Eigen::Vector2d e = polygon[(k + 1) % polygon.size()] - polygon[k];
+  if (e.norm() <= 1e-12) return false;
+  *normal = Eigen::Vector2d(e.y(), -e.x()).normalized();
+  return true;
 }
 
 struct Separation {
@@ -42,21 +43,90 @@ struct Separation {
   double gap = -std::numeric_limits<double>::infinity();  // between the two along a [m]
 };
 
-Separation Separate(const Polygon& seed, const Polygon& obstacle) {
-  std::vector<Eigen::Vector2d> candidates;
-  AddEdgeNormals(seed, &candidates);
-  std::vector<Eigen::Vector2d> obstacle_normals;
-  AddEdgeNormals(obstacle, &obstacle_normals);
-  for (const Eigen::Vector2d& n : obstacle_normals) candidates.push_back(-n);
-  const Eigen::Vector2d between = Centroid(obstacle) - Centroid(seed);
-  if (between.norm() > 1e-12) candidates.push_back(between.normalized());
+// What Separate needs of the seed, the same for every obstacle: its edge normals, how far
+// it reaches along each, and its centroid.
+struct SeedShape {
+  explicit SeedShape(const Polygon& seed) : polygon(seed), centroid(Centroid(seed)) {
+    for (size_t k = 0; k < seed.size(); ++k) {
+      Eigen::Vector2d n;
+      if (!EdgeNormal(seed, k, &n)) continue;
+      normals.push_back(n);
+      reach.push_back(MaxAlong(seed, n));
+    }
+  }
+  const Polygon& polygon;
+  Eigen::Vector2d centroid;
+  std::vector<Eigen::Vector2d> normals;
+  std::vector<double> reach;
+};
+
+// The candidate lines in this order (the first of equal gaps wins): the seed's edge
+// normals, the obstacle's reversed, the direction between their centroids.
+Separation Separate(const SeedShape& seed, const Polygon& obstacle) {
   Separation best;
-  for (const Eigen::Vector2d& a : candidates) {
+  auto consider = [&](const Eigen::Vector2d& a, double seed_reach) {
     const double b = MinAlong(obstacle, a);
-    const double gap = b - MaxAlong(seed, a);
+    const double gap = b - seed_reach;
     if (gap > best.gap) best = {a, b, gap};
+  };
+  for (size_t k = 0; k < seed.normals.size(); ++k) consider(seed.normals[k], seed.reach[k]);
+  for (size_t k = 0; k < obstacle.size(); ++k) {
+    Eigen::Vector2d n;
+    if (!EdgeNormal(obstacle, k, &n)) continue;
+    consider(-n, MaxAlong(seed.polygon, -n));
+  }
+  const Eigen::Vector2d between = Centroid(obstacle) - seed.centroid;
+  if (between.norm() > 1e-12) {
+    const Eigen::Vector2d a = between.normalized();
+    consider(a, MaxAlong(seed.polygon, a));
   }
   return best;
+}
+
+struct Bounds {
+  Eigen::Vector2d lo, hi;
+  // Strictly apart along x or y: the two sets share no point.
+  bool Apart(const Bounds& o) const {
+    return hi.x() < o.lo.x() || o.hi.x() < lo.x() || hi.y() < o.lo.y() || o.hi.y() < lo.y();
+  }
+};
+
+Bounds BoundsOf(const Polygon& polygon) {
+  Bounds b{Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()),
+           Eigen::Vector2d::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Eigen::Vector2d& v : polygon) {
+    b.lo = b.lo.cwiseMin(v);
+    b.hi = b.hi.cwiseMax(v);
+  }
+  return b;
+}
+
+// KeepBelowLine (the same arithmetic) into a buffer the caller keeps.
+void ClipBelowLine(const Polygon& polygon, const Eigen::Vector2d& n, double c, Polygon* out) {
+  out->clear();
+  const size_t m = polygon.size();
+  for (size_t i = 0; i < m; ++i) {
+    const Eigen::Vector2d& a = polygon[i];
+    const Eigen::Vector2d& b = polygon[(i + 1) % m];
+    const double da = n.dot(a) - c;
+    const double db = n.dot(b) - c;
+    if (da <= 0.0) out->push_back(a);
+    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) out->push_back(a + (b - a) * (da / (da - db)));
+  }
+}
+
+// Whether the obstacle meets the region { normals . x <= offsets } in more than touching:
+// the obstacle clipped by every line in turn keeps an area. An obstacle whose bounds are
+// apart from the region polygon's meets it in nothing (the clip would leave rounding only).
+bool MeetsRegion(const Polygon& obstacle, const Bounds& region_bounds, const std::vector<Eigen::Vector2d>& normals,
+                 const std::vector<double>& offsets, Polygon* inside, Polygon* scratch) {
+  if (BoundsOf(obstacle).Apart(region_bounds)) return false;
+  *inside = obstacle;
+  for (size_t r = 0; r < normals.size() && inside->size() >= 3; ++r) {
+    ClipBelowLine(*inside, normals[r], offsets[r], scratch);
+    std::swap(*inside, *scratch);
+  }
+  return inside->size() >= 3 && std::abs(PolygonArea2d(*inside)) >= kTouchArea;
 }
 
 }  // namespace
@@ -68,10 +138,12 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
   for (const Eigen::Vector2d& v : seed) {
     if ((v - lo).minCoeff() < 0.0 || (hi - v).minCoeff() < 0.0) return std::nullopt;
   }
+  const SeedShape seed_shape(seed);
   std::vector<std::pair<Separation, int>> order;
+  order.reserve(obstacles.size());
   for (size_t k = 0; k < obstacles.size(); ++k) {
     if (obstacles[k].size() < 3) continue;
-    const Separation s = Separate(seed, obstacles[k]);
+    const Separation s = Separate(seed_shape, obstacles[k]);
     // Edge normals decide whether two convex polygons overlap (separating axes); a seed
     // that an obstacle overlaps has no free region.
     if (s.gap < -1e-9) return std::nullopt;
@@ -81,13 +153,15 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
   std::vector<Eigen::Vector2d> normals = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   std::vector<double> offsets = {hi.x(), hi.y(), -lo.x(), -lo.y()};
   Polygon region = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
+  Bounds region_bounds = BoundsOf(region);
+  Polygon inside, scratch;
   for (const auto& [separation, k] : order) {
-    Polygon inside = obstacles[k];
-    for (size_t r = 0; r < normals.size() && inside.size() >= 3; ++r) inside = KeepBelowLine(inside, normals[r], offsets[r]);
-    if (inside.size() < 3 || std::abs(PolygonArea2d(inside)) < kTouchArea) continue;  // already cut off
+    if (!MeetsRegion(obstacles[k], region_bounds, normals, offsets, &inside, &scratch)) continue;  // already cut off
     normals.push_back(separation.a);
     offsets.push_back(separation.b);
-    region = KeepBelowLine(region, separation.a, separation.b);
+    ClipBelowLine(region, separation.a, separation.b, &scratch);
+    std::swap(region, scratch);
+    region_bounds = BoundsOf(region);
   }
   FreeRegion2d out;
   out.A.resize(static_cast<Eigen::Index>(normals.size()), 2);

@@ -6,6 +6,7 @@
 
 #include "base/check.h"
 #include "geometry/free_region_2d.h"
+#include "terrain/extraction/internal/uncovered_rectangles.h"
 
 namespace mfp {
 namespace {
@@ -45,7 +46,7 @@ Box BoundingBox(const Polygon2d& polygon) {
 class CoverState {
  public:
   CoverState(const std::vector<uint8_t>& squares, int rows, int cols, const ConvexCoverOptions& options)
-      : squares_(squares), rows_(rows), cols_(cols), options_(options), open_(squares),
+      : squares_(squares), rows_(rows), cols_(cols), options_(options), open_(squares, rows, cols),
         owner_(squares.size(), -1), obstacle_(squares.size(), 0) {
     for (uint8_t s : squares) total_ += s ? 1 : 0;
     for (int r = 0; r < rows; ++r) {
@@ -55,7 +56,9 @@ class CoverState {
 
   size_t total() const { return total_; }
   size_t covered() const { return covered_; }
-  const std::vector<uint8_t>& open() const { return open_; }
+  const std::vector<uint8_t>& open() const { return open_.cells(); }
+  // The largest rectangle of open squares (LargestRectangle of open(), kept up to date).
+  CellRect LargestOpen() const { return open_.Largest(); }
   const std::vector<int>& owner() const { return owner_; }
   const std::vector<Polygon2d>& pieces() const { return pieces_; }
 
@@ -135,6 +138,7 @@ class CoverState {
     const int c0 = std::max(0, static_cast<int>(std::floor(box.x0))), c1 = std::min(cols_, static_cast<int>(std::ceil(box.x1)));
     const int r0 = std::max(0, static_cast<int>(std::floor(box.y0))), r1 = std::min(rows_, static_cast<int>(std::ceil(box.y1)));
     size_t newly = 0;
+    closing_.clear();
     for (int r = r0; r < r1; ++r) {
       for (int c = c0; c < c1; ++c) {
         const size_t i = Index(r, c);
@@ -145,19 +149,21 @@ class CoverState {
         if (dry_run) continue;
         if (whole) {
           if (owner_[i] < 0) owner_[i] = static_cast<int>(pieces_.size());
-          open_[i] = 0;
+          closing_.push_back(i);
         } else if (!options_.cover.grow_over_covered && PolygonMeetsSquare(piece, r, c)) {
-          open_[i] = 0;
+          closing_.push_back(i);
         }
       }
     }
+    if (!dry_run) open_.ClearCells(closing_);
     return newly;
   }
 
   const std::vector<uint8_t>& squares_;
   int rows_, cols_;
   const ConvexCoverOptions& options_;
-  std::vector<uint8_t> open_;  // squares a seed may use
+  UncoveredRectangles open_;  // squares a seed may use
+  std::vector<size_t> closing_;  // Mark's work space: the squares it closes
   std::vector<int> owner_;     // a piece holding the square wholly, -1 when none does
   std::vector<uint8_t> obstacle_;  // outside the set, touching it
   std::vector<Polygon2d> pieces_;
@@ -211,7 +217,7 @@ std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares,
   auto room = [&] { return static_cast<int>(state.pieces().size()) < cover.max_rects && !cover.deadline.Expired(); };
   while (room() && state.covered() < state.total() &&
          static_cast<double>(state.covered()) < cover.target_coverage * static_cast<double>(state.total())) {
-    const CellRect seed = LargestRectangle(state.open(), rows, cols);
+    const CellRect seed = state.LargestOpen();
     if (seed.Area() < min_seed || !state.AddPiece(seed)) break;
   }
   // As the rectangle cover: the part left may hold the only way between two pieces.
