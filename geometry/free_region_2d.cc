@@ -38,7 +38,7 @@ bool EdgeNormal(const Polygon& polygon, size_t k, Eigen::Vector2d* normal) {
 }
 
 struct Separation {
-  Eigen::Vector2d a;  // unit normal: the seed lies in a . x <= b, the obstacle in a . x >= b
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();  // unit normal: the seed lies in a . x <= b, the obstacle in a . x >= b
   double b = 0.0;
   double gap = -std::numeric_limits<double>::infinity();  // between the two along a [m]
 };
@@ -82,6 +82,24 @@ Separation Separate(const SeedShape& seed, const Polygon& obstacle) {
   }
   return best;
 }
+
+// The best gap along the seed's edge normals alone: Separate's first candidates.
+double SeedNormalsGap(const SeedShape& seed, const Polygon& obstacle) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < seed.normals.size(); ++k) best = std::max(best, MinAlong(obstacle, seed.normals[k]) - seed.reach[k]);
+  return best;
+}
+
+// An obstacle waiting for its turn: keyed by a lower bound of its gap until exact.
+struct Pending {
+  double key;
+  int index;
+  bool exact;
+  Separation separation;
+};
+
+// The heap's order (a max-heap of this): the smaller key first, then the smaller index.
+bool ComesLater(const Pending& x, const Pending& y) { return x.key > y.key || (x.key == y.key && x.index > y.index); }
 
 struct Bounds {
   Eigen::Vector2d lo, hi;
@@ -139,27 +157,44 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
     if ((v - lo).minCoeff() < 0.0 || (hi - v).minCoeff() < 0.0) return std::nullopt;
   }
   const SeedShape seed_shape(seed);
-  std::vector<std::pair<Separation, int>> order;
-  order.reserve(obstacles.size());
+  // Obstacles in the order of their gaps, equal gaps by index (a stable sort's order), each
+  // exact gap computed only when the obstacle comes up still near the region: first keyed
+  // by the best gap along the seed's own normals (Separate's first candidates, so never
+  // above the exact gap), then, when that key comes up, by the exact gap.
+  std::vector<Pending> heap;
+  heap.reserve(obstacles.size());
   for (size_t k = 0; k < obstacles.size(); ++k) {
-    if (obstacles[k].size() < 3) continue;
-    const Separation s = Separate(seed_shape, obstacles[k]);
-    // Edge normals decide whether two convex polygons overlap (separating axes); a seed
-    // that an obstacle overlaps has no free region.
-    if (s.gap < -1e-9) return std::nullopt;
-    order.emplace_back(s, static_cast<int>(k));
+    if (obstacles[k].size() >= 3) heap.push_back({SeedNormalsGap(seed_shape, obstacles[k]), static_cast<int>(k), false, {}});
   }
-  std::stable_sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first.gap < y.first.gap; });
+  std::make_heap(heap.begin(), heap.end(), ComesLater);
   std::vector<Eigen::Vector2d> normals = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   std::vector<double> offsets = {hi.x(), hi.y(), -lo.x(), -lo.y()};
   Polygon region = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
   Bounds region_bounds = BoundsOf(region);
   Polygon inside, scratch;
-  for (const auto& [separation, k] : order) {
-    if (!MeetsRegion(obstacles[k], region_bounds, normals, offsets, &inside, &scratch)) continue;  // already cut off
-    normals.push_back(separation.a);
-    offsets.push_back(separation.b);
-    ClipBelowLine(region, separation.a, separation.b, &scratch);
+  while (!heap.empty()) {
+    std::pop_heap(heap.begin(), heap.end(), ComesLater);
+    Pending next = heap.back();
+    heap.pop_back();
+    const Polygon& obstacle = obstacles[static_cast<size_t>(next.index)];
+    if (!next.exact) {
+      // The region only shrinks: an obstacle apart from it now is cut off when its turn comes.
+      // One that overlaps the seed is never apart (the seed stays in the region).
+      if (BoundsOf(obstacle).Apart(region_bounds)) continue;
+      next.separation = Separate(seed_shape, obstacle);
+      // Edge normals decide whether two convex polygons overlap (separating axes); a seed
+      // that an obstacle overlaps has no free region.
+      if (next.separation.gap < -1e-9) return std::nullopt;
+      next.key = next.separation.gap;
+      next.exact = true;
+      heap.push_back(next);
+      std::push_heap(heap.begin(), heap.end(), ComesLater);
+      continue;
+    }
+    if (!MeetsRegion(obstacle, region_bounds, normals, offsets, &inside, &scratch)) continue;  // already cut off
+    normals.push_back(next.separation.a);
+    offsets.push_back(next.separation.b);
+    ClipBelowLine(region, next.separation.a, next.separation.b, &scratch);
     std::swap(region, scratch);
     region_bounds = BoundsOf(region);
   }
