@@ -90,16 +90,18 @@ double SeedNormalsGap(const SeedShape& seed, const Polygon& obstacle) {
   return best;
 }
 
-// An obstacle waiting for its turn: keyed by a lower bound of its gap until exact.
+// An obstacle waiting for its turn, keyed by its gap or a lower bound of it.
 struct Pending {
   double key;
   int index;
-  bool exact;
-  Separation separation;
 };
 
-// The heap's order (a max-heap of this): the smaller key first, then the smaller index.
-bool ComesLater(const Pending& x, const Pending& y) { return x.key > y.key || (x.key == y.key && x.index > y.index); }
+// The order of turns (a max-heap of this): the smaller key first, then the smaller index.
+struct ComesLater {
+  bool operator()(const Pending& x, const Pending& y) const {
+    return x.key > y.key || (x.key == y.key && x.index > y.index);
+  }
+};
 
 struct Bounds {
   Eigen::Vector2d lo, hi;
@@ -158,43 +160,49 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
   }
   const SeedShape seed_shape(seed);
   // Obstacles in the order of their gaps, equal gaps by index (a stable sort's order), each
-  // exact gap computed only when the obstacle comes up still near the region: first keyed
-  // by the best gap along the seed's own normals (Separate's first candidates, so never
-  // above the exact gap), then, when that key comes up, by the exact gap.
-  std::vector<Pending> heap;
-  heap.reserve(obstacles.size());
+  // exact gap computed only when the obstacle comes up still near the region: first in the
+  // order of the best gap along the seed's own normals (Separate's first candidates, so
+  // never above the exact gap), then, when that bound comes up, by the exact gap (a heap of
+  // the few that get one).
+  std::vector<Pending> by_bound;
+  by_bound.reserve(obstacles.size());
   for (size_t k = 0; k < obstacles.size(); ++k) {
-    if (obstacles[k].size() >= 3) heap.push_back({SeedNormalsGap(seed_shape, obstacles[k]), static_cast<int>(k), false, {}});
+    if (obstacles[k].size() >= 3) by_bound.push_back({SeedNormalsGap(seed_shape, obstacles[k]), static_cast<int>(k)});
   }
-  std::make_heap(heap.begin(), heap.end(), ComesLater);
+  std::sort(by_bound.begin(), by_bound.end(), [](const Pending& x, const Pending& y) { return ComesLater()(y, x); });
+  std::vector<Separation> separations(obstacles.size());
+  std::vector<Pending> by_gap;  // a heap
   std::vector<Eigen::Vector2d> normals = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   std::vector<double> offsets = {hi.x(), hi.y(), -lo.x(), -lo.y()};
   Polygon region = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
   Bounds region_bounds = BoundsOf(region);
   Polygon inside, scratch;
-  while (!heap.empty()) {
-    std::pop_heap(heap.begin(), heap.end(), ComesLater);
-    Pending next = heap.back();
-    heap.pop_back();
-    const Polygon& obstacle = obstacles[static_cast<size_t>(next.index)];
-    if (!next.exact) {
+  size_t next_bound = 0;
+  while (next_bound < by_bound.size() || !by_gap.empty()) {
+    if (by_gap.empty() || (next_bound < by_bound.size() && ComesLater()(by_gap.front(), by_bound[next_bound]))) {
+      const int k = by_bound[next_bound++].index;
+      const Polygon& obstacle = obstacles[static_cast<size_t>(k)];
       // The region only shrinks: an obstacle apart from it now is cut off when its turn comes.
       // One that overlaps the seed is never apart (the seed stays in the region).
       if (BoundsOf(obstacle).Apart(region_bounds)) continue;
-      next.separation = Separate(seed_shape, obstacle);
+      const Separation& separation = separations[static_cast<size_t>(k)] = Separate(seed_shape, obstacle);
       // Edge normals decide whether two convex polygons overlap (separating axes); a seed
       // that an obstacle overlaps has no free region.
-      if (next.separation.gap < -1e-9) return std::nullopt;
-      next.key = next.separation.gap;
-      next.exact = true;
-      heap.push_back(next);
-      std::push_heap(heap.begin(), heap.end(), ComesLater);
+      if (separation.gap < -1e-9) return std::nullopt;
+      by_gap.push_back({separation.gap, k});
+      std::push_heap(by_gap.begin(), by_gap.end(), ComesLater());
       continue;
     }
-    if (!MeetsRegion(obstacle, region_bounds, normals, offsets, &inside, &scratch)) continue;  // already cut off
-    normals.push_back(next.separation.a);
-    offsets.push_back(next.separation.b);
-    ClipBelowLine(region, next.separation.a, next.separation.b, &scratch);
+    std::pop_heap(by_gap.begin(), by_gap.end(), ComesLater());
+    const int k = by_gap.back().index;
+    by_gap.pop_back();
+    if (!MeetsRegion(obstacles[static_cast<size_t>(k)], region_bounds, normals, offsets, &inside, &scratch)) {
+      continue;  // already cut off
+    }
+    const Separation& separation = separations[static_cast<size_t>(k)];
+    normals.push_back(separation.a);
+    offsets.push_back(separation.b);
+    ClipBelowLine(region, separation.a, separation.b, &scratch);
     std::swap(region, scratch);
     region_bounds = BoundsOf(region);
   }
