@@ -121,6 +121,47 @@ Bounds BoundsOf(const Polygon& polygon) {
   return b;
 }
 
+// The obstacles in the order of their bounds (SeedNormalsGap), sorted a few at a time:
+// before each few, those apart from the region are dropped (they would be on their turn).
+class BoundOrder {
+ public:
+  BoundOrder(const SeedShape& seed, const std::vector<Polygon>& obstacles) : bounds_(obstacles.size()) {
+    pending_.reserve(obstacles.size());
+    for (size_t k = 0; k < obstacles.size(); ++k) {
+      if (obstacles[k].size() < 3) continue;
+      pending_.push_back({SeedNormalsGap(seed, obstacles[k]), static_cast<int>(k)});
+      bounds_[k] = BoundsOf(obstacles[k]);
+    }
+  }
+
+  const Bounds& bounds(int k) const { return bounds_[static_cast<size_t>(k)]; }
+
+  // The next obstacle in order, nullptr when none is left.
+  const Pending* Next(const Bounds& region) {
+    if (head_ == sorted_end_) SortMore(region);
+    return head_ < sorted_end_ ? &pending_[head_] : nullptr;
+  }
+  void Pop() { ++head_; }
+
+ private:
+  static constexpr size_t kFew = 32;
+
+  void SortMore(const Bounds& region) {
+    const auto rest = pending_.begin() + static_cast<std::ptrdiff_t>(head_);
+    pending_.erase(std::remove_if(rest, pending_.end(), [&](const Pending& p) { return bounds(p.index).Apart(region); }),
+                   pending_.end());
+    const auto before = [](const Pending& x, const Pending& y) { return ComesLater()(y, x); };
+    const auto end = rest + static_cast<std::ptrdiff_t>(std::min(kFew, pending_.size() - head_));
+    std::nth_element(rest, end, pending_.end(), before);
+    std::sort(rest, end, before);
+    sorted_end_ = static_cast<size_t>(end - pending_.begin());
+  }
+
+  std::vector<Pending> pending_;
+  std::vector<Bounds> bounds_;
+  size_t head_ = 0, sorted_end_ = 0;
+};
+
 // KeepBelowLine (the same arithmetic) into a buffer the caller keeps.
 void ClipBelowLine(const Polygon& polygon, const Eigen::Vector2d& n, double c, Polygon* out) {
   out->clear();
@@ -164,12 +205,7 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
   // order of the best gap along the seed's own normals (Separate's first candidates, so
   // never above the exact gap), then, when that bound comes up, by the exact gap (a heap of
   // the few that get one).
-  std::vector<Pending> by_bound;
-  by_bound.reserve(obstacles.size());
-  for (size_t k = 0; k < obstacles.size(); ++k) {
-    if (obstacles[k].size() >= 3) by_bound.push_back({SeedNormalsGap(seed_shape, obstacles[k]), static_cast<int>(k)});
-  }
-  std::sort(by_bound.begin(), by_bound.end(), [](const Pending& x, const Pending& y) { return ComesLater()(y, x); });
+  BoundOrder by_bound(seed_shape, obstacles);
   std::vector<Separation> separations(obstacles.size());
   std::vector<Pending> by_gap;  // a heap
   std::vector<Eigen::Vector2d> normals = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
@@ -177,14 +213,16 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
   Polygon region = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
   Bounds region_bounds = BoundsOf(region);
   Polygon inside, scratch;
-  size_t next_bound = 0;
-  while (next_bound < by_bound.size() || !by_gap.empty()) {
-    if (by_gap.empty() || (next_bound < by_bound.size() && ComesLater()(by_gap.front(), by_bound[next_bound]))) {
-      const int k = by_bound[next_bound++].index;
+  for (;;) {
+    const Pending* bound = by_bound.Next(region_bounds);
+    if (bound == nullptr && by_gap.empty()) break;
+    if (by_gap.empty() || (bound != nullptr && ComesLater()(by_gap.front(), *bound))) {
+      const int k = bound->index;
+      by_bound.Pop();
       const Polygon& obstacle = obstacles[static_cast<size_t>(k)];
       // The region only shrinks: an obstacle apart from it now is cut off when its turn comes.
       // One that overlaps the seed is never apart (the seed stays in the region).
-      if (BoundsOf(obstacle).Apart(region_bounds)) continue;
+      if (by_bound.bounds(k).Apart(region_bounds)) continue;
       const Separation& separation = separations[static_cast<size_t>(k)] = Separate(seed_shape, obstacle);
       // Edge normals decide whether two convex polygons overlap (separating axes); a seed
       // that an obstacle overlaps has no free region.

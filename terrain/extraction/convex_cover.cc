@@ -67,10 +67,16 @@ class CoverState {
   // the cuts turn toward the obstacles around it), adds the one that holds the most new
   // squares; false when none holds a new square.
   bool AddPiece(const CellRect& seed) {
-    Polygon2d best;
+    Polygon2d best, last_seed;
     size_t best_new = 0;
     for (const double keep : {1.0, 0.5, 0.25}) {
-      const Polygon2d piece = Grow(Shrunk(seed, keep));
+      // A later seed wins only by holding more: none can once every square left is held,
+      // and a seed the same as the last grows the same piece.
+      if (best_new > 0 && best_new == total_ - covered_) break;
+      Polygon2d shrunk = Shrunk(seed, keep);
+      if (shrunk == last_seed) continue;
+      const Polygon2d piece = Grow(shrunk);
+      last_seed = std::move(shrunk);
       const size_t newly = Mark(piece, /*dry_run=*/true);
       if (newly > best_new) {
         best_new = newly;
@@ -113,20 +119,29 @@ class CoverState {
     const int reach = std::max({options_.reach_cells, int(seed.x1 - seed.x0), int(seed.y1 - seed.y0)});
     const int c0 = std::max(0, int(seed.x0) - reach), c1 = std::min(cols_, int(seed.x1) + reach);
     const int r0 = std::max(0, int(seed.y0) - reach), r1 = std::min(rows_, int(seed.y1) + reach);
-    std::vector<Polygon2d> obstacles;
+    // Filled in place (no allocation once the polygons have room); GrowFreeRegion skips the
+    // empty ones left at the end.
+    size_t used = 0;
+    auto add = [&](const Eigen::Vector2d* begin, const Eigen::Vector2d* end) {
+      if (used == obstacles_.size()) obstacles_.emplace_back();
+      obstacles_[used++].assign(begin, end);
+    };
     for (int r = r0; r < r1; ++r) {
       for (int c = c0; c < c1; ++c) {
-        if (obstacle_[Index(r, c)]) obstacles.push_back(RectPolygon(c, r, c + 1, r + 1));
+        if (!obstacle_[Index(r, c)]) continue;
+        const Eigen::Vector2d square[4] = {{c, r}, {c + 1, r}, {c + 1, r + 1}, {c, r + 1}};
+        add(square, square + 4);
       }
     }
     if (!options_.cover.grow_over_covered) {
       const Box window{double(c0), double(r0), double(c1), double(r1)};
       for (size_t k = 0; k < pieces_.size(); ++k) {
-        if (boxes_[k].Meets(window)) obstacles.push_back(pieces_[k]);
+        if (boxes_[k].Meets(window)) add(pieces_[k].data(), pieces_[k].data() + pieces_[k].size());
       }
     }
+    for (size_t k = used; k < obstacles_.size(); ++k) obstacles_[k].clear();
     const std::optional<FreeRegion2d> region =
-        GrowFreeRegion(seed_polygon, obstacles, Eigen::Vector2d(c0, r0), Eigen::Vector2d(c1, r1));
+        GrowFreeRegion(seed_polygon, obstacles_, Eigen::Vector2d(c0, r0), Eigen::Vector2d(c1, r1));
     if (!region || region->polygon.size() < 3) return seed_polygon;
     return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
   }
@@ -139,12 +154,20 @@ class CoverState {
     const int r0 = std::max(0, static_cast<int>(std::floor(box.y0))), r1 = std::min(rows_, static_cast<int>(std::ceil(box.y1)));
     size_t newly = 0;
     closing_.clear();
+    // Whether the piece holds each lattice point of the box (a square's four corners).
+    const int width = c1 - c0 + 1;
+    corner_in_.assign(static_cast<size_t>(std::max(0, r1 - r0 + 1) * std::max(0, width)), 0);
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) corner_in_[static_cast<size_t>((r - r0) * width + (c - c0))] = Contains(piece, {c, r});
+    }
     for (int r = r0; r < r1; ++r) {
+      const uint8_t* below = &corner_in_[static_cast<size_t>((r - r0) * width)];
+      const uint8_t* above = below + width;
       for (int c = c0; c < c1; ++c) {
         const size_t i = Index(r, c);
-        if (!squares_[i]) continue;
-        const bool whole = Contains(piece, {c, r}) && Contains(piece, {c + 1, r}) && Contains(piece, {c + 1, r + 1}) &&
-                           Contains(piece, {c, r + 1});
+        if (!squares_[i] || (dry_run && owner_[i] >= 0)) continue;
+        const int k = c - c0;
+        const bool whole = below[k] && below[k + 1] && above[k + 1] && above[k];
         if (whole && owner_[i] < 0) ++newly;
         if (dry_run) continue;
         if (whole) {
@@ -164,6 +187,8 @@ class CoverState {
   const ConvexCoverOptions& options_;
   UncoveredRectangles open_;  // squares a seed may use
   std::vector<size_t> closing_;  // Mark's work space: the squares it closes
+  std::vector<uint8_t> corner_in_;  // Mark's work space: the lattice points the piece holds
+  mutable std::vector<Polygon2d> obstacles_;  // Grow's work space: the first ones used, the rest empty
   std::vector<int> owner_;     // a piece holding the square wholly, -1 when none does
   std::vector<uint8_t> obstacle_;  // outside the set, touching it
   std::vector<Polygon2d> pieces_;
