@@ -47,10 +47,14 @@ class CoverState {
  public:
   CoverState(const std::vector<uint8_t>& squares, int rows, int cols, const ConvexCoverOptions& options)
       : squares_(squares), rows_(rows), cols_(cols), options_(options), open_(squares, rows, cols),
-        owner_(squares.size(), -1), obstacle_(squares.size(), 0) {
+        owner_(squares.size(), -1) {
     for (uint8_t s : squares) total_ += s ? 1 : 0;
+    row_obstacles_.assign(static_cast<size_t>(rows) + 1, 0);
     for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) obstacle_[Index(r, c)] = !squares[Index(r, c)] && TouchesSet(r, c);
+      for (int c = 0; c < cols; ++c) {
+        if (!squares[Index(r, c)] && TouchesSet(r, c)) obstacle_cols_.push_back(c);
+      }
+      row_obstacles_[static_cast<size_t>(r) + 1] = obstacle_cols_.size();
     }
   }
 
@@ -126,9 +130,12 @@ class CoverState {
       if (used == obstacles_.size()) obstacles_.emplace_back();
       obstacles_[used++].assign(begin, end);
     };
-    for (int r = r0; r < r1; ++r) {
-      for (int c = c0; c < c1; ++c) {
-        if (!obstacle_[Index(r, c)]) continue;
+    for (int r = r0; r < r1; ++r) {  // the obstacle squares of each row in [c0, c1), in order
+      const auto row_end = obstacle_cols_.begin() + static_cast<std::ptrdiff_t>(row_obstacles_[static_cast<size_t>(r) + 1]);
+      auto it = std::lower_bound(obstacle_cols_.begin() + static_cast<std::ptrdiff_t>(row_obstacles_[static_cast<size_t>(r)]),
+                                 row_end, c0);
+      for (; it != row_end && *it < c1; ++it) {
+        const int c = *it;
         const Eigen::Vector2d square[4] = {{c, r}, {c + 1, r}, {c + 1, r + 1}, {c, r + 1}};
         add(square, square + 4);
       }
@@ -190,7 +197,8 @@ class CoverState {
   std::vector<uint8_t> corner_in_;  // Mark's work space: the lattice points the piece holds
   mutable std::vector<Polygon2d> obstacles_;  // Grow's work space: the first ones used, the rest empty
   std::vector<int> owner_;     // a piece holding the square wholly, -1 when none does
-  std::vector<uint8_t> obstacle_;  // outside the set, touching it
+  std::vector<int> obstacle_cols_;       // the obstacle squares' (outside the set, touching it) columns, row by row
+  std::vector<size_t> row_obstacles_;  // row r's are obstacle_cols_[row_obstacles_[r], row_obstacles_[r + 1])
   std::vector<Polygon2d> pieces_;
   std::vector<Box> boxes_;
   size_t total_ = 0, covered_ = 0;
