@@ -195,6 +195,14 @@ bool MeetsRegion(const Polygon& obstacle, const Bounds& region_bounds, const std
 std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& seed,
                                            const std::vector<std::vector<Eigen::Vector2d>>& obstacles,
                                            const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  Eigen::Vector2d near_lo, near_hi;
+  return GrowFreeRegionNear(seed, obstacles, lo, hi, std::numeric_limits<double>::infinity(), &near_lo, &near_hi);
+}
+
+std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d>& seed,
+                                               const std::vector<std::vector<Eigen::Vector2d>>& obstacles,
+                                               const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double near_gap,
+                                               Eigen::Vector2d* near_lo, Eigen::Vector2d* near_hi) {
   if (seed.size() < 3) return std::nullopt;
   for (const Eigen::Vector2d& v : seed) {
     if ((v - lo).minCoeff() < 0.0 || (hi - v).minCoeff() < 0.0) return std::nullopt;
@@ -213,10 +221,18 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
   Polygon region = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
   Bounds region_bounds = BoundsOf(region);
   Polygon inside, scratch;
+  bool near_taken = false;
+  auto take_near = [&] {
+    *near_lo = region_bounds.lo;
+    *near_hi = region_bounds.hi;
+    near_taken = true;
+  };
   for (;;) {
     const Pending* bound = by_bound.Next(region_bounds);
     if (bound == nullptr && by_gap.empty()) break;
-    if (by_gap.empty() || (bound != nullptr && ComesLater()(by_gap.front(), *bound))) {
+    const bool bound_first = by_gap.empty() || (bound != nullptr && ComesLater()(by_gap.front(), *bound));
+    if (!near_taken && (bound_first ? bound->key : by_gap.front().key) >= near_gap) take_near();
+    if (bound_first) {
       const int k = bound->index;
       by_bound.Pop();
       const Polygon& obstacle = obstacles[static_cast<size_t>(k)];
@@ -244,6 +260,7 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
     std::swap(region, scratch);
     region_bounds = BoundsOf(region);
   }
+  if (!near_taken) take_near();
   FreeRegion2d out;
   out.A.resize(static_cast<Eigen::Index>(normals.size()), 2);
   out.b.resize(static_cast<Eigen::Index>(normals.size()));

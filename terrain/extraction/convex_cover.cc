@@ -109,6 +109,8 @@ class CoverState {
     return false;
   }
 
+  static constexpr int kNearCells = 8;  // Grow's first window beyond the seed [cells]
+
   // The seed's middle `keep` share of each side (at least one square).
   static Polygon2d Shrunk(const CellRect& seed, double keep) {
     const double w = std::max(1.0, keep * seed.cols), h = std::max(1.0, keep * seed.rows);
@@ -121,36 +123,61 @@ class CoverState {
   Polygon2d Grow(const Polygon2d& seed_polygon) const {
     const Box seed = BoundingBox(seed_polygon);
     const int reach = std::max({options_.reach_cells, int(seed.x1 - seed.x0), int(seed.y1 - seed.y0)});
-    const int c0 = std::max(0, int(seed.x0) - reach), c1 = std::min(cols_, int(seed.x1) + reach);
-    const int r0 = std::max(0, int(seed.y0) - reach), r1 = std::min(rows_, int(seed.y1) + reach);
-    // Filled in place (no allocation once the polygons have room); GrowFreeRegion skips the
-    // empty ones left at the end.
+    const Window window{std::max(0, int(seed.x0) - reach), std::max(0, int(seed.y0) - reach),
+                        std::min(cols_, int(seed.x1) + reach), std::min(rows_, int(seed.y1) + reach)};
+    // First among the obstacle squares within kNearCells of the seed only: a square farther
+    // out has a gap of at least kNearCells along one of the seed's sides, so it would not
+    // have changed the region when the region, as it was when the gaps reached kNearCells,
+    // lies strictly inside the near window (checked; else grown again among all).
+    const Window near{std::max(window.c0, int(seed.x0) - kNearCells), std::max(window.r0, int(seed.y0) - kNearCells),
+                      std::min(window.c1, int(seed.x1) + kNearCells), std::min(window.r1, int(seed.y1) + kNearCells)};
+    Eigen::Vector2d near_lo, near_hi;
+    std::optional<FreeRegion2d> region = GrowFreeRegionNear(seed_polygon, Obstacles(near, window), window.Lo(),
+                                                            window.Hi(), kNearCells, &near_lo, &near_hi);
+    constexpr double kMargin = 1e-9;  // for rounding in the region's later bounds [cells]
+    const bool near_enough = (near.c0 == window.c0 || near_lo.x() > near.c0 + kMargin) &&
+                             (near.r0 == window.r0 || near_lo.y() > near.r0 + kMargin) &&
+                             (near.c1 == window.c1 || near_hi.x() < near.c1 - kMargin) &&
+                             (near.r1 == window.r1 || near_hi.y() < near.r1 - kMargin);
+    if (region && !near_enough) region = GrowFreeRegion(seed_polygon, Obstacles(window, window), window.Lo(), window.Hi());
+    if (!region || region->polygon.size() < 3) return seed_polygon;
+    return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
+  }
+
+  // Columns [c0, c1) x rows [r0, r1) of the lattice.
+  struct Window {
+    int c0, r0, c1, r1;
+    Eigen::Vector2d Lo() const { return Eigen::Vector2d(c0, r0); }
+    Eigen::Vector2d Hi() const { return Eigen::Vector2d(c1, r1); }
+  };
+
+  // The obstacle squares in `squares` row by row, then (without overlap) the earlier pieces
+  // meeting `window`. Filled in place (no allocation once the polygons have room);
+  // GrowFreeRegion skips the empty ones left at the end.
+  const std::vector<Polygon2d>& Obstacles(const Window& squares, const Window& window) const {
     size_t used = 0;
     auto add = [&](const Eigen::Vector2d* begin, const Eigen::Vector2d* end) {
       if (used == obstacles_.size()) obstacles_.emplace_back();
       obstacles_[used++].assign(begin, end);
     };
-    for (int r = r0; r < r1; ++r) {  // the obstacle squares of each row in [c0, c1), in order
+    for (int r = squares.r0; r < squares.r1; ++r) {  // the obstacle squares of each row in [c0, c1), in order
       const auto row_end = obstacle_cols_.begin() + static_cast<std::ptrdiff_t>(row_obstacles_[static_cast<size_t>(r) + 1]);
       auto it = std::lower_bound(obstacle_cols_.begin() + static_cast<std::ptrdiff_t>(row_obstacles_[static_cast<size_t>(r)]),
-                                 row_end, c0);
-      for (; it != row_end && *it < c1; ++it) {
+                                 row_end, squares.c0);
+      for (; it != row_end && *it < squares.c1; ++it) {
         const int c = *it;
         const Eigen::Vector2d square[4] = {{c, r}, {c + 1, r}, {c + 1, r + 1}, {c, r + 1}};
         add(square, square + 4);
       }
     }
     if (!options_.cover.grow_over_covered) {
-      const Box window{double(c0), double(r0), double(c1), double(r1)};
+      const Box box{double(window.c0), double(window.r0), double(window.c1), double(window.r1)};
       for (size_t k = 0; k < pieces_.size(); ++k) {
-        if (boxes_[k].Meets(window)) add(pieces_[k].data(), pieces_[k].data() + pieces_[k].size());
+        if (boxes_[k].Meets(box)) add(pieces_[k].data(), pieces_[k].data() + pieces_[k].size());
       }
     }
     for (size_t k = used; k < obstacles_.size(); ++k) obstacles_[k].clear();
-    const std::optional<FreeRegion2d> region =
-        GrowFreeRegion(seed_polygon, obstacles_, Eigen::Vector2d(c0, r0), Eigen::Vector2d(c1, r1));
-    if (!region || region->polygon.size() < 3) return seed_polygon;
-    return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
+    return obstacles_;
   }
 
   // Squares the piece holds wholly become owned; without overlap, squares it meets close
