@@ -28,6 +28,16 @@ std::optional<FreeRegion2d> GrowFreeRegion(const std::vector<Eigen::Vector2d>& s
                                            const std::vector<std::vector<Eigen::Vector2d>>& obstacles,
                                            const Eigen::Vector2d& lo, const Eigen::Vector2d& hi);
 
+// GrowFreeRegion, telling also the region's bounds [*near_lo, *near_hi] when the first
+// obstacle whose gap is at least near_gap comes up (the final region's when none does).
+// An obstacle left out of `obstacles` would not have changed the region when its gap
+// along one of the seed's edge normals is at least near_gap and its bounds lie strictly
+// apart from those: the caller may grow among the near obstacles only and check.
+std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d>& seed,
+                                               const std::vector<std::vector<Eigen::Vector2d>>& obstacles,
+                                               const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double near_gap,
+                                               Eigen::Vector2d* near_lo, Eigen::Vector2d* near_hi);
+
 // Largest excess a . p - b over the region's rows and the points (<= 0: all inside).
 double RegionExcess(const FreeRegion2d& region, const std::vector<Eigen::Vector2d>& points);
 

@@ -63,6 +63,44 @@ TEST(FreeRegion, HoldsItsSeedAndMeetsNoObstacleAmongRandomBoxes) {
   EXPECT_GT(grown, 20);
 }
 
+TEST(FreeRegion, AmongTheNearObstaclesItIsTheRegionAmongAllWhenTheNearBoundsSaySo) {
+  // Unit squares on a lattice (the convex cover's obstacles) about a rectangle seed: grown
+  // among the squares within `near` of the seed only, the region is the one grown among
+  // all whenever the bounds reported at gap `near` lie strictly inside the near window.
+  std::mt19937 rng(5);
+  std::bernoulli_distribution blocked(0.12);
+  int certified = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int size = 40, near = std::uniform_int_distribution<int>(2, 8)(rng);
+    const int x0 = std::uniform_int_distribution<int>(10, 26)(rng), y0 = std::uniform_int_distribution<int>(10, 26)(rng);
+    const int w = std::uniform_int_distribution<int>(1, 4)(rng), h = std::uniform_int_distribution<int>(1, 4)(rng);
+    std::vector<Polygon> all, near_ones;
+    for (int r = 0; r < size; ++r) {
+      for (int c = 0; c < size; ++c) {
+        const bool in_seed = c >= x0 && c < x0 + w && r >= y0 && r < y0 + h;
+        if (in_seed || !blocked(rng)) continue;
+        all.push_back(Box(c, r, c + 1, r + 1));
+        if (c >= x0 - near && c < x0 + w + near && r >= y0 - near && r < y0 + h + near) near_ones.push_back(all.back());
+      }
+    }
+    const Polygon seed = Box(x0, y0, x0 + w, y0 + h);
+    const Eigen::Vector2d lo(0, 0), hi(size, size);
+    Eigen::Vector2d near_lo, near_hi;
+    const std::optional<FreeRegion2d> from_near = GrowFreeRegionNear(seed, near_ones, lo, hi, near, &near_lo, &near_hi);
+    const std::optional<FreeRegion2d> from_all = GrowFreeRegion(seed, all, lo, hi);
+    ASSERT_TRUE(from_near && from_all);
+    if (!(near_lo.x() > x0 - near && near_lo.y() > y0 - near && near_hi.x() < x0 + w + near && near_hi.y() < y0 + h + near)) {
+      continue;
+    }
+    ++certified;
+    ASSERT_EQ(from_near->polygon.size(), from_all->polygon.size()) << "trial " << trial;
+    for (size_t k = 0; k < from_all->polygon.size(); ++k) EXPECT_EQ(from_near->polygon[k], from_all->polygon[k]);
+    EXPECT_EQ(from_near->A, from_all->A);
+    EXPECT_EQ(from_near->b, from_all->b);
+  }
+  EXPECT_GT(certified, 50);
+}
+
 TEST(FreeRegion, ABodyInADoorGetsTheDoorsStripThroughTheWall) {
   // A wall along y at x in [1, 1.1] with a door y in [-0.2, 0.2]; the seed stands in it.
   const std::vector<Polygon> walls = {Box(1.0, 0.2, 1.1, 2.0), Box(1.0, -2.0, 1.1, -0.2)};

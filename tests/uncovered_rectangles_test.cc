@@ -68,6 +68,31 @@ TEST(UncoveredRectanglesTest, AnswersAsTheFullScanAfterEveryClear) {
   }
 }
 
+TEST(UncoveredRectanglesTest, ClearingAnyCellsAnswersAsTheFullScan) {
+  // The convex cover closes the squares a piece meets: any shape, not a rectangle.
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int rows = std::uniform_int_distribution<int>(1, 30)(rng);
+    const int cols = std::uniform_int_distribution<int>(1, 30)(rng);
+    std::vector<uint8_t> cells = RandomMask(&rng, rows, cols, std::uniform_real_distribution<double>(0.5, 1.0)(rng));
+    UncoveredRectangles tracker(cells, rows, cols);
+    std::uniform_int_distribution<size_t> any(0, cells.size() - 1);
+    for (int step = 0; step < 40; ++step) {
+      std::vector<size_t> clear;
+      const int n = std::uniform_int_distribution<int>(0, 12)(rng);
+      for (int k = 0; k < n; ++k) clear.push_back(any(rng));  // repeats and cleared cells too
+      size_t set = 0;
+      for (size_t i : clear) {
+        set += cells[i];
+        cells[i] = 0;
+      }
+      EXPECT_EQ(tracker.ClearCells(clear), set);
+      ASSERT_EQ(tracker.cells(), cells);
+      ExpectSameRect(tracker.Largest(), LargestRectangle(cells, rows, cols));
+    }
+  }
+}
+
 TEST(UncoveredRectanglesTest, TiesGoToTheFirstRectangleOfTheRowByRowScan) {
   // Two 2 x 2 squares: the one whose bottom row comes first wins, then the left one.
   const std::vector<uint8_t> mask = {1, 1, 0, 0, 0,  //

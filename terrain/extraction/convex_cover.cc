@@ -6,6 +6,7 @@
 
 #include "base/check.h"
 #include "geometry/free_region_2d.h"
+#include "terrain/extraction/internal/uncovered_rectangles.h"
 
 namespace mfp {
 namespace {
@@ -45,17 +46,23 @@ Box BoundingBox(const Polygon2d& polygon) {
 class CoverState {
  public:
   CoverState(const std::vector<uint8_t>& squares, int rows, int cols, const ConvexCoverOptions& options)
-      : squares_(squares), rows_(rows), cols_(cols), options_(options), open_(squares),
-        owner_(squares.size(), -1), obstacle_(squares.size(), 0) {
+      : squares_(squares), rows_(rows), cols_(cols), options_(options), open_(squares, rows, cols),
+        owner_(squares.size(), -1) {
     for (uint8_t s : squares) total_ += s ? 1 : 0;
+    row_obstacles_.assign(static_cast<size_t>(rows) + 1, 0);
     for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) obstacle_[Index(r, c)] = !squares[Index(r, c)] && TouchesSet(r, c);
+      for (int c = 0; c < cols; ++c) {
+        if (!squares[Index(r, c)] && TouchesSet(r, c)) obstacle_cols_.push_back(c);
+      }
+      row_obstacles_[static_cast<size_t>(r) + 1] = obstacle_cols_.size();
     }
   }
 
   size_t total() const { return total_; }
   size_t covered() const { return covered_; }
-  const std::vector<uint8_t>& open() const { return open_; }
+  const std::vector<uint8_t>& open() const { return open_.cells(); }
+  // The largest rectangle of open squares (LargestRectangle of open(), kept up to date).
+  CellRect LargestOpen() const { return open_.Largest(); }
   const std::vector<int>& owner() const { return owner_; }
   const std::vector<Polygon2d>& pieces() const { return pieces_; }
 
@@ -64,10 +71,16 @@ class CoverState {
   // the cuts turn toward the obstacles around it), adds the one that holds the most new
   // squares; false when none holds a new square.
   bool AddPiece(const CellRect& seed) {
-    Polygon2d best;
+    Polygon2d best, last_seed;
     size_t best_new = 0;
     for (const double keep : {1.0, 0.5, 0.25}) {
-      const Polygon2d piece = Grow(Shrunk(seed, keep));
+      // A later seed wins only by holding more: none can once every square left is held,
+      // and a seed the same as the last grows the same piece.
+      if (best_new > 0 && best_new == total_ - covered_) break;
+      Polygon2d shrunk = Shrunk(seed, keep);
+      if (shrunk == last_seed) continue;
+      const Polygon2d piece = Grow(shrunk);
+      last_seed = std::move(shrunk);
       const size_t newly = Mark(piece, /*dry_run=*/true);
       if (newly > best_new) {
         best_new = newly;
@@ -96,6 +109,8 @@ class CoverState {
     return false;
   }
 
+  static constexpr int kNearCells = 8;  // Grow's first window beyond the seed [cells]
+
   // The seed's middle `keep` share of each side (at least one square).
   static Polygon2d Shrunk(const CellRect& seed, double keep) {
     const double w = std::max(1.0, keep * seed.cols), h = std::max(1.0, keep * seed.rows);
@@ -108,24 +123,61 @@ class CoverState {
   Polygon2d Grow(const Polygon2d& seed_polygon) const {
     const Box seed = BoundingBox(seed_polygon);
     const int reach = std::max({options_.reach_cells, int(seed.x1 - seed.x0), int(seed.y1 - seed.y0)});
-    const int c0 = std::max(0, int(seed.x0) - reach), c1 = std::min(cols_, int(seed.x1) + reach);
-    const int r0 = std::max(0, int(seed.y0) - reach), r1 = std::min(rows_, int(seed.y1) + reach);
-    std::vector<Polygon2d> obstacles;
-    for (int r = r0; r < r1; ++r) {
-      for (int c = c0; c < c1; ++c) {
-        if (obstacle_[Index(r, c)]) obstacles.push_back(RectPolygon(c, r, c + 1, r + 1));
+    const Window window{std::max(0, int(seed.x0) - reach), std::max(0, int(seed.y0) - reach),
+                        std::min(cols_, int(seed.x1) + reach), std::min(rows_, int(seed.y1) + reach)};
+    // First among the obstacle squares within kNearCells of the seed only: a square farther
+    // out has a gap of at least kNearCells along one of the seed's sides, so it would not
+    // have changed the region when the region, as it was when the gaps reached kNearCells,
+    // lies strictly inside the near window (checked; else grown again among all).
+    const Window near{std::max(window.c0, int(seed.x0) - kNearCells), std::max(window.r0, int(seed.y0) - kNearCells),
+                      std::min(window.c1, int(seed.x1) + kNearCells), std::min(window.r1, int(seed.y1) + kNearCells)};
+    Eigen::Vector2d near_lo, near_hi;
+    std::optional<FreeRegion2d> region = GrowFreeRegionNear(seed_polygon, Obstacles(near, window), window.Lo(),
+                                                            window.Hi(), kNearCells, &near_lo, &near_hi);
+    constexpr double kMargin = 1e-9;  // for rounding in the region's later bounds [cells]
+    const bool near_enough = (near.c0 == window.c0 || near_lo.x() > near.c0 + kMargin) &&
+                             (near.r0 == window.r0 || near_lo.y() > near.r0 + kMargin) &&
+                             (near.c1 == window.c1 || near_hi.x() < near.c1 - kMargin) &&
+                             (near.r1 == window.r1 || near_hi.y() < near.r1 - kMargin);
+    if (region && !near_enough) region = GrowFreeRegion(seed_polygon, Obstacles(window, window), window.Lo(), window.Hi());
+    if (!region || region->polygon.size() < 3) return seed_polygon;
+    return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
+  }
+
+  // Columns [c0, c1) x rows [r0, r1) of the lattice.
+  struct Window {
+    int c0, r0, c1, r1;
+    Eigen::Vector2d Lo() const { return Eigen::Vector2d(c0, r0); }
+    Eigen::Vector2d Hi() const { return Eigen::Vector2d(c1, r1); }
+  };
+
+  // The obstacle squares in `squares` row by row, then (without overlap) the earlier pieces
+  // meeting `window`. Filled in place (no allocation once the polygons have room);
+  // GrowFreeRegion skips the empty ones left at the end.
+  const std::vector<Polygon2d>& Obstacles(const Window& squares, const Window& window) const {
+    size_t used = 0;
+    auto add = [&](const Eigen::Vector2d* begin, const Eigen::Vector2d* end) {
+      if (used == obstacles_.size()) obstacles_.emplace_back();
+      obstacles_[used++].assign(begin, end);
+    };
+    for (int r = squares.r0; r < squares.r1; ++r) {  // the obstacle squares of each row in [c0, c1), in order
+      const auto row_end = obstacle_cols_.begin() + static_cast<std::ptrdiff_t>(row_obstacles_[static_cast<size_t>(r) + 1]);
+      auto it = std::lower_bound(obstacle_cols_.begin() + static_cast<std::ptrdiff_t>(row_obstacles_[static_cast<size_t>(r)]),
+                                 row_end, squares.c0);
+      for (; it != row_end && *it < squares.c1; ++it) {
+        const int c = *it;
+        const Eigen::Vector2d square[4] = {{c, r}, {c + 1, r}, {c + 1, r + 1}, {c, r + 1}};
+        add(square, square + 4);
       }
     }
     if (!options_.cover.grow_over_covered) {
-      const Box window{double(c0), double(r0), double(c1), double(r1)};
+      const Box box{double(window.c0), double(window.r0), double(window.c1), double(window.r1)};
       for (size_t k = 0; k < pieces_.size(); ++k) {
-        if (boxes_[k].Meets(window)) obstacles.push_back(pieces_[k]);
+        if (boxes_[k].Meets(box)) add(pieces_[k].data(), pieces_[k].data() + pieces_[k].size());
       }
     }
-    const std::optional<FreeRegion2d> region =
-        GrowFreeRegion(seed_polygon, obstacles, Eigen::Vector2d(c0, r0), Eigen::Vector2d(c1, r1));
-    if (!region || region->polygon.size() < 3) return seed_polygon;
-    return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
+    for (size_t k = used; k < obstacles_.size(); ++k) obstacles_[k].clear();
+    return obstacles_;
   }
 
   // Squares the piece holds wholly become owned; without overlap, squares it meets close
@@ -135,31 +187,45 @@ class CoverState {
     const int c0 = std::max(0, static_cast<int>(std::floor(box.x0))), c1 = std::min(cols_, static_cast<int>(std::ceil(box.x1)));
     const int r0 = std::max(0, static_cast<int>(std::floor(box.y0))), r1 = std::min(rows_, static_cast<int>(std::ceil(box.y1)));
     size_t newly = 0;
+    closing_.clear();
+    // Whether the piece holds each lattice point of the box (a square's four corners).
+    const int width = c1 - c0 + 1;
+    corner_in_.assign(static_cast<size_t>(std::max(0, r1 - r0 + 1) * std::max(0, width)), 0);
+    for (int r = r0; r <= r1; ++r) {
+      for (int c = c0; c <= c1; ++c) corner_in_[static_cast<size_t>((r - r0) * width + (c - c0))] = Contains(piece, {c, r});
+    }
     for (int r = r0; r < r1; ++r) {
+      const uint8_t* below = &corner_in_[static_cast<size_t>((r - r0) * width)];
+      const uint8_t* above = below + width;
       for (int c = c0; c < c1; ++c) {
         const size_t i = Index(r, c);
-        if (!squares_[i]) continue;
-        const bool whole = Contains(piece, {c, r}) && Contains(piece, {c + 1, r}) && Contains(piece, {c + 1, r + 1}) &&
-                           Contains(piece, {c, r + 1});
+        if (!squares_[i] || (dry_run && owner_[i] >= 0)) continue;
+        const int k = c - c0;
+        const bool whole = below[k] && below[k + 1] && above[k + 1] && above[k];
         if (whole && owner_[i] < 0) ++newly;
         if (dry_run) continue;
         if (whole) {
           if (owner_[i] < 0) owner_[i] = static_cast<int>(pieces_.size());
-          open_[i] = 0;
+          closing_.push_back(i);
         } else if (!options_.cover.grow_over_covered && PolygonMeetsSquare(piece, r, c)) {
-          open_[i] = 0;
+          closing_.push_back(i);
         }
       }
     }
+    if (!dry_run) open_.ClearCells(closing_);
     return newly;
   }
 
   const std::vector<uint8_t>& squares_;
   int rows_, cols_;
   const ConvexCoverOptions& options_;
-  std::vector<uint8_t> open_;  // squares a seed may use
+  UncoveredRectangles open_;  // squares a seed may use
+  std::vector<size_t> closing_;  // Mark's work space: the squares it closes
+  std::vector<uint8_t> corner_in_;  // Mark's work space: the lattice points the piece holds
+  mutable std::vector<Polygon2d> obstacles_;  // Grow's work space: the first ones used, the rest empty
   std::vector<int> owner_;     // a piece holding the square wholly, -1 when none does
-  std::vector<uint8_t> obstacle_;  // outside the set, touching it
+  std::vector<int> obstacle_cols_;       // the obstacle squares' (outside the set, touching it) columns, row by row
+  std::vector<size_t> row_obstacles_;  // row r's are obstacle_cols_[row_obstacles_[r], row_obstacles_[r + 1])
   std::vector<Polygon2d> pieces_;
   std::vector<Box> boxes_;
   size_t total_ = 0, covered_ = 0;
@@ -211,7 +277,7 @@ std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares,
   auto room = [&] { return static_cast<int>(state.pieces().size()) < cover.max_rects && !cover.deadline.Expired(); };
   while (room() && state.covered() < state.total() &&
          static_cast<double>(state.covered()) < cover.target_coverage * static_cast<double>(state.total())) {
-    const CellRect seed = LargestRectangle(state.open(), rows, cols);
+    const CellRect seed = state.LargestOpen();
     if (seed.Area() < min_seed || !state.AddPiece(seed)) break;
   }
   // As the rectangle cover: the part left may hold the only way between two pieces.

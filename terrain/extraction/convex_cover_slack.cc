@@ -25,17 +25,17 @@ Bounds BoundsOf(const Polygon2d& polygon) {
   return b;
 }
 
-// The part of a convex polygon where n . x <= d (Sutherland-Hodgman against one line).
-Polygon2d ClipKeepingBelow(const Polygon2d& polygon, const Eigen::Vector2d& n, double d) {
-  Polygon2d out;
+// The part of a convex polygon where n . x <= d (Sutherland-Hodgman against one line),
+// into `out` (kept by the caller, so no allocation once it has room).
+void ClipKeepingBelow(const Polygon2d& polygon, const Eigen::Vector2d& n, double d, Polygon2d* out) {
+  out->clear();
   for (size_t i = 0; i < polygon.size(); ++i) {
     const Eigen::Vector2d& a = polygon[i];
     const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
     const double fa = n.dot(a) - d, fb = n.dot(b) - d;
-    if (fa <= 0.0) out.push_back(a);
-    if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) out.push_back(a + (fa / (fa - fb)) * (b - a));
+    if (fa <= 0.0) out->push_back(a);
+    if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) out->push_back(a + (fa / (fa - fb)) * (b - a));
   }
-  return out;
 }
 
 // An edge's outward unit normal and offset: the polygon lies where normal . x <= offset.
@@ -59,14 +59,16 @@ std::vector<HalfPlane> HalfPlanesOf(const Polygon2d& polygon) {
   return planes;
 }
 
-// The polygon's half-planes with edge `moved` pushed out by `shift`, within `box`.
-Polygon2d Intersection(const std::vector<HalfPlane>& planes, size_t moved, double shift, const Bounds& box) {
-  Polygon2d polygon = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
-  for (size_t j = 0; j < planes.size() && polygon.size() >= 3; ++j) {
+// The polygon's half-planes with edge `moved` pushed out by `shift`, within `box`, into
+// `polygon` (`scratch`: the caller's work space).
+void Intersection(const std::vector<HalfPlane>& planes, size_t moved, double shift, const Bounds& box, Polygon2d* polygon,
+                  Polygon2d* scratch) {
+  *polygon = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
+  for (size_t j = 0; j < planes.size() && polygon->size() >= 3; ++j) {
     if (planes[j].normal.isZero()) continue;
-    polygon = ClipKeepingBelow(polygon, planes[j].normal, planes[j].offset + (j == moved ? shift : 0.0));
+    ClipKeepingBelow(*polygon, planes[j].normal, planes[j].offset + (j == moved ? shift : 0.0), scratch);
+    std::swap(*polygon, *scratch);
   }
-  return polygon;
 }
 
 // Whether two convex polygons' interiors are apart: some edge of either separates them.
@@ -96,7 +98,9 @@ bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_in
       const double inset = inset_at(r, c);
       if (inset <= 0.0) continue;  // a patch cell, or no inset asked
       const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
-      if (std::hypot(dx, dy) >= inset) continue;  // the boxes are far enough apart
+      // The boxes are far enough apart. Squared with a relative margin of 1e-12, so a cell
+      // skipped here is one the exact distance would pass as well.
+      if (dx * dx + dy * dy >= inset * inset * (1.0 + 1e-12)) continue;
       const Polygon2d cell = {{c - 0.5, r - 0.5}, {c + 0.5, r - 0.5}, {c + 0.5, r + 0.5}, {c - 0.5, r + 0.5}};
       if (ConvexPolygonDistance(part, cell) < inset - kEps) return false;
     }
@@ -121,6 +125,7 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
   std::vector<Bounds> bounds;
   for (const Polygon2d& piece : *pieces) bounds.push_back(BoundsOf(piece));
   const double finest = options.most_cells / std::ldexp(1.0, std::max(0, options.bisections));
+  Polygon2d moved_piece, part, scratch;  // work space of the tests
   for (size_t k = 0; k < pieces->size() && !options.deadline.Expired(); ++k) {
     Polygon2d& piece = (*pieces)[k];
     if (piece.size() < 3) continue;
@@ -133,8 +138,8 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
       if (planes[j].normal.isZero()) continue;
       // What moving side j out by `shift` adds: the moved polygon beyond the side's line.
       auto sound = [&](double shift) {
-        const Polygon2d part =
-            ClipKeepingBelow(Intersection(planes, j, shift, box), -planes[j].normal, -planes[j].offset);
+        Intersection(planes, j, shift, box, &moved_piece, &scratch);
+        ClipKeepingBelow(moved_piece, -planes[j].normal, -planes[j].offset, &part);
         if (part.size() < 3) return true;
         return KeepsInsets(part, inset_at, max_inset_cells) &&
                (options.may_overlap || ClearOfOthers(part, *pieces, bounds, k));
@@ -148,7 +153,7 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
       planes[j].offset += lo;
       moved_any = true;
       // Later sides are judged against the piece as moved so far.
-      piece = Intersection(planes, planes.size(), 0.0, box);
+      Intersection(planes, planes.size(), 0.0, box, &piece, &scratch);
       bounds[k] = BoundsOf(piece);
     }
     if (moved_any) piece = SimplifyConvex(std::move(piece), options.max_vertices);

@@ -90,9 +90,9 @@ struct RegionExtractorOptions {
   // for the planner per region), and a piece narrower than foot_radius_m is dropped
   // unless it is its patch's first; kept per patch only where they hold more kept cells'
   // centres than the rectangles (computed only where the rectangles leave room for that).
-  // Off (the default): the rectangles. Why it is not the default yet: docs/measurements.md,
-  // "The convex cover as the default? (issue 25, stop 30, convexdefault)".
-  bool convex_cover = false;
+  // On by default since stop 31 (docs/measurements.md, "The convex pieces cheap enough to
+  // be the default"); off: the rectangles everywhere.
+  bool convex_cover = true;
   int max_region_vertices = 8;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,

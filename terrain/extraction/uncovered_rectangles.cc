@@ -67,25 +67,63 @@ size_t UncoveredRectangles::Clear(const CellRect& rect) {
   if (cleared == 0) return 0;
   // Heights change in the cleared columns from the first cleared row down, until a row
   // below the rectangle keeps its height (then every row below it keeps it too).
-  // Row by row (the array's order), over the columns still changing.
-  const int last_row = rect.row0 + rect.rows - 1;
-  int last_changed = last_row;
   active_.clear();
   for (int c = rect.col0; c < rect.col0 + rect.cols; ++c) active_.push_back(c);
-  for (int r = rect.row0; r < rows_ && !active_.empty(); ++r) {
+  Recompute(rect.row0, rect.row0 + rect.rows - 1, nullptr, nullptr);
+  return cleared;
+}
+
+size_t UncoveredRectangles::ClearCells(const std::vector<size_t>& indices) {
+  if (first_cleared_.empty()) {
+    first_cleared_.assign(static_cast<size_t>(cols_), -1);
+    last_cleared_.assign(static_cast<size_t>(cols_), -1);
+  }
+  size_t cleared = 0;
+  int from = rows_, to = -1;
+  active_.clear();
+  for (const size_t i : indices) {
+    MFP_CHECK(i < cells_.size());
+    if (!cells_[i]) continue;
+    cells_[i] = 0;
+    ++cleared;
+    const int r = static_cast<int>(i / cols_), c = static_cast<int>(i % cols_);
+    if (first_cleared_[c] < 0) {
+      active_.push_back(c);
+      first_cleared_[c] = last_cleared_[c] = r;
+    }
+    first_cleared_[c] = std::min(first_cleared_[c], r);
+    last_cleared_[c] = std::max(last_cleared_[c], r);
+    from = std::min(from, r);
+    to = std::max(to, r);
+  }
+  if (cleared == 0) return 0;
+  std::sort(active_.begin(), active_.end());
+  const std::vector<int> columns = active_;
+  Recompute(from, to, first_cleared_.data(), last_cleared_.data());
+  for (const int c : columns) first_cleared_[c] = last_cleared_[c] = -1;
+  return cleared;
+}
+
+void UncoveredRectangles::Recompute(int from, int to, const int* first, const int* last) {
+  // Row by row (the array's order), over the columns still changing.
+  int last_changed = to;
+  for (int r = from; r < rows_ && !active_.empty(); ++r) {
     size_t kept = 0;
     for (const int c : active_) {
+      if (first != nullptr && r < first[c]) {  // not cleared above this row: unchanged so far
+        active_[kept++] = c;
+        continue;
+      }
       const size_t i = static_cast<size_t>(r) * cols_ + c;
       const int h = cells_[i] ? (r > 0 ? height_[i - cols_] : 0) + 1 : 0;
-      if (r > last_row && h == height_[i]) continue;  // this column keeps its heights below
+      if (r > (last != nullptr ? last[c] : to) && h == height_[i]) continue;  // this column keeps its heights below
       height_[i] = h;
       last_changed = std::max(last_changed, r);
       active_[kept++] = c;
     }
     active_.resize(kept);
   }
-  for (int r = rect.row0; r <= last_changed; ++r) ScanRow(r);
-  return cleared;
+  for (int r = from; r <= last_changed; ++r) ScanRow(r);
 }
 
 }  // namespace mfp

@@ -26,6 +26,9 @@ class UncoveredRectangles {
   // Clears the rectangle's cells (it must lie in the grid); returns how many were set.
   size_t Clear(const CellRect& rect);
 
+  // Clears the cells at these row-major indices (any shape); returns how many were set.
+  size_t ClearCells(const std::vector<size_t>& indices);
+
   // The cells still set (1) or not (0).
   const std::vector<uint8_t>& cells() const { return cells_; }
 
@@ -39,6 +42,10 @@ class UncoveredRectangles {
   std::vector<CellRect> row_best_;
   std::vector<int> stack_;   // ScanRow's work space
   std::vector<int> active_;  // Clear's work space: the columns whose heights still change
+  std::vector<int> first_cleared_, last_cleared_;  // ClearCells' work space: per column, -1 when none
+  // Recomputes the heights of the active columns from row `from` down (column c from row
+  // first[c], until a row below last[c] keeps its height), then rescans the changed rows.
+  void Recompute(int from, int to, const int* first, const int* last);
 };
 
 }  // namespace mfp
