@@ -61,6 +61,8 @@ void AddLimitKeys(OptionTable<C>* t) {
   t->push_back(Opt("limits.max_abandoned_plans", Limit(&L::max_abandoned_plans), 1, 64,
                    "plans answered at their deadline and still stopping, at most; beyond it a request is "
                    "answered dropped (no new planning thread)").Advanced());
+  t->push_back(Opt("limits.extraction_threads", Limit(&L::extraction_threads), 1, 64,
+                   "threads one map's region extraction runs on (1: the map thread alone)").Advanced());
 }
 
 const OptionTable<C>& DaemonOptionTable() {

@@ -45,6 +45,10 @@ struct DaemonLimits {
   // end at their next check) may number this many at most: a request that finds that
   // many is answered dropped without a thread, so the daemon's threads stay bounded.
   int max_abandoned_plans = 2;
+  // Threads one map's region extraction runs on (the map thread and this many minus one
+  // helpers, joined before the map is published): on two cores extraction then takes
+  // about half the wall time, while a plan in progress gets less of the machine.
+  int extraction_threads = 2;
 };
 
 struct DaemonConfig {

@@ -43,6 +43,7 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     options.max_slope_rad = std::min(options.max_slope_rad, entry.second.max_slope_rad);
   }
   if (!(options.clearance_m > 0.0)) options.clearance_m = std::numeric_limits<double>::infinity();
+  options.threads = setup.config.limits.extraction_threads;
   if (setup.config.planner.map_body_obstacles) {
     // One obstacle set for every robot: the lowest body band and the farthest reach.
     std::vector<const RobotModel*> robots;

@@ -143,15 +143,18 @@ TEST(LongSearch, TheRootCutLoopWaitsForALongSearch) {
   EXPECT_EQ(waited.root_cuts, 0);
   EXPECT_EQ(waited.nodes, plain.nodes);
   EXPECT_DOUBLE_EQ(waited.objective, plain.objective);
-  // Long from the root: the loop runs after the root as without the rule.
+  // Long from the root, whose roundings find no plan on this chain: without the rule the
+  // loop never runs (it needs a plan), with it the first pass goes on until it holds one,
+  // then the loop runs and the search with cuts proves the same optimum.
   BranchAndBoundOptions at_root = cuts;
   at_root.long_search_only = kLongSearchRootCuts;
   at_root.long_search_nodes_left = 0.0;
   const BranchAndBoundResult ruled = Solve(at_root);
   const BranchAndBoundResult unruled = Solve(cuts);
-  EXPECT_EQ(ruled.root_cuts, unruled.root_cuts);
-  EXPECT_EQ(ruled.nodes, unruled.nodes);
-  EXPECT_DOUBLE_EQ(ruled.objective, unruled.objective);
+  EXPECT_EQ(unruled.root_cuts, 0);
+  EXPECT_GT(ruled.root_cuts, 0);
+  ASSERT_EQ(ruled.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(ruled.objective, plain.objective, 1e-4 * std::max(1.0, std::abs(plain.objective)));
   // Long after 4 nodes: the first pass's 4 nodes, then the loop and the search with cuts.
   BranchAndBoundOptions after = at_root;
   after.long_search_min_nodes = 4;

@@ -441,6 +441,7 @@ bool DualActiveSetQp::CertifiesInfeasible(int p, const Eigen::VectorXd& r) const
   }
   double best = 0.0;  // max over the box of w'x
   for (int j = 0; j < n_; ++j) {
+    if (w(j) == 0.0) continue;  // 0 * an infinite bound would make the sum NaN
     best += std::max(w(j) * lower_(j), w(j) * upper_(j));
     magnitude += std::abs(w(j)) * std::max(std::abs(lower_(j)), std::abs(upper_(j)));
   }

@@ -76,6 +76,8 @@ class Search {
   // The search ends (as at a node limit) after its root once it is long
   // (SearchState::IsLong): the root cut loop kept to long searches runs then.
   void StopOnceLong() { stop_once_long_ = true; }
+  // Whether Run ended because the search became long (StopOnceLong), not on a limit.
+  bool StoppedOnceLong() const { return stopped_once_long_; }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -86,8 +88,15 @@ class Search {
         hit_time_limit_ = true;
         break;
       }
-      if (result.nodes >= opt_.max_nodes || (stop_once_long_ && root_done_ && state_.IsLong())) {
+      if (result.nodes >= opt_.max_nodes) {
         hit_node_limit_ = true;
+        break;
+      }
+      // Stopped once long only with a plan: the cut loop needs one, and without it the
+      // second pass would start again from the root with nothing gained.
+      if (stop_once_long_ && root_done_ && state_.IsLong() && state_.HasIncumbent()) {
+        hit_node_limit_ = true;
+        stopped_once_long_ = true;
         break;
       }
       std::vector<SearchNode> batch = TakeRound();
@@ -418,6 +427,7 @@ class Search {
   int last_rins_node_ = 0;  // the node count at the last RINS
   bool root_done_ = false;
   bool stop_once_long_ = false;
+  bool stopped_once_long_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
   bool root_infeasible_ = false;
@@ -481,6 +491,9 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   const bool settled = root.status == SolveStatus::kOptimal || root.status == SolveStatus::kInfeasible ||
                        root.status == SolveStatus::kInternalError;
   if (settled || root.nodes >= options.max_nodes) return root;
+  // A first pass kept to long searches that ended on its stall limit (not because it
+  // became long) is the search's answer: a second pass would give it a second stall window.
+  if (until_long && !first.StoppedOnceLong()) return root;
   if (deadline.Expired()) {
     if (root.status == SolveStatus::kFeasible) root.status = SolveStatus::kTimeLimit;
     return root;

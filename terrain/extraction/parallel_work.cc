@@ -28,6 +28,7 @@ void ParallelFor(int n, int threads, const std::function<void(int)>& work) {
   };
   std::vector<std::thread> helpers;
   const int extra = std::max(0, std::min(threads, n) - 1);
+  helpers.reserve(static_cast<size_t>(extra));  // emplace_back then never reallocates (nor throws bad_alloc)
   for (int t = 0; t < extra; ++t) {
     try {
       helpers.emplace_back(run);
