@@ -236,10 +236,11 @@ TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingT
 namespace mfp {
 namespace {
 
-// A goal foot spot just outside a region, within goal_tolerance of it: such a foot could
-// only stop on the region's edge, at the goal test's limit. The goal moves to the nearest
-// stance with every spot inside a region, and the plan reaches it.
-TEST_F(StartGoalTest, AGoalSpotJustOffARegionMovesTheGoalInside) {
+// A goal foot spot just outside a region, within goal_tolerance of it, is planned as
+// asked: its foot stops at the region's edge, within the goal test. (Moving such goals
+// inside the regions lost two generated courses whose moved stance, 4 cm and 0.1-0.2 rad
+// off, missed the asked goal's feet: docs/measurements.md, stop 31.)
+TEST_F(StartGoalTest, AGoalSpotJustOffARegionWithinTheToleranceIsPlannedAsAsked) {
   const PlanRequest request = Request();
   const PlannerOptions& o = course_->scenario.options;
   const std::vector<ConvexRegion> regions = FloorEndingShortOfTheGoal(request, 0.03);
@@ -250,8 +251,7 @@ TEST_F(StartGoalTest, AGoalSpotJustOffARegionMovesTheGoalInside) {
   const Plan plan = PlanOn(regions, request);
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
-  ASSERT_TRUE(plan.goal_moved) << plan.message;
-  EXPECT_EQ(LegOffRegions(robot(), regions, GoalPose{plan.goal_x_m, plan.goal_y_m, plan.goal_yaw_rad}, 0.0), -1);
+  EXPECT_FALSE(plan.goal_moved) << plan.message;
   const std::vector<std::string> violations = Violations(regions, plan);
   EXPECT_TRUE(violations.empty()) << violations.front();
 }

@@ -109,33 +109,29 @@ std::string FartherStanceText(const RobotModel& robot, const std::vector<ConvexR
   return text.str();
 }
 
-// Under route guidance a goal stance must stand on regions. A goal with a foot spot
-// outside every region is moved to a stance with every spot inside one (a foot within
-// goal_tolerance of a region could only stop at its edge, on the goal test's limit, and
-// the windows' exact steps keep inside shrunk regions):
-// - every spot within goal_tolerance of a region: to the nearest such stance that still
-//   meets the goal test (goal_tolerance, goal_yaw_tolerance); without one, planned as asked;
-// - otherwise: to the nearest such stance within the goal position and heading
-//   tolerances; beyond them the request is invalid_goal, naming the foot and the nearest
-//   certified stance farther out.
-// The request has passed CheckPlanRequest.
+// Under route guidance a goal stance must stand on regions (the route guide's test). One
+// with a foot spot on none is moved to the nearest certified stance within the goal
+// tolerances; beyond them the request is invalid_goal, naming the foot and the nearest
+// certified stance farther out. The request has passed CheckPlanRequest.
 GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const PlanRequest& request,
                       const PlannerOptions& options) {
   GoalChoice choice;
   if (!options.route_guidance || request.max_windows != 0) return choice;
   const GoalPose goal{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
-  const int leg = LegOffRegions(robot, regions, goal, 0.0);
+  const double tol = options.goal_tolerance_m;
+  const int leg = LegOffRegions(robot, regions, goal, tol);
   if (leg < 0) return choice;
-  const bool near_regions = LegOffRegions(robot, regions, goal, options.goal_tolerance_m) < 0;
   const Eigen::Vector2d spot = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
   std::ostringstream why;
   why.precision(3);
   why << "the goal " << PoseText(goal) << " puts leg " << leg << " ('" << robot.legs[leg].name << "') at ("
       << spot.x() << ", " << spot.y() << "), on no region";
-  choice.moved = NearestCertifiedGoal(
-      robot, regions, goal, near_regions ? options.goal_tolerance_m : options.goal_position_tolerance_m,
-      near_regions ? options.goal_yaw_tolerance_rad : options.goal_heading_tolerance_rad, options.goal_search_step_m,
-      options.goal_search_yaw_step_rad, 0.0, request.deadline);
+  // The stance moved to has every spot inside a region, not merely within the goal
+  // tolerance of one: its feet must be able to stand on their spots exactly.
+  choice.moved = NearestCertifiedGoal(robot, regions, goal, options.goal_position_tolerance_m,
+                                      options.goal_heading_tolerance_rad, options.goal_search_step_m,
+                                      options.goal_search_yaw_step_rad, 0.0,
+                                      request.deadline);
   if (request.deadline.Expired()) {
     choice.moved.reset();
     choice.rejected = Rejected(SolveStatus::kTimeLimit, why.str() + "; " +
@@ -147,7 +143,6 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
     choice.note = why.str() + "; planned to the nearest stance on regions " + PoseText(*choice.moved);
     return choice;
   }
-  if (near_regions) return choice;
   why << "; no stance on regions within goal_position_tolerance " << options.goal_position_tolerance_m
       << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
   choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str() + FartherStanceText(robot, regions, goal, options,
