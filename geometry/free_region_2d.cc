@@ -162,19 +162,6 @@ class BoundOrder {
   size_t head_ = 0, sorted_end_ = 0;
 };
 
-// KeepBelowLine (the same arithmetic) into a buffer the caller keeps.
-void ClipBelowLine(const Polygon& polygon, const Eigen::Vector2d& n, double c, Polygon* out) {
-  out->clear();
-  const size_t m = polygon.size();
-  for (size_t i = 0; i < m; ++i) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[(i + 1) % m];
-    const double da = n.dot(a) - c;
-    const double db = n.dot(b) - c;
-    if (da <= 0.0) out->push_back(a);
-    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) out->push_back(a + (b - a) * (da / (da - db)));
-  }
-}
 
 // Whether the obstacle meets the region { normals . x <= offsets } in more than touching:
 // the obstacle clipped by every line in turn keeps an area. An obstacle whose bounds are
@@ -184,7 +171,7 @@ bool MeetsRegion(const Polygon& obstacle, const Bounds& region_bounds, const std
   if (BoundsOf(obstacle).Apart(region_bounds)) return false;
   *inside = obstacle;
   for (size_t r = 0; r < normals.size() && inside->size() >= 3; ++r) {
-    ClipBelowLine(*inside, normals[r], offsets[r], scratch);
+    KeepBelowLineInto(*inside, normals[r], offsets[r], scratch);
     std::swap(*inside, *scratch);
   }
   return inside->size() >= 3 && std::abs(PolygonArea2d(*inside)) >= kTouchArea;
@@ -256,7 +243,7 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
     const Separation& separation = separations[static_cast<size_t>(k)];
     normals.push_back(separation.a);
     offsets.push_back(separation.b);
-    ClipBelowLine(region, separation.a, separation.b, &scratch);
+    KeepBelowLineInto(region, separation.a, separation.b, &scratch);
     std::swap(region, scratch);
     region_bounds = BoundsOf(region);
   }
