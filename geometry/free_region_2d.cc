@@ -162,13 +162,13 @@ class BoundOrder {
   size_t head_ = 0, sorted_end_ = 0;
 };
 
-
 // Whether the obstacle meets the region { normals . x <= offsets } in more than touching:
 // the obstacle clipped by every line in turn keeps an area. An obstacle whose bounds are
 // apart from the region polygon's meets it in nothing (the clip would leave rounding only).
-bool MeetsRegion(const Polygon& obstacle, const Bounds& region_bounds, const std::vector<Eigen::Vector2d>& normals,
-                 const std::vector<double>& offsets, Polygon* inside, Polygon* scratch) {
-  if (BoundsOf(obstacle).Apart(region_bounds)) return false;
+bool MeetsRegion(const Polygon& obstacle, const Bounds& obstacle_bounds, const Bounds& region_bounds,
+                 const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& offsets, Polygon* inside,
+                 Polygon* scratch) {
+  if (obstacle_bounds.Apart(region_bounds)) return false;
   *inside = obstacle;
   for (size_t r = 0; r < normals.size() && inside->size() >= 3; ++r) {
     KeepBelowLineInto(*inside, normals[r], offsets[r], scratch);
@@ -237,7 +237,8 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
     std::pop_heap(by_gap.begin(), by_gap.end(), ComesLater());
     const int k = by_gap.back().index;
     by_gap.pop_back();
-    if (!MeetsRegion(obstacles[static_cast<size_t>(k)], region_bounds, normals, offsets, &inside, &scratch)) {
+    if (!MeetsRegion(obstacles[static_cast<size_t>(k)], by_bound.bounds(k), region_bounds, normals, offsets, &inside,
+                     &scratch)) {
       continue;  // already cut off
     }
     const Separation& separation = separations[static_cast<size_t>(k)];

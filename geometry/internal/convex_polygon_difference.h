@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "geometry/half_plane_clip.h"
+
 namespace mfp {
 
 // The points of `polygon` (counter-clockwise) outside `cut` (counter-clockwise, at least
@@ -15,13 +17,6 @@ namespace mfp {
 std::vector<std::vector<Eigen::Vector2d>> ConvexPolygonMinus(const std::vector<Eigen::Vector2d>& polygon,
                                                              const std::vector<Eigen::Vector2d>& cut,
                                                              double margin_m, double min_area_m2);
-
-// The part of a convex polygon where n . p <= c (one Sutherland-Hodgman clip).
-std::vector<Eigen::Vector2d> KeepBelowLine(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& n,
-                                           double c);
-// The same into *out, a buffer the caller keeps (cleared first; must not be polygon).
-void KeepBelowLineInto(const std::vector<Eigen::Vector2d>& polygon, const Eigen::Vector2d& n, double c,
-                       std::vector<Eigen::Vector2d>* out);
 
 // Area of a simple polygon, positive when counter-clockwise [m^2].
 double PolygonArea2d(const std::vector<Eigen::Vector2d>& polygon);

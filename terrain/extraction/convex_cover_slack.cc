@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "geometry/convex_polygon_distance.h"
+#include "geometry/half_plane_clip.h"
 #include "terrain/extraction/internal/convex_cover.h"
 
 namespace mfp {
@@ -23,19 +24,6 @@ Bounds BoundsOf(const Polygon2d& polygon) {
     b.hi = b.hi.cwiseMax(p);
   }
   return b;
-}
-
-// The part of a convex polygon where n . x <= d (Sutherland-Hodgman against one line),
-// into `out` (kept by the caller, so no allocation once it has room).
-void ClipKeepingBelow(const Polygon2d& polygon, const Eigen::Vector2d& n, double d, Polygon2d* out) {
-  out->clear();
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
-    const double fa = n.dot(a) - d, fb = n.dot(b) - d;
-    if (fa <= 0.0) out->push_back(a);
-    if ((fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0)) out->push_back(a + (fa / (fa - fb)) * (b - a));
-  }
 }
 
 // An edge's outward unit normal and offset: the polygon lies where normal . x <= offset.
@@ -66,7 +54,7 @@ void Intersection(const std::vector<HalfPlane>& planes, size_t moved, double shi
   *polygon = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
   for (size_t j = 0; j < planes.size() && polygon->size() >= 3; ++j) {
     if (planes[j].normal.isZero()) continue;
-    ClipKeepingBelow(*polygon, planes[j].normal, planes[j].offset + (j == moved ? shift : 0.0), scratch);
+    KeepBelowLineInto(*polygon, planes[j].normal, planes[j].offset + (j == moved ? shift : 0.0), scratch);
     std::swap(*polygon, *scratch);
   }
 }
@@ -139,7 +127,7 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
       // What moving side j out by `shift` adds: the moved polygon beyond the side's line.
       auto sound = [&](double shift) {
         Intersection(planes, j, shift, box, &moved_piece, &scratch);
-        ClipKeepingBelow(moved_piece, -planes[j].normal, -planes[j].offset, &part);
+        KeepBelowLineInto(moved_piece, -planes[j].normal, -planes[j].offset, &part);
         if (part.size() < 3) return true;
         return KeepsInsets(part, inset_at, max_inset_cells) &&
                (options.may_overlap || ClearOfOthers(part, *pieces, bounds, k));
