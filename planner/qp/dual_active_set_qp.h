@@ -37,10 +37,9 @@ namespace mfp {
 
 struct DualActiveSetOptions {
   // Hessian regularisation scale (objective units per unit of a variable's squared range).
-  // Larger is better conditioned factors and fewer steps per node (1e-7 -> 1e-5: 75 -> 28
-  // steps on hexapod 24, docs/measurements.md, issue 26, nodeqp3), but the floors lose up
-  // to 0.5 * regularisation per variable (3e-3 on 600 variables, against objectives of
-  // 1e3-2e4 and a gap of 1e-4).
+  // Larger is better conditioned factors and fewer steps per node (docs/measurements.md,
+  // nodeqp3), but the floors lose up to 0.5 * regularisation per variable (3e-3 on 600
+  // variables, against objectives of 1e3-2e4 and a gap of 1e-4).
   double regularisation = 1e-5;
   // A constraint violated by more than this (relative to 1 + |its bound|, rows scaled to
   // unit norm) is not met.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "planner/qp/fixed_integer_qp.h"
@@ -18,20 +19,18 @@ SearchState::SearchState(const Miqp& problem, const std::vector<RelaxationSolver
       hard_deadline_(options.time_limit_needs_incumbent ? options.deadline : deadline_),
       queue_(options.node_selection, options.plunge_fraction) {}
 
-bool SearchState::Stalled() const {
-  return opt_.stall_time_fraction > 0.0 && HasIncumbent() &&
-         std::chrono::duration<double>(Clock::now() - last_improvement_).count() >
-             opt_.stall_time_fraction * opt_.time_limit_s;
+double SearchState::StallTimeLeftSeconds() const {
+  if (!(opt_.stall_time_fraction > 0.0) || !HasIncumbent()) return std::numeric_limits<double>::infinity();
+  return opt_.stall_time_fraction * opt_.time_limit_s -
+         std::chrono::duration<double>(Clock::now() - last_improvement_).count();
 }
+
+bool SearchState::Stalled() const { return StallTimeLeftSeconds() < 0.0; }
 
 bool SearchState::IsLong() const {
   const int nodes = result_.nodes;
   if (nodes < opt_.long_search_min_nodes) return false;
-  double left_s = Active().RemainingSeconds();
-  if (opt_.stall_time_fraction > 0.0 && HasIncumbent()) {
-    const double since_improvement = std::chrono::duration<double>(Clock::now() - last_improvement_).count();
-    left_s = std::min(left_s, opt_.stall_time_fraction * opt_.time_limit_s - since_improvement);
-  }
+  const double left_s = std::min(Active().RemainingSeconds(), StallTimeLeftSeconds());
   const double per_node_s = Elapsed() / std::max(1, nodes);
   return left_s >= opt_.long_search_nodes_left * per_node_s;
 }

@@ -574,10 +574,6 @@ HeightMap MovedCellsAsSeen(const HeightMap& repaired, const std::vector<std::pai
   return moved;
 }
 
-}  // namespace
-
-namespace {
-
 // What BuildSurfaceLayers keeps of one layer besides its heights.
 struct LayerFinish {
   std::vector<uint8_t> unseen, solid_beside;   // SurfaceLayers::unseen, solid_beside of the layer

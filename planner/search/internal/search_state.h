@@ -36,7 +36,9 @@ class SearchState {
   // The deadline in force: the time limit's, or before the first incumbent under
   // time_limit_needs_incumbent the caller's alone.
   const Deadline& Active() const { return !HasIncumbent() ? hard_deadline_ : deadline_; }
-  // BranchAndBoundOptions::stall_time_fraction.
+  // BranchAndBoundOptions::stall_time_fraction: the time left before the search counts as
+  // stalled (infinite without a stall limit or before its first plan) [s], and whether it is.
+  double StallTimeLeftSeconds() const;
   bool Stalled() const;
   // BranchAndBoundOptions::long_search_min_nodes and long_search_nodes_left.
   bool IsLong() const;
