@@ -17,8 +17,12 @@ without the JSON's objective_offset):
   separators   SCIP's root (node limit 1, no restarts) with cut separators switched off, only
                aggregation c-MIR, only Gomory, or all. SCIP's dual bound at the node limit also
                holds its root strong branching, common to every case.
+  scip-cuts    the continuous relaxation with the cuts of SCIP's root LP added as rows (root
+               without presolve or heuristics, so the cuts are on the original variables; cuts
+               on SCIP's auxiliary variables of the objective cannot be carried over and are left
+               out): what mfp's QP relaxation would gain from the cuts SCIP finds.
 
-  bench/.venv/bin/python bench/peers/root_levers.py yaw-pairs|perspective|separators FILE.mps [--legs 4]
+  bench/.venv/bin/python bench/peers/root_levers.py yaw-pairs|perspective|separators|scip-cuts FILE.mps [--legs 4]
 
 Diagnostic only: one thread; no timing is reported.
 """
@@ -27,7 +31,7 @@ import math
 import re
 import sys
 
-from pyscipopt import Model, quicksum
+from pyscipopt import SCIP_PARAMSETTING, Model, quicksum
 
 
 def load(path, relax):
@@ -203,13 +207,45 @@ def separators(path, _legs, time_limit=300.0):
         print(f"separators {name:<18} root dual bound {model.getDualbound():.4f}", flush=True)
 
 
+def scip_cuts(path, _legs):
+    root = load(path, relax=False)
+    root.setParam("limits/nodes", 1)
+    root.setParam("presolving/maxrestarts", 0)
+    root.setPresolve(SCIP_PARAMSETTING.OFF)
+    root.setHeuristics(SCIP_PARAMSETTING.OFF)
+    root.optimize()
+    original = {v.name for v in root.getVars()} - {"qmatrixvar"}
+    rows = {c.name for c in root.getConss()}
+    cuts = []
+    for row in root.getLPRowsData():
+        names = [c.getVar().name.removeprefix("t_") for c in row.getCols()]
+        if not row.name or row.name in rows or any(n not in original for n in names):
+            continue
+        cuts.append((names, row.getVals(), row.getLhs() - row.getConstant(), row.getRhs() - row.getConstant()))
+    plain = load(path, relax=True)
+    plain.optimize()
+    model = load(path, relax=True)
+    variables = {v.name: v for v in model.getVars()}
+    for names, values, lhs, rhs in cuts:
+        expr = quicksum(a * variables[n] for n, a in zip(names, values))
+        if lhs > -1e19:
+            model.addCons(expr >= lhs)
+        if rhs < 1e19:
+            model.addCons(expr <= rhs)
+    model.optimize()
+    print(f"SCIP's root {root.getDualbound():.4f} (with its strong branching); relaxation {plain.getObjVal():.4f}, "
+          f"with SCIP's {len(cuts)} cuts on original variables {model.getObjVal():.4f} "
+          f"(+{model.getObjVal() - plain.getObjVal():.4f})")
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("lever", choices=["yaw-pairs", "perspective", "separators"])
+    parser.add_argument("lever", choices=["yaw-pairs", "perspective", "separators", "scip-cuts"])
     parser.add_argument("mps")
     parser.add_argument("--legs", type=int, default=4, help="feet whose goal cost the perspective rewrites")
     args = parser.parse_args(argv)
-    {"yaw-pairs": yaw_pairs, "perspective": perspective, "separators": separators}[args.lever](args.mps, args.legs)
+    {"yaw-pairs": yaw_pairs, "perspective": perspective, "separators": separators,
+     "scip-cuts": scip_cuts}[args.lever](args.mps, args.legs)
     return 0
 
 
