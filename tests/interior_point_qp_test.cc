@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <random>
@@ -10,6 +11,7 @@
 #include "planner/miqp/miqp_builder.h"
 #include "planner/qp/internal/fixed_variable_reduction.h"
 #include "planner/qp/internal/ipm_relaxation_solver.h"
+#include "planner/qp/internal/ipopt_relaxation_solver.h"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "tests/test_qps.h"
 
@@ -94,6 +96,20 @@ TEST(InteriorPointQp, AWarmStartStillFindsAnInfeasibleChild) {
     options.tolerance = tolerance;
     EXPECT_EQ(SolveQpInteriorPoint(p, p.var_lower, upper, &parent.x, options).status, RelaxationStatus::kInfeasible)
         << tolerance;
+  }
+}
+
+TEST(InteriorPointQp, TheIntervalChainsRelaxationSolvesToIpoptsObjective) {
+  // The chain's big-M rows (long_search_test.cc) spread its binaries' weight; with one
+  // foot (4 variables) its Newton systems left a residual the two refinement steps of
+  // old did not remove, and the solve ended at its iteration limit (issue 26).
+  for (const int feet : {1, 2, 10}) {
+    const Miqp p = IntervalChain(feet);
+    const RelaxationResult ipopt = MakeIpoptRelaxationSolver()->Solve(p, RelaxationRequest());
+    ASSERT_EQ(ipopt.status, RelaxationStatus::kSolved);
+    const RelaxationResult own = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, InteriorPointOptions());
+    ASSERT_EQ(own.status, RelaxationStatus::kSolved) << feet << " feet";
+    EXPECT_NEAR(own.objective, ipopt.objective, 1e-6 * std::abs(ipopt.objective)) << feet << " feet";
   }
 }
 
