@@ -124,7 +124,8 @@ class Search {
     int solves = 0;
     int iterations = 0;    // of its solves
     double solve_s = 0.0;  // wall time of its solves
-    RelaxationResult fallback_counts;  // its solves' fallbacks and their time only
+    int fallbacks = 0;        // of its solves, those the solver's fallback solved
+    double fallback_s = 0.0;  // their wall time
   };
 
   // Up to one node per worker: their relaxations are solved side by side, then the nodes
@@ -171,15 +172,15 @@ class Search {
     e.relaxation = solver.Solve(p_, request);
     ++e.solves;
     e.iterations += e.relaxation.iterations;
-    e.fallback_counts.fallbacks += e.relaxation.fallbacks;
-    e.fallback_counts.fallback_time_s += e.relaxation.fallback_time_s;
+    e.fallbacks += e.relaxation.fallbacks;
+    e.fallback_s += e.relaxation.fallback_time_s;
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
         warm != nullptr) {
       e.relaxation = state_.SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
       ++e.solves;
       e.iterations += e.relaxation.iterations;
-      e.fallback_counts.fallbacks += e.relaxation.fallbacks;
-      e.fallback_counts.fallback_time_s += e.relaxation.fallback_time_s;
+      e.fallbacks += e.relaxation.fallbacks;
+      e.fallback_s += e.relaxation.fallback_time_s;
     }
     e.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
@@ -191,8 +192,9 @@ class Search {
     result.relaxations += e.solves;
     result.node_solve_iterations += e.iterations;
     result.node_solve_time_s += e.solve_s;
-    result.node_fallbacks += e.fallback_counts.fallbacks;
-    CountFallbacks(e.fallback_counts, &result);
+    result.node_fallbacks += e.fallbacks;
+    result.fallbacks += e.fallbacks;
+    result.fallback_time_s += e.fallback_s;
     const bool is_root = !root_done_;
     root_done_ = true;
     if (e.propagation_infeasible) {
