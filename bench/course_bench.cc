@@ -63,6 +63,8 @@ int RunCourseBench(const CourseBenchOptions& o) {
   double worst_excess = -kInfinity;
   int inexact_windows = 0, replanned_windows = 0, windows_all = 0, false_yaw_claims = 0;
   double polish_sum = 0.0, solve_sum = 0.0;
+  long relaxations_all = 0, fallbacks_all = 0;  // the searches' QPs, and those the solver's fallback solved
+  int plans_with_fallbacks = 0;
   for (int i = o.first; i < o.courses; ++i) {
     const int r = i % static_cast<int>(robots.size());
     const CourseKind kind = kinds[(i / robots.size()) % kinds.size()];
@@ -171,6 +173,9 @@ int RunCourseBench(const CourseBenchOptions& o) {
     inexact_windows += inexact;
     replanned_windows += replanned;
     polish_sum += polish_s;
+    relaxations_all += plan.relaxations;
+    fallbacks_all += plan.relaxation_fallbacks;
+    plans_with_fallbacks += plan.relaxation_fallbacks > 0 ? 1 : 0;
     std::printf("%-32s %-6s %-14s %6d %8.2f %6s %-9s %10.2e %5d %6d %6d %8.4f %8.3f %s %s\n", course.name.c_str(),
                 course.route_exists ? "yes" : "cut", ToString(plan.status).c_str(), steps, time_s,
                 plan.reaches_goal ? "yes" : "no", verdict.c_str(), steps > 0 ? excess : 0.0, windows, inexact, replanned, polish_s,
@@ -200,6 +205,8 @@ int RunCourseBench(const CourseBenchOptions& o) {
               worst_excess, inexact_windows, windows_all, replanned_windows, false_yaw_claims);
   std::printf("  polisher: %.3f s over all windows against %.3f s of search (%.1f %%)\n", polish_sum, solve_sum,
               100.0 * polish_sum / std::max(solve_sum, 1e-9));
+  std::printf("  relaxation fallbacks: %ld of %ld QPs solved by the fallback solver, in %d plans\n", fallbacks_all,
+              relaxations_all, plans_with_fallbacks);
   if (generator_gave_up > 0) std::printf("  generator gave up on %d courses (not counted)\n", generator_gave_up);
   std::printf("  failures by cause:");
   if (causes.empty()) std::printf(" none");

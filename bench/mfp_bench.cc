@@ -64,6 +64,11 @@ struct Row {
   // node_solve_*), per node: wall time [ms] and solver iterations; -1: not measured.
   double node_solve_ms = -1.0;
   double node_iterations = -1.0;
+  // QPs the solver's fallback solved (RelaxationResult::fallbacks): of the nodes' own and
+  // of all the search's (first window of the first run), and over the plan; the wall time
+  // of the search's [s].
+  int node_fallbacks = 0, search_fallbacks = 0, plan_fallbacks = 0;
+  double fallback_s = 0.0;
   // The polisher's account of each window of the first run, and the plan's largest
   // reference/reachability box excess under exact R(yaw) [m].
   std::vector<std::pair<double, mfp::PolishReport>> windows;  // (window solve time [s], report)
@@ -81,9 +86,10 @@ constexpr double kAcceptance = 0.005;
 
 void PrintHeader(const std::string& title) {
   std::printf("\n%s\n", title.c_str());
-  std::printf("%-34s %6s %8s %7s %8s %9s %12s %12s %9s %-11s %5s %5s %10s %8s %9s %9s %9s %9s %8s %7s\n", "instance", "steps",
+  std::printf("%-34s %6s %8s %7s %8s %9s %12s %12s %9s %-11s %5s %5s %10s %8s %9s %9s %9s %9s %8s %7s %s\n", "instance", "steps",
               "int_vars", "nodes", "relax", "time_s", "objective", "worst_obj", "gap", "status", "goal", "viol", "fixed_qp_s",
-              "x_fixed", "root_gap", "within_s", "first_s", "proven_s", "ms_node", "it_node");
+              "x_fixed", "root_gap", "within_s", "first_s", "proven_s", "ms_node", "it_node",
+              "fallbacks");
 }
 
 void PrintRow(const Row& r) {
@@ -107,7 +113,13 @@ void PrintRow(const Row& r) {
       std::printf(" %9s", "-");
     }
   }
-  if (r.node_solve_ms >= 0.0) std::printf(" %8.3f %7.1f", r.node_solve_ms, r.node_iterations);
+  if (r.node_solve_ms >= 0.0) {
+    std::printf(" %8.3f %7.1f", r.node_solve_ms, r.node_iterations);
+  } else {
+    std::printf(" %8s %7s", "-", "-");
+  }
+  // Fallback QPs: nodes/search (first window) in their wall time, then over the plan.
+  std::printf(" %d/%d/%d in %.3f s", r.node_fallbacks, r.search_fallbacks, r.plan_fallbacks, r.fallback_s);
   std::printf("\n");
   if (r.root_cuts > 0) {
     std::printf("  %s root cut loop: %d cuts, root gap %.2e before cuts, %.2e after\n", r.name.c_str(), r.root_cuts,
@@ -182,6 +194,8 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   double root_bound_before_cuts = -mfp::kInfinity;
   int root_cuts = 0;
   double node_solve_ms = -1.0, node_iterations = -1.0;
+  int node_fallbacks = 0, search_fallbacks = 0;
+  double fallback_s = 0.0;
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
         mfp::MakeRelaxationSolvers(scenario.options.solvers);
@@ -211,6 +225,9 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                                            const double nodes = std::max(1, p.window_result.nodes);
                                            node_solve_ms = 1e3 * p.window_result.node_solve_time_s / nodes;
                                            node_iterations = p.window_result.node_solve_iterations / nodes;
+                                           node_fallbacks = p.window_result.node_fallbacks;
+                                           search_fallbacks = p.window_result.fallbacks;
+                                           fallback_s = p.window_result.fallback_time_s;
                                          }
                                          for (const auto& [t, objective] : incumbents) {
                                            if (objective <= p.window_result.objective +
@@ -230,6 +247,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   row.steps = std::max(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
   row.integer_variables = plan.integer_variables;
   row.nodes = plan.nodes;
+  row.plan_fallbacks = plan.relaxation_fallbacks;
   row.relaxations = plan.relaxations;
   row.time_s = times[times.size() / 2];
   row.objective = plan.objective;
@@ -255,6 +273,9 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     if (static_cast<int>(proven_times.size()) == repeat) row.proven_s = median(proven_times);
     row.node_solve_ms = node_solve_ms;
     row.node_iterations = node_iterations;
+    row.node_fallbacks = node_fallbacks;
+    row.search_fallbacks = search_fallbacks;
+    row.fallback_s = fallback_s;
   }
   row.reaches_goal = plan.reaches_goal;
   row.windows = windows;

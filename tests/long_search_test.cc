@@ -6,47 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
-#include <vector>
 
-#include "planner/miqp/miqp_builder.h"
 #include "planner/qp/internal/ipopt_relaxation_solver.h"
 #include "planner/search/branch_and_bound.h"
+#include "tests/test_qps.h"
 
 namespace mfp {
 namespace {
-
-// A chain of `feet` positions y_i in [0, 10], each in one of three intervals chosen by a
-// one-of group with big-M rows, consecutive feet at most 1.2 apart, each drawn to a target
-// between the intervals: the relaxation spreads every group's weight, so the search
-// branches along the chain over many nodes.
-Miqp IntervalChain(int feet) {
-  MiqpBuilder b;
-  const std::vector<double> lo = {0.0, 3.5, 7.0}, hi = {2.0, 5.0, 10.0};
-  const double kBigM = 10.0;
-  int previous = -1;
-  for (int i = 0; i < feet; ++i) {
-    const std::string foot = "y" + std::to_string(i);
-    const int y = b.AddVariable(foot, 0.0, 10.0, false);
-    LinExpr one;
-    std::vector<int> group;
-    for (size_t k = 0; k < lo.size(); ++k) {
-      const int h = b.AddBinary(foot + "_h" + std::to_string(k));
-      group.push_back(h);
-      one += LinExpr::Var(h);
-      b.AddRow(foot + "_lo" + std::to_string(k), LinExpr::Var(y) - LinExpr::Var(h, kBigM), lo[k] - kBigM, kInfinity);
-      b.AddRow(foot + "_hi" + std::to_string(k), LinExpr::Var(y) + LinExpr::Var(h, kBigM), -kInfinity, hi[k] + kBigM);
-      b.AddLinearCost(LinExpr::Var(h, 0.05 * static_cast<double>((i + k) % 3)));
-    }
-    b.AddRow(foot + "_one", one, 1, 1);
-    b.AddSos1Group(group);
-    if (previous >= 0) b.AddRow(foot + "_reach", LinExpr::Var(y) - LinExpr::Var(previous), -1.2, 1.2);
-    const double target = (i % 2 == 0) ? 2.8 : 6.0;
-    b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(target), 1.0);
-    previous = y;
-  }
-  return b.Build();
-}
 
 BranchAndBoundOptions Quiet() {
   BranchAndBoundOptions options;

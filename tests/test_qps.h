@@ -1,5 +1,8 @@
 #pragma once
 // Small QPs solved by hand, shared by the relaxation solver tests.
+#include <string>
+#include <vector>
+
 #include "planner/miqp/miqp_builder.h"
 
 namespace mfp {
@@ -31,6 +34,38 @@ inline Miqp RowsTheBoxMostlyKeeps() {
   b.AddRow("range", LinExpr::Var(y) + LinExpr::Var(x), 0.5, 10.0);
   b.AddRow("cap", LinExpr::Var(y) + LinExpr::Var(x), -3.0, 2.5);
   b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2.0), 1.0);
+  return b.Build();
+}
+
+// A chain of `feet` positions y_i in [0, 10], each in one of three intervals chosen by a
+// one-of group with big-M rows, consecutive feet at most 1.2 apart, each drawn to a target
+// between the intervals: the relaxation spreads every group's weight, so the search
+// branches along the chain over many nodes.
+inline Miqp IntervalChain(int feet) {
+  MiqpBuilder b;
+  const std::vector<double> lo = {0.0, 3.5, 7.0}, hi = {2.0, 5.0, 10.0};
+  const double kBigM = 10.0;
+  int previous = -1;
+  for (int i = 0; i < feet; ++i) {
+    const std::string foot = "y" + std::to_string(i);
+    const int y = b.AddVariable(foot, 0.0, 10.0, false);
+    LinExpr one;
+    std::vector<int> group;
+    for (size_t k = 0; k < lo.size(); ++k) {
+      const int h = b.AddBinary(foot + "_h" + std::to_string(k));
+      group.push_back(h);
+      one += LinExpr::Var(h);
+      b.AddRow(foot + "_lo" + std::to_string(k), LinExpr::Var(y) - LinExpr::Var(h, kBigM), lo[k] - kBigM, kInfinity);
+      b.AddRow(foot + "_hi" + std::to_string(k), LinExpr::Var(y) + LinExpr::Var(h, kBigM), -kInfinity, hi[k] + kBigM);
+      b.AddLinearCost(LinExpr::Var(h, 0.05 * static_cast<double>((i + k) % 3)));
+    }
+    b.AddRow(foot + "_one", one, 1, 1);
+    b.AddSos1Group(group);
+    if (previous >= 0) b.AddRow(foot + "_reach", LinExpr::Var(y) - LinExpr::Var(previous), -1.2, 1.2);
+    const double target = (i % 2 == 0) ? 2.8 : 6.0;
+    b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(target), 1.0);
+    previous = y;
+  }
   return b.Build();
 }
 

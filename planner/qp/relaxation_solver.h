@@ -49,6 +49,11 @@ struct RelaxationResult {
   bool over_work_budget = false;
   // For a later related solve (RelaxationRequest::warm_token); null: none.
   WarmStartToken warm_token;
+  // Statistics of a backend that hands what its primary solver cannot finish to a
+  // fallback (relaxation_solver_factory.h): 1 when this result is the fallback's, with
+  // the wall time of both attempts [s]; 0 otherwise.
+  int fallbacks = 0;
+  double fallback_time_s = 0.0;
 };
 
 // One solve's whole contract, as Drake's Solve(program, initial_guess, options): a

@@ -2,40 +2,15 @@
 
 #include "base/check.h"
 #include "planner/qp/internal/dual_active_set_relaxation_solver.h"
+#include "planner/qp/internal/fallback_relaxation_solver.h"
 #include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "planner/qp/internal/ipopt_relaxation_solver.h"
 
 namespace mfp {
 namespace {
 
-// Asks the fallback whenever the primary solver ends without an answer.
-class FallbackRelaxationSolver final : public RelaxationSolver {
- public:
-  FallbackRelaxationSolver(std::unique_ptr<RelaxationSolver> primary, std::unique_ptr<RelaxationSolver> fallback)
-      : primary_(std::move(primary)), fallback_(std::move(fallback)) {}
-
-  // The fallback solves to the end: it gets the request without its cutoff.
-  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
-    RelaxationResult result = primary_->Solve(problem, request);
-    if (result.status == RelaxationStatus::kSolved || result.status == RelaxationStatus::kInfeasible ||
-        result.status == RelaxationStatus::kCutoff || request.deadline.Expired() || result.over_work_budget) {
-      return result;
-    }
-    RelaxationRequest to_the_end = request;
-    to_the_end.cutoff = kInfinity;
-    to_the_end.relative_tolerance = 0.0;
-    return fallback_->Solve(problem, to_the_end);
-  }
-
-  std::string Name() const override { return primary_->Name() + "+" + fallback_->Name(); }
-
- private:
-  std::unique_ptr<RelaxationSolver> primary_;
-  std::unique_ptr<RelaxationSolver> fallback_;
-};
-
 std::unique_ptr<RelaxationSolver> MakeInteriorPointWithIpoptFallback() {
-  return std::make_unique<FallbackRelaxationSolver>(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
+  return MakeFallbackRelaxationSolver(MakeInteriorPointRelaxationSolver(), MakeIpoptRelaxationSolver());
 }
 
 }  // namespace

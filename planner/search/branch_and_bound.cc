@@ -124,6 +124,8 @@ class Search {
     int solves = 0;
     int iterations = 0;    // of its solves
     double solve_s = 0.0;  // wall time of its solves
+    int fallbacks = 0;        // of its solves, those the solver's fallback solved
+    double fallback_s = 0.0;  // their wall time
   };
 
   // Up to one node per worker: their relaxations are solved side by side, then the nodes
@@ -170,11 +172,15 @@ class Search {
     e.relaxation = solver.Solve(p_, request);
     ++e.solves;
     e.iterations += e.relaxation.iterations;
+    e.fallbacks += e.relaxation.fallbacks;
+    e.fallback_s += e.relaxation.fallback_time_s;
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
         warm != nullptr) {
       e.relaxation = state_.SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
       ++e.solves;
       e.iterations += e.relaxation.iterations;
+      e.fallbacks += e.relaxation.fallbacks;
+      e.fallback_s += e.relaxation.fallback_time_s;
     }
     e.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
@@ -186,6 +192,9 @@ class Search {
     result.relaxations += e.solves;
     result.node_solve_iterations += e.iterations;
     result.node_solve_time_s += e.solve_s;
+    result.node_fallbacks += e.fallbacks;
+    result.fallbacks += e.fallbacks;
+    result.fallback_time_s += e.fallback_s;
     const bool is_root = !root_done_;
     root_done_ = true;
     if (e.propagation_infeasible) {
@@ -445,6 +454,9 @@ void AddCounters(const BranchAndBoundResult& pass, BranchAndBoundResult* total) 
   total->equivalent_points += pass.equivalent_points;
   total->node_solve_iterations += pass.node_solve_iterations;
   total->node_solve_time_s += pass.node_solve_time_s;
+  total->node_fallbacks += pass.node_fallbacks;
+  total->fallbacks += pass.fallbacks;
+  total->fallback_time_s += pass.fallback_time_s;
   total->probed_nodes += pass.probed_nodes;
   total->rins_runs += pass.rins_runs;
   total->rins_improvements += pass.rins_improvements;
@@ -530,6 +542,8 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   result.gap = result.x.size() > 0 ? RelativeGap(result.objective, result.bound) : result.gap;
   AddCounters(root, &result);
   result.relaxations += loop.relaxations;
+  result.fallbacks += loop.fallbacks;
+  result.fallback_time_s += loop.fallback_time_s;
   result.reduced_cost_fixings += loop.reduced_cost_fixings;
   result.solve_time_s = elapsed();
   return result;

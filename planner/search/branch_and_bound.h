@@ -192,8 +192,21 @@ struct BranchAndBoundResult {
   // solver iterations and wall time, for the time per node and iterations per node.
   long node_solve_iterations = 0;
   double node_solve_time_s = 0.0;
+  // Relaxations the solver's primary method could not finish, solved again by its
+  // fallback (RelaxationResult::fallbacks): of the nodes' own solves (the root included),
+  // and of all the search's solves (nodes, roundings, strong branching, root cuts), with
+  // the wall time of the latter [s].
+  int node_fallbacks = 0;
+  int fallbacks = 0;
+  double fallback_time_s = 0.0;
   double solve_time_s = 0.0;
 };
+
+// Adds a relaxation's fallback statistics to the search's (fallbacks, fallback_time_s).
+inline void CountFallbacks(const RelaxationResult& relaxation, BranchAndBoundResult* result) {
+  result->fallbacks += relaxation.fallbacks;
+  result->fallback_time_s += relaxation.fallback_time_s;
+}
 
 // Heuristic hook: given a relaxation point, propose assignments of the integer variables
 // (each a vector over all variables; only integer entries are used). The branch-and-bound

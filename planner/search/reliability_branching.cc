@@ -95,6 +95,7 @@ double ReliabilityBranching::RecordTrial(int j, bool up, double parent_objective
   BranchAndBoundResult& result = state_.result();
   ++result.strong_branching_solves;
   ++result.relaxations;
+  CountFallbacks(child, &result);
   if (child.status == RelaxationStatus::kInfeasible) return kInfinity;
   if (child.status != RelaxationStatus::kSolved) return distance * pseudo_.PerUnit(j, up);
   const double gain = std::max(0.0, child.objective - parent_objective);

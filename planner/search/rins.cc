@@ -57,6 +57,8 @@ RinsOutcome RunRins(SearchState* state, const Eigen::VectorXd& relaxed, const Ro
   const BranchAndBoundResult found = SolveBranchAndBound(sub, solvers, sub_options, with_incumbent);
   outcome.nodes = found.nodes;
   state->result().relaxations += found.relaxations;
+  state->result().fallbacks += found.fallbacks;
+  state->result().fallback_time_s += found.fallback_time_s;
   if (found.x.size() > 0 && found.objective < incumbent_objective) {
     state->OfferIncumbent(found.x);
     outcome.improved = state->result().objective < incumbent_objective;

@@ -161,6 +161,8 @@ RootCutLoopResult RunRootCutLoop(const Miqp& problem, RelaxationSolver& solver, 
   for (int round = 0; !deadline.Expired(); ++round) {
     const RelaxationResult rel = solver.Solve(q, request);
     ++result.relaxations;
+    result.fallbacks += rel.fallbacks;
+    result.fallback_time_s += rel.fallback_time_s;
     if (rel.status != RelaxationStatus::kSolved) break;
     const double previous = result.bound_after;
     result.bound_after = rel.objective;

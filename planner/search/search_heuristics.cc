@@ -64,6 +64,7 @@ void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& al
     });
     state->result().relaxations += count;
     for (RelaxationResult& rel : results) {
+      CountFallbacks(rel, &state->result());
       if (rel.status == RelaxationStatus::kSolved) state->OfferIncumbent(std::move(rel.x));
     }
   }

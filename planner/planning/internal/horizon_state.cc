@@ -75,6 +75,7 @@ void HorizonState::RecordWindow(const WindowRecord& record) {
   plan.window_records.push_back(record);
   plan.nodes += record.nodes;
   plan.relaxations += record.relaxations;
+  plan.relaxation_fallbacks += record.fallbacks;
 }
 
 int HorizonState::Accept(const MiqpFormulation& used, const BranchAndBoundResult& result,

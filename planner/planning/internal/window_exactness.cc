@@ -41,6 +41,7 @@ void RecordExactness(const ExactWindow& exact, Plan* plan) {
   if (exact.replan.planned) {
     plan->nodes += exact.replan.result.nodes;
     plan->relaxations += exact.replan.result.relaxations;
+    plan->relaxation_fallbacks += exact.replan.result.fallbacks;
   }
   plan->window_records.back().polished = exact.polished.report.accepted;
   plan->window_records.back().replanned = exact.replan.planned;

@@ -206,6 +206,9 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     result.relaxations += first.relaxations;
     result.node_solve_iterations += first.node_solve_iterations;
     result.node_solve_time_s += first.node_solve_time_s;
+    result.node_fallbacks += first.node_fallbacks;
+    result.fallbacks += first.fallbacks;
+    result.fallback_time_s += first.fallback_time_s;
     bounded_replan = false;
     record->replan_fell_back = true;
   }
@@ -219,6 +222,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   record->status = result.status;
   record->nodes = result.nodes;
   record->relaxations = result.relaxations;
+  record->fallbacks = result.fallbacks;
   bnb.root_heuristic = nullptr;  // they refer to this call's locals
   bnb.first_plan_heuristic = nullptr;
   return WindowSearch{std::move(result), std::move(bnb)};

@@ -26,6 +26,8 @@ struct RootCutLoopResult {
   int probing_fixings = 0;       // binaries fixed because probing proved the other value infeasible
   int rounds = 0;  // separation rounds that added cuts
   int relaxations = 0;
+  int fallbacks = 0;             // of them, solved by the solver's fallback (RelaxationResult::fallbacks)
+  double fallback_time_s = 0.0;  // and those solves' wall time
   double bound_before = -kInfinity;  // the first relaxation's objective (-inf when unsolved)
   double bound_after = -kInfinity;   // the last solved relaxation's objective
 };
