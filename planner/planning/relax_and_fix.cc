@@ -9,7 +9,6 @@
 
 #include "base/check.h"
 #include "planner/qp/fixed_integer_qp.h"
-#include "planner/search/internal/bound_propagation.h"
 
 namespace mfp {
 namespace {
@@ -182,16 +181,9 @@ RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSol
     request.relative_tolerance = options.stage.relaxation_tolerance;
     if (!final_stage) request.relative_tolerance = std::max(request.relative_tolerance, options.stage_relaxation_tolerance);
     ++result.stages;
-    // The proposals rounded from x, each completed by a QP unless bound propagation proves
-    // it incomplete (an interior point takes many iterations to say so); the first one
-    // completed becomes x.
+    // The proposals rounded from x, each completed by a QP; the first one completed becomes x.
     bool completed = false;
     for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
-      Eigen::VectorXd lower = stage.var_lower, upper = stage.var_upper;
-      for (int j = 0; j < full.num_variables(); ++j) {
-        if (stage.is_integer[j]) lower(j) = upper(j) = std::clamp(std::round(proposal(j)), lower(j), upper(j));
-      }
-      if (PropagateBounds(stage, &lower, &upper, 3, tolerance).infeasible) continue;
       RelaxationResult r = SolveWithIntegersFixed(stage, proposal, solver, request);
       ++result.relaxations;
       if (r.status != RelaxationStatus::kSolved) continue;
