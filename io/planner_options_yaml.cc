@@ -308,6 +308,10 @@ void AddRelaxAndFixKeys(Table* t) {
   t->push_back(Opt("relax_and_fix.first_plan_dive", in(&R::first_plan_dive),
                    "a seeded window whose root roundings find no plan first gets one from a one-node-per-stage dive")
                    .Advanced());
+  t->push_back(Opt("relax_and_fix.rounding_dive", in(&R::rounding_dive),
+                   "the first-plan dive rounds each configuration from the previous stage's completion, one QP per "
+                   "stage, before the stage-search dive")
+                   .Advanced());
 }
 
 void AddPolishKeys(Table* t) {

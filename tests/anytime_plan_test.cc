@@ -159,6 +159,38 @@ TEST(AnytimePlan, ThirtySixStepsWithoutAFeasibleRoundingGetTheDivesPlanAtTheRoot
   EXPECT_GE(r.objective, r.root_bound);
 }
 
+TEST(AnytimePlan, ThirtySixStepsGetTheRoundingDivesPlanFromTheRootWithOneQpPerStage) {
+  // LittleDog 36 again: the rounding dive (RelaxAndFixOptions::rounding_dive) rounds each
+  // configuration from the previous stage's completion, starting at the root relaxation's
+  // point, and completes it with one QP: a plan that meets every row with integral
+  // choices, from at most two QPs per stage (one per rounding proposal) where the
+  // stage-search dive solves a relaxation and a rounding each.
+  const Course c = LittleDogTableI(36);
+  const PlannerOptions& options = c.scenario.options;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  const Miqp& m = formulation.miqp();
+  const RelaxationResult root = solvers.workers().front()->Solve(m, RelaxationRequest{});
+  ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+  RelaxAndFixOptions rf = options.relax_and_fix;
+  rf.stage = options.branch_and_bound;
+  rf.time_limit_s = 60.0;
+  const RelaxAndFixResult r = RoundingDive(formulation, *solvers.workers().front(), root.x, rf);
+  ASSERT_TRUE(r.x.has_value()) << "the rounding dive found no plan";
+  const int stages = formulation.num_configurations() - 1;
+  EXPECT_EQ(r.stages, stages);
+  EXPECT_GE(r.relaxations, stages);
+  EXPECT_LE(r.relaxations, 2 * stages);
+  EXPECT_LE(m.MaxViolation(*r.x), options.branch_and_bound.feasibility_tolerance);
+  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
+  EXPECT_GE(m.Objective(*r.x), root.objective - 1e-6 * std::abs(root.objective));
+  // Out of time before it starts: no plan, and no QP.
+  rf.time_limit_s = 0.0;
+  const RelaxAndFixResult none = RoundingDive(formulation, *solvers.workers().front(), root.x, rf);
+  EXPECT_FALSE(none.x.has_value());
+  EXPECT_EQ(none.relaxations, 0);
+}
+
 TEST(AnytimePlan, ThirtySixStepsEndWithAPlanWhenTheSearchTakesTheWholeLimit) {
   // LittleDog 36 as Table I runs it, with a limit far too short to prove it: the search
   // runs to its deadline, which leaves the polisher its reserve, so the plan ends with

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "base/check.h"
@@ -29,6 +30,15 @@ std::vector<std::vector<int>> IntegersByConfiguration(const MiqpFormulation& f) 
     if (v.trim[i] >= 0) members.push_back(v.trim[i]);
   }
   return integers;
+}
+
+// Each variable's configuration in IntegersByConfiguration's grouping; -1 for the others.
+std::vector<int> ConfigurationOf(const std::vector<std::vector<int>>& integers, int num_variables) {
+  std::vector<int> configuration_of(num_variables, -1);
+  for (size_t cfg = 0; cfg < integers.size(); ++cfg) {
+    for (int j : integers[cfg]) configuration_of[j] = static_cast<int>(cfg);
+  }
+  return configuration_of;
 }
 
 // Out of time before the last stage: the integers still open are rounded along the plan
@@ -62,10 +72,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   };
 
   RelaxAndFixResult result;
-  std::vector<int> configuration_of(full.num_variables(), -1);
-  for (int cfg = 0; cfg < B; ++cfg) {
-    for (int j : integers[cfg]) configuration_of[j] = cfg;
-  }
+  const std::vector<int> configuration_of = ConfigurationOf(integers, full.num_variables());
   // The earlier stages' choices, as bounds on the full model's variables.
   Eigen::VectorXd fixed_lower = full.var_lower, fixed_upper = full.var_upper;
   Eigen::VectorXd x;
@@ -139,6 +146,54 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   }
   if (full.MaxViolation(x) > options.stage.feasibility_tolerance) return result;
   result.x = x;
+  return result;
+}
+
+RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSolver& solver,
+                               const Eigen::VectorXd& root_x, const RelaxAndFixOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  const Miqp& full = formulation.miqp();
+  MFP_CHECK(root_x.size() == full.num_variables());
+  const std::vector<int> configuration_of =
+      ConfigurationOf(IntegersByConfiguration(formulation), full.num_variables());
+  const int B = formulation.num_configurations();
+  const double tolerance = options.stage.feasibility_tolerance;
+  RelaxAndFixResult result;
+  Eigen::VectorXd x = root_x;
+  for (int cfg = 1; cfg < B; ++cfg) {
+    const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
+    if (elapsed_s >= options.time_limit_s || options.stage.deadline.Expired()) return result;
+    const bool final_stage = cfg == B - 1;
+    // Configurations up to cfg integer (the earlier ones fixed to their values in x), the
+    // next one's region choices relaxed and the steps after it in their regions' hull: the
+    // completion of this stage's choice is also the relaxation of the next stage, whose
+    // choice is rounded from it.
+    Miqp stage = formulation.WithRegionsRelaxedFrom((cfg + 2) * formulation.num_legs());
+    for (int j = 0; j < full.num_variables(); ++j) {
+      if (!full.is_integer[j]) continue;
+      stage.is_integer[j] = configuration_of[j] <= cfg;
+      if (configuration_of[j] < cfg) stage.var_lower(j) = stage.var_upper(j) = std::round(x(j));
+    }
+    RelaxationRequest request;
+    request.warm_start = x;
+    request.deadline = options.stage.deadline;
+    request.relative_tolerance = options.stage.relaxation_tolerance;
+    if (!final_stage) request.relative_tolerance = std::max(request.relative_tolerance, options.stage_relaxation_tolerance);
+    ++result.stages;
+    // The proposals rounded from x, each completed by a QP; the first one completed becomes x.
+    bool completed = false;
+    for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
+      RelaxationResult r = SolveWithIntegersFixed(stage, proposal, solver, request);
+      ++result.relaxations;
+      if (r.status != RelaxationStatus::kSolved) continue;
+      x = std::move(r.x);
+      completed = true;
+      break;
+    }
+    if (!completed) return result;
+  }
+  if (B > 1 && full.MaxViolation(x) <= tolerance) result.x = x;
   return result;
 }
 

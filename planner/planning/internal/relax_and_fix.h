@@ -68,6 +68,14 @@ struct RelaxAndFixOptions {
   // above. On Table I's LittleDog 36 no rounding of the root is feasible, and the full
   // run's plan came after seconds (docs/measurements.md).
   bool first_plan_dive = true;
+  // The dive with one QP per stage: stage b's configuration is rounded
+  // (MiqpFormulation::RoundAlongPlan) from stage b - 1's point (the first from the root
+  // relaxation's), and one QP completes it with the earlier configurations fixed, the next
+  // one's region choices relaxed and the later steps in their regions' hull. That QP is both
+  // the choice's feasibility check and the next stage's relaxation, where the stage-search
+  // dive solves a relaxation and a rounding per stage (RoundingDive; docs/measurements.md).
+  // When a stage's roundings all fail, the stage-search dive runs.
+  bool rounding_dive = true;
 };
 
 struct RelaxAndFixResult {
@@ -84,6 +92,13 @@ struct RelaxAndFixResult {
 // options turned into the quick dive of RelaxAndFixOptions::first_plan_dive: one node per
 // stage, the stage roundings on, group-order branching.
 RelaxAndFixOptions DiveOptions(RelaxAndFixOptions options);
+
+// The dive of RelaxAndFixOptions::rounding_dive from the root relaxation's point root_x:
+// one QP (or one per proposal, up to the first completed) per configuration, solved with
+// solver under options.stage's deadline and feasibility tolerance; no plan when a stage's
+// proposals all fail or the deadline or options.time_limit_s passes first.
+RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSolver& solver,
+                               const Eigen::VectorXd& root_x, const RelaxAndFixOptions& options);
 
 // Each stage's search runs with the given workers (SolveBranchAndBound); none of them may
 // be in use elsewhere meanwhile.

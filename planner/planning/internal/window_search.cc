@@ -83,11 +83,15 @@ std::optional<Eigen::VectorXd> RelaxAndFixSeed(const PlanContext& context, const
 // (RelaxAndFixOptions::first_plan_dive): one node per stage, the stage roundings on, one
 // path, within the same time as the full run (each stage's QPs take milliseconds).
 std::optional<Eigen::VectorXd> RelaxAndFixDive(const PlanContext& context, const MiqpFormulation& formulation,
-                                               const BranchAndBoundOptions& bnb) {
+                                               const BranchAndBoundOptions& bnb, const Eigen::VectorXd& root_x) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
   rf.stage = bnb;
   rf.stage.time_limit_needs_incumbent = false;
   rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+  if (rf.rounding_dive) {
+    const RelaxAndFixResult r = RoundingDive(formulation, *context.solvers.front(), root_x, rf);
+    if (r.x) return r.x;
+  }
   return RelaxAndFix(formulation, context.solvers, DiveOptions(rf)).x;
 }
 
@@ -169,11 +173,11 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   };
   // Before it, when the roundings found no plan: the quick dive.
   if (!seeded && options.relax_and_fix.first_plan_dive) {
-    bnb.first_plan_heuristic = [&](const Eigen::VectorXd&) {
+    bnb.first_plan_heuristic = [&](const Eigen::VectorXd& root_x) {
       std::vector<Eigen::VectorXd> plans;
       if (seeded) return plans;  // a bounded replan's second search: its first had the root
       const PlanClock::time_point dive_start = PlanClock::now();
-      if (std::optional<Eigen::VectorXd> x = RelaxAndFixDive(context, formulation, bnb)) plans.push_back(std::move(*x));
+      if (std::optional<Eigen::VectorXd> x = RelaxAndFixDive(context, formulation, bnb, root_x)) plans.push_back(std::move(*x));
       record->heuristic_s += SecondsSince(dive_start);
       return plans;
     };
