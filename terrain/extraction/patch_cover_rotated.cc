@@ -103,8 +103,8 @@ OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
   return outside;
 }
 
-// The cheap bounds of TooClose: the cell centre's distance to the rectangle (rotated-grid
-// steps), in the units of the insets.
+// What TooClose's cheap bounds compare: the distance [cells] from the cell's centre to the
+// rectangle [u0, u1] x [v0, v1] (rotated-grid steps).
 double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0, double v1) {
   const double step = RotatedFrame::kStep;
   const Eigen::Vector2d centre(out.c, out.r);
