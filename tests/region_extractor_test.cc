@@ -420,6 +420,17 @@ TEST(RegionExtractorCover, AFloorWithScatteredHolesGetsRegionsInProportionToItsA
   EXPECT_GT(sized.area_m2, fixed.area_m2 + 0.05 * usable_m2);
 }
 
+TEST(RegionExtractorCover, TheDefaultCapCoversMoreOfAHoledFloorThanFourRegionsPerSquareMetre) {
+  // Four per m^2 stopped a scanned lab's floor at its cap (docs/measurements.md, stop 32):
+  // the default lets the 9 m^2 patch hold more regions, each of them sound.
+  const FloorCover four = CoverFloorWithHoles(4.0);
+  const FloorCover by_default = CoverFloorWithHoles(RegionExtractorOptions{}.regions_per_m2);
+  EXPECT_LE(four.regions, 36);
+  EXPECT_GT(by_default.regions, four.regions);
+  EXPECT_GT(by_default.area_m2, four.area_m2);
+  EXPECT_EQ(four.unsound + by_default.unsound, 0);
+}
+
 TEST(RegionExtractorCover, CellFatesSayWhatBecameOfEachFloorCell) {
   RegionExtractionResult result;
   CoverFloorWithHoles(8.0, &result);

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "geometry/convex_polygon_distance.h"
 #include "terrain/extraction/internal/patch_cover.h"
@@ -50,10 +51,16 @@ LocalGrid RotatedGrid(const RotatedFrame& frame, const LocalGrid& dual) {
   rotated.cols = static_cast<int>(std::ceil((frame.umax - frame.umin) / RotatedFrame::kStep));
   rotated.rows = static_cast<int>(std::ceil((frame.vmax - frame.vmin) / RotatedFrame::kStep));
   rotated.cells.assign(static_cast<size_t>(rotated.rows) * rotated.cols, 0);
+  // The lattice points of rows b and b + 1, each computed once (Corner's own arithmetic).
+  std::vector<Eigen::Vector2d> lower(static_cast<size_t>(rotated.cols) + 1), upper(lower.size());
+  for (int a = 0; a <= rotated.cols; ++a) upper[static_cast<size_t>(a)] = frame.Corner(a, 0);
   for (int b = 0; b < rotated.rows; ++b) {
+    lower.swap(upper);
+    for (int a = 0; a <= rotated.cols; ++a) upper[static_cast<size_t>(a)] = frame.Corner(a, b + 1);
     for (int a = 0; a < rotated.cols; ++a) {
       Box2d box;
-      for (int k = 0; k < 4; ++k) box.Add(frame.Corner(a + (k & 1), b + (k >> 1)));
+      const auto k = static_cast<size_t>(a);
+      for (const Eigen::Vector2d& p : {lower[k], lower[k + 1], upper[k], upper[k + 1]}) box.Add(p);
       const int c0 = static_cast<int>(std::floor(box.xmin + 1e-9));
       const int c1 = static_cast<int>(std::ceil(box.xmax - 1e-9));
       const int r0 = static_cast<int>(std::floor(box.ymin + 1e-9));
@@ -96,32 +103,39 @@ OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
   return outside;
 }
 
-// Whether a rectangle keeps `out`'s inset from the cell's square (false) or not (true).
-bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out,
-              double u0, double u1, double v0, double v1) {
-  const int r = out.r, c = out.c;
+// What TooClose's cheap bounds compare: the distance [cells] from the cell's centre to the
+// rectangle [u0, u1] x [v0, v1] (rotated-grid steps).
+double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0, double v1) {
   const double step = RotatedFrame::kStep;
-  // Cheap bounds first: the cell centre's distance to the rectangle, +- half a diagonal.
-  const Eigen::Vector2d centre(c, r);
+  const Eigen::Vector2d centre(out.c, out.r);
   const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
-  const double centre_dist = step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
-  if (centre_dist >= out.inset_cells + 0.7072) return false;
-  if (centre_dist < out.inset_cells - 0.7072) return true;
+  return step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+}
+
+// Half a cell's diagonal, rounded up: a cell square lies within this of its centre [cells].
+constexpr double kHalfDiagonal = 0.7072;
+
+// Whether a rectangle keeps `out`'s inset from the cell's square (false) or not (true).
+bool TooClose(const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out, double centre_dist) {
+  if (centre_dist >= out.inset_cells + kHalfDiagonal) return false;
+  if (centre_dist < out.inset_cells - kHalfDiagonal) return true;
+  const int r = out.r, c = out.c;
   const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
                                                Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
   return ConvexPolygonDistance(quad, cell) < out.inset_cells - 1e-9;
 }
 
-// Whether the rotated rectangle [u0, u1] x [v0, v1] (rotated-grid steps) keeps the inset
-// from every cell square outside the patch: an exact test.
-bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells, double u0,
-                     double u1, double v0, double v1) {
-  const std::array<Eigen::Vector2d, 4> quad = {frame.Corner(u0, v0), frame.Corner(u1, v0),
-                                               frame.Corner(u1, v1), frame.Corner(u0, v1)};
+std::array<Eigen::Vector2d, 4> RectQuad(const RotatedFrame& frame, double u0, double u1, double v0, double v1) {
+  return {frame.Corner(u0, v0), frame.Corner(u1, v0), frame.Corner(u1, v1), frame.Corner(u0, v1)};
+}
+
+// Calls visit(cell) for every outside cell within `reach` cells of the rectangle's bounding
+// box (and some beyond), row by row, until it returns false; false then.
+template <typename Visit>
+bool ForCellsNear(const OutsideCells& outside, const std::array<Eigen::Vector2d, 4>& quad, double reach,
+                  Visit&& visit) {
   Box2d box;
   for (const Eigen::Vector2d& p : quad) box.Add(p);
-  // Cells further than the largest inset plus a cell from the box cannot be too close.
-  const double reach = max_inset_cells + 1;
   const int n_rows = static_cast<int>(outside.rows.size());
   const int first = std::max(0, static_cast<int>(std::ceil(box.ymin - reach)) - outside.row0);
   const int last = std::min(n_rows - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
@@ -130,24 +144,65 @@ bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, dou
     auto it = std::lower_bound(row.begin(), row.end(), box.xmin - reach,
                                [](const OutsideCell& cell, double x) { return cell.c < x; });
     for (; it != row.end() && it->c <= box.xmax + reach; ++it) {
-      if (TooClose(frame, quad, *it, u0, u1, v0, v1)) return false;
+      if (!visit(*it)) return false;
     }
   }
   return true;
 }
 
+// Whether the rotated rectangle [u0, u1] x [v0, v1] (rotated-grid steps) keeps the inset
+// from every cell square outside the patch: an exact test.
+bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells, double u0,
+                     double u1, double v0, double v1) {
+  const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
+  // Cells further than the largest inset plus a cell from the box cannot be too close.
+  return ForCellsNear(outside, quad, max_inset_cells + 1, [&](const OutsideCell& out) {
+    return !TooClose(quad, out, CentreDistance(frame, out, u0, u1, v0, v1));
+  });
+}
+
+// The outside cells that may be too close to a rectangle inside [u0, u1] x [v0, v1]: every
+// other cell's centre is further from the outer rectangle than its inset plus half a
+// diagonal and a margin, so (the centre distance only growing as the rectangle shrinks, up
+// to rounding far below the margin) TooClose's first bound clears it for any rectangle
+// inside. The scan reaches a cell further than RotatedRectSafe's, so it holds every cell
+// that test would visit for a rectangle inside.
+void CellsThatMayBeTooClose(const RotatedFrame& frame, const OutsideCells& outside, double max_inset_cells,
+                            double u0, double u1, double v0, double v1, std::vector<const OutsideCell*>* near) {
+  constexpr double kMargin = 1e-6;  // [cells], far above the bounds' rounding
+  near->clear();
+  ForCellsNear(outside, RectQuad(frame, u0, u1, v0, v1), max_inset_cells + 2, [&](const OutsideCell& out) {
+    if (CentreDistance(frame, out, u0, u1, v0, v1) < out.inset_cells + kHalfDiagonal + kMargin) near->push_back(&out);
+    return true;
+  });
+}
+
+// RotatedRectSafe for a rectangle inside the one `near` was listed for.
+bool RotatedRectSafeAmong(const RotatedFrame& frame, const std::vector<const OutsideCell*>& near, double u0, double u1,
+                          double v0, double v1) {
+  const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
+  for (const OutsideCell* out : near) {
+    if (TooClose(quad, *out, CentreDistance(frame, *out, u0, u1, v0, v1))) return false;
+  }
+  return true;
+}
+
 // Each side of a safe rotated rectangle moves out (in rotated-grid steps, up to one cell)
-// while the rectangle stays safe, by bisection.
+// while the rectangle stays safe, by bisection; each side's tests visit only the cells
+// that may be too close to the rectangle with that side moved out the whole cell.
 void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside,
                      double max_inset_cells, double* a0, double* a1, double* b0, double* b1) {
   const double most = 1.0 / RotatedFrame::kStep;  // one cell, in rotated-grid steps
+  std::vector<const OutsideCell*> near;
   auto grow = [&](double* side, double sign) {
     double lo = 0.0, hi = most;
     const double base = *side;
+    *side = base + sign * most;
+    CellsThatMayBeTooClose(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1, &near);
     for (int it = 0; it < 8; ++it) {
       const double mid = 0.5 * (lo + hi);
       *side = base + sign * mid;
-      (RotatedRectSafe(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
+      (RotatedRectSafeAmong(frame, near, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
     }
     *side = base + sign * lo;
   };
