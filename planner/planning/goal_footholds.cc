@@ -1,0 +1,46 @@
+#include "planner/planning/internal/goal_footholds.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mfp {
+
+std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
+                                         double margin_m, double half_side_m, int id) {
+  const std::optional<SeenDisk> disk =
+      FlatSeenDisk(seen, spot, foot_radius_m + margin_m + std::sqrt(2.0) * half_side_m);
+  if (!disk) return std::nullopt;
+  const double z = 0.5 * (disk->low_m + disk->high_m);
+  std::vector<Eigen::Vector3d> square;
+  for (const auto& [dx, dy] : {std::pair{-1, -1}, std::pair{1, -1}, std::pair{1, 1}, std::pair{-1, 1}}) {
+    square.emplace_back(spot.x() + dx * half_side_m, spot.y() + dy * half_side_m, z);
+  }
+  return MakeRegionFromPolygon(id, square, 0.5 * disk->cell_m);
+}
+
+std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                             const SeenSurface& seen, const GoalPose& goal,
+                                             const PlannerOptions& options, const Deadline& deadline) {
+  if (!options.goal_seen_footholds || seen.grids.empty()) return std::nullopt;
+  const double half_side = 0.5 * options.goal_tolerance_m;
+  auto stands = [&](const Eigen::Vector2d& spot) {
+    return SeenFoothold(seen, spot, robot.foot_radius_m, options.goal_foothold_margin_m, half_side, 0).has_value();
+  };
+  const std::optional<GoalPose> pose =
+      NearestGoalWith(robot, regions, goal, options.goal_position_tolerance_m, options.goal_heading_tolerance_rad,
+                      options.goal_search_step_m, options.goal_search_yaw_step_rad, stands, deadline);
+  if (!pose) return std::nullopt;
+  int next_id = 0;
+  for (const ConvexRegion& r : regions) next_id = std::max(next_id, r.id + 1);
+  FootholdGoal chosen{*pose, {}, {}};
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d spot = NominalFootXY(robot, leg, pose->x_m, pose->y_m, pose->yaw_rad);
+    if (DistanceToNearestRegion(regions, spot) <= 0.0) continue;
+    chosen.legs.push_back(leg);
+    chosen.footholds.push_back(
+        *SeenFoothold(seen, spot, robot.foot_radius_m, options.goal_foothold_margin_m, half_side, next_id++));
+  }
+  return chosen;
+}
+
+}  // namespace mfp
