@@ -2,20 +2,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace mfp {
 
-std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
-                                         double margin_m, double half_side_m, int id) {
-  const std::optional<SeenDisk> disk =
-      FlatSeenDisk(seen, spot, foot_radius_m + margin_m + std::sqrt(2.0) * half_side_m);
+namespace {
+
+// The square of half side h about the spot when the seen surface certifies it (a flat disk
+// of the foot radius, the margin and the square's half diagonal about the spot).
+std::optional<ConvexRegion> CertifiedSquare(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
+                                            double margin_m, double h, int id) {
+  const std::optional<SeenDisk> disk = FlatSeenDisk(seen, spot, foot_radius_m + margin_m + std::sqrt(2.0) * h);
   if (!disk) return std::nullopt;
   const double z = 0.5 * (disk->low_m + disk->high_m);
   std::vector<Eigen::Vector3d> square;
   for (const auto& [dx, dy] : {std::pair{-1, -1}, std::pair{1, -1}, std::pair{1, 1}, std::pair{-1, 1}}) {
-    square.emplace_back(spot.x() + dx * half_side_m, spot.y() + dy * half_side_m, z);
+    square.emplace_back(spot.x() + dx * h, spot.y() + dy * h, z);
   }
   return MakeRegionFromPolygon(id, square, 0.5 * disk->cell_m);
+}
+
+}  // namespace
+
+std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
+                                         double margin_m, double half_side_m, double max_half_side_m, int id) {
+  std::optional<ConvexRegion> best = CertifiedSquare(seen, spot, foot_radius_m, margin_m, half_side_m, id);
+  for (double h = 2.0 * half_side_m; best && h <= max_half_side_m + 1e-9; h *= 2.0) {
+    std::optional<ConvexRegion> larger = CertifiedSquare(seen, spot, foot_radius_m, margin_m, h, id);
+    if (!larger) break;
+    best = std::move(larger);
+  }
+  return best;
 }
 
 std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
@@ -24,7 +41,7 @@ std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std:
   if (!options.goal_seen_footholds || seen.grids.empty()) return std::nullopt;
   const double half_side = 0.5 * options.goal_tolerance_m;
   auto stands = [&](const Eigen::Vector2d& spot) {
-    return SeenFoothold(seen, spot, robot.foot_radius_m, options.goal_foothold_margin_m, half_side, 0).has_value();
+    return CertifiedSquare(seen, spot, robot.foot_radius_m, options.goal_foothold_margin_m, half_side, 0).has_value();
   };
   const std::optional<GoalPose> pose =
       NearestGoalWith(robot, regions, goal, options.goal_position_tolerance_m, options.goal_heading_tolerance_rad,
@@ -38,7 +55,7 @@ std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std:
     if (DistanceToNearestRegion(regions, spot) <= 0.0) continue;
     chosen.legs.push_back(leg);
     chosen.footholds.push_back(
-        *SeenFoothold(seen, spot, robot.foot_radius_m, options.goal_foothold_margin_m, half_side, next_id++));
+        *SeenFoothold(seen, spot, robot.foot_radius_m, options.goal_foothold_margin_m, half_side, robot.d_lim_m, next_id++));
   }
   return chosen;
 }

@@ -4,8 +4,8 @@
 // within the goal tolerances has a spot there would be invalid_goal although a robot could
 // stand at it. Such a spot, when a disk of the foot radius, a margin and one map cell
 // around it is seen surface flat within a cell (FlatSeenDisk: issue 25's certifiable
-// floor), gets a small square region of its own, a foothold, and the plan goes to that
-// stance. Only goal spots get footholds: the way there stays on the regions.
+// floor), gets a square region of its own, a foothold, and the plan goes to that stance.
+// Only goal spots get footholds: the way there stays on the regions.
 #include <optional>
 #include <vector>
 
@@ -24,17 +24,19 @@ struct FootholdGoal {
   std::vector<ConvexRegion> footholds;   // one per such leg, ids above every region's
 };
 
-// The foothold of a spot: a horizontal square of half side half_side_m about it, at the
-// middle of the seen disk's tops, its plane half a cell thick; nullopt when the seen
-// surface holds no flat disk of radius foot_radius_m + margin_m + the square's half
-// diagonal (+ one cell) there.
+// The foothold of a spot: a horizontal square about it, at the middle of the seen disk's
+// tops, its plane half a cell thick, where the seen surface holds a flat disk of radius
+// foot_radius_m + margin_m + the square's half diagonal (+ one cell) about the spot. Its
+// half side is half_side_m, doubled while the disk stays flat and it stays within
+// max_half_side_m (a larger foothold also holds the steps up to the goal stance);
+// nullopt when half_side_m is not certified.
 std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
-                                         double margin_m, double half_side_m, int id);
+                                         double margin_m, double half_side_m, double max_half_side_m, int id);
 
 // The stance nearest to `goal` within goal_position_tolerance_m and goal_heading_tolerance_rad
 // (NearestGoalWith's grid and order) whose every spot lies on a region or has a foothold,
-// with those footholds (half side: half the goal tolerance, so a foot anywhere on one is
-// within goal_tolerance_m of its spot); nullopt when there is none, when the options turn
+// with those footholds (half side from half the goal tolerance up to the robot's d_lim);
+// nullopt when there is none, when the options turn
 // footholds off, or when the deadline expires first.
 std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                              const SeenSurface& seen, const GoalPose& goal,
