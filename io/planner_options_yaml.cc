@@ -47,6 +47,9 @@ void AddPlanKeys(Table* t) {
                    "around it").Unit("m").Advanced());
   t->push_back(Opt("start_tolerance", At(&P::start_tolerance_m), 0, 1,
                    "a start foot may lie this far off its region").Unit("m"));
+  t->push_back(Opt("start_seen_footholds", At(&P::start_seen_footholds),
+                   "a start foot on no region but on flat seen floor gets a foothold region (as a goal spot's, "
+                   "goal_search.foothold_margin) that the first steps may use").Advanced());
   t->push_back(Opt("warm_start_match", At(&P::warm_start_match_m), 0, 1,
                    "a previous plan seeds the search when every start foot lies this close to one of its steps")
                    .Unit("m"));

@@ -308,23 +308,33 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
   Plan plan;
   if (choice.rejected) {
     plan = std::move(*choice.rejected);
-  } else if (choice.moved) {
-    PlanRequest moved = request;
-    moved.goal_x_m = choice.moved->x_m;
-    moved.goal_y_m = choice.moved->y_m;
-    moved.goal_yaw_rad = choice.moved->yaw_rad;
-    if (choice.footholds.empty()) {
-      plan = PlanWindows(robot, regions, moved, options, solvers, on_progress);
+  } else {
+    PlanRequest aimed = request;
+    if (choice.moved) {
+      aimed.goal_x_m = choice.moved->x_m;
+      aimed.goal_y_m = choice.moved->y_m;
+      aimed.goal_yaw_rad = choice.moved->yaw_rad;
+    }
+    std::vector<ConvexRegion> footholds = std::move(choice.footholds);
+    if (guided) {
+      int next_id = 0;
+      for (const ConvexRegion& r : regions) next_id = std::max(next_id, r.id + 1);
+      for (const ConvexRegion& r : footholds) next_id = std::max(next_id, r.id + 1);
+      const std::vector<ConvexRegion> at_start = StartFootholds(robot, regions, request, options, next_id);
+      footholds.insert(footholds.end(), at_start.begin(), at_start.end());
+    }
+    if (footholds.empty()) {
+      plan = PlanWindows(robot, regions, aimed, options, solvers, on_progress);
     } else {
       std::vector<ConvexRegion> with_footholds = regions;
-      with_footholds.insert(with_footholds.end(), choice.footholds.begin(), choice.footholds.end());
-      plan = PlanWindows(robot, with_footholds, moved, options, solvers, on_progress);
-      plan.footholds = choice.footholds;
+      with_footholds.insert(with_footholds.end(), footholds.begin(), footholds.end());
+      plan = PlanWindows(robot, with_footholds, aimed, options, solvers, on_progress);
+      plan.footholds = std::move(footholds);
     }
-    plan.goal_moved = true;
-    plan.message = choice.note + (plan.message.empty() ? "" : "; " + plan.message);
-  } else {
-    plan = PlanWindows(robot, regions, request, options, solvers, on_progress);
+    if (choice.moved) {
+      plan.goal_moved = true;
+      plan.message = choice.note + (plan.message.empty() ? "" : "; " + plan.message);
+    }
   }
   const GoalPose aimed = choice.moved ? *choice.moved : GoalPose{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
   plan.goal_x_m = aimed.x_m;

@@ -93,6 +93,9 @@ struct PlannerOptions {
   // each such spot given a foothold region (planner/planning/internal/goal_footholds.h).
   bool goal_seen_footholds = true;
   double goal_foothold_margin_m = 0.01;
+  // A start foot on no region but on flat seen floor (the same disk) gets a foothold too,
+  // which the first steps may use (StartFootholds in goal_footholds.h).
+  bool start_seen_footholds = true;
   // Region extraction for this robot keeps surfaces with the stance height plus this much
   // free space above them (RegionExtractorOptions::clearance_m) [m].
   double body_clearance_margin_m = 0.1;

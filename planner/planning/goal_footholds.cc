@@ -60,4 +60,22 @@ std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std:
   return chosen;
 }
 
+std::vector<ConvexRegion> StartFootholds(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const PlanRequest& request, const PlannerOptions& options, int first_id) {
+  std::vector<ConvexRegion> footholds;
+  if (!options.start_seen_footholds || request.seen_surface == nullptr || request.seen_surface->grids.empty()) {
+    return footholds;
+  }
+  for (const Eigen::Vector3d& foot : request.start_feet_world_m) {
+    bool on = false;
+    for (const ConvexRegion& r : regions) on = on || RegionContains(r, foot, options.start_tolerance_m);
+    if (on) continue;
+    std::optional<ConvexRegion> hold = SeenFoothold(*request.seen_surface, foot.head<2>(), robot.foot_radius_m,
+                                                    options.goal_foothold_margin_m, 0.5 * options.goal_tolerance_m,
+                                                    robot.d_lim_m, first_id + static_cast<int>(footholds.size()));
+    if (hold) footholds.push_back(std::move(*hold));
+  }
+  return footholds;
+}
+
 }  // namespace mfp

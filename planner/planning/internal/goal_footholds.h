@@ -42,4 +42,11 @@ std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std:
                                              const SeenSurface& seen, const GoalPose& goal,
                                              const PlannerOptions& options, const Deadline& deadline);
 
+// Footholds under the start feet that stand on no region (within start_tolerance_m) but on
+// flat seen floor (SeenFoothold about each such foot, ids from first_id): the first steps may
+// stand there too instead of having to reach a region in one step. Empty when the options
+// turn them off or the request carries no seen surface.
+std::vector<ConvexRegion> StartFootholds(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const PlanRequest& request, const PlannerOptions& options, int first_id);
+
 }  // namespace mfp
