@@ -63,6 +63,12 @@ class StartGoalTest : public ::testing::Test {
   Plan PlanOn(const std::vector<ConvexRegion>& regions, const PlanRequest& request) const {
     return PlanWith(regions, request, course_->scenario.options);
   }
+  // The course's options with the start footholds off: the rules for start feet on regions alone.
+  static PlannerOptions NoStartFootholds() {
+    PlannerOptions o = course_->scenario.options;
+    o.start_seen_footholds = false;
+    return o;
+  }
   Plan PlanWith(const std::vector<ConvexRegion>& regions, const PlanRequest& request,
                 const PlannerOptions& options) const {
     const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
@@ -98,7 +104,7 @@ TEST_F(StartGoalTest, AStartFootOnSeenFloorButOnNoRegionPlans) {
   EXPECT_NE(refused.message.find("leg 0"), std::string::npos) << refused.message;
 
   request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
-  const Plan plan = PlanOn(regions, request);
+  const Plan plan = PlanWith(regions, request, NoStartFootholds());
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
   EXPECT_FALSE(plan.goal_moved);
@@ -206,12 +212,12 @@ TEST_F(StartGoalTest, AStartFootWhoseFirstStepMeetsNoRegionIsNoRouteNamingItsFir
   const double hole = robot().d_lim_m + 0.02;
   ASSERT_LT(hole + 0.01, MaxStepSpan(robot()));
   const std::vector<ConvexRegion> regions = FloorWithHole(foot, hole);
-  const Plan plan = PlanOn(regions, request);
+  const Plan plan = PlanWith(regions, request, NoStartFootholds());
   EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
   EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("its first step, within d_lim"), std::string::npos) << plan.message;
   // The same hole a little narrower than d_lim leaves the first step its landing.
-  const Plan plans = PlanOn(FloorWithHole(foot, robot().d_lim_m - 0.02), request);
+  const Plan plans = PlanWith(FloorWithHole(foot, robot().d_lim_m - 0.02), request, NoStartFootholds());
   EXPECT_NE(plans.status, SolveStatus::kNoRoute) << plans.message;
   EXPECT_NE(plans.status, SolveStatus::kInfeasible) << plans.message;
 }
@@ -228,7 +234,7 @@ TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingT
   // Regions only beyond x = 2 m: every start foot is on seen floor, none a step from a region.
   const std::vector<ConvexRegion> regions = {Rect(0, 2.0, -1.0, 3.0, 1.0)};
   request.goal_x_m = 2.5;
-  const Plan plan = PlanOn(regions, request);
+  const Plan plan = PlanWith(regions, request, NoStartFootholds());
   EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
   EXPECT_NE(plan.message.find("no region lies within one step"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
@@ -356,6 +362,22 @@ TEST_F(GoalFootholdTest, AGoalSpotOverUnseenOrUnevenFloorStaysAnInvalidGoal) {
     EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
     EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
   }
+}
+
+// Start footholds: the hole about a start foot wider than d_lim (no_route without them, as
+// above) over flat seen floor: the first step lands on the foothold and the plan is valid.
+TEST_F(StartGoalTest, AStartFootOnFlatSeenFloorBeyondAStepFromTheRegionsPlansFromAFoothold) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Eigen::Vector2d foot = request.start_feet_world_m[0].head<2>();
+  const std::vector<ConvexRegion> regions = FloorWithHole(foot, robot().d_lim_m + 0.02);
+  const Plan plan = PlanOn(regions, request);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  ASSERT_EQ(plan.footholds.size(), 1u);
+  EXPECT_LE(PlanDistanceToRegion(plan.footholds.front(), foot), 0.0);  // about the start foot
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
 }
 
 }  // namespace
