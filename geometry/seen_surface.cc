@@ -88,4 +88,33 @@ std::optional<double> HighestSeenSurfaceAt(const SeenSurface& surface, const Eig
   return best;
 }
 
+std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy, double radius_m) {
+  for (const SurfaceGrid& g : surface.grids) {
+    if (g.resolution_m <= 0.0 || g.rows <= 0 || g.cols <= 0) continue;
+    const double radius = radius_m + g.resolution_m;
+    const Eigen::Vector2d lo = (xy.array() - radius - g.origin_m.array()) / g.resolution_m;
+    const Eigen::Vector2d hi = (xy.array() + radius - g.origin_m.array()) / g.resolution_m;
+    const int c0 = static_cast<int>(std::floor(lo.x())), r0 = static_cast<int>(std::floor(lo.y()));
+    const int c1 = static_cast<int>(std::floor(hi.x())), r1 = static_cast<int>(std::floor(hi.y()));
+    if (c0 < 0 || r0 < 0 || c1 >= g.cols || r1 >= g.rows) continue;  // the disk leaves the grid
+    SeenDisk disk{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), g.resolution_m};
+    bool flat = true;
+    for (int r = r0; r <= r1 && flat; ++r) {
+      for (int c = c0; c <= c1 && flat; ++c) {
+        const Eigen::Vector2d cell_lo = g.origin_m + g.resolution_m * Eigen::Vector2d(c, r);
+        const Eigen::Vector2d cell_hi = cell_lo + Eigen::Vector2d::Constant(g.resolution_m);
+        if ((cell_lo - xy).cwiseMax(xy - cell_hi).cwiseMax(0.0).norm() >= radius) continue;
+        const float h = g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.cols) + static_cast<size_t>(c)];
+        flat = std::isfinite(h);
+        if (!flat) break;
+        disk.low_m = std::min(disk.low_m, static_cast<double>(h));
+        disk.high_m = std::max(disk.high_m, static_cast<double>(h));
+        flat = disk.high_m - disk.low_m <= g.resolution_m + 1e-6;
+      }
+    }
+    if (flat && disk.low_m <= disk.high_m) return disk;
+  }
+  return std::nullopt;
+}
+
 }  // namespace mfp

@@ -49,4 +49,19 @@ NearestSurfacePoint NearestSeenSurface(const SeenSurface& surface, const Eigen::
 // plane of each face whose polygon holds it; nullopt when none does [m].
 std::optional<double> HighestSeenSurfaceAt(const SeenSurface& surface, const Eigen::Vector2d& xy_m);
 
+// The lowest and highest tops of a disk of seen surface, and the cell edge of its grid [m].
+struct SeenDisk {
+  double low_m = 0.0;
+  double high_m = 0.0;
+  double cell_m = 0.0;
+};
+
+// A disk of one grid's seen surface, flat within a cell: every cell of the grid whose
+// square comes closer than radius_m plus one cell edge (the edges' uncertainty) to xy_m
+// in plan view is seen (a finite top), and those
+// tops lie within one cell edge of each other (a surface's top voxel, not a step). The
+// first grid (layer) that holds such a disk answers; nullopt when none does. Faces are
+// not searched (their regions are exact).
+std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy_m, double radius_m);
+
 }  // namespace mfp

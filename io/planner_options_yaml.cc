@@ -39,8 +39,17 @@ void AddPlanKeys(Table* t) {
                    "invalid_goal names").Unit("m").Advanced());
   t->push_back(Opt("goal_search.report_radius", At(&P::goal_report_radius_m), 0, 10,
                    "... out to this distance (0: name none)").Unit("m").Advanced());
+  t->push_back(Opt("goal_search.seen_footholds", At(&P::goal_seen_footholds),
+                   "with no stance on regions within the goal tolerances, plan to the nearest stance whose spots off "
+                   "the regions stand on flat seen floor (a foothold region each)").Advanced());
+  t->push_back(Opt("goal_search.foothold_margin", At(&P::goal_foothold_margin_m), 0, 1,
+                   "such a foothold has seen floor within a cell for the foot radius, this margin and one map cell "
+                   "around it").Unit("m").Advanced());
   t->push_back(Opt("start_tolerance", At(&P::start_tolerance_m), 0, 1,
                    "a start foot may lie this far off its region").Unit("m"));
+  t->push_back(Opt("start_seen_footholds", At(&P::start_seen_footholds),
+                   "a start foot on no region but on flat seen floor gets a foothold region (as a goal spot's, "
+                   "goal_search.foothold_margin) that the first steps may use").Advanced());
   t->push_back(Opt("warm_start_match", At(&P::warm_start_match_m), 0, 1,
                    "a previous plan seeds the search when every start foot lies this close to one of its steps")
                    .Unit("m"));

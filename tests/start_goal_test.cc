@@ -61,8 +61,18 @@ class StartGoalTest : public ::testing::Test {
     return r;
   }
   Plan PlanOn(const std::vector<ConvexRegion>& regions, const PlanRequest& request) const {
-    const RelaxationSolverSet solvers = MakeRelaxationSolvers(course_->scenario.options.solvers);
-    return PlanFootsteps(robot(), regions, request, course_->scenario.options, solvers.workers());
+    return PlanWith(regions, request, course_->scenario.options);
+  }
+  // The course's options with the start footholds off: the rules for start feet on regions alone.
+  static PlannerOptions NoStartFootholds() {
+    PlannerOptions o = course_->scenario.options;
+    o.start_seen_footholds = false;
+    return o;
+  }
+  Plan PlanWith(const std::vector<ConvexRegion>& regions, const PlanRequest& request,
+                const PlannerOptions& options) const {
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
+    return PlanFootsteps(robot(), regions, request, options, solvers.workers());
   }
   std::vector<std::string> Violations(const std::vector<ConvexRegion>& regions, const Plan& plan) const {
     const PlannerOptions& o = course_->scenario.options;
@@ -94,7 +104,7 @@ TEST_F(StartGoalTest, AStartFootOnSeenFloorButOnNoRegionPlans) {
   EXPECT_NE(refused.message.find("leg 0"), std::string::npos) << refused.message;
 
   request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
-  const Plan plan = PlanOn(regions, request);
+  const Plan plan = PlanWith(regions, request, NoStartFootholds());
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
   EXPECT_FALSE(plan.goal_moved);
@@ -202,12 +212,12 @@ TEST_F(StartGoalTest, AStartFootWhoseFirstStepMeetsNoRegionIsNoRouteNamingItsFir
   const double hole = robot().d_lim_m + 0.02;
   ASSERT_LT(hole + 0.01, MaxStepSpan(robot()));
   const std::vector<ConvexRegion> regions = FloorWithHole(foot, hole);
-  const Plan plan = PlanOn(regions, request);
+  const Plan plan = PlanWith(regions, request, NoStartFootholds());
   EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
   EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("its first step, within d_lim"), std::string::npos) << plan.message;
   // The same hole a little narrower than d_lim leaves the first step its landing.
-  const Plan plans = PlanOn(FloorWithHole(foot, robot().d_lim_m - 0.02), request);
+  const Plan plans = PlanWith(FloorWithHole(foot, robot().d_lim_m - 0.02), request, NoStartFootholds());
   EXPECT_NE(plans.status, SolveStatus::kNoRoute) << plans.message;
   EXPECT_NE(plans.status, SolveStatus::kInfeasible) << plans.message;
 }
@@ -224,7 +234,7 @@ TEST_F(StartGoalTest, AStartOnSeenFloorWithNoRegionWithinOneStepIsNoRouteNamingT
   // Regions only beyond x = 2 m: every start foot is on seen floor, none a step from a region.
   const std::vector<ConvexRegion> regions = {Rect(0, 2.0, -1.0, 3.0, 1.0)};
   request.goal_x_m = 2.5;
-  const Plan plan = PlanOn(regions, request);
+  const Plan plan = PlanWith(regions, request, NoStartFootholds());
   EXPECT_EQ(plan.status, SolveStatus::kNoRoute) << plan.message;
   EXPECT_NE(plan.message.find("no region lies within one step"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("start foot of leg '" + robot().legs[0].name + "'"), std::string::npos) << plan.message;
@@ -279,6 +289,93 @@ TEST_F(StartGoalTest, APlanStandingJustOutsideTheGoalToleranceFinishesAtTheGoal)
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
   EXPECT_TRUE(plan.reaches_goal) << plan.message;
   EXPECT_FALSE(plan.goal_moved);
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
+}
+
+// Goal footholds on seen floor (issue 25): a goal spot in a hole of the regions, wider
+// than the goal tolerances allow the goal to move, over floor the sensor saw flat.
+class GoalFootholdTest : public StartGoalTest {
+ protected:
+  // The goal's spot of the gait's first leg and the regions with a hole of half side 0.08 m about it.
+  Eigen::Vector2d Spot(const PlanRequest& r) const {
+    return NominalFootXY(robot(), robot().gait[0], r.goal_x_m, r.goal_y_m, r.goal_yaw_rad);
+  }
+  // The course's options with the goal pinned (no move within tolerances), footholds on or off.
+  PlannerOptions Pinned(bool footholds) const {
+    PlannerOptions o = course_->scenario.options;
+    o.goal_position_tolerance_m = 0.0;
+    o.goal_heading_tolerance_rad = 0.0;
+    o.goal_seen_footholds = footholds;
+    return o;
+  }
+};
+
+TEST_F(GoalFootholdTest, AGoalSpotOnFlatSeenFloorThatNoRegionCoversGetsAFootholdAndIsReached) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Eigen::Vector2d spot = Spot(request);
+  const std::vector<ConvexRegion> regions = FloorWithHole(spot, 0.08);
+  const Plan refused = PlanWith(regions, request, Pinned(false));
+  EXPECT_EQ(refused.status, SolveStatus::kInvalidGoal) << refused.message;
+
+  const PlannerOptions o = Pinned(true);
+  const Plan plan = PlanWith(regions, request, o);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  EXPECT_NE(plan.message.find("footholds on the seen floor for leg " + std::to_string(robot().gait[0])),
+            std::string::npos)
+      << plan.message;
+  // The leg's last step stands within the goal tolerance of its spot, on none of the regions.
+  const Footstep* last = nullptr;
+  for (const Footstep& f : plan.footsteps) last = f.leg == robot().gait[0] ? &f : last;
+  ASSERT_NE(last, nullptr);
+  EXPECT_LE((last->position_world_m.head<2>() - spot).norm(), o.goal_tolerance_m + 1e-6);
+  EXPECT_GT(DistanceToNearestRegion(regions, last->position_world_m.head<2>()), 0.0);
+  EXPECT_NEAR(last->position_world_m.z(), kFloorZ, 0.011);
+  // Plan validation counts the plan's footholds as regions: every step within its limits.
+  ASSERT_EQ(plan.footholds.size(), 1u);
+  const std::vector<std::string> violations = Violations(regions, plan);
+  EXPECT_TRUE(violations.empty()) << violations.front();
+  // Every other step stands on the regions.
+  for (size_t i = static_cast<size_t>(robot().num_legs()); i < plan.footsteps.size(); ++i) {
+    if (&plan.footsteps[i] == last) continue;
+    bool on = false;
+    for (const ConvexRegion& r : regions) on = on || RegionContains(r, plan.footsteps[i].position_world_m, 1e-6);
+    EXPECT_TRUE(on) << "step " << i;
+  }
+}
+
+TEST_F(GoalFootholdTest, AGoalSpotOverUnseenOrUnevenFloorStaysAnInvalidGoal) {
+  PlanRequest request = Request();
+  const Eigen::Vector2d spot = Spot(request);
+  const std::vector<ConvexRegion> regions = FloorWithHole(spot, 0.08);
+  // One cell near the spot unseen, then one a cell and a half higher: no foothold either way.
+  for (const float bad : {std::nanf(""), static_cast<float>(kFloorZ + 0.03)}) {
+    SeenSurface seen = FlatSeenFloor();
+    SurfaceGrid& g = seen.grids.front();
+    const int col = static_cast<int>(std::floor((spot.x() + 0.05 - g.origin_m.x()) / g.resolution_m));
+    const int row = static_cast<int>(std::floor((spot.y() - g.origin_m.y()) / g.resolution_m));
+    g.height_m[static_cast<size_t>(row * g.cols + col)] = bad;
+    request.seen_surface = std::make_shared<const SeenSurface>(seen);
+    const Plan plan = PlanWith(regions, request, Pinned(true));
+    EXPECT_EQ(plan.status, SolveStatus::kInvalidGoal) << plan.message;
+    EXPECT_NE(plan.message.find("on no region"), std::string::npos) << plan.message;
+  }
+}
+
+// Start footholds: the hole about a start foot wider than d_lim (no_route without them, as
+// above) over flat seen floor: the first step lands on the foothold and the plan is valid.
+TEST_F(StartGoalTest, AStartFootOnFlatSeenFloorBeyondAStepFromTheRegionsPlansFromAFoothold) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Eigen::Vector2d foot = request.start_feet_world_m[0].head<2>();
+  const std::vector<ConvexRegion> regions = FloorWithHole(foot, robot().d_lim_m + 0.02);
+  const Plan plan = PlanOn(regions, request);
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  EXPECT_TRUE(plan.reaches_goal) << plan.message;
+  ASSERT_EQ(plan.footholds.size(), 1u);
+  EXPECT_LE(PlanDistanceToRegion(plan.footholds.front(), foot), 0.0);  // about the start foot
   const std::vector<std::string> violations = Violations(regions, plan);
   EXPECT_TRUE(violations.empty()) << violations.front();
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "base/solve_status.h"
+#include "geometry/convex_region.h"
 
 namespace mfp {
 
@@ -67,6 +68,9 @@ struct Plan {
   // and heading tolerances (a requested goal foot spot lay on no region) [m, rad].
   bool goal_moved = false;
   double goal_x_m = 0.0, goal_y_m = 0.0, goal_yaw_rad = 0.0;
+  // Goal footholds on seen floor the plan stands on besides the caller's regions (ids above
+  // theirs; planner/planning/internal/goal_footholds.h); plan validation counts them as regions.
+  std::vector<ConvexRegion> footholds;
 };
 
 }  // namespace mfp

@@ -9,6 +9,7 @@
 
 #include "base/check.h"
 #include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/goal_footholds.h"
 #include "planner/planning/internal/horizon_policy.h"
 #include "planner/planning/internal/horizon_state.h"
 #include "planner/planning/internal/plan_context.h"
@@ -74,9 +75,10 @@ FootstepProblem FirstWindowProblem(const RobotModel& robot, const std::vector<Co
 namespace {
 
 struct GoalChoice {
-  std::optional<Plan> rejected;   // invalid_goal: no certified stance within the tolerances
-  std::optional<GoalPose> moved;  // plan to this instead of the request's goal
-  std::string note;               // why the goal moved
+  std::optional<Plan> rejected;         // invalid_goal: no certified stance within the tolerances
+  std::optional<GoalPose> moved;        // plan to this instead of the request's goal
+  std::vector<ConvexRegion> footholds;  // goal footholds on seen floor, planned on beside the regions
+  std::string note;                     // why the goal moved
 };
 
 std::string PoseText(const GoalPose& p) {
@@ -93,9 +95,12 @@ std::string FartherStanceText(const RobotModel& robot, const std::vector<ConvexR
                               const PlannerOptions& options, const Deadline& deadline) {
   const double radius_m = options.goal_report_radius_m;
   if (!(radius_m > options.goal_position_tolerance_m)) return "";
+  // Turns of the whole heading tolerance either way (a step no smaller than the search's,
+  // so a tolerance of 0 asks for no turn rather than a zero step).
+  const double yaw_step = std::max(options.goal_heading_tolerance_rad, options.goal_search_yaw_step_rad);
   const std::optional<GoalPose> farther =
       NearestCertifiedGoal(robot, regions, goal, radius_m, options.goal_heading_tolerance_rad, options.goal_report_step_m,
-                           options.goal_heading_tolerance_rad, 0.0, deadline);
+                           yaw_step, 0.0, deadline);
   std::ostringstream text;
   text.precision(3);
   if (farther) {
@@ -107,6 +112,33 @@ std::string FartherStanceText(const RobotModel& robot, const std::vector<ConvexR
     text << "; no stance on regions within " << radius_m << " m either";
   }
   return text.str();
+}
+
+// The goal stance on seen floor within the tolerances (SeenFootholdGoal), when there is one:
+// `why` (where the regions leave the goal out) and the legs on footholds make its note.
+std::optional<GoalChoice> FootholdChoice(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                         const PlanRequest& request, const PlannerOptions& options,
+                                         const std::string& why) {
+  if (request.seen_surface == nullptr) return std::nullopt;
+  const GoalPose goal{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
+  std::optional<FootholdGoal> found =
+      SeenFootholdGoal(robot, regions, *request.seen_surface, goal, options, request.deadline);
+  if (!found) return std::nullopt;
+  std::ostringstream note;
+  note.precision(3);
+  note << why << "; planned to the nearest stance on regions and seen floor " << PoseText(found->pose)
+       << ", with footholds on the seen floor for leg";
+  for (size_t k = 0; k < found->legs.size(); ++k) {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();  // the foothold's centre: its spot
+    for (const Eigen::Vector3d& v : found->footholds[k].vertices_world_m) c += v;
+    c /= static_cast<double>(found->footholds[k].vertices_world_m.size());
+    note << (k == 0 ? " " : ", ") << found->legs[k] << " near (" << c.x() << ", " << c.y() << ")";
+  }
+  GoalChoice choice;
+  choice.moved = found->pose;
+  choice.footholds = std::move(found->footholds);
+  choice.note = note.str();
+  return choice;
 }
 
 // Under route guidance a goal stance must stand on regions (the route guide's test). One
@@ -142,6 +174,9 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
   if (choice.moved) {
     choice.note = why.str() + "; planned to the nearest stance on regions " + PoseText(*choice.moved);
     return choice;
+  }
+  if (std::optional<GoalChoice> on_seen_floor = FootholdChoice(robot, regions, request, options, why.str())) {
+    return *on_seen_floor;
   }
   why << "; no stance on regions within goal_position_tolerance " << options.goal_position_tolerance_m
       << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
@@ -246,8 +281,17 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
                    const std::vector<RelaxationSolver*>& solvers,
                    const std::function<void(const PlanProgress&)>& on_progress) {
   // Checked once here: the goal search below and the windows' set-up take it as checked.
-  if (const RequestCheck check = CheckPlanRequest(robot, regions, request, options); !check.ok()) {
-    const bool guided = options.route_guidance && request.max_windows == 0;
+  const bool guided = options.route_guidance && request.max_windows == 0;
+  GoalChoice choice;
+  const RequestCheck check = CheckPlanRequest(robot, regions, request, options);
+  std::optional<GoalChoice> on_seen_floor;
+  if (!check.ok() && check.status == SolveStatus::kInvalidGoal && guided) {
+    // A goal beyond a leg's reach of every region may still stand on seen floor.
+    on_seen_floor = FootholdChoice(robot, regions, request, options, check.message);
+  }
+  if (on_seen_floor) {
+    choice = std::move(*on_seen_floor);
+  } else if (!check.ok()) {
     Plan plan = Rejected(check.status, check.status == SolveStatus::kInvalidGoal && guided
                                            ? check.message + FartherStanceText(robot, regions,
                                                                                {request.goal_x_m, request.goal_y_m,
@@ -258,21 +302,39 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     plan.goal_y_m = request.goal_y_m;
     plan.goal_yaw_rad = request.goal_yaw_rad;
     return plan;
+  } else {
+    choice = ChooseGoal(robot, regions, request, options);
   }
-  GoalChoice choice = ChooseGoal(robot, regions, request, options);
   Plan plan;
   if (choice.rejected) {
     plan = std::move(*choice.rejected);
-  } else if (choice.moved) {
-    PlanRequest moved = request;
-    moved.goal_x_m = choice.moved->x_m;
-    moved.goal_y_m = choice.moved->y_m;
-    moved.goal_yaw_rad = choice.moved->yaw_rad;
-    plan = PlanWindows(robot, regions, moved, options, solvers, on_progress);
-    plan.goal_moved = true;
-    plan.message = choice.note + (plan.message.empty() ? "" : "; " + plan.message);
   } else {
-    plan = PlanWindows(robot, regions, request, options, solvers, on_progress);
+    PlanRequest aimed = request;
+    if (choice.moved) {
+      aimed.goal_x_m = choice.moved->x_m;
+      aimed.goal_y_m = choice.moved->y_m;
+      aimed.goal_yaw_rad = choice.moved->yaw_rad;
+    }
+    std::vector<ConvexRegion> footholds = std::move(choice.footholds);
+    if (guided) {
+      int next_id = 0;
+      for (const ConvexRegion& r : regions) next_id = std::max(next_id, r.id + 1);
+      for (const ConvexRegion& r : footholds) next_id = std::max(next_id, r.id + 1);
+      const std::vector<ConvexRegion> at_start = StartFootholds(robot, regions, request, options, next_id);
+      footholds.insert(footholds.end(), at_start.begin(), at_start.end());
+    }
+    if (footholds.empty()) {
+      plan = PlanWindows(robot, regions, aimed, options, solvers, on_progress);
+    } else {
+      std::vector<ConvexRegion> with_footholds = regions;
+      with_footholds.insert(with_footholds.end(), footholds.begin(), footholds.end());
+      plan = PlanWindows(robot, with_footholds, aimed, options, solvers, on_progress);
+      plan.footholds = std::move(footholds);
+    }
+    if (choice.moved) {
+      plan.goal_moved = true;
+      plan.message = choice.note + (plan.message.empty() ? "" : "; " + plan.message);
+    }
   }
   const GoalPose aimed = choice.moved ? *choice.moved : GoalPose{request.goal_x_m, request.goal_y_m, request.goal_yaw_rad};
   plan.goal_x_m = aimed.x_m;

@@ -87,6 +87,15 @@ struct PlannerOptions {
   double goal_search_yaw_step_rad = 0.05;
   double goal_report_step_m = 0.05;
   double goal_report_radius_m = 2.0;
+  // When no stance on regions lies within those tolerances, a stance whose spots off the
+  // regions each stand on seen floor (PlanRequest::seen_surface: a disk of the foot
+  // radius, this margin and one map cell, flat within a cell) is planned to instead,
+  // each such spot given a foothold region (planner/planning/internal/goal_footholds.h).
+  bool goal_seen_footholds = true;
+  double goal_foothold_margin_m = 0.01;
+  // A start foot on no region but on flat seen floor (the same disk) gets a foothold too,
+  // which the first steps may use (StartFootholds in goal_footholds.h).
+  bool start_seen_footholds = true;
   // Region extraction for this robot keeps surfaces with the stance height plus this much
   // free space above them (RegionExtractorOptions::clearance_m) [m].
   double body_clearance_margin_m = 0.1;

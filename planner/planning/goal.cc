@@ -99,4 +99,24 @@ std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std:
   return std::nullopt;
 }
 
+std::optional<GoalPose> NearestGoalWith(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                        const GoalPose& goal, double max_shift_m, double max_turn_rad, double step_m,
+                                        double yaw_step_rad, const std::function<bool(const Eigen::Vector2d&)>& off_regions,
+                                        const Deadline& deadline) {
+  MFP_CHECK(step_m > 0.0 && yaw_step_rad > 0.0 && max_shift_m >= 0.0 && max_turn_rad >= 0.0);
+  const std::vector<ConvexRegion> near = RegionsNear(robot, regions, goal, max_shift_m, 0.0);
+  const std::vector<Candidate> candidates = CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad);
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    if (k % 64 == 0 && deadline.Expired()) return std::nullopt;
+    bool stands = true;
+    for (int leg = 0; leg < robot.num_legs() && stands; ++leg) {
+      const Eigen::Vector2d spot = NominalFootXY(robot, leg, candidates[k].pose.x_m, candidates[k].pose.y_m,
+                                                 candidates[k].pose.yaw_rad);
+      stands = DistanceToNearestRegion(near, spot) <= 0.0 || off_regions(spot);
+    }
+    if (stands) return candidates[k].pose;
+  }
+  return std::nullopt;
+}
+
 }  // namespace mfp

@@ -82,7 +82,7 @@ struct StepExcess {
 };
 
 StepExcess ExcessOfStep(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                        const std::vector<Footstep>& steps, int i) {
+                        const std::vector<ConvexRegion>& footholds, const std::vector<Footstep>& steps, int i) {
   StepExcess e;
   FootstepRowExcess rows(robot, steps);
   AddStepLimits(rows, robot, i);
@@ -96,6 +96,9 @@ StepExcess ExcessOfStep(const RobotModel& robot, const std::vector<ConvexRegion>
   for (const ConvexRegion& r : regions) {
     if (r.id == steps[i].region_id) region = &r;
   }
+  for (const ConvexRegion& r : footholds) {
+    if (region == nullptr && r.id == steps[i].region_id) region = &r;
+  }
   e.region_missing = region == nullptr;
   e.region = region == nullptr ? 0.0 : RegionViolation(*region, f);
   e.yaw_change = std::abs(steps[i].yaw_rad - steps[i - 1].yaw_rad) - robot.max_yaw_change_rad;
@@ -108,7 +111,7 @@ ExactExcess MeasureExactExcess(const RobotModel& robot, const std::vector<Convex
   ExactExcess out;
   const int n = robot.num_legs();
   for (int i = n; i < static_cast<int>(plan.footsteps.size()); ++i) {
-    const StepExcess e = ExcessOfStep(robot, regions, plan.footsteps, i);
+    const StepExcess e = ExcessOfStep(robot, regions, plan.footholds, plan.footsteps, i);
     out.region_m = std::max(out.region_m, e.region);
     out.reference_box_m = std::max(out.reference_box_m, e.reference);
     out.reachability_box_m = std::max(out.reachability_box_m, e.reachability);
@@ -142,7 +145,7 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
   }
   if (!errors.empty()) return errors;
   for (int i = n; i < N; ++i) {
-    const StepExcess e = ExcessOfStep(robot, regions, steps, i);
+    const StepExcess e = ExcessOfStep(robot, regions, plan.footholds, steps, i);
     if (e.region_missing) {
       report(i, "region id " + std::to_string(steps[i].region_id) + " does not exist", 0);
     } else if (e.region > tol.position_m) {

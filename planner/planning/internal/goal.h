@@ -4,6 +4,7 @@
 // stance's yaw, estimated from the feet, within a tolerance of the goal yaw. The planner
 // stops on it; plan validation reports by it.
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -54,5 +55,12 @@ std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std:
                                              const GoalPose& goal, double max_shift_m, double max_turn_rad,
                                              double step_m, double yaw_step_rad, double tolerance_m,
                                              const Deadline& deadline = Deadline());
+
+// As NearestCertifiedGoal (the same poses in the same order, tolerance 0), but a spot on
+// no region also counts when off_regions(spot) holds: the first such pose, or nullopt.
+std::optional<GoalPose> NearestGoalWith(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
+                                        const GoalPose& goal, double max_shift_m, double max_turn_rad, double step_m,
+                                        double yaw_step_rad, const std::function<bool(const Eigen::Vector2d&)>& off_regions,
+                                        const Deadline& deadline = Deadline());
 
 }  // namespace mfp
