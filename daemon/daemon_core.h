@@ -173,6 +173,7 @@ class DaemonCore {
     std::shared_ptr<const SeenSurface> seen_surface;  // of the same map as regions
     std::shared_ptr<const std::vector<BodyObstacle>> body_obstacles;  // of the same map; null: none
     int64_t map_utime = 0;
+    std::string map_frame;
     std::vector<std::vector<Footstep>> warm_start;
     double limit_s = 0.0;   // the request's time limit, from its arrival [s]
     double waited_s = 0.0;  // spent in the queue [s]
@@ -186,6 +187,7 @@ class DaemonCore {
   std::optional<Plan> RefuseJob(const PlanJob& job);
   Plan AnswerAtDeadline(const PlanJob& job, Plan so_far);
   void RecordOutcome(const PlanJob& job, const Plan& plan, bool abandoned);
+  void PublishFootholds(const PlanJob& job, const Plan& plan);
 
   void HandleMap(const RawMessage& message, bool abandon_on_stop);
   // Decodes a map message (terrain_map_t, height_map_t) within limits.max_map_bytes;
@@ -239,6 +241,7 @@ class DaemonCore {
   std::shared_ptr<const SeenSurface> seen_surface_;  // of the current map; null: none
   std::shared_ptr<const std::vector<BodyObstacle>> body_obstacles_;  // of the current map; null: none
   int64_t map_utime_ = 0;          // terrain_map_t.utime of the current map
+  std::string map_frame_;          // its frame, for region sets published with a plan
   int64_t map_receive_utime_ = 0;  // clock when it arrived
   RequestQueue queue_;
   DaemonCounters counters_;

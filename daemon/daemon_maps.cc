@@ -102,6 +102,7 @@ void DaemonCore::AcceptMap(const std::string& bytes, const std::string& format,
       seen_surface_ = std::move(extracted->seen_surface);
       body_obstacles_ = std::move(extracted->body_obstacles);
       map_utime_ = map_utime;
+      map_frame_ = frame;
       last_plans_.clear();
       map_receive_utime_ = now;
       ++counters_.maps;

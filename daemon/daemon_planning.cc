@@ -42,6 +42,7 @@ std::optional<DaemonCore::PlanJob> DaemonCore::TakeNextJob() {
     job.seen_surface = seen_surface_;
     job.body_obstacles = body_obstacles_;
     job.map_utime = map_utime_;
+    job.map_frame = map_frame_;
     planning_ = true;
     if (job.setup->config.limits.warm_start_plans > 0) {
       // Also for a new goal: the plan's steps are then only a proposal the search weighs.
@@ -179,6 +180,16 @@ std::optional<Plan> DaemonCore::RefuseJob(const PlanJob& job) {
   return plan;
 }
 
+// A plan that stands on footholds of the seen floor (Plan::footholds, ids above the map's
+// regions) is preceded by the map's region set with the footholds added, on MFP_REGIONS and
+// with the same map_utime, so every footstep_t.region_id of the reply names a published region.
+void DaemonCore::PublishFootholds(const PlanJob& job, const Plan& plan) {
+  if (plan.footholds.empty() || job.regions == nullptr) return;
+  std::vector<ConvexRegion> with_footholds = *job.regions;
+  with_footholds.insert(with_footholds.end(), plan.footholds.begin(), plan.footholds.end());
+  Publish(kRegionsChannel, ToRegionSetMessage(with_footholds, job.map_frame, clock_(), job.map_utime));
+}
+
 bool DaemonCore::PlanNext() {
   std::optional<PlanJob> job = TakeNextJob();
   if (!job) return false;
@@ -191,6 +202,7 @@ bool DaemonCore::PlanNext() {
   Log("request " + std::to_string(next.request_id) + " planned: " + ToString(plan.status) + ", " +
       std::to_string(plan.footsteps.size()) + " footsteps, " + Seconds(plan.solve_time_s) + " s" +
       (plan.message.empty() ? "" : " (" + plan.message + ")"));
+  PublishFootholds(*job, plan);
   Reply(ToPlanMessage(plan, next.request_id, next.robot_name, clock_(), job->map_utime));
   // After the reply: each plan runs on a thread of its own, whose arena keeps what the
   // plan freed (on the 577-region soak field tens of MiB, growing for minutes).

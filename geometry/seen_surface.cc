@@ -94,9 +94,10 @@ std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Ve
     const double radius = radius_m + g.resolution_m;
     const Eigen::Vector2d lo = (xy.array() - radius - g.origin_m.array()) / g.resolution_m;
     const Eigen::Vector2d hi = (xy.array() + radius - g.origin_m.array()) / g.resolution_m;
+    // Compared in double before the casts: a far point (any finite request) must not overflow an int.
+    if (!(lo.x() >= 0.0 && lo.y() >= 0.0 && hi.x() < g.cols && hi.y() < g.rows)) continue;  // the disk leaves the grid
     const int c0 = static_cast<int>(std::floor(lo.x())), r0 = static_cast<int>(std::floor(lo.y()));
     const int c1 = static_cast<int>(std::floor(hi.x())), r1 = static_cast<int>(std::floor(hi.y()));
-    if (c0 < 0 || r0 < 0 || c1 >= g.cols || r1 >= g.rows) continue;  // the disk leaves the grid
     SeenDisk disk{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), g.resolution_m};
     bool flat = true;
     for (int r = r0; r <= r1 && flat; ++r) {

@@ -27,7 +27,13 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
                      {"yaw", f.yaw_rad},
                      {"region", f.region_id}});
   }
-  const nlohmann::json region_list = RegionsToJson(regions)["regions"];
+  // The plan's footholds on seen floor (ids above the caller's regions) join the list, so
+  // every footstep's region names an entry; "footholds" lists their ids.
+  std::vector<ConvexRegion> all_regions = regions;
+  all_regions.insert(all_regions.end(), plan.footholds.begin(), plan.footholds.end());
+  const nlohmann::json region_list = RegionsToJson(all_regions)["regions"];
+  nlohmann::json foothold_ids = nlohmann::json::array();
+  for (const ConvexRegion& r : plan.footholds) foothold_ids.push_back(r.id);
   const int new_steps = std::max(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
   return {{"status", ToString(plan.status)},
           {"message", plan.message},
@@ -44,6 +50,7 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
           {"objective_offset", plan.objective_offset},
           {"robot", RobotToJson(robot)},
           {"regions", region_list},
+          {"footholds", foothold_ids},
           {"footsteps", steps},
           {"goal", {{"x", plan.goal_x_m}, {"y", plan.goal_y_m}, {"yaw", plan.goal_yaw_rad}, {"moved", plan.goal_moved}}}};
 }

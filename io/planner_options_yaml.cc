@@ -43,8 +43,8 @@ void AddPlanKeys(Table* t) {
                    "with no stance on regions within the goal tolerances, plan to the nearest stance whose spots off "
                    "the regions stand on flat seen floor (a foothold region each)").Advanced());
   t->push_back(Opt("goal_search.foothold_margin", At(&P::goal_foothold_margin_m), 0, 1,
-                   "such a foothold has seen floor within a cell for the foot radius, this margin and one map cell "
-                   "around it").Unit("m").Advanced());
+                   "such a foothold has seen floor flat within a cell for the foot radius, this margin, one map "
+                   "cell and the foothold square's half diagonal around its spot").Unit("m").Advanced());
   t->push_back(Opt("start_tolerance", At(&P::start_tolerance_m), 0, 1,
                    "a start foot may lie this far off its region").Unit("m"));
   t->push_back(Opt("start_seen_footholds", At(&P::start_seen_footholds),

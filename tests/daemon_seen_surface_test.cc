@@ -20,11 +20,14 @@
 #include "daemon/daemon_runner.h"
 #include "daemon/daemon_setup.h"
 #include "daemon/map_regions.h"
+#include "daemon/message_conversion.h"
 #include "daemon/solver_plan_function.h"
+#include "geometry/convex_region.h"
 #include "lcmtypes/lcm_transport.h"
 #include "lcmtypes/message_guard.h"
 #include "mfp/plan_request_t.hpp"
 #include "mfp/plan_t.hpp"
+#include "mfp/region_set_t.hpp"
 #include "mfp/terrain_map_t.hpp"
 #include "planner/qp/relaxation_solver_factory.h"
 #include "terrain/extraction/map_simulation.h"
@@ -46,8 +49,13 @@ std::string FloorMapBytes() {
 }
 constexpr double kFloorEdgeY = 1.0;  // the slab's +y side [m]
 
-std::shared_ptr<const DaemonSetup> HexapodSetup() {
+// goal_pinned: goal tolerances 0, so a goal spot off the regions is not moved onto them.
+std::shared_ptr<const DaemonSetup> HexapodSetup(bool goal_pinned = false) {
   DaemonConfig config;
+  if (goal_pinned) {
+    config.planner.goal_position_tolerance_m = 0.0;
+    config.planner.goal_heading_tolerance_rad = 0.0;
+  }
   config.file = "test";
   config.robot_files = {std::string(MFP_SOURCE_DIR) + "/config/robots/hexapod.yaml"};
   config.default_robot = "hexapod";
@@ -96,6 +104,12 @@ class DaemonSeenSurfaceTest : public ::testing::Test {
   void SetUp() override {
     setup_ = HexapodSetup();
     map_bytes_ = FloorMapBytes();
+    transport_.Subscribe(kRegionsChannel, [this](const RawMessage& raw) {
+      region_set_t m;
+      ASSERT_EQ(DecodeGuarded(raw.data, raw.size, 1 << 22, &m), "");
+      std::lock_guard<std::mutex> lock(mutex_);
+      region_sets_.push_back(m);
+    });
     transport_.Subscribe(kPlanChannel, [this](const RawMessage& raw) {
       plan_t m;
       ASSERT_EQ(DecodeGuarded(raw.data, raw.size, 1 << 22, &m), "");
@@ -106,7 +120,7 @@ class DaemonSeenSurfaceTest : public ::testing::Test {
 
   // Sends the floor map and a request, and returns its reply (status -1: none in 60 s).
   plan_t PlanOnFloor(const plan_request_t& request) {
-    DaemonCore core(setup_, MakeOctomapMapFunction(*setup_), MakeSolverPlanFunction(), transport_,
+    DaemonCore core(setup_, map_function_ ? map_function_ : MakeOctomapMapFunction(*setup_), MakeSolverPlanFunction(), transport_,
                     [] { return std::chrono::duration_cast<std::chrono::microseconds>(
                                     std::chrono::steady_clock::now().time_since_epoch()).count(); });
     core.SubscribeTo(transport_);
@@ -143,6 +157,8 @@ class DaemonSeenSurfaceTest : public ::testing::Test {
   std::string map_bytes_;
   std::mutex mutex_;
   std::map<int64_t, plan_t> replies_;
+  std::vector<region_set_t> region_sets_;  // MFP_REGIONS, in order of arrival
+  MapFunction map_function_;               // empty: the real OctoMap map stage
 };
 
 TEST_F(DaemonSeenSurfaceTest, TheMapStageKeepsTheSeenSurfaceBesideTheRegions) {
@@ -214,6 +230,49 @@ TEST_F(DaemonSeenSurfaceTest, AFarGoalIsInvalidGoalNamingTheNearestStanceAsThePl
   const size_t direct_named = plan.message.find(kNamed);
   ASSERT_NE(direct_named, std::string::npos) << plan.message;
   EXPECT_EQ(reply.message.substr(named), plan.message.substr(direct_named));
+}
+
+// Goal footholds in the daemon: the map stage's regions leave a hole about a goal foot spot
+// over floor the map saw flat, and the goal is pinned (tolerances 0). The plan stands on a
+// foothold, and the daemon publishes the map's region set with it added before the reply,
+// so every footstep's region id names a published region.
+TEST_F(DaemonSeenSurfaceTest, AGoalOnSeenFloorOffTheRegionsStandsOnAFootholdTheDaemonPublishes) {
+  setup_ = HexapodSetup(/*goal_pinned=*/true);
+  const plan_request_t request = StanceRequest(robot(), 0.0, 10);
+  const LegModel& leg = robot().legs[static_cast<size_t>(robot().gait[0])];
+  const Eigen::Vector2d spot(request.goal_x + leg.nominal_offset_body_m.x(), request.goal_y + leg.nominal_offset_body_m.y());
+  const MapFunction real = MakeOctomapMapFunction(*setup_);
+  map_function_ = [real, spot](const std::string& bytes, const std::string& format, const std::string& what) {
+    MapTerrain terrain = real(bytes, format, what);
+    // The slab's top inset by 5 cm, less a square of half side 8 cm about the spot.
+    const double x0 = spot.x() - 0.08, x1 = spot.x() + 0.08, y0 = spot.y() - 0.08, y1 = spot.y() + 0.08;
+    const auto rect = [](int id, double ax, double ay, double bx, double by) {
+      return MakeRegionFromPolygon(id, {{ax, ay, 0.0}, {bx, ay, 0.0}, {bx, by, 0.0}, {ax, by, 0.0}}, 0.005);
+    };
+    terrain.regions = {rect(0, -0.95, -0.95, x0, 0.95), rect(1, x1, -0.95, 1.95, 0.95), rect(2, x0, -0.95, x1, y0),
+                       rect(3, x0, y1, x1, 0.95)};
+    return terrain;
+  };
+  const plan_t reply = PlanOnFloor(request);
+  ASSERT_NE(reply.status, -1) << "no reply";
+  ASSERT_TRUE(reply.status == plan_t::STATUS_OPTIMAL || reply.status == plan_t::STATUS_FEASIBLE) << reply.message;
+  EXPECT_TRUE(reply.reaches_goal) << reply.message;
+  std::lock_guard<std::mutex> lock(mutex_);
+  ASSERT_EQ(region_sets_.size(), 2u);  // the map's, then the plan's with its foothold
+  EXPECT_EQ(region_sets_[0].num_regions, 4);
+  EXPECT_GT(region_sets_[1].num_regions, 4);
+  EXPECT_EQ(region_sets_[1].map_utime, region_sets_[0].map_utime);
+  EXPECT_EQ(region_sets_[1].frame, "world");
+  const std::vector<ConvexRegion> published = FromRegionSetMessage(region_sets_[1]);
+  bool on_foothold = false;
+  for (size_t i = request.start_feet.size(); i < reply.steps.size(); ++i) {
+    const footstep_t& f = reply.steps[i];
+    const auto region = std::find_if(published.begin(), published.end(), [&](const ConvexRegion& r) { return r.id == f.region_id; });
+    ASSERT_NE(region, published.end()) << "footstep " << i << ": region " << f.region_id << " not published";
+    EXPECT_TRUE(RegionContains(*region, Eigen::Vector3d(f.position[0], f.position[1], f.position[2]), 1e-6)) << "footstep " << i;
+    on_foothold = on_foothold || f.region_id >= 4;
+  }
+  EXPECT_TRUE(on_foothold);
 }
 
 }  // namespace

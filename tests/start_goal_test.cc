@@ -337,6 +337,14 @@ TEST_F(GoalFootholdTest, AGoalSpotOnFlatSeenFloorThatNoRegionCoversGetsAFoothold
   ASSERT_EQ(plan.footholds.size(), 1u);
   const std::vector<std::string> violations = Violations(regions, plan);
   EXPECT_TRUE(violations.empty()) << violations.front();
+  // The plan JSON lists the foothold among its regions, so the last step's region names an entry.
+  const nlohmann::json json = PlanToJson(plan, robot(), regions);
+  ASSERT_EQ(json["footholds"].size(), 1u);
+  EXPECT_EQ(json["footholds"][0], plan.footholds[0].id);
+  EXPECT_EQ(json["regions"].size(), regions.size() + 1);
+  bool listed = false;
+  for (const nlohmann::json& r : json["regions"]) listed = listed || r["id"] == last->region_id;
+  EXPECT_TRUE(listed) << "region " << last->region_id;
   // Every other step stands on the regions.
   for (size_t i = static_cast<size_t>(robot().num_legs()); i < plan.footsteps.size(); ++i) {
     if (&plan.footsteps[i] == last) continue;

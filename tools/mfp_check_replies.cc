@@ -31,6 +31,7 @@ constexpr int kExitIncomplete = 3;
 
 struct Recorded {
   std::vector<plan_t> plans;
+  std::vector<size_t> region_sets_before;  // per plan: region sets received before it
   std::vector<region_set_t> region_sets;
   std::vector<status_t> statuses;
   int undecodable = 0;
@@ -47,7 +48,10 @@ Recorded ReadLog(const std::string& path) {
     std::string error;
     if (channel == kPlanChannel) {
       plan_t m;
-      if ((error = DecodeGuarded(data, size, kMaxReplyBytes, &m)).empty()) r.plans.push_back(m);
+      if ((error = DecodeGuarded(data, size, kMaxReplyBytes, &m)).empty()) {
+        r.plans.push_back(m);
+        r.region_sets_before.push_back(r.region_sets.size());
+      }
     } else if (channel == kRegionsChannel) {
       region_set_t m;
       if ((error = DecodeGuarded(data, size, kMaxReplyBytes, &m)).empty()) r.region_sets.push_back(m);
@@ -103,9 +107,20 @@ int Run(const std::string& log_path, const std::string& scenario_path, const std
     check.Ok(std::to_string(recorded.region_sets.size()) + " region set(s), last with " +
              std::to_string(recorded.region_sets.back().num_regions) + " regions");
   }
-  const std::vector<ConvexRegion> regions =
-      recorded.region_sets.empty() ? std::vector<ConvexRegion>()
-                                   : FromRegionSetMessage(recorded.region_sets.back());
+  // A reply is checked on the region set last published before it (a plan on footholds is
+  // preceded by its map's set with them added); one before any set, on the last set.
+  std::map<size_t, std::vector<ConvexRegion>> regions_of_set;
+  const std::vector<ConvexRegion> no_regions;
+  auto regions_for = [&](const plan_t& p) -> const std::vector<ConvexRegion>& {
+    if (recorded.region_sets.empty()) return no_regions;
+    const size_t before = recorded.region_sets_before[static_cast<size_t>(&p - recorded.plans.data())];
+    const size_t index = before > 0 ? before - 1 : recorded.region_sets.size() - 1;
+    auto it = regions_of_set.find(index);
+    if (it == regions_of_set.end()) {
+      it = regions_of_set.emplace(index, FromRegionSetMessage(recorded.region_sets[index])).first;
+    }
+    return it->second;
+  };
 
   std::map<int64_t, std::vector<const plan_t*>> replies;
   for (const plan_t& p : recorded.plans) replies[p.request_id].push_back(&p);
@@ -147,7 +162,7 @@ int Run(const std::string& log_path, const std::string& scenario_path, const std
         goal.tolerance_m = setup.config.planner.goal_tolerance_m;
         goal.yaw_tolerance_rad = setup.config.planner.goal_yaw_tolerance_rad;
         // Exact trigonometry, as mfp-plan --validate: each footstep's own yaw, no slack for chords.
-        for (const std::string& issue : ValidatePlan(robot->second, regions, plan, goal, ValidationTolerances{}))
+        for (const std::string& issue : ValidatePlan(robot->second, regions_for(p), plan, goal, ValidationTolerances{}))
           problems.push_back(issue);
       }
     } else if (ToString(status) != r.expect) {

@@ -178,6 +178,12 @@ GoalChoice ChooseGoal(const RobotModel& robot, const std::vector<ConvexRegion>& 
   if (std::optional<GoalChoice> on_seen_floor = FootholdChoice(robot, regions, request, options, why.str())) {
     return *on_seen_floor;
   }
+  if (request.deadline.Expired()) {  // the foothold search ran out of time: not a verdict on the goal
+    choice.rejected = Rejected(SolveStatus::kTimeLimit, why.str() + "; " +
+                                                            (request.deadline.Stopped() ? "stopped" : "time limit reached") +
+                                                            " while looking for a goal stance on seen floor");
+    return choice;
+  }
   why << "; no stance on regions within goal_position_tolerance " << options.goal_position_tolerance_m
       << " m and goal_heading_tolerance " << options.goal_heading_tolerance_rad << " rad";
   choice.rejected = Rejected(SolveStatus::kInvalidGoal, why.str() + FartherStanceText(robot, regions, goal, options,

@@ -26,6 +26,7 @@ std::optional<ConvexRegion> CertifiedSquare(const SeenSurface& seen, const Eigen
 
 std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
                                          double margin_m, double half_side_m, double max_half_side_m, int id) {
+  if (!(half_side_m > 0.0)) return std::nullopt;  // a square must have a side (and the doubling below must grow)
   std::optional<ConvexRegion> best = CertifiedSquare(seen, spot, foot_radius_m, margin_m, half_side_m, id);
   for (double h = 2.0 * half_side_m; best && h <= max_half_side_m + 1e-9; h *= 2.0) {
     std::optional<ConvexRegion> larger = CertifiedSquare(seen, spot, foot_radius_m, margin_m, h, id);

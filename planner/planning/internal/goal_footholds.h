@@ -5,7 +5,7 @@
 // stand at it. Such a spot, when a disk of the foot radius, a margin and one map cell
 // around it is seen surface flat within a cell (FlatSeenDisk: issue 25's certifiable
 // floor), gets a square region of its own, a foothold, and the plan goes to that stance.
-// Only goal spots get footholds: the way there stays on the regions.
+// The way to the goal stays on the regions, but for start feet on no region (StartFootholds).
 #include <optional>
 #include <vector>
 
