@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "base/check.h"
 #include "planner/planning/footstep_planner.h"
@@ -43,6 +44,20 @@ std::vector<Candidate> CandidatePoses(const RobotModel& robot, const GoalPose& g
   }
   std::stable_sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
   return out;
+}
+
+// The first candidate pose, nearest first (CandidatePoses), that `holds`; nullopt when none
+// does or the deadline expires (checked every 64 candidates).
+std::optional<GoalPose> FirstCandidateWhere(const RobotModel& robot, const GoalPose& goal, double max_shift_m,
+                                            double max_turn_rad, double step_m, double yaw_step_rad,
+                                            const Deadline& deadline,
+                                            const std::function<bool(const GoalPose&)>& holds) {
+  const std::vector<Candidate> candidates = CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad);
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    if (k % 64 == 0 && deadline.Expired()) return std::nullopt;
+    if (holds(candidates[k].pose)) return candidates[k].pose;
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -91,12 +106,8 @@ std::optional<GoalPose> NearestCertifiedGoal(const RobotModel& robot, const std:
   MFP_CHECK(step_m > 0.0 && yaw_step_rad > 0.0 && max_shift_m >= 0.0 && max_turn_rad >= 0.0);
   const std::vector<ConvexRegion> near = RegionsNear(robot, regions, goal, max_shift_m, tolerance_m);
   if (near.empty()) return std::nullopt;
-  const std::vector<Candidate> candidates = CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad);
-  for (size_t k = 0; k < candidates.size(); ++k) {
-    if (k % 64 == 0 && deadline.Expired()) return std::nullopt;
-    if (LegOffRegions(robot, near, candidates[k].pose, tolerance_m) < 0) return candidates[k].pose;
-  }
-  return std::nullopt;
+  return FirstCandidateWhere(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad, deadline,
+                             [&](const GoalPose& pose) { return LegOffRegions(robot, near, pose, tolerance_m) < 0; });
 }
 
 std::optional<GoalPose> NearestGoalWith(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
@@ -105,18 +116,14 @@ std::optional<GoalPose> NearestGoalWith(const RobotModel& robot, const std::vect
                                         const Deadline& deadline) {
   MFP_CHECK(step_m > 0.0 && yaw_step_rad > 0.0 && max_shift_m >= 0.0 && max_turn_rad >= 0.0);
   const std::vector<ConvexRegion> near = RegionsNear(robot, regions, goal, max_shift_m, 0.0);
-  const std::vector<Candidate> candidates = CandidatePoses(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad);
-  for (size_t k = 0; k < candidates.size(); ++k) {
-    if (k % 64 == 0 && deadline.Expired()) return std::nullopt;
-    bool stands = true;
-    for (int leg = 0; leg < robot.num_legs() && stands; ++leg) {
-      const Eigen::Vector2d spot = NominalFootXY(robot, leg, candidates[k].pose.x_m, candidates[k].pose.y_m,
-                                                 candidates[k].pose.yaw_rad);
-      stands = DistanceToNearestRegion(near, spot) <= 0.0 || off_regions(spot);
-    }
-    if (stands) return candidates[k].pose;
-  }
-  return std::nullopt;
+  return FirstCandidateWhere(robot, goal, max_shift_m, max_turn_rad, step_m, yaw_step_rad, deadline,
+                             [&](const GoalPose& pose) {
+                               for (int leg = 0; leg < robot.num_legs(); ++leg) {
+                                 const Eigen::Vector2d spot = NominalFootXY(robot, leg, pose.x_m, pose.y_m, pose.yaw_rad);
+                                 if (!(DistanceToNearestRegion(near, spot) <= 0.0 || off_regions(spot))) return false;
+                               }
+                               return true;
+                             });
 }
 
 }  // namespace mfp
