@@ -125,7 +125,7 @@ KktAssembly::KktAssembly(const InequalityForm& f, const Deadline& deadline) {
 bool KktSolver::Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight) {
   assembly_.Assemble(row_weight, bound_weight, &K_);
   if (!analysed_) {
-    ldlt_.analyzePattern(K_);
+    ldlt_.Analyse(K_);
     analysed_ = true;
   }
   // Near convergence sigma spans many orders of magnitude; a small diagonal shift,
@@ -139,8 +139,7 @@ bool KktSolver::Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd&
   for (double shift = 1e-14; shift <= 1e-6 && !factored; shift *= 100.0) {
     const double added = shift * (1.0 + diag_max);
     for (int index : assembly_.diagonal) values(index) += added;
-    ldlt_.factorize(K_);
-    factored = ldlt_.info() == Eigen::Success;
+    factored = ldlt_.Factorize(K_);
     for (int index : assembly_.diagonal) values(index) -= added;
   }
   return factored;
@@ -148,7 +147,7 @@ bool KktSolver::Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd&
 
 Eigen::VectorXd KktSolver::Solve(const Eigen::VectorXd& rhs_x, double tolerance) const {
   const Eigen::VectorXd rhs = assembly_.Permute(rhs_x);
-  Eigen::VectorXd dx_permuted = ldlt_.solve(rhs);
+  Eigen::VectorXd dx_permuted = ldlt_.Solve(rhs);
   // Iterative refinement against the unshifted matrix: sigma's range (up to 1e15 near
   // convergence) costs the factorisation digits that this wins back. Early iterations
   // are accurate already, so a step is taken only while it is needed.
@@ -156,7 +155,7 @@ Eigen::VectorXd KktSolver::Solve(const Eigen::VectorXd& rhs_x, double tolerance)
   for (int k = 0; k < 2; ++k) {
     const Eigen::VectorXd residual = rhs - K_.selfadjointView<Eigen::Upper>() * dx_permuted;
     if (residual.lpNorm<Eigen::Infinity>() <= kRefinementPerTolerance * tolerance * rhs_norm) break;
-    dx_permuted += ldlt_.solve(residual);
+    dx_permuted += ldlt_.Solve(residual);
   }
   return assembly_.Unpermute(dx_permuted);
 }

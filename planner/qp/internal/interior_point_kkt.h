@@ -5,12 +5,12 @@
 // Private to planner/qp.
 #include <Eigen/Core>
 #include <Eigen/OrderingMethods>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 #include <utility>
 #include <vector>
 
 #include "base/deadline.h"
+#include "planner/qp/internal/sparse_ldlt.h"
 
 namespace mfp {
 
@@ -98,8 +98,8 @@ struct KktAssembly {
 // sharing a row, 16 bytes each): its work and memory, known before it is built.
 double KktProductTerms(const InequalityForm& f);
 
-// K factorised once per iteration: its pattern is fixed through a solve (analysed once),
-// its values scattered in place.
+// K factorised once per iteration: its pattern is fixed through a solve (analysed once:
+// SparseLdlt records the factors' patterns then), its values scattered in place.
 class KktSolver {
  public:
   KktSolver(const InequalityForm& f, const Deadline& deadline) : assembly_(f, deadline), K_(assembly_.pattern) {}
@@ -116,7 +116,7 @@ class KktSolver {
  private:
   const KktAssembly assembly_;
   SpMat K_;
-  Eigen::SimplicialLDLT<SpMat, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+  SparseLdlt ldlt_;
   bool analysed_ = false;
 };
 
