@@ -284,6 +284,34 @@ TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
 }
 
 
+TEST(InteriorPointQp, WithoutRefinementTheSameOptimaAndFloorsThatHoldBelowThem) {
+  // refinement_steps = 0 changes the Newton directions' accuracy, not what convergence
+  // asks of the iterate: the same optimum to the tolerance, and the floor still below it,
+  // cold and warm-started from a parent with one bound moved.
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    const Miqp p = RandomFeasibleQp(60, 40, seed);
+    InteriorPointOptions refined, plain;
+    plain.refinement_steps = 0;
+    const RelaxationResult a = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, refined);
+    const RelaxationResult b = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, plain);
+    ASSERT_EQ(a.status, RelaxationStatus::kSolved) << seed;
+    ASSERT_EQ(b.status, RelaxationStatus::kSolved) << seed;
+    const double scale = 1.0 + std::abs(a.objective);
+    EXPECT_NEAR(b.objective, a.objective, 1e-6 * scale) << seed;
+    EXPECT_LE(b.cost_floor, a.objective + 1e-9 * scale) << seed;
+    EXPECT_LE(a.cost_floor, b.objective + 1e-9 * scale) << seed;
+    // A child: the first variable's upper bound moved to the middle of its box.
+    Eigen::VectorXd upper = p.var_upper;
+    upper(0) = 0.5 * (p.var_lower(0) + p.var_upper(0));
+    const RelaxationResult ca = SolveQpInteriorPoint(p, p.var_lower, upper, &a.x, refined);
+    const RelaxationResult cb = SolveQpInteriorPoint(p, p.var_lower, upper, &a.x, plain);
+    ASSERT_EQ(ca.status, cb.status) << seed;
+    if (ca.status != RelaxationStatus::kSolved) continue;
+    EXPECT_NEAR(cb.objective, ca.objective, 1e-6 * (1.0 + std::abs(ca.objective))) << seed;
+    EXPECT_LE(cb.cost_floor, ca.objective + 1e-9 * (1.0 + std::abs(ca.objective))) << seed;
+  }
+}
+
 TEST(InteriorPointQp, AQpOverTheKktWorkBudgetIsRefusedBeforeAssemblyAndNotHandedOn) {
   // 60 variables in rows of ~24 each: ~12,000 product terms.
   const Miqp p = RandomFeasibleQp(60, 40, 3);

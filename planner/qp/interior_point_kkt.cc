@@ -152,7 +152,7 @@ Eigen::VectorXd KktSolver::Solve(const Eigen::VectorXd& rhs_x, double tolerance)
   // convergence) costs the factorisation digits that this wins back. Early iterations
   // are accurate already, so a step is taken only while it is needed.
   const double rhs_norm = rhs.lpNorm<Eigen::Infinity>();
-  for (int k = 0; k < 2; ++k) {
+  for (int k = 0; k < refinement_steps_; ++k) {
     const Eigen::VectorXd residual = rhs - K_.selfadjointView<Eigen::Upper>() * dx_permuted;
     if (residual.lpNorm<Eigen::Infinity>() <= kRefinementPerTolerance * tolerance * rhs_norm) break;
     dx_permuted += ldlt_.Solve(residual);

@@ -342,7 +342,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     result.objective = p.Objective(result.x);
     return result;
   }
-  KktSolver kkt(f, opt.deadline);
+  KktSolver kkt(f, opt.deadline, opt.refinement_steps);
 
   for (int iter = 0; iter < opt.max_iterations && kkt.ready(); ++iter) {
     result.iterations = iter;

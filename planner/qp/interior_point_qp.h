@@ -37,6 +37,12 @@ struct InteriorPointOptions {
   double warm_start_pull = 0.01;
   double warm_start_complementarity = 110.0;
   double warm_start_min_slack = 1e-3;
+  // Iterative refinement steps per Newton solve at most (each a product with K and a
+  // pair of triangular solves), taken while the solve's residual is above a hundredth of
+  // the tolerance. On Table I's node QPs the cap is nearly always reached and 0 changed
+  // neither the iteration counts nor the optima beyond the search's gap
+  // (docs/measurements.md, nodeqp5); the default keeps the paths of before.
+  int refinement_steps = 2;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;
