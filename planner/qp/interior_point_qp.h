@@ -39,9 +39,9 @@ struct InteriorPointOptions {
   double warm_start_min_slack = 1e-3;
   // Iterative refinement steps per Newton solve at most (each a product with K and a
   // pair of triangular solves), taken while the solve's residual is above a hundredth of
-  // the tolerance. On Table I's node QPs the cap is nearly always reached and 0 changed
-  // neither the iteration counts nor the optima beyond the search's gap
-  // (docs/measurements.md, nodeqp5); the default keeps the paths of before.
+  // the tolerance. Convergence and the floors are judged on the iterate's own residuals,
+  // so this changes the path and the cost per iteration, never what a result certifies
+  // (0: no refinement; docs/measurements.md, nodeqp5).
   int refinement_steps = 2;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
