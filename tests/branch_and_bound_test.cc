@@ -498,17 +498,6 @@ TEST(BranchAndBound, RoundingsCanStopAtTheFirstPlan) {
   EXPECT_GE(all.relaxations, 3);
 }
 
-TEST(BranchAndBound, AnAssignmentIsCompletedOnce) {
-  // The same proposal twice costs one completion QP, as it does once: the QP with the
-  // same integers fixed has the same optimum. (The root's simple rounding, {a, b, c},
-  // weighs 6 and is ruled out by propagation.)
-  const BranchAndBoundResult once = RootWithProposals({Choice(1, 0, 1)}, true, false);
-  const BranchAndBoundResult twice = RootWithProposals({Choice(1, 0, 1), Choice(1, 0, 1)}, true, false);
-  EXPECT_NEAR(twice.objective, -8.0, 1e-6);
-  EXPECT_EQ(once.relaxations, 2);  // the root's and one completion
-  EXPECT_EQ(twice.relaxations, once.relaxations);
-}
-
 // An interior-point solver that records the status of each solve whose request has
 // every integer of Intervals fixed (the completions of roundings).
 class CompletionRecorder : public RelaxationSolver {

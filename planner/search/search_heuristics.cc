@@ -54,16 +54,14 @@ double CompletionCutoff(const SearchState& state) {
 // Each proposal offered as it is (a heuristic's own plan is kept even when no time is
 // left for its QP), then completed: its integers fixed and the QP left solved, a round
 // of workers at a time, warm-started from the relaxation point x. With bound propagation
-// on, proposals that propagation proves incomplete get no QP, nor does an assignment
-// this search has completed before (SearchState::FirstCompletionOf); with
+// on, proposals that propagation proves incomplete get no QP; with
 // rounding_stops_at_first_plan, no QP is started once the search holds a plan.
 void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& all, const Eigen::VectorXd& x) {
   const Miqp& p = state->problem();
   for (const Eigen::VectorXd& proposal : all) state->OfferIncumbent(proposal);
   std::vector<Eigen::VectorXd> proposals;
   for (const Eigen::VectorXd& proposal : all) {
-    if (state->options().bound_propagation && ProvenIncomplete(*state, proposal)) continue;
-    if (state->FirstCompletionOf(proposal)) proposals.push_back(proposal);
+    if (!state->options().bound_propagation || !ProvenIncomplete(*state, proposal)) proposals.push_back(proposal);
   }
   const int workers = state->workers();
   for (size_t first = 0; first < proposals.size(); first += workers) {

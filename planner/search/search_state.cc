@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <utility>
 
 #include "planner/qp/fixed_integer_qp.h"
 
@@ -61,16 +60,6 @@ RelaxationRequest SearchState::Request(Eigen::VectorXd lower, Eigen::VectorXd up
   if (opt_.early_cutoff) request.cutoff = cutoff;
   request.relative_tolerance = opt_.relaxation_tolerance;
   return request;
-}
-
-bool SearchState::FirstCompletionOf(const Eigen::VectorXd& proposal) {
-  std::vector<int> assignment;
-  for (int j = 0; j < p_.num_variables(); ++j) {
-    if (p_.is_integer[j]) {
-      assignment.push_back(static_cast<int>(std::clamp(std::round(proposal(j)), p_.var_lower(j), p_.var_upper(j))));
-    }
-  }
-  return completed_assignments_.insert(std::move(assignment)).second;
 }
 
 double SearchState::UnexploredBound() const {

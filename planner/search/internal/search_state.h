@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
-#include <set>
 #include <vector>
 
 #include "base/deadline.h"
@@ -66,11 +65,6 @@ class SearchState {
     return solver.Solve(p_, Request(lower, upper, warm, cutoff));
   }
 
-  // True the first time the integer assignment of `proposal` (rounded, within the
-  // problem's bounds) is asked about in this search: a rounding completion QP with the
-  // same integers fixed has the same optimum, so the search completes each assignment once.
-  bool FirstCompletionOf(const Eigen::VectorXd& proposal);
-
   // A subtree dropped because it cannot beat the incumbent by more than the gap still
   // bounds the optimum: the reported bound must not rise above it.
   void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
@@ -102,7 +96,6 @@ class SearchState {
   double unresolved_bound_ = kInfinity;
   double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
   double in_flight_bound_ = kInfinity;   // least parent bound of the round being processed
-  std::set<std::vector<int>> completed_assignments_;  // integer values, in variable order
 };
 
 // (objective - bound) / max(1, |objective|).
