@@ -498,6 +498,45 @@ TEST(BranchAndBound, RoundingsCanStopAtTheFirstPlan) {
   EXPECT_GE(all.relaxations, 3);
 }
 
+// An interior-point solver that records the status of each solve whose request has
+// every integer of Intervals fixed (the completions of roundings).
+class CompletionRecorder : public RelaxationSolver {
+ public:
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    RelaxationResult r = inner_->Solve(problem, request);
+    bool all_fixed = request.lower.size() > 0;
+    for (int j = 0; all_fixed && j < problem.num_variables(); ++j) {
+      if (problem.is_integer[j]) all_fixed = request.lower(j) == request.upper(j);
+    }
+    if (all_fixed) completions.push_back(r.status);
+    return r;
+  }
+  std::string Name() const override { return "completion recorder"; }
+  std::vector<RelaxationStatus> completions;
+
+ private:
+  std::unique_ptr<RelaxationSolver> inner_ = MakeInteriorPointRelaxationSolver();
+};
+
+TEST(BranchAndBound, ARoundingCompletionThatCannotBeatTheIncumbentStopsAtTheCutoff) {
+  // IntervalChoice: the first proposal, the middle interval at y = 2.2, is a plan as it
+  // is (0.09); the second, the first interval, completes to y = 1 at cost 2.25. Its QP
+  // may stop as soon as it proves that it cannot end below 0.09; the middle interval's
+  // own completion ends at 0.09 itself and is solved to the end.
+  CompletionRecorder solver;
+  BranchAndBoundOptions options;
+  options.max_nodes = 1;
+  Eigen::VectorXd middle(4), first(4);
+  middle << 2.2, 0, 1, 0;
+  first << 2.2, 1, 0, 0;
+  const RoundingHeuristic propose = [&](const Eigen::VectorXd&) { return std::vector<Eigen::VectorXd>{middle, first}; };
+  const BranchAndBoundResult r = SolveBranchAndBound(IntervalChoice().problem, solver, options, propose);
+  EXPECT_NEAR(r.objective, 0.09, 1e-6);
+  ASSERT_GE(solver.completions.size(), 2u);
+  EXPECT_EQ(solver.completions[0], RelaxationStatus::kSolved);
+  EXPECT_EQ(solver.completions[1], RelaxationStatus::kCutoff);
+}
+
 TEST(BranchAndBound, AStalledSearchEndsWithItsIncumbent) {
   // The root's proposal {a, c} (value -8) is not optimal; the search finds -9 by
   // branching. With a stall limit shorter than any node, the search ends right after the

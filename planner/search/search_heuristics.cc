@@ -40,6 +40,17 @@ bool ProvenIncomplete(const SearchState& state, const Eigen::VectorXd& proposal)
   return PropagateBounds(p, &lower, &upper, 3, state.options().feasibility_tolerance).infeasible;
 }
 
+// A completion QP that cannot end below the incumbent cannot become the incumbent: its
+// solve may stop once it proves that (RelaxationRequest::cutoff). The cutoff lies a hair
+// above the incumbent (relative 1e-6, far below any search's gap), so that a completion
+// ending within the solver's feasibility tolerance below it is still solved to the end
+// and offered as before.
+double CompletionCutoff(const SearchState& state) {
+  if (!state.HasIncumbent()) return kInfinity;
+  const double incumbent = state.result().objective;
+  return incumbent + 1e-6 * std::max(1.0, std::abs(incumbent));
+}
+
 // Each proposal offered as it is (a heuristic's own plan is kept even when no time is
 // left for its QP), then completed: its integers fixed and the QP left solved, a round
 // of workers at a time, warm-started from the relaxation point x. With bound propagation
@@ -58,7 +69,7 @@ void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& al
     if (state->options().rounding_stops_at_first_plan && state->HasIncumbent()) return;
     const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
     std::vector<RelaxationResult> results(count);
-    const RelaxationRequest request = state->Request(Eigen::VectorXd(), Eigen::VectorXd(), &x);
+    const RelaxationRequest request = state->Request(Eigen::VectorXd(), Eigen::VectorXd(), &x, CompletionCutoff(*state));
     ForEachInParallel(count, [&](int k) {
       results[k] = SolveWithIntegersFixed(p, proposals[first + k], state->solver(k), request);
     });
