@@ -21,8 +21,19 @@ namespace mfp {
 struct FootholdGoal {
   GoalPose pose;                         // the stance planned to
   std::vector<int> legs;                 // the legs whose spots stand on footholds, in leg order
+  std::vector<Eigen::Vector2d> spots_m;  // each such leg's goal spot, its foothold's centre [m, world]
   std::vector<ConvexRegion> footholds;   // one per such leg, ids above every region's
 };
+
+// The smallest region id above every id of `regions` and at least `at_least`: the first id
+// a foothold added beside them may take.
+int NextRegionId(const std::vector<ConvexRegion>& regions, int at_least = 0);
+
+// The foothold square's first half side (goal_search.foothold_half_side; 0: half the goal
+// tolerance, so a foot within the goal tolerance of its spot stays on it) and the largest
+// it may grow to (goal_search.foothold_max_half_side; 0: the robot's d_lim) [m].
+double FootholdHalfSide(const PlannerOptions& options);
+double FootholdMaxHalfSide(const RobotModel& robot, const PlannerOptions& options);
 
 // The foothold of a spot: a horizontal square about it, at the middle of the seen disk's
 // tops, its plane half a cell thick, where the seen surface holds a flat disk of radius
@@ -35,7 +46,7 @@ std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::V
 
 // The stance nearest to `goal` within goal_position_tolerance_m and goal_heading_tolerance_rad
 // (NearestGoalWith's grid and order) whose every spot lies on a region or has a foothold,
-// with those footholds (half side from half the goal tolerance up to the robot's d_lim);
+// with those footholds (half side from FootholdHalfSide up to FootholdMaxHalfSide);
 // nullopt when there is none, when the options turn
 // footholds off, or when the deadline expires first.
 std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
