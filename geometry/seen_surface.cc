@@ -44,85 +44,60 @@ Eigen::Vector3d NearestFacePoint(const ConvexRegion& face, const Eigen::Vector2d
   return {best.x(), best.y(), face.HeightAt(best.x(), best.y())};
 }
 
-// The cells of a disk of one grid (a box of cols x rows from column c0, row r0; -1: not in
-// the disk) and the span of their tops, for FlatSeenDisk.
-class DiskCells {
- public:
-  DiskCells(int c0, int r0, int cols, int rows, double cell_m)
-      : c0_(c0), r0_(r0), cols_(cols), rows_(rows), level_(static_cast<size_t>(cols) * static_cast<size_t>(rows), -1),
-        top_(level_.size(), 0.0f) {
-    span.low_m = std::numeric_limits<double>::infinity();
-    span.high_m = -std::numeric_limits<double>::infinity();
-    span.cell_m = cell_m;
-  }
+// True when a cell's square comes closer than radius_m to xy in plan view (a disk's cell).
+bool InDisk(const SurfaceGrid& g, int col, int row, const Eigen::Vector2d& xy, double radius_m) {
+  const Eigen::Vector2d cell_lo = g.origin_m + g.resolution_m * Eigen::Vector2d(col, row);
+  const Eigen::Vector2d cell_hi = cell_lo + Eigen::Vector2d::Constant(g.resolution_m);
+  return (cell_lo - xy).cwiseMax(xy - cell_hi).cwiseMax(0.0).norm() < radius_m;
+}
 
-  // Adds a seen cell's top; false when the tops so far span more than one cell edge.
-  bool Add(int c, int r, float top_m) {
-    const size_t i = Index(c - c0_, r - r0_);
-    level_[i] = 0;
-    top_[i] = top_m;
-    span.low_m = std::min(span.low_m, static_cast<double>(top_m));
-    span.high_m = std::max(span.high_m, static_cast<double>(top_m));
-    return span.high_m - span.low_m <= span.cell_m + 1e-6;
-  }
-  bool seen() const { return span.low_m <= span.high_m; }
-
-  // A riser or curb inside the disk: the tops lie on two levels a cell apart, and the cells
-  // of the scarcer level hold a run, a 4-connected set whose bounding box is at least three
-  // cells and run_m long (a step's edge across the disk). Scattered pits and bumps of one
-  // voxel (sensor noise) make no such run.
-  bool HasRun(double run_m) {
-    if (!(span.high_m - span.low_m > 0.5 * span.cell_m)) return false;  // one level
-    const double middle = 0.5 * (span.low_m + span.high_m);
-    int upper = 0, lower = 0;
-    for (size_t i = 0; i < level_.size(); ++i) {
-      if (level_[i] < 0) continue;
-      level_[i] = top_[i] > middle ? 1 : 0;
-      (level_[i] == 1 ? upper : lower) += 1;
+// A disk of seen cells (columns c0..c1, rows r0..r1 of g, those within radius_m of xy) whose
+// tops lie on two levels a cell apart, split at middle_m: true when the cells of the scarcer
+// level hold a run, a 4-connected set whose bounding box is at least three cells and run_m
+// long (a one-voxel riser, curb or groove across the disk). Scattered pits and bumps of one
+// voxel (sensor noise) make no such run.
+bool HasRun(const SurfaceGrid& g, const Eigen::Vector2d& xy, double radius_m, int c0, int r0, int c1, int r1,
+            double middle_m, double run_m) {
+  const int cols = c1 - c0 + 1, rows = r1 - r0 + 1;
+  std::vector<int> level(static_cast<size_t>(cols) * static_cast<size_t>(rows), -1);  // -1: not in the disk
+  int upper = 0, lower = 0;
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      if (!InDisk(g, c, r, xy, radius_m)) continue;
+      const float h = g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.cols) + static_cast<size_t>(c)];
+      const int up = h > middle_m ? 1 : 0;
+      level[static_cast<size_t>(r - r0) * static_cast<size_t>(cols) + static_cast<size_t>(c - c0)] = up;
+      (up == 1 ? upper : lower) += 1;
     }
-    const int scarce = upper <= lower ? 1 : 0;
-    const double min_run_cells = std::max(3.0, run_m / span.cell_m);
-    std::vector<char> visited(level_.size(), 0);
-    for (size_t i = 0; i < level_.size(); ++i) {
-      if (level_[i] != scarce || visited[i]) continue;
-      if (RunLengthCells(i, scarce, &visited) >= min_run_cells) return true;
-    }
-    return false;
   }
-
-  SeenDisk span;
-
- private:
-  size_t Index(int col, int row) const {
-    return static_cast<size_t>(row) * static_cast<size_t>(cols_) + static_cast<size_t>(col);
-  }
-  // The longer side, in cells, of the bounding box of the 4-connected cells of `level` from `seed`.
-  double RunLengthCells(size_t seed, int level, std::vector<char>* visited) const {
-    int col_lo = cols_, col_hi = -1, row_lo = rows_, row_hi = -1;
-    std::vector<size_t> stack{seed};
-    (*visited)[seed] = 1;
+  const int scarce = upper <= lower ? 1 : 0;
+  const double min_run_cells = std::max(3.0, run_m / g.resolution_m);
+  std::vector<char> visited(level.size(), 0);
+  std::vector<size_t> stack;
+  for (size_t seed = 0; seed < level.size(); ++seed) {
+    if (level[seed] != scarce || visited[seed]) continue;
+    int col_lo = cols, col_hi = -1, row_lo = rows, row_hi = -1;
+    stack.assign(1, seed);
+    visited[seed] = 1;
     while (!stack.empty()) {
       const size_t i = stack.back();
       stack.pop_back();
-      const int col = static_cast<int>(i % static_cast<size_t>(cols_)), row = static_cast<int>(i / static_cast<size_t>(cols_));
+      const int col = static_cast<int>(i % static_cast<size_t>(cols)), row = static_cast<int>(i / static_cast<size_t>(cols));
       col_lo = std::min(col_lo, col), col_hi = std::max(col_hi, col);
       row_lo = std::min(row_lo, row), row_hi = std::max(row_hi, row);
       for (const auto& [dc, dr] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
         const int nc = col + dc, nr = row + dr;
-        if (nc < 0 || nr < 0 || nc >= cols_ || nr >= rows_) continue;
-        const size_t n = Index(nc, nr);
-        if (level_[n] != level || (*visited)[n]) continue;
-        (*visited)[n] = 1;
+        if (nc < 0 || nr < 0 || nc >= cols || nr >= rows) continue;
+        const size_t n = static_cast<size_t>(nr) * static_cast<size_t>(cols) + static_cast<size_t>(nc);
+        if (level[n] != scarce || visited[n]) continue;
+        visited[n] = 1;
         stack.push_back(n);
       }
     }
-    return static_cast<double>(std::max(col_hi - col_lo, row_hi - row_lo) + 1);
+    if (std::max(col_hi - col_lo, row_hi - row_lo) + 1 >= min_run_cells) return true;
   }
-
-  int c0_, r0_, cols_, rows_;
-  std::vector<int> level_;  // per cell of the box: -1 outside the disk, else 0 lower, 1 upper (HasRun)
-  std::vector<float> top_;
-};
+  return false;
+}
 
 }  // namespace
 
@@ -170,7 +145,8 @@ std::optional<double> HighestSeenSurfaceAt(const SeenSurface& surface, const Eig
   return best;
 }
 
-std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy, double radius_m) {
+std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy, double radius_m,
+                                     bool refuse_runs) {
   for (const SurfaceGrid& g : surface.grids) {
     if (g.resolution_m <= 0.0 || g.rows <= 0 || g.cols <= 0) continue;
     const double radius = radius_m + g.resolution_m;
@@ -180,18 +156,27 @@ std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Ve
     if (!(lo.x() >= 0.0 && lo.y() >= 0.0 && hi.x() < g.cols && hi.y() < g.rows)) continue;  // the disk leaves the grid
     const int c0 = static_cast<int>(std::floor(lo.x())), r0 = static_cast<int>(std::floor(lo.y()));
     const int c1 = static_cast<int>(std::floor(hi.x())), r1 = static_cast<int>(std::floor(hi.y()));
-    DiskCells disk(c0, r0, c1 - c0 + 1, r1 - r0 + 1, g.resolution_m);
+    SeenDisk disk{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), g.resolution_m};
     bool flat = true;
     for (int r = r0; r <= r1 && flat; ++r) {
       for (int c = c0; c <= c1 && flat; ++c) {
-        const Eigen::Vector2d cell_lo = g.origin_m + g.resolution_m * Eigen::Vector2d(c, r);
-        const Eigen::Vector2d cell_hi = cell_lo + Eigen::Vector2d::Constant(g.resolution_m);
-        if ((cell_lo - xy).cwiseMax(xy - cell_hi).cwiseMax(0.0).norm() >= radius) continue;
+        if (!InDisk(g, c, r, xy, radius)) continue;
         const float h = g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.cols) + static_cast<size_t>(c)];
-        flat = std::isfinite(h) && disk.Add(c, r, h);
+        flat = std::isfinite(h);
+        if (!flat) break;
+        disk.low_m = std::min(disk.low_m, static_cast<double>(h));
+        disk.high_m = std::max(disk.high_m, static_cast<double>(h));
+        flat = disk.high_m - disk.low_m <= g.resolution_m + 1e-6;
       }
     }
-    if (flat && disk.seen() && !disk.HasRun(radius_m)) return disk.span;
+    if (!flat || !(disk.low_m <= disk.high_m)) continue;
+    // Two levels: noise, or a run across the disk (looked for only then).
+    const bool two_levels = disk.high_m - disk.low_m > 0.5 * g.resolution_m;
+    if (refuse_runs && two_levels &&
+        HasRun(g, xy, radius, c0, r0, c1, r1, 0.5 * (disk.low_m + disk.high_m), radius_m)) {
+      continue;
+    }
+    return disk;
   }
   return std::nullopt;
 }

@@ -65,6 +65,9 @@ struct SeenDisk {
 // cells at least three cells and radius_m long, and the disk is not flat. The first grid
 // (layer) that holds such a disk answers; nullopt when none does. Faces are not searched
 // (their regions are exact).
-std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy_m, double radius_m);
+// refuse_runs = false keeps the older test (two levels a cell apart pass, runs or not): for a
+// disk about a foot already standing there.
+std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy_m, double radius_m,
+                                     bool refuse_runs = true);
 
 }  // namespace mfp

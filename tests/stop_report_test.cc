@@ -78,6 +78,7 @@ TEST_F(StopReportTest, APlanStoppedAtAGapWiderThanAStepOnAnAxisNamesTheGapAndIts
   const PlanStopGap& g = plan.stop.gap;
   ASSERT_TRUE(g.found) << plan.message;
   EXPECT_TRUE(g.blocks);
+  EXPECT_EQ(g.detour_region, -1);
   EXPECT_EQ(g.from_region, 0);
   EXPECT_EQ(g.to_region, 1);
   EXPECT_NEAR(g.width_m, gap, 1e-6);
@@ -91,6 +92,8 @@ TEST_F(StopReportTest, APlanStoppedAtAGapWiderThanAStepOnAnAxisNamesTheGapAndIts
   EXPECT_NE(plan.message.find("must cross a gap in the regions from region 0"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("to region 1"), std::string::npos) << plan.message;
   EXPECT_NE(plan.message.find("more than one step spans"), std::string::npos) << plan.message;
+  EXPECT_NE(plan.message.find("no chain of steps through the regions near it goes round"), std::string::npos)
+      << plan.message;
   EXPECT_NE(plan.message.find("it stands at ("), std::string::npos) << plan.message;
 
   // The plan JSON carries the stop (a key added beside DESIGN.md's).
@@ -127,6 +130,23 @@ TEST_F(StopReportTest, AGapOfTwoStepsBeyondANarrowOneIsTheOneThatBlocks) {
   EXPECT_NEAR(g.width_m, wide, 1e-6);
 }
 
+TEST_F(StopReportTest, AGapOneFootCouldGoRoundNamesTheRegionOfTheDetour) {
+  // A gap of one and a half steps ahead, and between the legs' paths (y in [0.1, 0.25]) a
+  // narrow stone within a step of both floors: one foot could go round through it.
+  const double wide = 1.5 * StepSpan();
+  const double x0 = 0.7, x1 = 0.7 + wide, stone_x = 0.5 * (x0 + x1);
+  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, x0, 1.0), Rect(1, x1, -1.0, 3.0, 1.0),
+                                             Rect(7, stone_x - 0.02, 0.1, stone_x + 0.02, 0.25)};
+  ASSERT_LT(stone_x - 0.02 - x0, StepSpan());
+  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan());
+  ASSERT_TRUE(g.found);
+  EXPECT_TRUE(g.blocks);
+  EXPECT_EQ(g.detour_region, 7);
+  const PlanStop stop{true, Eigen::Vector3d::Zero(), 0.0, {0}, "no_progress", g};
+  EXPECT_NE(StopText(robot(), stop).find("one foot could go round it only through region 7"), std::string::npos)
+      << StopText(robot(), stop);
+}
+
 TEST_F(StopReportTest, ARiseBeyondDzMaxBlocksAGapWithinAStep) {
   const double gap = 0.5 * StepSpan();
   const double high = 2.0 * robot().dz_max_m;
@@ -155,6 +175,9 @@ TEST_F(StopReportTest, APathThatLeavesTheRegionsForGoodBlocks) {
   EXPECT_EQ(g.to_region, -1);
   const PlanStop stop{true, Eigen::Vector3d::Zero(), 0.0, {0}, "no_progress", g};
   EXPECT_NE(StopText(robot(), stop).find("meets no region on the rest of the way"), std::string::npos);
+  // A path that ends within a step of the last region (a goal spot just off it) is no blocker.
+  const PlanStopGap end = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 0.7 - 0.42 + 0.1), StepSpan());
+  EXPECT_FALSE(end.found && end.blocks);
 }
 
 }  // namespace

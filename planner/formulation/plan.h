@@ -57,8 +57,14 @@ struct PlanStopGap {
   double width_m = 0.0;
   double rise_m = 0.0;
   double step_span_m = 0.0;       // the most one step moves a foot on one axis: d_lim + l_bnd [m]
-  // No step crosses it: width_m > step_span_m, |rise_m| > dz_max, or no region after it.
+  // No step crosses it straight on: width_m > step_span_m, |rise_m| > dz_max, or no region
+  // after it.
   bool blocks = false;
+  // When it blocks: the first region of a chain of steps (each within step_span_m and
+  // dz_max) from the region before it to the one after it through regions near it, the
+  // way one foot could go round it (a whole stance may still not fit there); -1: none.
+  int detour_region = -1;
+  Eigen::Vector2d detour_m = Eigen::Vector2d::Zero();  // a vertex of that region [m, world]
 };
 
 // Where a plan that stops short of the goal (status partial) stopped and why.

@@ -11,8 +11,9 @@ namespace {
 // The square of half side h about the spot when the seen surface certifies it (a flat disk
 // of the foot radius, the margin and the square's half diagonal about the spot).
 std::optional<ConvexRegion> CertifiedSquare(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
-                                            double margin_m, double h, int id) {
-  const std::optional<SeenDisk> disk = FlatSeenDisk(seen, spot, foot_radius_m + margin_m + std::sqrt(2.0) * h);
+                                            double margin_m, double h, int id, bool refuse_runs = true) {
+  const std::optional<SeenDisk> disk =
+      FlatSeenDisk(seen, spot, foot_radius_m + margin_m + std::sqrt(2.0) * h, refuse_runs);
   if (!disk) return std::nullopt;
   const double z = 0.5 * (disk->low_m + disk->high_m);
   std::vector<Eigen::Vector3d> square;
@@ -39,11 +40,12 @@ double FootholdMaxHalfSide(const RobotModel& robot, const PlannerOptions& option
 }
 
 std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
-                                         double margin_m, double half_side_m, double max_half_side_m, int id) {
+                                         double margin_m, double half_side_m, double max_half_side_m, int id,
+                                         bool refuse_runs) {
   if (!(half_side_m > 0.0)) return std::nullopt;  // a square must have a side (and the doubling below must grow)
-  std::optional<ConvexRegion> best = CertifiedSquare(seen, spot, foot_radius_m, margin_m, half_side_m, id);
+  std::optional<ConvexRegion> best = CertifiedSquare(seen, spot, foot_radius_m, margin_m, half_side_m, id, refuse_runs);
   for (double h = 2.0 * half_side_m; best && h <= max_half_side_m + 1e-9; h *= 2.0) {
-    std::optional<ConvexRegion> larger = CertifiedSquare(seen, spot, foot_radius_m, margin_m, h, id);
+    std::optional<ConvexRegion> larger = CertifiedSquare(seen, spot, foot_radius_m, margin_m, h, id, refuse_runs);
     if (!larger) break;
     best = std::move(larger);
   }
@@ -88,7 +90,8 @@ std::vector<ConvexRegion> StartFootholds(const RobotModel& robot, const std::vec
     std::optional<ConvexRegion> hold = SeenFoothold(*request.seen_surface, foot.head<2>(), robot.foot_radius_m,
                                                     options.goal_foothold_margin_m, FootholdHalfSide(options),
                                                     FootholdMaxHalfSide(robot, options),
-                                                    first_id + static_cast<int>(footholds.size()));
+                                                    first_id + static_cast<int>(footholds.size()),
+                                                    /*refuse_runs=*/false);
     if (hold) footholds.push_back(std::move(*hold));
   }
   return footholds;

@@ -40,9 +40,11 @@ double FootholdMaxHalfSide(const RobotModel& robot, const PlannerOptions& option
 // foot_radius_m + margin_m + the square's half diagonal (+ one cell) about the spot. Its
 // half side is half_side_m, doubled while the disk stays flat and it stays within
 // max_half_side_m (a larger foothold also holds the steps up to the goal stance);
-// nullopt when half_side_m is not certified.
+// nullopt when half_side_m is not certified. With refuse_runs, a disk whose two levels hold
+// a run (a one-voxel riser, curb or trench: FlatSeenDisk) certifies no square.
 std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
-                                         double margin_m, double half_side_m, double max_half_side_m, int id);
+                                         double margin_m, double half_side_m, double max_half_side_m, int id,
+                                         bool refuse_runs = true);
 
 // The stance nearest to `goal` within goal_position_tolerance_m and goal_heading_tolerance_rad
 // (NearestGoalWith's grid and order) whose every spot lies on a region or has a foothold,
@@ -55,7 +57,9 @@ std::optional<FootholdGoal> SeenFootholdGoal(const RobotModel& robot, const std:
 
 // Footholds under the start feet that stand on no region (within start_tolerance_m) but on
 // flat seen floor (SeenFoothold about each such foot, ids from first_id): the first steps may
-// stand there too instead of having to reach a region in one step. Empty when the options
+// stand there too instead of having to reach a region in one step. The foot stands there (a
+// fact, not a choice), so the disk keeps the two-level test without refusing runs (refusing
+// them lost a real-scan walk whose start foot stood in a one-voxel groove: docs/measurements.md). Empty when the options
 // turn them off or the request carries no seen surface.
 std::vector<ConvexRegion> StartFootholds(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                          const PlanRequest& request, const PlannerOptions& options, int first_id);

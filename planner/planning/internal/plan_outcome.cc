@@ -118,10 +118,11 @@ std::string GoalMiss(const PlanContext& context, const std::vector<Footstep>& fo
   return msg.str();
 }
 
-// For a plan that stopped making progress (or got stuck): when its last windows' searches
-// all ended by their time shares, that is part of why, and the note says so.
+// For a plan that stopped making progress, got stuck or ended on a failed window: when its
+// last windows' searches all ended by their time shares, that is part of why, and the note
+// says so.
 std::string TimeShareNote(const Plan& plan, const std::string& end_reason) {
-  if (end_reason != "no_progress" && end_reason != "stuck") return "";
+  if (end_reason != "no_progress" && end_reason != "stuck" && end_reason != "window_failed") return "";
   int cut = 0;
   double least_s = 0.0, most_s = 0.0;
   for (auto w = plan.window_records.rbegin(); w != plan.window_records.rend(); ++w) {

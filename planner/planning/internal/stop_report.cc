@@ -118,6 +118,55 @@ int IndexOfId(const std::vector<ConvexRegion>& regions, int id) {
   return -1;
 }
 
+// Heights of a region's vertices: lowest and highest [m].
+std::pair<double, double> HeightSpan(const ConvexRegion& r) {
+  double lo = kInf, hi = -kInf;
+  for (const Eigen::Vector3d& v : r.vertices_world_m) lo = std::min(lo, v.z()), hi = std::max(hi, v.z());
+  return {lo, hi};
+}
+
+// The first region (index) of a chain of steps from regions[from] to regions[to], each hop
+// within step_span_m on both axes (ChebyshevBetween) and dz_max_m in height, through the
+// regions of `near` whose boxes come within margin_m of the gap's ends; -1 when none joins them.
+int DetourRegion(const std::vector<ConvexRegion>& regions, const std::vector<int>& near, int from, int to,
+                 const Eigen::Vector2d& a, const Eigen::Vector2d& b, double step_span_m, double dz_max_m,
+                 double margin_m) {
+  const Eigen::Vector2d lo = a.cwiseMin(b).array() - margin_m, hi = a.cwiseMax(b).array() + margin_m;
+  std::vector<int> local;
+  for (int i : near) {
+    Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = Eigen::Vector2d::Constant(-kInf);
+    for (const Eigen::Vector3d& v : regions[static_cast<size_t>(i)].vertices_world_m) {
+      rlo = rlo.cwiseMin(v.head<2>());
+      rhi = rhi.cwiseMax(v.head<2>());
+    }
+    if (rlo.x() <= hi.x() && rhi.x() >= lo.x() && rlo.y() <= hi.y() && rhi.y() >= lo.y()) local.push_back(i);
+  }
+  auto hop = [&](int u, int v) {
+    const auto [ulo, uhi] = HeightSpan(regions[static_cast<size_t>(u)]);
+    const auto [vlo, vhi] = HeightSpan(regions[static_cast<size_t>(v)]);
+    if (std::max({0.0, ulo - vhi, vlo - uhi}) > dz_max_m) return false;
+    return ChebyshevBetween(regions[static_cast<size_t>(u)], regions[static_cast<size_t>(v)]) <= step_span_m;
+  };
+  // Breadth first from `from`; first_hop[i]: the region after `from` on the chain to i.
+  std::vector<int> first_hop(regions.size(), -2);
+  std::vector<int> queue{from};
+  first_hop[static_cast<size_t>(from)] = -1;
+  for (size_t k = 0; k < queue.size(); ++k) {
+    const int u = queue[k];
+    for (int v : local) {
+      if (first_hop[static_cast<size_t>(v)] != -2 || !hop(u, v)) continue;
+      first_hop[static_cast<size_t>(v)] = u == from ? v : first_hop[static_cast<size_t>(u)];
+      if (v == to) return first_hop[static_cast<size_t>(v)];
+      queue.push_back(v);
+    }
+  }
+  return -1;
+}
+
+// 2: a gap no step crosses and no chain of steps goes round; 1: one a foot could go round;
+// 0: within a step.
+int Severity(const PlanStopGap& g) { return g.blocks ? (g.detour_region < 0 ? 2 : 1) : 0; }
+
 // One leg's gaps along the path: the first that blocks (with the path index where it
 // starts), else the widest.
 struct LegGap {
@@ -127,7 +176,7 @@ struct LegGap {
 
 std::optional<LegGap> LegGapAhead(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                   const std::vector<int>& near, const Footstep& foot, const StopPath& path,
-                                  double step_span_m) {
+                                  double step_span_m, double detour_margin_m) {
   int last = IndexOfId(regions, foot.region_id);
   Eigen::Vector2d last_xy = foot.position_world_m.head<2>();
   double z = foot.position_world_m.z();
@@ -136,8 +185,8 @@ std::optional<LegGap> LegGapAhead(const RobotModel& robot, const std::vector<Con
   constexpr size_t kNoGap = std::numeric_limits<size_t>::max();
   size_t gap_start = kNoGap;  // the path index where the current gap started
   auto offer = [&](const LegGap& g) {
-    if (!chosen || (g.gap.blocks && !chosen->gap.blocks) ||
-        (g.gap.blocks == chosen->gap.blocks && !g.gap.blocks && g.gap.width_m > chosen->gap.width_m)) {
+    if (!chosen || Severity(g.gap) > Severity(chosen->gap) ||
+        (Severity(g.gap) == 0 && Severity(chosen->gap) == 0 && g.gap.width_m > chosen->gap.width_m)) {
       chosen = g;
     }
   };
@@ -162,8 +211,17 @@ std::optional<LegGap> LegGapAhead(const RobotModel& robot, const std::vector<Con
       g.gap.rise_m = rise_m;
       g.gap.step_span_m = step_span_m;
       g.gap.blocks = g.gap.width_m > step_span_m || std::abs(g.gap.rise_m) > robot.dz_max_m;
-      offer(g);
-      if (chosen->gap.blocks) return chosen;
+      if (g.gap.blocks) {
+        const int detour = DetourRegion(regions, near, last, r, last_xy, p, step_span_m, robot.dz_max_m,
+                                        detour_margin_m);
+        if (detour >= 0) {
+          g.gap.detour_region = regions[static_cast<size_t>(detour)].id;
+          const std::vector<Eigen::Vector2d> polygon = Polygon(regions[static_cast<size_t>(detour)]);
+          g.gap.detour_m = ClosestBoundaryPoint(polygon, 0.5 * (last_xy + p));
+        }
+      }
+      if (g.gap.blocks || g.gap.width_m > 0.0) offer(g);  // regions that meet leave no gap
+      if (chosen && chosen->gap.blocks && chosen->gap.detour_region < 0) return chosen;
     }
     gap_start = kNoGap;
     last = r;
@@ -180,7 +238,9 @@ std::optional<LegGap> LegGapAhead(const RobotModel& robot, const std::vector<Con
     g.gap.to_m = NominalFootXY(robot, foot.leg, path.centres_m.back().x(), path.centres_m.back().y(), path.yaws_rad.back());
     g.gap.width_m = (g.gap.to_m - g.gap.from_m).cwiseAbs().maxCoeff();
     g.gap.step_span_m = step_span_m;
-    g.gap.blocks = true;
+    // A path's end a step or less past the last region (a goal spot within the goal
+    // tolerance of one, or a goal foothold's edge) is no blocker.
+    g.gap.blocks = g.gap.width_m > step_span_m;
     offer(g);
   }
   return chosen;
@@ -201,6 +261,7 @@ StopPath PathAhead(const PlanContext& context, const Eigen::Vector2d& centre_m, 
   std::vector<Eigen::Vector2d> corners{centre_m};
   std::vector<double> corner_yaws{yaw_rad};
   const RouteGuide& guide = context.guide;
+  const bool route_yaws = context.guided && guide.route.size() >= 2 && guide.yaws_rad.size() == guide.route.size();
   if (context.guided && guide.route.size() >= 2) {
     const double s0 = RouteProgress(guide, centre_m);
     double s = 0.0;
@@ -210,23 +271,32 @@ StopPath PathAhead(const PlanContext& context, const Eigen::Vector2d& centre_m, 
       s += (guide.route[k] - guide.route[k - 1]).norm();
       if (s <= s0) continue;
       corners.push_back(guide.route[k]);
-      corner_yaws.push_back(k < guide.yaws_rad.size() ? guide.yaws_rad[k] : yaw_rad);
+      corner_yaws.push_back(route_yaws ? guide.yaws_rad[k] : yaw_rad);
     }
   } else {
     corners.push_back(context.GoalXY());
     corner_yaws.push_back(yaw_rad);
   }
+  // Without the route's yaws the body turns from the stance's yaw to the goal's along the
+  // way; with them it holds each and turns to the goal's at the end (the goal stance).
+  double total_m = 0.0;
+  for (size_t k = 0; k + 1 < corners.size(); ++k) total_m += (corners[k + 1] - corners[k]).norm();
+  const double turn = std::remainder(context.request.goal_yaw_rad - yaw_rad, 2.0 * M_PI);
+  double along_m = 0.0;
   for (size_t k = 0; k + 1 < corners.size() && static_cast<int>(path.centres_m.size()) < max_points; ++k) {
     const double len = (corners[k + 1] - corners[k]).norm();
     const int pieces = std::max(1, static_cast<int>(std::ceil(len / sample_m)));
     for (int j = 0; j < pieces && static_cast<int>(path.centres_m.size()) < max_points; ++j) {
-      path.centres_m.push_back(corners[k] + (static_cast<double>(j) / pieces) * (corners[k + 1] - corners[k]));
-      path.yaws_rad.push_back(corner_yaws[k]);
+      const double t = static_cast<double>(j) / pieces;
+      path.centres_m.push_back(corners[k] + t * (corners[k + 1] - corners[k]));
+      const double share = total_m > 0.0 ? (along_m + t * len) / total_m : 1.0;
+      path.yaws_rad.push_back(route_yaws ? corner_yaws[k] : yaw_rad + share * turn);
     }
+    along_m += len;
   }
   if (static_cast<int>(path.centres_m.size()) < max_points) {
     path.centres_m.push_back(corners.back());
-    path.yaws_rad.push_back(corner_yaws.back());
+    path.yaws_rad.push_back(context.request.goal_yaw_rad);
   }
   return path;
 }
@@ -238,11 +308,12 @@ PlanStopGap FirstGapAhead(const RobotModel& robot, const std::vector<ConvexRegio
   const std::vector<int> near = RegionsNearPath(regions, path, reach + step_span_m);
   std::optional<LegGap> best;
   for (const Footstep& foot : feet) {
-    const std::optional<LegGap> g = LegGapAhead(robot, regions, near, foot, path, step_span_m);
+    // A way round within two steps and the stance's reach of the gap's ends, for every leg alike.
+    const std::optional<LegGap> g = LegGapAhead(robot, regions, near, foot, path, step_span_m, reach + 2.0 * step_span_m);
     if (!g) continue;
-    const bool better = !best || (g->gap.blocks && !best->gap.blocks) ||
-                        (g->gap.blocks && best->gap.blocks && g->starts_at < best->starts_at) ||
-                        (!g->gap.blocks && !best->gap.blocks && g->gap.width_m > best->gap.width_m);
+    const int sg = Severity(g->gap), sb = best ? Severity(best->gap) : -1;
+    const bool better = !best || sg > sb || (sg == sb && sg > 0 && g->starts_at < best->starts_at) ||
+                        (sg == 0 && sb == 0 && g->gap.width_m > best->gap.width_m);
     if (better) best = g;
   }
   return best ? best->gap : PlanStopGap{};
@@ -283,7 +354,7 @@ std::string StopText(const RobotModel& robot, const PlanStop& stop) {
     return text.str();
   }
   const std::string leg = "leg " + std::to_string(g.leg) + " ('" + robot.legs[static_cast<size_t>(g.leg)].name + "')";
-  if (g.to_region < 0) {
+  if (g.to_region < 0 && g.blocks) {
     text << "; ahead, " << leg << " leaves region " << g.from_region << " near " << Xy(g.from_m)
          << " and its nominal path meets no region on the rest of the way (to " << Xy(g.to_m) << ")";
   } else if (g.blocks) {
@@ -296,10 +367,16 @@ std::string StopText(const RobotModel& robot, const PlanStop& stop) {
       text << ", within a step (" << g.step_span_m << " m), but a " << g.rise_m << " m rise, more than dz_max ("
            << robot.dz_max_m << " m)";
     }
+    if (g.detour_region >= 0) {
+      text << "; one foot could go round it only through region " << g.detour_region << " near " << Xy(g.detour_m);
+    } else {
+      text << ", and no chain of steps through the regions near it goes round";
+    }
   } else {
     text << "; the widest gap ahead, on " << leg << "'s path from region " << g.from_region << " near "
-         << Xy(g.from_m) << " to region " << g.to_region << " near " << Xy(g.to_m) << ", is " << g.width_m
-         << " m on an axis, within one step (" << g.step_span_m << " m)";
+         << Xy(g.from_m) << " to " << (g.to_region < 0 ? "its end" : "region " + std::to_string(g.to_region))
+         << " near " << Xy(g.to_m) << ", is " << g.width_m << " m on an axis, within one step (" << g.step_span_m
+         << " m)";
   }
   return text.str();
 }
