@@ -40,8 +40,9 @@ double FootholdMaxHalfSide(const RobotModel& robot, const PlannerOptions& option
 // foot_radius_m + margin_m + the square's half diagonal (+ one cell) about the spot. Its
 // half side is half_side_m, doubled while the disk stays flat and it stays within
 // max_half_side_m (a larger foothold also holds the steps up to the goal stance);
-// nullopt when half_side_m is not certified. With refuse_runs, a disk whose two levels hold
-// a run (a one-voxel riser, curb or trench: FlatSeenDisk) certifies no square.
+// nullopt when half_side_m is not certified. With refuse_runs, a first square whose disk's
+// two levels hold a run (a one-voxel riser, curb or groove at the spot: FlatSeenDisk) is not
+// certified; the larger squares keep the two-level test.
 std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::Vector2d& spot, double foot_radius_m,
                                          double margin_m, double half_side_m, double max_half_side_m, int id,
                                          bool refuse_runs = true);
