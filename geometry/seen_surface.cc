@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace mfp {
 namespace {
@@ -40,6 +42,61 @@ Eigen::Vector3d NearestFacePoint(const ConvexRegion& face, const Eigen::Vector2d
     best = ClosestBoundaryPoint(polygon, xy);
   }
   return {best.x(), best.y(), face.HeightAt(best.x(), best.y())};
+}
+
+// True when a cell's square comes closer than radius_m to xy in plan view (a disk's cell).
+bool InDisk(const SurfaceGrid& g, int col, int row, const Eigen::Vector2d& xy, double radius_m) {
+  const Eigen::Vector2d cell_lo = g.origin_m + g.resolution_m * Eigen::Vector2d(col, row);
+  const Eigen::Vector2d cell_hi = cell_lo + Eigen::Vector2d::Constant(g.resolution_m);
+  return (cell_lo - xy).cwiseMax(xy - cell_hi).cwiseMax(0.0).norm() < radius_m;
+}
+
+// A disk of seen cells (columns c0..c1, rows r0..r1 of g, those within radius_m of xy) whose
+// tops lie on two levels a cell apart, split at middle_m: true when the cells of the scarcer
+// level hold a run, a 4-connected set whose bounding box is at least three cells and run_m
+// long (a one-voxel riser, curb or groove across the disk). Scattered pits and bumps of one
+// voxel (sensor noise) make no such run.
+bool HasRun(const SurfaceGrid& g, const Eigen::Vector2d& xy, double radius_m, int c0, int r0, int c1, int r1,
+            double middle_m, double run_m) {
+  const int cols = c1 - c0 + 1, rows = r1 - r0 + 1;
+  std::vector<int> level(static_cast<size_t>(cols) * static_cast<size_t>(rows), -1);  // -1: not in the disk
+  int upper = 0, lower = 0;
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      if (!InDisk(g, c, r, xy, radius_m)) continue;
+      const float h = g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.cols) + static_cast<size_t>(c)];
+      const int up = h > middle_m ? 1 : 0;
+      level[static_cast<size_t>(r - r0) * static_cast<size_t>(cols) + static_cast<size_t>(c - c0)] = up;
+      (up == 1 ? upper : lower) += 1;
+    }
+  }
+  const int scarce = upper <= lower ? 1 : 0;
+  const double min_run_cells = std::max(3.0, run_m / g.resolution_m);
+  std::vector<char> visited(level.size(), 0);
+  std::vector<size_t> stack;
+  for (size_t seed = 0; seed < level.size(); ++seed) {
+    if (level[seed] != scarce || visited[seed]) continue;
+    int col_lo = cols, col_hi = -1, row_lo = rows, row_hi = -1;
+    stack.assign(1, seed);
+    visited[seed] = 1;
+    while (!stack.empty()) {
+      const size_t i = stack.back();
+      stack.pop_back();
+      const int col = static_cast<int>(i % static_cast<size_t>(cols)), row = static_cast<int>(i / static_cast<size_t>(cols));
+      col_lo = std::min(col_lo, col), col_hi = std::max(col_hi, col);
+      row_lo = std::min(row_lo, row), row_hi = std::max(row_hi, row);
+      for (const auto& [dc, dr] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+        const int nc = col + dc, nr = row + dr;
+        if (nc < 0 || nr < 0 || nc >= cols || nr >= rows) continue;
+        const size_t n = static_cast<size_t>(nr) * static_cast<size_t>(cols) + static_cast<size_t>(nc);
+        if (level[n] != scarce || visited[n]) continue;
+        visited[n] = 1;
+        stack.push_back(n);
+      }
+    }
+    if (std::max(col_hi - col_lo, row_hi - row_lo) + 1 >= min_run_cells) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -88,7 +145,8 @@ std::optional<double> HighestSeenSurfaceAt(const SeenSurface& surface, const Eig
   return best;
 }
 
-std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy, double radius_m) {
+std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy, double radius_m,
+                                     bool refuse_runs) {
   for (const SurfaceGrid& g : surface.grids) {
     if (g.resolution_m <= 0.0 || g.rows <= 0 || g.cols <= 0) continue;
     const double radius = radius_m + g.resolution_m;
@@ -102,9 +160,7 @@ std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Ve
     bool flat = true;
     for (int r = r0; r <= r1 && flat; ++r) {
       for (int c = c0; c <= c1 && flat; ++c) {
-        const Eigen::Vector2d cell_lo = g.origin_m + g.resolution_m * Eigen::Vector2d(c, r);
-        const Eigen::Vector2d cell_hi = cell_lo + Eigen::Vector2d::Constant(g.resolution_m);
-        if ((cell_lo - xy).cwiseMax(xy - cell_hi).cwiseMax(0.0).norm() >= radius) continue;
+        if (!InDisk(g, c, r, xy, radius)) continue;
         const float h = g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.cols) + static_cast<size_t>(c)];
         flat = std::isfinite(h);
         if (!flat) break;
@@ -113,7 +169,14 @@ std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Ve
         flat = disk.high_m - disk.low_m <= g.resolution_m + 1e-6;
       }
     }
-    if (flat && disk.low_m <= disk.high_m) return disk;
+    if (!flat || !(disk.low_m <= disk.high_m)) continue;
+    // Two levels: noise, or a run across the disk (looked for only then).
+    const bool two_levels = disk.high_m - disk.low_m > 0.5 * g.resolution_m;
+    if (refuse_runs && two_levels &&
+        HasRun(g, xy, radius, c0, r0, c1, r1, 0.5 * (disk.low_m + disk.high_m), radius_m)) {
+      continue;
+    }
+    return disk;
   }
   return std::nullopt;
 }

@@ -59,9 +59,15 @@ struct SeenDisk {
 // A disk of one grid's seen surface, flat within a cell: every cell of the grid whose
 // square comes closer than radius_m plus one cell edge (the edges' uncertainty) to xy_m
 // in plan view is seen (a finite top), and those
-// tops lie within one cell edge of each other (a surface's top voxel, not a step). The
-// first grid (layer) that holds such a disk answers; nullopt when none does. Faces are
-// not searched (their regions are exact).
-std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy_m, double radius_m);
+// tops lie within one cell edge of each other (a surface's top voxel, not a step). Two
+// levels a cell apart are sensor noise when the scarcer level's cells are scattered (pits
+// and bumps of one voxel); a riser or curb one voxel high is a run of them, 4-connected
+// cells at least three cells and radius_m long, and the disk is not flat. The first grid
+// (layer) that holds such a disk answers; nullopt when none does. Faces are not searched
+// (their regions are exact).
+// refuse_runs = false keeps the older test (two levels a cell apart pass, runs or not): for a
+// disk about a foot already standing there.
+std::optional<SeenDisk> FlatSeenDisk(const SeenSurface& surface, const Eigen::Vector2d& xy_m, double radius_m,
+                                     bool refuse_runs = true);
 
 }  // namespace mfp

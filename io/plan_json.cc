@@ -13,6 +13,29 @@ nlohmann::json Number(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
+// A partial plan's stop (PlanStop): where its last stance stands and the gap ahead.
+nlohmann::json StopToJson(const PlanStop& stop) {
+  nlohmann::json json = {{"x", stop.centre_world_m.x()},
+                         {"y", stop.centre_world_m.y()},
+                         {"z", stop.centre_world_m.z()},
+                         {"yaw", stop.yaw_rad},
+                         {"regions", stop.regions},
+                         {"reason", stop.reason}};
+  const PlanStopGap& g = stop.gap;
+  if (g.found) {
+    json["gap"] = {{"leg", g.leg},
+                   {"from_region", g.from_region},
+                   {"to_region", g.to_region},
+                   {"from", {g.from_m.x(), g.from_m.y()}},
+                   {"to", {g.to_m.x(), g.to_m.y()}},
+                   {"width", g.width_m},
+                   {"rise", g.rise_m},
+                   {"step_span", g.step_span_m},
+                   {"blocks", g.blocks}};
+  }
+  return json;
+}
+
 }  // namespace
 
 nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
@@ -35,7 +58,7 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
   nlohmann::json foothold_ids = nlohmann::json::array();
   for (const ConvexRegion& r : plan.footholds) foothold_ids.push_back(r.id);
   const int new_steps = std::max(0, static_cast<int>(plan.footsteps.size()) - robot.num_legs());
-  return {{"status", ToString(plan.status)},
+  nlohmann::json json = {{"status", ToString(plan.status)},
           {"message", plan.message},
           {"reaches_goal", plan.reaches_goal},
           {"objective", Number(plan.objective)},
@@ -53,6 +76,8 @@ nlohmann::json PlanToJson(const Plan& plan, const RobotModel& robot,
           {"footholds", foothold_ids},
           {"footsteps", steps},
           {"goal", {{"x", plan.goal_x_m}, {"y", plan.goal_y_m}, {"yaw", plan.goal_yaw_rad}, {"moved", plan.goal_moved}}}};
+  if (plan.stop.stopped) json["stop"] = StopToJson(plan.stop);
+  return json;
 }
 
 }  // namespace mfp

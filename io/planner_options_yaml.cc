@@ -45,6 +45,12 @@ void AddPlanKeys(Table* t) {
   t->push_back(Opt("goal_search.foothold_margin", At(&P::goal_foothold_margin_m), 0, 1,
                    "such a foothold has seen floor flat within a cell for the foot radius, this margin, one map "
                    "cell and the foothold square's half diagonal around its spot").Unit("m").Advanced());
+  t->push_back(Opt("goal_search.foothold_half_side", At(&P::goal_foothold_half_side_m), 0, 10,
+                   "a foothold is a square about its spot of this half side at first (0: half goal_tolerance)")
+                   .Unit("m").Advanced());
+  t->push_back(Opt("goal_search.foothold_max_half_side", At(&P::goal_foothold_max_half_side_m), 0, 10,
+                   "... doubled while its disk stays flat, up to this half side (0: the robot's d_lim)")
+                   .Unit("m").Advanced());
   t->push_back(Opt("start_tolerance", At(&P::start_tolerance_m), 0, 1,
                    "a start foot may lie this far off its region").Unit("m"));
   t->push_back(Opt("start_seen_footholds", At(&P::start_seen_footholds),

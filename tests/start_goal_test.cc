@@ -14,6 +14,7 @@
 
 #include "io/plan_json.h"
 #include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/goal_footholds.h"
 #include "planner/planning/internal/route_guide.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
@@ -386,6 +387,35 @@ TEST_F(StartGoalTest, AStartFootOnFlatSeenFloorBeyondAStepFromTheRegionsPlansFro
   EXPECT_LE(PlanDistanceToRegion(plan.footholds.front(), foot), 0.0);  // about the start foot
   const std::vector<std::string> violations = Violations(regions, plan);
   EXPECT_TRUE(violations.empty()) << violations.front();
+}
+
+// The foothold size keys: goal_search.foothold_half_side (0: half goal_tolerance) is the
+// square's first half side, doubled on flat floor up to goal_search.foothold_max_half_side
+// (0: d_lim).
+TEST_F(StartGoalTest, TheFootholdSizeKeysSetItsFirstAndLargestHalfSide) {
+  PlanRequest request = Request();
+  request.seen_surface = std::make_shared<const SeenSurface>(FlatSeenFloor());
+  const Eigen::Vector2d foot = request.start_feet_world_m[0].head<2>();
+  const std::vector<ConvexRegion> regions = FloorWithHole(foot, robot().d_lim_m + 0.02);
+  auto half_side = [&](const PlannerOptions& o) {
+    const std::vector<ConvexRegion> holds = StartFootholds(robot(), regions, request, o, NextRegionId(regions));
+    EXPECT_EQ(holds.size(), 1u);
+    if (holds.empty()) return 0.0;
+    EXPECT_EQ(holds[0].id, NextRegionId(regions));
+    double lo = 1e9, hi = -1e9;
+    for (const Eigen::Vector3d& v : holds[0].vertices_world_m) lo = std::min(lo, v.x()), hi = std::max(hi, v.x());
+    return 0.5 * (hi - lo);
+  };
+  PlannerOptions o = course_->scenario.options;
+  const double first = 0.5 * o.goal_tolerance_m;
+  double grown = first;
+  while (2.0 * grown <= robot().d_lim_m + 1e-9) grown *= 2.0;
+  EXPECT_NEAR(half_side(o), grown, 1e-9);  // the defaults: from half the goal tolerance up to d_lim
+  o.goal_foothold_half_side_m = 0.03;
+  o.goal_foothold_max_half_side_m = 0.03;
+  EXPECT_NEAR(half_side(o), 0.03, 1e-9);
+  o.goal_foothold_max_half_side_m = 0.1;
+  EXPECT_NEAR(half_side(o), 0.06, 1e-9);
 }
 
 }  // namespace

@@ -43,6 +43,40 @@ struct WindowRecord {
   bool replan_fell_back = false;
 };
 
+// A gap in the regions on a leg's nominal path ahead of a stopped plan's last stance: the
+// last point of the path on a region before it and the first one after it [m, world].
+struct PlanStopGap {
+  bool found = false;
+  int leg = -1;                   // index into RobotModel::legs
+  int from_region = -1;           // ConvexRegion::id before the gap
+  int to_region = -1;             // ... after it; -1: no region on the rest of the path
+  Eigen::Vector2d from_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
+  // Between the two regions' polygons, the larger of the x and y distances (a step moves a
+  // foot at most step_span_m on each world axis), and the height change at the two points [m].
+  double width_m = 0.0;
+  double rise_m = 0.0;
+  double step_span_m = 0.0;       // the most one step moves a foot on one axis: d_lim + l_bnd [m]
+  // No step crosses it straight on: width_m > step_span_m, |rise_m| > dz_max, or no region
+  // after it.
+  bool blocks = false;
+  // When it blocks: the first region of a chain of steps (each within step_span_m and
+  // dz_max) from the region before it to the one after it through regions near it, the
+  // way one foot could go round it (a whole stance may still not fit there); -1: none.
+  int detour_region = -1;
+  Eigen::Vector2d detour_m = Eigen::Vector2d::Zero();  // a vertex of that region [m, world]
+};
+
+// Where a plan that stops short of the goal (status partial) stopped and why.
+struct PlanStop {
+  bool stopped = false;
+  Eigen::Vector3d centre_world_m = Eigen::Vector3d::Zero();  // the last stance's centre (mean foot)
+  double yaw_rad = 0.0;                                       // its body yaw
+  std::vector<int> regions;       // the ids of the regions its feet stand on
+  std::string reason;             // why the windows ended (the message's reason, short)
+  PlanStopGap gap;                // the first gap ahead that no step spans, else the widest
+};
+
 struct Plan {
   SolveStatus status = SolveStatus::kInternalError;
   std::string message;        // human-readable detail for non-optimal outcomes
@@ -71,6 +105,8 @@ struct Plan {
   // Goal footholds on seen floor the plan stands on besides the caller's regions (ids above
   // theirs; planner/planning/internal/goal_footholds.h); plan validation counts them as regions.
   std::vector<ConvexRegion> footholds;
+  // A partial plan's stop: its last stance and the gap ahead (stopped = false otherwise).
+  PlanStop stop;
 };
 
 }  // namespace mfp

@@ -129,10 +129,8 @@ std::optional<GoalChoice> FootholdChoice(const RobotModel& robot, const std::vec
   note << why << "; planned to the nearest stance on regions and seen floor " << PoseText(found->pose)
        << ", with footholds on the seen floor for leg";
   for (size_t k = 0; k < found->legs.size(); ++k) {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();  // the foothold's centre: its spot
-    for (const Eigen::Vector3d& v : found->footholds[k].vertices_world_m) c += v;
-    c /= static_cast<double>(found->footholds[k].vertices_world_m.size());
-    note << (k == 0 ? " " : ", ") << found->legs[k] << " near (" << c.x() << ", " << c.y() << ")";
+    note << (k == 0 ? " " : ", ") << found->legs[k] << " near (" << found->spots_m[k].x() << ", "
+         << found->spots_m[k].y() << ")";
   }
   GoalChoice choice;
   choice.moved = found->pose;
@@ -323,9 +321,7 @@ Plan PlanFootsteps(const RobotModel& robot, const std::vector<ConvexRegion>& reg
     }
     std::vector<ConvexRegion> footholds = std::move(choice.footholds);
     if (guided) {
-      int next_id = 0;
-      for (const ConvexRegion& r : regions) next_id = std::max(next_id, r.id + 1);
-      for (const ConvexRegion& r : footholds) next_id = std::max(next_id, r.id + 1);
+      const int next_id = NextRegionId(footholds, NextRegionId(regions));
       const std::vector<ConvexRegion> at_start = StartFootholds(robot, regions, request, options, next_id);
       footholds.insert(footholds.end(), at_start.begin(), at_start.end());
     }

@@ -93,6 +93,12 @@ struct PlannerOptions {
   // each such spot given a foothold region (planner/planning/internal/goal_footholds.h).
   bool goal_seen_footholds = true;
   double goal_foothold_margin_m = 0.01;
+  // A foothold is a square about its spot: its first half side (0: half goal_tolerance_m,
+  // so a final foot within the goal tolerance of its spot stays on it), doubled while its
+  // disk stays flat up to the largest half side (0: the robot's d_lim, a larger foothold
+  // also holding the steps up to the stance) [m].
+  double goal_foothold_half_side_m = 0.0;
+  double goal_foothold_max_half_side_m = 0.0;
   // A start foot on no region but on flat seen floor (the same disk) gets a foothold too,
   // which the first steps may use (StartFootholds in goal_footholds.h).
   bool start_seen_footholds = true;

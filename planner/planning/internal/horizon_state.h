@@ -74,6 +74,10 @@ struct HorizonState {
   double start_progress_m = 0.0;          // route progress of the start stance (guided)
   std::vector<Snapshot> snapshots;        // one per window started and not backed out of
   std::string polish_note;  // the first window whose polished plan was not used, and why
+  // Why the windows ended short of the goal, a short key for PlanStop::reason (time_limit,
+  // no_progress, stuck, window_failed, window_infeasible, window_inexact; empty: the step
+  // or window budget ran out).
+  std::string end_reason;
   // Progress (NoteProgress): the best point so far (the start stance at first), the way
   // it had left, the window that reached it, and the accepted windows since the last gain.
   Snapshot best;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "planner/planning/internal/goal.h"
+#include "planner/planning/internal/stop_report.h"
 
 namespace mfp {
 namespace {
@@ -26,14 +27,21 @@ Plan Rejected(SolveStatus status, const std::string& message) {
 
 void EndOnTimeLimit(const PlanContext& context, HorizonState* state) {
   state->plan.status = SolveStatus::kTimeLimit;
-  state->plan.message = (context.request.deadline.Stopped() ? "stopped after " : "time limit reached after ") +
-                        std::to_string(state->planned) + " steps";
+  state->end_reason = "time_limit";
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << (context.request.deadline.Stopped() ? "stopped after " : "time limit reached after ") << state->planned
+      << " steps (" << context.ElapsedSeconds() << " s: " << state->plan.setup_s
+      << " s of set-up, the route search among them, before " << state->plan.windows << " window"
+      << (state->plan.windows == 1 ? "" : "s") << ")";
+  state->plan.message = msg.str();
 }
 
 void EndOnInfeasibleWindow(const std::string& reason, HorizonState* state) {
   Plan& plan = state->plan;
   plan.status = plan.windows == 1 ? SolveStatus::kInfeasible : plan.status;
   plan.message = reason;
+  state->end_reason = "window_infeasible";
 }
 
 void EndOnFailedSearch(const PlanContext& context, const BranchAndBoundResult& result, HorizonState* state) {
@@ -50,6 +58,7 @@ void EndOnFailedSearch(const PlanContext& context, const BranchAndBoundResult& r
   }
   plan.message = state->WindowName() + ": " + ToString(result.status) + " after " + std::to_string(result.nodes) +
                  " nodes";
+  state->end_reason = "window_failed";
 }
 
 void EndOnInexactWindow(const ExactWindow& exact, HorizonState* state) {
@@ -57,14 +66,17 @@ void EndOnInexactWindow(const ExactWindow& exact, HorizonState* state) {
   if (plan.windows == 1) plan.status = SolveStatus::kNoSolution;
   plan.message = state->WindowName() + ": the polisher could not make it exact (" + exact.polished.report.message +
                  "), " + exact.replan.note;
+  state->end_reason = "window_inexact";
 }
 
 void EndStuck(const std::string& why, HorizonState* state) {
   state->plan.message = "the planner stopped short of the goal: " + why;
+  state->end_reason = "stuck";
 }
 
 void EndStalled(const std::string& why, HorizonState* state) {
   state->plan.message = "the plan stopped making progress: " + why;
+  state->end_reason = "no_progress";
 }
 
 void ReportWindow(const PlanContext& context, const HorizonState& state, int kept, const ExactWindow& exact,
@@ -106,6 +118,30 @@ std::string GoalMiss(const PlanContext& context, const std::vector<Footstep>& fo
   return msg.str();
 }
 
+// For a plan that stopped making progress, got stuck or ended on a failed window: when its
+// last windows' searches all ended by their time shares, that is part of why, and the note
+// says so.
+std::string TimeShareNote(const Plan& plan, const std::string& end_reason) {
+  if (end_reason != "no_progress" && end_reason != "stuck" && end_reason != "window_failed") return "";
+  int cut = 0;
+  double least_s = 0.0, most_s = 0.0;
+  for (auto w = plan.window_records.rbegin(); w != plan.window_records.rend(); ++w) {
+    if (w->status != SolveStatus::kTimeLimit && w->status != SolveStatus::kNoSolution) break;
+    least_s = cut == 0 ? w->time_limit_s : std::min(least_s, w->time_limit_s);
+    most_s = cut == 0 ? w->time_limit_s : std::max(most_s, w->time_limit_s);
+    ++cut;
+  }
+  if (cut == 0) return "";
+  std::ostringstream note;
+  note.precision(2);
+  note << "; the last " << (cut == 1 ? "window's search ended by its time share" : std::to_string(cut) +
+                                        " windows' searches ended by their time shares")
+       << " (" << least_s;
+  if (most_s > least_s) note << "-" << most_s;
+  note << " s)";
+  return note.str();
+}
+
 }  // namespace
 
 Plan FinishPlan(const PlanContext& context, HorizonState* state) {
@@ -124,10 +160,12 @@ Plan FinishPlan(const PlanContext& context, HorizonState* state) {
       plan.message += "; kept the steps up to window " + std::to_string(state->best_window) + ", its best point";
     }
     const Eigen::Vector2d centre = StanceCentreXY(state->stance);
+    plan.stop = DescribeStop(context, plan, state->end_reason.empty() ? "step_budget" : state->end_reason);
     std::ostringstream msg;
     msg.precision(3);
     msg << "partial plan: " << state->planned << " steps, stopped " << (centre - context.GoalXY()).norm()
-        << " m from the goal" << GoalMiss(context, plan.footsteps) << ": " << plan.message;
+        << " m from the goal" << GoalMiss(context, plan.footsteps) << ": " << plan.message
+        << TimeShareNote(state->plan, state->end_reason) << "; " << StopText(context.robot, plan.stop);
     plan.message = msg.str();
     plan.status = SolveStatus::kPartial;
   }
