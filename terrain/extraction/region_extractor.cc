@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/noise_levels.h"
 #include "terrain/extraction/internal/parallel_work.h"
 #include "terrain/extraction/internal/patch_decomposition.h"
 #include "terrain/extraction/internal/plane_segmentation.h"
@@ -138,11 +139,21 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
     seg.noise_patch_foot_radius_m =
         options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * res;
   }
-  // Each layer's patches on its own (options.threads threads), then gathered in layer order.
+  // The noise levels' off cells of every layer in bands of rows (a large layer's split
+  // between the threads), then each layer's patches on its own (options.threads threads),
+  // gathered in layer order.
+  const bool noise_levels = seg.noise_patch_foot_radius_m > 0.0 && seg.noise_max_cells > 0;
+  const std::vector<std::vector<OffCell>> off =
+      noise_levels ? OffCellsOfLayers(layers, seg.noise_tolerance_m, options.threads) : std::vector<std::vector<OffCell>>{};
   std::vector<std::vector<PlanarPatch>> per_layer(layers.size());
   ParallelFor(static_cast<int>(layers.size()), options.threads, [&](int l) {
     SegmentationOptions own = seg;
     own.unseen = static_cast<size_t>(l) < unseen.size() ? &unseen[static_cast<size_t>(l)] : nullptr;
+    NoiseLevels levels;
+    if (noise_levels) {
+      levels = NoiseFreeLevelsFrom(layers[static_cast<size_t>(l)], off[static_cast<size_t>(l)], seg.noise_max_cells);
+      own.noise_levels = &levels;
+    }
     per_layer[static_cast<size_t>(l)] =
         SegmentPlanarPatches(layers[static_cast<size_t>(l)], surfaces[static_cast<size_t>(l)], own);
   });
