@@ -11,7 +11,8 @@ UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int r
       cols_(cols),
       cells_(mask.size()),
       height_(mask.size(), 0),
-      row_best_(static_cast<size_t>(std::max(rows, 0))) {
+      row_best_(static_cast<size_t>(std::max(rows, 0))),
+      stale_(row_best_.size(), 0) {
   MFP_CHECK(rows >= 0 && cols >= 0 && mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
   stack_.reserve(static_cast<size_t>(cols) + 1);
   active_.reserve(static_cast<size_t>(cols));
@@ -25,7 +26,7 @@ UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int r
   }
 }
 
-void UncoveredRectangles::ScanRow(int r) {
+void UncoveredRectangles::ScanRow(int r) const {
   // The stack scan of LargestRectangle, over this row's histogram only.
   CellRect best;
   const int* heights = &height_[static_cast<size_t>(r) * cols_];
@@ -45,6 +46,20 @@ void UncoveredRectangles::ScanRow(int r) {
 }
 
 CellRect UncoveredRectangles::Largest() const {
+  // Scan the stale rows whose bound ties the largest value until every row holding the
+  // largest value is up to date: then no stale row can reach it (its bound is lower), and
+  // the first row holding it is the first row of the largest, as a scan of every row finds.
+  for (bool scanned = true; scanned;) {
+    int top = 0;
+    for (const CellRect& rect : row_best_) top = std::max(top, rect.Area());
+    scanned = false;
+    for (int r = 0; r < rows_ && top > 0; ++r) {
+      if (!stale_[static_cast<size_t>(r)] || row_best_[static_cast<size_t>(r)].Area() != top) continue;
+      ScanRow(r);
+      stale_[static_cast<size_t>(r)] = 0;
+      scanned = true;
+    }
+  }
   CellRect best;
   for (const CellRect& rect : row_best_) {
     if (rect.Area() > best.Area()) best = rect;
@@ -123,7 +138,7 @@ void UncoveredRectangles::Recompute(int from, int to, const int* first, const in
     }
     active_.resize(kept);
   }
-  for (int r = from; r <= last_changed; ++r) ScanRow(r);
+  for (int r = from; r <= last_changed; ++r) stale_[static_cast<size_t>(r)] = 1;
 }
 
 }  // namespace mfp
