@@ -46,19 +46,30 @@ void UncoveredRectangles::ScanRow(int r) const {
 }
 
 CellRect UncoveredRectangles::Largest() const {
-  // Scan the stale rows whose bound ties the largest value until every row holding the
-  // largest value is up to date: then no stale row can reach it (its bound is lower), and
-  // the first row holding it is the first row of the largest, as a scan of every row finds.
-  for (bool scanned = true; scanned;) {
-    int top = 0;
-    for (const CellRect& rect : row_best_) top = std::max(top, rect.Area());
-    scanned = false;
-    for (int r = 0; r < rows_ && top > 0; ++r) {
-      if (!stale_[static_cast<size_t>(r)] || row_best_[static_cast<size_t>(r)].Area() != top) continue;
-      ScanRow(r);
-      stale_[static_cast<size_t>(r)] = 0;
-      scanned = true;
+  // The largest fresh area, and the stale rows that could beat or tie it (their cached best
+  // bounds theirs from above), highest bound first, then by row.
+  int fresh_top = 0;
+  candidates_.clear();
+  for (int r = 0; r < rows_; ++r) {
+    const int area = row_best_[static_cast<size_t>(r)].Area();
+    if (!stale_[static_cast<size_t>(r)]) {
+      fresh_top = std::max(fresh_top, area);
+    } else if (area > 0) {
+      candidates_.push_back(r);
     }
+  }
+  std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
+    const int area_a = row_best_[static_cast<size_t>(a)].Area(), area_b = row_best_[static_cast<size_t>(b)].Area();
+    return area_a != area_b ? area_a > area_b : a < b;
+  });
+  // Scan them while their bound reaches the largest area known: afterwards every row whose
+  // value reaches it is fresh, so the first row holding the largest value is the first row
+  // of the largest rectangle, as a scan of every row finds.
+  for (const int r : candidates_) {
+    if (row_best_[static_cast<size_t>(r)].Area() < fresh_top) break;
+    ScanRow(r);
+    stale_[static_cast<size_t>(r)] = 0;
+    fresh_top = std::max(fresh_top, row_best_[static_cast<size_t>(r)].Area());
   }
   CellRect best;
   for (const CellRect& rect : row_best_) {

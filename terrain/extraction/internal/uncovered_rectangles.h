@@ -45,6 +45,7 @@ class UncoveredRectangles {
   mutable std::vector<CellRect> row_best_;  // per row, its best; for a stale row an upper bound
   mutable std::vector<uint8_t> stale_;      // per row, 1 when its heights changed since its scan
   mutable std::vector<int> stack_;          // ScanRow's work space
+  mutable std::vector<int> candidates_;     // Largest's work space: stale rows
   std::vector<int> active_;  // Clear's work space: the columns whose heights still change
   std::vector<int> first_cleared_, last_cleared_;  // ClearCells' work space: per column, -1 when none
   // Recomputes the heights of the active columns from row `from` down (column c from row
