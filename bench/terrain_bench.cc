@@ -159,10 +159,10 @@ int main(int argc, char** argv) {
   bool digest = false;
   app.add_flag("--digest", digest,
                "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
-               "maps: equal digests, equal regions");
+               "maps (with --scans-only: the scans alone): equal digests, equal regions");
   CLI11_PARSE(app, argc, argv);
   if (digest) {
-    mfp::PrintRegionDigests(scans, options, runs);
+    mfp::PrintRegionDigests(scans, options, runs, scans_only);
     return 0;
   }
   if (!walk_robots.empty()) {

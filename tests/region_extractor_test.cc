@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -204,6 +205,10 @@ TEST(RegionExtractorTest, EmptyMapHasNoRegionsAndSaysSo) {
   EXPECT_NE(result.message.find("no occupied voxels"), std::string::npos);
 }
 
+bool SameBits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+
 // The fit, the segmentation and the decomposition run on options.threads threads; the
 // regions, their order, the statistics and every cell's fate are those of one thread, with
 // max_regions cutting the patches short too.
@@ -228,6 +233,15 @@ void ExpectSameOnThreads(const TerrainDescription& terrain, int max_regions) {
     EXPECT_EQ(many.stats.patches, one.stats.patches);
     EXPECT_EQ(many.stats.patches_too_small, one.stats.patches_too_small);
     EXPECT_EQ(many.stats.patches_too_steep, one.stats.patches_too_steep);
+    // The layers' repaired heights and the cells the repair moved, bit for bit (NaN too).
+    ASSERT_EQ(many.layers.size(), one.layers.size());
+    for (size_t l = 0; l < one.layers.size(); ++l) {
+      EXPECT_TRUE(SameBits(many.layers[l].height_m, one.layers[l].height_m)) << "layer " << l;
+    }
+    ASSERT_EQ(many.moved_as_seen.size(), one.moved_as_seen.size());
+    for (size_t l = 0; l < one.moved_as_seen.size(); ++l) {
+      EXPECT_TRUE(SameBits(many.moved_as_seen[l].height_m, one.moved_as_seen[l].height_m)) << "layer " << l;
+    }
   }
 }
 
@@ -236,6 +250,15 @@ TEST(RegionExtractorTest, RegionsDoNotDependOnTheThreads) {
   ExpectSameOnThreads(SteppingStonesTerrain(), 5);  // the cap inside the patch list
   ExpectSameOnThreads(TableTerrain(), 4096);        // two layers
   ExpectSameOnThreads(TiltTerrain(Deg(15), Deg(30)), 3);
+  // A grid of more than 2^16 cells and a layer of more than 8192 surface cells: the layer
+  // passes run in several bands of rows and the fit in several parts; with scan noise
+  // (voxels a voxel off, holes) for the repair and the noise levels to change.
+  TerrainDescription building = BuildingFloorTerrain();
+  building.noise.seed = 3;
+  building.noise.jitter_fraction = 0.03;
+  building.noise.hole_fraction = 0.01;
+  building.noise.outliers = 20;
+  ExpectSameOnThreads(building, 4096);
 }
 
 TEST(ParallelForTest, RunsEveryItemOnceAndRethrowsTheFirstError) {

@@ -106,5 +106,41 @@ TEST(UncoveredRectanglesTest, TiesGoToTheFirstRectangleOfTheRowByRowScan) {
   EXPECT_EQ(tracker.Largest().Area(), 0);
 }
 
+// The bridge step scans only the bridge's bounding box: the same rectangle, ties included,
+// as the full scan of a mask whose cells all lie in the box.
+TEST(UncoveredRectanglesTest, TheLargestRectangleWithinABoxHoldingEveryCellIsTheFullScans) {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 400; ++trial) {
+    const int rows = std::uniform_int_distribution<int>(1, 30)(rng);
+    const int cols = std::uniform_int_distribution<int>(1, 30)(rng);
+    std::vector<uint8_t> mask = RandomMask(&rng, rows, cols, std::uniform_real_distribution<double>(0.5, 1.0)(rng));
+    const CellRect box = RandomRect(&rng, rows, cols);
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        const bool inside = r >= box.row0 && r < box.row0 + box.rows && c >= box.col0 && c < box.col0 + box.cols;
+        if (!inside) mask[static_cast<size_t>(r) * cols + c] = 0;
+      }
+    }
+    ExpectSameRect(LargestRectangleWithin(mask, rows, cols, box), LargestRectangle(mask, rows, cols));
+  }
+}
+
+TEST(UncoveredRectanglesTest, ABridgesBoundsHoldItsCellsTightly) {
+  // Two covered pieces (columns 0 and 6) joined by an uncovered L in rows 2-4.
+  const int rows = 6, cols = 7;
+  std::vector<int> owner(static_cast<size_t>(rows) * cols, -1);
+  std::vector<uint8_t> uncovered(owner.size(), 0);
+  for (int r = 0; r < rows; ++r) {
+    owner[static_cast<size_t>(r) * cols] = 0;
+    owner[static_cast<size_t>(r) * cols + 6] = 1;
+  }
+  for (int c = 1; c < 6; ++c) uncovered[static_cast<size_t>(2) * cols + c] = 1;
+  uncovered[static_cast<size_t>(3) * cols + 3] = uncovered[static_cast<size_t>(4) * cols + 3] = 1;
+  CellRect bounds;
+  const std::vector<uint8_t> bridge = UncoveredBridge(uncovered, owner, rows, cols, &bounds);
+  ASSERT_EQ(bridge, uncovered);
+  ExpectSameRect(bounds, CellRect{2, 1, 3, 5});
+}
+
 }  // namespace
 }  // namespace mfp

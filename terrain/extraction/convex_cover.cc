@@ -282,9 +282,10 @@ std::vector<Polygon2d> ConvexCoverOfSquares(const std::vector<uint8_t>& squares,
   }
   // As the rectangle cover: the part left may hold the only way between two pieces.
   while (cover.connect_pieces && room() && state.covered() < state.total()) {
-    std::vector<uint8_t> bridge = UncoveredBridge(state.open(), state.owner(), rows, cols);
+    CellRect bounds;
+    std::vector<uint8_t> bridge = UncoveredBridge(state.open(), state.owner(), rows, cols, &bounds);
     if (bridge.empty()) break;
-    const CellRect seed = LargestRectangle(bridge, rows, cols);
+    const CellRect seed = LargestRectangleWithin(bridge, rows, cols, bounds);
     if (seed.Area() < min_seed || !state.AddPiece(seed)) break;
   }
   return state.pieces();

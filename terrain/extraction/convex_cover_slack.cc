@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/convex_polygon_distance.h"
 #include "geometry/half_plane_clip.h"
@@ -73,24 +74,40 @@ bool InteriorsApart(const Polygon2d& p, const Polygon2d& q) {
   return false;
 }
 
+// A cell, by row and column.
+struct Cell {
+  int r = 0, c = 0;
+};
+
 // Whether every point of `part` keeps each outside cell's inset from the cell's square
-// (cell (r, c) spans [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]): the exact test.
-bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells) {
+// (cell (r, c) spans [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]): the exact test. The cell at
+// *hint (when set) is tested first and a cell found too close is left there: the cell that
+// failed a bisection step is the likeliest to fail the next (the answer does not depend on
+// the order, and a cell beyond the scanned box passes, so testing it changes nothing).
+bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells, std::optional<Cell>* hint) {
   const Bounds b = BoundsOf(part);
   const double reach = max_inset_cells + 0.5;
   const int r0 = static_cast<int>(std::floor(b.lo.y() - reach)), r1 = static_cast<int>(std::ceil(b.hi.y() + reach));
   const int c0 = static_cast<int>(std::floor(b.lo.x() - reach)), c1 = static_cast<int>(std::ceil(b.hi.x() + reach));
-  for (int r = r0; r <= r1; ++r) {
+  auto too_close = [&](int r, int c) {
+    const double inset = inset_at(r, c);
+    if (inset <= 0.0) return false;  // a patch cell, or no inset asked
     const double dy = std::max({0.0, (r - 0.5) - b.hi.y(), b.lo.y() - (r + 0.5)});
+    const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
+    // The boxes are far enough apart. Squared with a relative margin of 1e-12, so a cell
+    // skipped here is one the exact distance would pass as well.
+    if (dx * dx + dy * dy >= inset * inset * (1.0 + 1e-12)) return false;
+    const Polygon2d cell = {{c - 0.5, r - 0.5}, {c + 0.5, r - 0.5}, {c + 0.5, r + 0.5}, {c - 0.5, r + 0.5}};
+    return ConvexPolygonDistance(part, cell) < inset - kEps;
+  };
+  const bool hinted = hint->has_value() && (*hint)->r >= r0 && (*hint)->r <= r1 && (*hint)->c >= c0 && (*hint)->c <= c1;
+  if (hinted && too_close((*hint)->r, (*hint)->c)) return false;
+  for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {
-      const double inset = inset_at(r, c);
-      if (inset <= 0.0) continue;  // a patch cell, or no inset asked
-      const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
-      // The boxes are far enough apart. Squared with a relative margin of 1e-12, so a cell
-      // skipped here is one the exact distance would pass as well.
-      if (dx * dx + dy * dy >= inset * inset * (1.0 + 1e-12)) continue;
-      const Polygon2d cell = {{c - 0.5, r - 0.5}, {c + 0.5, r - 0.5}, {c + 0.5, r + 0.5}, {c - 0.5, r + 0.5}};
-      if (ConvexPolygonDistance(part, cell) < inset - kEps) return false;
+      if (hinted && r == (*hint)->r && c == (*hint)->c) continue;
+      if (!too_close(r, c)) continue;
+      *hint = Cell{r, c};
+      return false;
     }
   }
   return true;
@@ -125,11 +142,12 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
     for (size_t j = 0; j < planes.size(); ++j) {
       if (planes[j].normal.isZero()) continue;
       // What moving side j out by `shift` adds: the moved polygon beyond the side's line.
+      std::optional<Cell> failed;  // the cell that last failed a test of this side
       auto sound = [&](double shift) {
         Intersection(planes, j, shift, box, &moved_piece, &scratch);
         KeepBelowLineInto(moved_piece, -planes[j].normal, -planes[j].offset, &part);
         if (part.size() < 3) return true;
-        return KeepsInsets(part, inset_at, max_inset_cells) &&
+        return KeepsInsets(part, inset_at, max_inset_cells, &failed) &&
                (options.may_overlap || ClearOfOthers(part, *pieces, bounds, k));
       };
       if (!sound(finest)) continue;  // no room: skip the bisection

@@ -97,9 +97,7 @@ double FitWork(size_t surface_cells, int window_half_cells) {
   return static_cast<double>(surface_cells) * side * side;
 }
 
-SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, double step_gate_m,
-                               double max_slope_rad, const Deadline& deadline) {
-  MFP_CHECK(window_half_cells >= 1);
+SurfaceAnalysis SurfaceCellsOf(const HeightMap& hm) {
   SurfaceAnalysis out;
   for (size_t i = 0; i < hm.height_m.size(); ++i) {
     if (!std::isnan(hm.height_m[i])) out.cells.push_back(static_cast<int>(i));
@@ -107,6 +105,13 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
   const float nan = std::numeric_limits<float>::quiet_NaN();
   out.normal_world.assign(out.cells.size(), Eigen::Vector3f(nan, nan, nan));
   out.roughness_m.assign(out.cells.size(), std::numeric_limits<float>::infinity());
+  return out;
+}
+
+bool FitSurfaceCells(const HeightMap& hm, int window_half_cells, double step_gate_m, double max_slope_rad,
+                     const Deadline& deadline, size_t begin, size_t end, SurfaceAnalysis* analysis) {
+  MFP_CHECK(window_half_cells >= 1 && begin <= end && end <= analysis->cells.size());
+  SurfaceAnalysis& out = *analysis;
   const double res = hm.resolution_m;
   const double tan_slope = std::tan(max_slope_rad);
   const int w = window_half_cells;
@@ -120,14 +125,11 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
     }
   }
   int row_checked = -1;  // the deadline is checked once per row holding a surface cell
-  for (size_t entry = 0; entry < out.cells.size(); ++entry) {
+  for (size_t entry = begin; entry < end; ++entry) {
     const int r = out.cells[entry] / hm.cols, c = out.cells[entry] % hm.cols;
     if (r != row_checked) {
       row_checked = r;
-      if (deadline.Expired()) {
-        out.stopped = true;
-        break;
-      }
+      if (deadline.Expired()) return false;
     }
     const float hc = hm.height_m[static_cast<size_t>(out.cells[entry])];
     // Least squares in coordinates relative to the cell (x, y in cells, z in m): the
@@ -165,6 +167,13 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, doubl
     out.normal_world[entry] = Eigen::Vector3d(-p.x() / res, -p.y() / res, 1.0).normalized().cast<float>();
     out.roughness_m[entry] = static_cast<float>(std::sqrt(sse / count));
   }
+  return true;
+}
+
+SurfaceAnalysis AnalyzeSurface(const HeightMap& hm, int window_half_cells, double step_gate_m,
+                               double max_slope_rad, const Deadline& deadline) {
+  SurfaceAnalysis out = SurfaceCellsOf(hm);
+  out.stopped = !FitSurfaceCells(hm, window_half_cells, step_gate_m, max_slope_rad, deadline, 0, out.cells.size(), &out);
   return out;
 }
 

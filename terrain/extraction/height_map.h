@@ -59,4 +59,11 @@ SurfaceAnalysis AnalyzeSurface(const HeightMap& height_map, int window_half_cell
                                const Deadline& deadline = Deadline());
 double FitWork(size_t surface_cells, int window_half_cells);
 
+// AnalyzeSurface in parts (each cell's fit is its own, so parts may run at once): the
+// surface cells with unknown fits, then the fits of entries [begin, end) of its cells;
+// false when the deadline stopped a part (its entries from that row on stay unknown).
+SurfaceAnalysis SurfaceCellsOf(const HeightMap& height_map);
+bool FitSurfaceCells(const HeightMap& height_map, int window_half_cells, double step_gate_m, double max_slope_rad,
+                     const Deadline& deadline, size_t begin, size_t end, SurfaceAnalysis* analysis);
+
 }  // namespace mfp

@@ -4,9 +4,12 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "base/check.h"
 #include "base/round.h"
+#include "terrain/extraction/internal/parallel_work.h"
 
 namespace mfp {
 namespace {
@@ -28,35 +31,52 @@ bool BoxOf(const OccupiedLeaf& leaf, double res, CellBox* box) {
 
 }  // namespace
 
-uint64_t LeafColumnCells(const OccupancyMap& map) {
+uint64_t LeafColumnCells(const OccupancyMap& map, int threads) {
   const double res = map.resolution_m;
   if (!std::isfinite(res) || res <= 0.0) return 0;
-  // Summed in double: every term is exact below 2^53 and the total only compared.
-  double occupied = 0.0;
-  CellBox extent{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                 -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  for (const OccupiedLeaf& leaf : map.leaves) {
-    CellBox b;
-    if (!BoxOf(leaf, res, &b)) continue;
-    occupied += (b.x1 - b.x0) * (b.y1 - b.y0);
-    extent = {std::min(extent.x0, b.x0), std::min(extent.y0, b.y0), std::max(extent.x1, b.x1),
-              std::max(extent.y1, b.y1)};
+  // Summed in double: every term and every partial sum is a whole number, exact below
+  // 2^53 in any order, and the total only compared. The leaves in `parts` ranges at once.
+  const int parts = std::max(1, threads);
+  auto range = [parts](size_t n, int p) {
+    return std::make_pair(n * static_cast<size_t>(p) / static_cast<size_t>(parts),
+                          n * static_cast<size_t>(p + 1) / static_cast<size_t>(parts));
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> occupied(static_cast<size_t>(parts), 0.0), free(static_cast<size_t>(parts), 0.0);
+  std::vector<CellBox> extents(static_cast<size_t>(parts), CellBox{inf, inf, -inf, -inf});
+  ParallelFor(parts, threads, [&](int p) {
+    CellBox& extent = extents[static_cast<size_t>(p)];
+    const auto [begin, end] = range(map.leaves.size(), p);
+    for (size_t i = begin; i < end; ++i) {
+      CellBox b;
+      if (!BoxOf(map.leaves[i], res, &b)) continue;
+      occupied[static_cast<size_t>(p)] += (b.x1 - b.x0) * (b.y1 - b.y0);
+      extent = {std::min(extent.x0, b.x0), std::min(extent.y0, b.y0), std::max(extent.x1, b.x1),
+                std::max(extent.y1, b.y1)};
+    }
+  });
+  CellBox extent = extents.front();
+  for (const CellBox& e : extents) {
+    extent = {std::min(extent.x0, e.x0), std::min(extent.y0, e.y0), std::max(extent.x1, e.x1), std::max(extent.y1, e.y1)};
   }
-  double free = 0.0;
-  for (const OccupiedLeaf& leaf : map.free_leaves) {
-    CellBox b;
-    if (!BoxOf(leaf, res, &b)) continue;
-    const double w = std::min(b.x1, extent.x1) - std::max(b.x0, extent.x0);
-    const double h = std::min(b.y1, extent.y1) - std::max(b.y0, extent.y0);
-    if (w > 0 && h > 0) free += w * h;
-  }
-  const double total = occupied + free;
+  ParallelFor(parts, threads, [&](int p) {
+    const auto [begin, end] = range(map.free_leaves.size(), p);
+    for (size_t i = begin; i < end; ++i) {
+      CellBox b;
+      if (!BoxOf(map.free_leaves[i], res, &b)) continue;
+      const double w = std::min(b.x1, extent.x1) - std::max(b.x0, extent.x0);
+      const double h = std::min(b.y1, extent.y1) - std::max(b.y0, extent.y0);
+      if (w > 0 && h > 0) free[static_cast<size_t>(p)] += w * h;
+    }
+  });
+  double total = 0.0;
+  for (int p = 0; p < parts; ++p) total += occupied[static_cast<size_t>(p)] + free[static_cast<size_t>(p)];
   if (!(total < 1.8e19)) return std::numeric_limits<uint64_t>::max();
   return static_cast<uint64_t>(total);
 }
 
-void CheckLeafColumnBudget(const OccupancyMap& map, uint64_t max_leaf_columns) {
-  const uint64_t cells = LeafColumnCells(map);
+void CheckLeafColumnBudget(const OccupancyMap& map, uint64_t max_leaf_columns, int threads) {
+  const uint64_t cells = LeafColumnCells(map, threads);
   if (cells <= max_leaf_columns) return;
   std::ostringstream msg;
   msg << "occupancy map: its leaves cover " << cells << " x-y column cells (a leaf n voxels "

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "terrain/extraction/internal/parallel_work.h"
+
 namespace mfp {
 namespace {
 
@@ -24,25 +26,15 @@ float NeighbourhoodMedian(const HeightMap& hm, int cell) {
   return seen[n / 2];
 }
 
-// A cell one voxel (up to the tolerance) above (side +1) or below (-1) its neighbourhood's
-// median.
-struct OffCell {
-  int cell;
-  int8_t side;
-  float median;  // [m]
-};
-
-// The surface cells off their neighbourhood, ascending.
-std::vector<OffCell> OffCells(const HeightMap& hm, double tolerance_m) {
-  std::vector<OffCell> off;
-  for (int cell = 0; cell < static_cast<int>(hm.height_m.size()); ++cell) {
+// The surface cells of rows [r0, r1) off their neighbourhood, ascending, appended to off.
+void OffCellsInRows(const HeightMap& hm, double tolerance_m, int r0, int r1, std::vector<OffCell>* off) {
+  for (int cell = r0 * hm.cols; cell < r1 * hm.cols; ++cell) {
     if (std::isnan(hm.height_m[static_cast<size_t>(cell)])) continue;
     const float median = NeighbourhoodMedian(hm, cell);
     const double d = static_cast<double>(hm.height_m[static_cast<size_t>(cell)]) - median;
     if (std::isnan(d) || std::abs(d) < 0.5 * hm.resolution_m || std::abs(d) > tolerance_m) continue;
-    off.push_back({cell, static_cast<int8_t>(d > 0.0 ? 1 : -1), median});
+    off->push_back({cell, static_cast<int8_t>(d > 0.0 ? 1 : -1), median});
   }
-  return off;
 }
 
 // The entry of `cell` in off, or -1.
@@ -80,8 +72,35 @@ bool Isolated(const HeightMap& hm, const std::vector<int>& group, int side) {
 }  // namespace
 
 NoiseLevels NoiseFreeLevels(const HeightMap& hm, double tolerance_m, int max_cells) {
+  std::vector<OffCell> off;
+  OffCellsInRows(hm, tolerance_m, 0, hm.rows, &off);
+  return NoiseFreeLevelsFrom(hm, off, max_cells);
+}
+
+std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers, double tolerance_m,
+                                                   int threads) {
+  // About 2^16 grid cells a band: enough bands to share one large layer between threads.
+  struct Band {
+    size_t layer;
+    int r0, r1;
+    std::vector<OffCell> off;
+  };
+  std::vector<Band> bands;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    const int band_rows = std::max(1, (1 << 16) / std::max(1, layers[l].cols));
+    for (int r0 = 0; r0 < layers[l].rows; r0 += band_rows) bands.push_back({l, r0, std::min(layers[l].rows, r0 + band_rows), {}});
+  }
+  ParallelFor(static_cast<int>(bands.size()), threads, [&](int i) {
+    Band& band = bands[static_cast<size_t>(i)];
+    OffCellsInRows(layers[band.layer], tolerance_m, band.r0, band.r1, &band.off);
+  });
+  std::vector<std::vector<OffCell>> off(layers.size());
+  for (const Band& band : bands) off[band.layer].insert(off[band.layer].end(), band.off.begin(), band.off.end());
+  return off;
+}
+
+NoiseLevels NoiseFreeLevelsFrom(const HeightMap& hm, const std::vector<OffCell>& off, int max_cells) {
   NoiseLevels out;
-  const std::vector<OffCell> off = OffCells(hm, tolerance_m);
   // 8-connected groups of off cells on one side, each from its lowest cell, in order.
   std::vector<uint8_t> visited(off.size(), 0);
   std::vector<int> group, entries;

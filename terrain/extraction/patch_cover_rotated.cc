@@ -177,12 +177,19 @@ void CellsThatMayBeTooClose(const RotatedFrame& frame, const OutsideCells& outsi
   });
 }
 
-// RotatedRectSafe for a rectangle inside the one `near` was listed for.
+// RotatedRectSafe for a rectangle inside the one `near` was listed for. The cell at
+// *first (when in range) is tested first, and a cell found too close is left there: the
+// one that failed a bisection step is the likeliest to fail the next (the answer is the
+// same in any order).
 bool RotatedRectSafeAmong(const RotatedFrame& frame, const std::vector<const OutsideCell*>& near, double u0, double u1,
-                          double v0, double v1) {
+                          double v0, double v1, size_t* first) {
   const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
-  for (const OutsideCell* out : near) {
-    if (TooClose(quad, *out, CentreDistance(frame, *out, u0, u1, v0, v1))) return false;
+  auto too_close = [&](size_t k) { return TooClose(quad, *near[k], CentreDistance(frame, *near[k], u0, u1, v0, v1)); };
+  if (*first < near.size() && too_close(*first)) return false;
+  for (size_t k = 0; k < near.size(); ++k) {
+    if (k == *first || !too_close(k)) continue;
+    *first = k;
+    return false;
   }
   return true;
 }
@@ -199,10 +206,11 @@ void GrowRotatedRect(const RotatedFrame& frame, const OutsideCells& outside,
     const double base = *side;
     *side = base + sign * most;
     CellsThatMayBeTooClose(frame, outside, max_inset_cells, *a0, *a1, *b0, *b1, &near);
+    size_t first = near.size();  // none yet
     for (int it = 0; it < 8; ++it) {
       const double mid = 0.5 * (lo + hi);
       *side = base + sign * mid;
-      (RotatedRectSafeAmong(frame, near, *a0, *a1, *b0, *b1) ? lo : hi) = mid;
+      (RotatedRectSafeAmong(frame, near, *a0, *a1, *b0, *b1, &first) ? lo : hi) = mid;
     }
     *side = base + sign * lo;
   };

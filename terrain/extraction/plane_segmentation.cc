@@ -202,8 +202,11 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const Surfac
   MFP_CHECK(surface.roughness_m.size() == surface.cells.size() && surface.normal_world.size() == surface.cells.size());
   // Grown on noise-free levels where the surface is noisy (noise_levels.h).
   const bool noise_levels = options.noise_patch_foot_radius_m > 0.0 && options.noise_max_cells > 0;
-  const NoiseLevels noise =
-      noise_levels ? NoiseFreeLevels(raw, options.noise_tolerance_m, options.noise_max_cells) : NoiseLevels{};
+  NoiseLevels own_levels;
+  if (noise_levels && options.noise_levels == nullptr) {
+    own_levels = NoiseFreeLevels(raw, options.noise_tolerance_m, options.noise_max_cells);
+  }
+  const NoiseLevels& noise = noise_levels && options.noise_levels != nullptr ? *options.noise_levels : own_levels;
   const HeightMap& hm = noise.denoised_cells > 0 ? noise.levels : raw;
   std::vector<int> label(hm.height_m.size(), kUnvisited);
   std::vector<PlanarPatch> patches;

@@ -8,25 +8,32 @@
 namespace mfp {
 
 CellRect LargestRectangle(const std::vector<uint8_t>& mask, int rows, int cols) {
+  return LargestRectangleWithin(mask, rows, cols, CellRect{0, 0, rows, cols});
+}
+
+CellRect LargestRectangleWithin(const std::vector<uint8_t>& mask, int rows, int cols, const CellRect& within) {
   MFP_CHECK(mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
+  MFP_CHECK(within.row0 >= 0 && within.col0 >= 0 && within.rows >= 0 && within.cols >= 0 &&
+            within.row0 + within.rows <= rows && within.col0 + within.cols <= cols);
   // Row by row: heights of the runs of set cells ending at this row, then the largest
   // rectangle under that histogram with a stack (O(rows * cols) overall).
   CellRect best;
-  std::vector<int> height(static_cast<size_t>(cols) + 1, 0);
+  const int n = within.cols;
+  std::vector<int> height(static_cast<size_t>(n) + 1, 0);
   std::vector<int> stack;
-  stack.reserve(static_cast<size_t>(cols) + 1);
-  for (int r = 0; r < rows; ++r) {
-    const uint8_t* row = &mask[static_cast<size_t>(r) * cols];
-    for (int c = 0; c < cols; ++c) height[c] = row[c] ? height[c] + 1 : 0;
-    height[cols] = 0;  // sentinel flushes the stack
+  stack.reserve(static_cast<size_t>(n) + 1);
+  for (int r = within.row0; r < within.row0 + within.rows; ++r) {
+    const uint8_t* row = &mask[static_cast<size_t>(r) * cols + within.col0];
+    for (int c = 0; c < n; ++c) height[c] = row[c] ? height[c] + 1 : 0;
+    height[n] = 0;  // sentinel flushes the stack
     stack.clear();
-    for (int c = 0; c <= cols; ++c) {
+    for (int c = 0; c <= n; ++c) {
       while (!stack.empty() && height[stack.back()] >= height[c]) {
         const int h = height[stack.back()];
         stack.pop_back();
         const int left = stack.empty() ? 0 : stack.back() + 1;
         const int width = c - left;
-        if (h * width > best.Area()) best = CellRect{r - h + 1, left, h, width};
+        if (h * width > best.Area()) best = CellRect{r - h + 1, within.col0 + left, h, width};
       }
       stack.push_back(c);
     }
@@ -98,7 +105,7 @@ std::vector<int> RectOwners(const std::vector<CellRect>& rects, int rows, int co
 }  // namespace
 
 std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, const std::vector<int>& owner, int rows,
-                                     int cols) {
+                                     int cols, CellRect* bounds) {
   const size_t n = static_cast<size_t>(rows) * cols;
   MFP_CHECK(uncovered.size() == n && owner.size() == n);
   const int pieces = owner.empty() ? 0 : *std::max_element(owner.begin(), owner.end()) + 1;
@@ -147,7 +154,13 @@ std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, cons
     }
     if (!bridge) continue;
     piece.assign(n, 0);
-    for (size_t i : cells) piece[i] = 1;
+    int r0 = rows, r1 = -1, c0 = cols, c1 = -1;
+    for (size_t i : cells) {
+      piece[i] = 1;
+      const int r = static_cast<int>(i / cols), c = static_cast<int>(i % cols);
+      r0 = std::min(r0, r), r1 = std::max(r1, r), c0 = std::min(c0, c), c1 = std::max(c1, c);
+    }
+    if (bounds != nullptr) *bounds = CellRect{r0, c0, r1 - r0 + 1, c1 - c0 + 1};
     return piece;
   }
   return piece;
@@ -172,9 +185,11 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
   // Covered enough, but the part left may hold the only way between two pieces of the
   // cover (a wall's opening, a few per cent of a floor): cover those too.
   while (options.connect_pieces && more()) {
-    const std::vector<uint8_t> bridge = UncoveredBridge(uncovered.cells(), RectOwners(rects, rows, cols), rows, cols);
+    CellRect bounds;
+    const std::vector<uint8_t> bridge =
+        UncoveredBridge(uncovered.cells(), RectOwners(rects, rows, cols), rows, cols, &bounds);
     if (bridge.empty()) break;
-    CellRect rect = LargestRectangle(bridge, rows, cols);
+    CellRect rect = LargestRectangleWithin(bridge, rows, cols, bounds);
     if (rect.Area() < std::max(1, options.min_rect_cells)) break;
     if (options.grow_over_covered) GrowInside(mask, rows, cols, &rect);
     left -= uncovered.Clear(rect);

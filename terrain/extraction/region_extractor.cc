@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "base/check.h"
+#include "terrain/extraction/internal/noise_levels.h"
 #include "terrain/extraction/internal/parallel_work.h"
 #include "terrain/extraction/internal/patch_decomposition.h"
 #include "terrain/extraction/internal/plane_segmentation.h"
@@ -88,6 +89,32 @@ void CheckFitWork(double res, int surface_cells, int window_half_cells, const Re
   throw InputError(msg.str());
 }
 
+// Every layer's surface fit (AnalyzeSurface), in parts of at most kFitPartCells cells on
+// options.threads threads: one large layer (a campus's ground) splits between the threads.
+std::vector<SurfaceAnalysis> FitLayers(const std::vector<HeightMap>& layers, int window_half_cells, double res,
+                                       const RegionExtractorOptions& options) {
+  constexpr size_t kFitPartCells = 8192;
+  struct Part {
+    size_t layer, begin, end;
+  };
+  std::vector<SurfaceAnalysis> surfaces;
+  std::vector<Part> parts;
+  for (size_t l = 0; l < layers.size(); ++l) {
+    surfaces.push_back(SurfaceCellsOf(layers[l]));
+    const size_t n = surfaces.back().cells.size();
+    for (size_t begin = 0; begin < n; begin += kFitPartCells) parts.push_back({l, begin, std::min(n, begin + kFitPartCells)});
+  }
+  std::vector<uint8_t> stopped(parts.size(), 0);
+  ParallelFor(static_cast<int>(parts.size()), options.threads, [&](int i) {
+    const Part& part = parts[static_cast<size_t>(i)];
+    stopped[static_cast<size_t>(i)] =
+        !FitSurfaceCells(layers[part.layer], window_half_cells, options.grow_tolerance_voxels * res,
+                         options.max_slope_rad, options.deadline, part.begin, part.end, &surfaces[part.layer]);
+  });
+  for (size_t i = 0; i < parts.size(); ++i) surfaces[parts[i].layer].stopped |= stopped[i] != 0;
+  return surfaces;
+}
+
 struct LayerPatch {
   int layer;
   PlanarPatch patch;
@@ -112,11 +139,21 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
     seg.noise_patch_foot_radius_m =
         options.foot_radius_m + options.edge_margin_m + options.edge_uncertainty_voxels * res;
   }
-  // Each layer's patches on its own (options.threads threads), then gathered in layer order.
+  // The noise levels' off cells of every layer in bands of rows (a large layer's split
+  // between the threads), then each layer's patches on its own (options.threads threads),
+  // gathered in layer order.
+  const bool noise_levels = seg.noise_patch_foot_radius_m > 0.0 && seg.noise_max_cells > 0;
+  const std::vector<std::vector<OffCell>> off =
+      noise_levels ? OffCellsOfLayers(layers, seg.noise_tolerance_m, options.threads) : std::vector<std::vector<OffCell>>{};
   std::vector<std::vector<PlanarPatch>> per_layer(layers.size());
   ParallelFor(static_cast<int>(layers.size()), options.threads, [&](int l) {
     SegmentationOptions own = seg;
     own.unseen = static_cast<size_t>(l) < unseen.size() ? &unseen[static_cast<size_t>(l)] : nullptr;
+    NoiseLevels levels;
+    if (noise_levels) {
+      levels = NoiseFreeLevelsFrom(layers[static_cast<size_t>(l)], off[static_cast<size_t>(l)], seg.noise_max_cells);
+      own.noise_levels = &levels;
+    }
     per_layer[static_cast<size_t>(l)] =
         SegmentPlanarPatches(layers[static_cast<size_t>(l)], surfaces[static_cast<size_t>(l)], own);
   });
@@ -313,12 +350,7 @@ void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions
   // The fit window is at least a foot wide (and at least 3 cells).
   const int window_half_cells = std::max(1, static_cast<int>(std::ceil(options.foot_radius_m / res)));
   CheckFitWork(res, stats.surface_cells, window_half_cells, options);
-  std::vector<SurfaceAnalysis> surfaces(result->layers.size());
-  ParallelFor(static_cast<int>(surfaces.size()), options.threads, [&](int l) {
-    surfaces[static_cast<size_t>(l)] = AnalyzeSurface(result->layers[static_cast<size_t>(l)], window_half_cells,
-                                                      options.grow_tolerance_voxels * res, options.max_slope_rad,
-                                                      options.deadline);
-  });
+  std::vector<SurfaceAnalysis> surfaces = FitLayers(result->layers, window_half_cells, res, options);
   stats.analysis_s = SecondsSince(t);
   if (std::any_of(surfaces.begin(), surfaces.end(), [](const SurfaceAnalysis& s) { return s.stopped; })) {
     result->stopped = true;

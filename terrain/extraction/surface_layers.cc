@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -160,35 +161,38 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 namespace {
 
-// The cells with a surface in their 3 x 3 neighbourhood (itself included), in row order:
-// the only cells the noise repair and the unseen bits can change, as both look at
-// neighbours only. `mark` is all 0 and as many cells long, on entry and on return.
-std::vector<int> NearCells(const HeightMap& hm, std::vector<uint8_t>* mark) {
-  std::vector<int> near;
-  for (int r = 0; r < hm.rows; ++r) {
+// The cells of rows [r0, r1) with a surface in their 3 x 3 neighbourhood (itself
+// included), in row order, appended to near: the only cells the noise repair and the
+// unseen bits can change, as both look at neighbours only.
+void NearCellsInRows(const HeightMap& hm, int r0, int r1, std::vector<int>* near) {
+  // Per row from r0 - 1 to r1 (clipped), which columns hold a surface and whether any does.
+  const int first = std::max(0, r0 - 1), last = std::min(hm.rows - 1, r1);
+  if (first > last) return;
+  std::vector<uint8_t> has(static_cast<size_t>(last - first + 1) * hm.cols, 0), row_any(static_cast<size_t>(last - first + 1), 0);
+  for (int r = first; r <= last; ++r) {
     const float* h = &hm.height_m[static_cast<size_t>(r) * hm.cols];
+    uint8_t* out = &has[static_cast<size_t>(r - first) * hm.cols];
+    uint8_t any = 0;
+    for (int c = 0; c < hm.cols; ++c) any |= out[c] = !std::isnan(h[c]);
+    row_any[static_cast<size_t>(r - first)] = any;
+  }
+  std::vector<uint8_t> column(static_cast<size_t>(hm.cols));  // a surface in the column within a row
+  for (int r = r0; r < r1; ++r) {
+    const int lo = std::max(first, r - 1), hi = std::min(last, r + 1);
+    bool any = false;
+    for (int rr = lo; rr <= hi; ++rr) any = any || row_any[static_cast<size_t>(rr - first)];
+    if (!any) continue;
+    std::fill(column.begin(), column.end(), 0);
+    for (int rr = lo; rr <= hi; ++rr) {
+      if (!row_any[static_cast<size_t>(rr - first)]) continue;
+      const uint8_t* in = &has[static_cast<size_t>(rr - first) * hm.cols];
+      for (int c = 0; c < hm.cols; ++c) column[static_cast<size_t>(c)] |= in[c];
+    }
     for (int c = 0; c < hm.cols; ++c) {
-      if (std::isnan(h[c])) continue;
-      for (int rr = std::max(0, r - 1); rr <= std::min(hm.rows - 1, r + 1); ++rr) {
-        for (int cc = std::max(0, c - 1); cc <= std::min(hm.cols - 1, c + 1); ++cc) {
-          uint8_t& m = (*mark)[static_cast<size_t>(hm.Index(rr, cc))];
-          if (!m) near.push_back(hm.Index(rr, cc));
-          m = 1;
-        }
-      }
+      const bool left = c > 0 && column[static_cast<size_t>(c) - 1], right = c + 1 < hm.cols && column[static_cast<size_t>(c) + 1];
+      if (left || column[static_cast<size_t>(c)] || right) near->push_back(hm.Index(r, c));
     }
   }
-  if (near.size() * 16 < mark->size()) {
-    for (int i : near) (*mark)[static_cast<size_t>(i)] = 0;
-    std::sort(near.begin(), near.end());
-    return near;
-  }
-  near.clear();  // many: read them off the marks in order instead of sorting
-  for (size_t i = 0; i < mark->size(); ++i) {
-    if ((*mark)[i]) near.push_back(static_cast<int>(i));
-    (*mark)[i] = 0;
-  }
-  return near;
 }
 
 // Whether FillSingleCellNoise may change the cell whose height is `centre` (NaN: empty)
@@ -206,21 +210,21 @@ bool MayRepair(float centre, const float neighbours[8], double res) {
   return std::isnan(centre) ? present == 8 : present >= 7 && voxel_off;
 }
 
-// FillSingleCellNoise given NearCells(*hm) (which no repair changes: a filled cell's 8
-// neighbours are surface cells already). Every cell is judged on the heights as they
-// were before the call. `before` (optional) gets each changed cell with its old height.
-int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, const std::vector<int>& near,
-                          std::vector<int>* changed_cells, std::vector<std::pair<int, float>>* before = nullptr) {
-  const double res = hm->resolution_m;
-  std::vector<std::pair<int, float>> repairs;
-  for (int i : near) {
-    const int r = i / hm->cols, c = i % hm->cols;
-    if (r < 1 || r + 1 >= hm->rows || c < 1 || c + 1 >= hm->cols) continue;
+// The repairs of FillSingleCellNoise at the cells [begin, end) of NearCellsInRows (which no
+// repair changes: a filled cell's 8 neighbours are surface cells already), each cell
+// judged on the heights as they are: (cell, new height) appended in order to repairs.
+void CollectRepairs(const HeightMap& hm, const std::vector<uint8_t>* unseen, const int* begin, const int* end,
+                    std::vector<std::pair<int, float>>* repairs) {
+  const double res = hm.resolution_m;
+  for (const int* it = begin; it != end; ++it) {
+    const int i = *it;
+    const int r = i / hm.cols, c = i % hm.cols;
+    if (r < 1 || r + 1 >= hm.rows || c < 1 || c + 1 >= hm.cols) continue;
     float around[8];
     for (int k = 0, j = 0; k < 9; ++k) {
-      if (k != 4) around[j++] = hm->height_m[static_cast<size_t>(hm->Index(r + k / 3 - 1, c + k % 3 - 1))];
+      if (k != 4) around[j++] = hm.height_m[static_cast<size_t>(hm.Index(r + k / 3 - 1, c + k % 3 - 1))];
     }
-    const float h = hm->height_m[static_cast<size_t>(i)];
+    const float h = hm.height_m[static_cast<size_t>(i)];
     if (!MayRepair(h, around, res)) continue;
     // The most common neighbour height (the first of the most common, in row order) and
     // how many of the 8 have it.
@@ -239,24 +243,32 @@ int RepairSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, con
     }
     if (std::isnan(h)) {
       const bool may_fill = unseen == nullptr || ((*unseen)[static_cast<size_t>(i)] & kEmptyColumn);
-      if (best == 8 && may_fill) repairs.emplace_back(i, h0);  // a one-cell hole in a level surface
+      if (best == 8 && may_fill) repairs->emplace_back(i, h0);  // a one-cell hole in a level surface
     } else if (best >= 7 && present >= 7 && std::abs(std::abs(h - h0) - res) < 0.01 * res) {
-      repairs.emplace_back(i, h0);  // one voxel off a level neighbourhood
+      repairs->emplace_back(i, h0);  // one voxel off a level neighbourhood
     }
   }
+}
+
+// Applies repairs in order. `before` (optional) gets each changed cell with its old height.
+void ApplyRepairs(const std::vector<std::pair<int, float>>& repairs, HeightMap* hm, std::vector<int>* changed_cells,
+                  std::vector<std::pair<int, float>>* before = nullptr) {
   for (const auto& [cell, height] : repairs) {
     if (before != nullptr) before->emplace_back(cell, hm->height_m[static_cast<size_t>(cell)]);
     hm->height_m[static_cast<size_t>(cell)] = height;
     if (changed_cells != nullptr) changed_cells->push_back(cell);
   }
-  return static_cast<int>(repairs.size());
 }
 
 }  // namespace
 
 int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::vector<int>* changed_cells) {
-  std::vector<uint8_t> mark(hm->height_m.size(), 0);
-  return RepairSingleCellNoise(hm, unseen, NearCells(*hm, &mark), changed_cells);
+  std::vector<int> near;
+  NearCellsInRows(*hm, 0, hm->rows, &near);
+  std::vector<std::pair<int, float>> repairs;
+  CollectRepairs(*hm, unseen, near.data(), near.data() + near.size(), &repairs);
+  ApplyRepairs(repairs, hm, changed_cells);
+  return static_cast<int>(repairs.size());
 }
 namespace {
 
@@ -433,16 +445,7 @@ uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* fr
   return UnseenBits(occ, free, layer.Index(r, c), level, layer.resolution_m, room);
 }
 
-// SurfaceLayers::unseen of one layer. near: NearCells(layer).
-std::vector<uint8_t> UnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
-                                 const std::vector<int>& near) {
-  std::vector<uint8_t> unseen(static_cast<size_t>(layer.rows) * layer.cols, 0);
-  const long long room = RoomVoxels(clearance_m, layer.resolution_m);
-  for (int i : near) unseen[static_cast<size_t>(i)] = UnseenCell(layer, occ, free, i / layer.cols, i % layer.cols, room);
-  return unseen;
-}
-
-// `unseen` (UnseenCells of the layer before the cells `changed` got a surface or a new
+// `unseen` (the layer's unseen bits before the cells `changed` got a surface or a new
 // height) brought up to date: only those cells and their 4-neighbours can differ.
 void UpdateUnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
                        const int* changed, size_t n_changed, std::vector<uint8_t>* unseen) {
@@ -483,17 +486,15 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // within one voxel of each other, and whose column is unseen at that level (nothing
 // occupied down to the map's bottom or within the clearance above, no ray through the
 // floor's voxel or the one under it: SurfaceLayers::unseen's kEmptyColumn | kNotErased)
-// gets the lower of the surrounding heights' middle pair. Heights are read from the layer
-// as it was, so fills do not chain. Appends the cells filled to *filled_cells.
-void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& free, double clearance_m, int radius,
-                        std::vector<int>* filled_cells) {
-  const HeightMap& seen = *layer;  // unchanged until every cell is judged
+// gets the lower of the surrounding heights' middle pair. The cells of rows [r0, r1) to
+// fill, judged on the layer as it is (so fills do not chain), are appended in row order
+// to fills with their heights.
+void CollectEnclosedFills(const HeightMap& seen, const Columns& occ, const Columns& free, double clearance_m,
+                          int radius, int r0, int r1, std::vector<std::pair<int, float>>* fills) {
   const double res = seen.resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
-  std::vector<float> levels;
-  const size_t first_fill = filled_cells->size();
   std::vector<int> next_right(static_cast<size_t>(seen.cols));
-  for (int r = 0; r < seen.rows; ++r) {
+  for (int r = r0; r < r1; ++r) {
     // The nearest surface at or right of each column, and the last one left of it: a cell
     // without one within radius on both sides of its row is not enclosed.
     const float* row = &seen.height_m[static_cast<size_t>(seen.Index(r, 0))];
@@ -516,12 +517,8 @@ void FillEnclosedUnseen(HeightMap* layer, const Columns& occ, const Columns& fre
       const int col = seen.Index(r, c);
       if (UnseenBits(occ, &free, col, level, res, room) != (kEmptyColumn | kNotErased)) continue;
       if (UnseenBits(occ, &free, col, hits[7], res, room) != (kEmptyColumn | kNotErased)) continue;
-      levels.push_back(level);
-      filled_cells->push_back(col);
+      fills->emplace_back(col, level);
     }
-  }
-  for (size_t k = 0; k < levels.size(); ++k) {
-    layer->height_m[static_cast<size_t>((*filled_cells)[first_fill + k])] = levels[k];
   }
 }
 
@@ -533,11 +530,11 @@ const Interval* RunHolding(const Columns& cols, int c, long long z) {
   return nullptr;
 }
 
-// Material rising beside each surface cell of layer (SurfaceLayers::solid_beside).
-std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
+// Material rising beside each surface cell of rows [r0, r1) of layer
+// (SurfaceLayers::solid_beside), written to those rows of bits.
+void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1, std::vector<uint8_t>* bits) {
   const double res = layer.resolution_m;
-  std::vector<uint8_t> bits(static_cast<size_t>(layer.rows) * layer.cols, 0);
-  for (int r = 0; r < layer.rows; ++r) {
+  for (int r = r0; r < r1; ++r) {
     for (int c = 0; c < layer.cols; ++c) {
       const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
       if (std::isnan(h)) continue;
@@ -554,10 +551,9 @@ std::vector<uint8_t> SolidBeside(const HeightMap& layer, const Columns& occ) {
           }
         }
       }
-      bits[static_cast<size_t>(layer.Index(r, c))] = b;
+      (*bits)[static_cast<size_t>(layer.Index(r, c))] = b;
     }
   }
-  return bits;
 }
 
 // The cells the noise repair changed (not those it filled), at their seen height; NaN
@@ -581,35 +577,86 @@ struct LayerFinish {
   int noise_cells_filled = 0, enclosed_unseen_filled = 0;
 };
 
-// One layer's noise repair and enclosed-unseen fill (as options say), its unseen bits
-// (computed once, then brought up to date after each change) and, from the final
-// heights, its solid_beside bits. free: nullptr when free space is not known.
-LayerFinish FinishLayer(HeightMap* layer, const Columns& occ, const Columns* free, const SurfaceLayerOptions& options) {
-  LayerFinish out;
-  std::vector<int> changed_cells;
-  std::vector<uint8_t> mark(layer->height_m.size(), 0);
-  const std::vector<int> near = NearCells(*layer, &mark);
-  out.unseen = UnseenCells(*layer, occ, free, options.clearance_m, near);
+// Rows [r0, r1) of one layer: the unit of FinishLayers' passes.
+struct LayerBand {
+  size_t layer;
+  int r0, r1;
+  std::vector<int> near;                       // NearCellsInRows of the band
+  std::vector<std::pair<int, float>> changes;  // a pass's repairs or fills in the band, in order
+};
+
+// About this many grid cells per band: bands enough to share one large layer between the
+// threads, few enough that a band's bookkeeping is small against its cells.
+constexpr int kBandCells = 1 << 16;
+
+// Every layer's noise repair and enclosed-unseen fill (as options say), its unseen bits
+// (computed once, then brought up to date after each change) and, from the final heights,
+// its solid_beside bits. free: nullptr when free space is not known. Each pass runs over
+// bands of rows of every layer on options.threads threads, judging every cell on the
+// heights before the pass; its changes are then made per layer in row order: the result a
+// single thread passing over each layer in row order gives.
+std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Columns& occ, const Columns* free,
+                                      const SurfaceLayerOptions& options) {
+  const int rows = layers->front().rows, cols = layers->front().cols;
+  const int band_rows = std::max(1, kBandCells / std::max(1, cols));
+  std::vector<LayerBand> bands;
+  for (size_t l = 0; l < layers->size(); ++l) {
+    for (int r0 = 0; r0 < rows; r0 += band_rows) bands.push_back({l, r0, std::min(rows, r0 + band_rows), {}, {}});
+  }
+  std::vector<LayerFinish> out(layers->size());
+  for (LayerFinish& f : out) f.unseen.assign(static_cast<size_t>(rows) * cols, 0);
+  const long long room = RoomVoxels(options.clearance_m, layers->front().resolution_m);
+  auto each_band = [&](const std::function<void(LayerBand&, HeightMap&, LayerFinish&)>& work) {
+    ParallelFor(static_cast<int>(bands.size()), options.threads, [&](int i) {
+      LayerBand& band = bands[static_cast<size_t>(i)];
+      work(band, (*layers)[band.layer], out[band.layer]);
+    });
+  };
+  // Makes every band's changes, layer by layer in row order, and brings the unseen bits up
+  // to date; `before` (optional, per layer) gets each changed cell with its old height.
+  auto make_changes = [&](std::vector<std::vector<std::pair<int, float>>>* before, int LayerFinish::*count) {
+    ParallelFor(static_cast<int>(layers->size()), options.threads, [&](int l) {
+      HeightMap& layer = (*layers)[static_cast<size_t>(l)];
+      std::vector<int> changed;
+      for (const LayerBand& band : bands) {
+        if (band.layer != static_cast<size_t>(l)) continue;
+        ApplyRepairs(band.changes, &layer, &changed, before != nullptr ? &(*before)[static_cast<size_t>(l)] : nullptr);
+      }
+      UpdateUnseenCells(layer, occ, free, options.clearance_m, changed.data(), changed.size(),
+                        &out[static_cast<size_t>(l)].unseen);
+      out[static_cast<size_t>(l)].*count += static_cast<int>(changed.size());
+    });
+  };
+  each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
+    NearCellsInRows(layer, band.r0, band.r1, &band.near);
+    for (int i : band.near) finish.unseen[static_cast<size_t>(i)] = UnseenCell(layer, occ, free, i / cols, i % cols, room);
+  });
   if (options.fill_single_cell_noise) {
-    std::vector<std::pair<int, float>> changes;
+    std::vector<std::vector<std::pair<int, float>>> before(layers->size());
     // Twice: a hole beside a displaced cell is filled once that cell is back.
     for (int pass = 0; pass < 2; ++pass) {
-      changed_cells.clear();
-      RepairSingleCellNoise(layer, &out.unseen, near, &changed_cells, &changes);
-      UpdateUnseenCells(*layer, occ, free, options.clearance_m, changed_cells.data(), changed_cells.size(),
-                        &out.unseen);
+      each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
+        band.changes.clear();
+        CollectRepairs(layer, &finish.unseen, band.near.data(), band.near.data() + band.near.size(), &band.changes);
+      });
+      make_changes(&before, &LayerFinish::noise_cells_filled);
     }
-    out.noise_cells_filled = static_cast<int>(changes.size());
-    if (!changes.empty()) out.moved_as_seen = MovedCellsAsSeen(*layer, changes);
+    for (size_t l = 0; l < layers->size(); ++l) {
+      if (!before[l].empty()) out[l].moved_as_seen = MovedCellsAsSeen((*layers)[l], before[l]);
+    }
   }
   if (free != nullptr && options.enclosed_unseen_radius_cells > 0) {
-    changed_cells.clear();
-    FillEnclosedUnseen(layer, occ, *free, options.clearance_m, options.enclosed_unseen_radius_cells, &changed_cells);
-    out.enclosed_unseen_filled = static_cast<int>(changed_cells.size());
-    UpdateUnseenCells(*layer, occ, free, options.clearance_m, changed_cells.data(), changed_cells.size(),
-                      &out.unseen);
+    each_band([&](LayerBand& band, HeightMap& layer, LayerFinish&) {
+      band.changes.clear();
+      CollectEnclosedFills(layer, occ, *free, options.clearance_m, options.enclosed_unseen_radius_cells, band.r0,
+                           band.r1, &band.changes);
+    });
+    make_changes(nullptr, &LayerFinish::enclosed_unseen_filled);
   }
-  out.solid_beside = SolidBeside(*layer, occ);
+  for (LayerFinish& f : out) f.solid_beside.assign(static_cast<size_t>(rows) * cols, 0);
+  each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
+    SolidBesideRows(layer, occ, band.r0, band.r1, &finish.solid_beside);
+  });
   return out;
 }
 
@@ -618,7 +665,7 @@ LayerFinish FinishLayer(HeightMap* layer, const Columns& occ, const Columns* fre
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
   MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
   SurfaceLayers out;
-  CheckLeafColumnBudget(map, options.max_leaf_columns);  // before any leaf is expanded
+  CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);  // before any leaf is expanded
   // The grid and the validation of the leaves are the height map's.
   HeightMap grid = BuildHeightMap(map, options.max_cells);
   if (grid.rows * grid.cols == 0) {
@@ -640,11 +687,7 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   out.candidates = static_cast<int>(cand.height.size());
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
   const Columns* free_or_null = know_free ? &free : nullptr;
-  // Each layer's repairs and bits on its own (options.threads threads), gathered in order.
-  std::vector<LayerFinish> finished(out.layers.size());
-  ParallelFor(static_cast<int>(out.layers.size()), options.threads, [&](int l) {
-    finished[static_cast<size_t>(l)] = FinishLayer(&out.layers[static_cast<size_t>(l)], occ, free_or_null, options);
-  });
+  std::vector<LayerFinish> finished = FinishLayers(&out.layers, occ, free_or_null, options);
   for (LayerFinish& f : finished) {
     out.unseen.push_back(std::move(f.unseen));
     out.solid_beside.push_back(std::move(f.solid_beside));

@@ -11,7 +11,8 @@ UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int r
       cols_(cols),
       cells_(mask.size()),
       height_(mask.size(), 0),
-      row_best_(static_cast<size_t>(std::max(rows, 0))) {
+      row_best_(static_cast<size_t>(std::max(rows, 0))),
+      stale_(row_best_.size(), 0) {
   MFP_CHECK(rows >= 0 && cols >= 0 && mask.size() == static_cast<size_t>(rows) * static_cast<size_t>(cols));
   stack_.reserve(static_cast<size_t>(cols) + 1);
   active_.reserve(static_cast<size_t>(cols));
@@ -25,7 +26,7 @@ UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int r
   }
 }
 
-void UncoveredRectangles::ScanRow(int r) {
+void UncoveredRectangles::ScanRow(int r) const {
   // The stack scan of LargestRectangle, over this row's histogram only.
   CellRect best;
   const int* heights = &height_[static_cast<size_t>(r) * cols_];
@@ -45,6 +46,31 @@ void UncoveredRectangles::ScanRow(int r) {
 }
 
 CellRect UncoveredRectangles::Largest() const {
+  // The largest fresh area, and the stale rows that could beat or tie it (their cached best
+  // bounds theirs from above), highest bound first, then by row.
+  int fresh_top = 0;
+  candidates_.clear();
+  for (int r = 0; r < rows_; ++r) {
+    const int area = row_best_[static_cast<size_t>(r)].Area();
+    if (!stale_[static_cast<size_t>(r)]) {
+      fresh_top = std::max(fresh_top, area);
+    } else if (area > 0) {
+      candidates_.push_back(r);
+    }
+  }
+  std::sort(candidates_.begin(), candidates_.end(), [&](int a, int b) {
+    const int area_a = row_best_[static_cast<size_t>(a)].Area(), area_b = row_best_[static_cast<size_t>(b)].Area();
+    return area_a != area_b ? area_a > area_b : a < b;
+  });
+  // Scan them while their bound reaches the largest area known: afterwards every row whose
+  // value reaches it is fresh, so the first row holding the largest value is the first row
+  // of the largest rectangle, as a scan of every row finds.
+  for (const int r : candidates_) {
+    if (row_best_[static_cast<size_t>(r)].Area() < fresh_top) break;
+    ScanRow(r);
+    stale_[static_cast<size_t>(r)] = 0;
+    fresh_top = std::max(fresh_top, row_best_[static_cast<size_t>(r)].Area());
+  }
   CellRect best;
   for (const CellRect& rect : row_best_) {
     if (rect.Area() > best.Area()) best = rect;
@@ -123,7 +149,7 @@ void UncoveredRectangles::Recompute(int from, int to, const int* first, const in
     }
     active_.resize(kept);
   }
-  for (int r = from; r <= last_changed; ++r) ScanRow(r);
+  for (int r = from; r <= last_changed; ++r) stale_[static_cast<size_t>(r)] = 1;
 }
 
 }  // namespace mfp

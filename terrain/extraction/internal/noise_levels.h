@@ -25,6 +25,21 @@ struct NoiseLevels {
 // off counts as off).
 NoiseLevels NoiseFreeLevels(const HeightMap& height_map, double tolerance_m, int max_cells);
 
+// A surface cell one voxel (up to the tolerance) above (side +1) or below (-1) its
+// neighbourhood's median.
+struct OffCell {
+  int cell;
+  int8_t side;
+  float median;  // [m]
+};
+
+// NoiseFreeLevels in two steps: the off cells of every layer, found in bands of rows on
+// `threads` threads (each cell judged on its own neighbourhood), ascending per layer; then
+// the levels of one height map from its off cells.
+std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers, double tolerance_m,
+                                                   int threads);
+NoiseLevels NoiseFreeLevelsFrom(const HeightMap& height_map, const std::vector<OffCell>& off, int max_cells);
+
 // Whether the cell and its 8 neighbours are all seen at one level (within half a voxel):
 // a seed for a patch on a surface too noisy for the local fit's roughness.
 bool FlatLevel(const HeightMap& levels, int cell);

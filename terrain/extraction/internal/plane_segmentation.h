@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "terrain/extraction/height_map.h"
+#include "terrain/extraction/internal/noise_levels.h"
 
 namespace mfp {
 
@@ -38,6 +39,9 @@ struct SegmentationOptions {
   // surface around it when within noise_tolerance_m of that surface (noise_patches.h);
   // 0: patches stay as grown [m].
   double noise_patch_foot_radius_m = 0.0;
+  // The height map's NoiseFreeLevels (noise_tolerance_m, noise_max_cells) when computed
+  // already; nullptr: computed here when needed.
+  const NoiseLevels* noise_levels = nullptr;
 };
 
 struct PlanarPatch {

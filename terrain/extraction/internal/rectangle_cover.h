@@ -40,10 +40,17 @@ std::vector<CellRect> GreedyRectangleCover(const std::vector<uint8_t>& mask, int
 // cover that do not touch each other (a neck of the mask, such as the opening past a
 // wall, that the cover left out); empty when there is none. owner: per cell, the cover's
 // piece holding it, -1 when none; pieces touch when their cells are 4-neighbours.
+// bounds (optional): the piece's bounding rectangle.
 std::vector<uint8_t> UncoveredBridge(const std::vector<uint8_t>& uncovered, const std::vector<int>& owner, int rows,
-                                     int cols);
+                                     int cols, CellRect* bounds = nullptr);
 
-// The largest rectangle of non-zero cells (area 0 when there is none).
+// The largest rectangle of non-zero cells (area 0 when there is none); of those as large,
+// the first the row-by-row stack scan meets.
 CellRect LargestRectangle(const std::vector<uint8_t>& mask, int rows, int cols);
+
+// LargestRectangle of a mask whose non-zero cells all lie in `within`, scanning only
+// those cells: the same rectangle (the zero rows above and columns beside `within` add
+// no rectangle and leave the scan's order inside it as it is).
+CellRect LargestRectangleWithin(const std::vector<uint8_t>& mask, int rows, int cols, const CellRect& within);
 
 }  // namespace mfp
