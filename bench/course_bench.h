@@ -6,7 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "bench/course_generator.h"
 #include "io/scenario_yaml.h"
+#include "planner/robot/robot_model.h"
 
 namespace mfp {
 
@@ -35,6 +37,21 @@ struct CourseBenchOptions {
   bool verbose = false;            // print each accepted window (steps, distance, nodes)
   std::function<void(Scenario*)> adjust;  // --set overrides
 };
+
+// The robots and course kinds the bench cycles through: course i is robot i % robots, kind
+// (i / robots) % kinds, seed options.seed + i.
+struct CourseRotation {
+  std::vector<std::string> robot_paths;  // options.robot_paths (or the default three), then the extra ones
+  std::vector<RobotModel> robots;        // loaded from robot_paths
+  std::vector<CourseKind> kinds;         // every kind, or the one options.only names exactly
+  size_t RobotIndex(int i) const { return static_cast<size_t>(i) % robots.size(); }
+  CourseKind Kind(int i) const { return kinds[(static_cast<size_t>(i) / robots.size()) % kinds.size()]; }
+  // Course i; throws std::runtime_error when the generator gives up on it.
+  Course Generate(int i, uint64_t seed) const {
+    return GenerateCourse(robots[RobotIndex(i)], robot_paths[RobotIndex(i)], Kind(i), seed + i);
+  }
+};
+CourseRotation MakeCourseRotation(const CourseBenchOptions& options);
 
 // Returns the number of courses where a route exists that did not plan validly to the goal.
 int RunCourseBench(const CourseBenchOptions& options);

@@ -298,6 +298,241 @@ std::string ToString(CourseKind kind) {
   return "?";
 }
 
+namespace {
+
+// One attempt at a course: its generator, the sizes every kind is laid out from, and what
+// the kind's builder lays down besides the boxes: the route it was built along, and
+// whether a route exists.
+struct Attempt {
+  Gen g;
+  CourseKind kind;
+  double P;        // half-side of a start or goal platform (the footprint) [m]
+  double reach_r;  // the farthest nominal foot from the body's centre [m]
+  double cut;      // a gap wider than any step can cross [m]
+  double len = 0;  // the hard section's length [m]
+  std::vector<Pose2D> route;
+  bool exists = true;
+};
+
+// kStones and kCutStones.
+void BuildStones(Attempt& a) {
+  Gen& g = a.g;
+  const double P = a.P;
+  g.Platform({0, 0});
+  g.Stones(0, 0, 0, P, P + a.len);
+  double end = P + a.len;
+  if (a.kind == CourseKind::kCutStones) {
+    // Remove every stone in a band across the route; the goal side keeps the rest.
+    const double c0 = P + g.U(0.3, 0.6) * a.len;
+    std::vector<TerrainBox> kept;
+    for (const TerrainBox& b : g.boxes) {
+      const double bx0 = b.center_world_m.x() - b.size_m.x() / 2, bx1 = b.center_world_m.x() + b.size_m.x() / 2;
+      if (bx1 < c0 || bx0 > c0 + a.cut) kept.push_back(b);
+    }
+    g.boxes = kept;
+    a.exists = false;
+  }
+  g.Platform({end + P + g.U(g.MinGap(), g.MaxGap()), 0});
+  const double gx = g.boxes.back().center_world_m.x();
+  a.route = {{0, 0, 0}, {gx, 0, 0}};
+}
+
+void BuildStonesTurn(Attempt& a) {
+  Gen& g = a.g;
+  const double P = a.P;
+  g.Platform({0, 0});
+  g.Stones(0, 0, 0, P, P + a.len);
+  const double cx = P + a.len + g.U(g.MinGap(), g.MaxGap()) + P;
+  g.Platform({cx, 0});
+  const double len2 = g.U(2.0, 3.5) * a.reach_r + 0.3;
+  g.Stones(cx, 0, M_PI / 2, P, P + len2);
+  const double gy = P + len2 + g.U(g.MinGap(), g.MaxGap()) + P;
+  g.Platform({cx, gy});
+  a.route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
+}
+
+// kGaps and kCutGaps.
+void BuildGaps(Attempt& a) {
+  Gen& g = a.g;
+  const double P = a.P;
+  g.Platform({0, 0});
+  double s = P + g.U(g.MinGap(), g.MaxGap());
+  const double end = P + a.len;
+  const int cut_slab = a.kind == CourseKind::kCutGaps ? 1 : -1;
+  int k = 0;
+  while (s < end) {
+    const double l = std::min(end - s, g.U(0.1, 0.35) + 2 * g.margin);
+    g.Slab(0, 0, 0, s, s + l, 0.0);
+    g.Feature(g.MinGap());
+    g.Feature(l - 2 * g.margin);
+    s += l + (k == cut_slab ? a.cut : g.U(g.MinGap(), g.MaxGap()));
+    ++k;
+  }
+  a.exists = a.kind != CourseKind::kCutGaps || k < 2;  // the cut follows slab 1
+  g.Platform({s + P, 0});
+  a.route = {{0, 0, 0}, {s + P, 0, 0}};
+}
+
+void BuildStairs(Attempt& a) {
+  Gen& g = a.g;
+  const RobotModel& robot = g.robot;
+  const double P = a.P;
+  g.Platform({0, 0});
+  double s = P, top = 0.0;
+  const int n = 2 + static_cast<int>(g.U(0, 3));
+  for (int k = 0; k < 2 * n; ++k) {
+    const double rise = g.U(0.3, 0.6) * robot.dz_max_m * (k < n ? 1 : -1);
+    // A riser of two voxels or fewer looks like a voxelised slope: the map sees the
+    // stairs as a ramp whose edge floats over the lower tread.
+    g.Feature(2 * std::abs(rise));
+    const double l = g.U(std::max(0.1, robot.d_lim_m), 0.3) + 2 * g.margin;
+    top += rise;
+    g.Slab(0, 0, 0, s, s + l, top);
+    s += l;
+  }
+  g.Platform({s + P, 0}, top);
+  a.route = {{0, 0, 0}, {s + P, 0, 0}};
+}
+
+void BuildTilted(Attempt& a) {
+  Gen& g = a.g;
+  const RobotModel& robot = g.robot;
+  const double P = a.P;
+  g.Platform({0, 0});
+  double s = P + 0.04;
+  const double end = P + a.len;
+  while (s < end) {
+    const double l = g.U(0.2, 0.4);
+    // Tilt so that the top face varies in height by at most 0.5 dz_max over its extent.
+    const double pitch = std::min(0.5 * robot.max_slope_rad, std::asin(std::min(1.0, 0.5 * robot.dz_max_m / l)));
+    const double roll = std::min(0.5 * robot.max_slope_rad, std::asin(std::min(1.0, 0.5 * robot.dz_max_m / (2 * P))));
+    g.Slab(0, 0, 0, s, s + l, 0.0, g.U(-roll, roll), g.U(-pitch, pitch));
+    s += l + 0.04;
+  }
+  g.Platform({s + P, 0});
+  a.route = {{0, 0, 0}, {s + P, 0, 0}};
+}
+
+// An L-shaped field of abutting cells of random height; start and goal platforms flat.
+void BuildRough(Attempt& a) {
+  Gen& g = a.g;
+  const RobotModel& robot = g.robot;
+  const double P = a.P;
+  g.Platform({0, 0});
+  const double c = g.U(std::max(0.06, 2 * g.margin + 0.03), std::max(0.08, 0.3 * a.reach_r));
+  g.Feature(c - 2 * g.margin);
+  const double cx = P + a.len + P;  // corner
+  const double len2 = g.U(2.0, 3.0) * a.reach_r + 0.3;
+  const double gy = P + len2 + P;
+  for (double x = P; x < cx + P - 1e-9; x += c) {
+    for (double y = -P; y < P - 1e-9; y += c) g.Box(x + c / 2, y + c / 2, g.U(0, 0.5 * robot.dz_max_m), c, c, 0);
+  }
+  for (double x = cx - P; x < cx + P - 1e-9; x += c) {
+    for (double y = P; y < gy - P - 1e-9; y += c) g.Box(x + c / 2, y + c / 2, g.U(0, 0.5 * robot.dz_max_m), c, c, 0);
+  }
+  g.Platform({cx, gy});
+  a.route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
+}
+
+void BuildBeams(Attempt& a) {
+  Gen& g = a.g;
+  const double P = a.P;
+  g.Platform({0, 0});
+  const double w = 2 * g.margin + g.U(0.02, 0.05);
+  const double top = g.U(0.0, 0.5 * g.robot.dz_max_m);
+  g.Feature(w - 2 * g.margin);
+  for (const auto& [t, width] : g.Tracks(w)) {
+    const double s0 = P, s1 = P + a.len;
+    const Eigen::Vector2d c = Gen::At(0, 0, 0, (s0 + s1) / 2, t);
+    g.Box(c.x(), c.y(), top, s1 - s0, width, 0);
+  }
+  g.Platform({P + a.len + P, 0});
+  a.route = {{0, 0, 0}, {P + a.len + P, 0, 0}};
+}
+
+void BuildDetour(Attempt& a) {
+  Gen& g = a.g;
+  const double P = a.P, cut = a.cut;
+  const double dx = 2 * P + cut;
+  const double ytop = P + g.U(0.1, 0.5);
+  g.Platform({0, 0});
+  g.Platform({dx, 0});
+  g.Box(0, (P + ytop) / 2, 0, 2 * P, ytop - P, 0);                   // up from the start
+  g.Box(dx / 2, ytop + P, 0, dx + 2 * P, 2 * P, 0);                  // across
+  g.Box(dx, (P + ytop) / 2, 0, 2 * P, ytop - P, 0);                  // down to the goal
+  const double pocket = 0.3 * cut;
+  g.Box(P + pocket / 2, 0, 0, pocket, 2 * P, 0);                     // dead-end pocket toward the goal
+  g.Box(P + 0.65 * cut, 0, 0.5, 0.5 * cut, 2 * P, 0, 0, 0, 0.6);     // the wall
+  a.route = {{0, 0, 0}, {0, ytop + P, 0}, {dx, ytop + P, 0}, {dx, 0, 0}};
+}
+
+void BuildWalledGoal(Attempt& a) {
+  Gen& g = a.g;
+  const double P = a.P;
+  g.Platform({0, 0});
+  g.Slab(0, 0, 0, P, P + a.len, 0.0);
+  g.Platform({P + a.len + P, 0}, 4 * g.robot.dz_max_m);
+  a.route = {{0, 0, 0}, {P + a.len + P, 0, 0}};
+  a.exists = false;
+}
+
+// Lays down the attempt's kind; throws when the robot's body does not allow a body kind.
+void BuildKind(Attempt& a) {
+  switch (a.kind) {
+    case CourseKind::kStones:
+    case CourseKind::kCutStones: BuildStones(a); break;
+    case CourseKind::kStonesTurn: BuildStonesTurn(a); break;
+    case CourseKind::kGaps:
+    case CourseKind::kCutGaps: BuildGaps(a); break;
+    case CourseKind::kStairs: BuildStairs(a); break;
+    case CourseKind::kTilted: BuildTilted(a); break;
+    case CourseKind::kRough: BuildRough(a); break;
+    case CourseKind::kBeams: BuildBeams(a); break;
+    case CourseKind::kDetour: BuildDetour(a); break;
+    case CourseKind::kWalledGoal: BuildWalledGoal(a); break;
+    case CourseKind::kPocket:
+    case CourseKind::kBaffles:
+    case CourseKind::kDoorway:
+    case CourseKind::kCorridor:
+    case CourseKind::kClosedDoor:
+      if (!BodyCourse(a.g, a.kind, a.g.robot, &a.route)) {
+        throw std::runtime_error("GenerateCourse: robot '" + a.g.robot.name + "' has no body box for a " +
+                                 ToString(a.kind) + " course (or a door cannot need a turn)");
+      }
+      a.exists = a.kind != CourseKind::kClosedDoor;
+      break;
+  }
+}
+
+// The course as the attempt laid it down.
+void TakeAttempt(const Attempt& a, Course* course) {
+  course->terrain.boxes = a.g.boxes;
+  // The map resolves the course: its voxel at most a sixth of the finest feature (a gap
+  // always shows empty columns; a foothold keeps room for its foot centres after the
+  // inset loses up to a voxel and a half of each edge to quantisation and the edge
+  // uncertainty; a riser spans three voxels or more), as a robot meant for such a
+  // course would map it.
+  course->terrain.resolution_m =
+      std::clamp(a.g.finest_m / kCourseVoxelsPerFeature, kCourseMinResolution, kCourseMaxResolution);
+  course->start = a.route.front();
+  course->goal = a.route.back();
+  course->route_exists = a.exists;
+  course->route = a.exists ? a.route : std::vector<Pose2D>{};
+}
+
+// Whether the course the attempt laid down keeps its promise: the body clears the route
+// of a body kind, and a route that exists holds for the feet.
+bool AttemptHolds(const Attempt& a, const Course& course) {
+  const RobotModel& robot = a.g.robot;
+  const CourseKind kind = a.kind;
+  const bool body_kind = kind == CourseKind::kPocket || kind == CourseKind::kBaffles ||
+                         kind == CourseKind::kDoorway || kind == CourseKind::kCorridor;
+  if (body_kind && !BodyRouteClear(robot, course.terrain, a.route, 0.0)) return false;
+  return !a.exists || RouteHolds(robot, course.terrain, a.route, course.edge_margin_m);
+}
+
+}  // namespace
+
 Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, CourseKind kind, uint64_t seed) {
   Course course;
   course.kind = kind;
@@ -309,182 +544,13 @@ Course GenerateCourse(const RobotModel& robot, const std::string& robot_path, Co
   const double footprint = reach_r + 0.7 * robot.d_lim_m + course.edge_margin_m + 0.02;
   const double cut = 1.5 * MaxFootTravel(robot) + 0.1;
   for (int attempt = 0; attempt < 200; ++attempt) {
-    Gen g{robot, std::mt19937_64(seed * 1000003ULL + attempt), course.edge_margin_m, MaxFootTravel(robot), footprint,
-          robot.dz_max_m, {}};
-    const double P = footprint;
-    const double len = g.U(2.0, 4.0) * reach_r + 0.3;  // the hard section
-    std::vector<Pose2D> route;
-    bool exists = true;
-    switch (kind) {
-      case CourseKind::kStones:
-      case CourseKind::kCutStones: {
-        g.Platform({0, 0});
-        g.Stones(0, 0, 0, P, P + len);
-        double end = P + len;
-        if (kind == CourseKind::kCutStones) {
-          // Remove every stone in a band across the route; the goal side keeps the rest.
-          const double c0 = P + g.U(0.3, 0.6) * len;
-          std::vector<TerrainBox> kept;
-          for (const TerrainBox& b : g.boxes) {
-            const double bx0 = b.center_world_m.x() - b.size_m.x() / 2, bx1 = b.center_world_m.x() + b.size_m.x() / 2;
-            if (bx1 < c0 || bx0 > c0 + cut) kept.push_back(b);
-          }
-          g.boxes = kept;
-          exists = false;
-        }
-        g.Platform({end + P + g.U(g.MinGap(), g.MaxGap()), 0});
-        const double gx = g.boxes.back().center_world_m.x();
-        route = {{0, 0, 0}, {gx, 0, 0}};
-        break;
-      }
-      case CourseKind::kStonesTurn: {
-        g.Platform({0, 0});
-        g.Stones(0, 0, 0, P, P + len);
-        const double cx = P + len + g.U(g.MinGap(), g.MaxGap()) + P;
-        g.Platform({cx, 0});
-        const double len2 = g.U(2.0, 3.5) * reach_r + 0.3;
-        g.Stones(cx, 0, M_PI / 2, P, P + len2);
-        const double gy = P + len2 + g.U(g.MinGap(), g.MaxGap()) + P;
-        g.Platform({cx, gy});
-        route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
-        break;
-      }
-      case CourseKind::kGaps:
-      case CourseKind::kCutGaps: {
-        g.Platform({0, 0});
-        double s = P + g.U(g.MinGap(), g.MaxGap());
-        const double end = P + len;
-        const int cut_slab = kind == CourseKind::kCutGaps ? 1 : -1;
-        int k = 0;
-        while (s < end) {
-          const double l = std::min(end - s, g.U(0.1, 0.35) + 2 * g.margin);
-          g.Slab(0, 0, 0, s, s + l, 0.0);
-          g.Feature(g.MinGap());
-          g.Feature(l - 2 * g.margin);
-          s += l + (k == cut_slab ? cut : g.U(g.MinGap(), g.MaxGap()));
-          ++k;
-        }
-        exists = kind != CourseKind::kCutGaps || k < 2;  // the cut follows slab 1
-        g.Platform({s + P, 0});
-        route = {{0, 0, 0}, {s + P, 0, 0}};
-        break;
-      }
-      case CourseKind::kStairs: {
-        g.Platform({0, 0});
-        double s = P, top = 0.0;
-        const int n = 2 + static_cast<int>(g.U(0, 3));
-        for (int k = 0; k < 2 * n; ++k) {
-          const double rise = g.U(0.3, 0.6) * robot.dz_max_m * (k < n ? 1 : -1);
-          // A riser of two voxels or fewer looks like a voxelised slope: the map sees the
-          // stairs as a ramp whose edge floats over the lower tread.
-          g.Feature(2 * std::abs(rise));
-          const double l = g.U(std::max(0.1, robot.d_lim_m), 0.3) + 2 * g.margin;
-          top += rise;
-          g.Slab(0, 0, 0, s, s + l, top);
-          s += l;
-        }
-        g.Platform({s + P, 0}, top);
-        route = {{0, 0, 0}, {s + P, 0, 0}};
-        break;
-      }
-      case CourseKind::kTilted: {
-        g.Platform({0, 0});
-        double s = P + 0.04;
-        const double end = P + len;
-        while (s < end) {
-          const double l = g.U(0.2, 0.4);
-          // Tilt so that the top face varies in height by at most 0.5 dz_max over its extent.
-          const double a = std::min(0.5 * robot.max_slope_rad, std::asin(std::min(1.0, 0.5 * robot.dz_max_m / l)));
-          const double b = std::min(0.5 * robot.max_slope_rad, std::asin(std::min(1.0, 0.5 * robot.dz_max_m / (2 * P))));
-          g.Slab(0, 0, 0, s, s + l, 0.0, g.U(-b, b), g.U(-a, a));
-          s += l + 0.04;
-        }
-        g.Platform({s + P, 0});
-        route = {{0, 0, 0}, {s + P, 0, 0}};
-        break;
-      }
-      case CourseKind::kRough: {
-        // An L-shaped field of abutting cells of random height; start and goal platforms flat.
-        g.Platform({0, 0});
-        const double c = g.U(std::max(0.06, 2 * g.margin + 0.03), std::max(0.08, 0.3 * reach_r));
-        g.Feature(c - 2 * g.margin);
-        const double cx = P + len + P;  // corner
-        const double len2 = g.U(2.0, 3.0) * reach_r + 0.3;
-        const double gy = P + len2 + P;
-        for (double x = P; x < cx + P - 1e-9; x += c) {
-          for (double y = -P; y < P - 1e-9; y += c) g.Box(x + c / 2, y + c / 2, g.U(0, 0.5 * robot.dz_max_m), c, c, 0);
-        }
-        for (double x = cx - P; x < cx + P - 1e-9; x += c) {
-          for (double y = P; y < gy - P - 1e-9; y += c) g.Box(x + c / 2, y + c / 2, g.U(0, 0.5 * robot.dz_max_m), c, c, 0);
-        }
-        g.Platform({cx, gy});
-        route = {{0, 0, 0}, {cx, 0, 0}, {cx, 0, M_PI / 2}, {cx, gy, M_PI / 2}};
-        break;
-      }
-      case CourseKind::kBeams: {
-        g.Platform({0, 0});
-        const double w = 2 * g.margin + g.U(0.02, 0.05);
-        const double top = g.U(0.0, 0.5 * robot.dz_max_m);
-        g.Feature(w - 2 * g.margin);
-        for (const auto& [t, width] : g.Tracks(w)) {
-          const double s0 = P, s1 = P + len;
-          const Eigen::Vector2d c = Gen::At(0, 0, 0, (s0 + s1) / 2, t);
-          g.Box(c.x(), c.y(), top, s1 - s0, width, 0);
-        }
-        g.Platform({P + len + P, 0});
-        route = {{0, 0, 0}, {P + len + P, 0, 0}};
-        break;
-      }
-      case CourseKind::kDetour: {
-        const double dx = 2 * P + cut;
-        const double ytop = P + g.U(0.1, 0.5);
-        g.Platform({0, 0});
-        g.Platform({dx, 0});
-        g.Box(0, (P + ytop) / 2, 0, 2 * P, ytop - P, 0);                   // up from the start
-        g.Box(dx / 2, ytop + P, 0, dx + 2 * P, 2 * P, 0);                  // across
-        g.Box(dx, (P + ytop) / 2, 0, 2 * P, ytop - P, 0);                  // down to the goal
-        const double pocket = 0.3 * cut;
-        g.Box(P + pocket / 2, 0, 0, pocket, 2 * P, 0);                     // dead-end pocket toward the goal
-        g.Box(P + 0.65 * cut, 0, 0.5, 0.5 * cut, 2 * P, 0, 0, 0, 0.6);     // the wall
-        route = {{0, 0, 0}, {0, ytop + P, 0}, {dx, ytop + P, 0}, {dx, 0, 0}};
-        break;
-      }
-      case CourseKind::kWalledGoal: {
-        g.Platform({0, 0});
-        g.Slab(0, 0, 0, P, P + len, 0.0);
-        g.Platform({P + len + P, 0}, 4 * robot.dz_max_m);
-        route = {{0, 0, 0}, {P + len + P, 0, 0}};
-        exists = false;
-        break;
-      }
-      case CourseKind::kPocket:
-      case CourseKind::kBaffles:
-      case CourseKind::kDoorway:
-      case CourseKind::kCorridor:
-      case CourseKind::kClosedDoor:
-        if (!BodyCourse(g, kind, robot, &route)) {
-          throw std::runtime_error("GenerateCourse: robot '" + robot.name + "' has no body box for a " +
-                                   ToString(kind) + " course (or a door cannot need a turn)");
-        }
-        exists = kind != CourseKind::kClosedDoor;
-        break;
-    }
-    course.terrain.boxes = g.boxes;
-    // The map resolves the course: its voxel at most a sixth of the finest feature (a gap
-    // always shows empty columns; a foothold keeps room for its foot centres after the
-    // inset loses up to a voxel and a half of each edge to quantisation and the edge
-    // uncertainty; a riser spans three voxels or more), as a robot meant for such a
-    // course would map it.
-    course.terrain.resolution_m =
-        std::clamp(g.finest_m / kCourseVoxelsPerFeature, kCourseMinResolution, kCourseMaxResolution);
-    course.start = route.front();
-    course.goal = route.back();
-    course.route_exists = exists;
-    course.route = exists ? route : std::vector<Pose2D>{};
-    const bool body_kind = kind == CourseKind::kPocket || kind == CourseKind::kBaffles ||
-                           kind == CourseKind::kDoorway || kind == CourseKind::kCorridor;
-    if (body_kind && !BodyRouteClear(robot, course.terrain, route, 0.0)) continue;
-    if (!exists || RouteHolds(robot, course.terrain, route, course.edge_margin_m)) return course;
+    Attempt a{Gen{robot, std::mt19937_64(seed * 1000003ULL + attempt), course.edge_margin_m, MaxFootTravel(robot),
+                  footprint, robot.dz_max_m, {}},
+              kind, footprint, reach_r, cut, /*len=*/0.0, /*route=*/{}, /*exists=*/true};
+    a.len = a.g.U(2.0, 4.0) * reach_r + 0.3;  // the first draw after the generator's seeding
+    BuildKind(a);
+    TakeAttempt(a, &course);
+    if (AttemptHolds(a, course)) return course;
   }
   throw std::runtime_error("GenerateCourse: no valid " + ToString(kind) + " course for seed " + std::to_string(seed));
 }

@@ -44,6 +44,7 @@
 #include <mutex>
 #include <random>
 #include <thread>
+#include <utility>
 
 #include "base/check.h"
 #include "daemon/daemon_config.h"
@@ -459,31 +460,51 @@ struct SoakCourse {
   double goal_x = 0, goal_y = 0, goal_yaw = 0;
 };
 
-// One soak: a fresh daemon, a walking robot, a table per minute.
-void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& course, double minutes,
-          double rate_hz, double time_limit_s, double cycle_s) {
-  const RobotModel& robot = setup->robots.at(setup->config.default_robot);
-  const int n = robot.num_legs();
-  const terrain_map_t map = MapMessage(course.terrain);
-  const std::vector<ConvexRegion> regions = MakeOctomapMapFunction(*setup)(
-      std::string(map.data.begin(), map.data.end()), "bt", course.name).regions;
-  const std::vector<Eigen::Vector3d> start = NominalStance(robot, regions, 0, 0, 0);
-  const Eigen::Vector3d goal_pose =
-      GoalOnRegions(robot, regions, Eigen::Vector3d(course.goal_x, course.goal_y, course.goal_yaw),
-                    setup->config.planner.goal_tolerance_m);
-  const double course_goal_x = goal_pose.x(), course_goal_y = goal_pose.y(), course_goal_yaw = goal_pose.z();
+// What one soak runs on and at what pace: the daemon's set-up, the course, its map and
+// regions, the goal moved onto the regions, and Soak's pace arguments.
+struct SoakRun {
+  std::shared_ptr<const DaemonSetup> setup;
+  const SoakCourse& course;
+  const RobotModel& robot;
+  terrain_map_t map;
+  std::vector<ConvexRegion> regions;
+  Eigen::Vector3d goal_pose;  // the course's goal moved onto the regions (x, y, yaw)
+  double minutes, rate_hz, time_limit_s, cycle_s;
+};
 
-  LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
-  const auto traces = std::make_shared<PlanTraces>();
-  DaemonCore core(setup, MakeOctomapMapFunction(*setup), TracedPlanFunction(traces), transport, &NowUs);
-  core.SubscribeTo(transport);
+// A reply to a soak request, as the robot received it.
+struct SoakAnswer {
+  int64_t latency_us;
+  int8_t status;
+  double solve_time_s;
+  int nodes;
+  double gap;
+};
 
+// The robot: it walks the gait cycles of the plan it follows, one every cycle_s, and
+// asks for a new plan from the stance it stands in at the request rate. A reply is
+// followed when its request was sent from the stance the robot still stands in (a plan
+// from an older stance starts where the robot no longer is). It patrols: at the goal it
+// turns back for its start spot (keeping the goal's heading), and so on. Shared by the
+// sender (the soak's loop) and the plan handler (the transport's thread): the members
+// after `mutex` only under it.
+struct SoakRobot {
+  SoakRobot(const SoakRun& run, std::vector<Eigen::Vector3d> start_feet)
+      : n(run.robot.num_legs()),
+        start(std::move(start_feet)),
+        course_goal_x(run.goal_pose.x()),
+        course_goal_y(run.goal_pose.y()),
+        goal_yaw(run.goal_pose.z()),
+        feet(start),
+        goal_x(course_goal_x),
+        goal_y(course_goal_y) {}
+
+  const int n;                                // legs
+  const std::vector<Eigen::Vector3d> start;   // the stance it starts (and restarts) from
+  const double course_goal_x, course_goal_y;  // the far end of its patrol
+  const double goal_yaw;
   std::mutex mutex;
-  // The robot: it walks the gait cycles of the plan it follows, one every cycle_s, and
-  // asks for a new plan from the stance it stands in at the request rate. A reply is
-  // followed when its request was sent from the stance the robot still stands in (a plan
-  // from an older stance starts where the robot no longer is).
-  std::vector<Eigen::Vector3d> feet = start;  // where the robot stands now
+  std::vector<Eigen::Vector3d> feet;          // where the robot stands now
   int stance_version = 0;                     // +1 at each gait cycle walked or reset
   std::map<int64_t, int64_t> sent_us;         // by request id
   std::map<int64_t, int> sent_stance;         // stance_version of each request
@@ -491,40 +512,30 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
   std::string last_event = "first";           // since the last request sent
   std::vector<footstep_t> followed;           // steps of the plan the robot follows
   int next_cycle = 1;                         // its next gait cycle to walk (0 is the start)
-  struct Answer {
-    int64_t latency_us;
-    int8_t status;
-    double solve_time_s;
-    int nodes;
-    double gap;
-  };
-  std::map<int64_t, std::vector<Answer>> answers;
+  std::map<int64_t, std::vector<SoakAnswer>> answers;
   int resets = 0, cycles_walked = 0, arrivals = 0, turns = 0;
-  bool stuck_here = false;  // turned back stuck, not walked since
+  bool stuck_here = false;    // turned back stuck, not walked since
   std::string first_refusal;  // the first reply without a plan (other than superseded)
-  double furthest_m = 0;  // from the start, of the centre of the feet
-  // The robot patrols: at the goal it turns back for its start spot (keeping the goal's
-  // heading), and so on.
-  double goal_x = course_goal_x, goal_y = course_goal_y;
-  const double goal_yaw = course_goal_yaw;
-  auto turn_back = [&] {
+  double furthest_m = 0;      // from the start, of the centre of the feet
+  double goal_x, goal_y;      // the end it is walking to
+  // Feet land near, not on, the planned spots: a seeded error of up to 3 mm per axis.
+  std::mt19937 landing_rng{19};
+  std::uniform_real_distribution<double> landing_error{-0.003, 0.003};
+
+  void TurnBack() {
     const bool outward = goal_x == course_goal_x && goal_y == course_goal_y;
     goal_x = outward ? 0.0 : course_goal_x;
     goal_y = outward ? 0.0 : course_goal_y;
     followed.clear();
     last_event = "turned back";
-  };
-  // Feet land near, not on, the planned spots: a seeded error of up to 3 mm per axis.
-  std::mt19937 landing_rng(19);
-  std::uniform_real_distribution<double> landing_error(-0.003, 0.003);
-  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
-    plan_t p;
-    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
-    const int64_t now = NowUs();
-    std::lock_guard<std::mutex> lock(mutex);
+  }
+
+  // A reply received at now_us: recorded, and acted on when planned from the stance the
+  // robot stands in. Under the mutex.
+  void OnPlan(const plan_t& p, int64_t now_us) {
     const auto sent = sent_us.find(p.request_id);
     if (sent == sent_us.end()) return;
-    answers[p.request_id].push_back({now - sent->second, p.status, p.solve_time_s, p.nodes, p.gap});
+    answers[p.request_id].push_back({now_us - sent->second, p.status, p.solve_time_s, p.nodes, p.gap});
     const auto status = static_cast<SolveStatus>(p.status);
     if (!HasPlan(status) && status != SolveStatus::kSuperseded && first_refusal.empty())
       first_refusal = "request " + std::to_string(p.request_id) + ": " + ToString(status) + ": " + p.message;
@@ -533,10 +544,10 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
       followed = p.steps;
       next_cycle = 1;
     } else if (HasPlan(status) && p.reaches_goal) {
-      turn_back();  // standing at the goal
+      TurnBack();  // standing at the goal
       ++arrivals;
     } else if (HasPlan(status) && !stuck_here) {
-      turn_back();  // stuck short of the goal without a step to take
+      TurnBack();  // stuck short of the goal without a step to take
       stuck_here = true;
       ++turns;
     } else if (HasPlan(status) || status == SolveStatus::kInvalidStart || status == SolveStatus::kInfeasible ||
@@ -551,9 +562,10 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
       ++resets;
       last_event = "restarted";
     }
-  });
+  }
+
   // Walks the next gait cycle of the followed plan, if it has one. Under the mutex.
-  auto walk_cycle = [&] {
+  void WalkCycle() {
     if (static_cast<int>(followed.size()) < (next_cycle + 1) * n) return;
     for (int k = next_cycle * n; k < (next_cycle + 1) * n; ++k) {
       const footstep_t& step = followed[static_cast<size_t>(k)];
@@ -571,71 +583,99 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     for (const auto& f : feet) centre += f / n;
     furthest_m = std::max(furthest_m, std::hypot(centre.x(), centre.y()));
     if (std::hypot(centre.x() - goal_x, centre.y() - goal_y) < 0.1) {
-      turn_back();  // arrived: back to the other end, from where the robot stands
+      TurnBack();  // arrived: back to the other end, from where the robot stands
       ++arrivals;
     }
-  };
-  DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
-  PublishMapAndWait(transport, core, map);
+  }
 
+  // Request `id` from where the robot stands to where it is going, recorded as sent now
+  // (its stance and the event before it). Under the mutex.
+  void Ask(int64_t id, plan_request_t* request) {
+    for (const auto& f : feet) request->start_feet.push_back({f.x(), f.y(), f.z()});
+    sent_us[id] = NowUs();
+    sent_stance[id] = stance_version;
+    sent_event[id] = last_event;
+    last_event = "same stance";
+    request->goal_x = goal_x;
+    request->goal_y = goal_y;
+    request->goal_yaw = goal_yaw;
+  }
+};
+
+// Every reply of the soak so far, for the whole soak's lines.
+struct SoakTally {
+  std::vector<double> all_latency_ms, all_solve_ms, all_nodes, all_gaps;
+  int most_threads = ThreadCount();  // sampled at every request and minute row
+  std::map<std::string, int> all_statuses;
+  std::vector<SoakReply> all_replies;
+};
+
+void PrintSoakHeading(const SoakRun& run) {
+  const SoakCourse& course = run.course;
   std::printf("\n3. replanning soak on %s (%zu regions, %zu map bytes): %s, %.0f Hz for %.1f min, "
               "%d new footsteps per request, time limit %.2f s, a gait cycle walked every %.2f s; goal (%.3f, %.3f, "
               "%.3f)%s\n",
-              course.name.c_str(), regions.size(), map.data.size(), robot.name.c_str(), rate_hz,
-              minutes, 2 * n, time_limit_s, cycle_s, course_goal_x, course_goal_y, course_goal_yaw,
-              goal_pose != Eigen::Vector3d(course.goal_x, course.goal_y, course.goal_yaw)
+              course.name.c_str(), run.regions.size(), run.map.data.size(), run.robot.name.c_str(), run.rate_hz,
+              run.minutes, 2 * run.robot.num_legs(), run.time_limit_s, run.cycle_s, run.goal_pose.x(),
+              run.goal_pose.y(), run.goal_pose.z(),
+              run.goal_pose != Eigen::Vector3d(course.goal_x, course.goal_y, course.goal_yaw)
                   ? " (moved: the goal asked for has a foot spot off every region)"
                   : "");
   std::printf("   %-6s %7s %7s %8s %8s %8s %8s %8s %9s %9s %9s %9s %9s %8s %9s %9s\n", "minute", "sent", "plans",
               "p50 ms", "p90 ms", "p99 ms", "max ms", "dropped", "supersed.", "time lim.",
               "unanswer.", "answ.>1", "VmRSS MiB", "threads", "heap used", "heap free");
-  const auto period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / rate_hz));
-  const int total = static_cast<int>(std::lround(minutes * 60.0 * rate_hz));
-  const int requests_per_cycle = std::max(1, static_cast<int>(std::lround(cycle_s * rate_hz)));
-  const int per_minute = static_cast<int>(std::lround(60.0 * rate_hz));
-  auto next = Clock::now();
-  int64_t first_of_minute = 1;
-  std::vector<double> all_latency_ms, all_solve_ms, all_nodes, all_gaps;
-  int most_threads = ThreadCount();  // sampled at every request and minute row
-  std::map<std::string, int> all_statuses;
-  std::vector<SoakReply> all_replies;
-  auto report = [&](int64_t first, int64_t last, const std::string& label) {
-    std::vector<double> latency_ms;
-    std::map<int, int> by_status;
-    int unanswered = 0, planned = 0, answered_twice = 0;
-    std::lock_guard<std::mutex> lock(mutex);
-    for (int64_t id = first; id <= last; ++id) {
-      const auto found = answers.find(id);
-      if (found == answers.end()) {
-        ++unanswered;
-        continue;
-      }
-      if (found->second.size() > 1) ++answered_twice;
-      for (const Answer& a : found->second) {
-        latency_ms.push_back(1e-3 * static_cast<double>(a.latency_us));
-        all_latency_ms.push_back(latency_ms.back());
-        all_replies.push_back({id, latency_ms.back(), a.status, a.solve_time_s, sent_event[id]});
-        ++by_status[a.status];
-        ++all_statuses[ToString(static_cast<SolveStatus>(a.status))];
-        if (HasPlan(static_cast<SolveStatus>(a.status))) {
-          ++planned;
-          all_solve_ms.push_back(1e3 * a.solve_time_s);
-          all_nodes.push_back(a.nodes);
-          all_gaps.push_back(100.0 * a.gap);
-        }
+}
+
+// The row of the requests first..last (one minute's) and their replies; adds the replies
+// to the tally.
+void ReportMinute(SoakRobot& robot, SoakTally* tally, int64_t first, int64_t last, const std::string& label) {
+  std::vector<double> latency_ms;
+  std::map<int, int> by_status;
+  int unanswered = 0, planned = 0, answered_twice = 0;
+  std::lock_guard<std::mutex> lock(robot.mutex);
+  for (int64_t id = first; id <= last; ++id) {
+    const auto found = robot.answers.find(id);
+    if (found == robot.answers.end()) {
+      ++unanswered;
+      continue;
+    }
+    if (found->second.size() > 1) ++answered_twice;
+    for (const SoakAnswer& a : found->second) {
+      latency_ms.push_back(1e-3 * static_cast<double>(a.latency_us));
+      tally->all_latency_ms.push_back(latency_ms.back());
+      tally->all_replies.push_back({id, latency_ms.back(), a.status, a.solve_time_s, robot.sent_event[id]});
+      ++by_status[a.status];
+      ++tally->all_statuses[ToString(static_cast<SolveStatus>(a.status))];
+      if (HasPlan(static_cast<SolveStatus>(a.status))) {
+        ++planned;
+        tally->all_solve_ms.push_back(1e3 * a.solve_time_s);
+        tally->all_nodes.push_back(a.nodes);
+        tally->all_gaps.push_back(100.0 * a.gap);
       }
     }
-    const HeapMiB heap = HeapNow();
-    std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9d %9.1f %8d %9.1f %9.1f\n", label.c_str(),
-                static_cast<long long>(last - first + 1), planned, Percentile(latency_ms, 0.5),
-                Percentile(latency_ms, 0.9), Percentile(latency_ms, 0.99), Percentile(latency_ms, 1.0),
-                by_status[plan_t::STATUS_DROPPED], by_status[plan_t::STATUS_SUPERSEDED],
-                by_status[plan_t::STATUS_TIME_LIMIT], unanswered, answered_twice, RssMiB(), ThreadCount(),
-                heap.in_use, heap.kept_free);
-    most_threads = std::max(most_threads, ThreadCount());
-    std::fflush(stdout);
-  };
+  }
+  const HeapMiB heap = HeapNow();
+  std::printf("   %-6s %7lld %7d %8.1f %8.1f %8.1f %8.1f %8d %9d %9d %9d %9d %9.1f %8d %9.1f %9.1f\n", label.c_str(),
+              static_cast<long long>(last - first + 1), planned, Percentile(latency_ms, 0.5),
+              Percentile(latency_ms, 0.9), Percentile(latency_ms, 0.99), Percentile(latency_ms, 1.0),
+              by_status[plan_t::STATUS_DROPPED], by_status[plan_t::STATUS_SUPERSEDED],
+              by_status[plan_t::STATUS_TIME_LIMIT], unanswered, answered_twice, RssMiB(), ThreadCount(),
+              heap.in_use, heap.kept_free);
+  tally->most_threads = std::max(tally->most_threads, ThreadCount());
+  std::fflush(stdout);
+}
+
+// The robot's requests at the soak's rate, walking a gait cycle every cycle_s, with a row
+// per minute (the sender pauses at each minute's end for its last replies).
+void SendSoakRequests(const SoakRun& run, SoakRobot& robot, SoakTally* tally, LcmTransport& transport) {
+  const int n = robot.n;
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / run.rate_hz));
+  const int total = static_cast<int>(std::lround(run.minutes * 60.0 * run.rate_hz));
+  const int requests_per_cycle = std::max(1, static_cast<int>(std::lround(run.cycle_s * run.rate_hz)));
+  const int per_minute = static_cast<int>(std::lround(60.0 * run.rate_hz));
+  auto next = Clock::now();
+  int64_t first_of_minute = 1;
   for (int i = 1; i <= total; ++i) {
     std::this_thread::sleep_until(next);
     next += period;
@@ -644,46 +684,41 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
     request.utime = NowUs();
     request.num_legs = n;
     {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (i > 1 && (i - 1) % requests_per_cycle == 0) walk_cycle();
-      for (const auto& f : feet) request.start_feet.push_back({f.x(), f.y(), f.z()});
-      sent_us[i] = NowUs();
-      sent_stance[i] = stance_version;
-      sent_event[i] = last_event;
-      last_event = "same stance";
-      request.goal_x = goal_x;
-      request.goal_y = goal_y;
-      request.goal_yaw = goal_yaw;
+      std::lock_guard<std::mutex> lock(robot.mutex);
+      if (i > 1 && (i - 1) % requests_per_cycle == 0) robot.WalkCycle();
+      robot.Ask(i, &request);
     }
     request.max_steps = 2 * n;
-    request.time_limit_s = time_limit_s;
+    request.time_limit_s = run.time_limit_s;
     const auto bytes = Encode(request);
     transport.Publish(kPlanRequestChannel, bytes.data(), bytes.size());
-    most_threads = std::max(most_threads, ThreadCount());
+    tally->most_threads = std::max(tally->most_threads, ThreadCount());
     if (i % per_minute == 0 || i == total) {
       // The minute's last requests get their time limit (and a little) to be answered.
-      std::this_thread::sleep_for(std::chrono::duration<double>(time_limit_s + 0.2));
+      std::this_thread::sleep_for(std::chrono::duration<double>(run.time_limit_s + 0.2));
       next = Clock::now();
-      report(first_of_minute, i, std::to_string((i + per_minute - 1) / per_minute));
+      ReportMinute(robot, tally, first_of_minute, i, std::to_string((i + per_minute - 1) / per_minute));
       first_of_minute = i + 1;
     }
   }
-  runner.Stop();
-  while (transport.HandleTimeout(50) > 0) {
-  }
-  const DaemonCounters c = core.counters();
+}
+
+// The whole soak's lines: reply latency and statuses, the planner's solve times, nodes and
+// gaps, the daemon's counters and the robot's walk, then the latency tail.
+void PrintSoakSummary(const SoakRun& run, const SoakTally& t, const SoakRobot& robot, const DaemonCounters& c,
+                      const PlanTraces& traces) {
   std::printf("   whole soak: reply latency p50 %.1f ms, p90 %.1f ms, p99 %.1f ms, max %.1f ms; replies by status:",
-              Percentile(all_latency_ms, 0.5), Percentile(all_latency_ms, 0.9),
-              Percentile(all_latency_ms, 0.99), Percentile(all_latency_ms, 1.0));
-  for (const auto& [name, count] : all_statuses) std::printf(" %s %d", name.c_str(), count);
+              Percentile(t.all_latency_ms, 0.5), Percentile(t.all_latency_ms, 0.9),
+              Percentile(t.all_latency_ms, 0.99), Percentile(t.all_latency_ms, 1.0));
+  for (const auto& [name, count] : t.all_statuses) std::printf(" %s %d", name.c_str(), count);
   std::printf("\n   planner solve time of the plans: p50 %.1f ms, p90 %.1f ms, p99 %.1f ms, max %.1f ms; "
               "branch-and-bound nodes p50 %.0f, p99 %.0f (the rest of a reply's latency is the wait for the "
               "plan before it)",
-              Percentile(all_solve_ms, 0.5), Percentile(all_solve_ms, 0.9), Percentile(all_solve_ms, 0.99),
-              Percentile(all_solve_ms, 1.0), Percentile(all_nodes, 0.5), Percentile(all_nodes, 0.99));
+              Percentile(t.all_solve_ms, 0.5), Percentile(t.all_solve_ms, 0.9), Percentile(t.all_solve_ms, 0.99),
+              Percentile(t.all_solve_ms, 1.0), Percentile(t.all_nodes, 0.5), Percentile(t.all_nodes, 0.99));
   std::printf("\n   proven gap of the plans (objective over the search's bound; 0 = proven optimal): p50 %.2f %%, "
               "p90 %.2f %%, p99 %.2f %%",
-              Percentile(all_gaps, 0.5), Percentile(all_gaps, 0.9), Percentile(all_gaps, 0.99));
+              Percentile(t.all_gaps, 0.5), Percentile(t.all_gaps, 0.9), Percentile(t.all_gaps, 0.99));
   std::printf("\n   daemon counters: requests %lld, replies %lld, superseded %lld, dropped %lld, expired %lld, "
               "time-limit endings %lld, abandoned solves %lld, intake overflows %lld, publish failures %lld, "
               "most threads %d (limits.max_abandoned_plans %d); "
@@ -692,13 +727,49 @@ void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& cou
               static_cast<long long>(c.superseded_requests), static_cast<long long>(c.dropped_requests),
               static_cast<long long>(c.expired_requests), static_cast<long long>(c.time_limit_endings),
               static_cast<long long>(c.abandoned_solves), static_cast<long long>(c.inbox_overflows),
-              static_cast<long long>(c.publish_failures), most_threads, setup->config.limits.max_abandoned_plans,
-              cycles_walked, furthest_m, arrivals, turns, resets);
-  if (!first_refusal.empty()) std::printf("   first reply without a plan: %s\n", first_refusal.c_str());
-  PrintLatencyTail(all_replies, *traces);
+              static_cast<long long>(c.publish_failures), t.most_threads, run.setup->config.limits.max_abandoned_plans,
+              robot.cycles_walked, robot.furthest_m, robot.arrivals, robot.turns, robot.resets);
+  if (!robot.first_refusal.empty()) std::printf("   first reply without a plan: %s\n", robot.first_refusal.c_str());
+  PrintLatencyTail(t.all_replies, traces);
   std::printf("   (minute rows: the requests sent in that minute and their replies; the sender pauses %.1f s "
-              "at each minute's end so they are all in)\n", time_limit_s + 0.2);
+              "at each minute's end so they are all in)\n", run.time_limit_s + 0.2);
   std::fflush(stdout);
+}
+
+// One soak: a fresh daemon, a walking robot, a table per minute.
+void Soak(const std::shared_ptr<const DaemonSetup>& setup, const SoakCourse& course, double minutes,
+          double rate_hz, double time_limit_s, double cycle_s) {
+  const RobotModel& robot = setup->robots.at(setup->config.default_robot);
+  SoakRun run{setup, course, robot, MapMessage(course.terrain), {}, {}, minutes, rate_hz, time_limit_s, cycle_s};
+  run.regions = MakeOctomapMapFunction(*setup)(std::string(run.map.data.begin(), run.map.data.end()), "bt",
+                                               course.name).regions;
+  std::vector<Eigen::Vector3d> start = NominalStance(robot, run.regions, 0, 0, 0);
+  run.goal_pose = GoalOnRegions(robot, run.regions, Eigen::Vector3d(course.goal_x, course.goal_y, course.goal_yaw),
+                                setup->config.planner.goal_tolerance_m);
+
+  LcmTransport transport("memq://", setup->config.lcm_queue_capacity);
+  const auto traces = std::make_shared<PlanTraces>();
+  DaemonCore core(setup, MakeOctomapMapFunction(*setup), TracedPlanFunction(traces), transport, &NowUs);
+  core.SubscribeTo(transport);
+
+  SoakRobot walker(run, std::move(start));
+  transport.Subscribe(kPlanChannel, [&](const RawMessage& raw) {
+    plan_t p;
+    if (!DecodeGuarded(raw.data, raw.size, 1 << 24, &p).empty()) return;
+    const int64_t now = NowUs();
+    std::lock_guard<std::mutex> lock(walker.mutex);
+    walker.OnPlan(p, now);
+  });
+  DaemonRunner runner(core, transport, setup->config.heartbeat_period_s);
+  PublishMapAndWait(transport, core, run.map);
+
+  PrintSoakHeading(run);
+  SoakTally tally;
+  SendSoakRequests(run, walker, &tally, transport);
+  runner.Stop();
+  while (transport.HandleTimeout(50) > 0) {
+  }
+  PrintSoakSummary(run, tally, walker, core.counters(), *traces);
 }
 
 // N requests published back to back: each answered exactly once, or counted.

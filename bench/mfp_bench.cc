@@ -19,6 +19,7 @@
 
 #include "base/check.h"
 #include "bench/course_bench.h"
+#include "bench/course_digest.h"
 #include "io/plan_json.h"
 #include "io/planner_options_yaml.h"
 #include "io/robot_loader.h"
@@ -389,6 +390,9 @@ int main(int argc, char** argv) {
   app.add_option("--course-only", course_only, "generated courses: plan only those whose name contains this text; a kind's name (e.g. doorway) "
                  "makes every course of that kind");
   app.add_flag("--course-verbose", course_verbose, "generated courses: print each accepted window");
+  bool course_digest = false;
+  app.add_flag("--course-digest", course_digest,
+               "generated courses: only generate them and print a digest of each (equal digests, equal courses)");
   std::vector<std::string> course_robots;
   app.add_option("--course-robots", course_robots,
                  "generated courses: robot files (YAML or URDF) to cycle through (default: config/robots' littledog, "
@@ -418,7 +422,11 @@ int main(int argc, char** argv) {
       o.print_windows = course_windows;
       o.first = course_first;
       o.adjust = [&](mfp::Scenario* s) { ApplyOverrides(overrides, s); };
-      mfp::RunCourseBench(o);
+      if (course_digest) {
+        mfp::PrintCourseDigests(o);
+      } else {
+        mfp::RunCourseBench(o);
+      }
       return 0;
     }
     if (!instances_dir.empty()) std::filesystem::create_directories(instances_dir);

@@ -76,17 +76,21 @@ bool BenchRealScan(const std::string& path, const mfp::RegionExtractorOptions& o
   return q.soundness >= 0.99;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"Region extraction benchmark on synthetic terrains"};
+// The bench's flags: the extractor's options, the maps to run, and the walks' options.
+struct BenchFlags {
   int runs = 5;
   mfp::RegionExtractorOptions options;
-  options.clearance_m = 0.4;
   bool large = true;
   bool scans_only = false;
   std::vector<std::string> scans;
-  app.add_option("--runs", runs, "timed runs per map (median reported)")->check(CLI::Range(1, 1000));
+  std::vector<std::string> walk_robots;
+  mfp::ScanWalkOptions walks;
+  bool digest = false;
+};
+
+void AddExtractorFlags(CLI::App& app, BenchFlags& f) {
+  mfp::RegionExtractorOptions& options = f.options;
+  app.add_option("--runs", f.runs, "timed runs per map (median reported)")->check(CLI::Range(1, 1000));
   app.add_option("--foot-radius", options.foot_radius_m, "foot radius [m]")->check(CLI::Range(0.0, 0.2));
   app.add_option("--edge-margin", options.edge_margin_m, "real surface kept around a foot [m]")
       ->check(CLI::Range(0.0, 0.2));
@@ -119,13 +123,18 @@ int main(int argc, char** argv) {
   app.add_option("--grow-tolerance", options.grow_tolerance_voxels, "a cell joins a patch within this of its plane [voxels]")
       ->check(CLI::Range(0.01, 10.0));
   app.add_flag("--overlapping-regions", options.overlapping_regions, "a patch's regions may overlap");
-  app.add_flag("!--no-large", large, "skip the scanned corridor and the 40 m x 15 m floor");
-  app.add_option("--scan", scans, "a real scan (.bt/.ot) judged against its own voxels (repeatable)")
+}
+
+void AddMapFlags(CLI::App& app, BenchFlags& f) {
+  app.add_flag("!--no-large", f.large, "skip the scanned corridor and the 40 m x 15 m floor");
+  app.add_option("--scan", f.scans, "a real scan (.bt/.ot) judged against its own voxels (repeatable)")
       ->check(CLI::ExistingFile);
-  app.add_flag("--scans-only", scans_only, "only the real scans given with --scan");
-  std::vector<std::string> walk_robots;
-  mfp::ScanWalkOptions walks;
-  app.add_option("--walk-robot", walk_robots,
+  app.add_flag("--scans-only", f.scans_only, "only the real scans given with --scan");
+}
+
+void AddWalkFlags(CLI::App& app, BenchFlags& f) {
+  mfp::ScanWalkOptions& walks = f.walks;
+  app.add_option("--walk-robot", f.walk_robots,
                  "with --scan: walks on each scan with this robot (URDF or robot YAML; repeatable), judged against "
                  "the raw voxels; only the walks are run")
       ->check(CLI::ExistingFile);
@@ -156,47 +165,35 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 999));
   app.add_flag("--walk-body-room", walks.body_room_ends,
                "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
-  bool digest = false;
-  app.add_flag("--digest", digest,
-               "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
-               "maps (with --scans-only: the scans alone): equal digests, equal regions");
-  CLI11_PARSE(app, argc, argv);
-  if (digest) {
-    mfp::PrintRegionDigests(scans, options, runs, scans_only);
-    return 0;
-  }
-  if (!walk_robots.empty()) {
-    mfp::BenchScanWalks(scans, walk_robots, walks);
-    return 0;
-  }
+}
 
-  std::printf("foot radius %.3f m, edge margin %.3f m, edge uncertainty per map (unc), clearance %.2f m, "
-              "max slope %.3f rad, %d runs per map\n\n",
-              options.foot_radius_m, options.edge_margin_m, options.clearance_m, options.max_slope_rad, runs);
+// The real scans' table and where the certifiable floor the regions miss goes. Returns
+// whether soundness is at least 0.99 on every scan.
+bool BenchRealScans(const BenchFlags& f) {
   bool scans_ok = true;
-  if (!scans.empty()) {
-    std::printf("real scans: floor = seen surface voxels (known free above, no occupied voxel within the "
-                "clearance) of the dominant level +-0.1 m; certifiable = floor (as a set of "
-                "cell squares) eroded by foot radius + 1 cm + one voxel; cert_ctr = the same eroded centre to centre "
-                "(half a voxel more lenient); sound = region point on a seen surface voxel\n");
-    std::printf("%-22s %6s %8s %9s %7s %8s %8s %8s %9s %9s %9s %9s %9s\n", "scan", "res_m", "leaves", "median_ms",
-                "cpu_ms", "regions", "floor_z", "floor_m2", "cert_cells", "floor_cov", "cert_cov", "cert_ctr", "sound");
-    std::vector<std::pair<std::string, mfp::CoverageBreakdown>> breakdowns;
-    for (const std::string& path : scans) scans_ok = BenchRealScan(path, options, runs, &breakdowns) && scans_ok;
-    std::printf("real scans: soundness >= 0.99 on every scan: %s\n\n", scans_ok ? "yes" : "NO");
-    std::printf("certifiable floor missed, by cause (%% of the certifiable floor; bench/coverage_breakdown.h, "
-                "terrain/extraction/cell_fate.h)\n");
-    mfp::PrintBreakdownHeader();
-    for (const auto& [name, breakdown] : breakdowns) mfp::PrintBreakdownRow(name, breakdown);
-    std::printf("\n");
-    if (scans_only) return scans_ok ? 0 : 1;
-  }
-  std::printf("%-22s %6s %7s %9s %8s %9s %8s %6s %9s  %s\n", "map", "res_m", "unc", "cells", "leaves", "median_ms",
-              "regions", "layers", "sound", "coverage of walkable top faces [certifiable part]");
+  std::printf("real scans: floor = seen surface voxels (known free above, no occupied voxel within the "
+              "clearance) of the dominant level +-0.1 m; certifiable = floor (as a set of "
+              "cell squares) eroded by foot radius + 1 cm + one voxel; cert_ctr = the same eroded centre to centre "
+              "(half a voxel more lenient); sound = region point on a seen surface voxel\n");
+  std::printf("%-22s %6s %8s %9s %7s %8s %8s %8s %9s %9s %9s %9s %9s\n", "scan", "res_m", "leaves", "median_ms",
+              "cpu_ms", "regions", "floor_z", "floor_m2", "cert_cells", "floor_cov", "cert_cov", "cert_ctr", "sound");
+  std::vector<std::pair<std::string, mfp::CoverageBreakdown>> breakdowns;
+  for (const std::string& path : f.scans) scans_ok = BenchRealScan(path, f.options, f.runs, &breakdowns) && scans_ok;
+  std::printf("real scans: soundness >= 0.99 on every scan: %s\n\n", scans_ok ? "yes" : "NO");
+  std::printf("certifiable floor missed, by cause (%% of the certifiable floor; bench/coverage_breakdown.h, "
+              "terrain/extraction/cell_fate.h)\n");
+  mfp::PrintBreakdownHeader();
+  for (const auto& [name, breakdown] : breakdowns) mfp::PrintBreakdownRow(name, breakdown);
+  std::printf("\n");
+  return scans_ok;
+}
+
+// The catalogue's maps, the finer copies of some, and (large) the scanned corridor and
+// the building floor; appends the maps of the criterion to `criterion`.
+std::vector<mfp::NamedTerrain> BenchMaps(bool large, std::vector<std::string>* criterion) {
   std::vector<mfp::NamedTerrain> maps = mfp::TerrainCatalogue();
   // The stepping-stone, tilted and bridge courses at 1 cm: fine enough that the half-voxel
   // edge uncertainty leaves 85 % of each walkable face.
-  std::vector<std::string> criterion = {"corridor_8cm_scan"};
   for (const std::string name : {"stepping_stones", "tilt_3deg", "tilt_15deg_yaw30", "bridge"}) {
     for (const mfp::NamedTerrain& t : mfp::TerrainCatalogue()) {
       if (t.name != name) continue;
@@ -204,7 +201,7 @@ int main(int argc, char** argv) {
       fine.name += "_1cm";
       fine.terrain.resolution_m = 0.01;
       maps.push_back(fine);
-      criterion.push_back(fine.name);
+      criterion->push_back(fine.name);
     }
   }
   if (large) {
@@ -216,89 +213,157 @@ int main(int argc, char** argv) {
     maps.push_back({"corridor_8cm_scan", mfp::CorridorTerrain(7.0, 0.08, noise)});
     maps.push_back({"building_40x15_8cm", mfp::BuildingFloorTerrain()});
   }
-  bool all_ok = true, criterion_ok = true;
+  return maps;
+}
+
+// Whether every map so far met the bench's bar (all_ok) and the criterion maps the issue's.
+struct MapVerdicts {
+  bool all_ok = true;
+  bool criterion_ok = true;
+};
+
+// The extractor's options for a map, with the edge uncertainty of how it was made.
+mfp::RegionExtractorOptions MapExtractorOptions(const mfp::NamedTerrain& named, mfp::RegionExtractorOptions options) {
+  const bool scanned = !named.terrain.scan.sensors_world_m.empty();
+  const bool plain = !scanned && !named.terrain.noise.Any();
+  if (plain) {
+    options.edge_uncertainty_voxels = 0.5;
+    options.riser_uncertainty_voxels = 0.5;
+  } else if (scanned) {
+    options.riser_uncertainty_voxels = 0.0;
+  }
+  return options;
+}
+
+// The map row's coverage text (the first faces' whole and certifiable coverage); judges
+// every face's coverage into `verdicts` and prints a line per face under 85 %.
+std::string CoverageText(const mfp::NamedTerrain& named, const std::vector<mfp::ConvexRegion>& regions,
+                         const mfp::RegionExtractorOptions& options, bool in_criterion, MapVerdicts* verdicts) {
+  const double res = named.terrain.resolution_m;
+  const double margin = options.foot_radius_m + options.edge_margin_m;
+  mfp::CoverageOptions cov;
+  cov.inset_m = margin;
+  cov.disk_radius_m = margin;
+  cov.clearance_m = options.clearance_m;
+  cov.max_slope_rad = options.max_slope_rad;
+  cov.height_tolerance_m = res;
+  const std::vector<mfp::FaceCoverage> walkable = mfp::TopFaceCoverage(regions, named.terrain, cov);
+  cov.inset_m = margin + res;  // a further voxel: the most any map's edges are uncertain
+  cov.disk_radius_m = cov.inset_m;
+  const std::vector<mfp::FaceCoverage> certifiable = mfp::TopFaceCoverage(regions, named.terrain, cov);
+  std::string cov_text;
+  int shown = 0;
+  // Faces a scan never saw from above (higher than every sensor: a ceiling's top) are
+  // not walkable in that map, and faces with no certifiable part (a wall's top narrower
+  // than two insets) cannot be covered.
+  double highest_sensor = -INFINITY;
+  for (const Eigen::Vector3d& p : named.terrain.scan.sensors_world_m) highest_sensor = std::max(highest_sensor, p.z());
+  for (const mfp::FaceCoverage& c : walkable) {
+    double cert = -1.0;
+    for (const mfp::FaceCoverage& d : certifiable) cert = d.box == c.box ? d.coverage : cert;
+    const mfp::TerrainBox& box = named.terrain.boxes[static_cast<size_t>(c.box)];
+    if (cert < 0.0) continue;
+    if (!named.terrain.scan.sensors_world_m.empty() && box.center_world_m.z() + 0.5 * box.size_m.z() > highest_sensor) {
+      continue;
+    }
+    verdicts->all_ok = verdicts->all_ok && cert >= 0.85;
+    if (in_criterion) verdicts->criterion_ok = verdicts->criterion_ok && c.coverage >= 0.85;
+    if (cert < 0.85) std::printf("  %s: face %s covers %.0f%% of its certifiable part\n", named.name.c_str(),
+                                 c.name.c_str(), 100.0 * cert);
+    if (++shown > 6) continue;
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "%s%s %.0f%% [%.0f%%]", cov_text.empty() ? "" : ", ", c.name.c_str(),
+                  100.0 * c.coverage, 100.0 * cert);
+    cov_text += buf;
+  }
+  if (shown > 6) cov_text += ", ... (" + std::to_string(shown) + " faces)";
+  return cov_text;
+}
+
+// One map's row: extraction time (median of `runs`), regions, layers, soundness and
+// coverage, judged into `verdicts`.
+void BenchMap(const mfp::NamedTerrain& named, const mfp::RegionExtractorOptions& options, int runs, bool in_criterion,
+              MapVerdicts* verdicts) {
+  const mfp::RegionExtractorOptions map_options = MapExtractorOptions(named, options);
+  // Through a .bt file and back, as a robot would receive it (pruned leaves).
+  const mfp::OccupancyMap map =
+      mfp::LoadMapBytes(mfp::OccupancyMapBytes(mfp::MakeTerrainMap(named.terrain), true), named.name);
+  std::vector<double> times_ms;
+  mfp::RegionExtractionResult result;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    result = mfp::ExtractRegions(map, map_options);
+    times_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(times_ms.begin(), times_ms.begin() + runs / 2, times_ms.end());
+  const double res = named.terrain.resolution_m;
+  const double margin = options.foot_radius_m + options.edge_margin_m;
+  const mfp::RegionSoundness sound = mfp::MeasureSoundness(result.regions, named.terrain, margin, res);
+  const std::string cov_text = CoverageText(named, result.regions, options, in_criterion, verdicts);
+  verdicts->all_ok = verdicts->all_ok && sound.fraction >= 0.99;
+  verdicts->criterion_ok = verdicts->criterion_ok && sound.fraction >= 0.99;
+  char unc[16];
+  std::snprintf(unc, sizeof(unc), "%.1f/%.1f", map_options.edge_uncertainty_voxels,
+                map_options.riser_uncertainty_voxels);
+  std::printf("%-22s %6.3f %7s %9zu %8zu %9.1f %8zu %6d %9.4f  %s\n", (named.name + (in_criterion ? " *" : "")).c_str(),
+              res, unc, result.height_map.height_m.size(), map.leaves.size(), times_ms[runs / 2],
+              result.regions.size(), result.stats.layers, sound.fraction, cov_text.c_str());
+  if (sound.fraction < 1.0) {
+    std::printf("  unsound sample e.g. at (%.3f, %.3f, %.3f)\n", sound.worst_point.x(), sound.worst_point.y(),
+                sound.worst_point.z());
+  }
+}
+
+// The synthetic maps' table, then the height maps' rows; returns the verdicts.
+MapVerdicts BenchSyntheticMaps(const BenchFlags& f) {
+  std::printf("%-22s %6s %7s %9s %8s %9s %8s %6s %9s  %s\n", "map", "res_m", "unc", "cells", "leaves", "median_ms",
+              "regions", "layers", "sound", "coverage of walkable top faces [certifiable part]");
+  std::vector<std::string> criterion = {"corridor_8cm_scan"};
+  const std::vector<mfp::NamedTerrain> maps = BenchMaps(f.large, &criterion);
+  MapVerdicts verdicts;
   for (const mfp::NamedTerrain& named : maps) {
-    const bool scanned = !named.terrain.scan.sensors_world_m.empty();
-    const bool plain = !scanned && !named.terrain.noise.Any();
-    mfp::RegionExtractorOptions map_options = options;
-    if (plain) {
-      map_options.edge_uncertainty_voxels = 0.5;
-      map_options.riser_uncertainty_voxels = 0.5;
-    } else if (scanned) {
-      map_options.riser_uncertainty_voxels = 0.0;
-    }
     const bool in_criterion = std::find(criterion.begin(), criterion.end(), named.name) != criterion.end();
-    // Through a .bt file and back, as a robot would receive it (pruned leaves).
-    const mfp::OccupancyMap map = mfp::LoadMapBytes(
-        mfp::OccupancyMapBytes(mfp::MakeTerrainMap(named.terrain), true), named.name);
-    std::vector<double> times_ms;
-    mfp::RegionExtractionResult result;
-    for (int i = 0; i < runs; ++i) {
-      const auto start = std::chrono::steady_clock::now();
-      result = mfp::ExtractRegions(map, map_options);
-      times_ms.push_back(
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    }
-    std::nth_element(times_ms.begin(), times_ms.begin() + runs / 2, times_ms.end());
-    const double res = named.terrain.resolution_m;
-    const double margin = options.foot_radius_m + options.edge_margin_m;
-    const mfp::RegionSoundness sound = mfp::MeasureSoundness(result.regions, named.terrain, margin, res);
-    mfp::CoverageOptions cov;
-    cov.inset_m = margin;
-    cov.disk_radius_m = margin;
-    cov.clearance_m = options.clearance_m;
-    cov.max_slope_rad = options.max_slope_rad;
-    cov.height_tolerance_m = res;
-    const std::vector<mfp::FaceCoverage> walkable = mfp::TopFaceCoverage(result.regions, named.terrain, cov);
-    cov.inset_m = margin + res;  // a further voxel: the most any map's edges are uncertain
-    cov.disk_radius_m = cov.inset_m;
-    const std::vector<mfp::FaceCoverage> certifiable = mfp::TopFaceCoverage(result.regions, named.terrain, cov);
-    std::string cov_text;
-    int shown = 0;
-    // Faces a scan never saw from above (higher than every sensor: a ceiling's top) are
-    // not walkable in that map, and faces with no certifiable part (a wall's top narrower
-    // than two insets) cannot be covered.
-    double highest_sensor = -INFINITY;
-    for (const Eigen::Vector3d& p : named.terrain.scan.sensors_world_m) highest_sensor = std::max(highest_sensor, p.z());
-    for (const mfp::FaceCoverage& c : walkable) {
-      double cert = -1.0;
-      for (const mfp::FaceCoverage& d : certifiable) cert = d.box == c.box ? d.coverage : cert;
-      const mfp::TerrainBox& box = named.terrain.boxes[static_cast<size_t>(c.box)];
-      if (cert < 0.0) continue;
-      if (!named.terrain.scan.sensors_world_m.empty() &&
-          box.center_world_m.z() + 0.5 * box.size_m.z() > highest_sensor) {
-        continue;
-      }
-      all_ok = all_ok && cert >= 0.85;
-      if (in_criterion) criterion_ok = criterion_ok && c.coverage >= 0.85;
-      if (cert < 0.85) std::printf("  %s: face %s covers %.0f%% of its certifiable part\n", named.name.c_str(),
-                                   c.name.c_str(), 100.0 * cert);
-      if (++shown > 6) continue;
-      char buf[96];
-      std::snprintf(buf, sizeof(buf), "%s%s %.0f%% [%.0f%%]", cov_text.empty() ? "" : ", ", c.name.c_str(),
-                    100.0 * c.coverage, 100.0 * cert);
-      cov_text += buf;
-    }
-    if (shown > 6) cov_text += ", ... (" + std::to_string(shown) + " faces)";
-    all_ok = all_ok && sound.fraction >= 0.99;
-    criterion_ok = criterion_ok && sound.fraction >= 0.99;
-    char unc[16];
-    std::snprintf(unc, sizeof(unc), "%.1f/%.1f", map_options.edge_uncertainty_voxels,
-                  map_options.riser_uncertainty_voxels);
-    std::printf("%-22s %6.3f %7s %9zu %8zu %9.1f %8zu %6d %9.4f  %s\n",
-                (named.name + (in_criterion ? " *" : "")).c_str(), res, unc,
-                result.height_map.height_m.size(), map.leaves.size(), times_ms[runs / 2],
-                result.regions.size(), result.stats.layers, sound.fraction, cov_text.c_str());
-    if (sound.fraction < 1.0) {
-      std::printf("  unsound sample e.g. at (%.3f, %.3f, %.3f)\n", sound.worst_point.x(), sound.worst_point.y(),
-                  sound.worst_point.z());
-    }
+    BenchMap(named, f.options, f.runs, in_criterion, &verdicts);
   }
   // Height maps (.npy / height_map_t input): the same terrains sampled at cell centres.
-  all_ok = mfp::PrintHeightMapRows(options, runs) && all_ok;
+  verdicts.all_ok = mfp::PrintHeightMapRows(f.options, f.runs) && verdicts.all_ok;
+  return verdicts;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Region extraction benchmark on synthetic terrains"};
+  BenchFlags f;
+  f.options.clearance_m = 0.4;
+  AddExtractorFlags(app, f);
+  AddMapFlags(app, f);
+  AddWalkFlags(app, f);
+  app.add_flag("--digest", f.digest,
+               "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
+               "maps (with --scans-only: the scans alone): equal digests, equal regions");
+  CLI11_PARSE(app, argc, argv);
+  if (f.digest) {
+    mfp::PrintRegionDigests(f.scans, f.options, f.runs, f.scans_only);
+    return 0;
+  }
+  if (!f.walk_robots.empty()) {
+    mfp::BenchScanWalks(f.scans, f.walk_robots, f.walks);
+    return 0;
+  }
+
+  std::printf("foot radius %.3f m, edge margin %.3f m, edge uncertainty per map (unc), clearance %.2f m, "
+              "max slope %.3f rad, %d runs per map\n\n",
+              f.options.foot_radius_m, f.options.edge_margin_m, f.options.clearance_m, f.options.max_slope_rad, f.runs);
+  bool scans_ok = true;
+  if (!f.scans.empty()) {
+    scans_ok = BenchRealScans(f);
+    if (f.scans_only) return scans_ok ? 0 : 1;
+  }
+  const MapVerdicts verdicts = BenchSyntheticMaps(f);
   std::printf("\nsoundness >= 0.99 and coverage of the certifiable part >= 85%% on every face: %s\n",
-              all_ok ? "yes" : "NO");
+              verdicts.all_ok ? "yes" : "NO");
   std::printf("maps marked *: soundness >= 0.99 and coverage of the whole walkable face >= 85%% on every face: %s\n",
-              criterion_ok ? "yes" : "NO");
-  return all_ok && criterion_ok && scans_ok ? 0 : 1;
+              verdicts.criterion_ok ? "yes" : "NO");
+  return verdicts.all_ok && verdicts.criterion_ok && scans_ok ? 0 : 1;
 }
