@@ -7,7 +7,10 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "planner/formulation/miqp_formulation.h"
 #include "planner/planning/internal/exact_window.h"
@@ -189,6 +192,98 @@ TEST(AnytimePlan, ThirtySixStepsGetTheRoundingDivesPlanFromTheRootWithOneQpPerSt
   const RelaxAndFixResult none = RoundingDive(formulation, *solvers.workers().front(), root.x, rf);
   EXPECT_FALSE(none.x.has_value());
   EXPECT_EQ(none.relaxations, 0);
+}
+
+// A solver that passes every solve on to `inner`, keeps each request's time left, and
+// sleeps `pause_s` after its pause_after_solved-th solve that succeeds: a share spent at a
+// known point (a dive's stage completed), however fast the machine is.
+class PausingSolver : public RelaxationSolver {
+ public:
+  PausingSolver(RelaxationSolver* inner, int pause_after_solved, double pause_s)
+      : inner_(inner), pause_after_solved_(pause_after_solved), pause_s_(pause_s) {}
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    time_left_s.push_back(request.deadline.RemainingSeconds());
+    RelaxationResult r = inner_->Solve(problem, request);
+    if (r.status == RelaxationStatus::kSolved && ++solved_ == pause_after_solved_) {
+      std::this_thread::sleep_for(std::chrono::duration<double>(pause_s_));
+    }
+    return r;
+  }
+  std::string Name() const override { return "pausing " + inner_->Name(); }
+  std::vector<double> time_left_s;  // per solve, its request's deadline's seconds left
+
+ private:
+  RelaxationSolver* inner_;
+  int pause_after_solved_;
+  double pause_s_;
+  int solved_ = 0;
+};
+
+TEST(AnytimePlan, ARoundingDiveCutShortByItsShareEndsWithTheRoundingOfItsLatestStage) {
+  // LittleDog 36's rounding dive, given a 1 s share (time_limit_s) and no deadline of the
+  // caller's, with a 1.5 s pause after a stage's completed QP: the share passes there.
+  // Its stage QPs run under the share (never the caller's endless deadline). Cut short
+  // two stages before its end, the stages left are rounded along the plan from the
+  // latest stage's point under the caller's deadline: a complete plan, every QP counted.
+  // Cut short after its first stage, no rounding of that point is feasible (as none of
+  // the root's is): no plan, and the planner's stage-search dive (RelaxAndFix with
+  // DiveOptions, its own share) ends with a complete plan. (Before, the QPs ran under the
+  // caller's deadline and a dive cut short by its share ended without a plan.)
+  const Course c = LittleDogTableI(36);
+  const PlannerOptions& options = c.scenario.options;
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  const Miqp& m = formulation.miqp();
+  const RelaxationResult root = solvers.workers().front()->Solve(m, RelaxationRequest{});
+  ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+  RelaxAndFixOptions rf = options.relax_and_fix;
+  rf.stage = options.branch_and_bound;
+  rf.stage.deadline = Deadline();
+  rf.time_limit_s = 1.0;
+  const int stages = formulation.num_configurations() - 1;
+  PausingSolver late(solvers.workers().front(), stages - 2, 1.5);
+  const RelaxAndFixResult r = RoundingDive(formulation, late, root.x, rf);
+  ASSERT_TRUE(r.x.has_value()) << "the dive cut short by its share ended without a plan";
+  EXPECT_TRUE(r.completed_by_rounding);
+  EXPECT_EQ(r.stages, stages - 2);
+  EXPECT_LE(m.MaxViolation(*r.x), options.branch_and_bound.feasibility_tolerance);
+  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
+  ASSERT_GT(late.time_left_s.size(), static_cast<size_t>(stages - 2));
+  EXPECT_EQ(r.relaxations, static_cast<int>(late.time_left_s.size()));
+  for (int k = 0; k < stages - 2; ++k) EXPECT_LE(late.time_left_s[k], rf.time_limit_s);  // the stages: the share
+  EXPECT_TRUE(std::isinf(late.time_left_s.back()));  // the completion: the caller's deadline
+
+  PausingSolver early(solvers.workers().front(), 1, 1.5);
+  const RelaxAndFixResult none = RoundingDive(formulation, early, root.x, rf);
+  EXPECT_FALSE(none.x.has_value());
+  EXPECT_EQ(none.relaxations, static_cast<int>(early.time_left_s.size()));
+  rf.time_limit_s = 60.0;
+  const RelaxAndFixResult fallback = RelaxAndFix(formulation, solvers.workers(), DiveOptions(rf));
+  ASSERT_TRUE(fallback.x.has_value()) << "the stage-search dive found no plan";
+  EXPECT_LE(m.MaxViolation(*fallback.x), options.branch_and_bound.feasibility_tolerance);
+  EXPECT_GT(fallback.relaxations, 0);
+}
+
+TEST(AnytimePlan, APlansRelaxationsCountItsRootHeuristicsQps) {
+  // LittleDog 36 with its search cut to the root node: no rounding of the root is
+  // feasible, so the rounding dive gives the first plan (one QP per stage at least) and
+  // relax-and-fix's seed runs after it. Their QPs are the window's heuristic_relaxations
+  // and are counted in its relaxations and the plan's, beside the search's own (the root
+  // relaxation and its roundings at least). (Before, neither heuristic's QPs were counted.)
+  Course c = LittleDogTableI(36);
+  c.request.time_limit_s = 5.0;  // the seed runs to its share; the dive takes well under a second
+  PlannerOptions options = c.scenario.options;
+  options.branch_and_bound.max_nodes = 1;
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers);
+  const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, options, solvers.workers());
+  ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  int relaxations = 0;
+  for (const WindowRecord& w : plan.window_records) relaxations += w.relaxations;
+  EXPECT_EQ(plan.relaxations, relaxations);
+  const WindowRecord& first = plan.window_records.front();
+  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
+  EXPECT_GE(first.heuristic_relaxations, formulation.num_configurations() - 1);
+  EXPECT_GT(first.relaxations, first.heuristic_relaxations + 1);
 }
 
 TEST(AnytimePlan, ThirtySixStepsEndWithAPlanWhenTheSearchTakesTheWholeLimit) {

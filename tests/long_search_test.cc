@@ -18,6 +18,7 @@ BranchAndBoundOptions Quiet() {
   BranchAndBoundOptions options;
   options.time_limit_s = 30.0;
   options.rounding_heuristic = false;  // the search's own dives find the plans
+  options.group_probing = false;       // the levers are each test's own (probing is on by default)
   options.group_probing_work = 0.0;
   return options;
 }

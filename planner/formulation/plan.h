@@ -25,7 +25,8 @@ struct WindowRecord {
   int integer_variables = 0;  // binaries of its MIQP
   SolveStatus status = SolveStatus::kInternalError;  // the window's search result
   int nodes = 0;
-  int relaxations = 0;
+  int relaxations = 0;        // QPs solved: the search's and its root heuristics'
+  int heuristic_relaxations = 0;  // of them, the root heuristics' (relax-and-fix's dives and seed)
   int fallbacks = 0;          // of them, solved by the solver's fallback (BranchAndBoundResult::fallbacks)
   int kept_steps = 0;          // steps accepted from it (0 on a failure or a retry)
   double time_limit_s = 0.0;   // the search's share of the plan's time

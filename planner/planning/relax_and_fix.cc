@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "base/check.h"
+#include "base/deadline.h"
 #include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {
@@ -151,19 +152,31 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
 
 RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSolver& solver,
                                const Eigen::VectorXd& root_x, const RelaxAndFixOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
   const Miqp& full = formulation.miqp();
   MFP_CHECK(root_x.size() == full.num_variables());
   const std::vector<int> configuration_of =
       ConfigurationOf(IntegersByConfiguration(formulation), full.num_variables());
   const int B = formulation.num_configurations();
   const double tolerance = options.stage.feasibility_tolerance;
+  // The stages' QPs end at the dive's share (time_limit_s) or the caller's deadline,
+  // whichever comes first; the completion of a dive cut short runs under the caller's.
+  const Deadline share = options.stage.deadline.Within(options.time_limit_s);
   RelaxAndFixResult result;
   Eigen::VectorXd x = root_x;
+  int completed_stages = 0;
+  // Cut short by the share after at least one stage was completed: the rest
+  // is rounded along the plan from the latest stage's point, as RelaxAndFix's stages are.
+  // Before the first stage there is nothing to complete: x's roundings are the root's.
+  const auto complete_by_rounding = [&] {
+    if (completed_stages == 0 || options.stage.deadline.Expired()) return;
+    result.x = CompleteByRounding(formulation, x, solver, options.stage.deadline, tolerance, &result.relaxations);
+    result.completed_by_rounding = result.x.has_value();
+  };
   for (int cfg = 1; cfg < B; ++cfg) {
-    const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
-    if (elapsed_s >= options.time_limit_s || options.stage.deadline.Expired()) return result;
+    if (share.Expired()) {
+      complete_by_rounding();
+      return result;
+    }
     const bool final_stage = cfg == B - 1;
     // Configurations up to cfg integer (the earlier ones fixed to their values in x), the
     // next one's region choices relaxed and the steps after it in their regions' hull: the
@@ -177,7 +190,7 @@ RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSol
     }
     RelaxationRequest request;
     request.warm_start = x;
-    request.deadline = options.stage.deadline;
+    request.deadline = share;
     request.relative_tolerance = options.stage.relaxation_tolerance;
     if (!final_stage) request.relative_tolerance = std::max(request.relative_tolerance, options.stage_relaxation_tolerance);
     ++result.stages;
@@ -191,7 +204,12 @@ RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSol
       completed = true;
       break;
     }
-    if (!completed) return result;
+    if (!completed) {
+      // A QP cut by the share is no failed choice: the stages so far are completed.
+      if (share.Expired()) complete_by_rounding();
+      return result;
+    }
+    ++completed_stages;
   }
   if (B > 1 && full.MaxViolation(x) <= tolerance) result.x = x;
   return result;

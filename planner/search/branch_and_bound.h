@@ -100,10 +100,12 @@ struct BranchAndBoundOptions {
   // fixed in turn and propagated; members that cannot be 1 are ruled out and every bound
   // shrinks to the hull of the members' cases. The root's box is probed after its
   // roundings and heuristics (never before the first plan), a node's before its
-  // relaxation; the bounds found are handed down to the node's subtree. Off by default:
-  // fewer nodes to proof on Table I, but a node costs more and the generated courses'
-  // windows run out of their time shares on more courses (docs/measurements.md, stop 30).
-  bool group_probing = false;
+  // relaxation; the bounds found are handed down to the node's subtree. On by default,
+  // kept to long searches by long_search_only's default: fewer nodes to proof on Table I,
+  // and a window whose time share holds only a few dozen nodes never pays a probed node's
+  // higher cost (probing at every node ran more courses out of their window shares;
+  // docs/measurements.md, stops 30 and 33).
+  bool group_probing = true;
   // Probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the others inherit their
   // ancestors' probed bounds and propagate).
   int group_probing_interval = 1;
@@ -128,10 +130,10 @@ struct BranchAndBoundOptions {
   // root's heuristics included). A search whose time share holds only a few dozen nodes
   // (a receding window) is never long: the levers' cost per node would not be repaid.
   // The levers named in long_search_only (a sum of LongSearchLever values) run only while
-  // the search is long; the others whenever they are on.
+  // the search is long; the others whenever they are on. Group probing by default.
   int long_search_min_nodes = 0;
   double long_search_nodes_left = 200.0;
-  int long_search_only = 0;
+  int long_search_only = kLongSearchProbing;
   // Root cut loop (root_cuts.h): rounds of cut separation at the root (0: off). The root
   // is solved and its roundings and heuristics run first, on the problem as given, so the
   // loop never delays the first plan; then the loop (with reduced-cost fixing against that

@@ -95,8 +95,12 @@ RelaxAndFixOptions DiveOptions(RelaxAndFixOptions options);
 
 // The dive of RelaxAndFixOptions::rounding_dive from the root relaxation's point root_x:
 // one QP (or one per proposal, up to the first completed) per configuration, solved with
-// solver under options.stage's deadline and feasibility tolerance; no plan when a stage's
-// proposals all fail or the deadline or options.time_limit_s passes first.
+// solver under the sooner of options.stage's deadline and options.time_limit_s (the dive's
+// share), with options.stage's feasibility tolerance. Anytime as RelaxAndFix: when the
+// share passes after a stage was completed, the configurations left are rounded along the
+// plan from the latest stage's point under options.stage's deadline (completed_by_rounding;
+// those QPs are counted in relaxations too). No plan when a stage's proposals all fail
+// within the share, the share passes before a stage is completed, or the deadline passes.
 RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSolver& solver,
                                const Eigen::VectorXd& root_x, const RelaxAndFixOptions& options);
 

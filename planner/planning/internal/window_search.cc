@@ -65,7 +65,7 @@ WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formul
 
 // One relax-and-fix plan for the search's root, its stages searched with the window's
 // options (bnb) for rf.time_share of its time.
-std::optional<Eigen::VectorXd> RelaxAndFixSeed(const PlanContext& context, const MiqpFormulation& formulation,
+RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulation& formulation,
                                                const BranchAndBoundOptions& bnb) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
   rf.stage = bnb;
@@ -74,25 +74,31 @@ std::optional<Eigen::VectorXd> RelaxAndFixSeed(const PlanContext& context, const
   // than it saves, and their plans came out worse (docs/measurements.md).
   if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
   rf.time_limit_s = rf.time_share * bnb.time_limit_s;
-  const RelaxAndFixResult r = rf.two_paths ? RelaxAndFixTwoPaths(formulation, context.solvers, rf)
-                                           : RelaxAndFix(formulation, context.solvers, rf);
-  return r.x;
+  return rf.two_paths ? RelaxAndFixTwoPaths(formulation, context.solvers, rf) : RelaxAndFix(formulation, context.solvers, rf);
 }
 
 // The quick first plan of a seeded window whose root roundings found none
 // (RelaxAndFixOptions::first_plan_dive): one node per stage, the stage roundings on, one
-// path, within the same time as the full run (each stage's QPs take milliseconds).
-std::optional<Eigen::VectorXd> RelaxAndFixDive(const PlanContext& context, const MiqpFormulation& formulation,
-                                               const BranchAndBoundOptions& bnb, const Eigen::VectorXd& root_x) {
+// path, within the same time as the full run (each stage's QPs take milliseconds). The
+// rounding dive first (rf.rounding_dive), then, when it finds no plan, the stage-search
+// dive with a share of its own: cut short, it still ends with its rounding's complete plan
+// (RelaxAndFix), where one given what the rounding dive left could end with none. The
+// relaxations of both are counted.
+RelaxAndFixResult RelaxAndFixDive(const PlanContext& context, const MiqpFormulation& formulation,
+                                  const BranchAndBoundOptions& bnb, const Eigen::VectorXd& root_x) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
   rf.stage = bnb;
   rf.stage.time_limit_needs_incumbent = false;
   rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+  RelaxAndFixResult rounding;
   if (rf.rounding_dive) {
-    const RelaxAndFixResult r = RoundingDive(formulation, *context.solvers.front(), root_x, rf);
-    if (r.x) return r.x;
+    rounding = RoundingDive(formulation, *context.solvers.front(), root_x, rf);
+    if (rounding.x) return rounding;
   }
-  return RelaxAndFix(formulation, context.solvers, DiveOptions(rf)).x;
+  RelaxAndFixResult r = RelaxAndFix(formulation, context.solvers, DiveOptions(rf));
+  r.stages += rounding.stages;
+  r.relaxations += rounding.relaxations;
+  return r;
 }
 
 }  // namespace
@@ -167,8 +173,10 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     if (seeded) return plans;
     seeded = true;
     const PlanClock::time_point rf_start = PlanClock::now();
-    if (std::optional<Eigen::VectorXd> x = RelaxAndFixSeed(context, formulation, bnb)) plans.push_back(std::move(*x));
+    RelaxAndFixResult r = RelaxAndFixSeed(context, formulation, bnb);
+    if (r.x) plans.push_back(std::move(*r.x));
     record->heuristic_s += SecondsSince(rf_start);
+    record->heuristic_relaxations += r.relaxations;
     return plans;
   };
   // Before it, when the roundings found no plan: the quick dive.
@@ -177,8 +185,10 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
       std::vector<Eigen::VectorXd> plans;
       if (seeded) return plans;  // a bounded replan's second search: its first had the root
       const PlanClock::time_point dive_start = PlanClock::now();
-      if (std::optional<Eigen::VectorXd> x = RelaxAndFixDive(context, formulation, bnb, root_x)) plans.push_back(std::move(*x));
+      RelaxAndFixResult r = RelaxAndFixDive(context, formulation, bnb, root_x);
+      if (r.x) plans.push_back(std::move(*r.x));
       record->heuristic_s += SecondsSince(dive_start);
+      record->heuristic_relaxations += r.relaxations;
       return plans;
     };
   }
@@ -225,7 +235,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   record->time_limit_s = bnb.time_limit_s;
   record->status = result.status;
   record->nodes = result.nodes;
-  record->relaxations = result.relaxations;
+  record->relaxations = result.relaxations + record->heuristic_relaxations;
   record->fallbacks = result.fallbacks;
   bnb.root_heuristic = nullptr;  // they refer to this call's locals
   bnb.first_plan_heuristic = nullptr;
