@@ -32,7 +32,12 @@ nlohmann::json StopToJson(const PlanStop& stop) {
                    {"rise", g.rise_m},
                    {"step_span", g.step_span_m},
                    {"blocks", g.blocks}};
+    if (g.detour_region >= 0) {
+      json["gap"]["detour_region"] = g.detour_region;
+      json["gap"]["detour"] = {g.detour_m.x(), g.detour_m.y()};
+    }
   }
+  json["examined"] = g.examined;
   return json;
 }
 

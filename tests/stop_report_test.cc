@@ -109,7 +109,7 @@ TEST_F(StopReportTest, APlanStoppedAtAGapWiderThanAStepOnAnAxisNamesTheGapAndIts
 TEST_F(StopReportTest, AGapWithinAStepIsTheWidestNamedAndDoesNotBlock) {
   const double gap = 0.5 * StepSpan();
   const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, 0.7, 1.0), Rect(1, 0.7 + gap, -1.0, 3.0, 1.0)};
-  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan());
+  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline());
   ASSERT_TRUE(g.found);
   EXPECT_FALSE(g.blocks);
   EXPECT_NEAR(g.width_m, gap, 1e-6);
@@ -117,12 +117,22 @@ TEST_F(StopReportTest, AGapWithinAStepIsTheWidestNamedAndDoesNotBlock) {
   EXPECT_EQ(g.to_region, 1);
 }
 
+TEST_F(StopReportTest, AnExpiredDeadlineNamesNoGapRatherThanAnUnexaminedOne) {
+  const double gap = 2.0 * StepSpan();
+  const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, 0.7, 1.0), Rect(1, 0.7 + gap, -1.0, 3.0, 1.0)};
+  const PlanStopGap open = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline());
+  EXPECT_TRUE(open.found);
+  const PlanStopGap cut =
+      FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline::After(-1.0));
+  EXPECT_FALSE(cut.found);
+}
+
 TEST_F(StopReportTest, AGapOfTwoStepsBeyondANarrowOneIsTheOneThatBlocks) {
   // A narrow gap first (within a step), then one of two steps: the second blocks.
   const double narrow = 0.3 * StepSpan(), wide = 2.0 * StepSpan();
   const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, 0.6, 1.0), Rect(1, 0.6 + narrow, -1.0, 1.5, 1.0),
                                              Rect(2, 1.5 + wide, -1.0, 4.0, 1.0)};
-  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 3.0), StepSpan());
+  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 3.0), StepSpan(), Deadline());
   ASSERT_TRUE(g.found);
   EXPECT_TRUE(g.blocks);
   EXPECT_EQ(g.from_region, 1);
@@ -138,7 +148,7 @@ TEST_F(StopReportTest, AGapOneFootCouldGoRoundNamesTheRegionOfTheDetour) {
   const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, x0, 1.0), Rect(1, x1, -1.0, 3.0, 1.0),
                                              Rect(7, stone_x - 0.02, 0.1, stone_x + 0.02, 0.25)};
   ASSERT_LT(stone_x - 0.02 - x0, StepSpan());
-  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan());
+  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline());
   ASSERT_TRUE(g.found);
   EXPECT_TRUE(g.blocks);
   EXPECT_EQ(g.detour_region, 7);
@@ -151,7 +161,7 @@ TEST_F(StopReportTest, ARiseBeyondDzMaxBlocksAGapWithinAStep) {
   const double gap = 0.5 * StepSpan();
   const double high = 2.0 * robot().dz_max_m;
   std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, 0.7, 1.0), Rect(1, 0.7 + gap, -1.0, 3.0, 1.0, high)};
-  PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan());
+  PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline());
   ASSERT_TRUE(g.found);
   EXPECT_TRUE(g.blocks);
   EXPECT_EQ(g.to_region, 1);
@@ -160,7 +170,7 @@ TEST_F(StopReportTest, ARiseBeyondDzMaxBlocksAGapWithinAStep) {
   EXPECT_NE(StopText(robot(), stop).find("more than dz_max"), std::string::npos) << StopText(robot(), stop);
   // A floor within dz_max under the high one is the support after the gap: nothing blocks.
   regions.push_back(Rect(2, 0.7 + gap, -1.0, 3.0, 1.0, 0.5 * robot().dz_max_m));
-  g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan());
+  g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline());
   ASSERT_TRUE(g.found);
   EXPECT_FALSE(g.blocks);
   EXPECT_EQ(g.to_region, 2);
@@ -168,7 +178,7 @@ TEST_F(StopReportTest, ARiseBeyondDzMaxBlocksAGapWithinAStep) {
 
 TEST_F(StopReportTest, APathThatLeavesTheRegionsForGoodBlocks) {
   const std::vector<ConvexRegion> regions = {Rect(0, -1.0, -1.0, 0.7, 1.0)};
-  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan());
+  const PlanStopGap g = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 2.0), StepSpan(), Deadline());
   ASSERT_TRUE(g.found);
   EXPECT_TRUE(g.blocks);
   EXPECT_EQ(g.from_region, 0);
@@ -176,7 +186,7 @@ TEST_F(StopReportTest, APathThatLeavesTheRegionsForGoodBlocks) {
   const PlanStop stop{true, Eigen::Vector3d::Zero(), 0.0, {0}, "no_progress", g};
   EXPECT_NE(StopText(robot(), stop).find("meets no region on the rest of the way"), std::string::npos);
   // A path that ends within a step of the last region (a goal spot just off it) is no blocker.
-  const PlanStopGap end = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 0.7 - 0.42 + 0.1), StepSpan());
+  const PlanStopGap end = FirstGapAhead(robot(), regions, StanceAt(0.0, 0), Straight(0.0, 0.7 - 0.42 + 0.1), StepSpan(), Deadline());
   EXPECT_FALSE(end.found && end.blocks);
 }
 

@@ -48,6 +48,7 @@ struct WindowRecord {
 // last point of the path on a region before it and the first one after it [m, world].
 struct PlanStopGap {
   bool found = false;
+  bool examined = true;           // false: the deadline came before the whole way ahead was examined
   int leg = -1;                   // index into RobotModel::legs
   int from_region = -1;           // ConvexRegion::id before the gap
   int to_region = -1;             // ... after it; -1: no region on the rest of the path

@@ -45,7 +45,7 @@ std::optional<ConvexRegion> SeenFoothold(const SeenSurface& seen, const Eigen::V
   if (!(half_side_m > 0.0)) return std::nullopt;  // a square must have a side (and the doubling below must grow)
   std::optional<ConvexRegion> best = CertifiedSquare(seen, spot, foot_radius_m, margin_m, half_side_m, id, refuse_runs);
   // The larger squares keep the two-level test: refusing runs there too shrank a real scan's
-  // goal footholds until the plan could not finish on them (docs/measurements.md, stop 33).
+  // goal footholds until the plan could not finish on them (docs/measurements.md).
   for (double h = 2.0 * half_side_m; best && h <= max_half_side_m + 1e-9; h *= 2.0) {
     std::optional<ConvexRegion> larger =
         CertifiedSquare(seen, spot, foot_radius_m, margin_m, h, id, /*refuse_runs=*/false);

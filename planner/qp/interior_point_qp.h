@@ -41,7 +41,7 @@ struct InteriorPointOptions {
   // pair of triangular solves), taken while the solve's residual is above a hundredth of
   // the tolerance. Convergence and the floors are judged on the iterate's own residuals,
   // so this changes the path and the cost per iteration, never what a result certifies
-  // (0: no refinement; docs/measurements.md, nodeqp5).
+  // (0: no refinement).
   int refinement_steps = 2;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.

@@ -1,6 +1,9 @@
 #include "planner/qp/internal/sparse_ldlt.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "base/check.h"
 
@@ -24,6 +27,10 @@ void SparseLdlt::Analyse(const Matrix& upper) {
       }
     }
   }
+  // L's entries counted in 64 bits: more than an int holds is a problem no budget admitted.
+  int64_t entries = 0;
+  for (int j = 0; j < n_; ++j) entries += count[j];
+  MFP_CHECK(entries <= std::numeric_limits<int>::max());
   l_start_.assign(n_ + 1, 0);
   for (int j = 0; j < n_; ++j) l_start_[j + 1] = l_start_[j] + count[j];
   l_row_.assign(l_start_[n_], 0);
@@ -84,7 +91,7 @@ bool SparseLdlt::Factorize(const Matrix& upper) {
       l_value_[slot] = l_ki;
     }
     d_[k] = d;
-    if (d == 0.0) return false;
+    if (!(std::isfinite(d) && d != 0.0)) return false;  // a zero or non-finite pivot: no factor
   }
   return true;
 }

@@ -104,7 +104,7 @@ struct BranchAndBoundOptions {
   // kept to long searches by long_search_only's default: fewer nodes to proof on Table I,
   // and a window whose time share holds only a few dozen nodes never pays a probed node's
   // higher cost (probing at every node ran more courses out of their window shares;
-  // docs/measurements.md, stops 30 and 33).
+  // docs/measurements.md).
   bool group_probing = true;
   // Probe the nodes of depth 1, 1 + k, 1 + 2k, ... (k = this; the others inherit their
   // ancestors' probed bounds and propagate).

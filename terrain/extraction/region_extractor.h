@@ -78,7 +78,7 @@ struct RegionExtractorOptions {
   // certifiable floor uncovered (docs/measurements.md, "Where the seen floor goes"). At 4
   // per m^2 the scanned lab's floor (fr_079) stopped at its cap with 9 % of its
   // certifiable floor uncovered; 5 covers it past 85 % and changes no other scan or
-  // simulated map (docs/measurements.md, issue 25, stop 32, extract5).
+  // simulated map (docs/measurements.md, "Extraction time round 5").
   int max_regions_per_patch = 24;
   double regions_per_m2 = 5.0;
   // Rectangles of one patch may overlap (each grown over cells others cover). Off: they
@@ -93,7 +93,7 @@ struct RegionExtractorOptions {
   // for the planner per region), and a piece narrower than foot_radius_m is dropped
   // unless it is its patch's first; kept per patch only where they hold more kept cells'
   // centres than the rectangles (computed only where the rectangles leave room for that).
-  // On by default since stop 31 (docs/measurements.md, "The convex pieces cheap enough to
+  // On by default (docs/measurements.md, "The convex pieces cheap enough to
   // be the default"); off: the rectangles everywhere.
   bool convex_cover = true;
   int max_region_vertices = 8;

@@ -160,7 +160,11 @@ Plan FinishPlan(const PlanContext& context, HorizonState* state) {
       plan.message += "; kept the steps up to window " + std::to_string(state->best_window) + ", its best point";
     }
     const Eigen::Vector2d centre = StanceCentreXY(state->stance);
-    plan.stop = DescribeStop(context, plan, state->end_reason.empty() ? "step_budget" : state->end_reason);
+    // The report finishes what an expired plan began: bounded past the plan's deadline by
+    // the completion overrun, as a window's completion is.
+    const Deadline report = context.request.deadline.Within(context.TimeLeftSeconds())
+                                .ExtendedBy(context.options.polish.completion_overrun_s);
+    plan.stop = DescribeStop(context, plan, state->end_reason.empty() ? "step_budget" : state->end_reason, report);
     std::ostringstream msg;
     msg.precision(3);
     msg << "partial plan: " << state->planned << " steps, stopped " << (centre - context.GoalXY()).norm()

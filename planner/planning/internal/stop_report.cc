@@ -155,6 +155,7 @@ int DetourRegion(const std::vector<ConvexRegion>& regions, const std::vector<int
     const int u = queue[k];
     for (int v : local) {
       if (first_hop[static_cast<size_t>(v)] != -2 || !hop(u, v)) continue;
+      if (u == from && v == to) continue;  // the blocked crossing itself is no way round it
       first_hop[static_cast<size_t>(v)] = u == from ? v : first_hop[static_cast<size_t>(u)];
       if (v == to) return first_hop[static_cast<size_t>(v)];
       queue.push_back(v);
@@ -176,7 +177,8 @@ struct LegGap {
 
 std::optional<LegGap> LegGapAhead(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                                   const std::vector<int>& near, const Footstep& foot, const StopPath& path,
-                                  double step_span_m, double detour_margin_m) {
+                                  double step_span_m, double detour_margin_m, const Deadline& deadline,
+                                  bool* cut_short) {
   int last = IndexOfId(regions, foot.region_id);
   Eigen::Vector2d last_xy = foot.position_world_m.head<2>();
   double z = foot.position_world_m.z();
@@ -191,6 +193,10 @@ std::optional<LegGap> LegGapAhead(const RobotModel& robot, const std::vector<Con
     }
   };
   for (size_t j = 0; j < path.centres_m.size(); ++j) {
+    if (j % 64 == 0 && deadline.Expired()) {  // the rest of the way is not examined
+      *cut_short = true;
+      return chosen;
+    }
     const Eigen::Vector2d p = NominalFootXY(robot, foot.leg, path.centres_m[j].x(), path.centres_m[j].y(), path.yaws_rad[j]);
     const int r = SupportAt(regions, near, p, z);
     if (r < 0) {
@@ -285,7 +291,9 @@ StopPath PathAhead(const PlanContext& context, const Eigen::Vector2d& centre_m, 
   double along_m = 0.0;
   for (size_t k = 0; k + 1 < corners.size() && static_cast<int>(path.centres_m.size()) < max_points; ++k) {
     const double len = (corners[k + 1] - corners[k]).norm();
-    const int pieces = std::max(1, static_cast<int>(std::ceil(len / sample_m)));
+    // In double before the cast: a leg of the way may be longer than INT_MAX samples.
+    const double room = static_cast<double>(max_points - static_cast<int>(path.centres_m.size()));
+    const int pieces = std::max(1, static_cast<int>(std::min(std::ceil(len / sample_m), room)));
     for (int j = 0; j < pieces && static_cast<int>(path.centres_m.size()) < max_points; ++j) {
       const double t = static_cast<double>(j) / pieces;
       path.centres_m.push_back(corners[k] + t * (corners[k + 1] - corners[k]));
@@ -302,14 +310,22 @@ StopPath PathAhead(const PlanContext& context, const Eigen::Vector2d& centre_m, 
 }
 
 PlanStopGap FirstGapAhead(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                          const std::vector<Footstep>& feet, const StopPath& path, double step_span_m) {
+                          const std::vector<Footstep>& feet, const StopPath& path, double step_span_m,
+                          const Deadline& deadline) {
   double reach = 0.0;  // how far a nominal foot lies from the body centre
   for (const LegModel& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
   const std::vector<int> near = RegionsNearPath(regions, path, reach + step_span_m);
   std::optional<LegGap> best;
   for (const Footstep& foot : feet) {
     // A way round within two steps and the stance's reach of the gap's ends, for every leg alike.
-    const std::optional<LegGap> g = LegGapAhead(robot, regions, near, foot, path, step_span_m, reach + 2.0 * step_span_m);
+    bool cut_short = false;
+    const std::optional<LegGap> g =
+        LegGapAhead(robot, regions, near, foot, path, step_span_m, reach + 2.0 * step_span_m, deadline, &cut_short);
+    if (cut_short) {  // a part of the way unexamined: no claim about the gap ahead
+      PlanStopGap unexamined;
+      unexamined.examined = false;
+      return unexamined;
+    }
     if (!g) continue;
     const int sg = Severity(g->gap), sb = best ? Severity(best->gap) : -1;
     const bool better = !best || sg > sb || (sg == sb && sg > 0 && g->starts_at < best->starts_at) ||
@@ -319,7 +335,8 @@ PlanStopGap FirstGapAhead(const RobotModel& robot, const std::vector<ConvexRegio
   return best ? best->gap : PlanStopGap{};
 }
 
-PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::string& reason) {
+PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::string& reason,
+                      const Deadline& deadline) {
   PlanStop stop;
   const RobotModel& robot = context.robot;
   const size_t n = static_cast<size_t>(robot.num_legs());
@@ -338,7 +355,7 @@ PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::s
   const double sample_m = std::max(1e-3, 0.25 * robot.l_bnd_m);
   const int max_points = 20000;  // a 20000-sample path: 0.4 km for the hexapod, beyond any plan's way
   const StopPath path = PathAhead(context, stop.centre_world_m.head<2>(), stop.yaw_rad, sample_m, max_points);
-  stop.gap = FirstGapAhead(robot, context.usable, feet, path, robot.d_lim_m + robot.l_bnd_m);
+  stop.gap = FirstGapAhead(robot, context.usable, feet, path, robot.d_lim_m + robot.l_bnd_m, deadline);
   return stop;
 }
 
@@ -349,6 +366,10 @@ std::string StopText(const RobotModel& robot, const PlanStop& stop) {
        << (stop.regions.size() == 1 ? "" : "s");
   for (size_t k = 0; k < stop.regions.size(); ++k) text << (k == 0 ? " " : ", ") << stop.regions[k];
   const PlanStopGap& g = stop.gap;
+  if (!g.examined) {
+    text << "; the way ahead was not examined (out of time)";
+    return text.str();
+  }
   if (!g.found) {
     text << "; every leg's nominal path ahead stays on regions";
     return text.str();

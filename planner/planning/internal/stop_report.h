@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/deadline.h"
 #include "planner/formulation/plan.h"
 #include "planner/planning/internal/plan_context.h"
 
@@ -30,13 +31,17 @@ StopPath PathAhead(const PlanContext& context, const Eigen::Vector2d& centre_m, 
 // The first gap along the path ahead, over every leg, that one step cannot span (or, when
 // none, the widest gap ahead). feet: the last stance, one per leg in leg order, with the
 // ids of the regions they stand on. regions: the plan's regions (ids as in the footsteps).
-// step_span_m: the most a step moves a foot on one axis (d_lim + l_bnd).
+// step_span_m: the most a step moves a foot on one axis (d_lim + l_bnd). A search that
+// reaches the deadline before it has examined the whole way returns no gap (found false).
 PlanStopGap FirstGapAhead(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
-                          const std::vector<Footstep>& feet, const StopPath& path, double step_span_m);
+                          const std::vector<Footstep>& feet, const StopPath& path, double step_span_m,
+                          const Deadline& deadline);
 
 // The stop of a plan ending short of the goal: its last stance (the plan's last n
-// footsteps) and the gap ahead; reason says why the windows ended (a short phrase).
-PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::string& reason);
+// footsteps) and the gap ahead; reason says why the windows ended (a short phrase). The
+// gap search ends at `deadline` (then no gap is named).
+PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::string& reason,
+                      const Deadline& deadline);
 
 // "stopped at (x, y, yaw) on regions ...; ahead, leg k ('name') must cross ...": the
 // stop's place and the gap ahead, for the plan's message.
