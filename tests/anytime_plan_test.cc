@@ -162,19 +162,28 @@ TEST(AnytimePlan, ThirtySixStepsWithoutAFeasibleRoundingGetTheDivesPlanAtTheRoot
   EXPECT_GE(r.objective, r.root_bound);
 }
 
+// LittleDog 36's first window, its solvers and its root relaxation: the dives' start.
+struct LittleDog36Root {
+  const Course c = LittleDogTableI(36);
+  const PlannerOptions& options = c.scenario.options;
+  const MiqpFormulation formulation{FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation};
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  const RelaxationResult root = solvers.workers().front()->Solve(formulation.miqp(), RelaxationRequest{});
+};
+
 TEST(AnytimePlan, ThirtySixStepsGetTheRoundingDivesPlanFromTheRootWithOneQpPerStage) {
   // LittleDog 36 again: the rounding dive (RelaxAndFixOptions::rounding_dive) rounds each
   // configuration from the previous stage's completion, starting at the root relaxation's
   // point, and completes it with one QP: a plan that meets every row with integral
   // choices, from at most two QPs per stage (one per rounding proposal) where the
   // stage-search dive solves a relaxation and a rounding each.
-  const Course c = LittleDogTableI(36);
-  const PlannerOptions& options = c.scenario.options;
-  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  const LittleDog36Root ld;
+  ASSERT_EQ(ld.root.status, RelaxationStatus::kSolved);
+  const PlannerOptions& options = ld.options;
+  const MiqpFormulation& formulation = ld.formulation;
+  const RelaxationSolverSet& solvers = ld.solvers;
   const Miqp& m = formulation.miqp();
-  const RelaxationResult root = solvers.workers().front()->Solve(m, RelaxationRequest{});
-  ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+  const RelaxationResult& root = ld.root;
   RelaxAndFixOptions rf = options.relax_and_fix;
   rf.stage = options.branch_and_bound;
   rf.time_limit_s = 60.0;
@@ -229,13 +238,13 @@ TEST(AnytimePlan, ARoundingDiveCutShortByItsShareEndsWithTheRoundingOfItsLatestS
   // the root's is): no plan, and the planner's stage-search dive (RelaxAndFix with
   // DiveOptions, its own share) ends with a complete plan. (Before, the QPs ran under the
   // caller's deadline and a dive cut short by its share ended without a plan.)
-  const Course c = LittleDogTableI(36);
-  const PlannerOptions& options = c.scenario.options;
-  const MiqpFormulation formulation(FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation);
-  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  const LittleDog36Root ld;
+  ASSERT_EQ(ld.root.status, RelaxationStatus::kSolved);
+  const PlannerOptions& options = ld.options;
+  const MiqpFormulation& formulation = ld.formulation;
+  const RelaxationSolverSet& solvers = ld.solvers;
   const Miqp& m = formulation.miqp();
-  const RelaxationResult root = solvers.workers().front()->Solve(m, RelaxationRequest{});
-  ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+  const RelaxationResult& root = ld.root;
   RelaxAndFixOptions rf = options.relax_and_fix;
   rf.stage = options.branch_and_bound;
   rf.stage.deadline = Deadline();
