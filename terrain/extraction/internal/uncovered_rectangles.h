@@ -24,6 +24,7 @@ class UncoveredRectangles {
 
   // The largest rectangle of set cells (area 0 when none is set). Scans the stale rows
   // that could hold it (a cache: the answer does not depend on when rows are scanned).
+  // Not thread-safe even as const: it updates the mutable row cache (one object per cover).
   CellRect Largest() const;
 
   // Clears the rectangle's cells (it must lie in the grid); returns how many were set.
