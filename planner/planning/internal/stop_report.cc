@@ -70,6 +70,16 @@ double ChebyshevBetween(const ConvexRegion& a, const ConvexRegion& b) {
   return best;
 }
 
+// Whether the region's plan-view bounding box meets the box [lo, hi] (closed).
+bool PlanBoxMeets(const ConvexRegion& r, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
+  Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = Eigen::Vector2d::Constant(-kInf);
+  for (const Eigen::Vector3d& v : r.vertices_world_m) {
+    rlo = rlo.cwiseMin(v.head<2>());
+    rhi = rhi.cwiseMax(v.head<2>());
+  }
+  return rlo.x() <= hi.x() && rhi.x() >= lo.x() && rlo.y() <= hi.y() && rhi.y() >= lo.y();
+}
+
 // The regions near the path (their plan-view boxes meet the path's box grown by `margin_m`),
 // so that each sample looks at a few.
 std::vector<int> RegionsNearPath(const std::vector<ConvexRegion>& regions, const StopPath& path, double margin_m) {
@@ -82,13 +92,7 @@ std::vector<int> RegionsNearPath(const std::vector<ConvexRegion>& regions, const
   hi.array() += margin_m;
   std::vector<int> near;
   for (size_t i = 0; i < regions.size(); ++i) {
-    Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = Eigen::Vector2d::Constant(-kInf);
-    for (const Eigen::Vector3d& v : regions[i].vertices_world_m) {
-      rlo = rlo.cwiseMin(v.head<2>());
-      rhi = rhi.cwiseMax(v.head<2>());
-    }
-    const bool meets = rlo.x() <= hi.x() && rhi.x() >= lo.x() && rlo.y() <= hi.y() && rhi.y() >= lo.y();
-    if (meets) near.push_back(static_cast<int>(i));
+    if (PlanBoxMeets(regions[i], lo, hi)) near.push_back(static_cast<int>(i));
   }
   return near;
 }
@@ -134,12 +138,7 @@ int DetourRegion(const std::vector<ConvexRegion>& regions, const std::vector<int
   const Eigen::Vector2d lo = a.cwiseMin(b).array() - margin_m, hi = a.cwiseMax(b).array() + margin_m;
   std::vector<int> local;
   for (int i : near) {
-    Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = Eigen::Vector2d::Constant(-kInf);
-    for (const Eigen::Vector3d& v : regions[static_cast<size_t>(i)].vertices_world_m) {
-      rlo = rlo.cwiseMin(v.head<2>());
-      rhi = rhi.cwiseMax(v.head<2>());
-    }
-    if (rlo.x() <= hi.x() && rhi.x() >= lo.x() && rlo.y() <= hi.y() && rhi.y() >= lo.y()) local.push_back(i);
+    if (PlanBoxMeets(regions[static_cast<size_t>(i)], lo, hi)) local.push_back(i);
   }
   auto hop = [&](int u, int v) {
     const auto [ulo, uhi] = HeightSpan(regions[static_cast<size_t>(u)]);
