@@ -58,6 +58,12 @@ void EndOnFailedSearch(const PlanContext& context, const BranchAndBoundResult& r
   }
   plan.message = state->WindowName() + ": " + ToString(result.status) + " after " + std::to_string(result.nodes) +
                  " nodes";
+  // Out of time before its root relaxation was solved, a window has nothing to round:
+  // said so, apart from a search whose roundings and heuristics found nothing.
+  if (result.status == SolveStatus::kNoSolution && !std::isfinite(result.root_bound)) {
+    plan.message += ": " + std::string(context.request.deadline.Stopped() ? "stopped" : "out of time") +
+                    " before its root relaxation was solved";
+  }
   state->end_reason = "window_failed";
 }
 
