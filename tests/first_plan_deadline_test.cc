@@ -79,9 +79,11 @@ Plan PlanWith(const Course& c, const PlannerOptions& options, StallingSolver* so
   return PlanFootsteps(c.robot, c.regions, c.request, options, std::vector<RelaxationSolver*>{solver});
 }
 
+// A plan of the window (trimmed steps, which stay where their leg stood, are not listed).
 void ExpectCompletePlan(const Course& c, const Plan& plan) {
   ASSERT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
-  EXPECT_EQ(static_cast<int>(plan.footsteps.size()), c.robot.num_legs() + c.request.max_steps);
+  EXPECT_GT(static_cast<int>(plan.footsteps.size()), c.robot.num_legs());
+  EXPECT_LE(static_cast<int>(plan.footsteps.size()), c.robot.num_legs() + c.request.max_steps);
 }
 
 TEST(FirstPlanDeadline, RootRoundingsCutByTheDeadlineStillGiveAPlan) {
@@ -115,10 +117,10 @@ TEST(FirstPlanDeadline, ARoundingDiveCutByTheDeadlineAfterItsFirstStageStillGive
 
 TEST(FirstPlanDeadline, ASeedCutByTheDeadlineWithoutAFirstPlanIsCompletedByRounding) {
   // LittleDog 36 without the quick dive: relax-and-fix's seed is the only source of a plan,
-  // and the deadline passes right after the relaxation of its stage `cut_stage`. That
-  // stage's rounding and the seed's completion (the rest rounded from the latest stage's
-  // point) run within the overrun. (Before, both ran under the expired deadline: each QP
-  // ended at once, no plan.)
+  // and the deadline passes right after the relaxation of its stage `cut_stage`. The
+  // seed's completion (the rest rounded from the latest completed stage's point) runs
+  // within the overrun. (Before, it ran under the expired deadline: each QP ended at once,
+  // no plan.)
   Course c = LittleDogTableI(36);
   c.request.time_limit_s = 2.0;
   PlannerOptions options = ShortClockOptions(c);

@@ -138,6 +138,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     // searches stopped at a poor incumbent (docs/measurements.md).
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
+    bnb.first_plan_overrun_s = 0.0;  // what may overrun the deadline is the completion (completion_overrun_s)
     bnb.root_heuristic = nullptr;  // a stage is itself part of the root heuristic
     bnb.first_plan_heuristic = nullptr;
     bnb.root_cut_rounds = 0;  // the stages are heuristics: the cut loop is the full search's

@@ -65,9 +65,10 @@ WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formul
 
 // One relax-and-fix plan for the search's root, its stages searched with the window's
 // options (bnb) for rf.time_share of its time. Without a first plan (the root's roundings
-// and the quick dive found none) its completion may overrun the window's deadline as the first plan's work does
-// (BranchAndBoundOptions::first_plan_overrun_s): the stages end on that deadline when the
-// dive took the time, and the completion's rounding is then the window's only plan.
+// and the quick dive found none) its completion may overrun the window's deadline as the
+// first plan's work does (BranchAndBoundOptions::first_plan_overrun_s): the stages end on
+// that deadline when the dive took the time, and the completion's rounding is then the
+// window's only plan.
 RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulation& formulation,
                                   const BranchAndBoundOptions& bnb, bool without_first_plan) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
