@@ -351,7 +351,8 @@ void AddPolishKeys(Table* t) {
                    .Alias("polish_replan_inexact").Advanced());
   t->push_back(Opt("polish.completion_overrun", in(&O::completion_overrun_s), 0, 10,
                    "a re-plan out of time completes the window's own choices with one QP, at most this long past the "
-                   "plan's deadline").Unit("s").Advanced());
+                   "plan's deadline; a window's search without a plan finishes its roundings and first-plan dive at "
+                   "most this long past its deadline").Unit("s").Advanced());
 }
 
 Table MakeTable() {

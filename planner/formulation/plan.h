@@ -27,7 +27,7 @@ struct WindowRecord {
   int nodes = 0;
   int relaxations = 0;        // QPs solved: the search's and its root heuristics'
   int heuristic_relaxations = 0;  // of them, the root heuristics' (relax-and-fix's dives and seed)
-  int fallbacks = 0;          // of them, solved by the solver's fallback (BranchAndBoundResult::fallbacks)
+  int fallbacks = 0;          // of them, solved by the solver's fallback (the search's and its root heuristics')
   int kept_steps = 0;          // steps accepted from it (0 on a failure or a retry)
   double time_limit_s = 0.0;   // the search's share of the plan's time
   double build_s = 0.0;        // formulating the MIQP
@@ -91,7 +91,7 @@ struct Plan {
   double setup_s = 0.0;        // request checks, reachable regions and route, before the first window
   int nodes = 0;               // branch-and-bound nodes over all windows
   int relaxations = 0;         // continuous QPs solved over all windows
-  int relaxation_fallbacks = 0;  // of the searches' QPs, those solved by the solver's fallback
+  int relaxation_fallbacks = 0;  // of the searches' and their root heuristics' QPs, those solved by the solver's fallback
   int integer_variables = 0;   // in the first window's MIQP
   int windows = 0;
   int horizon_retries = 0;     // windows planned again with a longer horizon (adaptive horizons)

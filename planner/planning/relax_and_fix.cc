@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -43,18 +44,33 @@ std::vector<int> ConfigurationOf(const std::vector<std::vector<int>>& integers, 
 }
 
 // Out of time before the last stage: the integers still open are rounded along the plan
-// from the latest stage's solution (earlier configurations keep their fixed values, which
-// that solution holds), and the best rounding whose QP is feasible becomes the plan. One
-// QP per proposal, so a short time limit still ends with a complete plan.
-std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formulation, const Eigen::VectorXd& x,
-                                                  RelaxationSolver& solver, const Deadline& deadline,
-                                                  double feasibility_tolerance, int* relaxations) {
+// from the latest stage's solution x (earlier configurations keep their fixed values,
+// which that solution holds), and the best of `proposals` (such roundings) whose QP is
+// feasible becomes the plan. One QP per proposal, so a short time limit still ends with
+// a complete plan. Its QPs and their fallbacks are counted in *result.
+std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formulation,
+                                                  const std::vector<Eigen::VectorXd>& proposals,
+                                                  const Eigen::VectorXd& x, RelaxationSolver& solver,
+                                                  const Deadline& deadline, double feasibility_tolerance,
+                                                  RelaxAndFixResult* result) {
+  const Miqp& full = formulation.miqp();
   RelaxationRequest request;
   request.warm_start = x;
   request.deadline = deadline;
-  FixedAssignmentOptions options;
-  options.feasibility_tolerance = feasibility_tolerance;
-  return BestFixedAssignment(formulation.miqp(), formulation.RoundAlongPlan(x), solver, request, options, relaxations);
+  std::optional<Eigen::VectorXd> best;
+  double best_objective = kInfinity;
+  for (const Eigen::VectorXd& proposal : proposals) {
+    RelaxationResult r = SolveWithIntegersFixed(full, proposal, solver, request);
+    ++result->relaxations;
+    result->fallbacks += r.fallbacks;
+    if (r.status != RelaxationStatus::kSolved) continue;
+    const std::optional<double> objective = FeasibleObjective(full, &r.x, feasibility_tolerance);
+    if (objective && *objective < best_objective) {
+      best_objective = *objective;
+      best = std::move(r.x);
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -80,9 +96,11 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
   const auto complete_by_rounding = [&] {
     if (x.size() == 0) return;
     // The completion is what turns the stages' choices into a plan: its QPs run under the
-    // caller's deadline, not under the time limit that has just ended the stages.
-    result.x = CompleteByRounding(formulation, x, *solvers.front(), options.stage.deadline,
-                                  options.stage.feasibility_tolerance, &result.relaxations);
+    // caller's deadline (not under the time limit that has just ended the stages),
+    // extended by completion_overrun_s (the deadline may be what ended them).
+    result.x = CompleteByRounding(formulation, formulation.RoundAlongPlan(x), x, *solvers.front(),
+                                  options.stage.deadline.ExtendedBy(options.completion_overrun_s),
+                                  options.stage.feasibility_tolerance, &result);
     result.completed_by_rounding = result.x.has_value();
   };
   // Stages for the configurations that have integers; the last stage takes all the rest.
@@ -120,6 +138,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     // searches stopped at a poor incumbent (docs/measurements.md).
     bnb.time_limit_s = final_stage ? remaining : 0.5 * remaining;
     bnb.on_incumbent = nullptr;
+    bnb.first_plan_overrun_s = 0.0;  // what may overrun the deadline is the completion (completion_overrun_s)
     bnb.root_heuristic = nullptr;  // a stage is itself part of the root heuristic
     bnb.first_plan_heuristic = nullptr;
     bnb.root_cut_rounds = 0;  // the stages are heuristics: the cut loop is the full search's
@@ -131,6 +150,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     ++result.stages;
     result.nodes += r.nodes;
     result.relaxations += r.relaxations;
+    result.fallbacks += r.fallbacks;
     if (r.x.size() == 0) {  // earlier choices left no plan, or the stage's limits came first
       if (r.status != SolveStatus::kInfeasible) complete_by_rounding();
       return result;
@@ -159,22 +179,25 @@ RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSol
   const int B = formulation.num_configurations();
   const double tolerance = options.stage.feasibility_tolerance;
   // The stages' QPs end at the dive's share (time_limit_s) or the caller's deadline,
-  // whichever comes first; the completion of a dive cut short runs under the caller's.
+  // whichever comes first; the completion of a dive cut short runs under the caller's,
+  // extended by completion_overrun_s.
   const Deadline share = options.stage.deadline.Within(options.time_limit_s);
+  const Deadline completion = options.stage.deadline.ExtendedBy(options.completion_overrun_s);
   RelaxAndFixResult result;
   Eigen::VectorXd x = root_x;
   int completed_stages = 0;
-  // Cut short by the share after at least one stage was completed: the rest
-  // is rounded along the plan from the latest stage's point, as RelaxAndFix's stages are.
-  // Before the first stage there is nothing to complete: x's roundings are the root's.
-  const auto complete_by_rounding = [&] {
-    if (completed_stages == 0 || options.stage.deadline.Expired()) return;
-    result.x = CompleteByRounding(formulation, x, solver, options.stage.deadline, tolerance, &result.relaxations);
+  // Cut short by the share after at least one stage was completed: the rest is rounded
+  // along the plan from the latest stage's point (`proposals`: its roundings, less those a
+  // stage QP already judged), as RelaxAndFix's stages are. Before the first stage there is
+  // nothing to complete: x's roundings are the root's.
+  const auto complete_by_rounding = [&](const std::vector<Eigen::VectorXd>& proposals) {
+    if (completed_stages == 0 || completion.Expired()) return;
+    result.x = CompleteByRounding(formulation, proposals, x, solver, completion, tolerance, &result);
     result.completed_by_rounding = result.x.has_value();
   };
   for (int cfg = 1; cfg < B; ++cfg) {
     if (share.Expired()) {
-      complete_by_rounding();
+      complete_by_rounding(formulation.RoundAlongPlan(x));
       return result;
     }
     const bool final_stage = cfg == B - 1;
@@ -194,19 +217,34 @@ RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSol
     request.relative_tolerance = options.stage.relaxation_tolerance;
     if (!final_stage) request.relative_tolerance = std::max(request.relative_tolerance, options.stage_relaxation_tolerance);
     ++result.stages;
-    // The proposals rounded from x, each completed by a QP; the first one completed becomes x.
-    bool completed = false;
-    for (const Eigen::VectorXd& proposal : formulation.RoundAlongPlan(x)) {
-      RelaxationResult r = SolveWithIntegersFixed(stage, proposal, solver, request);
+    // The proposals rounded from x, each completed by a QP; the first one completed becomes
+    // x. A QP that ends unsolved once the share has passed was cut short: neither it nor
+    // the proposals after it were judged.
+    std::vector<Eigen::VectorXd> proposals = formulation.RoundAlongPlan(x);
+    size_t judged = 0;
+    bool completed = false, cut_short = false;
+    for (; judged < proposals.size(); ++judged) {
+      RelaxationResult r = SolveWithIntegersFixed(stage, proposals[judged], solver, request);
       ++result.relaxations;
-      if (r.status != RelaxationStatus::kSolved) continue;
-      x = std::move(r.x);
-      completed = true;
-      break;
+      result.fallbacks += r.fallbacks;
+      if (r.status == RelaxationStatus::kSolved) {
+        x = std::move(r.x);
+        completed = true;
+        break;
+      }
+      if (r.status != RelaxationStatus::kInfeasible && share.Expired()) {
+        cut_short = true;
+        break;
+      }
     }
     if (!completed) {
-      // A QP cut by the share is no failed choice: the stages so far are completed.
-      if (share.Expired()) complete_by_rounding();
+      // Cut short, the stages so far are completed with the roundings not yet judged; when
+      // every rounding failed on its own the stage's choice is what failed (its roundings
+      // would fail in the completion too): no plan.
+      if (cut_short) {
+        proposals.erase(proposals.begin(), proposals.begin() + static_cast<std::ptrdiff_t>(judged));
+        complete_by_rounding(proposals);
+      }
       return result;
     }
     ++completed_stages;
@@ -244,6 +282,7 @@ RelaxAndFixResult RelaxAndFixTwoPaths(const MiqpFormulation& formulation,
   result.stages += other.stages;
   result.nodes += other.nodes;
   result.relaxations += other.relaxations;
+  result.fallbacks += other.fallbacks;
   return result;
 }
 

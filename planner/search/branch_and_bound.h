@@ -61,6 +61,12 @@ struct BranchAndBoundOptions {
   // incumbent; before its first one it runs on until the deadline (or max_nodes), so a
   // search given too short a share ends with a plan rather than none.
   bool time_limit_needs_incumbent = false;
+  // While the search holds no plan, the QPs that complete its roundings (at the root and
+  // on dives) may run this long past the deadline in force [s] (its stop flag still ends
+  // them): a search whose root relaxation was solved in time ends with a plan whenever a
+  // rounding of it gives one, rather than with none because the deadline passed between
+  // the relaxation and its roundings. Once it holds a plan the deadline is kept exactly.
+  double first_plan_overrun_s = 0.0;
   // Stall limit: with an incumbent, the search also ends (as at its time limit) once
   // this fraction of time_limit_s has passed since the incumbent last improved (0: off).
   // For receding windows whose proofs cannot finish in their share: the time a search

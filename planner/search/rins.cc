@@ -14,6 +14,7 @@ BranchAndBoundOptions SubSearchOptions(const SearchState& state) {
   sub.max_nodes = std::max(1, sub.rins_max_nodes);
   sub.deadline = state.Active();
   sub.time_limit_needs_incumbent = false;
+  sub.first_plan_overrun_s = 0.0;  // the search it serves holds a plan
   sub.stall_time_fraction = 0.0;
   sub.rins_frequency = 0;
   sub.root_cut_rounds = 0;

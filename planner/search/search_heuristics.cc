@@ -55,7 +55,8 @@ double CompletionCutoff(const SearchState& state) {
 // left for its QP), then completed: its integers fixed and the QP left solved, a round
 // of workers at a time, warm-started from the relaxation point x. With bound propagation
 // on, proposals that propagation proves incomplete get no QP; with
-// rounding_stops_at_first_plan, no QP is started once the search holds a plan.
+// rounding_stops_at_first_plan, no QP is started once the search holds a plan. The QPs
+// run under SearchState::RoundingDeadline: past the deadline only until the first plan.
 void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& all, const Eigen::VectorXd& x) {
   const Miqp& p = state->problem();
   for (const Eigen::VectorXd& proposal : all) state->OfferIncumbent(proposal);
@@ -65,11 +66,13 @@ void OfferAndComplete(SearchState* state, const std::vector<Eigen::VectorXd>& al
   }
   const int workers = state->workers();
   for (size_t first = 0; first < proposals.size(); first += workers) {
-    if (state->Active().Expired()) return;
+    const Deadline deadline = state->RoundingDeadline();
+    if (deadline.Expired()) return;
     if (state->options().rounding_stops_at_first_plan && state->HasIncumbent()) return;
     const int count = static_cast<int>(std::min<size_t>(workers, proposals.size() - first));
     std::vector<RelaxationResult> results(count);
-    const RelaxationRequest request = state->Request(Eigen::VectorXd(), Eigen::VectorXd(), &x, CompletionCutoff(*state));
+    RelaxationRequest request = state->Request(Eigen::VectorXd(), Eigen::VectorXd(), &x, CompletionCutoff(*state));
+    request.deadline = deadline;
     ForEachInParallel(count, [&](int k) {
       results[k] = SolveWithIntegersFixed(p, proposals[first + k], state->solver(k), request);
     });

@@ -58,6 +58,15 @@ void EndOnFailedSearch(const PlanContext& context, const BranchAndBoundResult& r
   }
   plan.message = state->WindowName() + ": " + ToString(result.status) + " after " + std::to_string(result.nodes) +
                  " nodes";
+  // Without a plan, whether the root relaxation was solved: out of time before it, a
+  // window has nothing to round; after it, its roundings and dives (which may run past the
+  // window's deadline by polish.completion_overrun_s) found no plan in time.
+  if (result.status == SolveStatus::kNoSolution) {
+    plan.message += std::isfinite(result.root_bound)
+                        ? ": its root relaxation was solved, but its roundings and dives found no plan within its limits"
+                        : ": " + std::string(context.request.deadline.Stopped() ? "stopped" : "out of time") +
+                              " before its root relaxation was solved";
+  }
   state->end_reason = "window_failed";
 }
 

@@ -24,7 +24,8 @@ void EndOnInfeasibleWindow(const std::string& reason, HorizonState* state);
 // The window's search found no plan (and no retry is left): the first window's status is
 // the plan's; a later one leaves the plan so far standing (unguided, a search that found
 // nothing in its time share ends the plan with status time_limit; one that ends with an
-// error status passes it on).
+// error status passes it on). A search without a plan says in the message whether its
+// root relaxation was solved.
 void EndOnFailedSearch(const PlanContext& context, const BranchAndBoundResult& result, HorizonState* state);
 // Neither the polisher nor the re-plan within the chords' error made the window exact.
 // That proves nothing about the true boxes: no exact plan found, never infeasible.

@@ -13,7 +13,8 @@
 // Anytime: when the time runs out before the last stage, the configurations still open
 // are rounded along the plan from the latest stage's solution, so a short budget ends
 // with a complete (if worse) plan rather than none. The rounding's QPs (one per proposal)
-// run under the caller's deadline, stage.deadline: time_limit_s has passed by then.
+// run under the caller's deadline, stage.deadline, extended by completion_overrun_s:
+// time_limit_s, or that deadline itself, has passed by then.
 #include <Eigen/Core>
 #include <optional>
 #include <vector>
@@ -33,6 +34,10 @@ struct RelaxAndFixOptions {
   int nodes_per_stage = 100;         // branch-and-bound nodes per stage
   double stage_relative_gap = 0.005;  // a stage's search stops this close to its optimum
   double time_limit_s = 1.0;         // whole heuristic [s]; past it, the rest is rounded
+  // The completion's QPs (the rounding of what was not searched) may run this long past
+  // stage.deadline [s] (its stop flag still ends them): when that deadline is what ended
+  // the stages, a completion under it alone has no time and the stages' choices no plan.
+  double completion_overrun_s = 0.0;
   int max_searched_stages = 0;       // stages searched before the rest is rounded (0: all)
   // The steps after the stage's integer configurations choose no region: each stands in
   // the convex hull of its regions (MiqpFormulation::WithRegionsRelaxedFrom) instead of
@@ -83,6 +88,7 @@ struct RelaxAndFixResult {
   int stages = 0;
   int nodes = 0;
   int relaxations = 0;
+  int fallbacks = 0;  // of the relaxations, those solved by the solver's fallback
   // Stopped before the last stage (time, max_searched_stages, or a stage's own limits):
   // the configurations left were rounded along the plan from the last stage's solution
   // instead of searched.
@@ -98,9 +104,13 @@ RelaxAndFixOptions DiveOptions(RelaxAndFixOptions options);
 // solver under the sooner of options.stage's deadline and options.time_limit_s (the dive's
 // share), with options.stage's feasibility tolerance. Anytime as RelaxAndFix: when the
 // share passes after a stage was completed, the configurations left are rounded along the
-// plan from the latest stage's point under options.stage's deadline (completed_by_rounding;
-// those QPs are counted in relaxations too). No plan when a stage's proposals all fail
-// within the share, the share passes before a stage is completed, or the deadline passes.
+// plan from the latest stage's point under options.stage's deadline extended by
+// options.completion_overrun_s (completed_by_rounding; those QPs are counted in relaxations
+// too), skipping the roundings whose stage QP already failed. A stage is cut short only
+// when one of its QPs ends unsolved after the share has passed: when its roundings all
+// fail on their own (infeasible, or failed within the share), the dive ends without a plan
+// and without a completion, which would solve the same roundings again. No plan either
+// when the share passes before a stage is completed, or the completion's deadline passes.
 RelaxAndFixResult RoundingDive(const MiqpFormulation& formulation, RelaxationSolver& solver,
                                const Eigen::VectorXd& root_x, const RelaxAndFixOptions& options);
 

@@ -64,11 +64,16 @@ WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formul
 }
 
 // One relax-and-fix plan for the search's root, its stages searched with the window's
-// options (bnb) for rf.time_share of its time.
+// options (bnb) for rf.time_share of its time. Without a first plan (the root's roundings
+// and the quick dive found none) its completion may overrun the window's deadline as the
+// first plan's work does (BranchAndBoundOptions::first_plan_overrun_s): the stages end on
+// that deadline when the dive took the time, and the completion's rounding is then the
+// window's only plan.
 RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulation& formulation,
-                                               const BranchAndBoundOptions& bnb) {
+                                  const BranchAndBoundOptions& bnb, bool without_first_plan) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
   rf.stage = bnb;
+  rf.completion_overrun_s = without_first_plan ? bnb.first_plan_overrun_s : 0.0;
   rf.stage.time_limit_needs_incumbent = false;  // a stage out of time is completed by rounding
   // Stage searches are small (nodes_per_stage): strong branching would cost them more
   // than it saves, and their plans came out worse (docs/measurements.md).
@@ -83,11 +88,14 @@ RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulat
 // rounding dive first (rf.rounding_dive), then, when it finds no plan, the stage-search
 // dive with a share of its own: cut short, it still ends with its rounding's complete plan
 // (RelaxAndFix), where one given what the rounding dive left could end with none. The
-// relaxations of both are counted.
+// relaxations of both are counted. Both are the window's first plan's work: they run
+// under its deadline extended by bnb.first_plan_overrun_s, so a root relaxation solved
+// in time is carried through to a plan.
 RelaxAndFixResult RelaxAndFixDive(const PlanContext& context, const MiqpFormulation& formulation,
                                   const BranchAndBoundOptions& bnb, const Eigen::VectorXd& root_x) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
   rf.stage = bnb;
+  rf.stage.deadline = bnb.deadline.ExtendedBy(bnb.first_plan_overrun_s);
   rf.stage.time_limit_needs_incumbent = false;
   rf.time_limit_s = rf.time_share * bnb.time_limit_s;
   RelaxAndFixResult rounding;
@@ -98,6 +106,7 @@ RelaxAndFixResult RelaxAndFixDive(const PlanContext& context, const MiqpFormulat
   RelaxAndFixResult r = RelaxAndFix(formulation, context.solvers, DiveOptions(rf));
   r.stages += rounding.stages;
   r.relaxations += rounding.relaxations;
+  r.fallbacks += rounding.fallbacks;
   return r;
 }
 
@@ -132,6 +141,9 @@ BranchAndBoundOptions WindowSearchOptions(const PlanContext& context, const Hori
     bnb.time_limit_s = WindowTimeShare(budget);
   }
   bnb.time_limit_needs_incumbent = context.guided && options.anytime_windows;
+  // A first plan's roundings may finish past the deadline by the overrun the exactness
+  // step's completion has: a window whose root was solved in time ends with a plan.
+  bnb.first_plan_overrun_s = options.polish.completion_overrun_s;
   // No window runs past the whole plan's limit less the exactness step's reserve
   // (PolishOptions::reserve_fraction), whatever it is given, nor, running on to its first
   // plan, past anytime_window_cap shares.
@@ -166,6 +178,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     seeds.proposals.clear();  // offered once, at the root
     return proposals;
   };
+  bool without_first_plan = false;  // the roundings found no plan, nor did the quick dive
+  int heuristic_fallbacks = 0;
   // The root, once its roundings are completed: one relax-and-fix plan (the workers are
   // idle meanwhile).
   bnb.root_heuristic = [&](const Eigen::VectorXd&) {
@@ -173,22 +187,28 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     if (seeded) return plans;
     seeded = true;
     const PlanClock::time_point rf_start = PlanClock::now();
-    RelaxAndFixResult r = RelaxAndFixSeed(context, formulation, bnb);
+    RelaxAndFixResult r = RelaxAndFixSeed(context, formulation, bnb, without_first_plan);
     if (r.x) plans.push_back(std::move(*r.x));
     record->heuristic_s += SecondsSince(rf_start);
     record->heuristic_relaxations += r.relaxations;
+    heuristic_fallbacks += r.fallbacks;
     return plans;
   };
-  // Before it, when the roundings found no plan: the quick dive.
-  if (!seeded && options.relax_and_fix.first_plan_dive) {
+  // Before it, when the roundings found no plan: the quick dive (the search calls this
+  // only then, which is also how the seed learns that it is without a first plan).
+  if (!seeded) {
     bnb.first_plan_heuristic = [&](const Eigen::VectorXd& root_x) {
       std::vector<Eigen::VectorXd> plans;
       if (seeded) return plans;  // a bounded replan's second search: its first had the root
+      without_first_plan = true;
+      if (!options.relax_and_fix.first_plan_dive) return plans;
       const PlanClock::time_point dive_start = PlanClock::now();
       RelaxAndFixResult r = RelaxAndFixDive(context, formulation, bnb, root_x);
+      without_first_plan = !r.x;
       if (r.x) plans.push_back(std::move(*r.x));
       record->heuristic_s += SecondsSince(dive_start);
       record->heuristic_relaxations += r.relaxations;
+      heuristic_fallbacks += r.fallbacks;
       return plans;
     };
   }
@@ -236,7 +256,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   record->status = result.status;
   record->nodes = result.nodes;
   record->relaxations = result.relaxations + record->heuristic_relaxations;
-  record->fallbacks = result.fallbacks;
+  record->fallbacks = result.fallbacks + heuristic_fallbacks;
   bnb.root_heuristic = nullptr;  // they refer to this call's locals
   bnb.first_plan_heuristic = nullptr;
   return WindowSearch{std::move(result), std::move(bnb)};

@@ -36,6 +36,11 @@ class SearchState {
   // The deadline in force: the time limit's, or before the first incumbent under
   // time_limit_needs_incumbent the caller's alone.
   const Deadline& Active() const { return !HasIncumbent() ? hard_deadline_ : deadline_; }
+  // The deadline of the QPs that complete a rounding: Active(), extended by
+  // options.first_plan_overrun_s while the search holds no plan.
+  Deadline RoundingDeadline() const {
+    return HasIncumbent() ? Active() : Active().ExtendedBy(opt_.first_plan_overrun_s);
+  }
   // BranchAndBoundOptions::stall_time_fraction: the time left before the search counts as
   // stalled (infinite without a stall limit or before its first plan) [s], and whether it is.
   double StallTimeLeftSeconds() const;
