@@ -19,7 +19,7 @@ struct ScanWalkOptions {
   double max_length_m = 10.0;
   double time_limit_s = 20.0; // per plan
   // Endpoints are drawn from this seed (mixed per scan and robot by WalkDrawSeed); 25 is
-  // the draw of the walks recorded in docs/measurements.md up to stop 33.
+  // the draw of the walks recorded in docs/measurements.md unless they name another.
   unsigned seed = 25;
   bool verbose = false;       // a line per walk
   // Every nominal foot of both ends on certifiable floor (seen floor for the foot radius +

@@ -165,7 +165,7 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
       ->check(CLI::Range(0, 999));
   app.add_option("--walk-seed", walks.seed,
                  "the walks' draw: endpoints from this seed, mixed per scan file name and robot name (25: the draw "
-                 "recorded up to stop 33)");
+                 "of the recorded walks)");
   app.add_flag("--walk-body-room", walks.body_room_ends,
                "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
 }

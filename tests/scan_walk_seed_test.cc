@@ -51,7 +51,7 @@ bool SameEnds(const std::vector<std::pair<Pose2D, Pose2D>>& a, const std::vector
 
 TEST(ScanWalkSeedTest, DefaultSeedIsTheRecordedDraw) {
   EXPECT_EQ(ScanWalkOptions{}.seed, 25u);
-  // The per-scan-and-robot seed of the walks recorded up to stop 33: 25 mixed with the
+  // The per-scan-and-robot seed of the recorded walks: 25 mixed with the
   // libstdc++ hash of the scan's file name and the robot's name.
   EXPECT_EQ(WalkDrawSeed(25, "/tmp/scans_data/geb079.bt", "anymal"), 1377961389u);
   EXPECT_EQ(WalkDrawSeed(25, "fr_079.bt", "hexapod"), 3934916487u);
