@@ -75,6 +75,36 @@ class SeenVoxelJudge {
     }
     return false;
   }
+  // For a step off the seen voxels: the voxels of p's column from 1 m below p to 1 m
+  // above it, bottom up, each as its top's height and what it is ('o' occupied, 'f' known
+  // free, '.' unknown), with '*' after an occupied voxel seen from above with room; and
+  // the seen tops of the eight neighbouring columns within 0.5 m of p.
+  std::string ColumnText(const Eigen::Vector3d& p) const {
+    const int64_t i = Index(p.x()), j = Index(p.y()), kp = Index(p.z());
+    const int64_t span = static_cast<int64_t>(std::ceil(1.0 / r_));
+    std::string text = "column";
+    char item[48];
+    for (int64_t k = kp - span; k <= kp + span; ++k) {
+      const bool occupied = occupied_.Contains(i, j, k), free = free_.Contains(i, j, k);
+      if (!occupied && !free) continue;
+      const bool seen = occupied && IsTop(i, j, k);
+      std::snprintf(item, sizeof(item), " %.2f%c%s", (k + 1) * r_, occupied ? 'o' : 'f', seen ? "*" : "");
+      text += item;
+    }
+    text += "; neighbours' seen tops";
+    for (int64_t di = -1; di <= 1; ++di) {
+      for (int64_t dj = -1; dj <= 1; ++dj) {
+        const auto it = tops_.find(VoxelColumnKey(i + di, j + dj));
+        if ((di == 0 && dj == 0) || it == tops_.end()) continue;
+        for (int64_t k : it->second) {
+          if (std::abs((k + 1) * r_ - p.z()) > 0.5) continue;
+          std::snprintf(item, sizeof(item), " (%+d,%+d) %.2f", static_cast<int>(di), static_cast<int>(dj), (k + 1) * r_);
+          text += item;
+        }
+      }
+    }
+    return text;
+  }
   // The floor's top in the column of xy, when the column is seen floor.
   bool FloorTop(const Eigen::Vector2d& xy, double* z) const {
     const auto it = tops_.find(VoxelColumnKey(Index(xy.x()), Index(xy.y())));
@@ -258,6 +288,10 @@ class SeenVoxelJudge {
 
  private:
   int64_t Index(double v) const { return static_cast<int64_t>(std::floor(v / r_)); }
+  bool IsTop(int64_t i, int64_t j, int64_t k) const {
+    const auto it = tops_.find(VoxelColumnKey(i, j));
+    return it != tops_.end() && std::find(it->second.begin(), it->second.end(), k) != it->second.end();
+  }
   double r_;
   LeafSet occupied_, free_;
   int room_;
@@ -532,8 +566,9 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
     if (!judge.Stands(step.position_world_m, slack)) {
       ++r.feet_off;
       if (o.verbose) {
-        std::printf("    step %zu off the seen voxels: (%.3f, %.3f, %.3f), region %d\n", i, step.position_world_m.x(),
-                    step.position_world_m.y(), step.position_world_m.z(), step.region_id);
+        std::printf("    step %zu off the seen voxels: (%.3f, %.3f, %.3f), region %d (plane tolerance %.3f m); %s\n", i,
+                    step.position_world_m.x(), step.position_world_m.y(), step.position_world_m.z(), step.region_id,
+                    slack, judge.ColumnText(step.position_world_m).c_str());
       }
     }
   }
@@ -653,6 +688,23 @@ void PrintPopulation(const Population& p) {
 
 }  // namespace
 
+unsigned WalkDrawSeed(unsigned seed, const std::string& scan_path, const std::string& robot_name) {
+  return seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan_path) + robot_name));
+}
+
+std::vector<std::pair<Pose2D, Pose2D>> DrawWalkEnds(const OccupancyMap& map, const std::string& scan_path,
+                                                    const std::string& robot_path, const ScanWalkOptions& o) {
+  const RobotModel robot = LoadRobot(robot_path);
+  const SeenVoxelJudge judge(map, robot.stance_height_m + Scenario{}.options.body_clearance_margin_m);
+  std::vector<Walk> walks, unjoined;
+  DrawWalks(robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan_path, robot.name), &walks, &unjoined);
+  std::vector<std::pair<Pose2D, Pose2D>> ends;
+  for (const std::vector<Walk>* list : {&walks, &unjoined}) {
+    for (const Walk& w : *list) ends.emplace_back(w.start, w.goal);
+  }
+  return ends;
+}
+
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,
                    const ScanWalkOptions& o) {
   std::printf("walks on real scans: %d per scan and robot, %.0f-%.0f m between %s stances%s, %.0f s each; "
@@ -673,9 +725,8 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       RegionExtractionResult diagnosis;
       const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o, &diagnosis);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
-      const unsigned seed = o.seed ^ static_cast<unsigned>(std::hash<std::string>{}(BaseName(scan) + robot.name));
       std::vector<Walk> walks, unjoined;
-      DrawWalks(robot, judge, map.resolution_m, o, seed, &walks, &unjoined);
+      DrawWalks(robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan, robot.name), &walks, &unjoined);
       RunWalks(scan, robot, scenario, terrain, judge, diagnosis, walks, o, &drawn);
       if (o.joined_ends) RunWalks(scan, robot, scenario, terrain, judge, diagnosis, unjoined, o, &unjoined_walks);
     }

@@ -5,7 +5,11 @@
 // of the map, the robot's options), and each plan judged independently against the raw
 // voxels: every footstep on a voxel seen from above with room above it.
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "io/scenario_yaml.h"
+#include "terrain/extraction/occupancy_map.h"
 
 namespace mfp {
 
@@ -14,7 +18,9 @@ struct ScanWalkOptions {
   double min_length_m = 2.0;  // start to goal, straight line
   double max_length_m = 10.0;
   double time_limit_s = 20.0; // per plan
-  unsigned seed = 25;         // endpoints are drawn from this seed
+  // Endpoints are drawn from this seed (mixed per scan and robot by WalkDrawSeed); 25 is
+  // the draw of the walks recorded in docs/measurements.md unless they name another.
+  unsigned seed = 25;
   bool verbose = false;       // a line per walk
   // Every nominal foot of both ends on certifiable floor (seen floor for the foot radius +
   // 1 cm + one voxel around it), not merely on a seen floor cell: walks whose ends any
@@ -41,6 +47,16 @@ struct ScanWalkOptions {
   // The extractor's max_regions for the walks' regions (-1: its default).
   int max_regions = -1;
 };
+
+// The seed of one scan and robot's draw: the walks' seed mixed with the scan's file name
+// (not its directory, so a draw does not change with where the scan is stored) and the
+// robot's name, so that each scan and robot draws its own walks.
+unsigned WalkDrawSeed(unsigned seed, const std::string& scan_path, const std::string& robot_name);
+
+// The ends (start, goal) of the walks BenchScanWalks draws for one scan and robot, in its
+// order: the judged walks, then, with o.joined_ends, the unjoined ones met on the way.
+std::vector<std::pair<Pose2D, Pose2D>> DrawWalkEnds(const OccupancyMap& map, const std::string& scan_path,
+                                                    const std::string& robot_path, const ScanWalkOptions& o);
 
 // Prints a table: scan, robot, walks, valid to the goal, walks whose start had a foot on
 // no region (accepted on the seen surface), goals moved, footsteps off the seen voxels,

@@ -163,6 +163,9 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--walk-only", walks.only_walk,
                  "plan only the walk of this index (0-based) of each scan and robot's draw (the same draw)")
       ->check(CLI::Range(0, 999));
+  app.add_option("--walk-seed", walks.seed,
+                 "the walks' draw: endpoints from this seed, mixed per scan file name and robot name (25: the draw "
+                 "of the recorded walks)");
   app.add_flag("--walk-body-room", walks.body_room_ends,
                "draw walk ends with room for the body: no occupied voxel in the body's band over its plan box");
 }
