@@ -43,7 +43,7 @@ void AddPlanKeys(Table* t) {
                    "a plan stopped short of the goal names the first gap on the way ahead, sampled this many l_bnd "
                    "apart (at least 1 mm)").Advanced());
   t->push_back(Opt("stop_report.max_samples", At(&P::stop_report_max_samples), 2, 1000000,
-                   "... at most this many samples (the report's reach on a far goal)").Advanced());
+                   "... at most this many samples (a longer way is sampled more sparsely)").Advanced());
   t->push_back(Opt("goal_search.seen_footholds", At(&P::goal_seen_footholds),
                    "with no stance on regions within the goal tolerances, plan to the nearest stance whose spots off "
                    "the regions stand on flat seen floor (a foothold region each)").Advanced());
