@@ -7,6 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include "geometry/plan_bounds.h"
+
 namespace mfp {
 namespace {
 
@@ -78,11 +80,9 @@ std::optional<std::vector<int>> ReachableRegionIndices(const std::vector<ConvexR
   std::vector<Eigen::Vector2d> box_lo(n), box_hi(n);
   for (int i = 0; i < n; ++i) {
     HeightRange(regions[i], &lo[i], &hi[i]);
-    box_lo[i] = box_hi[i] = regions[i].vertices_world_m.front().head<2>();
-    for (const Eigen::Vector3d& v : regions[i].vertices_world_m) {
-      box_lo[i] = box_lo[i].cwiseMin(v.head<2>());
-      box_hi[i] = box_hi[i].cwiseMax(v.head<2>());
-    }
+    const Eigen::AlignedBox2d bounds = PlanBounds(regions[i]);
+    box_lo[i] = bounds.min();
+    box_hi[i] = bounds.max();
   }
   std::vector<uint8_t> seen(n, 0);
   std::deque<int> queue;

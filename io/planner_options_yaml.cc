@@ -39,6 +39,11 @@ void AddPlanKeys(Table* t) {
                    "invalid_goal names").Unit("m").Advanced());
   t->push_back(Opt("goal_search.report_radius", At(&P::goal_report_radius_m), 0, 10,
                    "... out to this distance (0: name none)").Unit("m").Advanced());
+  t->push_back(Opt("stop_report.step", At(&P::stop_report_step_l_bnd), 0.01, 4,
+                   "a plan stopped short of the goal names the first gap on the way ahead, sampled this many l_bnd "
+                   "apart (at least 1 mm)").Advanced());
+  t->push_back(Opt("stop_report.max_samples", At(&P::stop_report_max_samples), 2, 1000000,
+                   "... at most this many samples (a longer way is sampled more sparsely)").Advanced());
   t->push_back(Opt("goal_search.seen_footholds", At(&P::goal_seen_footholds),
                    "with no stance on regions within the goal tolerances, plan to the nearest stance whose spots off "
                    "the regions stand on flat seen floor (a foothold region each)").Advanced());

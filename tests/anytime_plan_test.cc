@@ -169,6 +169,26 @@ struct LittleDog36Root {
   const MiqpFormulation formulation{FirstWindowProblem(c.robot, c.regions, c.request, options), options.formulation};
   const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
   const RelaxationResult root = solvers.workers().front()->Solve(formulation.miqp(), RelaxationRequest{});
+
+  const Miqp& miqp() const { return formulation.miqp(); }
+  RelaxationSolver& worker() const { return *solvers.workers().front(); }
+  int stages() const { return formulation.num_configurations() - 1; }
+  // The planner's relax-and-fix options, its stages searched as the planner's tree search
+  // is, with this share of time.
+  RelaxAndFixOptions DiveShare(double time_limit_s) const {
+    RelaxAndFixOptions rf = options.relax_and_fix;
+    rf.stage = options.branch_and_bound;
+    rf.time_limit_s = time_limit_s;
+    return rf;
+  }
+  // x meets every row within the search's tolerance, with integral choices.
+  ::testing::AssertionResult IsPlan(const Eigen::VectorXd& x) const {
+    const double violation = miqp().MaxViolation(x), fraction = miqp().MaxIntegrality(x);
+    if (violation <= options.branch_and_bound.feasibility_tolerance && fraction == 0.0) {
+      return ::testing::AssertionSuccess();
+    }
+    return ::testing::AssertionFailure() << "violation " << violation << ", integrality " << fraction;
+  }
 };
 
 TEST(AnytimePlan, ThirtySixStepsGetTheRoundingDivesPlanFromTheRootWithOneQpPerStage) {
@@ -179,26 +199,15 @@ TEST(AnytimePlan, ThirtySixStepsGetTheRoundingDivesPlanFromTheRootWithOneQpPerSt
   // stage-search dive solves a relaxation and a rounding each.
   const LittleDog36Root ld;
   ASSERT_EQ(ld.root.status, RelaxationStatus::kSolved);
-  const PlannerOptions& options = ld.options;
-  const MiqpFormulation& formulation = ld.formulation;
-  const RelaxationSolverSet& solvers = ld.solvers;
-  const Miqp& m = formulation.miqp();
-  const RelaxationResult& root = ld.root;
-  RelaxAndFixOptions rf = options.relax_and_fix;
-  rf.stage = options.branch_and_bound;
-  rf.time_limit_s = 60.0;
-  const RelaxAndFixResult r = RoundingDive(formulation, *solvers.workers().front(), root.x, rf);
+  const RelaxAndFixResult r = RoundingDive(ld.formulation, ld.worker(), ld.root.x, ld.DiveShare(60.0));
   ASSERT_TRUE(r.x.has_value()) << "the rounding dive found no plan";
-  const int stages = formulation.num_configurations() - 1;
-  EXPECT_EQ(r.stages, stages);
-  EXPECT_GE(r.relaxations, stages);
-  EXPECT_LE(r.relaxations, 2 * stages);
-  EXPECT_LE(m.MaxViolation(*r.x), options.branch_and_bound.feasibility_tolerance);
-  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
-  EXPECT_GE(m.Objective(*r.x), root.objective - 1e-6 * std::abs(root.objective));
+  EXPECT_EQ(r.stages, ld.stages());
+  EXPECT_GE(r.relaxations, ld.stages());
+  EXPECT_LE(r.relaxations, 2 * ld.stages());
+  EXPECT_TRUE(ld.IsPlan(*r.x));
+  EXPECT_GE(ld.miqp().Objective(*r.x), ld.root.objective - 1e-6 * std::abs(ld.root.objective));
   // Out of time before it starts: no plan, and no QP.
-  rf.time_limit_s = 0.0;
-  const RelaxAndFixResult none = RoundingDive(formulation, *solvers.workers().front(), root.x, rf);
+  const RelaxAndFixResult none = RoundingDive(ld.formulation, ld.worker(), ld.root.x, ld.DiveShare(0.0));
   EXPECT_FALSE(none.x.has_value());
   EXPECT_EQ(none.relaxations, 0);
 }
@@ -240,36 +249,28 @@ TEST(AnytimePlan, ARoundingDiveCutShortByItsShareEndsWithTheRoundingOfItsLatestS
   // caller's deadline and a dive cut short by its share ended without a plan.)
   const LittleDog36Root ld;
   ASSERT_EQ(ld.root.status, RelaxationStatus::kSolved);
-  const PlannerOptions& options = ld.options;
-  const MiqpFormulation& formulation = ld.formulation;
-  const RelaxationSolverSet& solvers = ld.solvers;
-  const Miqp& m = formulation.miqp();
-  const RelaxationResult& root = ld.root;
-  RelaxAndFixOptions rf = options.relax_and_fix;
-  rf.stage = options.branch_and_bound;
+  RelaxAndFixOptions rf = ld.DiveShare(1.0);
   rf.stage.deadline = Deadline();
-  rf.time_limit_s = 1.0;
-  const int stages = formulation.num_configurations() - 1;
-  PausingSolver late(solvers.workers().front(), stages - 2, 1.5);
-  const RelaxAndFixResult r = RoundingDive(formulation, late, root.x, rf);
+  const int stages = ld.stages();
+  PausingSolver late(&ld.worker(), stages - 2, 1.5);
+  const RelaxAndFixResult r = RoundingDive(ld.formulation, late, ld.root.x, rf);
   ASSERT_TRUE(r.x.has_value()) << "the dive cut short by its share ended without a plan";
   EXPECT_TRUE(r.completed_by_rounding);
   EXPECT_EQ(r.stages, stages - 2);
-  EXPECT_LE(m.MaxViolation(*r.x), options.branch_and_bound.feasibility_tolerance);
-  EXPECT_EQ(m.MaxIntegrality(*r.x), 0.0);
+  EXPECT_TRUE(ld.IsPlan(*r.x));
   ASSERT_GT(late.time_left_s.size(), static_cast<size_t>(stages - 2));
   EXPECT_EQ(r.relaxations, static_cast<int>(late.time_left_s.size()));
   for (int k = 0; k < stages - 2; ++k) EXPECT_LE(late.time_left_s[k], rf.time_limit_s);  // the stages: the share
   EXPECT_TRUE(std::isinf(late.time_left_s.back()));  // the completion: the caller's deadline
 
-  PausingSolver early(solvers.workers().front(), 1, 1.5);
-  const RelaxAndFixResult none = RoundingDive(formulation, early, root.x, rf);
+  PausingSolver early(&ld.worker(), 1, 1.5);
+  const RelaxAndFixResult none = RoundingDive(ld.formulation, early, ld.root.x, rf);
   EXPECT_FALSE(none.x.has_value());
   EXPECT_EQ(none.relaxations, static_cast<int>(early.time_left_s.size()));
   rf.time_limit_s = 60.0;
-  const RelaxAndFixResult fallback = RelaxAndFix(formulation, solvers.workers(), DiveOptions(rf));
+  const RelaxAndFixResult fallback = RelaxAndFix(ld.formulation, ld.solvers.workers(), DiveOptions(rf));
   ASSERT_TRUE(fallback.x.has_value()) << "the stage-search dive found no plan";
-  EXPECT_LE(m.MaxViolation(*fallback.x), options.branch_and_bound.feasibility_tolerance);
+  EXPECT_LE(ld.miqp().MaxViolation(*fallback.x), ld.options.branch_and_bound.feasibility_tolerance);
   EXPECT_GT(fallback.relaxations, 0);
 }
 

@@ -190,5 +190,63 @@ TEST_F(StopReportTest, APathThatLeavesTheRegionsForGoodBlocks) {
   EXPECT_FALSE(end.found && end.blocks);
 }
 
+TEST_F(StopReportTest, TheReportsSampleStepAndSampleCapAreOptions) {
+  // DescribeStop samples the way ahead stop_report.step l_bnd apart, at most
+  // stop_report.max_samples samples. A gap half an l_bnd wide (within a step, so named as
+  // the widest gap, not a blocker) placed where no foot's sample at 4 l_bnd apart falls:
+  // the default samples (a quarter of l_bnd apart) name it, those 4 l_bnd apart do not,
+  // nor do two samples (the stance's and the way's midpoint's) on the way to x = 3.
+  const PlanRequest request = Request(3.0);
+  PlannerOptions options = course_->scenario.options;
+  const double l_bnd = robot().l_bnd_m, gap = 0.5 * l_bnd;
+  const std::vector<Footstep> feet = StanceAt(0.0, 0);
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (const Footstep& f : feet) centre += f.position_world_m.head<2>() / static_cast<double>(feet.size());
+  const std::vector<RelaxationSolver*> no_solvers;
+  std::vector<ConvexRegion> regions;
+  auto named_gap = [&](const PlannerOptions& o) {
+    PlanContext context(robot(), regions, request, o, no_solvers);
+    context.usable = regions;
+    Plan plan;
+    plan.footsteps = feet;
+    return DescribeStop(context, plan, "no_progress", Deadline()).gap;
+  };
+  // The feet's x at the two sparse ways' samples; the gap's start at least 1 mm clear of them.
+  std::vector<double> coarse_feet_x;
+  {
+    const PlanContext context(robot(), regions, request, options, no_solvers);
+    for (const StopPath& coarse : {PathAhead(context, centre, 0.0, 4.0 * l_bnd, options.stop_report_max_samples),
+                                   PathAhead(context, centre, 0.0, 0.25 * l_bnd, 2)}) {
+      for (const Footstep& f : feet) {
+        for (const Eigen::Vector2d& c : coarse.centres_m) {
+          coarse_feet_x.push_back(NominalFootXY(robot(), f.leg, c.x(), c.y(), 0.0).x());
+        }
+      }
+    }
+  }
+  double start = -1.0;
+  for (double a = 0.8; a < 0.8 + 4.0 * l_bnd && start < 0.0; a += 1e-3) {
+    bool clear = true;
+    for (double x : coarse_feet_x) clear = clear && (x < a - 1e-3 || x > a + gap + 1e-3);
+    if (clear) start = a;
+  }
+  ASSERT_GT(start, 0.0) << "no place for the gap between the coarse samples";
+  regions = {Rect(0, -1.0, -1.0, start, 1.0), Rect(1, start + gap, -1.0, 4.0, 1.0)};
+
+  const PlanStopGap fine = named_gap(options);
+  ASSERT_TRUE(fine.found);
+  EXPECT_FALSE(fine.blocks);
+  EXPECT_NEAR(fine.width_m, gap, 1e-6);
+  options.stop_report_step_l_bnd = 4.0;
+  const PlanStopGap sparse = named_gap(options);
+  EXPECT_TRUE(sparse.examined);
+  EXPECT_FALSE(sparse.found);
+  options.stop_report_step_l_bnd = 0.25;
+  options.stop_report_max_samples = 2;
+  const PlanStopGap two = named_gap(options);
+  EXPECT_TRUE(two.examined);
+  EXPECT_FALSE(two.found);
+}
+
 }  // namespace
 }  // namespace mfp

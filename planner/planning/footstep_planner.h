@@ -87,6 +87,15 @@ struct PlannerOptions {
   double goal_search_yaw_step_rad = 0.05;
   double goal_report_step_m = 0.05;
   double goal_report_radius_m = 2.0;
+  // A plan that stops short of the goal names the first gap ahead (Plan::stop,
+  // planner/planning/internal/stop_report.h), found by sampling the way ahead
+  // stop_report_step_l_bnd times l_bnd apart (at least 1 mm; a gap narrower than a
+  // quarter of l_bnd lies within every reference box), with at most
+  // stop_report_max_samples samples, which bound the report's work and memory on a far
+  // goal: a longer way is sampled more sparsely (20000 x 0.25 l_bnd is 0.4 km for the
+  // hexapod), and a gap narrower than its samples' spacing may go unnamed.
+  double stop_report_step_l_bnd = 0.25;
+  int stop_report_max_samples = 20000;
   // When no stance on regions lies within those tolerances, a stance whose spots off the
   // regions each stand on seen floor (PlanRequest::seen_surface: a disk of the foot
   // radius, this margin and one map cell, flat within a cell) is planned to instead,

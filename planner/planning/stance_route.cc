@@ -9,12 +9,12 @@
 #include <queue>
 #include <utility>
 
+#include "geometry/plan_bounds.h"
 #include "planner/robot/body_obstacle_index.h"
 
 namespace mfp {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 // A* expansions (and raster regions) between two deadline checks: a clock read per few
 // hundred cheap steps.
 constexpr int kChecksEvery = 256;
@@ -53,11 +53,8 @@ std::optional<SupportRaster> MakeSupportRaster(const std::vector<ConvexRegion>& 
   s.heights.assign(s.cells.size(), -std::numeric_limits<float>::infinity());
   for (const ConvexRegion& r : regions) {
     if (deadline.Expired()) return std::nullopt;
-    Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = -rlo;
-    for (const Eigen::Vector3d& v : r.vertices_world_m) {
-      rlo = rlo.cwiseMin(v.head<2>());
-      rhi = rhi.cwiseMax(v.head<2>());
-    }
+    const Eigen::AlignedBox2d bounds = PlanBounds(r);
+    const Eigen::Vector2d rlo = bounds.min(), rhi = bounds.max();
     const int i0 = std::max(0, static_cast<int>(std::floor((rlo.x() - radius - lo.x()) / res)));
     const int i1 = std::min(s.nx - 1, static_cast<int>(std::floor((rhi.x() + radius - lo.x()) / res)));
     const int j0 = std::max(0, static_cast<int>(std::floor((rlo.y() - radius - lo.y()) / res)));
@@ -95,14 +92,10 @@ BodyGrid MakeBodyGrid(const RobotModel& robot, const std::vector<ConvexRegion>& 
   BodyGrid g;
   double reach = 0.0;
   for (const auto& leg : robot.legs) reach = std::max(reach, leg.nominal_offset_body_m.norm());
-  g.lo = start_xy.cwiseMin(goal_xy);
-  g.hi = start_xy.cwiseMax(goal_xy);
-  for (const ConvexRegion& r : regions) {
-    for (const Eigen::Vector3d& v : r.vertices_world_m) {
-      g.lo = g.lo.cwiseMin(v.head<2>());
-      g.hi = g.hi.cwiseMax(v.head<2>());
-    }
-  }
+  Eigen::AlignedBox2d box(start_xy.cwiseMin(goal_xy), start_xy.cwiseMax(goal_xy));
+  for (const ConvexRegion& r : regions) box.extend(PlanBounds(r));
+  g.lo = box.min();
+  g.hi = box.max();
   const double pad = reach + robot.l_bnd_m;
   g.lo -= Eigen::Vector2d::Constant(pad);
   g.hi += Eigen::Vector2d::Constant(pad);

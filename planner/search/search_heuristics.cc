@@ -42,13 +42,17 @@ bool ProvenIncomplete(const SearchState& state, const Eigen::VectorXd& proposal)
 
 // A completion QP that cannot end below the incumbent cannot become the incumbent: its
 // solve may stop once it proves that (RelaxationRequest::cutoff). The cutoff lies a hair
-// above the incumbent (relative 1e-6, far below any search's gap), so that a completion
-// ending within the solver's feasibility tolerance below it is still solved to the end
-// and offered as before.
+// above the incumbent, by kCompletionCutoffMargin times max(1, |incumbent|): far below
+// any search's gap (relative_gap, 1e-4 by default), so it never decides which plan a
+// search keeps, yet above the solvers' round-off, so that a completion ending within the
+// solver's feasibility tolerance below the incumbent is still solved to the end and
+// offered as before. A numerical margin of the algorithm, not a setting.
+constexpr double kCompletionCutoffMargin = 1e-6;
+
 double CompletionCutoff(const SearchState& state) {
   if (!state.HasIncumbent()) return kInfinity;
   const double incumbent = state.result().objective;
-  return incumbent + 1e-6 * std::max(1.0, std::abs(incumbent));
+  return incumbent + kCompletionCutoffMargin * std::max(1.0, std::abs(incumbent));
 }
 
 // Each proposal offered as it is (a heuristic's own plan is kept even when no time is

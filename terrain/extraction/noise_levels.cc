@@ -79,7 +79,7 @@ NoiseLevels NoiseFreeLevels(const HeightMap& hm, double tolerance_m, int max_cel
 
 std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers, double tolerance_m,
                                                    int threads) {
-  // About 2^16 grid cells a band: enough bands to share one large layer between threads.
+  // Bands of BandRows rows (parallel_work.h): enough to share one large layer between threads.
   struct Band {
     size_t layer;
     int r0, r1;
@@ -87,7 +87,7 @@ std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>&
   };
   std::vector<Band> bands;
   for (size_t l = 0; l < layers.size(); ++l) {
-    const int band_rows = std::max(1, (1 << 16) / std::max(1, layers[l].cols));
+    const int band_rows = BandRows(layers[l].cols);
     for (int r0 = 0; r0 < layers[l].rows; r0 += band_rows) bands.push_back({l, r0, std::min(layers[l].rows, r0 + band_rows), {}});
   }
   ParallelFor(static_cast<int>(bands.size()), threads, [&](int i) {

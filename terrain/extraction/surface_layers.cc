@@ -585,10 +585,6 @@ struct LayerBand {
   std::vector<std::pair<int, float>> changes;  // a pass's repairs or fills in the band, in order
 };
 
-// About this many grid cells per band: bands enough to share one large layer between the
-// threads, few enough that a band's bookkeeping is small against its cells.
-constexpr int kBandCells = 1 << 16;
-
 // Every layer's noise repair and enclosed-unseen fill (as options say), its unseen bits
 // (computed once, then brought up to date after each change) and, from the final heights,
 // its solid_beside bits. free: nullptr when free space is not known. Each pass runs over
@@ -598,7 +594,7 @@ constexpr int kBandCells = 1 << 16;
 std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Columns& occ, const Columns* free,
                                       const SurfaceLayerOptions& options) {
   const int rows = layers->front().rows, cols = layers->front().cols;
-  const int band_rows = std::max(1, kBandCells / std::max(1, cols));
+  const int band_rows = BandRows(cols);
   std::vector<LayerBand> bands;
   for (size_t l = 0; l < layers->size(); ++l) {
     for (int r0 = 0; r0 < rows; r0 += band_rows) bands.push_back({l, r0, std::min(rows, r0 + band_rows), {}, {}});

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/plan_bounds.h"
+
 namespace mfp {
 namespace {
 
@@ -204,11 +206,8 @@ std::vector<FaceCoverage> TopFaceCoverage(const std::vector<ConvexRegion>& regio
     cov.box = static_cast<int>(b);
     cov.name = terrain.boxes[b].name;
     cov.slope_rad = f.SlopeRad();
-    Eigen::Vector2d lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-    for (const auto& v : f.vertices_world_m) {
-      lo = lo.cwiseMin(v.head<2>());
-      hi = hi.cwiseMax(v.head<2>());
-    }
+    const Eigen::AlignedBox2d bounds = PlanBounds(f);
+    const Eigen::Vector2d lo = bounds.min(), hi = bounds.max();
     long visible = 0, covered = 0;
     for (double x = lo.x() + step / 2; x < hi.x(); x += step) {
       for (double y = lo.y() + step / 2; y < hi.y(); y += step) {

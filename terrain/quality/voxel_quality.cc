@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/check.h"
+#include "geometry/plan_bounds.h"
 #include "terrain/quality/leaf_set.h"
 
 namespace mfp {
@@ -74,16 +75,12 @@ std::vector<std::pair<int, int>> ErosionOffsets(double erosion_m, double r, bool
   return offsets;
 }
 
-struct RegionBox {
-  Eigen::Vector2d lo, hi;
-};
-
-bool CoveredAt(const std::vector<ConvexRegion>& regions, const std::vector<RegionBox>& boxes,
+bool CoveredAt(const std::vector<ConvexRegion>& regions, const std::vector<Eigen::AlignedBox2d>& boxes,
                const Eigen::Vector2d& xy, double top_m, double height_tolerance_m) {
   for (size_t n = 0; n < regions.size(); ++n) {
     // The box with the containment test's own 1e-9 m: a point on a region's side (a
     // cell centre on an edge of a convex piece) counts whichever way its vertices round.
-    if ((xy.array() < boxes[n].lo.array() - 1e-9).any() || (xy.array() > boxes[n].hi.array() + 1e-9).any()) continue;
+    if ((xy.array() < boxes[n].min().array() - 1e-9).any() || (xy.array() > boxes[n].max().array() + 1e-9).any()) continue;
     if (std::abs(regions[n].HeightAt(xy.x(), xy.y()) - top_m) > height_tolerance_m) continue;
     if (PlanDistanceToRegion(regions[n], xy) <= 1e-9) return true;
   }
@@ -114,15 +111,8 @@ VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions,
     return false;
   };
 
-  std::vector<RegionBox> boxes;
-  for (const ConvexRegion& region : regions) {
-    RegionBox box{Eigen::Vector2d::Constant(INFINITY), Eigen::Vector2d::Constant(-INFINITY)};
-    for (const Eigen::Vector3d& v : region.vertices_world_m) {
-      box.lo = box.lo.cwiseMin(v.head<2>());
-      box.hi = box.hi.cwiseMax(v.head<2>());
-    }
-    boxes.push_back(box);
-  }
+  std::vector<Eigen::AlignedBox2d> boxes;
+  for (const ConvexRegion& region : regions) boxes.push_back(PlanBounds(region));
 
   // The floor, its certifiable part and their coverage.
   if (!surfaces.empty()) {
@@ -166,8 +156,9 @@ VoxelQuality JudgeRegionsAgainstVoxels(const std::vector<ConvexRegion>& regions,
   // Soundness: region points sampled on a grid, each on a seen surface voxel.
   const double step = options.sample_step_m > 0.0 ? options.sample_step_m : r;
   for (size_t n = 0; n < regions.size(); ++n) {
-    for (double x = boxes[n].lo.x() + 0.5 * step; x < boxes[n].hi.x(); x += step) {
-      for (double y = boxes[n].lo.y() + 0.5 * step; y < boxes[n].hi.y(); y += step) {
+    const Eigen::Vector2d lo = boxes[n].min(), hi = boxes[n].max();
+    for (double x = lo.x() + 0.5 * step; x < hi.x(); x += step) {
+      for (double y = lo.y() + 0.5 * step; y < hi.y(); y += step) {
         if (PlanDistanceToRegion(regions[n], {x, y}) > 0.0) continue;
         const double z = regions[n].HeightAt(x, y);
         ++q.region_samples;

@@ -9,12 +9,16 @@
 #include <sstream>
 #include <utility>
 
+#include "geometry/plan_bounds.h"
 #include "planner/planning/internal/route_guide.h"
 
 namespace mfp {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// The way ahead's samples lie at least this far apart, whatever l_bnd: a robot model with
+// a tiny or zero l_bnd must not ask for millions of samples [m].
+constexpr double kMinSampleStepM = 1e-3;
 
 // Chebyshev (L-infinity) distance from p to segment [a, b]: max(|ex(t)|, |ey(t)|) with
 // e(t) = a + t (b - a) - p is convex and piecewise linear in t, so its least value over
@@ -70,29 +74,16 @@ double ChebyshevBetween(const ConvexRegion& a, const ConvexRegion& b) {
   return best;
 }
 
-// Whether the region's plan-view bounding box meets the box [lo, hi] (closed).
-bool PlanBoxMeets(const ConvexRegion& r, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
-  Eigen::Vector2d rlo = Eigen::Vector2d::Constant(kInf), rhi = Eigen::Vector2d::Constant(-kInf);
-  for (const Eigen::Vector3d& v : r.vertices_world_m) {
-    rlo = rlo.cwiseMin(v.head<2>());
-    rhi = rhi.cwiseMax(v.head<2>());
-  }
-  return rlo.x() <= hi.x() && rhi.x() >= lo.x() && rlo.y() <= hi.y() && rhi.y() >= lo.y();
-}
-
 // The regions near the path (their plan-view boxes meet the path's box grown by `margin_m`),
 // so that each sample looks at a few.
 std::vector<int> RegionsNearPath(const std::vector<ConvexRegion>& regions, const StopPath& path, double margin_m) {
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(kInf), hi = Eigen::Vector2d::Constant(-kInf);
-  for (const Eigen::Vector2d& c : path.centres_m) {
-    lo = lo.cwiseMin(c);
-    hi = hi.cwiseMax(c);
-  }
-  lo.array() -= margin_m;
-  hi.array() += margin_m;
+  Eigen::AlignedBox2d box;  // empty: an empty path has no region near it
+  for (const Eigen::Vector2d& c : path.centres_m) box.extend(c);
+  box.min().array() -= margin_m;
+  box.max().array() += margin_m;
   std::vector<int> near;
   for (size_t i = 0; i < regions.size(); ++i) {
-    if (PlanBoxMeets(regions[i], lo, hi)) near.push_back(static_cast<int>(i));
+    if (PlanBounds(regions[i]).intersects(box)) near.push_back(static_cast<int>(i));
   }
   return near;
 }
@@ -135,10 +126,12 @@ std::pair<double, double> HeightSpan(const ConvexRegion& r) {
 int DetourRegion(const std::vector<ConvexRegion>& regions, const std::vector<int>& near, int from, int to,
                  const Eigen::Vector2d& a, const Eigen::Vector2d& b, double step_span_m, double dz_max_m,
                  double margin_m) {
-  const Eigen::Vector2d lo = a.cwiseMin(b).array() - margin_m, hi = a.cwiseMax(b).array() + margin_m;
+  Eigen::AlignedBox2d gap(a.cwiseMin(b), a.cwiseMax(b));
+  gap.min().array() -= margin_m;
+  gap.max().array() += margin_m;
   std::vector<int> local;
   for (int i : near) {
-    if (PlanBoxMeets(regions[static_cast<size_t>(i)], lo, hi)) local.push_back(i);
+    if (PlanBounds(regions[static_cast<size_t>(i)]).intersects(gap)) local.push_back(i);
   }
   auto hop = [&](int u, int v) {
     const auto [ulo, uhi] = HeightSpan(regions[static_cast<size_t>(u)]);
@@ -350,10 +343,10 @@ PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::s
   }
   stop.regions.assign(ids.begin(), ids.end());
   stop.yaw_rad = feet.back().yaw_rad;
-  // Samples a quarter of l_bnd apart: a gap narrower than that is within every reference box.
-  const double sample_m = std::max(1e-3, 0.25 * robot.l_bnd_m);
-  const int max_points = 20000;  // a 20000-sample path: 0.4 km for the hexapod, beyond any plan's way
-  const StopPath path = PathAhead(context, stop.centre_world_m.head<2>(), stop.yaw_rad, sample_m, max_points);
+  const PlannerOptions& options = context.options;
+  const double sample_m = std::max(kMinSampleStepM, options.stop_report_step_l_bnd * robot.l_bnd_m);
+  const StopPath path =
+      PathAhead(context, stop.centre_world_m.head<2>(), stop.yaw_rad, sample_m, options.stop_report_max_samples);
   stop.gap = FirstGapAhead(robot, context.usable, feet, path, robot.d_lim_m + robot.l_bnd_m, deadline);
   return stop;
 }
