@@ -132,17 +132,22 @@ std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& pa
   const LocalGrid eroded = ErodedMask(mask, inset, offsets, res);
   const LocalGrid dual = DualSquares(eroded);
   const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
-  const double angle = PrincipalAngleRad(hm, patch);
-  const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
-  std::vector<Polygon2d> polygons =
-      AsPolygons(use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options));
-  if (options.convex_pieces) {
+  const auto kept =
+      static_cast<int>(std::count_if(eroded.cells.begin(), eroded.cells.end(), [](uint8_t v) { return v != 0; }));
+  std::vector<Polygon2d> polygons;
+  // A large patch: the pieces alone (the rectangles would be computed only to lose);
+  // should they find nothing, the rectangles below.
+  if (options.convex_pieces && kept >= options.convex_alone_cells) polygons = CoverConvex(in, options);
+  if (polygons.empty()) {
+    const double angle = PrincipalAngleRad(hm, patch);
+    const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
+    polygons = AsPolygons(use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options));
+  }
+  if (options.convex_pieces && kept < options.convex_alone_cells) {
     // The rectangles reach past the dual squares up to the exact inset, the convex pieces
     // follow a ragged outline: keep the pieces only where they hold more kept cells'
     // centres (by more than 1 % of the kept cells), so no patch loses. Where the rectangles
     // leave at most that 1 % uncovered the pieces cannot win: they are not computed.
-    const auto kept =
-        static_cast<int>(std::count_if(eroded.cells.begin(), eroded.cells.end(), [](uint8_t v) { return v != 0; }));
     const int by_rects = CentresCovered(hm, eroded, polygons);
     if (kept - by_rects > kept / 100) {
       std::vector<Polygon2d> pieces = CoverConvex(in, options);

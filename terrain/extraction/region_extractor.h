@@ -97,6 +97,14 @@ struct RegionExtractorOptions {
   // be the default"); off: the rectangles everywhere.
   bool convex_cover = true;
   int max_region_vertices = 8;
+  // With convex_cover, a patch with at least this many kept cells (cells whose centre
+  // holds a foot disk) is covered by the convex pieces alone: the rectangles, computed
+  // only to compare, are not. On the real scans' large patches the pieces held more
+  // kept centres than the rectangles on all but 3 of the patches this size, by at most 5
+  // centres there, and the rectangles were half the decomposition's work
+  // (docs/measurements.md, "Extraction time round 7"). 0: the pieces alone everywhere;
+  // a value above any patch: every patch compares.
+  int convex_alone_cells = 400;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
   // footholds the route needed: the planner answered 'no route' where one existed.
