@@ -111,11 +111,12 @@ struct RegionExtractorOptions {
   int convex_alone_cells = 400;
   double convex_alone_outline = 2.5;
   double convex_alone_outline_share = 0.1;
-  // With convex_cover, each piece is grown about its seed rectangle alone (false), or also
-  // about the seed's middle half and quarter, the best kept (true): three times the
-  // growing, a tenth of new_college's extraction, for 0.2-1.2 points of certified
-  // coverage on the real scans (docs/measurements.md, "Extraction time round 7").
-  bool convex_shrunk_seeds = false;
+  // With convex_cover, each piece is grown about its seed rectangle and about the seed's
+  // middle half and quarter, the best kept (true), or about the seed alone (false): a
+  // third of the growing, a tenth of new_college's extraction, but 0-1.2 points of
+  // certified coverage on the real scans, a ring's pieces no better than rectangles and
+  // one of fr_079's walks slower (docs/measurements.md, "Extraction time round 7").
+  bool convex_shrunk_seeds = true;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
   // footholds the route needed: the planner answered 'no route' where one existed.
