@@ -110,6 +110,11 @@ void AddExtractorFlags(CLI::App& app, BenchFlags& f) {
                  "cover patches by convex pieces along their outline (1) or by rectangles (0)");
   app.add_option("--max-region-vertices", options.max_region_vertices, "vertices of a convex piece at most")
       ->check(CLI::Range(3, 64));
+  app.add_option("--convex-alone-cells", options.convex_alone_cells,
+                 "a patch with this many kept cells is covered by convex pieces without rectangles to compare")
+      ->check(CLI::Range(0, 1000000000));
+  app.add_option("--convex-shrunk-seeds", options.convex_shrunk_seeds,
+                 "grow each convex piece also about its seed's middle half and quarter (1) or about the seed alone (0)");
   app.add_option("--noise-max-cells", options.noise_max_cells, "largest group of off-plane cells kept in a patch")
       ->check(CLI::Range(0, 1000));
   app.add_option("--enclosed-unseen-radius", options.enclosed_unseen_radius_cells,

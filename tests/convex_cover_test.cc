@@ -106,14 +106,18 @@ TEST(ConvexCover, PiecesOfRandomSetsLieOnTheSetAndAreConvex) {
     const int density = 60 + int(next() % 35);  // per cent of squares in the set
     const SquareSet s = MakeSet(rows, cols, [&](int, int) { return int(next() % 100) < density; });
     for (const bool overlap : {true, false}) {
-      const std::vector<Polygon2d> pieces = ConvexCoverOfSquares(s.cells, rows, cols, Options(40, overlap));
-      const Judged j = Judge(s, pieces);
-      EXPECT_EQ(j.off_set, 0) << "trial " << trial << " overlap " << overlap;
-      EXPECT_EQ(j.not_convex, 0) << "trial " << trial;
-      if (!overlap) {
-        EXPECT_EQ(j.overlapping, 0) << "trial " << trial;
+      for (const bool shrunk_seeds : {true, false}) {
+        ConvexCoverOptions o = Options(40, overlap);
+        o.shrunk_seeds = shrunk_seeds;
+        const std::vector<Polygon2d> pieces = ConvexCoverOfSquares(s.cells, rows, cols, o);
+        const Judged j = Judge(s, pieces);
+        EXPECT_EQ(j.off_set, 0) << "trial " << trial << " overlap " << overlap << " shrunk seeds " << shrunk_seeds;
+        EXPECT_EQ(j.not_convex, 0) << "trial " << trial;
+        if (!overlap) {
+          EXPECT_EQ(j.overlapping, 0) << "trial " << trial;
+        }
+        for (const Polygon2d& piece : pieces) EXPECT_LE(piece.size(), 8u);
       }
-      for (const Polygon2d& piece : pieces) EXPECT_LE(piece.size(), 8u);
     }
   }
 }
@@ -147,13 +151,17 @@ TEST(ConvexCover, ARingIsCoveredByChordsBetterThanByRectangles) {
 // A floor with scattered single-square holes: the pieces pass between them on diagonals.
 TEST(ConvexCover, AFloorWithHolesIsCoveredAtLeastAsWellAsByRectangles) {
   const SquareSet s = MakeSet(40, 40, [](int r, int c) { return (r * 7 + c * 13) % 37 != 0; });
-  ConvexCoverOptions o = Options(30, false);
-  const Judged j = Judge(s, ConvexCoverOfSquares(s.cells, s.rows, s.cols, o));
-  const double rectangles = RectangleShare(s, o.cover);
-  std::printf("floor with holes, 30 pieces: convex %.1f %%, rectangles %.1f %%\n", 100 * Fraction(j), 100 * rectangles);
-  EXPECT_EQ(j.off_set, 0);
-  EXPECT_EQ(j.overlapping, 0);
-  EXPECT_GE(Fraction(j), rectangles);
+  for (const bool shrunk_seeds : {true, false}) {
+    ConvexCoverOptions o = Options(30, false);
+    o.shrunk_seeds = shrunk_seeds;
+    const Judged j = Judge(s, ConvexCoverOfSquares(s.cells, s.rows, s.cols, o));
+    const double rectangles = RectangleShare(s, o.cover);
+    std::printf("floor with holes, 30 pieces, shrunk seeds %d: convex %.1f %%, rectangles %.1f %%\n", shrunk_seeds,
+                100 * Fraction(j), 100 * rectangles);
+    EXPECT_EQ(j.off_set, 0);
+    EXPECT_EQ(j.overlapping, 0);
+    EXPECT_GE(Fraction(j), rectangles);
+  }
 }
 
 TEST(ConvexCover, PolygonMeetsSquareOnlyWithArea) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -529,6 +530,30 @@ TEST(RegionExtractorCover, ARingWalkwayIsCoveredByConvexPiecesAlongItsCurve) {
   std::printf("ring walkway: rectangles %zu regions cover %.1f %%, convex pieces %zu regions cover %.1f %%\n", count[0],
               100 * share[0], count[1], 100 * share[1]);
   EXPECT_GT(share[1], share[0]);
+}
+
+// A patch of convex_alone_cells kept cells or more is covered by the convex pieces without
+// rectangles to compare them with: on the ring, where the pieces win the comparison, the
+// regions are the compared cover's, and they stay on the true surface either way.
+TEST(RegionExtractorCover, ALargePatchIsCoveredByThePiecesAloneAsByTheComparison) {
+  const TerrainDescription ring = HalfRingWalkway();
+  const double foot = 0.01, margin = foot + 0.01;
+  std::vector<ConvexRegion> regions[2];
+  for (const bool alone : {false, true}) {
+    RegionExtractorOptions options;
+    options.foot_radius_m = foot;
+    options.max_slope_rad = 0.45;
+    options.convex_alone_cells = alone ? 0 : std::numeric_limits<int>::max();
+    options.convex_alone_outline = 0.0;  // any outline
+    options.convex_alone_outline_share = 0.0;
+    regions[alone] = ExtractRegionsFromTerrain(ring, options).regions;
+    const RegionSoundness sound = MeasureSoundness(regions[alone], ring, margin, kRes);
+    EXPECT_EQ(sound.sound, sound.samples) << "alone " << alone << ": unsound point at " << sound.worst_point.transpose();
+  }
+  ASSERT_EQ(regions[0].size(), regions[1].size());
+  for (size_t i = 0; i < regions[0].size(); ++i) {
+    EXPECT_EQ(regions[0][i].vertices_world_m, regions[1][i].vertices_world_m) << "region " << i;
+  }
 }
 
 }  // namespace

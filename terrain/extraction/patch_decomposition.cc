@@ -117,6 +117,25 @@ int CentresCovered(const HeightMap& hm, const LocalGrid& eroded, const std::vect
   return static_cast<int>(std::count(covered.begin(), covered.end(), 1));
 }
 
+// Whether the pieces alone cover the patch: at least convex_alone_cells kept cells, and an
+// outline of kept cells (those with a 4-neighbour not kept) at least convex_alone_outline
+// times a square's of as many cells and convex_alone_outline_share of the kept cells: a
+// face of boxes (a square's outline, or a long smooth floor's small share) compares.
+bool ConvexAlone(const LocalGrid& eroded, int kept, const PatchDecompositionOptions& options) {
+  if (kept < options.convex_alone_cells) return false;
+  int outline = 0;
+  for (int r = 0; r < eroded.rows; ++r) {
+    for (int c = 0; c < eroded.cols; ++c) {
+      if (eroded.At(r, c) && (!eroded.Contains(r - 1, c) || !eroded.Contains(r + 1, c) ||
+                              !eroded.Contains(r, c - 1) || !eroded.Contains(r, c + 1))) {
+        ++outline;
+      }
+    }
+  }
+  return outline >= options.convex_alone_outline * 4.0 * std::sqrt(static_cast<double>(kept)) &&
+         outline >= options.convex_alone_outline_share * kept;
+}
+
 }  // namespace
 
 std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
@@ -132,17 +151,23 @@ std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& pa
   const LocalGrid eroded = ErodedMask(mask, inset, offsets, res);
   const LocalGrid dual = DualSquares(eroded);
   const CoverInput in{&mask, &dual, &inset, insets.max, res, hm.CellCenter(mask.row0, mask.col0)};
-  const double angle = PrincipalAngleRad(hm, patch);
-  const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
-  std::vector<Polygon2d> polygons =
-      AsPolygons(use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options));
-  if (options.convex_pieces) {
+  const auto kept =
+      static_cast<int>(std::count_if(eroded.cells.begin(), eroded.cells.end(), [](uint8_t v) { return v != 0; }));
+  std::vector<Polygon2d> polygons;
+  // A large ragged patch: the pieces alone (the rectangles would be computed only to
+  // lose); should they find nothing, the rectangles below.
+  const bool alone = options.convex_pieces && ConvexAlone(eroded, kept, options);
+  if (alone) polygons = CoverConvex(in, options);
+  if (polygons.empty()) {
+    const double angle = PrincipalAngleRad(hm, patch);
+    const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;
+    polygons = AsPolygons(use_grid ? CoverOnGrid(in, options) : CoverRotated(in, angle, options));
+  }
+  if (options.convex_pieces && !alone) {
     // The rectangles reach past the dual squares up to the exact inset, the convex pieces
     // follow a ragged outline: keep the pieces only where they hold more kept cells'
     // centres (by more than 1 % of the kept cells), so no patch loses. Where the rectangles
     // leave at most that 1 % uncovered the pieces cannot win: they are not computed.
-    const auto kept =
-        static_cast<int>(std::count_if(eroded.cells.begin(), eroded.cells.end(), [](uint8_t v) { return v != 0; }));
     const int by_rects = CentresCovered(hm, eroded, polygons);
     if (kept - by_rects > kept / 100) {
       std::vector<Polygon2d> pieces = CoverConvex(in, options);

@@ -51,7 +51,9 @@ LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch) {
 }
 
 // The edge uncertainty is added where the patch may end inside its boundary cell next to
-// it - every neighbour unless material rises there (solid_beside).
+// it - every neighbour unless material rises there (solid_beside). Each patch cell marks
+// its outside neighbours (next to the patch; a drop unless its solid_beside bit says
+// material rises there), so the work goes with the patch's cells, not its bounding box.
 InsetField::InsetField(const HeightMap& hm, const LocalGrid& mask,
                        const PatchDecompositionOptions& options, const InsetsInCells& insets)
     : ring_(static_cast<int>(std::ceil(insets.max)) + 2),
@@ -60,25 +62,33 @@ InsetField::InsetField(const HeightMap& hm, const LocalGrid& mask,
       ext_cols_(mask.cols + 2 * ring_),
       max_(insets.max),
       grid_(static_cast<size_t>(mask.rows + 2 * ring_) * ext_cols_, insets.base) {
+  constexpr uint8_t kNext = 1, kDrop = 2;
+  std::vector<uint8_t> beside(grid_.size(), 0);
+  auto ext = [&](int r, int c) { return static_cast<size_t>(r + ring_) * ext_cols_ + (c + ring_); };
+  for (int r = 0; r < mask.rows; ++r) {
+    for (int c = 0; c < mask.cols; ++c) {
+      if (!mask.At(r, c)) continue;
+      const int p = hm.Index(mask.row0 + r, mask.col0 + c);
+      const uint8_t solid = options.solid_beside == nullptr ? 0 : (*options.solid_beside)[static_cast<size_t>(p)];
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if ((dr == 0 && dc == 0) || mask.Contains(r + dr, c + dc)) continue;
+          uint8_t& b = beside[ext(r + dr, c + dc)];
+          b |= kNext;
+          if (!(solid & (1u << NeighbourBit(dr, dc)))) b |= kDrop;
+        }
+      }
+    }
+  }
   for (int r = -ring_; r < mask.rows + ring_; ++r) {
     for (int c = -ring_; c < mask.cols + ring_; ++c) {
-      double& inset = grid_[static_cast<size_t>(r + ring_) * ext_cols_ + (c + ring_)];
+      const size_t i = ext(r, c);
+      double& inset = grid_[i];
       if (mask.Contains(r, c)) {
         inset = -1.0;
         continue;
       }
-      bool next_to_patch = false, drop = false;
-      for (int dr = -1; dr <= 1 && !drop; ++dr) {
-        for (int dc = -1; dc <= 1 && !drop; ++dc) {
-          if ((dr == 0 && dc == 0) || !mask.Contains(r + dr, c + dc)) continue;
-          next_to_patch = true;
-          // From the patch cell (r + dr, c + dc), this cell is neighbour (-dr, -dc).
-          const int p = hm.Index(mask.row0 + r + dr, mask.col0 + c + dc);
-          drop = options.solid_beside == nullptr ||
-                 !((*options.solid_beside)[static_cast<size_t>(p)] & (1u << NeighbourBit(-dr, -dc)));
-        }
-      }
-      if (next_to_patch) inset += drop ? insets.drop : insets.riser;
+      if (beside[i] & kNext) inset += (beside[i] & kDrop) ? insets.drop : insets.riser;
       // A cell asking no inset (point feet, no margin) still keeps regions off its
       // interior: the side and rotated-rectangle tests need a positive inset.
       inset = std::max(inset, 1e-6);

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <sstream>
 
@@ -54,6 +55,9 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("target_coverage", o.target_coverage, 0.0, 1.0, true);
   RequireRange("max_regions_per_patch", o.max_regions_per_patch, 1, 10000, false);
   RequireRange("max_region_vertices", o.max_region_vertices, 3, 64, false);
+  RequireRange("convex_alone_cells", o.convex_alone_cells, 0, std::numeric_limits<int>::max(), false);
+  RequireRange("convex_alone_outline", o.convex_alone_outline, 0.0, 1e6, false);
+  RequireRange("convex_alone_outline_share", o.convex_alone_outline_share, 0.0, 1.0, false);
   RequireRange("regions_per_m2", o.regions_per_m2, 0.0, 1e4, false);
   RequireRange("max_regions", o.max_regions, 0, 100000, false);
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
@@ -181,6 +185,10 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   dec.cover.deadline = options.deadline;
   dec.convex_pieces = options.convex_cover;
   dec.max_piece_vertices = options.max_region_vertices;
+  dec.convex_alone_cells = options.convex_alone_cells;
+  dec.convex_alone_outline = options.convex_alone_outline;
+  dec.convex_alone_outline_share = options.convex_alone_outline_share;
+  dec.shrunk_seeds = options.convex_shrunk_seeds;
   // Slivers along a ragged outline: a piece narrower than the foot's radius (its inscribed
   // disk smaller than half the foot) adds little floor and one more region to choose.
   dec.min_piece_width_m = options.foot_radius_m;

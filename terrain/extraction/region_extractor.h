@@ -92,11 +92,31 @@ struct RegionExtractorOptions {
   // patch's principal frame; each piece has at most max_region_vertices vertices (rows
   // for the planner per region), and a piece narrower than foot_radius_m is dropped
   // unless it is its patch's first; kept per patch only where they hold more kept cells'
-  // centres than the rectangles (computed only where the rectangles leave room for that).
+  // centres than the rectangles (computed only where the rectangles leave room for that),
+  // or alone on a patch of convex_alone_cells kept cells or more.
   // On by default (docs/measurements.md, "The convex pieces cheap enough to
   // be the default"); off: the rectangles everywhere.
   bool convex_cover = true;
   int max_region_vertices = 8;
+  // With convex_cover, a patch with at least convex_alone_cells kept cells (cells whose
+  // centre holds a foot disk) and a ragged outline - kept cells with a 4-neighbour not
+  // kept numbering at least convex_alone_outline times a square's outline of as many
+  // cells (4 sqrt(kept)) and convex_alone_outline_share of the kept cells - is covered by
+  // the convex pieces alone: the rectangles, computed only to compare, are not. On the
+  // real scans' large ragged patches the pieces won the comparison on all but a few, by
+  // at most 4 centres there, and those rectangles were half the decomposition's work;
+  // faces of boxes (outlines up to 2.4 squares', or a smooth floor's 4 %) compare as
+  // before (docs/measurements.md, "Extraction time round 7"). A value of
+  // convex_alone_cells above any patch: every patch compares.
+  int convex_alone_cells = 400;
+  double convex_alone_outline = 2.5;
+  double convex_alone_outline_share = 0.1;
+  // With convex_cover, each piece is grown about its seed rectangle and about the seed's
+  // middle half and quarter, the best kept (true), or about the seed alone (false): a
+  // third of the growing, a tenth of new_college's extraction, but 0-1.2 points of
+  // certified coverage on the real scans, a ring's pieces no better than rectangles and
+  // one of fr_079's walks slower (docs/measurements.md, "Extraction time round 7").
+  bool convex_shrunk_seeds = true;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
   // footholds the route needed: the planner answered 'no route' where one existed.

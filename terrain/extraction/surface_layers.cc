@@ -37,15 +37,16 @@ struct Footprint {
 
 // The footprints of the leaves that overlap the grid and the voxels [z_lo, z_hi] along z
 // (the others add no run that is asked), in order.
-std::vector<Footprint> FootprintsOf(const std::vector<OccupiedLeaf>& leaves, const HeightMap& hm,
+std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm,
                                     long long z_lo = std::numeric_limits<long long>::min(),
                                     long long z_hi = std::numeric_limits<long long>::max()) {
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
   std::vector<Footprint> prints;
-  prints.reserve(leaves.size());
-  for (const OccupiedLeaf& leaf : leaves) {
+  prints.reserve(static_cast<size_t>(end - begin));
+  for (const OccupiedLeaf* it = begin; it != end; ++it) {
+    const OccupiedLeaf& leaf = *it;
     const double n_d = leaf.size_m / res;
     if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
     const long long n = RoundToLongLong(n_d);
@@ -133,21 +134,63 @@ long long TopVoxelOf(float level, double res) { return RoundToLongLong(level / r
 // a surface candidate's top t (the voxel above an occupied run) or at TopVoxelOf its height
 // or the voxel under that. Layer heights are candidate heights and every run's top is a
 // leaf's, so every voxel asked lies between those of the lowest and the highest occupied
-// leaf top; free leaves wholly outside are left out. Runs are neither sorted nor merged
-// (ColumnHas needs neither).
-Columns FreeColumnsOf(const std::vector<OccupiedLeaf>& free_leaves, const std::vector<Footprint>& occupied,
-                      const HeightMap& hm) {
-  if (occupied.empty()) return UnsortedColumnsOf({}, hm);  // no surface: nothing is asked
+// leaf top; free leaves wholly outside are left out. Returns false when no voxel is asked.
+bool FreeVoxelsAsked(const std::vector<Footprint>& occupied, double res, long long* z_lo, long long* z_hi) {
+  if (occupied.empty()) return false;
   long long top_lo = std::numeric_limits<long long>::max(), top_hi = std::numeric_limits<long long>::min();
   for (const Footprint& f : occupied) {
     top_lo = std::min(top_lo, f.z0 + f.n);
     top_hi = std::max(top_hi, f.z0 + f.n);
   }
   // TopVoxelOf(float(t * res)) is monotone in t, so its extremes are those of the extreme tops.
-  const double res = hm.resolution_m;
-  const long long z_lo = std::min(top_lo, TopVoxelOf(static_cast<float>(top_lo * res), res) - 1);
-  const long long z_hi = std::max(top_hi, TopVoxelOf(static_cast<float>(top_hi * res), res));
-  return UnsortedColumnsOf(FootprintsOf(free_leaves, hm, z_lo, z_hi), hm);
+  *z_lo = std::min(top_lo, TopVoxelOf(static_cast<float>(top_lo * res), res) - 1);
+  *z_hi = std::max(top_hi, TopVoxelOf(static_cast<float>(top_hi * res), res));
+  return true;
+}
+
+// UnsortedColumnsOf of the prints of every part in order, the grid's rows in `bands` bands
+// on the threads: each band counts and then fills only its own columns, in the prints'
+// order, so every column's runs are those (and in the order) UnsortedColumnsOf gives.
+Columns UnsortedColumnsInBands(const std::vector<std::vector<Footprint>>& parts, const HeightMap& hm, int bands,
+                               int threads) {
+  const size_t cells = static_cast<size_t>(hm.rows) * hm.cols;
+  Columns cols;
+  cols.offset.assign(cells + 1, 0);
+  std::vector<size_t> band_runs(static_cast<size_t>(bands), 0);
+  auto rows_of = [&](int b) { return std::make_pair(hm.rows * b / bands, hm.rows * (b + 1) / bands); };
+  // Calls add(index past the column's slot) for every cell of a print in rows [r0, r1).
+  auto for_cells = [&](int r0, int r1, auto&& add) {
+    for (const std::vector<Footprint>& prints : parts) {
+      for (const Footprint& f : prints) {
+        const int fr0 = std::max(r0, f.r0), fr1 = std::min(r1, f.r0 + f.n);
+        const int c0 = std::max(0, f.c0), c1 = std::min(hm.cols, f.c0 + f.n);
+        for (int r = fr0; r < fr1; ++r) {
+          for (int c = c0; c < c1; ++c) add(static_cast<size_t>(r) * hm.cols + c + 1, f);
+        }
+      }
+    }
+  };
+  // Per column its run count at offset[c + 1], then the running sum within the band.
+  ParallelFor(bands, threads, [&](int b) {
+    const auto [r0, r1] = rows_of(b);
+    for_cells(r0, r1, [&](size_t i, const Footprint&) { ++cols.offset[i]; });
+    const size_t a = static_cast<size_t>(r0) * hm.cols, e = static_cast<size_t>(r1) * hm.cols;
+    for (size_t i = a + 1; i < e; ++i) cols.offset[i + 1] += cols.offset[i];
+    band_runs[static_cast<size_t>(b)] = e > a ? cols.offset[e] : 0;
+  });
+  std::vector<size_t> band_start(static_cast<size_t>(bands), 0);
+  for (int b = 1; b < bands; ++b) band_start[b] = band_start[b - 1] + band_runs[b - 1];
+  cols.runs.resize(band_start.back() + band_runs.back());
+  // Each column filled from its end down: offset[c + 1] ends at column c's start.
+  ParallelFor(bands, threads, [&](int b) {
+    const auto [r0, r1] = rows_of(b);
+    const size_t a = static_cast<size_t>(r0) * hm.cols, e = static_cast<size_t>(r1) * hm.cols;
+    for (size_t i = a + 1; i <= e; ++i) cols.offset[i] += band_start[static_cast<size_t>(b)];
+    for_cells(r0, r1, [&](size_t i, const Footprint& f) { cols.runs[--cols.offset[i]] = {f.z0, f.z0 + f.n}; });
+  });
+  std::copy(cols.offset.begin() + 1, cols.offset.end(), cols.offset.begin());
+  cols.offset[cells] = cols.runs.size();
+  return cols;
 }
 
 bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
@@ -670,12 +713,24 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     return out;
   }
   const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
-  const std::vector<Footprint> occupied = FootprintsOf(map.leaves, grid);
-  Columns occ, free;  // the occupied and the free columns at once, on two threads if allowed
-  ParallelFor(know_free ? 2 : 1, options.threads, [&](int job) {
-    if (job == 0) occ = ColumnsOf(occupied, grid);
-    if (job == 1) free = FreeColumnsOf(map.free_leaves, occupied, grid);
+  const std::vector<Footprint> occupied = FootprintsOf(map.leaves.data(), map.leaves.data() + map.leaves.size(), grid);
+  // The occupied columns beside the free leaves' footprints (in parts, several for each
+  // thread so the threads end together), then the free columns in bands of rows.
+  long long z_lo = 0, z_hi = 0;
+  const bool free_asked = know_free && FreeVoxelsAsked(occupied, grid.resolution_m, &z_lo, &z_hi);
+  const int parts = free_asked ? 2 * std::max(1, options.threads) : 0;
+  std::vector<std::vector<Footprint>> free_prints(static_cast<size_t>(parts));
+  Columns occ, free;
+  ParallelFor(1 + parts, options.threads, [&](int job) {
+    if (job == 0) {
+      occ = ColumnsOf(occupied, grid);
+      return;
+    }
+    const size_t n = map.free_leaves.size(), k = static_cast<size_t>(job - 1), m = static_cast<size_t>(parts);
+    const OccupiedLeaf* leaves = map.free_leaves.data();
+    free_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid, z_lo, z_hi);
   });
+  if (know_free) free = UnsortedColumnsInBands(free_prints, grid, std::max(1, options.threads), options.threads);
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
                                            ? IsolatedVoxels(grid, occ, &out.isolated_voxels)
                                            : std::vector<uint8_t>(occ.runs.size(), 0);

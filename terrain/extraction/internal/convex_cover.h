@@ -28,6 +28,10 @@ struct ConvexCoverOptions {
   RectangleCoverOptions cover;  // coverage target, the smallest seed, the most pieces, overlap, necks
   int max_vertices = 8;         // a piece keeps at most this many vertices (dropping one shrinks it)
   int reach_cells = 24;         // a piece reaches at most this far (and its seed's size) beyond its seed
+  // Each piece is also grown about the seed's middle half and quarter (the cuts may then
+  // turn toward the obstacles around it), the one holding the most new squares kept;
+  // false: about the seed rectangle alone (a third of the growing).
+  bool shrunk_seeds = true;
 };
 
 // squares: row-major rows x cols, non-zero = in the set; square (r, c) spans

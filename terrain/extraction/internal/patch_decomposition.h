@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "terrain/extraction/cell_fate.h"
@@ -43,6 +44,13 @@ struct PatchDecompositionOptions {
   // (convex_cover.h) instead of rectangles on the grid or the principal frame.
   bool convex_pieces = false;
   int max_piece_vertices = 8;       // vertices of a convex piece at most
+  bool shrunk_seeds = true;         // ConvexCoverOptions::shrunk_seeds
+  // With convex_pieces: a patch with at least this many kept cells and a ragged outline
+  // (below) is covered by the pieces alone (no rectangles to compare them with); the
+  // default: every patch compares.
+  int convex_alone_cells = std::numeric_limits<int>::max();
+  double convex_alone_outline = 2.5;         // RegionExtractorOptions::convex_alone_outline
+  double convex_alone_outline_share = 0.1;   // RegionExtractorOptions::convex_alone_outline_share
   // A convex piece narrower than this (its width: the least distance between two parallel
   // lines enclosing it) is dropped unless it is the patch's first [m]: slivers along a
   // ragged outline add little floor and many regions for the planner to choose among.
