@@ -636,5 +636,67 @@ TEST(BranchAndBound, AProposalThatIsAPlanIsKeptWhenNoTimeIsLeftForItsQp) {
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
 }
 
+// The root heuristic of DecoyInterval returns the optimum (h_b = 1, y = 2.2); its calls
+// and the first entry (y) of the point it was given are recorded.
+struct RecordedRootHeuristic {
+  int calls = 0;
+  double given_y = 0.0;
+  BranchAndBoundResult result;
+};
+
+RecordedRootHeuristic SolveWithRootHeuristic(const Miqp& problem, const Eigen::VectorXd& plan, int after_nodes,
+                                             int max_nodes) {
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.root_heuristic_after_nodes = after_nodes;
+  options.max_nodes = max_nodes;
+  RecordedRootHeuristic recorded;
+  options.root_heuristic = [&](const Eigen::VectorXd& relaxed) {
+    ++recorded.calls;
+    recorded.given_y = relaxed(0);
+    return std::vector<Eigen::VectorXd>{plan};
+  };
+  recorded.result = SolveBranchAndBound(problem, *solver, options);
+  return recorded;
+}
+
+TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsOnlyIfTheSearchGoesOnThatLong) {
+  // DecoyInterval: the root's rounding gives a plan (0.24), the root bound is about 0, so
+  // the search branches; the heuristic's plan is the optimum 0.09.
+  Eigen::VectorXd optimum(3);
+  optimum << 2.2, 0, 1;
+  // At the root (0): called there, and the one node ends with the optimum.
+  RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 0, 1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  // Asked to wait for 2 nodes, a search capped at its root never calls it: the rounding's plan.
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1);
+  EXPECT_EQ(r.calls, 0);
+  EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
+  // Uncapped, it is called once after the second node, with the root's point (y = 2.5;
+  // the children's points have y = 2.2 or 3), and the search proves the optimum.
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1000);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.given_y, 2.5, 1e-3);
+  EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  // A search that proves its optimum before the count never calls it.
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 1000, 1000);
+  EXPECT_EQ(r.calls, 0);
+  EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  EXPECT_LT(r.result.nodes, 1000);
+}
+
+TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsAtARootWithoutAPlan) {
+  // The knapsack's root roundings give no plan (the simple rounding (1, 1, 1) weighs 6):
+  // the heuristic runs at the root however long it was asked to wait.
+  Eigen::VectorXd optimum(3);
+  optimum << 1, 1, 0;
+  const RecordedRootHeuristic r = SolveWithRootHeuristic(Knapsack().problem, optimum, 1000, 1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, -9.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace mfp

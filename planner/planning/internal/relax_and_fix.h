@@ -62,6 +62,11 @@ struct RelaxAndFixOptions {
   double time_share = 1.0;
   int min_configurations = 4;
   bool two_paths = true;
+  // A window whose root roundings (or first-plan dive) gave a plan runs the seed only after
+  // its search has processed this many nodes without ending
+  // (BranchAndBoundOptions::root_heuristic_after_nodes; 0: at the root): a search that
+  // proves its window sooner does without the seed's cost.
+  int after_nodes = 0;
   // A seeded window whose root roundings find no plan first gets a quick one: a dive,
   // relax-and-fix with one node per stage and the stage roundings on (each stage's
   // configuration fixed from its root relaxation's best rounding), before the full run

@@ -179,6 +179,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     record->heuristic_relaxations += r.relaxations;
     return plans;
   };
+  bnb.root_heuristic_after_nodes = options.relax_and_fix.after_nodes;
   // Before it, when the roundings found no plan: the quick dive.
   if (!seeded && options.relax_and_fix.first_plan_dive) {
     bnb.first_plan_heuristic = [&](const Eigen::VectorXd& root_x) {
