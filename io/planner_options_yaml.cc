@@ -324,6 +324,10 @@ void AddRelaxAndFixKeys(Table* t) {
                    "a window whose root roundings gave a plan is seeded only once its search has processed this many "
                    "nodes without ending (0: at the root)")
                    .Advanced());
+  t->push_back(Opt("relax_and_fix.wait_gap", in(&R::wait_gap), 0.0, 1e9,
+                   "... and only when the root's plan is within this relative gap of the root bound (a poorer plan "
+                   "is seeded at once)")
+                   .Advanced());
   t->push_back(Opt("relax_and_fix.first_plan_dive", in(&R::first_plan_dive),
                    "a seeded window whose root roundings find no plan first gets one from a one-node-per-stage dive")
                    .Advanced());

@@ -645,10 +645,11 @@ struct RecordedRootHeuristic {
 };
 
 RecordedRootHeuristic SolveWithRootHeuristic(const Miqp& problem, const Eigen::VectorXd& plan, int after_nodes,
-                                             int max_nodes) {
+                                             int max_nodes, double wait_gap = kInfinity) {
   const auto solver = MakeInteriorPointRelaxationSolver();
   BranchAndBoundOptions options;
   options.root_heuristic_after_nodes = after_nodes;
+  options.root_heuristic_wait_gap = wait_gap;
   options.max_nodes = max_nodes;
   RecordedRootHeuristic recorded;
   options.root_heuristic = [&](const Eigen::VectorXd& relaxed) {
@@ -686,6 +687,20 @@ TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsOnlyIfTheSearchGoesOnThatLong)
   EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
   EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
   EXPECT_LT(r.result.nodes, 1000);
+}
+
+TEST(BranchAndBound, ARootHeuristicWaitsOnlyForAPlanWithinItsGap) {
+  // DecoyInterval's root plan (0.24) lies 0.24 above the root bound (about 0), a relative
+  // gap of 0.24 (the objective is below 1): with a wait gap of 0.1 the heuristic runs at
+  // the root, with 0.5 it waits (a search capped at its root then never calls it).
+  Eigen::VectorXd optimum(3);
+  optimum << 2.2, 0, 1;
+  RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.5);
+  EXPECT_EQ(r.calls, 0);
+  EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
 }
 
 TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsAtARootWithoutAPlan) {

@@ -97,6 +97,9 @@ struct BranchAndBoundOptions {
   // this does not need the slow heuristic's plan. Without a plan after the root it runs
   // there, as with 0 (always at the root). The root cut loop's first pass runs it at the root.
   int root_heuristic_after_nodes = 0;
+  // ... and it waits only when the root's plan is within this relative gap of the root
+  // bound (RelativeGap): a poorer plan gets the heuristic's at once.
+  double root_heuristic_wait_gap = kInfinity;
   // Optional quick primal heuristic for a root whose roundings found no plan (relax-and-
   // fix's dive in the planner): run once at the root, after the roundings and before
   // root_heuristic, only when the search holds no incumbent yet; its plans are offered

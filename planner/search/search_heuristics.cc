@@ -99,7 +99,10 @@ bool RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
     OfferAndComplete(state, options.first_plan_heuristic(x), x);
   }
   if (!options.root_heuristic) return false;
-  if (options.root_heuristic_after_nodes > 0 && state->HasIncumbent()) return true;
+  if (options.root_heuristic_after_nodes > 0 && state->HasIncumbent() &&
+      RelativeGap(state->result().objective, state->result().bound) <= options.root_heuristic_wait_gap) {
+    return true;
+  }
   OfferAndComplete(state, options.root_heuristic(x), x);
   return false;
 }

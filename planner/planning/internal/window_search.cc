@@ -180,6 +180,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     return plans;
   };
   bnb.root_heuristic_after_nodes = options.relax_and_fix.after_nodes;
+  bnb.root_heuristic_wait_gap = options.relax_and_fix.wait_gap;
   // Before it, when the roundings found no plan: the quick dive.
   if (!seeded && options.relax_and_fix.first_plan_dive) {
     bnb.first_plan_heuristic = [&](const Eigen::VectorXd& root_x) {

@@ -19,7 +19,8 @@ void TryRounding(SearchState* state, const Branching& branching, const RoundingH
 // then root_heuristic, on the root relaxation point x, their proposals offered and
 // completed as TryRounding's. Nothing when rounding_heuristic is off. Returns true when
 // root_heuristic was left for later (root_heuristic_after_nodes > 0 and the search holds
-// a plan): the caller runs it by RunDeferredRootHeuristic once the nodes are processed.
+// a plan within root_heuristic_wait_gap of the root bound, state->result().bound): the
+// caller runs it by RunDeferredRootHeuristic once the nodes are processed.
 bool RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x);
 
 // root_heuristic on the root relaxation point root_x, its proposals offered and completed
