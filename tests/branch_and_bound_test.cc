@@ -648,6 +648,7 @@ RecordedRootHeuristic SolveWithRootHeuristic(const Miqp& problem, const Eigen::V
                                              int max_nodes, double wait_gap = kInfinity) {
   const auto solver = MakeInteriorPointRelaxationSolver();
   BranchAndBoundOptions options;
+  options.time_limit_s = 60.0;  // holds the nodes waited for at any root pace up to 0.6 s
   options.root_heuristic_after_nodes = after_nodes;
   options.root_heuristic_wait_gap = wait_gap;
   options.max_nodes = max_nodes;
@@ -682,11 +683,11 @@ TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsOnlyIfTheSearchGoesOnThatLong)
   EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
   EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
   // A search that proves its optimum before the count never calls it.
-  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 1000, 1000);
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 100, 1000);
   EXPECT_EQ(r.calls, 0);
   EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
   EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
-  EXPECT_LT(r.result.nodes, 1000);
+  EXPECT_LT(r.result.nodes, 100);
 }
 
 TEST(BranchAndBound, ARootHeuristicWaitsOnlyForAPlanWithinItsGap) {
@@ -701,6 +702,16 @@ TEST(BranchAndBound, ARootHeuristicWaitsOnlyForAPlanWithinItsGap) {
   r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.5);
   EXPECT_EQ(r.calls, 0);
   EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
+}
+
+TEST(BranchAndBound, ARootHeuristicDoesNotWaitForMoreNodesThanTheTimeLeftHolds) {
+  // Asked to wait for 1e8 nodes, which the 60 s limit cannot hold at the root's pace
+  // (over 0.6 microseconds a node): it runs at the root, as with no wait.
+  Eigen::VectorXd optimum(3);
+  optimum << 2.2, 0, 1;
+  const RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 100000000, 1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
 }
 
 TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsAtARootWithoutAPlan) {

@@ -98,7 +98,9 @@ struct BranchAndBoundOptions {
   // there, as with 0 (always at the root). The root cut loop's first pass runs it at the root.
   int root_heuristic_after_nodes = 0;
   // ... and it waits only when the root's plan is within this relative gap of the root
-  // bound (RelativeGap): a poorer plan gets the heuristic's at once.
+  // bound (RelativeGap): a poorer plan gets the heuristic's at once. Nor does it wait in a
+  // search whose time left would not hold root_heuristic_after_nodes more nodes at its pace
+  // so far (the root's): a window of a short time share would never reach the count.
   double root_heuristic_wait_gap = kInfinity;
   // Optional quick primal heuristic for a root whose roundings found no plan (relax-and-
   // fix's dive in the planner): run once at the root, after the roundings and before

@@ -100,7 +100,8 @@ bool RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
   }
   if (!options.root_heuristic) return false;
   if (options.root_heuristic_after_nodes > 0 && state->HasIncumbent() &&
-      RelativeGap(state->result().objective, state->result().bound) <= options.root_heuristic_wait_gap) {
+      RelativeGap(state->result().objective, state->result().bound) <= options.root_heuristic_wait_gap &&
+      state->TimeHoldsNodes(options.root_heuristic_after_nodes)) {
     return true;
   }
   OfferAndComplete(state, options.root_heuristic(x), x);
