@@ -92,14 +92,15 @@ class Search {
         hit_node_limit_ = true;
         break;
       }
-      // Stopped once long only with a plan: the cut loop needs one, and without it the
-      // second pass would start again from the root with nothing gained.
+      // The root heuristic that waited (root_heuristic_after_nodes), once its nodes are done.
       if (deferred_root_x_.size() > 0 && result.nodes >= opt_.root_heuristic_after_nodes) {
         const Eigen::VectorXd root_x = std::move(deferred_root_x_);
         deferred_root_x_.resize(0);
         RunDeferredRootHeuristic(&state_, root_x);
         continue;  // its plan may end the search: the limits and the queue are checked again
       }
+      // Stopped once long only with a plan: the cut loop needs one, and without it the
+      // second pass would start again from the root with nothing gained.
       if (stop_once_long_ && root_done_ && state_.IsLong() && state_.HasIncumbent()) {
         hit_node_limit_ = true;
         stopped_once_long_ = true;
