@@ -325,6 +325,14 @@ void AddRelaxAndFixKeys(Table* t) {
   t->push_back(Opt("relax_and_fix.stage_rounding", in(&R::stage_rounding),
                    "run the search's rounding heuristic inside the stages")
                    .Alias("relax_and_fix_stage_rounding").Advanced());
+  t->push_back(Opt("relax_and_fix.after_nodes", in(&R::after_nodes), 0, 100000000,
+                   "a window whose root roundings gave a plan is seeded only once its search has processed this many "
+                   "nodes without ending (0: at the root)")
+                   .Advanced());
+  t->push_back(Opt("relax_and_fix.wait_gap", in(&R::wait_gap), 0.0, 1e9,
+                   "... and only when the root's plan is within this relative gap of the root bound (a poorer plan "
+                   "is seeded at once)")
+                   .Advanced());
   t->push_back(Opt("relax_and_fix.first_plan_dive", in(&R::first_plan_dive),
                    "a seeded window whose root roundings find no plan first gets one from a one-node-per-stage dive")
                    .Advanced());

@@ -320,3 +320,28 @@ TEST(AnytimePlan, ThirtySixStepsEndWithAPlanWhenTheSearchTakesTheWholeLimit) {
 
 }  // namespace
 }  // namespace mfp
+
+namespace mfp {
+namespace {
+
+TEST(AnytimePlan, ASearchThatProvesSoonDoesWithoutTheSeedWhenItsRootPlanIsNearTheBound) {
+  // Hexapod 24 of Table I: the root's rounding lies 24.5 % above the root bound, within the
+  // default wait gap (0.3), and the search proves the optimum in about 134 nodes, fewer than
+  // relax_and_fix.after_nodes (200): relax-and-fix's seed never runs. With a wait gap below
+  // the root plan's (0.2) the seed runs at the root, and the optimum is the same.
+  Course c = LoadTableICourse("hexapod_stepping_stones_45.yaml", 24);
+  c.request.time_limit_s = 120.0;  // far more than the proof takes on a loaded machine
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.solvers);
+  const Plan waited = PlanFootsteps(c.robot, c.regions, c.request, c.scenario.options, solvers.workers());
+  ASSERT_EQ(waited.status, SolveStatus::kOptimal) << waited.message;
+  EXPECT_EQ(waited.window_records.front().heuristic_relaxations, 0);
+  PlannerOptions at_root = c.scenario.options;
+  at_root.relax_and_fix.wait_gap = 0.2;
+  const Plan seeded = PlanFootsteps(c.robot, c.regions, c.request, at_root, solvers.workers());
+  ASSERT_EQ(seeded.status, SolveStatus::kOptimal) << seeded.message;
+  EXPECT_GT(seeded.window_records.front().heuristic_relaxations, 0);
+  EXPECT_NEAR(waited.objective, seeded.objective, 1e-4 * std::abs(seeded.objective));
+}
+
+}  // namespace
+}  // namespace mfp

@@ -636,5 +636,93 @@ TEST(BranchAndBound, AProposalThatIsAPlanIsKeptWhenNoTimeIsLeftForItsQp) {
   EXPECT_NEAR(r.objective, -9.0, 1e-6);
 }
 
+// The root heuristic of DecoyInterval returns the optimum (h_b = 1, y = 2.2); its calls
+// and the first entry (y) of the point it was given are recorded.
+struct RecordedRootHeuristic {
+  int calls = 0;
+  double given_y = 0.0;
+  BranchAndBoundResult result;
+};
+
+RecordedRootHeuristic SolveWithRootHeuristic(const Miqp& problem, const Eigen::VectorXd& plan, int after_nodes,
+                                             int max_nodes, double wait_gap = kInfinity) {
+  const auto solver = MakeInteriorPointRelaxationSolver();
+  BranchAndBoundOptions options;
+  options.time_limit_s = 60.0;  // holds the nodes waited for at any root pace up to 0.6 s
+  options.root_heuristic_after_nodes = after_nodes;
+  options.root_heuristic_wait_gap = wait_gap;
+  options.max_nodes = max_nodes;
+  RecordedRootHeuristic recorded;
+  options.root_heuristic = [&](const Eigen::VectorXd& relaxed) {
+    ++recorded.calls;
+    recorded.given_y = relaxed(0);
+    return std::vector<Eigen::VectorXd>{plan};
+  };
+  recorded.result = SolveBranchAndBound(problem, *solver, options);
+  return recorded;
+}
+
+TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsOnlyIfTheSearchGoesOnThatLong) {
+  // DecoyInterval: the root's rounding gives a plan (0.24), the root bound is about 0, so
+  // the search branches; the heuristic's plan is the optimum 0.09.
+  Eigen::VectorXd optimum(3);
+  optimum << 2.2, 0, 1;
+  // At the root (0): called there, and the one node ends with the optimum.
+  RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 0, 1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  // Asked to wait for 2 nodes, a search capped at its root never calls it: the rounding's plan.
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1);
+  EXPECT_EQ(r.calls, 0);
+  EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
+  // Uncapped, it is called once after the second node, with the root's point (y = 2.5;
+  // the children's points have y = 2.2 or 3), and the search proves the optimum.
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1000);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.given_y, 2.5, 1e-3);
+  EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  // A search that proves its optimum before the count never calls it.
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 100, 1000);
+  EXPECT_EQ(r.calls, 0);
+  EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  EXPECT_LT(r.result.nodes, 100);
+}
+
+TEST(BranchAndBound, ARootHeuristicWaitsOnlyForAPlanWithinItsGap) {
+  // DecoyInterval's root plan (0.24) lies 0.24 above the root bound (about 0), a relative
+  // gap of 0.24 (the objective is below 1): with a wait gap of 0.1 the heuristic runs at
+  // the root, with 0.5 it waits (a search capped at its root then never calls it).
+  Eigen::VectorXd optimum(3);
+  optimum << 2.2, 0, 1;
+  RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.5);
+  EXPECT_EQ(r.calls, 0);
+  EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
+}
+
+TEST(BranchAndBound, ARootHeuristicDoesNotWaitForMoreNodesThanTheTimeLeftHolds) {
+  // Asked to wait for 1e8 nodes, which the 60 s limit cannot hold at the root's pace
+  // (over 0.6 microseconds a node): it runs at the root, as with no wait.
+  Eigen::VectorXd optimum(3);
+  optimum << 2.2, 0, 1;
+  const RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 100000000, 1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
+}
+
+TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsAtARootWithoutAPlan) {
+  // The knapsack's root roundings give no plan (the simple rounding (1, 1, 1) weighs 6):
+  // the heuristic runs at the root however long it was asked to wait.
+  Eigen::VectorXd optimum(3);
+  optimum << 1, 1, 0;
+  const RecordedRootHeuristic r = SolveWithRootHeuristic(Knapsack().problem, optimum, 1000, 1);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, -9.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace mfp

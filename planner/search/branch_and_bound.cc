@@ -92,6 +92,13 @@ class Search {
         hit_node_limit_ = true;
         break;
       }
+      // The root heuristic that waited (root_heuristic_after_nodes), once its nodes are done.
+      if (deferred_root_x_.size() > 0 && result.nodes >= opt_.root_heuristic_after_nodes) {
+        const Eigen::VectorXd root_x = std::move(deferred_root_x_);
+        deferred_root_x_.resize(0);
+        RunDeferredRootHeuristic(&state_, root_x);
+        continue;  // its plan may end the search: the limits and the queue are checked again
+      }
       // Stopped once long only with a plan: the cut loop needs one, and without it the
       // second pass would start again from the root with nothing gained.
       if (stop_once_long_ && root_done_ && state_.IsLong() && state_.HasIncumbent()) {
@@ -228,7 +235,7 @@ class Search {
     if (is_root) {
       result.bound = result.root_bound = bound;
       TryRounding(&state_, branching_, rounding_, rel.x);
-      RunRootHeuristic(&state_, rel.x);
+      if (RunRootHeuristic(&state_, rel.x)) deferred_root_x_ = rel.x;
     }
     if (state_.HasIncumbent() && !state_.Improves(bound)) {
       state_.NoteGapPrune(bound);
@@ -434,6 +441,9 @@ class Search {
   ReliabilityBranching reliability_;
   std::unique_ptr<GroupProber> prober_;  // with options.group_probing
   int last_rins_node_ = 0;  // the node count at the last RINS
+  // The root relaxation point while root_heuristic waits (root_heuristic_after_nodes);
+  // empty otherwise.
+  Eigen::VectorXd deferred_root_x_;
   bool root_done_ = false;
   bool stop_once_long_ = false;
   bool stopped_once_long_ = false;
@@ -491,6 +501,7 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   const bool until_long = (options.long_search_only & kLongSearchRootCuts) != 0;
   BranchAndBoundOptions first_pass = options;
   first_pass.root_cut_rounds = 0;
+  first_pass.root_heuristic_after_nodes = 0;  // the second pass runs no root heuristic
   if (!until_long) {
     first_pass.max_nodes = 1;
     first_pass.group_probing = false;  // its children are not searched: the second pass probes

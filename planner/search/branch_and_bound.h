@@ -96,6 +96,18 @@ struct BranchAndBoundOptions {
   // Returns assignments (a plan's own, typically); each is offered as it is and then
   // completed by its fixed-integer QP while time is left.
   std::function<std::vector<Eigen::VectorXd>(const Eigen::VectorXd& relaxed)> root_heuristic;
+  // root_heuristic waits: when the search holds a plan once its root's roundings (and
+  // first_plan_heuristic) are done, root_heuristic runs only after this many nodes, the
+  // root included, and only if the search has not ended by then; it gets the root
+  // relaxation point still. A search that ends sooner never runs it: a proof shorter than
+  // this does not need the slow heuristic's plan. Without a plan after the root it runs
+  // there, as with 0 (always at the root). The root cut loop's first pass runs it at the root.
+  int root_heuristic_after_nodes = 0;
+  // ... and it waits only when the root's plan is within this relative gap of the root
+  // bound (RelativeGap): a poorer plan gets the heuristic's at once. Nor does it wait in a
+  // search whose time left would not hold root_heuristic_after_nodes more nodes at its pace
+  // so far (the root's): a window of a short time share would never reach the count.
+  double root_heuristic_wait_gap = kInfinity;
   // Optional quick primal heuristic for a root whose roundings found no plan (relax-and-
   // fix's dive in the planner): run once at the root, after the roundings and before
   // root_heuristic, only when the search holds no incumbent yet; its plans are offered

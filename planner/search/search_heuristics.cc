@@ -99,13 +99,24 @@ void TryRounding(SearchState* state, const Branching& branching, const RoundingH
   OfferAndComplete(state, proposals, x);
 }
 
-void RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
+bool RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
   const BranchAndBoundOptions& options = state->options();
-  if (!options.rounding_heuristic) return;
+  if (!options.rounding_heuristic) return false;
   if (options.first_plan_heuristic && !state->HasIncumbent()) {
     OfferAndComplete(state, options.first_plan_heuristic(x), x);
   }
-  if (options.root_heuristic) OfferAndComplete(state, options.root_heuristic(x), x);
+  if (!options.root_heuristic) return false;
+  if (options.root_heuristic_after_nodes > 0 && state->HasIncumbent() &&
+      RelativeGap(state->result().objective, state->result().bound) <= options.root_heuristic_wait_gap &&
+      state->TimeHoldsNodes(options.root_heuristic_after_nodes)) {
+    return true;
+  }
+  OfferAndComplete(state, options.root_heuristic(x), x);
+  return false;
+}
+
+void RunDeferredRootHeuristic(SearchState* state, const Eigen::VectorXd& root_x) {
+  OfferAndComplete(state, state->options().root_heuristic(root_x), root_x);
 }
 
 }  // namespace mfp

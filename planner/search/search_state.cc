@@ -28,11 +28,13 @@ double SearchState::StallTimeLeftSeconds() const {
 bool SearchState::Stalled() const { return StallTimeLeftSeconds() < 0.0; }
 
 bool SearchState::IsLong() const {
-  const int nodes = result_.nodes;
-  if (nodes < opt_.long_search_min_nodes) return false;
+  return result_.nodes >= opt_.long_search_min_nodes && TimeHoldsNodes(opt_.long_search_nodes_left);
+}
+
+bool SearchState::TimeHoldsNodes(double nodes) const {
   const double left_s = std::min(Active().RemainingSeconds(), StallTimeLeftSeconds());
-  const double per_node_s = Elapsed() / std::max(1, nodes);
-  return left_s >= opt_.long_search_nodes_left * per_node_s;
+  const double per_node_s = Elapsed() / std::max(1, result_.nodes);
+  return left_s >= nodes * per_node_s;
 }
 
 double SearchState::GapTolerance() const {

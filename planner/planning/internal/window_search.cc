@@ -194,6 +194,8 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     heuristic_fallbacks += r.fallbacks;
     return plans;
   };
+  bnb.root_heuristic_after_nodes = options.relax_and_fix.after_nodes;
+  bnb.root_heuristic_wait_gap = options.relax_and_fix.wait_gap;
   // Before it, when the roundings found no plan: the quick dive (the search calls this
   // only then, which is also how the seed learns that it is without a first plan).
   if (!seeded) {

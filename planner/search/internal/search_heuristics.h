@@ -17,7 +17,15 @@ void TryRounding(SearchState* state, const Branching& branching, const RoundingH
 
 // BranchAndBoundOptions::first_plan_heuristic (only while the search has no incumbent),
 // then root_heuristic, on the root relaxation point x, their proposals offered and
-// completed as TryRounding's. Nothing when rounding_heuristic is off.
-void RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x);
+// completed as TryRounding's. Nothing when rounding_heuristic is off. Returns true when
+// root_heuristic was left for later (root_heuristic_after_nodes > 0, the search holds a
+// plan within root_heuristic_wait_gap of the root bound, state->result().bound, and its
+// time left holds that many nodes at its pace so far): the caller runs it by
+// RunDeferredRootHeuristic once the nodes are processed.
+bool RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x);
+
+// root_heuristic on the root relaxation point root_x, its proposals offered and completed
+// (warm-started from root_x), as RunRootHeuristic would have at the root.
+void RunDeferredRootHeuristic(SearchState* state, const Eigen::VectorXd& root_x);
 
 }  // namespace mfp

@@ -47,6 +47,10 @@ class SearchState {
   bool Stalled() const;
   // BranchAndBoundOptions::long_search_min_nodes and long_search_nodes_left.
   bool IsLong() const;
+  // True when the time left (to the deadline in force, and to the stall limit) would hold
+  // `nodes` more nodes at the search's mean time per node so far (its elapsed time over
+  // its processed nodes, at least one).
+  bool TimeHoldsNodes(double nodes) const;
   // True when `lever` (a LongSearchLever) may run now: it is not kept to long searches,
   // or the search is long.
   bool LeverPays(int lever) const { return (opt_.long_search_only & lever) == 0 || IsLong(); }
