@@ -40,9 +40,13 @@ struct InteriorPointOptions {
   // Iterative refinement steps per Newton solve at most (each a product with K and a
   // pair of triangular solves), taken while the solve's residual is above a hundredth of
   // the tolerance. Convergence and the floors are judged on the iterate's own residuals,
-  // so this changes the path and the cost per iteration, never what a result certifies
-  // (0: no refinement).
-  int refinement_steps = 2;
+  // so these change the path and the cost per iteration, never what a result certifies
+  // (0: no refinement). The corrector's direction is the step taken; the predictor's
+  // only sets the centring and the corrector's second-order term, for which an
+  // unrefined solve is accurate enough; the corrector's first step wins back most of
+  // what the factorisation lost (the trade measured in docs/measurements.md).
+  int refinement_steps = 1;
+  int predictor_refinement_steps = 0;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;
