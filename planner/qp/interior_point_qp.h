@@ -41,12 +41,13 @@ struct InteriorPointOptions {
   // pair of triangular solves), taken while the solve's residual is above a hundredth of
   // the tolerance. Convergence and the floors are judged on the iterate's own residuals,
   // so these change the path and the cost per iteration, never what a result certifies
-  // (0: no refinement). The corrector's direction is the step taken; the predictor's
-  // only sets the centring and the corrector's second-order term, for which an
-  // unrefined solve is accurate enough; the corrector's first step wins back most of
-  // what the factorisation lost (the trade measured in docs/measurements.md).
-  int refinement_steps = 1;
-  int predictor_refinement_steps = 0;
+  // (0: no refinement). refinement_steps holds for the corrector's solve, whose
+  // direction is the step taken; predictor_refinement_steps for the predictor's, which
+  // only sets the centring and the corrector's second-order term. Fewer steps make each
+  // iteration cheaper and move every iterate a little, so a search takes other paths to
+  // optima within its gap (0 and 1 measured in docs/measurements.md, not the default).
+  int refinement_steps = 2;
+  int predictor_refinement_steps = 2;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;
