@@ -285,13 +285,13 @@ TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
 
 
 TEST(InteriorPointQp, WithoutRefinementTheSameOptimaAndFloorsThatHoldBelowThem) {
-  // refinement_steps = 0 changes the Newton directions' accuracy, not what convergence
-  // asks of the iterate: the same optimum to the tolerance, and the floor still below it,
-  // cold and warm-started from a parent with one bound moved.
+  // No refinement changes the Newton directions' accuracy, not what convergence asks of
+  // the iterate: the same optimum to the tolerance, and the floor still below it, cold
+  // and warm-started from a parent with one bound moved.
   for (unsigned seed = 1; seed <= 12; ++seed) {
     const Miqp p = RandomFeasibleQp(60, 40, seed);
     InteriorPointOptions refined, plain;
-    plain.refinement_steps = 0;
+    plain.refinement_steps = plain.predictor_refinement_steps = 0;
     const RelaxationResult a = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, refined);
     const RelaxationResult b = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, plain);
     ASSERT_EQ(a.status, RelaxationStatus::kSolved) << seed;
