@@ -285,13 +285,13 @@ TEST(InteriorPointQp, ReducedCostCertificateHoldsAtEveryFeasiblePoint) {
 
 
 TEST(InteriorPointQp, WithoutRefinementTheSameOptimaAndFloorsThatHoldBelowThem) {
-  // refinement_steps = 0 changes the Newton directions' accuracy, not what convergence
-  // asks of the iterate: the same optimum to the tolerance, and the floor still below it,
-  // cold and warm-started from a parent with one bound moved.
+  // No refinement changes the Newton directions' accuracy, not what convergence asks of
+  // the iterate: the same optimum to the tolerance, and the floor still below it, cold
+  // and warm-started from a parent with one bound moved.
   for (unsigned seed = 1; seed <= 12; ++seed) {
     const Miqp p = RandomFeasibleQp(60, 40, seed);
     InteriorPointOptions refined, plain;
-    plain.refinement_steps = 0;
+    plain.refinement_steps = plain.predictor_refinement_steps = 0;
     const RelaxationResult a = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, refined);
     const RelaxationResult b = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, plain);
     ASSERT_EQ(a.status, RelaxationStatus::kSolved) << seed;
@@ -309,6 +309,61 @@ TEST(InteriorPointQp, WithoutRefinementTheSameOptimaAndFloorsThatHoldBelowThem) 
     if (ca.status != RelaxationStatus::kSolved) continue;
     EXPECT_NEAR(cb.objective, ca.objective, 1e-6 * (1.0 + std::abs(ca.objective))) << seed;
     EXPECT_LE(cb.cost_floor, ca.objective + 1e-9 * (1.0 + std::abs(ca.objective))) << seed;
+  }
+}
+
+TEST(InteriorPointQp, EveryRefinementSettingKeepsFloorsAndCutoffsBelowAReferenceOptimum) {
+  // Whatever the Newton solves' refinement (none, the predictor's or the corrector's
+  // alone, both), a solved node's floor and a cut-off node's objective lie below the
+  // optimum, here Ipopt's at 1e-10 (whose bounds are relaxed by ~1e-8: if anything below
+  // the true optimum), cold and from warm starts as a search branches. The objectives
+  // agree with the fully refined solve's to 1e-7 and with Ipopt's to 1e-5: the
+  // convergence rule accepts a dual residual of acceptable_dual once complementarity is
+  // tiny, which leaves the objective a few 1e-6 above the optimum on these QPs.
+  IpoptSettings tight;
+  tight.tolerance = 1e-10;
+  const auto ipopt = MakeIpoptRelaxationSolver(tight);
+  const std::pair<int, int> settings[] = {{0, 0}, {0, 1}, {1, 0}, {2, 2}};  // (predictor, corrector)
+  for (unsigned seed = 21; seed <= 28; ++seed) {
+    const Miqp p = RandomFeasibleQp(50, 45, seed);
+    const RelaxationResult parent = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, InteriorPointOptions());
+    ASSERT_EQ(parent.status, RelaxationStatus::kSolved) << seed;
+    for (int child = 0; child < 3; ++child) {
+      Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+      if (child == 1) upper(seed % 50) = parent.x(seed % 50) - 0.3;
+      if (child == 2) lower(seed % 50) = parent.x(seed % 50) + 0.3;
+      RelaxationRequest request;
+      request.lower = lower;
+      request.upper = upper;
+      const RelaxationResult reference = ipopt->Solve(p, request);
+      if (reference.status != RelaxationStatus::kSolved) continue;
+      const double scale = 1.0 + std::abs(reference.objective);
+      const Eigen::VectorXd* warm = child == 0 ? nullptr : &parent.x;
+      InteriorPointOptions refined;
+      refined.predictor_refinement_steps = refined.refinement_steps = 2;
+      const RelaxationResult full = SolveQpInteriorPoint(p, lower, upper, warm, refined);
+      ASSERT_EQ(full.status, RelaxationStatus::kSolved) << seed << " " << child;
+      for (const auto& [predictor, corrector] : settings) {
+        InteriorPointOptions options;
+        options.predictor_refinement_steps = predictor;
+        options.refinement_steps = corrector;
+        const RelaxationResult r = SolveQpInteriorPoint(p, lower, upper, warm, options);
+        ASSERT_EQ(r.status, RelaxationStatus::kSolved) << seed << " " << child << " " << predictor << corrector;
+        EXPECT_NEAR(r.objective, full.objective, 1e-7 * scale) << seed << " " << child;
+        EXPECT_NEAR(r.objective, reference.objective, 1e-5 * scale) << seed << " " << child;
+        EXPECT_LE(r.cost_floor, reference.objective + 1e-9 * scale) << seed << " " << child;
+        // A cutoff a hair below the optimum: either proven (its floor below the optimum)
+        // or solved to the end.
+        options.cutoff = reference.objective - 1e-5 * scale;
+        const RelaxationResult cut = SolveQpInteriorPoint(p, lower, upper, warm, options);
+        if (cut.status == RelaxationStatus::kCutoff) {
+          EXPECT_GE(cut.objective, options.cutoff) << seed << " " << child;
+          EXPECT_LE(cut.objective, reference.objective + 1e-9 * scale) << seed << " " << child;
+        } else {
+          EXPECT_EQ(cut.status, RelaxationStatus::kSolved) << seed << " " << child;
+        }
+      }
+    }
   }
 }
 

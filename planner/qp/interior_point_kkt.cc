@@ -145,14 +145,14 @@ bool KktSolver::Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd&
   return factored;
 }
 
-Eigen::VectorXd KktSolver::Solve(const Eigen::VectorXd& rhs_x, double tolerance) const {
+Eigen::VectorXd KktSolver::Solve(const Eigen::VectorXd& rhs_x, double tolerance, int refinement_steps) const {
   const Eigen::VectorXd rhs = assembly_.Permute(rhs_x);
   Eigen::VectorXd dx_permuted = ldlt_.Solve(rhs);
   // Iterative refinement against the unshifted matrix: sigma's range (up to 1e15 near
   // convergence) costs the factorisation digits that this wins back. Early iterations
   // are accurate already, so a step is taken only while it is needed.
   const double rhs_norm = rhs.lpNorm<Eigen::Infinity>();
-  for (int k = 0; k < refinement_steps_; ++k) {
+  for (int k = 0; k < refinement_steps; ++k) {
     const Eigen::VectorXd residual = rhs - K_.selfadjointView<Eigen::Upper>() * dx_permuted;
     if (residual.lpNorm<Eigen::Infinity>() <= kRefinementPerTolerance * tolerance * rhs_norm) break;
     dx_permuted += ldlt_.Solve(residual);

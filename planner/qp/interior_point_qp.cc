@@ -260,8 +260,8 @@ class NewtonSystem {
   //   t_x = -r_d,x - G'v_R - (v_U - v_L),  t_e = -r_d,e + v_R + v_P,
   // so the right-hand side K dx = t_x + G'(S1 t_e / (S1 + S2)) needs one product with
   // G' and C dw one with G (G dx, which de needs too).
-  void Direction(const KktSolver& kkt, const Eigen::VectorXd& rc, double tolerance, Eigen::VectorXd* dw,
-                 Eigen::VectorXd* ds, Eigen::VectorXd* dz) const {
+  void Direction(const KktSolver& kkt, const Eigen::VectorXd& rc, double tolerance, int refinement_steps,
+                 Eigen::VectorXd* dw, Eigen::VectorXd* ds, Eigen::VectorXd* dz) const {
     const int n = f_.n, E = f_.elastic;
     const int m = static_cast<int>(f_.d.size());
     const Eigen::VectorXd& r_d = r_.r_d;
@@ -271,7 +271,7 @@ class NewtonSystem {
     const Eigen::VectorXd row_part = s1_.cwiseProduct(t_e).cwiseQuotient(s12_) - v.head(E);
     Eigen::VectorXd rhs_x = f_.Gt * row_part - r_d.head(n);
     for (int j = 0; j < n; ++j) rhs_x(j) -= v(2 * E + 2 * j) - v(2 * E + 2 * j + 1);
-    const Eigen::VectorXd dx = kkt.Solve(rhs_x, tolerance);
+    const Eigen::VectorXd dx = kkt.Solve(rhs_x, tolerance, refinement_steps);
     const Eigen::VectorXd g_dx = f_.G * dx;
     dw->resize(n + E);
     dw->head(n) = dx;
@@ -296,19 +296,21 @@ class NewtonSystem {
 };
 
 // Mehrotra's predictor-corrector step from (w, s, z), 0.99 of the way to the boundary.
-void PredictorCorrectorStep(const NewtonSystem& newton, const KktSolver& kkt, double mu, double tolerance,
-                            Eigen::VectorXd* w, Eigen::VectorXd* s, Eigen::VectorXd* z) {
+void PredictorCorrectorStep(const NewtonSystem& newton, const KktSolver& kkt, double mu,
+                            const InteriorPointOptions& opt, Eigen::VectorXd* w, Eigen::VectorXd* s,
+                            Eigen::VectorXd* z) {
   const int m = static_cast<int>(s->size());
   const Eigen::VectorXd inverse_z = z->cwiseInverse();
   const Eigen::VectorXd& inverse_s = newton.inverse_s();
   Eigen::VectorXd dw, ds, dz;
-  newton.Direction(kkt, -s->cwiseProduct(*z), tolerance, &dw, &ds, &dz);  // predictor (affine scaling)
+  newton.Direction(kkt, -s->cwiseProduct(*z), opt.tolerance, opt.predictor_refinement_steps, &dw, &ds,
+                   &dz);  // predictor (affine scaling)
   const double alpha_aff = std::min(MaxStep(inverse_s, ds), MaxStep(inverse_z, dz));
   const double mu_aff = (*s + alpha_aff * ds).dot(*z + alpha_aff * dz) / m;
   const double centering = std::pow(mu_aff / mu, 3);
   const Eigen::VectorXd rc =
       -s->cwiseProduct(*z) - ds.cwiseProduct(dz) + Eigen::VectorXd::Constant(m, centering * mu);
-  newton.Direction(kkt, rc, tolerance, &dw, &ds, &dz);  // corrector
+  newton.Direction(kkt, rc, opt.tolerance, opt.refinement_steps, &dw, &ds, &dz);  // corrector
   const double alpha = std::min(1.0, 0.99 * std::min(MaxStep(inverse_s, ds), MaxStep(inverse_z, dz)));
   *w += alpha * dw;
   *s += alpha * ds;
@@ -342,7 +344,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     result.objective = p.Objective(result.x);
     return result;
   }
-  KktSolver kkt(f, opt.deadline, opt.refinement_steps);
+  KktSolver kkt(f, opt.deadline);
 
   for (int iter = 0; iter < opt.max_iterations && kkt.ready(); ++iter) {
     result.iterations = iter;
@@ -366,7 +368,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     }
     const NewtonSystem newton(f, s, z, r);
     if (!newton.Factor(&kkt)) break;
-    PredictorCorrectorStep(newton, kkt, r.mu, opt.tolerance, &w, &s, &z);
+    PredictorCorrectorStep(newton, kkt, r.mu, opt, &w, &s, &z);
   }
   result.status = RelaxationStatus::kIterationLimit;
   result.x = w.head(n);

@@ -40,9 +40,14 @@ struct InteriorPointOptions {
   // Iterative refinement steps per Newton solve at most (each a product with K and a
   // pair of triangular solves), taken while the solve's residual is above a hundredth of
   // the tolerance. Convergence and the floors are judged on the iterate's own residuals,
-  // so this changes the path and the cost per iteration, never what a result certifies
-  // (0: no refinement).
+  // so these change the path and the cost per iteration, never what a result certifies
+  // (0: no refinement). refinement_steps holds for the corrector's solve, whose
+  // direction is the step taken; predictor_refinement_steps for the predictor's, which
+  // only sets the centring and the corrector's second-order term. Fewer steps make each
+  // iteration cheaper and move every iterate a little, so a search takes other paths to
+  // optima within its gap (0 and 1 measured in docs/measurements.md, not the default).
   int refinement_steps = 2;
+  int predictor_refinement_steps = 2;
   // Stop with kCutoff once the iterate's Lagrangian floor (see RelaxationResult::
   // cost_floor) reaches this; infinite: solve to convergence.
   double cutoff = kInfinity;

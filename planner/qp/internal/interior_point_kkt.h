@@ -102,9 +102,7 @@ double KktProductTerms(const InequalityForm& f);
 // SparseLdlt records the factors' patterns then), its values scattered in place.
 class KktSolver {
  public:
-  // refinement_steps: most iterative refinement steps per solve (InteriorPointOptions).
-  KktSolver(const InequalityForm& f, const Deadline& deadline, int refinement_steps)
-      : assembly_(f, deadline), K_(assembly_.pattern), refinement_steps_(refinement_steps) {}
+  KktSolver(const InequalityForm& f, const Deadline& deadline) : assembly_(f, deadline), K_(assembly_.pattern) {}
 
   // False when the deadline interrupted the assembly: Factor must not be called.
   bool ready() const { return !assembly_.interrupted; }
@@ -113,13 +111,12 @@ class KktSolver {
   bool Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight);
   // K^-1 rhs_x, both in the original variable order, refined against the unshifted K while its residual is
   // above a hundredth of tolerance, relative to the right-hand side (refinement_steps at most).
-  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs_x, double tolerance) const;
+  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs_x, double tolerance, int refinement_steps) const;
 
  private:
   const KktAssembly assembly_;
   SpMat K_;
   SparseLdlt ldlt_;
-  const int refinement_steps_;
   bool analysed_ = false;
 };
 
