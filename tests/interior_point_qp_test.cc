@@ -324,6 +324,7 @@ TEST(InteriorPointQp, EveryRefinementSettingKeepsFloorsAndCutoffsBelowAReference
   tight.tolerance = 1e-10;
   const auto ipopt = MakeIpoptRelaxationSolver(tight);
   const std::pair<int, int> settings[] = {{0, 0}, {0, 1}, {1, 0}, {2, 2}};  // (predictor, corrector)
+  int checked = 0;  // cases Ipopt solved, so compared
   for (unsigned seed = 21; seed <= 28; ++seed) {
     const Miqp p = RandomFeasibleQp(50, 45, seed);
     const RelaxationResult parent = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, InteriorPointOptions());
@@ -337,6 +338,7 @@ TEST(InteriorPointQp, EveryRefinementSettingKeepsFloorsAndCutoffsBelowAReference
       request.upper = upper;
       const RelaxationResult reference = ipopt->Solve(p, request);
       if (reference.status != RelaxationStatus::kSolved) continue;
+      ++checked;
       const double scale = 1.0 + std::abs(reference.objective);
       const Eigen::VectorXd* warm = child == 0 ? nullptr : &parent.x;
       InteriorPointOptions refined;
@@ -365,6 +367,7 @@ TEST(InteriorPointQp, EveryRefinementSettingKeepsFloorsAndCutoffsBelowAReference
       }
     }
   }
+  EXPECT_GE(checked, 12) << "too few cases had a reference optimum to compare with";
 }
 
 TEST(InteriorPointQp, AQpOverTheKktWorkBudgetIsRefusedBeforeAssemblyAndNotHandedOn) {

@@ -106,7 +106,9 @@ bool RunRootHeuristic(SearchState* state, const Eigen::VectorXd& x) {
     OfferAndComplete(state, options.first_plan_heuristic(x), x);
   }
   if (!options.root_heuristic) return false;
-  if (options.root_heuristic_after_nodes > 0 && state->HasIncumbent() &&
+  // Wait only where the search can reach the node count at all (max_nodes) and in time.
+  if (options.root_heuristic_after_nodes > 0 && options.max_nodes > options.root_heuristic_after_nodes &&
+      state->HasIncumbent() &&
       RelativeGap(state->result().objective, state->result().bound) <= options.root_heuristic_wait_gap &&
       state->TimeHoldsNodes(options.root_heuristic_after_nodes)) {
     return true;

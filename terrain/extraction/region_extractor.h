@@ -102,20 +102,18 @@ struct RegionExtractorOptions {
   // centre holds a foot disk) and a ragged outline - kept cells with a 4-neighbour not
   // kept numbering at least convex_alone_outline times a square's outline of as many
   // cells (4 sqrt(kept)) and convex_alone_outline_share of the kept cells - is covered by
-  // the convex pieces alone: the rectangles, computed only to compare, are not. On the
-  // real scans' large ragged patches the pieces won the comparison on all but a few, by
-  // at most 4 centres there, and those rectangles were half the decomposition's work;
-  // faces of boxes (outlines up to 2.4 squares', or a smooth floor's 4 %) compare as
-  // before (docs/measurements.md, "Extraction time round 7"). A value of
-  // convex_alone_cells above any patch: every patch compares.
+  // the convex pieces alone: the rectangles, computed only to compare, are not. On large
+  // ragged patches the pieces nearly always win the comparison, so computing the
+  // rectangles there is wasted work; smooth outlines (faces of boxes, a flat floor)
+  // compare as before (figures: docs/measurements.md, "Extraction time round 7"). A value
+  // of convex_alone_cells above any patch: every patch compares.
   int convex_alone_cells = 400;
   double convex_alone_outline = 2.5;
   double convex_alone_outline_share = 0.1;
   // With convex_cover, each piece is grown about its seed rectangle and about the seed's
-  // middle half and quarter, the best kept (true), or about the seed alone (false): a
-  // third of the growing, a tenth of new_college's extraction, but 0-1.2 points of
-  // certified coverage on the real scans, a ring's pieces no better than rectangles and
-  // one of fr_079's walks slower (docs/measurements.md, "Extraction time round 7").
+  // middle half and quarter, the best kept (true), or about the seed alone (false: a
+  // third of the growing, but less certified coverage and a curved walkway's pieces no
+  // better than rectangles; figures: docs/measurements.md, "Extraction time round 7").
   bool convex_shrunk_seeds = true;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,

@@ -70,11 +70,10 @@ struct RelaxAndFixOptions {
   // A window whose root roundings gave a plan within wait_gap of the root bound runs the
   // seed only after its search has processed after_nodes nodes without ending
   // (BranchAndBoundOptions::root_heuristic_after_nodes and root_heuristic_wait_gap;
-  // after_nodes 0: at the root; wait_gap 1e9: any plan waits). A search that proves its
-  // window sooner does without the seed's cost (hexapod 24 of Table I: 134 nodes, the seed
-  // a quarter of the proof); a poorer root plan gets the seed's plan at once, as the
-  // anytime plan of a long search (hexapod 36, LittleDog 24 and 36, whose root plans lie
-  // 44-78 % above the bound, against hexapod 24's 24.5 %; docs/measurements.md).
+  // after_nodes 0: at the root; wait_gap 1e9: any plan waits). "Root roundings" include
+  // the quick first-plan dive. A search that proves its window within after_nodes does
+  // without the seed's cost; a poorer root plan gets the seed's plan at once, as the
+  // anytime plan of a long search (figures: docs/measurements.md, "hexproof7").
   int after_nodes = 200;
   double wait_gap = 0.3;
   // A seeded window whose root roundings find no plan first gets a quick one: a dive,

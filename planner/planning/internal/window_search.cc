@@ -64,13 +64,14 @@ WindowSeeds SeedWindow(const PlanContext& context, const MiqpFormulation& formul
 }
 
 // One relax-and-fix plan for the search's root, its stages searched with the window's
-// options (bnb) for rf.time_share of its time. Without a first plan (the root's roundings
+// options (bnb) for rf.time_share of its time, at most search_left_s (a seed deferred
+// until the search's first nodes must not outlast the search's own time limit). Without a first plan (the root's roundings
 // and the quick dive found none) its completion may overrun the window's deadline as the
 // first plan's work does (BranchAndBoundOptions::first_plan_overrun_s): the stages end on
 // that deadline when the dive took the time, and the completion's rounding is then the
 // window's only plan.
 RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulation& formulation,
-                                  const BranchAndBoundOptions& bnb, bool without_first_plan) {
+                                  const BranchAndBoundOptions& bnb, bool without_first_plan, double search_left_s) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
   rf.stage = bnb;
   rf.completion_overrun_s = without_first_plan ? bnb.first_plan_overrun_s : 0.0;
@@ -78,7 +79,7 @@ RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulat
   // Stage searches are small (nodes_per_stage): strong branching would cost them more
   // than it saves, and their plans came out worse (docs/measurements.md).
   if (rf.stage.branching == BranchingRule::kReliability) rf.stage.branching = BranchingRule::kGroupOrder;
-  rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+  rf.time_limit_s = std::min(rf.time_share * bnb.time_limit_s, search_left_s);
   return rf.two_paths ? RelaxAndFixTwoPaths(formulation, context.solvers, rf) : RelaxAndFix(formulation, context.solvers, rf);
 }
 
@@ -179,6 +180,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     return proposals;
   };
   bool without_first_plan = false;  // the roundings found no plan, nor did the quick dive
+  PlanClock::time_point search_start{};  // set as the search starts, before any heuristic runs
   int heuristic_fallbacks = 0;
   // The root, once its roundings are completed: one relax-and-fix plan (the workers are
   // idle meanwhile).
@@ -187,7 +189,12 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
     if (seeded) return plans;
     seeded = true;
     const PlanClock::time_point rf_start = PlanClock::now();
-    RelaxAndFixResult r = RelaxAndFixSeed(context, formulation, bnb, without_first_plan);
+    // A seed that may have waited for the search's first nodes (the search holds a plan)
+    // gets no more than the search has left; one that must give the first plan keeps its
+    // whole share.
+    const double search_left_s = without_first_plan ? bnb.time_limit_s
+                                                    : std::max(0.0, bnb.time_limit_s - SecondsSince(search_start));
+    RelaxAndFixResult r = RelaxAndFixSeed(context, formulation, bnb, without_first_plan, search_left_s);
     if (r.x) plans.push_back(std::move(*r.x));
     record->heuristic_s += SecondsSince(rf_start);
     record->heuristic_relaxations += r.relaxations;
@@ -222,7 +229,7 @@ WindowSearch SearchWindow(const PlanContext& context, const MiqpFormulation& for
   // run on to its first plan, up to anytime_window_cap whole shares (in the stones soak
   // the slowest replies were such searches, 0.3-0.4 s against a 0.03 s budget).
   if (bounded_replan && seeds.warm_plan) bnb.time_limit_needs_incumbent = false;
-  const PlanClock::time_point search_start = PlanClock::now();
+  search_start = PlanClock::now();
   BranchAndBoundResult result = SolveBranchAndBound(formulation.miqp(), context.solvers, bnb, rounding);
   bnb.time_limit_needs_incumbent = window_needs_incumbent;
   const std::optional<Eigen::VectorXd>& warm_plan = seeds.warm_plan;
