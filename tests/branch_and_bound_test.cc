@@ -671,10 +671,11 @@ TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsOnlyIfTheSearchGoesOnThatLong)
   RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 0, 1);
   EXPECT_EQ(r.calls, 1);
   EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
-  // Asked to wait for 2 nodes, a search capped at its root never calls it: the rounding's plan.
+  // Asked to wait for 2 nodes, a search capped at its root (max_nodes 1) could never
+  // reach them: it does not wait, and the heuristic runs at the root.
   r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1);
-  EXPECT_EQ(r.calls, 0);
-  EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
+  EXPECT_EQ(r.calls, 1);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
   // Uncapped, it is called once after the second node, with the root's point (y = 2.5;
   // the children's points have y = 2.2 or 3), and the search proves the optimum.
   r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1000);
@@ -693,15 +694,17 @@ TEST(BranchAndBound, ARootHeuristicAskedToWaitRunsOnlyIfTheSearchGoesOnThatLong)
 TEST(BranchAndBound, ARootHeuristicWaitsOnlyForAPlanWithinItsGap) {
   // DecoyInterval's root plan (0.24) lies 0.24 above the root bound (about 0), a relative
   // gap of 0.24 (the objective is below 1): with a wait gap of 0.1 the heuristic runs at
-  // the root, with 0.5 it waits (a search capped at its root then never calls it).
+  // the root, with 0.5 it waits for 100 nodes, and the search proves the optimum sooner
+  // without it.
   Eigen::VectorXd optimum(3);
   optimum << 2.2, 0, 1;
-  RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.1);
+  RecordedRootHeuristic r = SolveWithRootHeuristic(DecoyInterval(), optimum, 100, 1000, 0.1);
   EXPECT_EQ(r.calls, 1);
   EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
-  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 2, 1, 0.5);
+  r = SolveWithRootHeuristic(DecoyInterval(), optimum, 100, 1000, 0.5);
   EXPECT_EQ(r.calls, 0);
-  EXPECT_NEAR(r.result.objective, 0.24, 1e-5);
+  EXPECT_EQ(r.result.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.result.objective, 0.09, 1e-5);
 }
 
 TEST(BranchAndBound, ARootHeuristicDoesNotWaitForMoreNodesThanTheTimeLeftHolds) {
