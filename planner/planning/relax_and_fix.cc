@@ -53,24 +53,13 @@ std::optional<Eigen::VectorXd> CompleteByRounding(const MiqpFormulation& formula
                                                   const Eigen::VectorXd& x, RelaxationSolver& solver,
                                                   const Deadline& deadline, double feasibility_tolerance,
                                                   RelaxAndFixResult* result) {
-  const Miqp& full = formulation.miqp();
   RelaxationRequest request;
   request.warm_start = x;
   request.deadline = deadline;
-  std::optional<Eigen::VectorXd> best;
-  double best_objective = kInfinity;
-  for (const Eigen::VectorXd& proposal : proposals) {
-    RelaxationResult r = SolveWithIntegersFixed(full, proposal, solver, request);
-    ++result->relaxations;
-    result->fallbacks += r.fallbacks;
-    if (r.status != RelaxationStatus::kSolved) continue;
-    const std::optional<double> objective = FeasibleObjective(full, &r.x, feasibility_tolerance);
-    if (objective && *objective < best_objective) {
-      best_objective = *objective;
-      best = std::move(r.x);
-    }
-  }
-  return best;
+  FixedAssignmentOptions options;
+  options.feasibility_tolerance = feasibility_tolerance;
+  return BestFixedAssignment(formulation.miqp(), proposals, solver, request, options, &result->relaxations,
+                             &result->fallbacks);
 }
 
 }  // namespace

@@ -33,7 +33,8 @@ std::optional<double> FeasibleObjective(const Miqp& problem, Eigen::VectorXd* x,
 
 std::optional<Eigen::VectorXd> BestFixedAssignment(const Miqp& problem, const std::vector<Eigen::VectorXd>& assignments,
                                                    RelaxationSolver& solver, const RelaxationRequest& request,
-                                                   const FixedAssignmentOptions& options, int* solves) {
+                                                   const FixedAssignmentOptions& options, int* solves,
+                                                   int* fallbacks) {
   std::optional<Eigen::VectorXd> best;
   double best_objective = kInfinity;
   for (const Eigen::VectorXd& assignment : assignments) {
@@ -41,6 +42,7 @@ std::optional<Eigen::VectorXd> BestFixedAssignment(const Miqp& problem, const st
     if (options.max_solve_s < kInfinity) one.deadline = request.deadline.Within(options.max_solve_s);
     RelaxationResult r = SolveWithIntegersFixed(problem, assignment, solver, std::move(one));
     if (solves != nullptr) ++*solves;
+    if (fallbacks != nullptr) *fallbacks += r.fallbacks;
     if (r.status != RelaxationStatus::kSolved) continue;
     const std::optional<double> objective = FeasibleObjective(problem, &r.x, options.feasibility_tolerance);
     if (!objective || (options.acceptable && !options.acceptable(r.x))) continue;

@@ -35,9 +35,11 @@ struct FixedAssignmentOptions {
 
 // The best plan (least objective, the first one on ties) among the completions of
 // assignments, solved one after the other with request (its bounds replaced).
-// *solves (optional) counts the QPs solved.
+// *solves (optional) counts the QPs solved, *fallbacks (optional) those the solver's
+// fallback solved.
 std::optional<Eigen::VectorXd> BestFixedAssignment(const Miqp& problem, const std::vector<Eigen::VectorXd>& assignments,
                                                    RelaxationSolver& solver, const RelaxationRequest& request,
-                                                   const FixedAssignmentOptions& options, int* solves = nullptr);
+                                                   const FixedAssignmentOptions& options, int* solves = nullptr,
+                                                   int* fallbacks = nullptr);
 
 }  // namespace mfp
