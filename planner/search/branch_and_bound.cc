@@ -230,7 +230,9 @@ class Search {
     if (node.branch_var >= 0) {
       pseudo_.Record(node.branch_var, node.branch_up, rel.objective - node.parent_objective, node.branch_distance);
     }
-    const double bound = std::max(rel.objective, node.parent_bound);
+    // The subtree's bound is what the solve certifies, not the objective at its point: an
+    // interior point accepted at a coarse dual residual certifies less than its objective.
+    const double bound = std::max(rel.CertifiedFloor(), node.parent_bound);
     if (opt_.equivalent_point) UseEquivalentPoint(e.lower, e.upper, &e.relaxation.x);
     if (is_root) {
       result.bound = result.root_bound = bound;
@@ -259,6 +261,10 @@ class Search {
         return;
       }
       state_.OfferIncumbent(rel.x);
+      // The subtree is closed at its bound, which its point's objective may lie above:
+      // further below the plan than the gap allows, it leaves the plan unproven.
+      state_.NoteGapPrune(bound);
+      leaf_bound_ = std::min(leaf_bound_, bound);
       return;
     }
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
@@ -413,7 +419,8 @@ class Search {
       if (!open && !state_.HasUnresolved()) result.bound = std::min(result.objective, state_.gap_pruned_bound());
       result.gap = RelativeGap(result.objective, result.bound);
       const bool limits = hit_time_limit_ || hit_node_limit_;
-      if (!limits && !state_.HasUnresolved()) {
+      const bool leaf_unproven = state_.Improves(leaf_bound_);
+      if (!limits && !state_.HasUnresolved() && !leaf_unproven) {
         result.status = SolveStatus::kOptimal;
       } else if (result.gap <= opt_.relative_gap && !state_.HasUnresolved()) {
         result.status = SolveStatus::kOptimal;
@@ -445,6 +452,10 @@ class Search {
   // empty otherwise.
   Eigen::VectorXd deferred_root_x_;
   bool root_done_ = false;
+  // The least certified floor of the subtrees closed at an integral relaxation point.
+  // Further below the plan than the gap tolerance, it leaves an exhausted tree unproven
+  // (the other subtrees were closed only once their floors met the tolerance).
+  double leaf_bound_ = kInfinity;
   bool stop_once_long_ = false;
   bool stopped_once_long_ = false;
   bool hit_time_limit_ = false;

@@ -1,0 +1,89 @@
+// The search's bounds are what its relaxations certify (RelaxationResult::cost_floor),
+// not the objectives at their points: a solver whose floors lie below its objectives
+// (an interior point stopped at a coarse dual residual) must not make the search claim
+// a tighter gap than those floors prove.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "planner/miqp/miqp_builder.h"
+#include "planner/qp/internal/ipm_relaxation_solver.h"
+#include "planner/search/branch_and_bound.h"
+
+namespace mfp {
+namespace {
+
+// Knapsack: max 5a + 4b + 3c + 2d s.t. 2a + 3b + c + 2d <= 5, binaries. Subsets within
+// the capacity: {a,b} 9, {a,c,d} 10 (weight 5), {b,c} 7, {a,c} 8, {c,d} 5, ...;
+// {a,b,c} weighs 6. Optimum -10 at (1, 0, 1, 1); the relaxation is fractional.
+Miqp Knapsack() {
+  MiqpBuilder b;
+  const int a = b.AddBinary("a"), bb = b.AddBinary("b"), c = b.AddBinary("c"), d = b.AddBinary("d");
+  b.AddRow("capacity", LinExpr::Var(a, 2) + LinExpr::Var(bb, 3) + LinExpr::Var(c, 1) + LinExpr::Var(d, 2), -kInfinity,
+           5);
+  b.AddLinearCost(LinExpr::Var(a, -5) + LinExpr::Var(bb, -4) + LinExpr::Var(c, -3) + LinExpr::Var(d, -2));
+  return b.Build();
+}
+
+// The interior point, with every solved relaxation's floor put `lag` below its
+// objective (still a valid floor, only a weaker one): what a solve that stopped at a
+// coarser dual residual certifies.
+class LaggingFloorSolver : public RelaxationSolver {
+ public:
+  explicit LaggingFloorSolver(double lag) : lag_(lag) {}
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    RelaxationResult r = inner_->Solve(problem, request);
+    if (r.status == RelaxationStatus::kSolved) {
+      r.cost_floor = std::min(r.cost_floor, r.objective - lag_);
+      ++solved;
+    }
+    return r;
+  }
+  std::string Name() const override { return "lagging floor"; }
+  int solved = 0;
+
+ private:
+  double lag_;
+  std::unique_ptr<RelaxationSolver> inner_ = MakeInteriorPointRelaxationSolver();
+};
+
+BranchAndBoundResult Search(RelaxationSolver* solver) {
+  BranchAndBoundOptions options;
+  // Every relaxation is solved to the end, so every floor the search sees is the lagged one
+  // (a cutoff's floor is the solver's own).
+  options.early_cutoff = false;
+  return SolveBranchAndBound(Knapsack(), *solver, options);
+}
+
+TEST(CertifiedBound, FloorsBelowTheObjectivesBoundTheGapTheSearchClaims) {
+  // Each floor 0.05 below its objective, against a gap tolerance of 1e-4 x 10 = 1e-3:
+  // the subtree of the optimum (-10) is certified only down to -10.05, so no bound above
+  // that is proven, and the search cannot call the plan optimal to its 1e-4.
+  constexpr double kLag = 0.05;
+  LaggingFloorSolver solver(kLag);
+  const BranchAndBoundResult r = Search(&solver);
+  ASSERT_GT(solver.solved, 0);
+  EXPECT_NEAR(r.objective, -10.0, 1e-6);
+  EXPECT_NE(r.status, SolveStatus::kOptimal);  // the tree is exhausted, but not to the gap asked
+  EXPECT_LE(r.bound, -10.0 - kLag + 1e-6);
+  EXPECT_GE(r.gap, kLag / 10.0 - 1e-6);
+  EXPECT_NEAR(r.gap, (r.objective - r.bound) / std::abs(r.objective), 1e-12);
+  EXPECT_LE(r.root_bound, r.bound + 1e-12);
+}
+
+TEST(CertifiedBound, FloorsWithinTheGapToleranceStillProve) {
+  // Floors 1e-5 below the objectives, a hundredth of the tolerance: the same optimum,
+  // proven, with the claimed bound no higher than the floors allow.
+  constexpr double kLag = 1e-5;
+  LaggingFloorSolver solver(kLag);
+  const BranchAndBoundResult r = Search(&solver);
+  EXPECT_EQ(r.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(r.objective, -10.0, 1e-6);
+  EXPECT_LE(r.bound, -10.0 - kLag + 1e-6);
+  EXPECT_LE(r.gap, 1e-4);
+}
+
+}  // namespace
+}  // namespace mfp
