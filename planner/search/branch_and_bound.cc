@@ -108,7 +108,7 @@ class Search {
       }
       std::vector<SearchNode> batch = TakeRound();
       double in_flight = kInfinity;
-      for (const SearchNode& node : batch) in_flight = std::min(in_flight, node.parent_bound);
+      for (const SearchNode& node : batch) in_flight = std::min(in_flight, node.parent_floor);
       state_.SetInFlightBound(in_flight);
       std::vector<NodeEvaluation> evaluations(batch.size());
       ForEachInParallel(static_cast<int>(batch.size()), [&](int k) {
@@ -144,7 +144,7 @@ class Search {
            state_.result().nodes + static_cast<int>(batch.size()) < opt_.max_nodes) {
       SearchNode node = queue.Pop(state_.HasIncumbent(), state_.result().objective);
       if (state_.HasIncumbent() && !state_.Improves(node.parent_bound)) {
-        state_.NoteGapPrune(node.parent_bound);
+        state_.NoteGapPrune(node.parent_floor);
         continue;
       }
       batch.push_back(std::move(node));
@@ -216,31 +216,33 @@ class Search {
     }
     if (rel.status == RelaxationStatus::kCutoff) {  // proven not to beat the incumbent
       ++result.early_cutoffs;
-      const double bound = std::max(rel.objective, node.parent_bound);
-      if (is_root) result.bound = result.root_bound = bound;
-      state_.NoteGapPrune(bound);
+      const double floor = std::max(rel.objective, node.parent_floor);  // a cutoff's objective is its floor
+      if (is_root) result.bound = result.root_bound = floor;
+      state_.NoteGapPrune(floor);
       return;
     }
     if (rel.status != RelaxationStatus::kSolved) {
       // Cannot bound this subtree: drop it and remember that optimality is unproven.
-      state_.NoteUnresolved(node.parent_bound);
+      state_.NoteUnresolved(node.parent_floor);
       if (is_root) root_failed_ = true;
       return;
     }
     if (node.branch_var >= 0) {
       pseudo_.Record(node.branch_var, node.branch_up, rel.objective - node.parent_objective, node.branch_distance);
     }
-    // The subtree's bound is what the solve certifies, not the objective at its point: an
-    // interior point accepted at a coarse dual residual certifies less than its objective.
-    const double bound = std::max(rel.CertifiedFloor(), node.parent_bound);
+    // The objective orders and prunes; the subtree's bound, as claimed, is what the solve
+    // certifies (an interior point accepted at a coarse dual residual certifies less than
+    // its objective): a subtree pruned by its objective counts at its floor.
+    const double bound = std::max(rel.objective, node.parent_bound);
+    const double floor = std::max(rel.CertifiedFloor(), node.parent_floor);
     if (opt_.equivalent_point) UseEquivalentPoint(e.lower, e.upper, &e.relaxation.x);
     if (is_root) {
-      result.bound = result.root_bound = bound;
+      result.bound = result.root_bound = floor;
       TryRounding(&state_, branching_, rounding_, rel.x);
       if (RunRootHeuristic(&state_, rel.x)) deferred_root_x_ = rel.x;
     }
     if (state_.HasIncumbent() && !state_.Improves(bound)) {
-      state_.NoteGapPrune(bound);
+      state_.NoteGapPrune(floor);
       return;
     }
     if (is_root) {
@@ -257,14 +259,11 @@ class Search {
       // Probing after the root's relaxation may have fixed every integer the relaxation
       // point left fractional: then the root is solved again in the probed box.
       if (is_root && e.probed && !IsIntegral(rel.x)) {
-        SolveRootAgain(node, rel, bound, e.lower, e.upper, fixings);
+        SolveRootAgain(node, rel, bound, floor, e.lower, e.upper, fixings);
         return;
       }
       state_.OfferIncumbent(rel.x);
-      // The subtree is closed at its bound, which its point's objective may lie above:
-      // further below the plan than the gap allows, it leaves the plan unproven.
-      state_.NoteGapPrune(bound);
-      leaf_bound_ = std::min(leaf_bound_, bound);
+      state_.NoteGapPrune(floor);  // the subtree is closed at its floor
       return;
     }
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
@@ -278,7 +277,7 @@ class Search {
       ++result.probed_nodes;
       AppendProbedBounds(node, e.lower, e.upper, &fixings);
     }
-    Branch(node, rel, bound, branch_var, e.lower, e.upper, fixings);
+    Branch(node, rel, bound, floor, branch_var, e.lower, e.upper, fixings);
   }
 
   bool IsIntegral(const Eigen::VectorXd& x) const {
@@ -289,14 +288,15 @@ class Search {
   }
 
   // Queues the root once more with its probed box (lower/upper) as bound changes.
-  void SolveRootAgain(const SearchNode& root, const RelaxationResult& rel, double bound, const Eigen::VectorXd& lower,
-                      const Eigen::VectorXd& upper, std::vector<BoundChange> fixings) {
+  void SolveRootAgain(const SearchNode& root, const RelaxationResult& rel, double bound, double floor,
+                      const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, std::vector<BoundChange> fixings) {
     AppendProbedBounds(root, lower, upper, &fixings);
     SearchNode again;
     again.changes = root.changes;
     again.changes.insert(again.changes.end(), fixings.begin(), fixings.end());
     KeepLastChangePerVariable(p_.num_variables(), &again.changes);
     again.parent_bound = bound;
+    again.parent_floor = floor;
     again.depth = root.depth;  // not probed again before its relaxation
     again.warm_start = rel.x;
     again.warm_token = rel.warm_token;
@@ -376,8 +376,8 @@ class Search {
 
   // Both children of branching on j; the one towards the relaxation's rounding is pushed
   // last, so that a dive explores it first.
-  void Branch(const SearchNode& node, const RelaxationResult& rel, double bound, int j, const Eigen::VectorXd& lower,
-              const Eigen::VectorXd& upper, const std::vector<BoundChange>& fixings) {
+  void Branch(const SearchNode& node, const RelaxationResult& rel, double bound, double floor, int j,
+              const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const std::vector<BoundChange>& fixings) {
     const Eigen::VectorXd& x = rel.x;
     const double floor_v = std::floor(x(j) + opt_.integrality_tolerance);
     SearchNode children[2];  // down, up
@@ -388,6 +388,7 @@ class Search {
       child.changes.insert(child.changes.end(), fixings.begin(), fixings.end());
       if (prober_) KeepLastChangePerVariable(p_.num_variables(), &child.changes);
       child.parent_bound = bound;
+      child.parent_floor = floor;
       child.depth = node.depth + 1;
       child.warm_start = x;
       child.warm_token = rel.warm_token;
@@ -418,11 +419,10 @@ class Search {
       result.bound = std::min(result.objective, std::max(result.bound, open_bound));
       if (!open && !state_.HasUnresolved()) result.bound = std::min(result.objective, state_.gap_pruned_bound());
       result.gap = RelativeGap(result.objective, result.bound);
-      const bool limits = hit_time_limit_ || hit_node_limit_;
-      const bool leaf_unproven = state_.Improves(leaf_bound_);
-      if (!limits && !state_.HasUnresolved() && !leaf_unproven) {
-        result.status = SolveStatus::kOptimal;
-      } else if (result.gap <= opt_.relative_gap && !state_.HasUnresolved()) {
+      // Optimal only when the certified bound proves the gap asked: subtrees pruned by
+      // their objectives count at their floors, which may leave an exhausted tree short.
+      const bool proven = result.gap <= opt_.relative_gap || result.objective - result.bound <= opt_.absolute_gap;
+      if (proven && !state_.HasUnresolved()) {
         result.status = SolveStatus::kOptimal;
       } else {
         result.status = hit_time_limit_ ? SolveStatus::kTimeLimit : SolveStatus::kFeasible;
@@ -452,10 +452,6 @@ class Search {
   // empty otherwise.
   Eigen::VectorXd deferred_root_x_;
   bool root_done_ = false;
-  // The least certified floor of the subtrees closed at an integral relaxation point.
-  // Further below the plan than the gap tolerance, it leaves an exhausted tree unproven
-  // (the other subtrees were closed only once their floors met the tolerance).
-  double leaf_bound_ = kInfinity;
   bool stop_once_long_ = false;
   bool stopped_once_long_ = false;
   bool hit_time_limit_ = false;

@@ -39,6 +39,12 @@ double NodeQueue::LeastBound() const {
   return bound;
 }
 
+double NodeQueue::LeastFloor() const {
+  double floor = kInfinity;
+  for (const SearchNode& node : open_) floor = std::min(floor, node.parent_floor);
+  return floor;
+}
+
 bool NodeQueue::PlungeContinues(double child_bound, bool has_incumbent, double incumbent_objective) const {
   if (selection_ != NodeSelection::kBestBoundWithPlunging) return false;
   if (!has_incumbent) return true;

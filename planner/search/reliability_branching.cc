@@ -100,7 +100,7 @@ double ReliabilityBranching::RecordTrial(int j, bool up, double parent_objective
   if (child.status != RelaxationStatus::kSolved) return distance * pseudo_.PerUnit(j, up);
   const double gain = std::max(0.0, child.objective - parent_objective);
   pseudo_.Record(j, up, gain, distance);
-  if (state_.HasIncumbent() && !state_.Improves(child.CertifiedFloor())) {
+  if (state_.HasIncumbent() && !state_.Improves(child.objective)) {
     state_.NoteGapPrune(child.CertifiedFloor());
     return kInfinity;
   }

@@ -65,7 +65,7 @@ RelaxationRequest SearchState::Request(Eigen::VectorXd lower, Eigen::VectorXd up
 }
 
 double SearchState::UnexploredBound() const {
-  return std::min({in_flight_bound_, unresolved_bound_, gap_pruned_bound_, queue_.LeastBound()});
+  return std::min({in_flight_bound_, unresolved_bound_, gap_pruned_bound_, queue_.LeastFloor()});
 }
 
 double RelativeGap(double objective, double bound) { return (objective - bound) / std::max(1.0, std::abs(objective)); }

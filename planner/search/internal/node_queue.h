@@ -27,6 +27,8 @@ class NodeQueue {
 
   // The least parent bound of the open nodes (+infinity when none).
   double LeastBound() const;
+  // The least certified parent floor of the open nodes (+infinity when none).
+  double LeastFloor() const;
 
  private:
   // Plunging: the newest node is the child just pushed; go on with it while its bound is

@@ -16,7 +16,12 @@ struct BoundChange {
 
 struct SearchNode {
   std::vector<BoundChange> changes;
+  // What orders and prunes the node: its parent's relaxation objective (at least its
+  // ancestors'). An interior point's objective may lie above what its solve certifies.
   double parent_bound = -kInfinity;
+  // What the subtree's bound is claimed to be: its parent's certified floor
+  // (RelaxationResult::CertifiedFloor, at least its ancestors').
+  double parent_floor = -kInfinity;
   int depth = 0;
   // The branching that made this node, for the pseudo-costs.
   int branch_var = -1;

@@ -104,7 +104,7 @@ class SearchState {
   BranchAndBoundResult result_;
   double unresolved_bound_ = kInfinity;
   double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
-  double in_flight_bound_ = kInfinity;   // least parent bound of the round being processed
+  double in_flight_bound_ = kInfinity;   // least parent floor of the round being processed
 };
 
 // (objective - bound) / max(1, |objective|).
