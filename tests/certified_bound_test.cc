@@ -37,6 +37,7 @@ class LaggingFloorSolver : public RelaxationSolver {
     RelaxationResult r = inner_->Solve(problem, request);
     if (r.status == RelaxationStatus::kSolved) {
       r.cost_floor = std::min(r.cost_floor, r.objective - lag_);
+      r.bound_floor = std::min(r.bound_floor, r.objective - lag_);
       ++solved;
     }
     return r;

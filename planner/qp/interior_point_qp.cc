@@ -75,7 +75,9 @@ double LagrangianFloor(const InequalityForm& f, double objective, const Eigen::V
 //   f(x) >= f(x) + z_R'(Gx - d_R) >= f(w) + z_R'(Gw - d_R) + g'(x - w),  g = Qw + c + G'z_R
 // (convexity), and the least of g'(x - w) over the box is taken term by term. No bound
 // multiplier enters, so neither do their residuals, which LagrangianFloor charges over
-// each variable's whole box. Returns the floor and g. objective: f at w (with its constant).
+// each variable's whole box (the same certificate holds with rates max(0, g_j) from the
+// lower end and max(0, -g_j) from the upper end). Returns the floor and g. objective: f
+// at w (with its constant).
 double BoxFloor(const InequalityForm& f, double objective, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                 const Eigen::VectorXd& w, const Eigen::VectorXd& z, const Eigen::VectorXd& r_d, Eigen::VectorXd* g) {
   const int n = f.n, E = f.elastic;
@@ -97,21 +99,22 @@ double BoxFloor(const InequalityForm& f, double objective, const Eigen::VectorXd
 // (the row terms left out are >= 0), and by convexity L(w) >= L(w*) + r_d'(w - w*),
 // where L(w*) = f_el(w*) + z'(r_p - s). The residual term is bounded over the box and
 // the elastic part (w_e = 0 against w*_e), so the floor holds for the inexact iterate.
-// BoxFloor's certificate reads the same way with the rates max(0, g_j) from the lower end
-// and max(0, -g_j) from the upper end; the higher of the two floors is given, with its rates.
+// BoxFloor, the tighter floor on every node QP measured (docs/measurements.md, stop 35),
+// becomes bound_floor; the rates stay the bound multipliers' (reduced-cost fixing reads them).
 void SetCostRates(const InequalityForm& f, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                   const Eigen::VectorXd& w, const Eigen::VectorXd& s, const Eigen::VectorXd& z,
                   const Eigen::VectorXd& r_d, const Eigen::VectorXd& r_p, RelaxationResult* result) {
   const int n = f.n, E = f.elastic;
-  const double lagrangian = LagrangianFloor(f, result->objective, lower, upper, w, s, z, r_d, r_p);
+  result->cost_floor =
+      std::min(result->objective, LagrangianFloor(f, result->objective, lower, upper, w, s, z, r_d, r_p));
   Eigen::VectorXd g;
-  const double box = BoxFloor(f, result->objective, lower, upper, w, z, r_d, &g);
-  result->cost_floor = std::min(result->objective, std::max(lagrangian, box));
+  result->bound_floor =
+      std::min(result->objective, std::max(result->cost_floor, BoxFloor(f, result->objective, lower, upper, w, z, r_d, &g)));
   result->lower_cost_rate.resize(n);
   result->upper_cost_rate.resize(n);
   for (int j = 0; j < n; ++j) {
-    result->upper_cost_rate(j) = std::max(0.0, box >= lagrangian ? -g(j) : z(2 * E + 2 * j));
-    result->lower_cost_rate(j) = std::max(0.0, box >= lagrangian ? g(j) : z(2 * E + 2 * j + 1));
+    result->upper_cost_rate(j) = std::max(0.0, z(2 * E + 2 * j));
+    result->lower_cost_rate(j) = std::max(0.0, z(2 * E + 2 * j + 1));
   }
 }
 

@@ -38,6 +38,8 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
       // The reduced problem's objective differs from the original's by rounding only
       // (its constant holds the fixed part); rates of fixed variables are 0.
       result.cost_floor = std::min(result.objective, r.cost_floor - 1e-9 * (1.0 + std::abs(r.cost_floor)));
+      result.bound_floor =
+          std::max(result.cost_floor, std::min(result.objective, r.bound_floor - 1e-9 * (1.0 + std::abs(r.bound_floor))));
       result.lower_cost_rate = Eigen::VectorXd::Zero(problem.num_variables());
       result.upper_cost_rate = Eigen::VectorXd::Zero(problem.num_variables());
       for (size_t k = 0; k < reduced.free_index.size(); ++k) {

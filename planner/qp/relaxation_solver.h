@@ -3,6 +3,7 @@
 // variable bounds replaced by the branch-and-bound node's). Implementations are final
 // classes in their own adapter files (Ipopt: ipopt_relaxation_solver.h).
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -42,10 +43,17 @@ struct RelaxationResult {
   // rule out integer values that cannot beat the incumbent. Empty rates: not given.
   double cost_floor = -kInfinity;
   Eigen::VectorXd lower_cost_rate, upper_cost_rate;
-  // What the solve proves of the relaxation's optimum, the bound a search may use:
-  // cost_floor when given; for kCutoff the objective (a floor by its contract); else the
-  // objective of a solver that certifies nothing (Ipopt), trusted to its tolerance.
-  double CertifiedFloor() const { return std::isfinite(cost_floor) ? cost_floor : objective; }
+  // Optional: a floor of the relaxation's optimum proven without rates, at least
+  // cost_floor and at most objective (for bounds only). -infinity: not given.
+  double bound_floor = -kInfinity;
+  // What the solve proves of the relaxation's optimum, the bound a search may use: the
+  // higher of cost_floor and bound_floor when given; for kCutoff the objective (a floor
+  // by its contract); else the objective of a solver that certifies nothing (Ipopt),
+  // trusted to its tolerance.
+  double CertifiedFloor() const {
+    const double floor = std::max(cost_floor, bound_floor);
+    return std::isfinite(floor) ? floor : objective;
+  }
   // Optional, with the rates above: the multipliers (>= 0) of each row's lower and upper
   // side at x, for seeding an active-set solver. Empty: not given.
   Eigen::VectorXd row_lower_rate, row_upper_rate;
