@@ -293,6 +293,28 @@ TEST(MultiLevelSurfaceTest, UnseenFloorEnclosedBySeenFloorIsFloorButErasedFloorI
   EXPECT_EQ(ScanLayers(at_edge, 3).enclosed_unseen_filled, 0);
 }
 
+// SurfaceLayers::filled says why a cell empty in the map holds a surface: unseen floor (no
+// ray reached its floor voxel: a single cell or an enclosed block) or erased floor (a ray
+// passed through that voxel, nothing under it: a single cell only).
+TEST(MultiLevelSurfaceTest, FilledCellsRecordWhetherTheFloorWasUnseenOrErased) {
+  ScanFloor floor;
+  floor.unseen = Block(6, 6, 3);
+  floor.unseen.emplace_back(2, 2);
+  floor.erased = {{12, 2}};
+  const SurfaceLayers layers = ScanLayers(floor, 3);
+  ASSERT_EQ(layers.filled.size(), layers.layers.size());
+  const HeightMap& layer = layers.layers.front();
+  auto filled_at = [&](int i, int j) {
+    const int col = static_cast<int>(std::floor(((i + 0.5) * 0.05 - layer.origin_world_m.x()) / 0.05));
+    const int row = static_cast<int>(std::floor(((j + 0.5) * 0.05 - layer.origin_world_m.y()) / 0.05));
+    return layers.filled.front()[static_cast<size_t>(layer.Index(row, col))];
+  };
+  for (const auto& [i, j] : floor.unseen) EXPECT_EQ(filled_at(i, j), kFilledUnseen) << i << ", " << j;
+  EXPECT_EQ(filled_at(12, 2), kFilledErased);
+  EXPECT_EQ(HeightAt(layers, 12, 2), 0.0f);  // filled all the same, for the plane fit
+  EXPECT_EQ(filled_at(4, 4), 0);             // seen floor
+}
+
 // A cell the noise repair moves down a voxel keeps its seen height beside the layers: a
 // foot standing on that voxel's top stands on seen surface (the fr_079 start foot).
 TEST(MultiLevelSurfaceTest, ACellTheNoiseRepairMovesKeepsItsSeenHeight) {
