@@ -601,7 +601,7 @@ ScenarioTerrain WalkTerrain(const Scenario& scenario, const RobotModel& robot, c
   result = ExtractRegionsFromMapFile(scenario.map_path, options);
   ScenarioTerrain terrain;
   terrain.regions = result.regions;
-  terrain.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen));
+  terrain.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen, result.filled));
   terrain.note = result.message;
   TakeBodyObstacles(result, &terrain);  // the map's obstacles to the body, as mfp-plan's
   return terrain;

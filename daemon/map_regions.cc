@@ -63,7 +63,7 @@ MapFunction MakeOctomapMapFunction(const DaemonSetup& setup) {
     }
     // The surface layers the regions were cut from: where a start foot may stand.
     MapTerrain terrain{std::move(result.regions),
-                       std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen)),
+                       std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(result.layers, result.moved_as_seen, result.filled)),
                        nullptr, ""};
     if (result.body_obstacles && result.body_obstacles->complete) {
       terrain.body_obstacles =

@@ -1,6 +1,7 @@
 #include "io/scenario_yaml.h"
 
 #include <cmath>
+#include <limits>
 
 #include "base/check.h"
 #include "io/body_obstacles.h"
@@ -192,12 +193,19 @@ constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
-SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers, const std::vector<HeightMap>& moved_as_seen) {
+SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers, const std::vector<HeightMap>& moved_as_seen,
+                                const std::vector<std::vector<uint8_t>>& filled) {
   SeenSurface seen;
   for (const std::vector<HeightMap>* list : {&layers, &moved_as_seen}) {
-    for (const HeightMap& layer : *list) {
+    for (size_t l = 0; l < list->size(); ++l) {
+      const HeightMap& layer = (*list)[l];
       if (layer.rows <= 0 || layer.cols <= 0) continue;
       seen.grids.push_back(SurfaceGrid{layer.resolution_m, layer.origin_world_m, layer.rows, layer.cols, layer.height_m});
+      if (list != &layers || l >= filled.size() || filled[l].size() != layer.height_m.size()) continue;
+      std::vector<float>& heights = seen.grids.back().height_m;
+      for (size_t i = 0; i < heights.size(); ++i) {
+        if (filled[l][i] == kFilledErased) heights[i] = std::numeric_limits<float>::quiet_NaN();
+      }
     }
   }
   return seen;
@@ -246,7 +254,7 @@ ScenarioTerrain LoadScenarioTerrain(const Scenario& scenario, const RobotModel& 
     RegionExtractionResult from_map = ExtractRegionsFromMapFile(scenario.map_path, options);
     out.note = from_map.message;
     out.regions = std::move(from_map.regions);
-    out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers, from_map.moved_as_seen));
+    out.seen_surface = std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(from_map.layers, from_map.moved_as_seen, from_map.filled));
     TakeBodyObstacles(from_map, &out);
     return out;
   }

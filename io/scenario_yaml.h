@@ -3,6 +3,7 @@
 // optional planner settings. The terrain is one of: boxes (a course description whose
 // top faces are the regions, also turned into maps by mfp-terrain), explicit convex
 // regions (polygons on planes, for users with regions from elsewhere), or a map file.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -73,9 +74,11 @@ std::vector<ConvexRegion> ScenarioRegions(const Scenario& scenario, const RobotM
 // A map's surface layers (RegionExtractionResult::layers: every surface seen from above
 // with room above it) as the seen surface the planner accepts start feet on, with the
 // cells the noise repair moved at the height they were seen (RegionExtractionResult::
-// moved_as_seen): a robot stands on the voxel's top it is on.
+// moved_as_seen): a robot stands on the voxel's top it is on. The layers' erased fills
+// (RegionExtractionResult::filled: kFilledErased) are not seen surface: NaN.
 SeenSurface SeenSurfaceOfLayers(const std::vector<HeightMap>& layers,
-                                const std::vector<HeightMap>& moved_as_seen = {});
+                                const std::vector<HeightMap>& moved_as_seen = {},
+                                const std::vector<std::vector<uint8_t>>& filled = {});
 
 // A scenario's terrain for one robot: its regions and the surface seen from above that they
 // came from (PlanRequest::seen_surface): a map's surface layers, a box terrain's uninset

@@ -57,7 +57,7 @@ PythonPlanResult PlanOnTerrain(const RobotModel& robot, const PythonTerrain& ter
   RegionExtractionResult extracted =
       terrain.grid ? ExtractRegionsFromHeightGrid(*terrain.grid, extraction) : ExtractRegions(*terrain.map, extraction);
   ScenarioTerrain scenario_terrain{std::move(extracted.regions),
-                                   std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(extracted.layers, extracted.moved_as_seen)),
+                                   std::make_shared<const SeenSurface>(SeenSurfaceOfLayers(extracted.layers, extracted.moved_as_seen, extracted.filled)),
                                    extracted.message, std::nullopt, ""};
   TakeBodyObstacles(extracted, &scenario_terrain);
   out.regions = scenario_terrain.regions;

@@ -190,9 +190,11 @@ namespace {
 
 // The issue's corridor: floor, walls with doors, ceiling, free space from rays, floors
 // noisy by a voxel (3 % of floor columns one voxel off) and 20 outlier voxels, 8 cm. On
-// each of ten noise seeds the regions cover at least 85 % of the whole walkable floor
-// (inset by foot radius + margin only). (Missed floor voxels, the test above, are drops
-// and cost more: 83.5-91 % with 1 % of them.)
+// each of ten noise seeds the regions cover at least 84 % of the whole walkable floor
+// (inset by foot radius + margin only). A column jittered down is an erased cell (a ray
+// freed the floor's voxel): no foot disk may reach it, which costs 0.5-2.8 points of this
+// floor (docs/measurements.md, issue 25, stop 35). (Missed floor voxels, the test above,
+// are drops and cost more: 83.5-91 % with 1 % of them.)
 TEST(MultiLevelSurfaceTest, ScannedCorridorWithAVoxelOfNoiseCoversItsWholeFloor) {
   for (uint32_t seed = 1; seed <= 10; ++seed) {
     MapNoise noise;
@@ -205,7 +207,7 @@ TEST(MultiLevelSurfaceTest, ScannedCorridorWithAVoxelOfNoiseCoversItsWholeFloor)
     options.riser_uncertainty_voxels = 0.0;  // a scan: no wall reaches into a floor voxel
     const RegionExtractionResult scan = ExtractRegions(MakeTerrainMap(t), options);
     ExpectSound(t, scan, options.foot_radius_m);
-    EXPECT_GE(FaceCoverageOf(scan.regions, t, "floor", 0.5, options.foot_radius_m, true), 0.85) << "seed " << seed;
+    EXPECT_GE(FaceCoverageOf(scan.regions, t, "floor", 0.5, options.foot_radius_m, true), 0.84) << "seed " << seed;
   }
 }
 
@@ -291,6 +293,28 @@ TEST(MultiLevelSurfaceTest, UnseenFloorEnclosedBySeenFloorIsFloorButErasedFloorI
   ScanFloor at_edge;
   at_edge.unseen = Block(0, 6, 3);
   EXPECT_EQ(ScanLayers(at_edge, 3).enclosed_unseen_filled, 0);
+}
+
+// SurfaceLayers::filled says why a cell empty in the map holds a surface: unseen floor (no
+// ray reached its floor voxel: a single cell or an enclosed block) or erased floor (a ray
+// passed through that voxel, nothing under it: a single cell only).
+TEST(MultiLevelSurfaceTest, FilledCellsRecordWhetherTheFloorWasUnseenOrErased) {
+  ScanFloor floor;
+  floor.unseen = Block(6, 6, 3);
+  floor.unseen.emplace_back(2, 2);
+  floor.erased = {{12, 2}};
+  const SurfaceLayers layers = ScanLayers(floor, 3);
+  ASSERT_EQ(layers.filled.size(), layers.layers.size());
+  const HeightMap& layer = layers.layers.front();
+  auto filled_at = [&](int i, int j) {
+    const int col = static_cast<int>(std::floor(((i + 0.5) * 0.05 - layer.origin_world_m.x()) / 0.05));
+    const int row = static_cast<int>(std::floor(((j + 0.5) * 0.05 - layer.origin_world_m.y()) / 0.05));
+    return layers.filled.front()[static_cast<size_t>(layer.Index(row, col))];
+  };
+  for (const auto& [i, j] : floor.unseen) EXPECT_EQ(filled_at(i, j), kFilledUnseen) << i << ", " << j;
+  EXPECT_EQ(filled_at(12, 2), kFilledErased);
+  EXPECT_EQ(HeightAt(layers, 12, 2), 0.0f);  // filled all the same, for the plane fit
+  EXPECT_EQ(filled_at(4, 4), 0);             // seen floor
 }
 
 // A cell the noise repair moves down a voxel keeps its seen height beside the layers: a

@@ -307,17 +307,21 @@ TEST(ScanNoise, UnseenCellsAreFloorOnlyWhereNothingLowerWasSeenAndNoRayPassed) {
   EXPECT_FALSE(FloorRegionHolds(erased, CellCentre(21, 20)));
 }
 
-TEST(ScanNoise, ASingleErasedCellIsFloorUnlessARayWentUnderTheFloor) {
+TEST(ScanNoise, ASingleErasedCellKeepsFeetOffItButAddsNoEdgeUnlessARayWentUnderTheFloor) {
   FloorSpec spec;
   spec.offset = [](int i, int j) { return i == 20 && j == 20 ? kMissing : 0; };
   spec.seen = true;
   spec.erased = [](int, int) { return true; };
   // A ray passed through the floor-level voxel only, floor seen all round: grazing rays
-  // erase floor so (docs/unseen_floor.md).
-  EXPECT_TRUE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(20, 20)));
-  // A ray also went through the voxel under the floor's level: a hole.
+  // erase floor so (docs/unseen_floor.md), and the floor stays one patch, but no foot may
+  // stand on the cell the sensor did not see: the regions keep the foot and the margin
+  // (4 cm) off it, and no edge uncertainty (2 cm more): 5 cm from the cell is held.
+  const RegionExtractionResult erased = Extract(Floor(spec));
+  EXPECT_FALSE(FloorRegionHolds(erased, CellCentre(20, 20)));
+  EXPECT_TRUE(FloorRegionHolds(erased, CellCentre(23, 20)));
+  // A ray also went through the voxel under the floor's level: a hole, an edge.
   spec.ray_under = true;
-  EXPECT_FALSE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(20, 20)));
+  EXPECT_FALSE(FloorRegionHolds(Extract(Floor(spec)), CellCentre(23, 20)));
 }
 
 }  // namespace

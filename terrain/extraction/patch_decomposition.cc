@@ -144,7 +144,7 @@ std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& pa
   if (patch.cells.empty()) return {};
   const double res = hm.resolution_m;
   const InsetsInCells insets = InsetsToCells(options, res);
-  const LocalGrid mask = PatchMask(hm, patch);
+  const LocalGrid mask = PatchMask(hm, patch, options);
   const InsetField inset(hm, mask, options, insets);
   if (mask.rows < 2 || mask.cols < 2) return {};
   const std::vector<DiskOffset> offsets = DiskOffsets(insets.max, res);

@@ -14,6 +14,8 @@ InsetsInCells InsetsToCells(const PatchDecompositionOptions& options, double res
   // A riser with no uncertainty is kept strictly off (by 0.1 um): a foot disk touching a
   // wall is not on free surface.
   insets.riser = (options.riser_inset_m > 0.0 ? options.riser_inset_m : 1e-7) / res;
+  // An erased fill is kept strictly off as a riser with no uncertainty is.
+  insets.erased = insets.base + 1e-7 / res;
   insets.max = insets.base + std::max(insets.drop, insets.riser);
   return insets;
 }
@@ -31,8 +33,12 @@ std::vector<DiskOffset> DiskOffsets(double max_inset_cells, double res) {
   return offsets;
 }
 
-// The patch's cells over its bounding box.
-LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch) {
+bool ErasedFill(const PatchDecompositionOptions& options, int cell) {
+  return options.filled != nullptr && (*options.filled)[static_cast<size_t>(cell)] == kFilledErased;
+}
+
+// The patch's cells over its bounding box, but its erased fills.
+LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch, const PatchDecompositionOptions& options) {
   LocalGrid mask;
   int rmin = hm.rows, rmax = -1, cmin = hm.cols, cmax = -1;
   for (int cell : patch.cells) {
@@ -46,7 +52,7 @@ LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch) {
   mask.rows = rmax - rmin + 1;
   mask.cols = cmax - cmin + 1;
   mask.cells.assign(static_cast<size_t>(mask.rows) * mask.cols, 0);
-  for (int cell : patch.cells) mask.At(cell / hm.cols - rmin, cell % hm.cols - cmin) = 1;
+  for (int cell : patch.cells) mask.At(cell / hm.cols - rmin, cell % hm.cols - cmin) = !ErasedFill(options, cell);
   return mask;
 }
 
@@ -86,6 +92,11 @@ InsetField::InsetField(const HeightMap& hm, const LocalGrid& mask,
       double& inset = grid_[i];
       if (mask.Contains(r, c)) {
         inset = -1.0;
+        continue;
+      }
+      const int hr = mask.row0 + r, hc = mask.col0 + c;
+      if (hm.Inside(hr, hc) && ErasedFill(options, hm.Index(hr, hc))) {
+        inset = insets.erased;
         continue;
       }
       if (beside[i] & kNext) inset += (beside[i] & kDrop) ? insets.drop : insets.riser;

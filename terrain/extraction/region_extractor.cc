@@ -205,7 +205,8 @@ struct PatchOutcome {
 
 // The patch's outcome; kNotStarted when the deadline has expired.
 PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<HeightMap>& layers,
-                          const std::vector<std::vector<uint8_t>>& solid_beside, double res,
+                          const std::vector<std::vector<uint8_t>>& solid_beside,
+                          const std::vector<std::vector<uint8_t>>& filled, double res,
                           const RegionExtractorOptions& options, PatchDecompositionOptions dec) {
   PatchOutcome out;
   if (options.deadline.Expired()) return out;
@@ -227,6 +228,8 @@ PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<Heigh
   // Region area on the plane = projected area / cos(slope).
   dec.min_area_xy_m2 = min_area_m2 * cos_slope;
   dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
+  const auto layer = static_cast<size_t>(layer_patch.layer);
+  if (layer < filled.size() && !filled[layer].empty()) dec.filled = &filled[layer];
   dec.cover.max_rects = static_cast<int>(std::min(
       1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
   out.kind = PatchOutcome::kDecomposed;
@@ -241,7 +244,8 @@ PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<Heigh
 // The patches' outcomes in order, on options.threads threads. Patches after the one whose
 // regions pass max_regions are not needed (they stay kNotStarted or are ignored).
 std::vector<PatchOutcome> DecomposeAll(const std::vector<LayerPatch>& patches,
-                                       const std::vector<std::vector<uint8_t>>& solid_beside, double res,
+                                       const std::vector<std::vector<uint8_t>>& solid_beside,
+                                       const std::vector<std::vector<uint8_t>>& filled, double res,
                                        const RegionExtractorOptions& options, const std::vector<HeightMap>& layers) {
   const PatchDecompositionOptions dec = DecompositionOptions(res, options);
   std::vector<PatchOutcome> outcomes(patches.size());
@@ -252,7 +256,7 @@ std::vector<PatchOutcome> DecomposeAll(const std::vector<LayerPatch>& patches,
   std::atomic<bool> enough{false};
   ParallelFor(static_cast<int>(patches.size()), options.threads, [&](int i) {
     if (enough) return;
-    PatchOutcome outcome = DecomposeOne(patches[static_cast<size_t>(i)], layers, solid_beside, res, options, dec);
+    PatchOutcome outcome = DecomposeOne(patches[static_cast<size_t>(i)], layers, solid_beside, filled, res, options, dec);
     const std::lock_guard<std::mutex> lock(progress);
     outcomes[static_cast<size_t>(i)] = std::move(outcome);
     done[static_cast<size_t>(i)] = 1;
@@ -273,7 +277,7 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
     if (!record) return;
     for (int cell : lp.patch.cells) result->cell_fates[static_cast<size_t>(lp.layer)][static_cast<size_t>(cell)] = fate;
   };
-  std::vector<PatchOutcome> outcomes = DecomposeAll(patches, solid_beside, res, options, result->layers);
+  std::vector<PatchOutcome> outcomes = DecomposeAll(patches, solid_beside, result->filled, res, options, result->layers);
   int patches_done = 0;
   bool capped = false;   // max_regions reached: the patches left are not decomposed
   bool expired = false;  // a patch found the deadline expired: it and those after are not decomposed
@@ -391,6 +395,7 @@ RegionExtractionResult ExtractRegions(const OccupancyMap& map,
   SurfaceLayers layers = LayersOf(map, options);
   result.layers = std::move(layers.layers);
   result.moved_as_seen = std::move(layers.moved_as_seen);
+  result.filled = std::move(layers.filled);
   result.height_map = result.layers.front();
   stats.layers = static_cast<int>(result.layers.size());
   stats.no_room_above = layers.no_room_above;
@@ -420,6 +425,7 @@ RegionExtractionResult ExtractRegionsFromLayers(SurfaceLayers layers,
   RegionExtractionResult result;
   result.layers = std::move(layers.layers);
   result.moved_as_seen = std::move(layers.moved_as_seen);
+  result.filled = std::move(layers.filled);
   result.height_map = result.layers.front();
   result.stats.layers = static_cast<int>(result.layers.size());
   result.stats.surface_cells = layers.candidates;

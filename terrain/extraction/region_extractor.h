@@ -167,6 +167,10 @@ struct RegionExtractionResult {
   // Cells whose seen height the noise repair moved, at that seen height (SurfaceLayers::
   // moved_as_seen): with `layers`, the surface the map saw from above.
   std::vector<HeightMap> moved_as_seen;
+  // Per layer and cell, what the extractor filled and why (SurfaceLayers::filled): no
+  // region comes within the foot radius and the edge margin of an erased fill, and the
+  // seen surface leaves it out (SeenSurfaceOfLayers). Empty when not computed.
+  std::vector<std::vector<uint8_t>> filled;
   // With record_cell_fates: per layer and height map cell, a CellFate (cell_fate.h).
   std::vector<std::vector<CellFate>> cell_fates;
   std::string message;                // why there are no regions, when there are none

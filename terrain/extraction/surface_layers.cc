@@ -613,9 +613,20 @@ HeightMap MovedCellsAsSeen(const HeightMap& repaired, const std::vector<std::pai
   return moved;
 }
 
+// Marks in `filled` (SurfaceLayers::filled) the cells among `changes` (the noise repair's)
+// that were empty: unseen or erased floor by their unseen bits (kNotErased).
+void RecordFills(const HeightMap& layer, const std::vector<uint8_t>& unseen,
+                 const std::vector<std::pair<int, float>>& changes, std::vector<uint8_t>* filled) {
+  for (const auto& change : changes) {
+    const auto cell = static_cast<size_t>(change.first);
+    if (!std::isnan(layer.height_m[cell])) continue;  // a moved cell, not a fill
+    (*filled)[cell] = (unseen[cell] & kNotErased) ? kFilledUnseen : kFilledErased;
+  }
+}
+
 // What BuildSurfaceLayers keeps of one layer besides its heights.
 struct LayerFinish {
-  std::vector<uint8_t> unseen, solid_beside;   // SurfaceLayers::unseen, solid_beside of the layer
+  std::vector<uint8_t> unseen, solid_beside, filled;  // SurfaceLayers::unseen, solid_beside, filled of the layer
   std::optional<HeightMap> moved_as_seen;      // when the noise repair changed a cell
   int noise_cells_filled = 0, enclosed_unseen_filled = 0;
 };
@@ -643,7 +654,10 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
     for (int r0 = 0; r0 < rows; r0 += band_rows) bands.push_back({l, r0, std::min(rows, r0 + band_rows), {}, {}});
   }
   std::vector<LayerFinish> out(layers->size());
-  for (LayerFinish& f : out) f.unseen.assign(static_cast<size_t>(rows) * cols, 0);
+  for (LayerFinish& f : out) {
+    f.unseen.assign(static_cast<size_t>(rows) * cols, 0);
+    f.filled.assign(static_cast<size_t>(rows) * cols, 0);
+  }
   const long long room = RoomVoxels(options.clearance_m, layers->front().resolution_m);
   auto each_band = [&](const std::function<void(LayerBand&, HeightMap&, LayerFinish&)>& work) {
     ParallelFor(static_cast<int>(bands.size()), options.threads, [&](int i) {
@@ -677,6 +691,7 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
       each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
         band.changes.clear();
         CollectRepairs(layer, &finish.unseen, band.near.data(), band.near.data() + band.near.size(), &band.changes);
+        RecordFills(layer, finish.unseen, band.changes, &finish.filled);
       });
       make_changes(&before, &LayerFinish::noise_cells_filled);
     }
@@ -685,10 +700,11 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
     }
   }
   if (free != nullptr && options.enclosed_unseen_radius_cells > 0) {
-    each_band([&](LayerBand& band, HeightMap& layer, LayerFinish&) {
+    each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
       band.changes.clear();
       CollectEnclosedFills(layer, occ, *free, options.clearance_m, options.enclosed_unseen_radius_cells, band.r0,
                            band.r1, &band.changes);
+      for (const auto& change : band.changes) finish.filled[static_cast<size_t>(change.first)] = kFilledUnseen;
     });
     make_changes(nullptr, &LayerFinish::enclosed_unseen_filled);
   }
@@ -742,6 +758,7 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   for (LayerFinish& f : finished) {
     out.unseen.push_back(std::move(f.unseen));
     out.solid_beside.push_back(std::move(f.solid_beside));
+    out.filled.push_back(std::move(f.filled));
     out.noise_cells_filled += f.noise_cells_filled;
     out.enclosed_unseen_filled += f.enclosed_unseen_filled;
     if (f.moved_as_seen) out.moved_as_seen.push_back(std::move(*f.moved_as_seen));

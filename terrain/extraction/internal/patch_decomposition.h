@@ -37,6 +37,11 @@ struct PatchDecompositionOptions {
   // Per height map cell, SurfaceLayers::solid_beside bits of the patch's layer; nullptr:
   // every neighbour is a possible drop.
   const std::vector<uint8_t>* solid_beside = nullptr;
+  // Per height map cell, SurfaceLayers::filled of the patch's layer; nullptr: none. An
+  // erased fill (kFilledErased) is left out of the patch's cells and keeps inset_m alone
+  // from foot centres: its 8 neighbours are seen floor of one height, so no edge
+  // uncertainty is added, but no foot disk may reach the cell the sensor did not see.
+  const std::vector<uint8_t>* filled = nullptr;
   double min_area_xy_m2 = 0.0;      // smallest rectangle kept, projected on x-y [m^2]
   double axis_snap_rad = 0.05;      // principal frames this close to the grid use the grid
   RectangleCoverOptions cover;      // min_rect_cells is derived from min_area_xy_m2

@@ -27,6 +27,7 @@ struct InsetsInCells {
   double base = 0.0;   // from every cell outside the patch
   double drop = 0.0;   // in addition, next to the patch where its surface may end
   double riser = 0.0;  // in addition, next to the patch where material rises
+  double erased = 0.0; // the whole inset from an erased fill (PatchDecompositionOptions::filled)
   double max = 0.0;    // the largest of them all
 };
 
@@ -41,8 +42,11 @@ struct DiskOffset {
 
 std::vector<DiskOffset> DiskOffsets(double max_inset_cells, double res);
 
-// The patch's cells over its bounding box.
-LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch);
+// The patch's cells over its bounding box, but its erased fills (options.filled).
+LocalGrid PatchMask(const HeightMap& hm, const PlanarPatch& patch, const PatchDecompositionOptions& options);
+
+// Whether options.filled marks the height map cell an erased fill.
+bool ErasedFill(const PatchDecompositionOptions& options, int cell);
 
 // Each outside cell's inset [cells] over the mask's bounding box plus a ring (-1: a patch
 // cell); beyond the ring, the largest inset.

@@ -46,6 +46,14 @@ struct SurfaceLayerOptions {
 constexpr uint8_t kEmptyColumn = 1;
 constexpr uint8_t kNotErased = 2;
 
+// SurfaceLayers::filled entries: why a cell empty in the map holds a surface in its layer.
+// kFilledUnseen: no ray reached its floor-level voxel (unseen floor, enclosed by seen floor:
+// floor by the rule). kFilledErased: a ray passed through that voxel (erased floor):
+// floor for the plane fit and the segmentation only, so one floor stays one patch; no
+// region and no seen surface holds it (docs/unseen_floor.md).
+constexpr uint8_t kFilledUnseen = 1;
+constexpr uint8_t kFilledErased = 2;
+
 // Bit of neighbour (row + dr, col + dc), dr, dc in {-1, 0, 1} and not both 0, in a
 // SurfaceLayers::solid_beside entry.
 inline int NeighbourBit(int dr, int dc) {
@@ -72,6 +80,9 @@ struct SurfaceLayers {
   // what regions are fitted to; the seen one is where a robot may stand all the same
   // (a start foot on the voxel's top: geometry/seen_surface.h).
   std::vector<HeightMap> moved_as_seen;
+  // Per layer and cell, kFilledUnseen or kFilledErased where the noise repair or the
+  // enclosed-unseen fill gave an empty cell a surface, 0 elsewhere. Empty when not computed.
+  std::vector<std::vector<uint8_t>> filled;
   int candidates = 0;             // surfaces that passed every test
   int no_room_above = 0;          // surfaces with an occupied voxel within the clearance
   int not_seen_from_above = 0;    // surfaces whose top voxel is not known free
