@@ -347,9 +347,14 @@ struct Walk {
   int start_body_voxels = 0, goal_body_voxels = 0;  // occupied voxels in the body's band at each end
 };
 
-// Whether certifiable floor joins the walk's ends by hops of the planner's region graph
-// (MaxStepSpan, route_guide.cc) and dz_max, from and to certifiable floor within a step
-// span of each end's centre (the first step and a goal moved within its tolerance).
+// Whether certifiable floor joins the walk's ends by hops of one step and dz_max, from and
+// to certifiable floor within a step of each end's centre (the first step and a goal moved
+// within its tolerance). The step is sqrt(2) (d_lim + l_bnd) of the robot derived with the
+// paper's box (`robot` is always that one): the box's diagonal reach, kept from stop 33 so
+// draws compare across stops and reach shapes, and shorter than the derived footprints'
+// chords through the nominal feet (mfp-robot's chord_x, chord_y; docs/measurements.md,
+// stop 35 reach8): a foot can truly swing that far with the body still. It is not the
+// planner's step on a world axis, which the route graph uses (reach_polygon.h).
 bool EndsJoined(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& start, const Pose2D& goal) {
   const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
   return judge.CertifiableFloorJoins({start.x_m, start.y_m}, {goal.x_m, goal.y_m},
@@ -694,7 +699,7 @@ unsigned WalkDrawSeed(unsigned seed, const std::string& scan_path, const std::st
 
 std::vector<std::pair<Pose2D, Pose2D>> DrawWalkEnds(const OccupancyMap& map, const std::string& scan_path,
                                                     const std::string& robot_path, const ScanWalkOptions& o) {
-  const RobotModel robot = LoadRobot(robot_path);
+  const RobotModel robot = LoadRobot(robot_path, ReachShape::kBox);
   const SeenVoxelJudge judge(map, robot.stance_height_m + Scenario{}.options.body_clearance_margin_m);
   std::vector<Walk> walks, unjoined;
   DrawWalks(robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan_path, robot.name), &walks, &unjoined);
@@ -718,7 +723,10 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
   for (const std::string& scan : scans) {
     const OccupancyMap map = LoadMapFile(scan);
     for (const std::string& robot_path : robots) {
-      const RobotModel robot = LoadRobot(robot_path);
+      // The draw and the judge use the box-derived robot (EndsJoined); the planner the
+      // chosen reach shape.
+      const RobotModel drawn = LoadRobot(robot_path, ReachShape::kBox);
+      const RobotModel robot = o.reach_shape ? LoadRobot(robot_path, *o.reach_shape) : LoadRobot(robot_path);
       Scenario scenario;
       scenario.map_path = scan;
       scenario.robot_path = robot_path;
@@ -726,7 +734,7 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o, &diagnosis);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       std::vector<Walk> walks, unjoined;
-      DrawWalks(robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan, robot.name), &walks, &unjoined);
+      DrawWalks(drawn, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan, robot.name), &walks, &unjoined);
       RunWalks(scan, robot, scenario, terrain, judge, diagnosis, walks, o, &drawn);
       if (o.joined_ends) RunWalks(scan, robot, scenario, terrain, judge, diagnosis, unjoined, o, &unjoined_walks);
     }
