@@ -20,7 +20,9 @@
 namespace mfp {
 namespace {
 
-const char* kUrdf = "config/robots/littledog.urdf";
+// The hexapod at its Table I stance: the footprints' disks about the nominal feet (0.180 m
+// less half a cell) hold an octagon wider on the axes than the largest square (0.158 m).
+const char* kRobot = "config/robots/hexapod.yaml";
 
 // Two platforms along x, their top faces `region_gap_m` apart once inset by the foot.
 std::vector<ConvexRegion> Corridor(const RobotModel& robot, double region_gap_m) {
@@ -72,7 +74,7 @@ struct Models {
 
 Models Load() {
   Models m;
-  const std::string path = std::string(MFP_SOURCE_DIR) + "/" + kUrdf;
+  const std::string path = std::string(MFP_SOURCE_DIR) + "/" + kRobot;
   m.box = LoadRobot(path, &m.derivation);
   m.octagon = LoadRobot(path, ReachShape::kOctagon);
   m.box_span = m.box.d_lim_m + m.box.l_bnd_m;
@@ -94,7 +96,7 @@ TEST(ReachShapePlan, AGapWiderThanTheBoxsAxisStepIsCrossedByTheOctagonInsideTheF
   const Models m = Load();
   // The footprint must allow it: the octagon reaches farther on an axis than the box.
   ASSERT_GT(m.octagon_span, m.box_span + 0.01) << "box " << m.box_span << " m, octagon " << m.octagon_span << " m";
-  const double gap = 0.5 * (m.box_span + m.octagon_span);
+  const double gap = m.box_span + 0.4 * (m.octagon_span - m.box_span);
   const std::vector<ConvexRegion> regions = Corridor(m.box, gap);
   const double goal_x = gap + 0.5;
 

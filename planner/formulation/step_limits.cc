@@ -22,8 +22,10 @@ void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
     const double s = 1.0 / std::sqrt(2.0);
     const StepExpr dx = e.Position(i, 0) - e.NominalFoot(i - n, 0);
     const StepExpr dy = e.Position(i, 1) - e.NominalFoot(i - n, 1);
-    e.AddRow(RowKind::kReachability, StepName("reach_xpy", i), s * (dx + dy), -robot.d_lim_m, robot.d_lim_m);
-    e.AddRow(RowKind::kReachability, StepName("reach_xmy", i), s * (dx - dy), -robot.d_lim_m, robot.d_lim_m);
+    e.AddRow(RowKind::kReachability, StepName("reach_xpy", i), FoldRotations(s * (dx + dy)), -robot.d_lim_m,
+             robot.d_lim_m);
+    e.AddRow(RowKind::kReachability, StepName("reach_xmy", i), FoldRotations(s * (dx - dy)), -robot.d_lim_m,
+             robot.d_lim_m);
   }
   e.AddRow(RowKind::kHeightChange, StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m,
            robot.dz_max_m);
