@@ -7,8 +7,10 @@
 
 #include <Eigen/Geometry>
 
-#include "io/robot_loader.h"
+#include "planner/robot/derivation_budget.h"
 #include "planner/robot/reach_polygon.h"
+#include "planner/robot/robot_derivation.h"
+#include "planner/robot/urdf_reader.h"
 #include "test_robots.h"
 
 namespace mfp {
@@ -54,10 +56,11 @@ TEST(ReachPolygon, StepsToBridgeIsTheGapOverTheStepsReachAcrossIt) {
 TEST(ReachPolygon, TheDerivedOctagonLiesInEveryFootprintAtEveryBodyYaw) {
   for (const char* file : {"config/robots/littledog.urdf", "config/robots/hexapod.urdf",
                            "tests/data/robots/octopod.urdf"}) {
-    const std::string path = std::string(MFP_SOURCE_DIR) + "/" + file;
-    const RobotModel robot = LoadRobot(path, ReachShape::kOctagon);
-    RobotDerivation derivation;  // footprints and nominal feet do not depend on the reach shape
-    LoadRobot(path, &derivation);
+    RobotDescription description = ReadUrdfRobot(std::string(MFP_SOURCE_DIR) + "/" + file);
+    DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+    options.reach_shape = ReachShape::kOctagon;
+    const RobotDerivation derivation = DeriveRobot(description, options);
+    const RobotModel& robot = derivation.model;
     ASSERT_EQ(robot.reach_shape, ReachShape::kOctagon) << file;
     ASSERT_EQ(derivation.legs.size(), robot.legs.size()) << file;
     double smallest_disk = 1e9;
