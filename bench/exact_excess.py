@@ -6,7 +6,8 @@ Recomputed from the plan JSON alone (DESIGN's plan JSON plus the README's extens
 for footstep i >= n, p_i is the centre of contacts of the n latest footsteps ending at i
 (footsteps before the plan are the start stance), r_nom,i = p_i + R(yaw_i) o_leg(i) with
 yaw_i the footstep's own `yaw`, and the excesses are |f_i - r_nom,i|_inf - l_bnd and
-|f_i - r_nom,i-n|_inf - d_lim. Also prints the final footstep's yaw and the yaw the final
+|f_i - r_nom,i-n|_inf - d_lim (for a robot whose reach_shape is octagon, also
+|dx +- dy| / sqrt(2) - d_lim of f_i - r_nom,i-n). Also prints the final footstep's yaw and the yaw the final
 feet imply (2-D Procrustes against the nominal offsets), to compare with a goal yaw.
 
     bench/exact_excess.py plan1.json [plan2.json ...] [--goal-yaw RAD]
@@ -41,7 +42,10 @@ def excess(plan):
         a = nominal(i)
         b = nominal(i - n)
         ref = max(ref, max(abs(f[0] - a[0]), abs(f[1] - a[1])) - robot["l_bnd"])
-        reach = max(reach, max(abs(f[0] - b[0]), abs(f[1] - b[1])) - robot["d_lim"])
+        dx, dy = f[0] - b[0], f[1] - b[1]
+        reach = max(reach, max(abs(dx), abs(dy)) - robot["d_lim"])
+        if robot.get("reach_shape") == "octagon":
+            reach = max(reach, max(abs(dx + dy), abs(dx - dy)) / math.sqrt(2.0) - robot["d_lim"])
     # Yaw the final feet imply.
     feet = {s["leg"]: (s["x"], s["y"]) for s in steps[-n:]}
     cx = sum(f[0] for f in feet.values()) / n

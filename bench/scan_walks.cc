@@ -345,15 +345,24 @@ struct Walk {
   Pose2D start, goal;
   std::vector<Eigen::Vector3d> start_feet;
   int start_body_voxels = 0, goal_body_voxels = 0;  // occupied voxels in the body's band at each end
+  double judge_step_m = 0.0;  // JudgeStep of the robot the walk was drawn for [m]
 };
 
-// Whether certifiable floor joins the walk's ends by hops of the planner's region graph
-// (MaxStepSpan, route_guide.cc) and dz_max, from and to certifiable floor within a step
-// span of each end's centre (the first step and a goal moved within its tolerance).
-bool EndsJoined(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& start, const Pose2D& goal) {
-  const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
+// The judge's step: sqrt(2) (d_lim + l_bnd) of the robot derived with the paper's box
+// (`box_robot`), the box's diagonal reach, kept from stop 33 so that draws compare across
+// stops and reach shapes. It is shorter than every derived footprint's chord through the
+// nominal foot on both body axes (mfp-robot's chord_x, chord_y; docs/measurements.md, stop
+// 35 reach8): a foot can truly swing that far with the body still. It is not the planner's
+// step on a world axis, which the route graph uses (reach_polygon.h) [m].
+double JudgeStep(const RobotModel& box_robot) { return std::sqrt(2.0) * (box_robot.d_lim_m + box_robot.l_bnd_m); }
+
+// Whether certifiable floor joins the walk's ends by hops of step_m and dz_max, from and to
+// certifiable floor within a step of each end's centre (the first step and a goal moved
+// within its tolerance).
+bool EndsJoined(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& start, const Pose2D& goal,
+                double step_m) {
   return judge.CertifiableFloorJoins({start.x_m, start.y_m}, {goal.x_m, goal.y_m},
-                                     CertifyRadiusM(robot, judge.resolution_m()), span, robot.dz_max_m, span, 1.5);
+                                     CertifyRadiusM(robot, judge.resolution_m()), step_m, robot.dz_max_m, step_m, 1.5);
 }
 
 // Occupied voxels in the body's band over its plan box at the pose, the body's ground
@@ -366,8 +375,9 @@ int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pos
   return judge.BodyVoxels(robot.body, pose, ground, &lowest);
 }
 
-// Draws o.walks walks into *walks; with o.joined_ends only walks whose ends certifiable
-// floor joins, and the unjoined ones met on the way (up to o.walks) into *unjoined.
+// Draws o.walks walks for `robot` (the box-derived one: JudgeStep) into *walks; with
+// o.joined_ends only walks whose ends certifiable floor joins, and the unjoined ones met on
+// the way (up to o.walks) into *unjoined.
 void DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double resolution_m, const ScanWalkOptions& o,
                unsigned seed, std::vector<Walk>* walks, std::vector<Walk>* unjoined) {
   std::mt19937 rng(seed);
@@ -386,7 +396,8 @@ void DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double reso
     w.start_body_voxels = BodyVoxelsAt(robot, judge, w.start, w.start_feet);
     w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
     if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
-    if (!o.joined_ends || EndsJoined(robot, judge, w.start, w.goal)) {
+    w.judge_step_m = JudgeStep(robot);
+    if (!o.joined_ends || EndsJoined(robot, judge, w.start, w.goal, w.judge_step_m)) {
       walks->push_back(w);
     } else if (static_cast<int>(unjoined->size()) < o.walks) {
       unjoined->push_back(w);
@@ -578,7 +589,7 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
     r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
     r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
                                                            scenario.options.goal_heading_tolerance_rad);
-    r.certifiable_route = EndsJoined(robot, judge, walk.start, walk.goal);
+    r.certifiable_route = EndsJoined(robot, judge, walk.start, walk.goal, walk.judge_step_m);
   }
   return r;
 }
@@ -694,7 +705,7 @@ unsigned WalkDrawSeed(unsigned seed, const std::string& scan_path, const std::st
 
 std::vector<std::pair<Pose2D, Pose2D>> DrawWalkEnds(const OccupancyMap& map, const std::string& scan_path,
                                                     const std::string& robot_path, const ScanWalkOptions& o) {
-  const RobotModel robot = LoadRobot(robot_path);
+  const RobotModel robot = LoadRobot(robot_path, ReachShape::kBox);
   const SeenVoxelJudge judge(map, robot.stance_height_m + Scenario{}.options.body_clearance_margin_m);
   std::vector<Walk> walks, unjoined;
   DrawWalks(robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan_path, robot.name), &walks, &unjoined);
@@ -718,7 +729,10 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
   for (const std::string& scan : scans) {
     const OccupancyMap map = LoadMapFile(scan);
     for (const std::string& robot_path : robots) {
-      const RobotModel robot = LoadRobot(robot_path);
+      // The draw and the judge use the box-derived robot (EndsJoined); the planner the
+      // chosen reach shape.
+      const RobotModel box_robot = LoadRobot(robot_path, ReachShape::kBox);
+      const RobotModel robot = o.reach_shape ? LoadRobot(robot_path, *o.reach_shape) : LoadRobot(robot_path);
       Scenario scenario;
       scenario.map_path = scan;
       scenario.robot_path = robot_path;
@@ -726,7 +740,7 @@ int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std:
       const ScenarioTerrain terrain = WalkTerrain(scenario, robot, o, &diagnosis);
       const SeenVoxelJudge judge(map, robot.stance_height_m + scenario.options.body_clearance_margin_m);
       std::vector<Walk> walks, unjoined;
-      DrawWalks(robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan, robot.name), &walks, &unjoined);
+      DrawWalks(box_robot, judge, map.resolution_m, o, WalkDrawSeed(o.seed, scan, robot.name), &walks, &unjoined);
       RunWalks(scan, robot, scenario, terrain, judge, diagnosis, walks, o, &drawn);
       if (o.joined_ends) RunWalks(scan, robot, scenario, terrain, judge, diagnosis, unjoined, o, &unjoined_walks);
     }

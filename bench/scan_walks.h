@@ -4,11 +4,13 @@
 // on seen floor, room above it), planned as mfp-plan plans them (regions and seen surface
 // of the map, the robot's options), and each plan judged independently against the raw
 // voxels: every footstep on a voxel seen from above with room above it.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "io/scenario_yaml.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/extraction/occupancy_map.h"
 
 namespace mfp {
@@ -46,6 +48,10 @@ struct ScanWalkOptions {
   double regions_per_m2 = -1.0;
   // The extractor's max_regions for the walks' regions (-1: its default).
   int max_regions = -1;
+  // The planner's reach polygon (robot_model.h), replacing the robot file's; unset: the
+  // file's. The draw and the judge never depend on it: they use the robot derived with
+  // the paper's box, so both shapes are judged on the same walks.
+  std::optional<ReachShape> reach_shape;
 };
 
 // The seed of one scan and robot's draw: the walks' seed mixed with the scan's file name

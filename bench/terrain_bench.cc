@@ -85,6 +85,7 @@ struct BenchFlags {
   std::vector<std::string> scans;
   std::vector<std::string> walk_robots;
   mfp::ScanWalkOptions walks;
+  std::string walk_reach;  // --walk-reach: "", box or octagon
   bool digest = false;
 };
 
@@ -168,6 +169,10 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--walk-only", walks.only_walk,
                  "plan only the walk of this index (0-based) of each scan and robot's draw (the same draw)")
       ->check(CLI::Range(0, 999));
+  app.add_option("--walk-reach", f.walk_reach,
+                 "the planner's reach polygon for the walks, replacing the robot file's (the draw and the judge keep "
+                 "the box)")
+      ->check(CLI::IsMember({"box", "octagon"}));
   app.add_option("--walk-seed", walks.seed,
                  "the walks' draw: endpoints from this seed, mixed per scan file name and robot name (25: the draw "
                  "of the recorded walks)");
@@ -354,6 +359,9 @@ int main(int argc, char** argv) {
   if (f.digest) {
     mfp::PrintRegionDigests(f.scans, f.options, f.runs, f.scans_only);
     return 0;
+  }
+  if (!f.walk_reach.empty()) {
+    f.walks.reach_shape = f.walk_reach == "octagon" ? mfp::ReachShape::kOctagon : mfp::ReachShape::kBox;
   }
   if (!f.walk_robots.empty()) {
     mfp::BenchScanWalks(f.scans, f.walk_robots, f.walks);

@@ -15,6 +15,7 @@ nlohmann::json RobotToJson(const RobotModel& robot) {
           {"legs", legs},
           {"gait", robot.gait},
           {"d_lim", robot.d_lim_m},
+          {"reach_shape", ReachShapeName(robot.reach_shape)},
           {"l_bnd", robot.l_bnd_m},
           {"dz_max", robot.dz_max_m},
           {"stance_height", robot.stance_height_m},

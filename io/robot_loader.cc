@@ -1,5 +1,7 @@
 #include "io/robot_loader.h"
 
+#include <optional>
+
 #include "base/check.h"
 #include "io/file_paths.h"
 #include "io/robot_yaml.h"
@@ -14,11 +16,15 @@ RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation) {
   return LoadRobot(path, derivation, Deadline());
 }
 
-RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation, const Deadline& deadline) {
+namespace {
+
+RobotModel LoadRobotShaped(const std::string& path, RobotDerivation* derivation, const Deadline& deadline,
+                           std::optional<ReachShape> reach_shape) {
   const std::string ext = LowerFileExtension(path);
   if (ext == "urdf") {
     RobotDescription description = ReadUrdfRobot(path);
     DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+    options.reach_shape = reach_shape.value_or(options.reach_shape);
     options.deadline = deadline;
     RobotDerivation derived = DeriveRobot(description, options);
     ValidateRobotModel(derived.model);
@@ -26,8 +32,18 @@ RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation, const
     if (derivation != nullptr) *derivation = std::move(derived);
     return model;
   }
-  if (ext == "yaml" || ext == "yml") return LoadRobotYaml(path, derivation, deadline);
+  if (ext == "yaml" || ext == "yml") return LoadRobotYaml(path, derivation, deadline, reach_shape);
   throw InputError(path + ": robot file must end in .urdf, .yaml or .yml");
+}
+
+}  // namespace
+
+RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation, const Deadline& deadline) {
+  return LoadRobotShaped(path, derivation, deadline, std::nullopt);
+}
+
+RobotModel LoadRobot(const std::string& path, ReachShape reach_shape) {
+  return LoadRobotShaped(path, nullptr, Deadline(), reach_shape);
 }
 
 }  // namespace mfp

@@ -21,4 +21,9 @@ RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation);
 // naming the stage once it expires.
 RobotModel LoadRobot(const std::string& path, RobotDerivation* derivation, const Deadline& deadline);
 
+// The same with the reach polygon given by the caller (mfp-terrain-bench --walk-reach): a
+// robot from a URDF, alone or through a YAML, is derived for `reach_shape` whatever its
+// YAML says; a hand-written YAML's d_lim becomes that polygon's half-width.
+RobotModel LoadRobot(const std::string& path, ReachShape reach_shape);
+
 }  // namespace mfp

@@ -32,7 +32,8 @@ const LimitField kLimitFields[] = {
     {"stance_height", &RobotModel::stance_height_m, 0.0, 10.0, "m", false, false,
      "body height above the feet when standing (URDF form: an input of the derivation)"},
     {"foot_radius", &RobotModel::foot_radius_m, 0.0, 1.0, "m", false, true, "radius of a foot's contact"},
-    {"d_lim", &RobotModel::d_lim_m, 1e-4, 10.0, "m", true, true, "half-width of a foot's reference box"},
+    {"d_lim", &RobotModel::d_lim_m, 1e-4, 10.0, "m", true, true,
+     "half-width on x and y of a foot's reach polygon (reach_shape) about its previous nominal spot"},
     {"l_bnd", &RobotModel::l_bnd_m, 1e-4, 10.0, "m", true, true,
      "half-width of the box a foot keeps about the centre of contacts"},
     {"dz_max", &RobotModel::dz_max_m, 1e-4, 10.0, "m", true, true, "largest height change of one step"},
@@ -58,6 +59,10 @@ OptionTable<RobotModel> MakeRobotOptionTable() {
       LoaderOpt<R>("legs[].nominal_offset", "[x, y]", "(required)", "foot in the body frame when standing").Unit("m"),
       LoaderOpt<R>("legs[].hip", "[x, y, z]", "-", "hip in the body frame").Unit("m"),
       LoaderOpt<R>("gait", "list of leg names or indices", "leg order", "cyclic order in which the legs move"),
+      LoaderOpt<R>("reach_shape", "one of box, octagon", "box",
+                   "a foot's reach polygon about its previous nominal spot, d_lim its half-width on each axis: the "
+                   "paper's box, or the octagon with |dx +- dy| <= sqrt(2) d_lim (URDF form: derived inside the "
+                   "footprint's disk about the nominal foot, so it holds at every body yaw)"),
   };
   for (const LimitField& f : kLimitFields) {
     const std::string range = "number in " + FormatRange(OptionKind::kDouble, f.min, f.max, false);
@@ -127,6 +132,15 @@ void SetProvenance(RobotModel* robot, const std::string& key, const std::string&
   robot->provenance.push_back(line);
 }
 
+// reach_shape: box (the default) or octagon; `given` (the caller's) replaces the key.
+ReachShape ReadReachShape(const YAML::Node& root, const YamlContext& ctx, std::optional<ReachShape> given) {
+  const std::optional<std::string> text = OptionalString(root, ctx, "reach_shape");
+  if (given) return *given;
+  if (!text || *text == "box") return ReachShape::kBox;
+  if (*text == "octagon") return ReachShape::kOctagon;
+  throw InputError(ctx.Child("reach_shape").Where() + ": '" + *text + "' is not one of box, octagon");
+}
+
 void ReadWeights(const YAML::Node& root, const YamlContext& ctx, PlannerWeights* weights) {
   if (!root["weights"]) return;
   const YAML::Node w = root["weights"];
@@ -168,7 +182,8 @@ void ReadBodyBox(const YAML::Node& root, const YamlContext& ctx, RobotModel* rob
 
 // The URDF form: derive, then apply the YAML's values as visible overrides.
 RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const std::string& path,
-                        RobotDerivation* derivation_out, const Deadline& deadline) {
+                        RobotDerivation* derivation_out, const Deadline& deadline,
+                        std::optional<ReachShape> reach_shape) {
   if (root["legs"]) {
     throw InputError(ctx.Child("legs").Where() +
                      ": not allowed with urdf (the URDF gives the legs; name the foot links "
@@ -209,6 +224,7 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   }
   DerivationOptions options;
   options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
+  options.reach_shape = ReadReachShape(root, ctx, reach_shape);
   options = WithinDerivationBudget(options, &description);
   options.deadline = deadline;
   RobotDerivation derivation = DeriveRobot(description, options);
@@ -271,12 +287,12 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
 }  // namespace
 
 static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivation* derivation,
-                                         const Deadline& deadline) {
+                                         const Deadline& deadline, std::optional<ReachShape> reach_shape) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
   RobotModel unread;
   ReadOptions(RobotOptionTable(), root, ctx, &unread);  // checks the keys; all are read below
-  if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation, deadline);
+  if (root["urdf"]) return LoadUrdfYaml(root, ctx, path, derivation, deadline, reach_shape);
   if (derivation != nullptr) *derivation = RobotDerivation{};
   for (const char* key : {"feet", "foot_offset", "forward"}) {
     if (root[key]) throw InputError(ctx.Child(key).Where() + ": only allowed together with urdf");
@@ -321,6 +337,11 @@ static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivatio
                        std::to_string(f.min) + ", " + std::to_string(f.max) + "] " + f.unit + ")");
     }
   }
+  robot.reach_shape = ReadReachShape(root, ctx, reach_shape);
+  robot.provenance.push_back(std::string("reach_shape = ") + ReachShapeName(robot.reach_shape) + ": " +
+                             (reach_shape ? std::string("given by the caller")
+                              : root["reach_shape"] ? "from " + path
+                                                    : std::string("the paper's box, the default")));
   ReadWeights(root, ctx, &robot.weights);
   ReadBodyBox(root, ctx, &robot);
   for (size_t k = 0; k < robot.legs.size(); ++k) {
@@ -335,8 +356,9 @@ static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivatio
   return robot;
 }
 
-RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation, const Deadline& deadline) {
-  return GuardYaml(path, [&] { return LoadRobotYamlUnguarded(path, derivation, deadline); });
+RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation, const Deadline& deadline,
+                         std::optional<ReachShape> reach_shape) {
+  return GuardYaml(path, [&] { return LoadRobotYamlUnguarded(path, derivation, deadline, reach_shape); });
 }
 
 std::vector<OptionDoc> RobotOptionDocs() {

@@ -9,6 +9,7 @@
 //    max_yaw_change follow an overridden d_lim unless they are overridden themselves.
 //  - without it: hand-written legs (nominal offsets) and limits, all required.
 // Every value is recorded in provenance.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,9 @@ namespace mfp {
 // `derivation` is given and the YAML names a URDF, it receives the derivation details
 // (footprints, nominal joint positions) with its model equal to the returned one. A URDF's
 // derivation runs by `deadline` (TimeLimitError once it expires).
+// `reach_shape`, when given, replaces the YAML's reach_shape key.
 RobotModel LoadRobotYaml(const std::string& path, RobotDerivation* derivation = nullptr,
-                         const Deadline& deadline = Deadline());
+                         const Deadline& deadline = Deadline(), std::optional<ReachShape> reach_shape = std::nullopt);
 
 // The keys of a robot YAML, for the reference.
 std::vector<OptionDoc> RobotOptionDocs();

@@ -22,13 +22,26 @@ namespace {
 
 using mfp::Fixed;
 
+// Length of the footprint's chord through p along the unit direction u: how far the foot
+// moves along u, body still, from one end of its reach to the other [m].
+double FootprintChord(const mfp::FootprintGrid& grid, const Eigen::Vector2d& p, const Eigen::Vector2d& u) {
+  const double step = 0.1 * grid.cell_m();
+  double length = 0.0;
+  for (const double sign : {1.0, -1.0}) {
+    double t = 0.0;
+    while (grid.OccupiedAt(p + sign * (t + step) * u)) t += step;
+    length += t;
+  }
+  return length;
+}
+
 void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation,
                 std::ostream& out) {
   out << "robot " << robot.name << ": " << robot.num_legs() << " legs\n";
   out << "  #  name              hip x     hip y     hip z     o_x       o_y       L_leg     "
          "phi[rad]";
   const bool derived = derivation.legs.size() == robot.legs.size();
-  if (derived) out << "  square    dz_up     dz_down";
+  if (derived) out << "  square    dz_up     dz_down   disk      chord_x   chord_y";
   out << "\n";
   for (int k = 0; k < robot.num_legs(); ++k) {
     const mfp::LegModel& leg = robot.legs[k];
@@ -40,8 +53,10 @@ void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& deriva
     out << line;
     if (derived) {
       const mfp::LegDerivation& d = derivation.legs[k];
-      std::snprintf(line, sizeof(line), " %9.4f %9.4f %9.4f", d.square_half_side_m, d.dz_up_m,
-                    d.dz_down_m);
+      const Eigen::Vector2d nominal = d.nominal_foot_body_m.head<2>();
+      std::snprintf(line, sizeof(line), " %9.4f %9.4f %9.4f %9.4f %9.4f %9.4f", d.square_half_side_m, d.dz_up_m,
+                    d.dz_down_m, d.disk_radius_m, FootprintChord(d.footprint, nominal, Eigen::Vector2d::UnitX()),
+                    FootprintChord(d.footprint, nominal, Eigen::Vector2d::UnitY()));
       out << line;
     }
     out << "\n";
@@ -50,7 +65,8 @@ void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& deriva
   for (int g : robot.gait) gait += (gait.empty() ? "" : " -> ") + robot.legs[g].name;
   out << "  gait:           " << gait << "\n";
   out << "  stance height:  " << Fixed(robot.stance_height_m) << " m\n";
-  out << "  d_lim:          " << Fixed(robot.d_lim_m) << " m\n";
+  out << "  d_lim:          " << Fixed(robot.d_lim_m) << " m (reach " << mfp::ReachShapeName(robot.reach_shape)
+      << ")\n";
   out << "  l_bnd:          " << Fixed(robot.l_bnd_m) << " m\n";
   out << "  dz_max:         " << Fixed(robot.dz_max_m) << " m\n";
   out << "  max yaw change: " << Fixed(robot.max_yaw_change_rad) << " rad\n";

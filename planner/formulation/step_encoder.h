@@ -54,6 +54,13 @@ struct StepExpr : ExpressionArithmetic<StepExpr> {
   StepExpr& operator*=(double scale);
 };
 
+// `expr` with its rotated offsets folded into one, on axis x with coefficient -1, when
+// they all turn by the same yaw: sum_k c_k (R o_k)_axis_k = -(R o')_x with
+// o' = -sum_k c_k A_k o_k, A_x = I and A_y = R(-pi/2), since (R o)_y = (R R(-pi/2) o)_x.
+// (A row along a diagonal of a nominal foot, which the polisher takes with one offset.)
+// Otherwise `expr` unchanged.
+StepExpr FoldRotations(StepExpr expr);
+
 class StepEncoder {
  public:
   virtual ~StepEncoder() = default;

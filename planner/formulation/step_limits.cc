@@ -17,6 +17,16 @@ void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
     e.AddRow(RowKind::kReachability, std::string("reach_") + ax + "_" + std::to_string(i),
              e.Position(i, axis) - e.NominalFoot(i - n, axis), -robot.d_lim_m, robot.d_lim_m);
   }
+  if (robot.reach_shape == ReachShape::kOctagon) {
+    // The octagon's diagonal rows, scaled to metres along the diagonal: |dx +- dy| / sqrt(2) <= d_lim.
+    const double s = 1.0 / std::sqrt(2.0);
+    const StepExpr dx = e.Position(i, 0) - e.NominalFoot(i - n, 0);
+    const StepExpr dy = e.Position(i, 1) - e.NominalFoot(i - n, 1);
+    e.AddRow(RowKind::kReachability, StepName("reach_xpy", i), FoldRotations(s * (dx + dy)), -robot.d_lim_m,
+             robot.d_lim_m);
+    e.AddRow(RowKind::kReachability, StepName("reach_xmy", i), FoldRotations(s * (dx - dy)), -robot.d_lim_m,
+             robot.d_lim_m);
+  }
   e.AddRow(RowKind::kHeightChange, StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m,
            robot.dz_max_m);
 }

@@ -2,7 +2,8 @@
 // The seed paper's limits on one step i (leg l, configuration b(i)), about the nominal
 // foot r_nom,i = p_i + R(theta_b(i)) o_l:
 //   reference box   |f_i - r_nom,i|_inf   <= l_bnd   (x, y)
-//   reachability    |f_i - r_nom,i-n|_inf <= d_lim   (x, y): from the previous configuration
+//   reachability    |f_i - r_nom,i-n|_inf <= d_lim   (x, y): from the previous configuration,
+//                   and |dx +- dy| / sqrt(2) <= d_lim of that move for the octagon (ReachShape)
 //   height change   |z_i - z_i-n|         <= dz_max
 // written once through a StepEncoder: the MIQP's rows (chords) and the polisher's (exact
 // sin/cos) alike, and evaluated by the plan validator.
@@ -16,7 +17,7 @@
 namespace mfp {
 
 // Reference box, reachability and height change of new step i, in this order: ref x,
-// reach x, ref y, reach y, dz.
+// reach x, ref y, reach y, (the octagon's reach x+y, reach x-y), dz.
 void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i);
 
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the

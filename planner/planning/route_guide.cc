@@ -10,6 +10,7 @@
 #include "geometry/convex_region.h"
 #include "geometry/region_reachability.h"
 #include "planner/planning/internal/stance_route.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace mfp {
 
@@ -69,24 +70,46 @@ std::string StartFootWithoutFirstStep(const RobotModel& robot, const std::vector
   return "";
 }
 
-// True when the convex polygon meets the axis-aligned box [lo, hi] (separating axes: the
-// box's two and the polygon's edge normals).
-bool PolygonMeetsBox(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
-  if (poly.empty()) return false;
-  const std::vector<Eigen::Vector2d> box = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
-  std::vector<Eigen::Vector2d> axes = {{1.0, 0.0}, {0.0, 1.0}};
-  for (size_t k = 0; k < poly.size(); ++k) {
-    const Eigen::Vector2d edge = poly[(k + 1) % poly.size()] - poly[k];
-    if (edge.norm() > 1e-12) axes.emplace_back(-edge.y(), edge.x());
+// The closest points of two convex polygons in plan view, a's first.
+std::pair<Eigen::Vector2d, Eigen::Vector2d> ClosestPoints(const std::vector<Eigen::Vector2d>& a,
+                                                          const std::vector<Eigen::Vector2d>& b) {
+  std::pair<Eigen::Vector2d, Eigen::Vector2d> best(a.front(), b.front());
+  double best_d = kInf;
+  for (const Eigen::Vector2d& p : a) {
+    const Eigen::Vector2d q = ClosestPoint(b, p);
+    if ((q - p).norm() < best_d) best_d = (q - p).norm(), best = {p, q};
   }
-  for (const Eigen::Vector2d& axis : axes) {
-    double pmin = kInf, pmax = -kInf, bmin = kInf, bmax = -kInf;
-    for (const Eigen::Vector2d& p : poly) pmin = std::min(pmin, axis.dot(p)), pmax = std::max(pmax, axis.dot(p));
-    for (const Eigen::Vector2d& p : box) bmin = std::min(bmin, axis.dot(p)), bmax = std::max(bmax, axis.dot(p));
-    const double slack = 1e-9 * axis.norm();
-    if (pmax < bmin - slack || bmax < pmin - slack) return false;
+  for (const Eigen::Vector2d& q : b) {
+    const Eigen::Vector2d p = ClosestPoint(a, q);
+    if ((q - p).norm() < best_d) best_d = (q - p).norm(), best = {p, q};
   }
-  return true;
+  return best;
+}
+
+// The gap where the route breaks beyond reachable region `near`: of the regions no foot
+// reaches that lie nearer the goal spot than `near` does and within dz_max of its height,
+// the one closest to it; its width and what one step spans across it. "" when there is none.
+std::string GapBeyond(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const std::vector<Node>& nodes,
+                      const std::vector<double>& dist, int near, const Eigen::Vector2d& spot) {
+  const double near_to_spot = PolygonPointDistance(nodes[near].poly, spot);
+  int beyond = -1;
+  double width = kInf;
+  for (int r = 0; r < static_cast<int>(nodes.size()); ++r) {
+    if (dist[r] < kInf || nodes[r].poly.empty()) continue;
+    if (std::max(nodes[r].zmin - nodes[near].zmax, nodes[near].zmin - nodes[r].zmax) > robot.dz_max_m) continue;
+    if (PolygonPointDistance(nodes[r].poly, spot) >= near_to_spot) continue;
+    const double d = PolygonDistance(nodes[near].poly, nodes[r].poly);
+    if (d < width) width = d, beyond = r;
+  }
+  if (beyond < 0 || !(width > 0.0)) return "";
+  const auto [p, q] = ClosestPoints(nodes[near].poly, nodes[beyond].poly);
+  std::ostringstream msg;
+  msg.precision(3);
+  msg << "; the nearest region beyond it toward that spot, region " << regions[beyond].id << ", lies across a gap "
+      << width << " m wide from (" << p.x() << ", " << p.y() << ") to (" << q.x() << ", " << q.y()
+      << "), and one step (reach " << ReachShapeName(robot.reach_shape) << " d_lim " << robot.d_lim_m << " m, l_bnd "
+      << robot.l_bnd_m << " m) spans " << StepReachAlong(StepPolygon(robot), q - p) << " m in that direction";
+  return msg.str();
 }
 
 }  // namespace
@@ -95,7 +118,7 @@ std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<Co
                                    const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
                                    double start_tolerance_m) {
   const Eigen::Vector2d centre = StanceCentreXY(start_feet);
-  const Eigen::Vector2d reach(robot.d_lim_m, robot.d_lim_m);
+  const std::vector<Eigen::Vector2d> reach = ReachPolygon(robot.reach_shape, robot.d_lim_m);
   for (int k = 0; k < robot.num_legs(); ++k) {
     bool held = false;
     for (const ConvexRegion& r : regions) held = held || RegionContains(r, start_feet[k], start_tolerance_m);
@@ -113,7 +136,7 @@ std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<Co
       }
       const double tol = r.plane_tolerance_m + 1e-6;
       if (zlo - tol > start_feet[k].z() + robot.dz_max_m || zhi + tol < start_feet[k].z() - robot.dz_max_m) continue;
-      if (PolygonMeetsBox(poly, nominal - reach, nominal + reach)) {
+      if (!poly.empty() && StepsToBridge(poly, {nominal}, reach) <= 1.0 + 1e-9) {
         landing = true;
         break;
       }
@@ -130,7 +153,11 @@ std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<Co
   return "";
 }
 
-double MaxStepSpan(const RobotModel& robot) { return std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m); }
+double MaxStepSpan(const RobotModel& robot) {
+  double span = 0.0;
+  for (const Eigen::Vector2d& v : StepPolygon(robot)) span = std::max(span, v.norm());
+  return span;
+}
 
 RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& regions,
                      const std::vector<Eigen::Vector3d>& start_feet, const Eigen::Vector2d& goal_xy, double goal_yaw_rad,
@@ -149,6 +176,12 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
     if (!nodes[r].poly.empty()) nodes[r].centre /= static_cast<double>(nodes[r].poly.size());
   }
   const double span = MaxStepSpan(robot);
+  const std::vector<Eigen::Vector2d> step = StepPolygon(robot);
+  const double axis_span = robot.d_lim_m + robot.l_bnd_m;  // the step polygon's half-width on x and y
+  std::vector<Eigen::AlignedBox2d> bounds(m);
+  for (int r = 0; r < m; ++r) {
+    for (const Eigen::Vector2d& p : nodes[r].poly) bounds[r].extend(p);
+  }
   std::vector<std::vector<std::pair<int, double>>> edges(m);
   for (int a = 0; a < m; ++a) {
     if (deadline.Expired()) {
@@ -158,7 +191,13 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
     for (int b = a + 1; b < m; ++b) {
       const double dz = std::max({0.0, nodes[a].zmin - nodes[b].zmax, nodes[b].zmin - nodes[a].zmax});
       if (dz > robot.dz_max_m) continue;
-      if (PolygonDistance(nodes[a].poly, nodes[b].poly) > span) continue;
+      // Joined only where one step's move bridges the gap (a window can cross it); plan
+      // boxes farther apart than a step on x or y cannot be.
+      const Eigen::Vector2d box_gap =
+          (bounds[b].min() - bounds[a].max()).cwiseMax(bounds[a].min() - bounds[b].max());
+      if (box_gap.maxCoeff() > axis_span) continue;
+      if (nodes[a].poly.empty() || nodes[b].poly.empty()) continue;
+      if (StepsToBridge(nodes[a].poly, nodes[b].poly, step) > 1.0 + 1e-9) continue;
       const double w = (nodes[a].centre - nodes[b].centre).norm();
       edges[a].push_back({b, w});
       edges[b].push_back({a, w});
@@ -224,8 +263,9 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
       if (near >= 0) {
         msg << "; the regions reachable from the start end at region " << regions[near].id << " near ("
             << nodes[near].centre.x() << ", " << nodes[near].centre.y() << "), " << near_d
-            << " m from that spot; beyond it every region is more than " << span
-            << " m (one step) away or more than " << robot.dz_max_m << " m (dz_max) higher or lower";
+            << " m from that spot; beyond it every region is more than one step away (" << robot.d_lim_m + robot.l_bnd_m
+            << " m on x or y, " << span << " m at most) or more than " << robot.dz_max_m
+            << " m (dz_max) higher or lower" << GapBeyond(robot, regions, nodes, dist, near, spot);
       }
       guide.broken = msg.str();
       return guide;

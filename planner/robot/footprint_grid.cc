@@ -97,4 +97,17 @@ double FootprintGrid::Clearance(const Eigen::Vector2d& p) const {
   return clearance;
 }
 
+double FootprintGrid::DiskClearance(const Eigen::Vector2d& p) const {
+  MFP_CHECK_MSG(!boundary_stale_, "FootprintGrid::UpdateBoundary() not called after Set()");
+  if (!OccupiedAt(p)) return 0.0;
+  // As Clearance, with the Euclidean distance from p to each bordering empty cell's box.
+  const double half = 0.5 * cell_m_;
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& c : boundary_centres_m_) {
+    const Eigen::Vector2d gap = ((p - c).cwiseAbs().array() - half).cwiseMax(0.0);
+    clearance = std::min(clearance, gap.norm());
+  }
+  return clearance;
+}
+
 }  // namespace mfp

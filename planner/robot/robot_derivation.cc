@@ -336,6 +336,7 @@ LegDerivation DeriveLeg(const RobotDescription& robot, const LegSampling& s, siz
   LegDerivation leg;
   leg.hip_body_m = s.hips[k];
   leg.square_half_side_m = square.half_side_m;
+  leg.disk_radius_m = fp.grid.DiskClearance(square.centre_m);
   leg.lowest_foot_z_m = s.lowest[k];
   leg.nominal_foot_body_m = Eigen::Vector3d(square.centre_m.x(), square.centre_m.y(), z_plane);
   int ix = 0, iy = 0;
@@ -357,8 +358,9 @@ LegDerivation DeriveLeg(const RobotDescription& robot, const LegSampling& s, siz
 // The smallest square and vertical travel over the legs, and the legs that set them.
 struct LegLimits {
   double d_lim_raw = std::numeric_limits<double>::infinity();  // smallest half-side [m]
+  double disk_raw = std::numeric_limits<double>::infinity();   // smallest disk radius [m]
   double dz_max = std::numeric_limits<double>::infinity();     // smallest travel [m]
-  std::string d_leg, dz_leg;
+  std::string d_leg, disk_leg, dz_leg;
 };
 
 LegLimits SmallestLimits(const RobotDescription& robot, const std::vector<LegDerivation>& legs) {
@@ -367,6 +369,10 @@ LegLimits SmallestLimits(const RobotDescription& robot, const std::vector<LegDer
     if (legs[k].square_half_side_m < limits.d_lim_raw) {
       limits.d_lim_raw = legs[k].square_half_side_m;
       limits.d_leg = robot.legs[k].name;
+    }
+    if (legs[k].disk_radius_m < limits.disk_raw) {
+      limits.disk_raw = legs[k].disk_radius_m;
+      limits.disk_leg = robot.legs[k].name;
     }
     const double dz = std::min(legs[k].dz_up_m, legs[k].dz_down_m);
     if (dz < limits.dz_max) {
@@ -425,16 +431,44 @@ void AddModelLegs(const RobotDescription& robot, const std::vector<Eigen::Vector
   }
 }
 
+// d_lim for the chosen reach polygon, with the provenance of both polygons: the disk the
+// footprint holds about the nominal foot says whether the box holds at every body yaw.
+void AddReachLimit(const LegLimits& limits, double cell, ReachShape shape, RobotModel* model) {
+  const double half_cell = 0.5 * cell;
+  const double box = std::max(0.0, limits.d_lim_raw - half_cell);
+  const double disk = std::max(0.0, limits.disk_raw - half_cell);
+  const double octagon = std::cos(M_PI / 8.0) * disk;
+  const std::string square_line = "half-side of the largest square in the reachable footprint at the stance height, "
+                                  "smallest over legs (leg '" + limits.d_leg + "', " + Fixed(limits.d_lim_raw) +
+                                  " m) less half a footprint cell (" + Fixed(half_cell) + " m)";
+  const std::string disk_line = "the largest disk about the nominal foot in the footprint, smallest over legs (leg '" +
+                                limits.disk_leg + "', " + Fixed(limits.disk_raw) + " m) less half a cell, " +
+                                Fixed(disk) + " m";
+  model->reach_shape = shape;
+  if (shape == ReachShape::kOctagon) {
+    model->d_lim_m = octagon;
+    model->provenance.push_back("d_lim = " + Fixed(octagon) + " m: derived, apothem of the reach octagon, cos(pi/8) * " +
+                                disk_line + " (the box would be " + Fixed(box) + " m: " + square_line + ")");
+  } else {
+    model->d_lim_m = box;
+    model->provenance.push_back("d_lim = " + Fixed(box) + " m: derived, " + square_line);
+  }
+  const double corner = std::sqrt(2.0) * box;
+  model->provenance.push_back(
+      std::string("reach_shape = ") + ReachShapeName(shape) + ": " +
+      (shape == ReachShape::kOctagon ? "chosen" : "the paper's box, the default") + "; " + disk_line +
+      (corner <= disk + 1e-9 ? ", holds the box's corners (" + Fixed(corner) + " m) at every body yaw"
+                             : ", does not hold the box's corners (" + Fixed(corner) +
+                                   " m from it) when the body is turned from the world axes") +
+      "; the octagon inscribed in it has apothem " + Fixed(octagon) + " m");
+}
+
 // The model's limits, foot radius, gait and weights, each with its provenance.
 void AddModelLimits(const RobotDescription& robot, const LegLimits& limits, double cell,
                     const DerivationOptions& options, RobotModel* model) {
   double foot_radius = 0.0;
   for (const LegChain& leg : robot.legs) foot_radius = std::max(foot_radius, leg.foot_sphere_radius_m);
-  model->d_lim_m = std::max(0.0, limits.d_lim_raw - 0.5 * cell);
-  model->provenance.push_back(
-      "d_lim = " + Fixed(model->d_lim_m) + " m: derived, half-side of the largest square in the "
-      "reachable footprint at the stance height, smallest over legs (leg '" + limits.d_leg + "', " +
-      Fixed(limits.d_lim_raw) + " m) less half a footprint cell (" + Fixed(0.5 * cell) + " m)");
+  AddReachLimit(limits, cell, options.reach_shape, model);
   model->l_bnd_m = options.l_bnd_fraction * model->d_lim_m;
   model->provenance.push_back("l_bnd = " + Fixed(model->l_bnd_m) + " m: derived, " +
                               Fixed(options.l_bnd_fraction, 2) + " * d_lim");

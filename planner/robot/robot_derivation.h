@@ -10,7 +10,11 @@
 //  - nominal foot: the centre of the largest square inscribed in the footprint at the
 //    stance height (the paper puts the workspace centre at the nominal foot), ties broken
 //    towards the point below the hip; o_k = nominal foot - mean of the nominal feet;
-//  - d_lim: the smallest of the legs' inscribed half-sides, less half a grid cell;
+//  - d_lim: the half-width on each axis of the reach polygon (robot_model.h ReachShape):
+//    for the paper's box, the smallest of the legs' inscribed half-sides, less half a grid
+//    cell; for the octagon, the apothem of the regular octagon inscribed in the smallest of
+//    the legs' largest disks about their nominal feet, less half a grid cell (the octagon
+//    then lies in the footprint at every body yaw);
 //  - dz_max: the smallest, over legs and up/down, vertical travel of the foot from the
 //    nominal foot that stays reachable (continuation inverse kinematics);
 //  - l_bnd = l_bnd_fraction * d_lim; max yaw change: the yaw about the centre of contacts
@@ -38,6 +42,7 @@ struct DerivationOptions {
   int stance_candidates = 15;             // heights tried when choosing the stance height
   double stance_fraction = 0.70;          // preferred stance: this fraction of the downward reach
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
+  ReachShape reach_shape = ReachShape::kBox;  // which polygon d_lim is derived for
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
   // The request's deadline and stop flag: checked between legs and stance candidates and
@@ -50,6 +55,7 @@ struct LegDerivation {
   Eigen::Vector3d nominal_foot_body_m = Eigen::Vector3d::Zero();
   Eigen::VectorXd nominal_q;       // joint positions of the nominal stance [rad or m]
   double square_half_side_m = 0;   // this leg's inscribed square (before the half-cell margin)
+  double disk_radius_m = 0;        // largest disk about the nominal foot in the footprint (likewise)
   double dz_up_m = 0;              // reachable rise above the stance at the nominal foot
   double dz_down_m = 0;            // reachable drop below it
   double lowest_foot_z_m = 0;      // lowest foot point over the joint space (body frame)

@@ -73,6 +73,8 @@ void ValidateRobotModel(const RobotModel& robot) {
   }
 }
 
+const char* ReachShapeName(ReachShape shape) { return shape == ReachShape::kOctagon ? "octagon" : "box"; }
+
 Eigen::Vector2d StanceCentreXY(const std::vector<Eigen::Vector3d>& feet_world_m) {
   MFP_CHECK(!feet_world_m.empty());
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();

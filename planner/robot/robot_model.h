@@ -48,6 +48,19 @@ struct BodyExtent {
 // [m, world].
 std::vector<Eigen::Vector2d> BodyFootprint(const BodyExtent& body, double x_m, double y_m, double yaw_rad);
 
+// The polygon a foot's new position keeps about its previous nominal spot (the paper's
+// reachability limit), world-aligned, d_lim its half-width on each axis:
+//   kBox      the paper's square |dx|, |dy| <= d_lim; its corners lie sqrt(2) d_lim from
+//             the spot, so it holds at every body yaw only where the leg reaches that far
+//             in every direction;
+//   kOctagon  the square with the diagonal rows |dx +- dy| <= sqrt(2) d_lim: the regular
+//             octagon of apothem d_lim, whose corners lie d_lim / cos(pi/8) from the spot;
+//             derived to lie in the leg's reachable footprint at every body yaw.
+enum class ReachShape { kBox, kOctagon };
+
+// "box" or "octagon".
+const char* ReachShapeName(ReachShape shape);
+
 struct RobotModel {
   std::string name;
   std::vector<LegModel> legs;
@@ -55,7 +68,8 @@ struct RobotModel {
   std::vector<int> gait;
   double stance_height_m = 0.0;     // hip height above the feet at the nominal stance [m]
   double foot_radius_m = 0.0;       // contact radius; terrain regions are inset by it [m]
-  double d_lim_m = 0.0;             // half-side of the reachability square [m]
+  double d_lim_m = 0.0;             // half-width of the reach polygon on each axis [m]
+  ReachShape reach_shape = ReachShape::kBox;
   double l_bnd_m = 0.0;             // half-side of the reference square about r_nom [m]
   double dz_max_m = 0.0;            // largest height change of one step [m]
   double max_yaw_change_rad = 0.0;  // largest body yaw change between configurations [rad]

@@ -1,7 +1,9 @@
 #pragma once
 // Route guidance before the receding windows: a graph over the safe regions whose edges
-// are the steps a foot can make between them (horizontal reach from d_lim and l_bnd, height
-// change from dz_max). Every plan moves each foot along a path of this graph, so when the
+// are the steps a foot can make between them: two regions are joined when one move of the
+// robot's step polygon (reach_polygon.h: the reach box or octagon of d_lim plus the
+// reference box of l_bnd) bridges their gap, exactly what a window's rows allow, and their
+// heights are within dz_max. Every plan moves each foot along a path of this graph, so when the
 // graph does not connect a leg's start region to a region at its goal spot there is no
 // plan at all: the planner answers 'no route' at once and names where the route breaks.
 // Otherwise the shortest path over region centres is a body route: its length sets the
@@ -36,14 +38,15 @@ struct RouteGuide {
   std::vector<double> yaws_rad;
 };
 
-// Longest horizontal distance between two regions that one step can bridge: each axis of
-// a step moves at most d_lim + l_bnd (the reach box about the previous nominal spot plus
-// the reference box the previous foot stood in) [m].
+// Longest horizontal distance, in any direction, between two regions that one step can
+// bridge: the step polygon's farthest corner (sqrt(2) (d_lim + l_bnd) for the box, on a
+// diagonal; on a world axis a step moves at most d_lim + l_bnd) [m]. For seeds and
+// messages; the graph's edges use the step polygon itself.
 double MaxStepSpan(const RobotModel& robot);
 
 // "" or, for the first start foot that no region holds (within start_tolerance_m) whose
-// first step can land in no region, why: the MIQP puts a leg's first step within d_lim on
-// each axis of that leg's nominal spot in the start stance (centre of the start feet,
+// first step can land in no region, why: the MIQP puts a leg's first step in its reach
+// polygon (d_lim on each axis) about that leg's nominal spot in the start stance (centre of the start feet,
 // start yaw) and within dz_max of its start foot; no region meets that box. (The route
 // graph's one-step span, MaxStepSpan, is the reach of later steps.) start_feet: leg order.
 std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<ConvexRegion>& regions,

@@ -38,6 +38,11 @@ class FootprintGrid {
   // so that the function is continuous enough for a derivative-free optimiser.
   double Clearance(const Eigen::Vector2d& p) const;
 
+  // Euclidean clearance of p [m]: the radius of the largest open disk centred at p that
+  // meets no empty cell (cells outside the grid count as empty); 0 when p is in an empty
+  // cell. The disk a reach polygon must stay inside to hold at every body yaw.
+  double DiskClearance(const Eigen::Vector2d& p) const;
+
   // Recomputes the list of empty cells bordering occupied ones; call after edits and
   // before Clearance. (Only those cells can be the nearest empty cell to a point inside.)
   void UpdateBoundary();

@@ -1,0 +1,113 @@
+#include "planner/robot/reach_polygon.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "base/check.h"
+
+namespace mfp {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
+}
+
+// Convex hull, counter-clockwise, collinear points dropped (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> p) {
+  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (p.size() < 3) return p;
+  std::vector<Eigen::Vector2d> hull(2 * p.size());
+  size_t k = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], p[i]) <= 1e-15) --k;
+    hull[k++] = p[i];
+  }
+  for (size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && Cross(hull[k - 2], hull[k - 1], p[i]) <= 1e-15) --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+double Support(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& u) {
+  double h = -kInf;
+  for (const Eigen::Vector2d& p : poly) h = std::max(h, u.dot(p));
+  return h;
+}
+
+// Outward-or-inward edge normals (both signs are tried by the caller).
+void AddEdgeNormals(const std::vector<Eigen::Vector2d>& poly, std::vector<Eigen::Vector2d>* axes) {
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Eigen::Vector2d edge = poly[(k + 1) % poly.size()] - poly[k];
+    const double length = edge.norm();
+    if (length > 1e-12) axes->emplace_back(-edge.y() / length, edge.x() / length);
+  }
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m) {
+  const double a = half_width_m;
+  if (shape == ReachShape::kBox) return {{a, -a}, {a, a}, {-a, a}, {-a, -a}};
+  // The regular octagon of apothem a: its edges' normals at multiples of pi/4.
+  const double b = a * std::tan(M_PI / 8.0);
+  return {{a, -b}, {a, b}, {b, a}, {-b, a}, {-a, b}, {-a, -b}, {-b, -a}, {b, -a}};
+}
+
+std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot) {
+  const std::vector<Eigen::Vector2d> reach = ReachPolygon(robot.reach_shape, robot.d_lim_m);
+  const std::vector<Eigen::Vector2d> box = ReachPolygon(ReachShape::kBox, robot.l_bnd_m);
+  std::vector<Eigen::Vector2d> sums;
+  for (const Eigen::Vector2d& r : reach) {
+    for (const Eigen::Vector2d& q : box) sums.push_back(r + q);
+  }
+  return ConvexHull(sums);
+}
+
+double StepsToBridge(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b,
+                     const std::vector<Eigen::Vector2d>& step) {
+  MFP_CHECK(!a.empty() && !b.empty() && step.size() >= 3);
+  std::vector<Eigen::Vector2d> axes;
+  AddEdgeNormals(a, &axes);
+  AddEdgeNormals(b, &axes);
+  AddEdgeNormals(step, &axes);
+  if (a.size() == 1 && b.size() == 1 && (b[0] - a[0]).norm() > 0) axes.push_back((b[0] - a[0]).normalized());
+  // a + t step misses b exactly when an edge normal u of the three separates them:
+  // max_a u.p + t h_step(u) < min_b u.q; the smallest t that meets b is the largest
+  // such bound over the normals, both signs.
+  double t = 0.0;
+  for (const Eigen::Vector2d& axis : axes) {
+    for (const double sign : {1.0, -1.0}) {
+      const Eigen::Vector2d u = sign * axis;
+      const double gap = -Support(b, -u) - Support(a, u);
+      const double reach = Support(step, u);
+      MFP_CHECK(reach > 0.0);
+      t = std::max(t, gap / reach);
+    }
+  }
+  return t;
+}
+
+double StepReachAlong(const std::vector<Eigen::Vector2d>& step, const Eigen::Vector2d& d) {
+  MFP_CHECK(d.norm() > 0.0 && step.size() >= 3);
+  const Eigen::Vector2d u = d.normalized();
+  // The ray from the origin leaves the convex polygon through the edge whose line it
+  // meets first: the smallest positive distance to an edge line along u.
+  double reach = kInf;
+  for (size_t k = 0; k < step.size(); ++k) {
+    const Eigen::Vector2d p = step[k], q = step[(k + 1) % step.size()];
+    const Eigen::Vector2d edge = q - p;
+    const Eigen::Vector2d normal(edge.y(), -edge.x());  // outward for a counter-clockwise polygon
+    const double along = normal.dot(u);
+    if (along > 1e-15) reach = std::min(reach, normal.dot(p) / along);
+  }
+  return reach;
+}
+
+}  // namespace mfp

@@ -1,0 +1,33 @@
+#pragma once
+// The plan-view moves one step of a foot can make under the robot's reach model
+// (robot_model.h): the new foot lies in the reach polygon (box or octagon, half-width d_lim)
+// about its previous nominal spot, and the previous foot stood in the reference box
+// (half-side l_bnd) about that spot, so the step f_i - f_i-n lies in their Minkowski sum,
+// the step polygon. Two regions one step bridges are those whose gap that polygon spans:
+// the route graph joins exactly those, so it joins only what a window can cross. No I/O.
+#include <Eigen/Core>
+#include <vector>
+
+#include "planner/robot/robot_model.h"
+
+namespace mfp {
+
+// The reach polygon about the origin, counter-clockwise: the box's 4 corners or the
+// octagon's 8 [m].
+std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m);
+
+// Every move f_i - f_i-n of a later step (not a leg's first): the reach polygon plus the
+// reference box, counter-clockwise [m].
+std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot);
+
+// The smallest t >= 0 such that a + t * step meets b (Minkowski sum), for convex polygons a
+// and b (plan view, either orientation, at least one point each) and a convex polygon
+// `step` that holds the origin inside: t <= 1 when one move of `step` bridges the gap
+// from a to b; 0 when they meet. Exact (separating axes over the three polygons' edges).
+double StepsToBridge(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b,
+                     const std::vector<Eigen::Vector2d>& step);
+
+// How far `step` reaches from the origin along the direction d (not zero) [m].
+double StepReachAlong(const std::vector<Eigen::Vector2d>& step, const Eigen::Vector2d& d);
+
+}  // namespace mfp

@@ -1,0 +1,87 @@
+// The step polygon of the two reach shapes, the bridge test the route graph joins regions
+// by, and the derived octagon's soundness: its corners, turned by any body yaw, lie in
+// every leg's reachable footprint.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+#include "planner/robot/derivation_budget.h"
+#include "planner/robot/reach_polygon.h"
+#include "planner/robot/robot_derivation.h"
+#include "planner/robot/urdf_reader.h"
+#include "test_robots.h"
+
+namespace mfp {
+namespace {
+
+std::vector<Eigen::Vector2d> Square(double x, double y, double half) {
+  return {{x - half, y - half}, {x + half, y - half}, {x + half, y + half}, {x - half, y + half}};
+}
+
+TEST(ReachPolygon, TheStepPolygonReachesDLimPlusLBndOnAnAxisAndMoreOnADiagonal) {
+  RobotModel robot = SquareQuadruped(0.2, 0.1);
+  const std::vector<Eigen::Vector2d> box = StepPolygon(robot);
+  EXPECT_NEAR(StepReachAlong(box, {1, 0}), 0.3, 1e-12);
+  EXPECT_NEAR(StepReachAlong(box, {0, -1}), 0.3, 1e-12);
+  EXPECT_NEAR(StepReachAlong(box, {1, 1}), std::sqrt(2.0) * 0.3, 1e-12);
+  robot.reach_shape = ReachShape::kOctagon;
+  const std::vector<Eigen::Vector2d> octagon = StepPolygon(robot);
+  EXPECT_EQ(octagon.size(), 8u);
+  EXPECT_NEAR(StepReachAlong(octagon, {-1, 0}), 0.3, 1e-12);
+  // The octagon's apothem on the diagonal plus the reference box's corner.
+  EXPECT_NEAR(StepReachAlong(octagon, {1, 1}), 0.2 + std::sqrt(2.0) * 0.1, 1e-12);
+  for (const Eigen::Vector2d& v : ReachPolygon(ReachShape::kOctagon, 0.2)) {
+    EXPECT_NEAR(v.norm(), 0.2 / std::cos(M_PI / 8.0), 1e-12);
+  }
+}
+
+TEST(ReachPolygon, StepsToBridgeIsTheGapOverTheStepsReachAcrossIt) {
+  const RobotModel robot = SquareQuadruped(0.2, 0.1);
+  const std::vector<Eigen::Vector2d> step = StepPolygon(robot);
+  // Along x: a 0.27 m gap bridges, a 0.33 m one does not.
+  EXPECT_NEAR(StepsToBridge(Square(0, 0, 0.5), Square(1.27, 0, 0.5), step), 0.9, 1e-9);
+  EXPECT_NEAR(StepsToBridge(Square(0, 0, 0.5), Square(1.33, 0.2, 0.5), step), 1.1, 1e-9);
+  // Overlapping regions: no step needed.
+  EXPECT_EQ(StepsToBridge(Square(0, 0, 0.5), Square(0.8, 0, 0.5), step), 0.0);
+  // Corner to corner on the diagonal the box reaches sqrt(2) times farther.
+  const double d = 1.0 + 0.35;  // corners 0.35 * sqrt(2) = 0.49 m apart
+  EXPECT_NEAR(StepsToBridge(Square(0, 0, 0.5), Square(d, d, 0.5), step), 0.35 / 0.3, 1e-9);
+  EXPECT_NEAR(StepsToBridge(Square(0, 0, 0.5), Square(1.25, 1.25, 0.5), step), 0.25 / 0.3, 1e-9);
+}
+
+// Every repository URDF: the derived octagon's corners about each leg's nominal foot, at
+// body yaws every 5 degrees, lie in that leg's footprint, with the reference box's corners.
+TEST(ReachPolygon, TheDerivedOctagonLiesInEveryFootprintAtEveryBodyYaw) {
+  for (const char* file : {"config/robots/littledog.urdf", "config/robots/hexapod.urdf",
+                           "tests/data/robots/octopod.urdf"}) {
+    RobotDescription description = ReadUrdfRobot(std::string(MFP_SOURCE_DIR) + "/" + file);
+    DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+    options.reach_shape = ReachShape::kOctagon;
+    const RobotDerivation derivation = DeriveRobot(description, options);
+    const RobotModel& robot = derivation.model;
+    ASSERT_EQ(robot.reach_shape, ReachShape::kOctagon) << file;
+    ASSERT_EQ(derivation.legs.size(), robot.legs.size()) << file;
+    double smallest_disk = 1e9;
+    for (const LegDerivation& leg : derivation.legs) smallest_disk = std::min(smallest_disk, leg.disk_radius_m);
+    EXPECT_LT(robot.d_lim_m / std::cos(M_PI / 8.0), smallest_disk) << file;
+    for (size_t k = 0; k < derivation.legs.size(); ++k) {
+      const LegDerivation& leg = derivation.legs[k];
+      for (int degrees = 0; degrees < 360; degrees += 5) {
+        const Eigen::Rotation2Dd turn(degrees * M_PI / 180.0);
+        for (const Eigen::Vector2d& v : ReachPolygon(ReachShape::kOctagon, robot.d_lim_m)) {
+          EXPECT_TRUE(leg.footprint.OccupiedAt(leg.nominal_foot_body_m.head<2>() + turn * v))
+              << file << " leg " << k << " at " << degrees << " deg";
+        }
+        for (const Eigen::Vector2d& v : ReachPolygon(ReachShape::kBox, robot.l_bnd_m)) {
+          EXPECT_TRUE(leg.footprint.OccupiedAt(leg.nominal_foot_body_m.head<2>() + turn * v))
+              << file << " leg " << k << " reference box at " << degrees << " deg";
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mfp
