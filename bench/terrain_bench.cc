@@ -115,6 +115,9 @@ void AddExtractorFlags(CLI::App& app, BenchFlags& f) {
       ->check(CLI::Range(0, 1000000000));
   app.add_option("--convex-shrunk-seeds", options.convex_shrunk_seeds,
                  "grow each convex piece also about its seed's middle half and quarter (1) or about the seed alone (0)");
+  app.add_option("--convex-shrunk-seed-min-cells", options.convex_shrunk_seed_min_cells,
+                 "only a seed at least this many cells on its shorter side is also grown from its middle [cells]")
+      ->check(CLI::Range(1, 1000000000));
   app.add_option("--noise-max-cells", options.noise_max_cells, "largest group of off-plane cells kept in a patch")
       ->check(CLI::Range(0, 1000));
   app.add_option("--enclosed-unseen-radius", options.enclosed_unseen_radius_cells,
