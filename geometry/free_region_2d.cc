@@ -177,6 +177,11 @@ bool MeetsRegion(const Polygon& obstacle, const Bounds& obstacle_bounds, const B
                  const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& offsets, Polygon* inside,
                  Polygon* scratch) {
   if (obstacle_bounds.Apart(region_bounds)) return false;
+  // Wholly on or beyond one line: the clip by that line keeps no area (the common case for
+  // an obstacle a cut already passed), so no copy is clipped.
+  for (size_t r = 0; r < normals.size(); ++r) {
+    if (MinAlong(obstacle, normals[r]) >= offsets[r]) return false;
+  }
   *inside = obstacle;
   for (size_t r = 0; r < normals.size() && inside->size() >= 3; ++r) {
     KeepBelowLineInto(*inside, normals[r], offsets[r], scratch);
