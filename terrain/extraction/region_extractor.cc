@@ -102,11 +102,14 @@ std::vector<SurfaceAnalysis> FitLayers(const std::vector<HeightMap>& layers, int
   struct Part {
     size_t layer, begin, end;
   };
-  std::vector<SurfaceAnalysis> surfaces;
+  // Each layer's surface cells (a scan of the whole grid, whatever the layer holds) on the
+  // threads too.
+  std::vector<SurfaceAnalysis> surfaces(layers.size());
+  ParallelFor(static_cast<int>(layers.size()), options.threads,
+              [&](int l) { surfaces[static_cast<size_t>(l)] = SurfaceCellsOf(layers[static_cast<size_t>(l)]); });
   std::vector<Part> parts;
   for (size_t l = 0; l < layers.size(); ++l) {
-    surfaces.push_back(SurfaceCellsOf(layers[l]));
-    const size_t n = surfaces.back().cells.size();
+    const size_t n = surfaces[l].cells.size();
     for (size_t begin = 0; begin < n; begin += kFitPartCells) parts.push_back({l, begin, std::min(n, begin + kFitPartCells)});
   }
   std::vector<uint8_t> stopped(parts.size(), 0);
