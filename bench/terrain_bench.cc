@@ -114,8 +114,17 @@ void AddExtractorFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--convex-alone-cells", options.convex_alone_cells,
                  "a patch with this many kept cells is covered by convex pieces without rectangles to compare")
       ->check(CLI::Range(0, 1000000000));
+  app.add_option("--convex-alone-outline", options.convex_alone_outline,
+                 "... and an outline of at least this many times a square's of as many cells")
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_option("--convex-alone-outline-share", options.convex_alone_outline_share,
+                 "... and of at least this share of its kept cells")
+      ->check(CLI::Range(0.0, 1.0));
   app.add_option("--convex-shrunk-seeds", options.convex_shrunk_seeds,
                  "grow each convex piece also about its seed's middle half and quarter (1) or about the seed alone (0)");
+  app.add_option("--convex-shrunk-seed-min-cells", options.convex_shrunk_seed_min_cells,
+                 "only a seed at least this many cells on its shorter side is also grown from its middle [cells]")
+      ->check(CLI::Range(1, 1000000000));
   app.add_option("--noise-max-cells", options.noise_max_cells, "largest group of off-plane cells kept in a patch")
       ->check(CLI::Range(0, 1000));
   app.add_option("--enclosed-unseen-radius", options.enclosed_unseen_radius_cells,

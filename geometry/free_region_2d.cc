@@ -96,9 +96,17 @@ struct Pending {
   int index;
 };
 
+// An obstacle whose exact gap is known, waiting for its turn with its separating line.
+struct PendingCut {
+  double key;  // the gap
+  int index;
+  Separation separation;
+};
+
 // The order of turns (a max-heap of this): the smaller key first, then the smaller index.
 struct ComesLater {
-  bool operator()(const Pending& x, const Pending& y) const {
+  template <typename X, typename Y>
+  bool operator()(const X& x, const Y& y) const {
     return x.key > y.key || (x.key == y.key && x.index > y.index);
   }
 };
@@ -169,6 +177,11 @@ bool MeetsRegion(const Polygon& obstacle, const Bounds& obstacle_bounds, const B
                  const std::vector<Eigen::Vector2d>& normals, const std::vector<double>& offsets, Polygon* inside,
                  Polygon* scratch) {
   if (obstacle_bounds.Apart(region_bounds)) return false;
+  // Wholly on or beyond one line: the clip by that line keeps no area (the common case for
+  // an obstacle a cut already passed), so no copy is clipped.
+  for (size_t r = 0; r < normals.size(); ++r) {
+    if (MinAlong(obstacle, normals[r]) >= offsets[r]) return false;
+  }
   *inside = obstacle;
   for (size_t r = 0; r < normals.size() && inside->size() >= 3; ++r) {
     KeepBelowLineInto(*inside, normals[r], offsets[r], scratch);
@@ -201,8 +214,7 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
   // never above the exact gap), then, when that bound comes up, by the exact gap (a heap of
   // the few that get one).
   BoundOrder by_bound(seed_shape, obstacles);
-  std::vector<Separation> separations(obstacles.size());
-  std::vector<Pending> by_gap;  // a heap
+  std::vector<PendingCut> by_gap;  // a heap
   std::vector<Eigen::Vector2d> normals = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   std::vector<double> offsets = {hi.x(), hi.y(), -lo.x(), -lo.y()};
   Polygon region = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}};
@@ -226,22 +238,22 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
       // The region only shrinks: an obstacle apart from it now is cut off when its turn comes.
       // One that overlaps the seed is never apart (the seed stays in the region).
       if (by_bound.bounds(k).Apart(region_bounds)) continue;
-      const Separation& separation = separations[static_cast<size_t>(k)] = Separate(seed_shape, obstacle);
+      const Separation separation = Separate(seed_shape, obstacle);
       // Edge normals decide whether two convex polygons overlap (separating axes); a seed
       // that an obstacle overlaps has no free region.
       if (separation.gap < -1e-9) return std::nullopt;
-      by_gap.push_back({separation.gap, k});
+      by_gap.push_back({separation.gap, k, separation});
       std::push_heap(by_gap.begin(), by_gap.end(), ComesLater());
       continue;
     }
     std::pop_heap(by_gap.begin(), by_gap.end(), ComesLater());
     const int k = by_gap.back().index;
+    const Separation separation = by_gap.back().separation;
     by_gap.pop_back();
     if (!MeetsRegion(obstacles[static_cast<size_t>(k)], by_bound.bounds(k), region_bounds, normals, offsets, &inside,
                      &scratch)) {
       continue;  // already cut off
     }
-    const Separation& separation = separations[static_cast<size_t>(k)];
     normals.push_back(separation.a);
     offsets.push_back(separation.b);
     KeepBelowLineInto(region, separation.a, separation.b, &scratch);

@@ -109,6 +109,7 @@ TEST(ConvexCover, PiecesOfRandomSetsLieOnTheSetAndAreConvex) {
       for (const bool shrunk_seeds : {true, false}) {
         ConvexCoverOptions o = Options(40, overlap);
         o.shrunk_seeds = shrunk_seeds;
+        o.shrunk_seed_min_cells = 1 + trial % 4;
         const std::vector<Polygon2d> pieces = ConvexCoverOfSquares(s.cells, rows, cols, o);
         const Judged j = Judge(s, pieces);
         EXPECT_EQ(j.off_set, 0) << "trial " << trial << " overlap " << overlap << " shrunk seeds " << shrunk_seeds;
@@ -162,6 +163,39 @@ TEST(ConvexCover, AFloorWithHolesIsCoveredAtLeastAsWellAsByRectangles) {
     EXPECT_EQ(j.overlapping, 0);
     EXPECT_GE(Fraction(j), rectangles);
   }
+}
+
+// shrunk_seed_min_cells gates the shrunk seeds by the seed's shorter side: at 1 every seed
+// shrinks (the default cover), above every seed's side none does (the seed alone); a set
+// of strips two squares high (so every seed is at most 2 thin) is covered at 3 as by the
+// seeds alone.
+TEST(ConvexCover, OnlySeedsAtLeastTheMinimumSideAreShrunk) {
+  uint32_t state = 777;
+  auto next = [&] { return (state = state * 1664525u + 1013904223u) >> 8; };
+  for (int trial = 0; trial < 8; ++trial) {
+    const int rows = 10 + int(next() % 20), cols = 10 + int(next() % 20);
+    const SquareSet s = MakeSet(rows, cols, [&](int, int) { return int(next() % 100) < 85; });
+    ConvexCoverOptions o = Options(40, false);
+    const std::vector<Polygon2d> all_shrunk = ConvexCoverOfSquares(s.cells, rows, cols, o);
+    o.shrunk_seed_min_cells = 1;
+    EXPECT_EQ(ConvexCoverOfSquares(s.cells, rows, cols, o), all_shrunk) << "trial " << trial;
+    o.shrunk_seed_min_cells = rows + cols;  // wider than any seed
+    const std::vector<Polygon2d> none_shrunk = ConvexCoverOfSquares(s.cells, rows, cols, o);
+    o.shrunk_seed_min_cells = 1;
+    o.shrunk_seeds = false;
+    EXPECT_EQ(ConvexCoverOfSquares(s.cells, rows, cols, o), none_shrunk) << "trial " << trial;
+  }
+  // Strips two squares high: with a minimum side of 3 no seed shrinks.
+  const SquareSet strips = MakeSet(30, 30, [](int r, int c) { return r % 3 != 2 && (c * 5 + r) % 11 != 0; });
+  ConvexCoverOptions o = Options(60, false);
+  o.shrunk_seeds = false;
+  const std::vector<Polygon2d> unshrunk = ConvexCoverOfSquares(strips.cells, strips.rows, strips.cols, o);
+  o.shrunk_seeds = true;
+  o.shrunk_seed_min_cells = 3;
+  EXPECT_EQ(ConvexCoverOfSquares(strips.cells, strips.rows, strips.cols, o), unshrunk);
+  const Judged j = Judge(strips, unshrunk);
+  EXPECT_EQ(j.off_set, 0);
+  EXPECT_EQ(j.overlapping, 0);
 }
 
 TEST(ConvexCover, PolygonMeetsSquareOnlyWithArea) {

@@ -539,6 +539,7 @@ TEST(RegionExtractorCover, ALargePatchIsCoveredByThePiecesAloneAsByTheComparison
   const TerrainDescription ring = HalfRingWalkway();
   const double foot = 0.01, margin = foot + 0.01;
   std::vector<ConvexRegion> regions[2];
+  int patches_alone[2] = {0, 0};
   for (const bool alone : {false, true}) {
     RegionExtractorOptions options;
     options.foot_radius_m = foot;
@@ -546,10 +547,16 @@ TEST(RegionExtractorCover, ALargePatchIsCoveredByThePiecesAloneAsByTheComparison
     options.convex_alone_cells = alone ? 0 : std::numeric_limits<int>::max();
     options.convex_alone_outline = 0.0;  // any outline
     options.convex_alone_outline_share = 0.0;
-    regions[alone] = ExtractRegionsFromTerrain(ring, options).regions;
+    const RegionExtractionResult result = ExtractRegionsFromTerrain(ring, options);
+    regions[alone] = result.regions;
+    patches_alone[alone] = result.stats.patches_convex_alone;
     const RegionSoundness sound = MeasureSoundness(regions[alone], ring, margin, kRes);
     EXPECT_EQ(sound.sound, sound.samples) << "alone " << alone << ": unsound point at " << sound.worst_point.transpose();
   }
+  // The path taken: no patch alone when every patch compares, every decomposed patch alone
+  // (the ring's walkway at least) when convex_alone_cells is 0.
+  EXPECT_EQ(patches_alone[0], 0);
+  EXPECT_GE(patches_alone[1], 1);
   ASSERT_EQ(regions[0].size(), regions[1].size());
   for (size_t i = 0; i < regions[0].size(); ++i) {
     EXPECT_EQ(regions[0][i].vertices_world_m, regions[1][i].vertices_world_m) << "region " << i;

@@ -66,15 +66,17 @@ class CoverState {
   const std::vector<int>& owner() const { return owner_; }
   const std::vector<Polygon2d>& pieces() const { return pieces_; }
 
-  // Grows pieces about the seed rectangle and (shrunk_seeds) about its middle half and
-  // quarter (a seed flush with the set's outline on a side keeps that side straight; a
-  // smaller one lets the cuts turn toward the obstacles around it), adds the one that holds
-  // the most new squares; false when none holds a new square.
+  // Grows pieces about the seed rectangle and (shrunk_seeds, on a seed at least
+  // shrunk_seed_min_cells on its shorter side) about its middle half and quarter (a seed
+  // flush with the set's outline on a side keeps that side straight; a smaller one lets
+  // the cuts turn toward the obstacles around it), adds the one that holds the most new
+  // squares; false when none holds a new square.
   bool AddPiece(const CellRect& seed) {
     Polygon2d best, last_seed;
     size_t best_new = 0;
+    const bool shrink = options_.shrunk_seeds && std::min(seed.rows, seed.cols) >= options_.shrunk_seed_min_cells;
     for (const double keep : {1.0, 0.5, 0.25}) {
-      if (keep < 1.0 && !options_.shrunk_seeds) break;
+      if (keep < 1.0 && !shrink) break;
       // A later seed wins only by holding more: none can once every square left is held,
       // and a seed the same as the last grows the same piece.
       if (best_new > 0 && best_new == total_ - covered_) break;

@@ -37,6 +37,7 @@ std::vector<Polygon2d> CoverConvex(const CoverInput& in, const PatchDecompositio
   convex.cover.min_rect_cells = MinRectCells(options.min_area_xy_m2, in.res * in.res);
   convex.max_vertices = std::max(3, options.max_piece_vertices);
   convex.shrunk_seeds = options.shrunk_seeds;
+  convex.shrunk_seed_min_cells = options.shrunk_seed_min_cells;
   std::vector<Polygon2d> pieces = ConvexCoverOfSquares(in.dual->cells, in.dual->rows, in.dual->cols, convex);
   if (in.max_inset_cells > 0.0) {
     SideSlackOptions slack;

@@ -139,8 +139,10 @@ bool ConvexAlone(const LocalGrid& eroded, int kept, const PatchDecompositionOpti
 }  // namespace
 
 std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& patch,
-                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates) {
+                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates,
+                                   bool* pieces_alone) {
   if (fates != nullptr) fates->assign(patch.cells.size(), CellFate::kSmallPatch);
+  if (pieces_alone != nullptr) *pieces_alone = false;
   if (patch.cells.empty()) return {};
   const double res = hm.resolution_m;
   const InsetsInCells insets = InsetsToCells(options, res);
@@ -158,6 +160,7 @@ std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& pa
   // lose); should they find nothing, the rectangles below.
   const bool alone = options.convex_pieces && ConvexAlone(eroded, kept, options);
   if (alone) polygons = CoverConvex(in, options);
+  if (pieces_alone != nullptr) *pieces_alone = !polygons.empty();
   if (polygons.empty()) {
     const double angle = PrincipalAngleRad(hm, patch);
     const bool use_grid = angle < options.axis_snap_rad || angle > M_PI / 2 - options.axis_snap_rad;

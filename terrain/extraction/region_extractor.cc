@@ -58,6 +58,7 @@ void ValidateOptions(const RegionExtractorOptions& o) {
   RequireRange("convex_alone_cells", o.convex_alone_cells, 0, std::numeric_limits<int>::max(), false);
   RequireRange("convex_alone_outline", o.convex_alone_outline, 0.0, 1e6, false);
   RequireRange("convex_alone_outline_share", o.convex_alone_outline_share, 0.0, 1.0, false);
+  RequireRange("convex_shrunk_seed_min_cells", o.convex_shrunk_seed_min_cells, 1, std::numeric_limits<int>::max(), false);
   RequireRange("regions_per_m2", o.regions_per_m2, 0.0, 1e4, false);
   RequireRange("max_regions", o.max_regions, 0, 100000, false);
   RequireRange("axis_snap_rad", o.axis_snap_rad, 0.0, M_PI / 4, false);
@@ -101,11 +102,14 @@ std::vector<SurfaceAnalysis> FitLayers(const std::vector<HeightMap>& layers, int
   struct Part {
     size_t layer, begin, end;
   };
-  std::vector<SurfaceAnalysis> surfaces;
+  // Each layer's surface cells (a scan of the whole grid, whatever the layer holds) on the
+  // threads too.
+  std::vector<SurfaceAnalysis> surfaces(layers.size());
+  ParallelFor(static_cast<int>(layers.size()), options.threads,
+              [&](int l) { surfaces[static_cast<size_t>(l)] = SurfaceCellsOf(layers[static_cast<size_t>(l)]); });
   std::vector<Part> parts;
   for (size_t l = 0; l < layers.size(); ++l) {
-    surfaces.push_back(SurfaceCellsOf(layers[l]));
-    const size_t n = surfaces.back().cells.size();
+    const size_t n = surfaces[l].cells.size();
     for (size_t begin = 0; begin < n; begin += kFitPartCells) parts.push_back({l, begin, std::min(n, begin + kFitPartCells)});
   }
   std::vector<uint8_t> stopped(parts.size(), 0);
@@ -189,6 +193,7 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   dec.convex_alone_outline = options.convex_alone_outline;
   dec.convex_alone_outline_share = options.convex_alone_outline_share;
   dec.shrunk_seeds = options.convex_shrunk_seeds;
+  dec.shrunk_seed_min_cells = options.convex_shrunk_seed_min_cells;
   // Slivers along a ragged outline: a piece narrower than the foot's radius (its inscribed
   // disk smaller than half the foot) adds little floor and one more region to choose.
   dec.min_piece_width_m = options.foot_radius_m;
@@ -201,6 +206,7 @@ struct PatchOutcome {
   std::vector<Polygon2d> polygons;  // kDecomposed: the patch's regions in the plane's x-y
   std::vector<CellFate> fates;      // kDecomposed with record_cell_fates: per patch cell
   bool cut_short = false;           // kDecomposed: the deadline had expired at its end
+  bool pieces_alone = false;        // kDecomposed: by the convex pieces alone (DecomposePatch)
 };
 
 // The patch's outcome; kNotStarted when the deadline has expired.
@@ -234,7 +240,7 @@ PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<Heigh
       1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
   out.kind = PatchOutcome::kDecomposed;
   out.polygons = DecomposePatch(layers[static_cast<size_t>(layer_patch.layer)], patch, dec,
-                                options.record_cell_fates ? &out.fates : nullptr);
+                                options.record_cell_fates ? &out.fates : nullptr, &out.pieces_alone);
   // The cover checks the deadline before each piece: one that expired during this patch
   // may have cut its cover short, which the result must say (not count as a small patch).
   out.cut_short = options.deadline.Expired();
@@ -306,6 +312,7 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
                         std::to_string(patches.size()) + " (the largest first); its cover may be incomplete";
     }
     if (outcome.polygons.empty() && !outcome.cut_short) ++stats.patches_too_small;
+    if (outcome.pieces_alone) ++stats.patches_convex_alone;
     if (record) {
       const CellFate empty_fate = outcome.cut_short ? CellFate::kNotDecomposed : CellFate::kSmallPatch;
       for (size_t i = 0; i < patch.cells.size(); ++i) {

@@ -115,6 +115,11 @@ struct RegionExtractorOptions {
   // third of the growing, but less certified coverage and a curved walkway's pieces no
   // better than rectangles; figures: docs/measurements.md, "Extraction time round 7").
   bool convex_shrunk_seeds = true;
+  // ... the middle half and quarter of a seed at least this many cells on its shorter side
+  // only: a thinner seed shrinks along its length alone, and its middle part grows nearly
+  // the same piece, so on a scan's ragged floor most of that growing is wasted (figures:
+  // docs/measurements.md, "Extraction time round 8"). 1: every seed.
+  int convex_shrunk_seed_min_cells = 2;
   // At most this many regions, the largest patches first (a bound on the work of the
   // planners that read them). 256 dropped half the cells of an uneven field of 387 blocks,
   // footholds the route needed: the planner answered 'no route' where one existed.
@@ -151,6 +156,7 @@ struct RegionExtractionStats {
   int patches = 0;             // planar patches found
   int patches_too_steep = 0;   // rejected: slope above max_slope_rad
   int patches_too_small = 0;   // rejected: smaller than a foot, or nothing left after the inset
+  int patches_convex_alone = 0;  // covered by the convex pieces alone (convex_alone_cells), no rectangles computed
   double height_map_s = 0.0;   // wall time per stage [s]
   double analysis_s = 0.0;
   double segmentation_s = 0.0;

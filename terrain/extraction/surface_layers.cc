@@ -715,6 +715,26 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
   return out;
 }
 
+// FootprintsOf every occupied leaf, in `threads` parts of the leaves at once, joined in
+// order: the same prints as one pass.
+std::vector<Footprint> OccupiedFootprints(const OccupancyMap& map, const HeightMap& grid, int threads) {
+  const int parts = std::max(1, threads);
+  const size_t n = map.leaves.size();
+  const OccupiedLeaf* leaves = map.leaves.data();
+  std::vector<std::vector<Footprint>> part_prints(static_cast<size_t>(parts));
+  ParallelFor(parts, threads, [&](int p) {
+    const size_t k = static_cast<size_t>(p), m = static_cast<size_t>(parts);
+    part_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid);
+  });
+  if (parts == 1) return std::move(part_prints.front());
+  size_t total = 0;
+  for (const std::vector<Footprint>& part : part_prints) total += part.size();
+  std::vector<Footprint> prints;
+  prints.reserve(total);
+  for (const std::vector<Footprint>& part : part_prints) prints.insert(prints.end(), part.begin(), part.end());
+  return prints;
+}
+
 }  // namespace
 
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
@@ -729,7 +749,7 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     return out;
   }
   const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
-  const std::vector<Footprint> occupied = FootprintsOf(map.leaves.data(), map.leaves.data() + map.leaves.size(), grid);
+  const std::vector<Footprint> occupied = OccupiedFootprints(map, grid, options.threads);
   // The occupied columns beside the free leaves' footprints (in parts, several for each
   // thread so the threads end together), then the free columns in bands of rows.
   long long z_lo = 0, z_hi = 0;

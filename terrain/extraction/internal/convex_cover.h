@@ -32,6 +32,9 @@ struct ConvexCoverOptions {
   // turn toward the obstacles around it), the one holding the most new squares kept;
   // false: about the seed rectangle alone (a third of the growing).
   bool shrunk_seeds = true;
+  // ... and only a seed at least this many squares on its shorter side: a thinner one
+  // shrinks along its length alone, and its middle part grows nearly the same piece.
+  int shrunk_seed_min_cells = 1;
 };
 
 // squares: row-major rows x cols, non-zero = in the set; square (r, c) spans

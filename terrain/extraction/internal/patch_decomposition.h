@@ -50,6 +50,7 @@ struct PatchDecompositionOptions {
   bool convex_pieces = false;
   int max_piece_vertices = 8;       // vertices of a convex piece at most
   bool shrunk_seeds = true;         // ConvexCoverOptions::shrunk_seeds
+  int shrunk_seed_min_cells = 1;    // ConvexCoverOptions::shrunk_seed_min_cells
   // With convex_pieces: a patch with at least this many kept cells and a ragged outline
   // (below) is covered by the pieces alone (no rectangles to compare them with); the
   // default: every patch compares.
@@ -68,9 +69,11 @@ using Quad2d = std::array<Eigen::Vector2d, 4>;  // counter-clockwise x-y corners
 // convex_pieces). fates (optional): per patch cell (in patch.cells' order), what the decomposition did
 // with it - kInsetOffPatch, kInsetBeyond, kUncovered or kCovered (all kSmallPatch when
 // the patch is too thin to decompose). The certification radius of kInsetOffPatch is
-// inset_m + drop_inset_m, centre to centre.
+// inset_m + drop_inset_m, centre to centre. pieces_alone (optional): whether the regions
+// are the convex pieces alone, the rectangles not computed (convex_alone_cells).
 std::vector<Polygon2d> DecomposePatch(const HeightMap& height_map, const PlanarPatch& patch,
-                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates = nullptr);
+                                   const PatchDecompositionOptions& options, std::vector<CellFate>* fates = nullptr,
+                                   bool* pieces_alone = nullptr);
 
 // Angle in [0, pi/2) of the smallest-area bounding rectangle of the patch's cells.
 double PrincipalAngleRad(const HeightMap& height_map, const PlanarPatch& patch);
