@@ -418,6 +418,51 @@ struct WalkResult {
   bool certifiable_route = false;
 };
 
+// A map of the cells around xy (half_cells each way; north up), three characters a cell:
+// the extractor's fate in the layer within a voxel of z0_m (. none, n not in a patch, s
+// steep, m small, d not decomposed, i inset off the patch, b inset beyond, u uncovered,
+// C covered), that layer's height against z0_m in voxels (0, + one up, - one down, ^ / v
+// more, blank: no surface in a layer there), and the raw voxels' column kind (F floor,
+// O obstacle above, S surface 2+ voxels off, R floor without room, D drop, E erased, H
+// hole, U unseen); '>' marks xy's cell. For finding why the extractor left floor out.
+std::string CellMapText(const Eigen::Vector2d& xy, double z0_m, const RegionExtractionResult& result,
+                        const SeenVoxelJudge& judge, int half_cells) {
+  if (result.layers.empty() || result.cell_fates.size() != result.layers.size()) return "";
+  const HeightMap& grid = result.layers.front();
+  const double res = grid.resolution_m;
+  const int col0 = static_cast<int>(std::floor((xy.x() - grid.origin_world_m.x()) / res));
+  const int row0 = static_cast<int>(std::floor((xy.y() - grid.origin_world_m.y()) / res));
+  static const char kFate[] = ".nsmdibuC";
+  const std::map<std::string, char> kinds = {{"floor", 'F'}, {"obstacle above", 'O'}, {"surface 2+ voxels off", 'S'},
+                                             {"floor seen, no room/free above", 'R'}, {"drop (lower surface)", 'D'},
+                                             {"erased", 'E'}, {"free below floor (hole)", 'H'}, {"unseen", 'U'}};
+  std::string text = "cell map about (" + std::to_string(xy.x()) + ", " + std::to_string(xy.y()) + "):";
+  for (int row = row0 + half_cells; row >= row0 - half_cells; --row) {
+    text += "\n       ";
+    for (int col = col0 - half_cells; col <= col0 + half_cells; ++col) {
+      char fate = '.', height = ' ';
+      if (grid.Inside(row, col)) {
+        const size_t cell = static_cast<size_t>(grid.Index(row, col));
+        for (size_t l = 0; l < result.layers.size(); ++l) {
+          const float h = result.layers[l].height_m[cell];
+          if (std::isnan(h)) continue;
+          const long dv = std::lround((h - z0_m) / res);
+          if (std::abs(dv) > 1 && height != ' ') continue;
+          height = dv == 0 ? '0' : dv == 1 ? '+' : dv == -1 ? '-' : dv > 1 ? '^' : 'v';
+          fate = kFate[static_cast<int>(result.cell_fates[l][cell])];
+        }
+      }
+      const Eigen::Vector2d c = grid.CellCenter(row, col);
+      const auto kind = kinds.find(judge.ColumnKind(c, z0_m));
+      text += row == row0 && col == col0 ? '>' : ' ';
+      text += fate;
+      text += height;
+      text += kind == kinds.end() ? '?' : kind->second;
+    }
+  }
+  return text;
+}
+
 double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy) {
   double best = 1e9;
   for (const ConvexRegion& r : regions) best = std::min(best, PlanDistanceToRegion(r, xy));
@@ -425,7 +470,7 @@ double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vec
 }
 
 EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const SeenVoxelJudge& judge,
-                    const RegionExtractionResult& result, const Pose2D& pose) {
+                    const RegionExtractionResult& result, const Pose2D& pose, int map_cells) {
   EndFeet end;
   // The ground under the body: the mean floor top of the feet that have one.
   double ground_sum = 0.0, z = 0.0;
@@ -477,6 +522,7 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
                   leg, xy.x(), xy.y(), z0, d, certifiable ? "yes" : "no", nearest_m, name(fate), name(nearest_fate),
                   kinds.empty() ? "" : "; around: ", kinds.c_str());
     end.details.push_back(line);
+    if (map_cells > 0) end.details.push_back(CellMapText(xy, z0, result, judge, map_cells));
   }
   return end;
 }
@@ -574,8 +620,8 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   }
   r.valid_to_goal = HasPlan(plan.status) && plan.reaches_goal && r.feet_off == 0;
   if (!r.valid_to_goal) {
-    r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start);
-    r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
+    r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start, o.cell_map_cells);
+    r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal, o.cell_map_cells);
     r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
                                                            scenario.options.goal_heading_tolerance_rad);
     r.certifiable_route = EndsJoined(robot, judge, walk.start, walk.goal);

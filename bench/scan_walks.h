@@ -46,6 +46,9 @@ struct ScanWalkOptions {
   double regions_per_m2 = -1.0;
   // The extractor's max_regions for the walks' regions (-1: its default).
   int max_regions = -1;
+  // With verbose, a failed walk's feet on no region print a map of this many cells each
+  // way around them (CellMapText: the extractor's fates and the raw voxels' kinds; 0: none).
+  int cell_map_cells = 0;
 };
 
 // The seed of one scan and robot's draw: the walks' seed mixed with the scan's file name

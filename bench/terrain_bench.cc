@@ -159,6 +159,10 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--walk-max-regions", walks.max_regions, "the walks' extractor: --max-regions (-1: its default)")
       ->check(CLI::Range(-1, 100000));
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
+  app.add_option("--walk-cell-map", walks.cell_map_cells,
+                 "with --walk-details: a map of the extractor's cell fates and the voxels' column kinds this many "
+                 "cells each way around a failed walk's feet on no region [cells]")
+      ->check(CLI::Range(0, 30));
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
