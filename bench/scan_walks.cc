@@ -120,16 +120,19 @@ class SeenVoxelJudge {
   // True when every column whose square comes closer than radius_m to xy is seen floor
   // within a voxel of the floor at xy: the disk lies on the seen floor, the floor being
   // the union of its columns' squares (the set erosion of voxel_quality.h's certifiable
-  // floor); any sound extractor could certify a foot there.
-  bool Certifiable(const Eigen::Vector2d& xy, double radius_m) const {
+  // floor); any sound extractor could certify a foot there. With level, every such column's
+  // top is the one at xy: a disk across a one-voxel change of level (a contour of a sloped
+  // floor, or a step of up to two voxels: the voxels cannot tell) is not certifiable.
+  bool Certifiable(const Eigen::Vector2d& xy, double radius_m, bool level = false) const {
     double z0 = 0.0, z = 0.0;
     if (!FloorTop(xy, &z0)) return false;
     const int64_t ci = Index(xy.x()), cj = Index(xy.y());
     const int64_t cells = static_cast<int64_t>(std::ceil(radius_m / r_));
+    const double tolerance_m = level ? 0.5 * r_ : r_ + 1e-9;
     for (int64_t i = ci - cells; i <= ci + cells; ++i) {
       for (int64_t j = cj - cells; j <= cj + cells; ++j) {
         if (SquareDistanceM(i, j, xy) >= radius_m - 1e-9) continue;
-        if (!FloorTop({(i + 0.5) * r_, (j + 0.5) * r_}, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
+        if (!FloorTop({(i + 0.5) * r_, (j + 0.5) * r_}, &z) || std::abs(z - z0) > tolerance_m) return false;
       }
     }
     return true;
@@ -240,8 +243,11 @@ class SeenVoxelJudge {
   // hops of at most span_m in plan and dz_m in height: from any certifiable cell within
   // near_m of a to one within near_m of b. The cells searched lie in the box about a and
   // b grown by margin_m. What a sound extractor's regions could at best connect.
+  // With end heights (not NaN), from and to cells whose floor lies within dz_m of them:
+  // one foot's way, which changes height by at most dz_m a step.
   bool CertifiableFloorJoins(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius_m, double span_m,
-                             double dz_m, double near_m, double margin_m) const {
+                             double dz_m, double near_m, double margin_m, double a_z_m = std::nan(""),
+                             double b_z_m = std::nan("")) const {
     const int64_t i0 = Index(std::min(a.x(), b.x()) - margin_m), i1 = Index(std::max(a.x(), b.x()) + margin_m);
     const int64_t j0 = Index(std::min(a.y(), b.y()) - margin_m), j1 = Index(std::max(a.y(), b.y()) + margin_m);
     const int64_t nx = i1 - i0 + 1, ny = j1 - j0 + 1;
@@ -264,14 +270,15 @@ class SeenVoxelJudge {
     std::vector<int64_t> queue;
     auto centre = [&](int64_t id) { return Eigen::Vector2d((id % nx + i0 + 0.5) * r_, (id / nx + j0 + 0.5) * r_); };
     for (int64_t id = 0; id < nx * ny; ++id) {
-      if (!std::isnan(top[static_cast<size_t>(id)]) && (centre(id) - a).norm() <= near_m) {
+      const float z = top[static_cast<size_t>(id)];
+      if (!std::isnan(z) && (centre(id) - a).norm() <= near_m && !(std::abs(z - a_z_m) > dz_m + 1e-6)) {
         seen[static_cast<size_t>(id)] = 1;
         queue.push_back(id);
       }
     }
     for (size_t q = 0; q < queue.size(); ++q) {
       const int64_t id = queue[q], ci = id % nx, cj = id / nx;
-      if ((centre(id) - b).norm() <= near_m) return true;
+      if ((centre(id) - b).norm() <= near_m && !(std::abs(top[static_cast<size_t>(id)] - b_z_m) > dz_m + 1e-6)) return true;
       for (const auto& [di, dj] : hops) {
         const int64_t ni = ci + di, nj = cj + dj;
         if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
@@ -356,6 +363,27 @@ bool EndsJoined(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose
                                      CertifyRadiusM(robot, judge.resolution_m()), span, robot.dz_max_m, span, 1.5);
 }
 
+// The first leg (-1: none) whose own way certifiable floor does not join: from its start
+// spot's floor height to its goal spot's, by hops of MaxStepSpan that change height by at
+// most dz_max (a foot's steps; the planner bounds each foot's height change so). Where a
+// one-voxel change of level exceeds dz_max (20 cm voxels), a foot cannot change level:
+// EndsJoined joins the ends from any level, this joins each foot from its own.
+int LegNotJoinedAtItsHeight(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& start,
+                            const Pose2D& goal) {
+  const double span = std::sqrt(2.0) * (robot.d_lim_m + robot.l_bnd_m);
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d a = NominalFootXY(robot, leg, start.x_m, start.y_m, start.yaw_rad);
+    const Eigen::Vector2d b = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
+    double za = 0.0, zb = 0.0;
+    if (!judge.FloorTop(a, &za) || !judge.FloorTop(b, &zb)) continue;
+    if (!judge.CertifiableFloorJoins(a, b, CertifyRadiusM(robot, judge.resolution_m()), span, robot.dz_max_m, span, 1.5,
+                                     za, zb)) {
+      return leg;
+    }
+  }
+  return -1;
+}
+
 // Occupied voxels in the body's band over its plan box at the pose, the body's ground
 // being the mean height of the stance's feet (0 without a known body).
 int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
@@ -414,8 +442,10 @@ struct WalkResult {
   std::string message;
   std::string time_split;  // where the plan's time went: setup, then each window
   EndFeet start, goal;  // filled for walks that fail
-  // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins).
+  // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins),
+  // and level certifiable floor does (its level: no disk across a one-voxel change of level).
   bool certifiable_route = false;
+  int leg_not_joined = -1;  // LegNotJoinedAtItsHeight, when certifiable_route
 };
 
 // A map of the cells around xy (half_cells each way; north up), three characters a cell:
@@ -502,6 +532,7 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
     end.farthest_m = std::max(end.farthest_m, d);
     const double radius = CertifyRadiusM(robot, judge.resolution_m());
     const bool certifiable = judge.Certifiable(xy, radius);
+    const bool level = certifiable && judge.Certifiable(xy, radius, true);
     end.certifiable += certifiable ? 1 : 0;
     double z0 = 0.0;
     if (!judge.FloorTop(xy, &z0)) continue;
@@ -519,7 +550,8 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
     std::snprintf(line, sizeof(line),
                   "leg %d (%.2f, %.2f, %.2f): region %.2f m, certifiable %s, nearest certifiable %.2f m; fate %s, "
                   "nearest's %s%s%s",
-                  leg, xy.x(), xy.y(), z0, d, certifiable ? "yes" : "no", nearest_m, name(fate), name(nearest_fate),
+                  leg, xy.x(), xy.y(), z0, d, !certifiable ? "no" : level ? "yes" : "yes (not level)", nearest_m,
+                  name(fate), name(nearest_fate),
                   kinds.empty() ? "" : "; around: ", kinds.c_str());
     end.details.push_back(line);
     if (map_cells > 0) end.details.push_back(CellMapText(xy, z0, result, judge, map_cells));
@@ -563,7 +595,9 @@ std::string FailureCause(const WalkResult& r) {
   if (Contains(r.message, "no route for the body")) return "body: no route for the body";
   if (Contains(r.message, "regions reachable from the start end")) {
     return std::string("route: the reachable regions end short of the goal") +
-           (r.certifiable_route ? " [certifiable floor joins the ends]" : " [certifiable floor does not join the ends]");
+           (!r.certifiable_route         ? " [certifiable floor does not join the ends]"
+            : r.leg_not_joined < 0 ? " [certifiable floor joins the ends]"
+                                   : " [certifiable floor joins the ends, not a foot's way from its start height]");
   }
   return "other: " + ToString(r.status);
 }
@@ -625,6 +659,7 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
     r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
                                                            scenario.options.goal_heading_tolerance_rad);
     r.certifiable_route = EndsJoined(robot, judge, walk.start, walk.goal);
+    if (r.certifiable_route) r.leg_not_joined = LegNotJoinedAtItsHeight(robot, judge, walk.start, walk.goal);
   }
   return r;
 }
@@ -706,7 +741,11 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
       if (!r.valid_to_goal) {
         std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
                     EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
-                    r.certifiable_route ? "yes" : "no");
+                    !r.certifiable_route ? "no"
+                    : r.leg_not_joined < 0 ? "yes"
+                                           : ("yes, but not leg " + std::to_string(r.leg_not_joined) +
+                                              "'s way: certifiable floor within dz_max of its start spot's height does "
+                                              "not reach its goal spot's").c_str());
         for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
         for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
       }
