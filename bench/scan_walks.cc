@@ -414,7 +414,9 @@ void DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double reso
     w.start_body_voxels = BodyVoxelsAt(robot, judge, w.start, w.start_feet);
     w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
     if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
-    if (!o.joined_ends || EndsJoined(robot, judge, w.start, w.goal)) {
+    const bool joined = EndsJoined(robot, judge, w.start, w.goal) &&
+                        (!o.legs_joined_ends || LegNotJoinedAtItsHeight(robot, judge, w.start, w.goal) < 0);
+    if (!o.joined_ends || joined) {
       walks->push_back(w);
     } else if (static_cast<int>(unjoined->size()) < o.walks) {
       unjoined->push_back(w);
@@ -788,6 +790,13 @@ std::vector<std::pair<Pose2D, Pose2D>> DrawWalkEnds(const OccupancyMap& map, con
     for (const Walk& w : *list) ends.emplace_back(w.start, w.goal);
   }
   return ends;
+}
+
+int LegNotJoinedAtItsHeight(const OccupancyMap& map, const std::string& robot_path, const Pose2D& start,
+                            const Pose2D& goal) {
+  const RobotModel robot = LoadRobot(robot_path);
+  const SeenVoxelJudge judge(map, robot.stance_height_m + Scenario{}.options.body_clearance_margin_m);
+  return LegNotJoinedAtItsHeight(robot, judge, start, goal);
 }
 
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,

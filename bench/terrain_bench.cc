@@ -169,6 +169,9 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_flag("--walk-joined", walks.joined_ends,
                "keep walks whose ends certifiable floor joins by steps (judged on the raw voxels); the unjoined walks "
                "drawn on the way are run and reported as a second population");
+  app.add_flag("--walk-legs-joined", walks.legs_joined_ends,
+               "with --walk-joined: also every leg's own way joined from its start height (steps within dz_max), so "
+               "no foot must change level by more than dz_max");
   app.add_option("--walk-only", walks.only_walk,
                  "plan only the walk of this index (0-based) of each scan and robot's draw (the same draw)")
       ->check(CLI::Range(0, 999));
