@@ -120,16 +120,19 @@ class SeenVoxelJudge {
   // True when every column whose square comes closer than radius_m to xy is seen floor
   // within a voxel of the floor at xy: the disk lies on the seen floor, the floor being
   // the union of its columns' squares (the set erosion of voxel_quality.h's certifiable
-  // floor); any sound extractor could certify a foot there.
-  bool Certifiable(const Eigen::Vector2d& xy, double radius_m) const {
+  // floor); any sound extractor could certify a foot there. With level, every such column's
+  // top is the one at xy: a disk across a one-voxel change of level (a contour of a sloped
+  // floor, or a step of up to two voxels: the voxels cannot tell) is not certifiable.
+  bool Certifiable(const Eigen::Vector2d& xy, double radius_m, bool level = false) const {
     double z0 = 0.0, z = 0.0;
     if (!FloorTop(xy, &z0)) return false;
     const int64_t ci = Index(xy.x()), cj = Index(xy.y());
     const int64_t cells = static_cast<int64_t>(std::ceil(radius_m / r_));
+    const double tolerance_m = level ? 0.5 * r_ : r_ + 1e-9;
     for (int64_t i = ci - cells; i <= ci + cells; ++i) {
       for (int64_t j = cj - cells; j <= cj + cells; ++j) {
         if (SquareDistanceM(i, j, xy) >= radius_m - 1e-9) continue;
-        if (!FloorTop({(i + 0.5) * r_, (j + 0.5) * r_}, &z) || std::abs(z - z0) > r_ + 1e-9) return false;
+        if (!FloorTop({(i + 0.5) * r_, (j + 0.5) * r_}, &z) || std::abs(z - z0) > tolerance_m) return false;
       }
     }
     return true;
@@ -240,8 +243,11 @@ class SeenVoxelJudge {
   // hops of at most span_m in plan and dz_m in height: from any certifiable cell within
   // near_m of a to one within near_m of b. The cells searched lie in the box about a and
   // b grown by margin_m. What a sound extractor's regions could at best connect.
+  // With end heights (not NaN), from and to cells whose floor lies within dz_m of them:
+  // one foot's way, which changes height by at most dz_m a step.
   bool CertifiableFloorJoins(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double radius_m, double span_m,
-                             double dz_m, double near_m, double margin_m) const {
+                             double dz_m, double near_m, double margin_m, double a_z_m = std::nan(""),
+                             double b_z_m = std::nan("")) const {
     const int64_t i0 = Index(std::min(a.x(), b.x()) - margin_m), i1 = Index(std::max(a.x(), b.x()) + margin_m);
     const int64_t j0 = Index(std::min(a.y(), b.y()) - margin_m), j1 = Index(std::max(a.y(), b.y()) + margin_m);
     const int64_t nx = i1 - i0 + 1, ny = j1 - j0 + 1;
@@ -264,14 +270,15 @@ class SeenVoxelJudge {
     std::vector<int64_t> queue;
     auto centre = [&](int64_t id) { return Eigen::Vector2d((id % nx + i0 + 0.5) * r_, (id / nx + j0 + 0.5) * r_); };
     for (int64_t id = 0; id < nx * ny; ++id) {
-      if (!std::isnan(top[static_cast<size_t>(id)]) && (centre(id) - a).norm() <= near_m) {
+      const float z = top[static_cast<size_t>(id)];
+      if (!std::isnan(z) && (centre(id) - a).norm() <= near_m && !(std::abs(z - a_z_m) > dz_m + 1e-6)) {
         seen[static_cast<size_t>(id)] = 1;
         queue.push_back(id);
       }
     }
     for (size_t q = 0; q < queue.size(); ++q) {
       const int64_t id = queue[q], ci = id % nx, cj = id / nx;
-      if ((centre(id) - b).norm() <= near_m) return true;
+      if ((centre(id) - b).norm() <= near_m && !(std::abs(top[static_cast<size_t>(id)] - b_z_m) > dz_m + 1e-6)) return true;
       for (const auto& [di, dj] : hops) {
         const int64_t ni = ci + di, nj = cj + dj;
         if (ni < 0 || nj < 0 || ni >= nx || nj >= ny) continue;
@@ -365,6 +372,26 @@ bool EndsJoined(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose
                                      CertifyRadiusM(robot, judge.resolution_m()), step_m, robot.dz_max_m, step_m, 1.5);
 }
 
+// The first leg (-1: none) whose own way certifiable floor does not join: from its start
+// spot's floor height to its goal spot's, by hops of step_m (JudgeStep) that change height by at
+// most dz_max (a foot's steps; the planner bounds each foot's height change so). Where a
+// one-voxel change of level exceeds dz_max (20 cm voxels), a foot cannot change level:
+// EndsJoined joins the ends from any level, this joins each foot from its own.
+int LegNotJoinedAtItsHeight(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& start,
+                            const Pose2D& goal, double step_m) {
+  for (int leg = 0; leg < robot.num_legs(); ++leg) {
+    const Eigen::Vector2d a = NominalFootXY(robot, leg, start.x_m, start.y_m, start.yaw_rad);
+    const Eigen::Vector2d b = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
+    double za = 0.0, zb = 0.0;
+    if (!judge.FloorTop(a, &za) || !judge.FloorTop(b, &zb)) continue;
+    if (!judge.CertifiableFloorJoins(a, b, CertifyRadiusM(robot, judge.resolution_m()), step_m, robot.dz_max_m, step_m,
+                                     1.5, za, zb)) {
+      return leg;
+    }
+  }
+  return -1;
+}
+
 // Occupied voxels in the body's band over its plan box at the pose, the body's ground
 // being the mean height of the stance's feet (0 without a known body).
 int BodyVoxelsAt(const RobotModel& robot, const SeenVoxelJudge& judge, const Pose2D& pose,
@@ -397,7 +424,10 @@ void DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double reso
     w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
     if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
     w.judge_step_m = JudgeStep(robot);
-    if (!o.joined_ends || EndsJoined(robot, judge, w.start, w.goal, w.judge_step_m)) {
+    const bool joined =
+        EndsJoined(robot, judge, w.start, w.goal, w.judge_step_m) &&
+        (!o.legs_joined_ends || LegNotJoinedAtItsHeight(robot, judge, w.start, w.goal, w.judge_step_m) < 0);
+    if (!o.joined_ends || joined) {
       walks->push_back(w);
     } else if (static_cast<int>(unjoined->size()) < o.walks) {
       unjoined->push_back(w);
@@ -425,9 +455,56 @@ struct WalkResult {
   std::string message;
   std::string time_split;  // where the plan's time went: setup, then each window
   EndFeet start, goal;  // filled for walks that fail
-  // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins).
+  // For walks that fail: certifiable floor joins the ends by steps (CertifiableFloorJoins),
+  // and level certifiable floor does (its level: no disk across a one-voxel change of level).
   bool certifiable_route = false;
+  int leg_not_joined = -1;  // LegNotJoinedAtItsHeight, when certifiable_route
 };
+
+// A map of the cells around xy (half_cells each way; north up), three characters a cell:
+// the extractor's fate in the layer within a voxel of z0_m (. none, n not in a patch, s
+// steep, m small, d not decomposed, i inset off the patch, b inset beyond, u uncovered,
+// C covered), that layer's height against z0_m in voxels (0, + one up, - one down, ^ / v
+// more, blank: no surface in a layer there), and the raw voxels' column kind (F floor,
+// O obstacle above, S surface 2+ voxels off, R floor without room, D drop, E erased, H
+// hole, U unseen); '>' marks xy's cell. For finding why the extractor left floor out.
+std::string CellMapText(const Eigen::Vector2d& xy, double z0_m, const RegionExtractionResult& result,
+                        const SeenVoxelJudge& judge, int half_cells) {
+  if (result.layers.empty() || result.cell_fates.size() != result.layers.size()) return "";
+  const HeightMap& grid = result.layers.front();
+  const double res = grid.resolution_m;
+  const int col0 = static_cast<int>(std::floor((xy.x() - grid.origin_world_m.x()) / res));
+  const int row0 = static_cast<int>(std::floor((xy.y() - grid.origin_world_m.y()) / res));
+  static const char kFate[] = ".nsmdibuC";
+  const std::map<std::string, char> kinds = {{"floor", 'F'}, {"obstacle above", 'O'}, {"surface 2+ voxels off", 'S'},
+                                             {"floor seen, no room/free above", 'R'}, {"drop (lower surface)", 'D'},
+                                             {"erased", 'E'}, {"free below floor (hole)", 'H'}, {"unseen", 'U'}};
+  std::string text = "cell map about (" + std::to_string(xy.x()) + ", " + std::to_string(xy.y()) + "):";
+  for (int row = row0 + half_cells; row >= row0 - half_cells; --row) {
+    text += "\n       ";
+    for (int col = col0 - half_cells; col <= col0 + half_cells; ++col) {
+      char fate = '.', height = ' ';
+      if (grid.Inside(row, col)) {
+        const size_t cell = static_cast<size_t>(grid.Index(row, col));
+        for (size_t l = 0; l < result.layers.size(); ++l) {
+          const float h = result.layers[l].height_m[cell];
+          if (std::isnan(h)) continue;
+          const long dv = std::lround((h - z0_m) / res);
+          if (std::abs(dv) > 1 && height != ' ') continue;
+          height = dv == 0 ? '0' : dv == 1 ? '+' : dv == -1 ? '-' : dv > 1 ? '^' : 'v';
+          fate = kFate[static_cast<int>(result.cell_fates[l][cell])];
+        }
+      }
+      const Eigen::Vector2d c = grid.CellCenter(row, col);
+      const auto kind = kinds.find(judge.ColumnKind(c, z0_m));
+      text += row == row0 && col == col0 ? '>' : ' ';
+      text += fate;
+      text += height;
+      text += kind == kinds.end() ? '?' : kind->second;
+    }
+  }
+  return text;
+}
 
 double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vector2d& xy) {
   double best = 1e9;
@@ -436,7 +513,7 @@ double NearestRegionM(const std::vector<ConvexRegion>& regions, const Eigen::Vec
 }
 
 EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& regions, const SeenVoxelJudge& judge,
-                    const RegionExtractionResult& result, const Pose2D& pose) {
+                    const RegionExtractionResult& result, const Pose2D& pose, int map_cells) {
   EndFeet end;
   // The ground under the body: the mean floor top of the feet that have one.
   double ground_sum = 0.0, z = 0.0;
@@ -468,6 +545,7 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
     end.farthest_m = std::max(end.farthest_m, d);
     const double radius = CertifyRadiusM(robot, judge.resolution_m());
     const bool certifiable = judge.Certifiable(xy, radius);
+    const bool level = certifiable && judge.Certifiable(xy, radius, true);
     end.certifiable += certifiable ? 1 : 0;
     double z0 = 0.0;
     if (!judge.FloorTop(xy, &z0)) continue;
@@ -485,9 +563,11 @@ EndFeet DiagnoseEnd(const RobotModel& robot, const std::vector<ConvexRegion>& re
     std::snprintf(line, sizeof(line),
                   "leg %d (%.2f, %.2f, %.2f): region %.2f m, certifiable %s, nearest certifiable %.2f m; fate %s, "
                   "nearest's %s%s%s",
-                  leg, xy.x(), xy.y(), z0, d, certifiable ? "yes" : "no", nearest_m, name(fate), name(nearest_fate),
+                  leg, xy.x(), xy.y(), z0, d, !certifiable ? "no" : level ? "yes" : "yes (not level)", nearest_m,
+                  name(fate), name(nearest_fate),
                   kinds.empty() ? "" : "; around: ", kinds.c_str());
     end.details.push_back(line);
+    if (map_cells > 0) end.details.push_back(CellMapText(xy, z0, result, judge, map_cells));
   }
   return end;
 }
@@ -528,7 +608,9 @@ std::string FailureCause(const WalkResult& r) {
   if (Contains(r.message, "no route for the body")) return "body: no route for the body";
   if (Contains(r.message, "regions reachable from the start end")) {
     return std::string("route: the reachable regions end short of the goal") +
-           (r.certifiable_route ? " [certifiable floor joins the ends]" : " [certifiable floor does not join the ends]");
+           (!r.certifiable_route         ? " [certifiable floor does not join the ends]"
+            : r.leg_not_joined < 0 ? " [certifiable floor joins the ends]"
+                                   : " [certifiable floor joins the ends, not a foot's way from its start height]");
   }
   return "other: " + ToString(r.status);
 }
@@ -585,11 +667,14 @@ WalkResult RunWalk(const RobotModel& robot, Scenario scenario, const ScenarioTer
   }
   r.valid_to_goal = HasPlan(plan.status) && plan.reaches_goal && r.feet_off == 0;
   if (!r.valid_to_goal) {
-    r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start);
-    r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal);
+    r.start = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.start, o.cell_map_cells);
+    r.goal = DiagnoseEnd(robot, terrain.regions, judge, diagnosis, walk.goal, o.cell_map_cells);
     r.goal.certifiable_stance_near = CertifiableStanceNear(robot, judge, walk.goal, scenario.options.goal_position_tolerance_m,
                                                            scenario.options.goal_heading_tolerance_rad);
     r.certifiable_route = EndsJoined(robot, judge, walk.start, walk.goal, walk.judge_step_m);
+    if (r.certifiable_route) {
+      r.leg_not_joined = LegNotJoinedAtItsHeight(robot, judge, walk.start, walk.goal, walk.judge_step_m);
+    }
   }
   return r;
 }
@@ -671,7 +756,11 @@ void RunWalks(const std::string& scan, const RobotModel& robot, const Scenario& 
       if (!r.valid_to_goal) {
         std::printf("    cause: %s; %s; %s; certifiable floor joins the ends by steps: %s\n", FailureCause(r).c_str(),
                     EndText("start", r.start).c_str(), EndText("goal", r.goal).c_str(),
-                    r.certifiable_route ? "yes" : "no");
+                    !r.certifiable_route ? "no"
+                    : r.leg_not_joined < 0 ? "yes"
+                                           : ("yes, but not leg " + std::to_string(r.leg_not_joined) +
+                                              "'s way: certifiable floor within dz_max of its start spot's height does "
+                                              "not reach its goal spot's").c_str());
         for (const std::string& d : r.start.details) std::printf("      start %s\n", d.c_str());
         for (const std::string& d : r.goal.details) std::printf("      goal %s\n", d.c_str());
       }
@@ -714,6 +803,13 @@ std::vector<std::pair<Pose2D, Pose2D>> DrawWalkEnds(const OccupancyMap& map, con
     for (const Walk& w : *list) ends.emplace_back(w.start, w.goal);
   }
   return ends;
+}
+
+int LegNotJoinedAtItsHeight(const OccupancyMap& map, const std::string& robot_path, const Pose2D& start,
+                            const Pose2D& goal) {
+  const RobotModel robot = LoadRobot(robot_path, ReachShape::kBox);
+  const SeenVoxelJudge judge(map, robot.stance_height_m + Scenario{}.options.body_clearance_margin_m);
+  return LegNotJoinedAtItsHeight(robot, judge, start, goal, JudgeStep(robot));
 }
 
 int BenchScanWalks(const std::vector<std::string>& scans, const std::vector<std::string>& robots,

@@ -36,6 +36,12 @@ struct ScanWalkOptions {
   // could walk. The unjoined walks drawn on the way (up to `walks` of them) are run as a
   // second population, where the right answer is a status naming where and why.
   bool joined_ends = false;
+  // With joined_ends, also every leg's own way (LegNotJoinedAtItsHeight): certifiable floor
+  // joins its start spot to its goal spot from its own start height, by hops that change
+  // height by at most dz_max, as the robot's steps do. Where a voxel is taller than dz_max
+  // (new_college's 20 cm), a foot cannot change level, and ends whose feet would have to
+  // are walks no sound planner can plan; off by default, so the recorded draws stay.
+  bool legs_joined_ends = false;
   // Plan only the walk of this index (0-based) of each scan and robot's draw (-1: all):
   // to re-run one walk alone, with the same draw.
   int only_walk = -1;
@@ -52,12 +58,22 @@ struct ScanWalkOptions {
   // file's. The draw and the judge never depend on it: they use the robot derived with
   // the paper's box, so both shapes are judged on the same walks.
   std::optional<ReachShape> reach_shape;
+  // With verbose, a failed walk's feet on no region print a map of this many cells each
+  // way around them (CellMapText: the extractor's fates and the raw voxels' kinds; 0: none).
+  int cell_map_cells = 0;
 };
 
 // The seed of one scan and robot's draw: the walks' seed mixed with the scan's file name
 // (not its directory, so a draw does not change with where the scan is stored) and the
 // robot's name, so that each scan and robot draws its own walks.
 unsigned WalkDrawSeed(unsigned seed, const std::string& scan_path, const std::string& robot_name);
+
+// The first leg (0-based; -1: none) whose way certifiable floor does not join: from the
+// floor at its nominal spot in the start pose to the floor at its nominal spot in the goal
+// pose, by hops of the robot's step span that change height by at most its dz_max, judged
+// on the map's voxels as the walks' judge does (legs whose spots have no seen floor pass).
+int LegNotJoinedAtItsHeight(const OccupancyMap& map, const std::string& robot_path, const Pose2D& start,
+                            const Pose2D& goal);
 
 // The ends (start, goal) of the walks BenchScanWalks draws for one scan and robot, in its
 // order: the judged walks, then, with o.joined_ends, the unjoined ones met on the way.

@@ -169,12 +169,19 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--walk-max-regions", walks.max_regions, "the walks' extractor: --max-regions (-1: its default)")
       ->check(CLI::Range(-1, 100000));
   app.add_flag("--walk-details", walks.verbose, "a line per walk (and, for a failed walk, its cause)");
+  app.add_option("--walk-cell-map", walks.cell_map_cells,
+                 "with --walk-details: a map of the extractor's cell fates and the voxels' column kinds this many "
+                 "cells each way around a failed walk's feet on no region [cells]")
+      ->check(CLI::Range(0, 30));
   app.add_flag("--walk-certifiable", walks.certifiable_ends,
                "draw walk ends whose every foot stands on certifiable floor (seen for foot radius + 1 cm + a voxel "
                "around it)");
   app.add_flag("--walk-joined", walks.joined_ends,
                "keep walks whose ends certifiable floor joins by steps (judged on the raw voxels); the unjoined walks "
                "drawn on the way are run and reported as a second population");
+  app.add_flag("--walk-legs-joined", walks.legs_joined_ends,
+               "with --walk-joined: also every leg's own way joined from its start height (steps within dz_max), so "
+               "no foot must change level by more than dz_max");
   app.add_option("--walk-only", walks.only_walk,
                  "plan only the walk of this index (0-based) of each scan and robot's draw (the same draw)")
       ->check(CLI::Range(0, 999));

@@ -272,6 +272,16 @@ TEST(BodyCourses, ADoorNarrowerThanTheBodyAtEveryHeadingIsNoRouteForTheBody) {
   EXPECT_EQ(out.plan.status, SolveStatus::kNoRoute) << out.plan.message;
   EXPECT_NE(out.plan.message.find("no route for the body"), std::string::npos) << out.plan.message;
   EXPECT_TRUE(out.plan.footsteps.empty());
+  // The message names where: a refused pose at the door, within a body's length of its wall.
+  double door_x = 0.0;
+  for (const TerrainBox& b : course.terrain.boxes) {
+    if (b.size_m.z() > 0.3) door_x = b.center_world_m.x();
+  }
+  const size_t at = out.plan.message.find("nearest the goal at (");
+  ASSERT_NE(at, std::string::npos) << out.plan.message;
+  double x = 0.0, y = 0.0;
+  ASSERT_EQ(std::sscanf(out.plan.message.c_str() + at, "nearest the goal at (%lf, %lf)", &x, &y), 2) << out.plan.message;
+  EXPECT_LT(std::abs(x - door_x), std::max(robot.body.length_m(), robot.body.width_m())) << out.plan.message;
 }
 
 TEST(BodyCourses, AUShapedPocketIsWalkedAroundNotThrough) {

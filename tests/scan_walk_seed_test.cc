@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "bench/scan_walks.h"
+#include "io/robot_loader.h"
+#include "planner/robot/robot_model.h"
 #include "terrain/extraction/occupancy_map.h"
 
 namespace mfp {
@@ -78,6 +80,53 @@ TEST(ScanWalkSeedTest, OneSeedDrawsTheSameWalksAndAnotherSeedOthers) {
   const auto other = DrawWalkEnds(map, "flat.bt", kHexapod, o);
   ASSERT_EQ(other.size(), 3u);
   EXPECT_FALSE(SameEnds(first, other));
+}
+
+// Floor of 10 m x 10 m at 20 cm voxels (new_college's), one voxel higher from x = 5 m on:
+// a change of level taller than the hexapod's dz_max (0.093 m).
+constexpr double kCoarse = 0.2;
+int LevelAt(double x_m) { return x_m >= 5.0 ? 1 : 0; }
+OccupancyMap TwoLevelFloor() {
+  OccupancyMap map;
+  map.resolution_m = kCoarse;
+  for (int i = 0; i < 50; ++i) {
+    for (int j = 0; j < 50; ++j) {
+      const double x = (i + 0.5) * kCoarse, y = (j + 0.5) * kCoarse;
+      const int top = LevelAt(x);
+      for (int k = 0; k <= top; ++k) map.leaves.push_back({{x, y, (k + 0.5) * kCoarse}, kCoarse});
+      for (int k = top + 1; k <= top + 8; ++k) map.free_leaves.push_back({{x, y, (k + 0.5) * kCoarse}, kCoarse});
+    }
+  }
+  return map;
+}
+
+TEST(ScanWalkLegsJoined, AFootThatMustChangeLevelByMoreThanDzMaxIsNotJoined) {
+  const OccupancyMap map = TwoLevelFloor();
+  const Pose2D straddling{5.0, 3.0, 0.0}, lower{2.0, 3.0, 0.0}, straddling_too{5.0, 7.0, 0.0};
+  // Legs on the upper level at the start would have to step down a voxel to the goal.
+  EXPECT_GE(LegNotJoinedAtItsHeight(map, kHexapod, straddling, lower), 0);
+  // Every leg keeps its level: within the lower level, or straddling at both ends.
+  EXPECT_EQ(LegNotJoinedAtItsHeight(map, kHexapod, lower, Pose2D{2.0, 7.0, 0.0}), -1);
+  EXPECT_EQ(LegNotJoinedAtItsHeight(map, kHexapod, straddling, straddling_too), -1);
+}
+
+TEST(ScanWalkLegsJoined, TheLegsJoinedDrawKeepsEveryFootOnItsLevel) {
+  const OccupancyMap map = TwoLevelFloor();
+  ScanWalkOptions o = ThreeWalks();
+  o.walks = 8;
+  o.joined_ends = true;
+  o.legs_joined_ends = true;
+  const RobotModel robot = LoadRobot(kHexapod);
+  const auto ends = DrawWalkEnds(map, "two_levels.bt", kHexapod, o);
+  ASSERT_GE(ends.size(), 8u);
+  for (size_t w = 0; w < 8; ++w) {  // the joined walks come first
+    const auto& [start, goal] = ends[w];
+    for (int leg = 0; leg < robot.num_legs(); ++leg) {
+      const Eigen::Vector2d a = NominalFootXY(robot, leg, start.x_m, start.y_m, start.yaw_rad);
+      const Eigen::Vector2d b = NominalFootXY(robot, leg, goal.x_m, goal.y_m, goal.yaw_rad);
+      EXPECT_EQ(LevelAt(a.x()), LevelAt(b.x())) << "walk " << w << " leg " << leg;
+    }
+  }
 }
 
 }  // namespace

@@ -312,8 +312,10 @@ void RefuseBodyBlockedRoute(const RobotModel& robot, const std::vector<ConvexReg
   why << "no route for the body: the feet could pass, but every stance route from the start to the goal meets an "
          "obstacle with the body's plan box ("
       << robot.body.length_m() << " x " << robot.body.width_m() << " m, " << body_clear.body_blocked_poses
-      << " poses refused, at up to " << std::max(options.headings, options.fine_headings)
-      << " headings); widen the passage, or check the robot's body_box";
+      << " poses refused, at up to " << std::max(options.headings, options.fine_headings) << " headings";
+  const Eigen::Vector2d& at = body_clear.body_blocked_nearest_goal_m;
+  if (!std::isnan(at.x())) why << "; the refused pose nearest the goal at (" << at.x() << ", " << at.y() << ")";
+  why << "); widen the passage, or check the robot's body_box";
   guide->connected = false;
   guide->broken = why.str();
 }

@@ -302,7 +302,14 @@ StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eig
       ++out.classified_poses;
       const uint8_t judged = space->Judge(robot, static_cast<size_t>(j) * nx + i, centre_of(i, j), h, H,
                                           shared[static_cast<size_t>(h)]);
-      if (judged == 4) ++out.body_blocked_poses;
+      if (judged == 4) {
+        ++out.body_blocked_poses;
+        const Eigen::Vector2d p = centre_of(i, j);
+        const Eigen::Vector2d& nearest = out.body_blocked_nearest_goal_m;
+        if (std::isnan(nearest.x()) || (p - goal_xy).norm() < (nearest - goal_xy).norm()) {
+          out.body_blocked_nearest_goal_m = p;
+        }
+      }
       u = judged == 4 ? 3 : judged;
     }
     return u;
@@ -376,6 +383,7 @@ StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eig
   // Route poses the body cannot hold at the goal's heading (a foot off support or the body
   // blocked; not counted in body_blocked_poses): windows aiming at that yaw leave the route.
   const long blocked_by_search = out.body_blocked_poses;
+  const Eigen::Vector2d blocked_nearest_goal = out.body_blocked_nearest_goal_m;
   for (size_t s = reached; s != SIZE_MAX; s = parent[s] == kNone ? SIZE_MAX : parent[s]) {
     const size_t c = s / H;
     const int ci = static_cast<int>(c % nx), cj = static_cast<int>(c / nx);
@@ -388,6 +396,7 @@ StanceRoute SearchStances(const RobotModel& robot, StanceSpace* space, const Eig
     }
   }
   out.body_blocked_poses = blocked_by_search;
+  out.body_blocked_nearest_goal_m = blocked_nearest_goal;
   std::reverse(cells.begin(), cells.end());
   std::reverse(yaws.begin(), yaws.end());
   SetRoute(cells, yaws, start_xy, start_yaw_rad, goal_xy, goal_yaw_rad, &out);

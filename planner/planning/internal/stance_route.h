@@ -14,6 +14,7 @@
 // feet): the route keeps the body clear and turns where a passage fits only one way.
 // No I/O.
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "base/deadline.h"
@@ -61,6 +62,9 @@ struct StanceRoute {
   std::vector<double> yaws_rad;        // body yaw at each route point [rad]
   double length_m = 0.0;
   long body_blocked_poses = 0;  // poses the search met that only the body check refused
+  // Of those, the position of the one nearest the goal (NaN when none) [m, world]: where
+  // a message says the body is blocked.
+  Eigen::Vector2d body_blocked_nearest_goal_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
   // Route poses (start and goal cells aside) not usable at the goal's heading: there the
   // body must hold the route's own yaw (a long, narrow stance crabbing along a field's
   // edge at the goal's yaw has feet off it).
