@@ -34,6 +34,8 @@ class SparseLdlt {
   // K^-1 b with the last factors.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
 
+  // D of the last factors (its signs: K's inertia).
+  Eigen::Map<const Eigen::VectorXd> Pivots() const { return {d_.data(), static_cast<Eigen::Index>(d_.size())}; }
   Eigen::Index FactorNonZeros() const { return static_cast<Eigen::Index>(l_row_.size()); }
   // Runs of consecutive rows in L's columns (FactorNonZeros() when no two entries of a
   // column are on consecutive rows).
