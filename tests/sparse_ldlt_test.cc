@@ -1,5 +1,6 @@
 // The interior point's LDL' against Eigen's SimplicialLDLT, whose arithmetic it repeats:
-// the same factors and solves to the last bit, on one pattern refactorised many times.
+// the same factors and solves to the last bit, on one pattern refactorised many times;
+// and the Newton matrices it factorises (KktAssembly) against Eigen's sparse products.
 #include "planner/qp/internal/sparse_ldlt.h"
 
 #include <gtest/gtest.h>
@@ -163,6 +164,31 @@ TEST(SparseLdlt, RunsOfConsecutiveRowsGiveSimplicialLdltsFactorsOnMinimumDegreeO
         ASSERT_EQ(ours.Pivots()(i), d(i));
         ASSERT_GT(d(i), 0.0);  // K is positive definite
         ASSERT_EQ(x(i), expected(i)) << "seed " << seed << " step " << step << " entry " << i;
+      }
+    }
+  }
+}
+
+TEST(KktAssembly, NewtonMatricesAreQPlusGtWGPlusBInThePermutedPattern) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const InequalityForm f = BandedByStep(12, 6, seed);
+    const KktAssembly assembly(f, Deadline());
+    ASSERT_FALSE(assembly.interrupted);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> decade(-8.0, 12.0);
+    Eigen::VectorXd row_weight(f.elastic), bound_weight(f.n);
+    for (Eigen::Index r = 0; r < row_weight.size(); ++r) row_weight(r) = std::pow(10.0, decade(rng));
+    for (Eigen::Index j = 0; j < bound_weight.size(); ++j) bound_weight(j) = std::pow(10.0, decade(rng));
+    SpMat K = assembly.pattern;
+    assembly.Assemble(row_weight, bound_weight, &K);
+    const Eigen::MatrixXd ours = Eigen::MatrixXd(K).selfadjointView<Eigen::Upper>();
+    Eigen::MatrixXd expected = Eigen::MatrixXd(f.Q) + Eigen::MatrixXd(f.Gt * row_weight.asDiagonal() * f.G);
+    expected.diagonal() += bound_weight;
+    for (int a = 0; a < f.n; ++a) {
+      for (int b = 0; b < f.n; ++b) {
+        const double scale = std::abs(expected(a, b)) + std::sqrt(std::abs(expected(a, a) * expected(b, b)));
+        ASSERT_NEAR(ours(assembly.position[a], assembly.position[b]), expected(a, b), 1e-13 * scale)
+            << "seed " << seed << " (" << a << ", " << b << ")";
       }
     }
   }

@@ -8,6 +8,14 @@
 #include "base/check.h"
 
 namespace mfp {
+namespace {
+
+// A column's updates go run by run when its runs hold at least this many entries on
+// average; shorter runs cost more in loop overhead than their direct addressing saves,
+// and go entry by entry through the row indices.
+constexpr int kEntriesPerRun = 4;
+
+}  // namespace
 
 void SparseLdlt::Analyse(const Matrix& upper) {
   MFP_CHECK(upper.rows() == upper.cols() && upper.isCompressed());
@@ -75,6 +83,11 @@ void SparseLdlt::Analyse(const Matrix& upper) {
     }
     column_run_.push_back(static_cast<int>(run_first_.size()));
   }
+  column_by_runs_.assign(n_, 0);
+  for (int j = 0; j < n_; ++j) {
+    const int entries = l_start_[j + 1] - l_start_[j], runs = column_run_[j + 1] - column_run_[j];
+    column_by_runs_[j] = entries >= kEntriesPerRun * runs && runs > 0;
+  }
   run_first_.push_back(l_start_[n_]);
 }
 
@@ -98,12 +111,16 @@ bool SparseLdlt::Factorize(const Matrix& upper) {
       const double l_ki = yi / d_[i];
       // Column i's entries above row k, [l_start_[i], slot), run by run; the run after
       // the last one begins at or beyond slot (the next column's entries come later).
-      const int* run = run_first_.data() + column_run_[i];
-      for (int first = *run; first < slot; first = *++run) {
-        const int count = std::min(run[1], slot) - first;
-        double* y = y_.data() + l_row_[first];
-        const double* l = l_value_.data() + first;
-        for (int t = 0; t < count; ++t) y[t] -= l[t] * yi;
+      if (column_by_runs_[i]) {
+        const int* run = run_first_.data() + column_run_[i];
+        for (int first = *run; first < slot; first = *++run) {
+          const int count = std::min(run[1], slot) - first;
+          double* y = y_.data() + l_row_[first];
+          const double* l = l_value_.data() + first;
+          for (int t = 0; t < count; ++t) y[t] -= l[t] * yi;
+        }
+      } else {
+        for (int p = l_start_[i]; p < slot; ++p) y_[l_row_[p]] -= l_value_[p] * yi;
       }
       d -= l_ki * yi;
       l_value_[slot] = l_ki;
@@ -121,6 +138,10 @@ Eigen::VectorXd SparseLdlt::Solve(const Eigen::VectorXd& b) const {
   for (int i = 0; i < n_; ++i) {  // L y = b, L unit lower triangular, by columns, run by run
     const double xi = v[i];
     if (xi == 0.0) continue;
+    if (!column_by_runs_[i]) {
+      for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) v[l_row_[p]] -= xi * l_value_[p];
+      continue;
+    }
     for (int r = column_run_[i]; r < column_run_[i + 1]; ++r) {
       const int first = run_first_[r], count = run_first_[r + 1] - first;
       double* y = v + l_row_[first];
@@ -131,6 +152,11 @@ Eigen::VectorXd SparseLdlt::Solve(const Eigen::VectorXd& b) const {
   for (int i = 0; i < n_; ++i) v[i] = (1.0 / d_[i]) * v[i];
   for (int i = n_ - 1; i >= 0; --i) {  // L' x = z, by rows of L', entries in column order
     double xi = v[i];
+    if (!column_by_runs_[i]) {
+      for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) xi -= l_value_[p] * v[l_row_[p]];
+      v[i] = xi;
+      continue;
+    }
     for (int r = column_run_[i]; r < column_run_[i + 1]; ++r) {
       const int first = run_first_[r], count = run_first_[r + 1] - first;
       const double* z = v + l_row_[first];

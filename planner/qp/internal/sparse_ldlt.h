@@ -54,6 +54,7 @@ class SparseLdlt {
   // [column_run_[j], column_run_[j + 1]); a run ends where the next one begins (the last
   // entry, l_start_[n_], closes the last column's last run).
   std::vector<int> column_run_, run_first_;
+  std::vector<char> column_by_runs_;  // column j's updates run by run (else entry by entry)
   std::vector<double> y_;         // dense work row of Factorize
 };
 
