@@ -10,10 +10,19 @@
 namespace mfp {
 namespace {
 
-// A column's updates go run by run when its runs hold at least this many entries on
-// average; shorter runs cost more in loop overhead than their direct addressing saves,
-// and go entry by entry through the row indices.
-constexpr int kEntriesPerRun = 4;
+// y[row[p]] -= value[p] * scale for p in [begin, end): rows distinct, so in any order.
+inline void ScatterUpdate(const int* row, const double* value, int begin, int end, double scale, double* y) {
+  int p = begin;
+  for (; p + 4 <= end; p += 4) {
+    const double u0 = value[p] * scale, u1 = value[p + 1] * scale;
+    const double u2 = value[p + 2] * scale, u3 = value[p + 3] * scale;
+    y[row[p]] -= u0;
+    y[row[p + 1]] -= u1;
+    y[row[p + 2]] -= u2;
+    y[row[p + 3]] -= u3;
+  }
+  for (; p < end; ++p) y[row[p]] -= value[p] * scale;
+}
 
 }  // namespace
 
@@ -74,21 +83,6 @@ void SparseLdlt::Analyse(const Matrix& upper) {
     }
     pattern_start_.push_back(static_cast<int>(pattern_col_.size()));
   }
-  // 3. The runs of consecutive rows in each column (rows are sorted within a column).
-  column_run_.assign(1, 0);
-  run_first_.clear();
-  for (int j = 0; j < n_; ++j) {
-    for (int p = l_start_[j]; p < l_start_[j + 1]; ++p) {
-      if (p == l_start_[j] || l_row_[p] != l_row_[p - 1] + 1) run_first_.push_back(p);
-    }
-    column_run_.push_back(static_cast<int>(run_first_.size()));
-  }
-  column_by_runs_.assign(n_, 0);
-  for (int j = 0; j < n_; ++j) {
-    const int entries = l_start_[j + 1] - l_start_[j], runs = column_run_[j + 1] - column_run_[j];
-    column_by_runs_[j] = entries >= kEntriesPerRun * runs && runs > 0;
-  }
-  run_first_.push_back(l_start_[n_]);
 }
 
 bool SparseLdlt::Factorize(const Matrix& upper) {
@@ -109,19 +103,7 @@ bool SparseLdlt::Factorize(const Matrix& upper) {
       const double yi = y_[i];
       y_[i] = 0.0;
       const double l_ki = yi / d_[i];
-      // Column i's entries above row k, [l_start_[i], slot), run by run; the run after
-      // the last one begins at or beyond slot (the next column's entries come later).
-      if (column_by_runs_[i]) {
-        const int* run = run_first_.data() + column_run_[i];
-        for (int first = *run; first < slot; first = *++run) {
-          const int count = std::min(run[1], slot) - first;
-          double* y = y_.data() + l_row_[first];
-          const double* l = l_value_.data() + first;
-          for (int t = 0; t < count; ++t) y[t] -= l[t] * yi;
-        }
-      } else {
-        for (int p = l_start_[i]; p < slot; ++p) y_[l_row_[p]] -= l_value_[p] * yi;
-      }
+      ScatterUpdate(l_row_.data(), l_value_.data(), l_start_[i], slot, yi, y_.data());
       d -= l_ki * yi;
       l_value_[slot] = l_ki;
     }
@@ -134,36 +116,16 @@ bool SparseLdlt::Factorize(const Matrix& upper) {
 Eigen::VectorXd SparseLdlt::Solve(const Eigen::VectorXd& b) const {
   MFP_CHECK(b.size() == n_);
   Eigen::VectorXd x = b;
-  double* const v = x.data();
-  for (int i = 0; i < n_; ++i) {  // L y = b, L unit lower triangular, by columns, run by run
-    const double xi = v[i];
+  for (int i = 0; i < n_; ++i) {  // L y = b, L unit lower triangular, by columns
+    const double xi = x(i);
     if (xi == 0.0) continue;
-    if (!column_by_runs_[i]) {
-      for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) v[l_row_[p]] -= xi * l_value_[p];
-      continue;
-    }
-    for (int r = column_run_[i]; r < column_run_[i + 1]; ++r) {
-      const int first = run_first_[r], count = run_first_[r + 1] - first;
-      double* y = v + l_row_[first];
-      const double* l = l_value_.data() + first;
-      for (int t = 0; t < count; ++t) y[t] -= xi * l[t];
-    }
+    ScatterUpdate(l_row_.data(), l_value_.data(), l_start_[i], l_start_[i + 1], xi, x.data());
   }
-  for (int i = 0; i < n_; ++i) v[i] = (1.0 / d_[i]) * v[i];
-  for (int i = n_ - 1; i >= 0; --i) {  // L' x = z, by rows of L', entries in column order
-    double xi = v[i];
-    if (!column_by_runs_[i]) {
-      for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) xi -= l_value_[p] * v[l_row_[p]];
-      v[i] = xi;
-      continue;
-    }
-    for (int r = column_run_[i]; r < column_run_[i + 1]; ++r) {
-      const int first = run_first_[r], count = run_first_[r + 1] - first;
-      const double* z = v + l_row_[first];
-      const double* l = l_value_.data() + first;
-      for (int t = 0; t < count; ++t) xi -= l[t] * z[t];
-    }
-    v[i] = xi;
+  for (int i = 0; i < n_; ++i) x(i) = (1.0 / d_[i]) * x(i);
+  for (int i = n_ - 1; i >= 0; --i) {  // L' x = z, by rows of L'
+    double xi = x(i);
+    for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) xi -= l_value_[p] * x(l_row_[p]);
+    x(i) = xi;
   }
   return x;
 }

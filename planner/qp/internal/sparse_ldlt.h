@@ -8,13 +8,10 @@
 // last bit. What differs is where the symbolic work happens: SimplicialLDLT walks the
 // elimination tree for every row's pattern at every factorisation; here those patterns
 // and each entry's place in L are recorded once, by Analyse, and Factorize only computes.
-//
-// The updates by one column of L (and the forward solve's) go to distinct rows, so their
-// order within the column does not change any result; they are done run by run, a run
-// being consecutive entries of a column whose rows are consecutive too (a minimum degree
-// order numbers a supernode's columns consecutively), as dense loops the compiler can
-// vectorise. The order in which a row receives the updates of different columns, which
-// does change the rounding, is SimplicialLDLT's.
+// The updates by one column of L (the factorisation's and the forward solve's) go to
+// distinct rows, so they are done four at a time (fewer loop instructions per update)
+// without changing any result; the order in which a row receives the updates of
+// different columns, which does change the rounding, is SimplicialLDLT's.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -37,9 +34,6 @@ class SparseLdlt {
   // D of the last factors (its signs: K's inertia).
   Eigen::Map<const Eigen::VectorXd> Pivots() const { return {d_.data(), static_cast<Eigen::Index>(d_.size())}; }
   Eigen::Index FactorNonZeros() const { return static_cast<Eigen::Index>(l_row_.size()); }
-  // Runs of consecutive rows in L's columns (FactorNonZeros() when no two entries of a
-  // column are on consecutive rows).
-  Eigen::Index FactorRuns() const { return static_cast<Eigen::Index>(run_first_.size()) - 1; }
 
  private:
   int n_ = 0;
@@ -50,11 +44,6 @@ class SparseLdlt {
   // Row k of L, in the order the factorisation visits it: column pattern_col_[e] with
   // the entry stored at pattern_slot_[e], for e in [pattern_start_[k], pattern_start_[k + 1]).
   std::vector<int> pattern_start_, pattern_col_, pattern_slot_;
-  // Column j's runs of consecutive rows begin at the entries run_first_[e], e in
-  // [column_run_[j], column_run_[j + 1]); a run ends where the next one begins (the last
-  // entry, l_start_[n_], closes the last column's last run).
-  std::vector<int> column_run_, run_first_;
-  std::vector<char> column_by_runs_;  // column j's updates run by run (else entry by entry)
   std::vector<double> y_;         // dense work row of Factorize
 };
 
