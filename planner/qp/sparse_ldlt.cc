@@ -24,6 +24,19 @@ inline void ScatterUpdate(const int* row, const double* value, int begin, int en
   for (; p < end; ++p) y[row[p]] -= value[p] * scale;
 }
 
+// x - sum of value[p] * y[row[p]] over p in [begin, end), subtracted in that order.
+inline double GatherReduce(const int* row, const double* value, int begin, int end, const double* y, double x) {
+  int p = begin;
+  for (; p + 4 <= end; p += 4) {
+    x -= value[p] * y[row[p]];
+    x -= value[p + 1] * y[row[p + 1]];
+    x -= value[p + 2] * y[row[p + 2]];
+    x -= value[p + 3] * y[row[p + 3]];
+  }
+  for (; p < end; ++p) x -= value[p] * y[row[p]];
+  return x;
+}
+
 }  // namespace
 
 void SparseLdlt::Analyse(const Matrix& upper) {
@@ -123,9 +136,7 @@ Eigen::VectorXd SparseLdlt::Solve(const Eigen::VectorXd& b) const {
   }
   for (int i = 0; i < n_; ++i) x(i) = (1.0 / d_[i]) * x(i);
   for (int i = n_ - 1; i >= 0; --i) {  // L' x = z, by rows of L'
-    double xi = x(i);
-    for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) xi -= l_value_[p] * x(l_row_[p]);
-    x(i) = xi;
+    x(i) = GatherReduce(l_row_.data(), l_value_.data(), l_start_[i], l_start_[i + 1], x.data(), x(i));
   }
   return x;
 }
