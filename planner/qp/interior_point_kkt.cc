@@ -22,13 +22,6 @@ std::vector<int> MinimumDegreeOrder(const SpMat& lower) {
 }
 
 
-// A term of G' diag(row_weight) G while the pattern is built.
-struct Term {
-  int row;      // row k of G
-  int index;    // the term's row in its column, then its entry, then its value index
-  double coef;  // G(k, a) G(k, b)
-};
-
 }  // namespace
 
 double KktProductTerms(const InequalityForm& f) {
@@ -47,7 +40,6 @@ KktAssembly::KktAssembly(const InequalityForm& f, const Deadline& deadline) {
   std::vector<int> lower_outer(n + 1, 0), lower_inner;
   std::vector<int> mark(n, -1), entry_of(n, -1);
   std::vector<std::pair<int, double>> q_entries;  // (entry, value)
-  std::vector<Term> terms;
   diagonal.resize(n);
   for (int col = 0; col < n; ++col) {
     if (col % 256 == 255 && deadline.Expired()) {
@@ -127,18 +119,7 @@ KktAssembly::KktAssembly(const InequalityForm& f, const Deadline& deadline) {
   base = Eigen::VectorXd::Zero(entries);
   for (const auto& [e, value] : q_entries) base(slot[e]) += value;
   for (int& d : diagonal) d = slot[d];
-  // 4. The terms grouped by value index, by a stable counting sort.
-  term_start.assign(entries + 1, 0);
-  for (const Term& t : terms) ++term_start[slot[t.index] + 1];
-  for (int v = 0; v < entries; ++v) term_start[v + 1] += term_start[v];
-  std::vector<int> next(term_start.begin(), term_start.end() - 1);
-  term_row.resize(terms.size());
-  term_coef.resize(terms.size());
-  for (const Term& t : terms) {
-    const int at = next[slot[t.index]]++;
-    term_row[at] = t.row;
-    term_coef[at] = t.coef;
-  }
+  for (Term& t : terms) t.index = slot[t.index];
 }
 
 bool KktSolver::Factor(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight) {

@@ -8,36 +8,6 @@
 #include "base/check.h"
 
 namespace mfp {
-namespace {
-
-// y[row[p]] -= value[p] * scale for p in [begin, end): rows distinct, so in any order.
-inline void ScatterUpdate(const int* row, const double* value, int begin, int end, double scale, double* y) {
-  int p = begin;
-  for (; p + 4 <= end; p += 4) {
-    const double u0 = value[p] * scale, u1 = value[p + 1] * scale;
-    const double u2 = value[p + 2] * scale, u3 = value[p + 3] * scale;
-    y[row[p]] -= u0;
-    y[row[p + 1]] -= u1;
-    y[row[p + 2]] -= u2;
-    y[row[p + 3]] -= u3;
-  }
-  for (; p < end; ++p) y[row[p]] -= value[p] * scale;
-}
-
-// x - sum of value[p] * y[row[p]] over p in [begin, end), subtracted in that order.
-inline double GatherReduce(const int* row, const double* value, int begin, int end, const double* y, double x) {
-  int p = begin;
-  for (; p + 4 <= end; p += 4) {
-    x -= value[p] * y[row[p]];
-    x -= value[p + 1] * y[row[p + 1]];
-    x -= value[p + 2] * y[row[p + 2]];
-    x -= value[p + 3] * y[row[p + 3]];
-  }
-  for (; p < end; ++p) x -= value[p] * y[row[p]];
-  return x;
-}
-
-}  // namespace
 
 void SparseLdlt::Analyse(const Matrix& upper) {
   MFP_CHECK(upper.rows() == upper.cols() && upper.isCompressed());
@@ -116,7 +86,7 @@ bool SparseLdlt::Factorize(const Matrix& upper) {
       const double yi = y_[i];
       y_[i] = 0.0;
       const double l_ki = yi / d_[i];
-      ScatterUpdate(l_row_.data(), l_value_.data(), l_start_[i], slot, yi, y_.data());
+      for (int p = l_start_[i]; p < slot; ++p) y_[l_row_[p]] -= l_value_[p] * yi;
       d -= l_ki * yi;
       l_value_[slot] = l_ki;
     }
@@ -132,11 +102,13 @@ Eigen::VectorXd SparseLdlt::Solve(const Eigen::VectorXd& b) const {
   for (int i = 0; i < n_; ++i) {  // L y = b, L unit lower triangular, by columns
     const double xi = x(i);
     if (xi == 0.0) continue;
-    ScatterUpdate(l_row_.data(), l_value_.data(), l_start_[i], l_start_[i + 1], xi, x.data());
+    for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) x(l_row_[p]) -= xi * l_value_[p];
   }
   for (int i = 0; i < n_; ++i) x(i) = (1.0 / d_[i]) * x(i);
   for (int i = n_ - 1; i >= 0; --i) {  // L' x = z, by rows of L'
-    x(i) = GatherReduce(l_row_.data(), l_value_.data(), l_start_[i], l_start_[i + 1], x.data(), x(i));
+    double xi = x(i);
+    for (int p = l_start_[i]; p < l_start_[i + 1]; ++p) xi -= l_value_[p] * x(l_row_[p]);
+    x(i) = xi;
   }
   return x;
 }

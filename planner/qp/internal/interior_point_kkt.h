@@ -59,12 +59,12 @@ struct KktAssembly {
   std::vector<int> position;      // variable j's row and column in the permuted K
   Eigen::VectorXd base;           // Q's values at their positions in the pattern
   std::vector<int> diagonal;      // value index of (j, j)
-  // The terms G(k, a) G(k, b) of G' diag(row_weight) G grouped by the value they add to:
-  // value v takes row_weight(term_row[t]) * term_coef[t] for t in [term_start[v],
-  // term_start[v + 1]), in the order of the symbolic product (so each value is the same
-  // sum, rounded the same, as when the terms were added in place one by one).
-  std::vector<int> term_start, term_row;
-  std::vector<double> term_coef;
+  struct Term {
+    int row;       // row k of G
+    int index;     // value index in the pattern
+    double coef;   // G(k, a) G(k, b)
+  };
+  std::vector<Term> terms;
 
   // The deadline passed while the pattern was built (checked every few hundred
   // columns): the assembly is incomplete and must not be used.
@@ -76,13 +76,10 @@ struct KktAssembly {
   KktAssembly(const InequalityForm& f, const Deadline& deadline);
 
   void Assemble(const Eigen::VectorXd& row_weight, const Eigen::VectorXd& bound_weight, SpMat* K) const {
-    double* values = K->valuePtr();
-    for (Eigen::Index v = 0; v < base.size(); ++v) {
-      double value = base(v);
-      for (int t = term_start[v]; t < term_start[v + 1]; ++t) value += row_weight(term_row[t]) * term_coef[t];
-      values[v] = value;
-    }
-    for (size_t j = 0; j < diagonal.size(); ++j) values[diagonal[j]] += bound_weight(static_cast<Eigen::Index>(j));
+    Eigen::Map<Eigen::VectorXd> values(K->valuePtr(), K->nonZeros());
+    values = base;
+    for (const Term& t : terms) values(t.index) += row_weight(t.row) * t.coef;
+    for (size_t j = 0; j < diagonal.size(); ++j) values(diagonal[j]) += bound_weight(j);
   }
   // v in the permuted order, and back.
   Eigen::VectorXd Permute(const Eigen::VectorXd& v) const {
@@ -98,7 +95,7 @@ struct KktAssembly {
 };
 
 // Terms of the symbolic product G'G the assembly stores (one per pair of variables
-// sharing a row, 16 bytes each while built, 12 kept): its work and memory, known before it is built.
+// sharing a row, 16 bytes each): its work and memory, known before it is built.
 double KktProductTerms(const InequalityForm& f);
 
 // K factorised once per iteration: its pattern is fixed through a solve (analysed once:

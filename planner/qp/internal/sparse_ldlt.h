@@ -8,11 +8,6 @@
 // last bit. What differs is where the symbolic work happens: SimplicialLDLT walks the
 // elimination tree for every row's pattern at every factorisation; here those patterns
 // and each entry's place in L are recorded once, by Analyse, and Factorize only computes.
-// The updates by one column of L (the factorisation's and the forward solve's) go to
-// distinct rows, so they are done four at a time (fewer loop instructions per update)
-// without changing any result; the order in which a row receives the updates of
-// different columns, which does change the rounding, is SimplicialLDLT's. The backward
-// solve's sums are taken in its order too, four terms per loop step.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
