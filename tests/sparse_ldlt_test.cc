@@ -1,5 +1,6 @@
 // The interior point's LDL' against Eigen's SimplicialLDLT, whose arithmetic it repeats:
-// the same factors and solves to the last bit, on one pattern refactorised many times.
+// the same factors and solves to the last bit, on one pattern refactorised many times;
+// and the Newton matrices it factorises (KktAssembly) against Eigen's sparse products.
 #include "planner/qp/internal/sparse_ldlt.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +9,9 @@
 #include <cmath>
 #include <random>
 #include <vector>
+
+#include "base/deadline.h"
+#include "planner/qp/internal/interior_point_kkt.h"
 
 namespace mfp {
 namespace {
@@ -85,6 +89,105 @@ TEST(SparseLdlt, FactorsAndSolvesExactlyAsSimplicialLdltOnEveryRefactorisation) 
       const Eigen::VectorXd residual = b - K.selfadjointView<Eigen::Upper>() * x;
       const double scale = K.cwiseAbs().toDense().maxCoeff() * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>();
       EXPECT_LT(residual.lpNorm<Eigen::Infinity>(), 1e-6 * scale);
+    }
+  }
+}
+
+// A footstep MIQP's shape: `steps` blocks of `per_step` variables, a chain cost between
+// consecutive steps, and rows coupling a step with itself and with the step before (the
+// reachability and region rows), its Newton matrices in the interior point's own minimum
+// degree order (KktAssembly).
+InequalityForm BandedByStep(int steps, int per_step, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_int_distribution<int> within(0, per_step - 1);
+  InequalityForm f;
+  f.n = steps * per_step;
+  std::vector<Eigen::Triplet<double>> g, q;
+  int rows = 0;
+  for (int s = 0; s < steps; ++s) {
+    for (int r = 0; r < 3 * per_step; ++r, ++rows) {
+      const int from = r % 2 == 0 && s > 0 ? s - 1 : s;
+      for (int e = 0; e < 4; ++e) g.emplace_back(rows, (e % 2 == 0 ? from : s) * per_step + within(rng), normal(rng));
+    }
+    for (int j = 0; j < per_step && s > 0; ++j) {
+      const int a = (s - 1) * per_step + j, b = s * per_step + j;
+      q.emplace_back(a, a, 1.0);
+      q.emplace_back(b, b, 1.0);
+      q.emplace_back(a, b, -1.0);
+      q.emplace_back(b, a, -1.0);
+    }
+  }
+  f.elastic = rows;
+  f.G.resize(rows, f.n);
+  f.G.setFromTriplets(g.begin(), g.end());
+  f.Gt = f.G.transpose();
+  f.Q.resize(f.n, f.n);
+  f.Q.setFromTriplets(q.begin(), q.end());
+  f.q = Eigen::VectorXd::Zero(f.n + rows);
+  f.d = Eigen::VectorXd::Zero(2 * rows + 2 * f.n);
+  return f;
+}
+
+TEST(SparseLdlt, SimplicialLdltsPivotsAndSolvesOnMinimumDegreeOrderedNewtonMatrices) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const InequalityForm f = BandedByStep(24, 8, seed);
+    const KktAssembly assembly(f, Deadline());
+    ASSERT_FALSE(assembly.interrupted);
+    SpMat K = assembly.pattern;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> decade(-8.0, 12.0);
+    std::normal_distribution<double> normal;
+    SparseLdlt ours;
+    Eigen::SimplicialLDLT<Matrix, Eigen::Upper, Eigen::NaturalOrdering<int>> eigen;
+    for (int step = 0; step < 4; ++step) {
+      Eigen::VectorXd row_weight(f.elastic), bound_weight(f.n);
+      for (Eigen::Index r = 0; r < row_weight.size(); ++r) row_weight(r) = std::pow(10.0, decade(rng));
+      for (Eigen::Index j = 0; j < bound_weight.size(); ++j) bound_weight(j) = std::pow(10.0, decade(rng));
+      assembly.Assemble(row_weight, bound_weight, &K);
+      if (step == 0) {
+        ours.Analyse(K);
+        eigen.analyzePattern(K);
+      }
+      ASSERT_TRUE(ours.Factorize(K));
+      eigen.factorize(K);
+      ASSERT_EQ(eigen.info(), Eigen::Success);
+      ASSERT_EQ(ours.FactorNonZeros(), eigen.matrixL().nestedExpression().nonZeros());
+      // the same pivots (so the same inertia) and the same solutions, to the last bit
+      const Eigen::VectorXd d = eigen.vectorD();
+      Eigen::VectorXd b(K.cols());
+      for (Eigen::Index i = 0; i < b.size(); ++i) b(i) = normal(rng);
+      const Eigen::VectorXd x = ours.Solve(b), expected = eigen.solve(b);
+      for (Eigen::Index i = 0; i < b.size(); ++i) {
+        ASSERT_EQ(ours.Pivots()(i), d(i));
+        ASSERT_GT(d(i), 0.0);  // K is positive definite
+        ASSERT_EQ(x(i), expected(i)) << "seed " << seed << " step " << step << " entry " << i;
+      }
+    }
+  }
+}
+
+TEST(KktAssembly, NewtonMatricesAreQPlusGtWGPlusBInThePermutedPattern) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const InequalityForm f = BandedByStep(12, 6, seed);
+    const KktAssembly assembly(f, Deadline());
+    ASSERT_FALSE(assembly.interrupted);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> decade(-8.0, 12.0);
+    Eigen::VectorXd row_weight(f.elastic), bound_weight(f.n);
+    for (Eigen::Index r = 0; r < row_weight.size(); ++r) row_weight(r) = std::pow(10.0, decade(rng));
+    for (Eigen::Index j = 0; j < bound_weight.size(); ++j) bound_weight(j) = std::pow(10.0, decade(rng));
+    SpMat K = assembly.pattern;
+    assembly.Assemble(row_weight, bound_weight, &K);
+    const Eigen::MatrixXd ours = Eigen::MatrixXd(K).selfadjointView<Eigen::Upper>();
+    Eigen::MatrixXd expected = Eigen::MatrixXd(f.Q) + Eigen::MatrixXd(f.Gt * row_weight.asDiagonal() * f.G);
+    expected.diagonal() += bound_weight;
+    for (int a = 0; a < f.n; ++a) {
+      for (int b = 0; b < f.n; ++b) {
+        const double scale = std::abs(expected(a, b)) + std::sqrt(std::abs(expected(a, a) * expected(b, b)));
+        ASSERT_NEAR(ours(assembly.position[a], assembly.position[b]), expected(a, b), 1e-13 * scale)
+            << "seed " << seed << " (" << a << ", " << b << ")";
+      }
     }
   }
 }

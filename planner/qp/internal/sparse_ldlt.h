@@ -27,6 +27,8 @@ class SparseLdlt {
   // K^-1 b with the last factors.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
 
+  // D of the last factors (its signs: K's inertia).
+  Eigen::Map<const Eigen::VectorXd> Pivots() const { return {d_.data(), static_cast<Eigen::Index>(d_.size())}; }
   Eigen::Index FactorNonZeros() const { return static_cast<Eigen::Index>(l_row_.size()); }
 
  private:
