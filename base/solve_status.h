@@ -7,7 +7,8 @@ namespace mfp {
 // (plan_t.status mirrors them), so append new values, never renumber.
 enum class SolveStatus : int {
   kOptimal = 0,          // proven optimal within the gap tolerance
-  kFeasible = 1,         // feasible plan, optimality not proven (node limit, heuristic)
+  kFeasible = 1,         // feasible plan, optimality not proven (node limit, heuristic, or
+                         // every node explored but the certified floors short of the gap)
   kTimeLimit = 2,        // time limit hit; best plan found so far is returned
   kInfeasible = 3,       // proven: no assignment satisfies the constraints
   kInvalidRequest = 4,   // malformed request (NaN, wrong leg count, limits exceeded, ...)
