@@ -424,10 +424,9 @@ void DrawWalks(const RobotModel& robot, const SeenVoxelJudge& judge, double reso
     w.goal_body_voxels = BodyVoxelsAt(robot, judge, w.goal, goal_feet);
     if (o.body_room_ends && w.start_body_voxels + w.goal_body_voxels > 0) continue;
     w.judge_step_m = JudgeStep(robot);
-    const bool joined =
-        EndsJoined(robot, judge, w.start, w.goal, w.judge_step_m) &&
-        (!o.legs_joined_ends || LegNotJoinedAtItsHeight(robot, judge, w.start, w.goal, w.judge_step_m) < 0);
-    if (!o.joined_ends || joined) {
+    if (!o.joined_ends ||
+        (EndsJoined(robot, judge, w.start, w.goal, w.judge_step_m) &&
+         (!o.legs_joined_ends || LegNotJoinedAtItsHeight(robot, judge, w.start, w.goal, w.judge_step_m) < 0))) {
       walks->push_back(w);
     } else if (static_cast<int>(unjoined->size()) < o.walks) {
       unjoined->push_back(w);

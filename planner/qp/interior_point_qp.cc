@@ -76,17 +76,14 @@ double LagrangianFloor(const InequalityForm& f, double objective, const Eigen::V
 // (convexity), and the least of g'(x - w) over the box is taken term by term. No bound
 // multiplier enters, so neither do their residuals, which LagrangianFloor charges over
 // each variable's whole box (the same certificate holds with rates max(0, g_j) from the
-// lower end and max(0, -g_j) from the upper end). Returns the floor and g. objective: f
-// at w (with its constant).
+// lower end and max(0, -g_j) from the upper end). objective: f at w (with its constant).
 double BoxFloor(const InequalityForm& f, double objective, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                const Eigen::VectorXd& w, const Eigen::VectorXd& z, const Eigen::VectorXd& r_d, Eigen::VectorXd* g) {
+                const Eigen::VectorXd& w, const Eigen::VectorXd& z, const Eigen::VectorXd& r_d) {
   const int n = f.n, E = f.elastic;
-  // r_d's x part is g plus the bound multipliers' part.
-  *g = r_d.head(n);
-  for (int j = 0; j < n; ++j) (*g)(j) -= z(2 * E + 2 * j) - z(2 * E + 2 * j + 1);
   double floor = objective + z.head(E).dot(f.G * w.head(n) - f.d.head(E));
   for (int j = 0; j < n; ++j) {
-    const double gj = (*g)(j);
+    // r_d's x part is g plus the bound multipliers' part.
+    const double gj = r_d(j) - (z(2 * E + 2 * j) - z(2 * E + 2 * j + 1));
     floor += gj > 0.0 ? gj * (lower(j) - w(j)) : gj * (upper(j) - w(j));
   }
   return floor;
@@ -107,9 +104,8 @@ void SetCostRates(const InequalityForm& f, const Eigen::VectorXd& lower, const E
   const int n = f.n, E = f.elastic;
   result->cost_floor =
       std::min(result->objective, LagrangianFloor(f, result->objective, lower, upper, w, s, z, r_d, r_p));
-  Eigen::VectorXd g;
   result->bound_floor =
-      std::min(result->objective, std::max(result->cost_floor, BoxFloor(f, result->objective, lower, upper, w, z, r_d, &g)));
+      std::min(result->objective, std::max(result->cost_floor, BoxFloor(f, result->objective, lower, upper, w, z, r_d)));
   result->lower_cost_rate.resize(n);
   result->upper_cost_rate.resize(n);
   for (int j = 0; j < n; ++j) {

@@ -46,10 +46,10 @@ struct RelaxationResult {
   // Optional: a floor of the relaxation's optimum proven without rates, at least
   // cost_floor and at most objective (for bounds only). -infinity: not given.
   double bound_floor = -kInfinity;
-  // What the solve proves of the relaxation's optimum, the bound a search may use: the
-  // higher of cost_floor and bound_floor when given; for kCutoff the objective (a floor
-  // by its contract); else the objective of a solver that certifies nothing (Ipopt),
-  // trusted to its tolerance.
+  // What a solved relaxation proves of its optimum, the bound a search may use: the
+  // higher of cost_floor and bound_floor when given; else the objective of a solver that
+  // certifies nothing (Ipopt), trusted to its tolerance. (The search reads it of solved
+  // results only: a kCutoff result's objective is already a floor by its contract.)
   double CertifiedFloor() const {
     const double floor = std::max(cost_floor, bound_floor);
     return std::isfinite(floor) ? floor : objective;

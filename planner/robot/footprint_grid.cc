@@ -77,6 +77,23 @@ void FootprintGrid::UpdateBoundary() {
   }
 }
 
+namespace {
+
+// The least `norm` of the per-axis gap from p to the box of each cell centred in
+// `centres` (half-side half_m) [m]; infinity when there is none.
+template <class Norm>
+double NearestEmptyCellGap(const std::vector<Eigen::Vector2d>& centres, double half_m, const Eigen::Vector2d& p,
+                           Norm norm) {
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& c : centres) {
+    const Eigen::Vector2d gap = ((p - c).cwiseAbs().array() - half_m).cwiseMax(0.0);
+    clearance = std::min(clearance, norm(gap));
+  }
+  return clearance;
+}
+
+}  // namespace
+
 double FootprintGrid::Clearance(const Eigen::Vector2d& p) const {
   MFP_CHECK_MSG(!boundary_stale_, "FootprintGrid::UpdateBoundary() not called after Set()");
   const double half = 0.5 * cell_m_;
@@ -89,25 +106,14 @@ double FootprintGrid::Clearance(const Eigen::Vector2d& p) const {
   }
   // Inside: the L-infinity distance from p to the nearest empty cell (a closed box).
   // The grid's outer ring is empty, so the boundary list bounds every square.
-  double clearance = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector2d& c : boundary_centres_m_) {
-    const Eigen::Vector2d gap = ((p - c).cwiseAbs().array() - half).cwiseMax(0.0);
-    clearance = std::min(clearance, gap.maxCoeff());
-  }
-  return clearance;
+  return NearestEmptyCellGap(boundary_centres_m_, half, p, [](const Eigen::Vector2d& gap) { return gap.maxCoeff(); });
 }
 
 double FootprintGrid::DiskClearance(const Eigen::Vector2d& p) const {
   MFP_CHECK_MSG(!boundary_stale_, "FootprintGrid::UpdateBoundary() not called after Set()");
   if (!OccupiedAt(p)) return 0.0;
   // As Clearance, with the Euclidean distance from p to each bordering empty cell's box.
-  const double half = 0.5 * cell_m_;
-  double clearance = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector2d& c : boundary_centres_m_) {
-    const Eigen::Vector2d gap = ((p - c).cwiseAbs().array() - half).cwiseMax(0.0);
-    clearance = std::min(clearance, gap.norm());
-  }
-  return clearance;
+  return NearestEmptyCellGap(boundary_centres_m_, 0.5 * cell_m_, p, [](const Eigen::Vector2d& gap) { return gap.norm(); });
 }
 
 }  // namespace mfp

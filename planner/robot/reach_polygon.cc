@@ -5,35 +5,12 @@
 #include <limits>
 
 #include "base/check.h"
+#include "geometry/convex_hull_2d.h"
 
 namespace mfp {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x();
-}
-
-// Convex hull, counter-clockwise, collinear points dropped (Andrew's monotone chain).
-std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> p) {
-  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (p.size() < 3) return p;
-  std::vector<Eigen::Vector2d> hull(2 * p.size());
-  size_t k = 0;
-  for (size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && Cross(hull[k - 2], hull[k - 1], p[i]) <= 1e-15) --k;
-    hull[k++] = p[i];
-  }
-  for (size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
-    while (k >= lower && Cross(hull[k - 2], hull[k - 1], p[i]) <= 1e-15) --k;
-    hull[k++] = p[i];
-  }
-  hull.resize(k - 1);
-  return hull;
-}
 
 double Support(const std::vector<Eigen::Vector2d>& poly, const Eigen::Vector2d& u) {
   double h = -kInf;
@@ -67,7 +44,7 @@ std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot) {
   for (const Eigen::Vector2d& r : reach) {
     for (const Eigen::Vector2d& q : box) sums.push_back(r + q);
   }
-  return ConvexHull(sums);
+  return ConvexHull2d(sums);
 }
 
 double StepsToBridge(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b,
