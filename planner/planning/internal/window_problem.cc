@@ -38,11 +38,6 @@ FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState
   problem.start_feet_world_m = state.stance;
   problem.gait_phase = state.phase;
   problem.start_yaw_rad = state.yaw;
-  // The goal's yaw as the turn nearest the stance's: the window's cost pulls the yaw to
-  // this number and its yaw grid spans from the stance's yaw to it, so a goal yaw taken
-  // as given would turn the body the long way round whenever the two differ by more than
-  // pi as numbers (a goal across the +-pi seam, or a stance yaw wound past it).
-  problem.goal_yaw_rad = state.yaw + std::remainder(problem.goal_yaw_rad - state.yaw, 2 * M_PI);
   problem.num_new_steps = steps;
   problem.regions.clear();
   for (int i : WindowRegionIndices(context.usable, state.stance, (steps + n - 1) / n, context.step_reach_m,
