@@ -133,6 +133,7 @@ class Search {
     double solve_s = 0.0;  // wall time of its solves
     int fallbacks = 0;        // of its solves, those the solver's fallback solved
     double fallback_s = 0.0;  // their wall time
+    int polished = 0, polish_attempts = 0;  // of its solves (RelaxationResult)
   };
 
   // Up to one node per worker: their relaxations are solved side by side, then the nodes
@@ -181,6 +182,8 @@ class Search {
     e.iterations += e.relaxation.iterations;
     e.fallbacks += e.relaxation.fallbacks;
     e.fallback_s += e.relaxation.fallback_time_s;
+    e.polished += e.relaxation.polished;
+    e.polish_attempts += e.relaxation.polish_attempts;
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
         warm != nullptr) {
       e.relaxation = state_.SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
@@ -188,6 +191,8 @@ class Search {
       e.iterations += e.relaxation.iterations;
       e.fallbacks += e.relaxation.fallbacks;
       e.fallback_s += e.relaxation.fallback_time_s;
+      e.polished += e.relaxation.polished;
+      e.polish_attempts += e.relaxation.polish_attempts;
     }
     e.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
@@ -202,6 +207,8 @@ class Search {
     result.node_fallbacks += e.fallbacks;
     result.fallbacks += e.fallbacks;
     result.fallback_time_s += e.fallback_s;
+    result.node_polished += e.polished;
+    result.node_polish_attempts += e.polish_attempts;
     const bool is_root = !root_done_;
     root_done_ = true;
     if (e.propagation_infeasible) {
@@ -474,6 +481,8 @@ void AddCounters(const BranchAndBoundResult& pass, BranchAndBoundResult* total) 
   total->node_fallbacks += pass.node_fallbacks;
   total->fallbacks += pass.fallbacks;
   total->fallback_time_s += pass.fallback_time_s;
+  total->node_polished += pass.node_polished;
+  total->node_polish_attempts += pass.node_polish_attempts;
   total->probed_nodes += pass.probed_nodes;
   total->rins_runs += pass.rins_runs;
   total->rins_improvements += pass.rins_improvements;
