@@ -32,9 +32,9 @@ TEST(InteriorPointPolish, TheCrossoverRecoversTheExactOptimumAndAFloorEqualToIt)
   ASSERT_EQ(plain.status, RelaxationStatus::kSolved);
   EXPECT_EQ(plain.polished, 0);
   EXPECT_EQ(plain.polish_attempts, 0);
-  // Without it: the optimum to the interior point's tolerance, the floor further below.
+  // Without it: the optimum to the interior point's tolerance only.
   EXPECT_GT(std::abs(plain.x(0) - 1.0), 1e-12);
-  EXPECT_LT(plain.CertifiedFloor(), 2.0 - 1e-10);
+  EXPECT_LE(plain.CertifiedFloor(), 2.0);
   for (const double polish_tolerance : {1e-8, 1e-6, 1e-4}) {
     InteriorPointOptions options;
     options.polish_tolerance = polish_tolerance;
@@ -49,7 +49,9 @@ TEST(InteriorPointPolish, TheCrossoverRecoversTheExactOptimumAndAFloorEqualToIt)
     // Reduced-cost rates from the bounds' side: x and y may only decrease from 1.
     EXPECT_EQ(r.lower_cost_rate(0), 0.0);
     EXPECT_GE(r.upper_cost_rate(0), 0.0);
-    if (polish_tolerance > 1e-8) EXPECT_LT(r.iterations, plain.iterations) << polish_tolerance;
+    if (polish_tolerance > 1e-8) {
+      EXPECT_LT(r.iterations, plain.iterations) << polish_tolerance;
+    }
   }
 }
 
@@ -94,29 +96,39 @@ TEST(InteriorPointPolish, AWrongGuessIsRejectedAndItsFloorStaysBelowTheOptimum) 
   const double penalty = 1e6;
   const InequalityForm f = BuildInequalityForm(p, p.var_lower, p.var_upper, penalty);
   ASSERT_EQ(f.elastic, 1);
-  // An iterate at the optimum whose row dual exceeds its slack: the row guessed active.
+  // An iterate at the optimum whose row dual exceeds its slack: the row guessed active
+  // (the guess reads only the slacks and duals; their mean product, 1e-3, keeps the bounds'
+  // slacks above its square root, so the bounds are guessed inactive).
   Eigen::VectorXd w(3), s(6), z(6);
   w << 0.5, 0.5, 1e-9;
-  s << 1.0 + 1e-9, 1e-9, 1.5, 0.5, 1.5, 0.5;  // row, e >= 0, (upper, lower) of x, of y
-  z << 10.0, penalty - 10.0, 1e-3, 1e-3, 1e-3, 1e-3;
-  const ActiveSetPolish wrong = PolishActiveSet(f, p, p.var_lower, p.var_upper, w, s, z, ActiveSetPolishOptions());
+  s << 1e-2, 1e-9, 1.5, 0.5, 1.5, 0.5;  // row, e >= 0, (upper, lower) of x, of y
+  z << 1e-1, penalty - 1e-1, 1e-3, 1e-3, 1e-3, 1e-3;
+  ActiveSetPolishOptions one_solve;
+  one_solve.max_rounds = 1;  // the guess alone, no correction
+  const ActiveSetPolish wrong = PolishActiveSet(f, p, p.var_lower, p.var_upper, w, s, z, one_solve);
   EXPECT_FALSE(wrong.accepted);
   // The guess put x on the row (1, 1) with a negative multiplier, clipped to 0: the box
   // certificate still holds, far below the optimum 0.
   EXPECT_NEAR(wrong.x(0), 1.0, 1e-9);
   EXPECT_LE(wrong.floor, 0.0);
   EXPECT_NEAR(wrong.floor, 0.5 - 2.0, 1e-9);
+  // With its correction rounds the row leaves the set (its multiplier is negative) and
+  // the second solve is the optimum.
+  const ActiveSetPolish corrected = PolishActiveSet(f, p, p.var_lower, p.var_upper, w, s, z, ActiveSetPolishOptions());
+  EXPECT_TRUE(corrected.accepted);
+  EXPECT_NEAR(corrected.x(0), 0.5, 1e-12);
+  EXPECT_NEAR(corrected.floor, 0.0, 1e-12);
   // The right guess from the same point (the row's dual below its slack) is accepted.
-  z(0) = 1e-6;
+  z(0) = 1e-4;
   const ActiveSetPolish right = PolishActiveSet(f, p, p.var_lower, p.var_upper, w, s, z, ActiveSetPolishOptions());
   EXPECT_TRUE(right.accepted);
   EXPECT_NEAR(right.objective, 0.0, 1e-15);
   EXPECT_NEAR(right.floor, 0.0, 1e-15);
 }
 
-// The solver with a crossover tried from iterates far from the optimum (the loosest
-// setting): a wrong guess sends it on to its own convergence, to the same optimum, with a
-// floor that still holds.
+// The solver with a crossover tried from an iterate far from the optimum (the loosest
+// setting, no correction round): the wrong guess sends it on to its own convergence, to
+// the same optimum, with a floor that still holds.
 TEST(InteriorPointPolish, AFailedCrossoverFallsBackToTheInteriorPointsOwnAnswer) {
   MiqpBuilder b;
   std::vector<int> x;
@@ -128,9 +140,12 @@ TEST(InteriorPointPolish, AFailedCrossoverFallsBackToTheInteriorPointsOwnAnswer)
   ASSERT_EQ(plain.status, RelaxationStatus::kSolved);
   InteriorPointOptions options;
   options.polish_tolerance = 0.9;  // the first iterates qualify
+  options.polish.max_rounds = 1;   // and their guesses stand uncorrected
   const RelaxationResult r = SolveQpInteriorPoint(p, p.var_lower, p.var_upper, nullptr, options);
   ASSERT_EQ(r.status, RelaxationStatus::kSolved);
   EXPECT_GE(r.polish_attempts, 1);
+  // The first guess failed: either the second one (at convergence) finished, or none did.
+  EXPECT_TRUE(r.polished == 0 || r.polish_attempts == 2) << r.polished << " " << r.polish_attempts;
   EXPECT_NEAR(r.objective, plain.objective, 1e-6 * (1.0 + std::abs(plain.objective)));
   EXPECT_LE(r.CertifiedFloor(), plain.objective + 1e-9);
   EXPECT_LE(r.CertifiedFloor(), r.objective);

@@ -366,6 +366,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
   KktSolver kkt(f, opt.deadline);
 
   int polish_attempts = 0;
+  double polish_floor = -kInfinity;  // the best certificate of the rejected guesses
   for (int iter = 0; iter < opt.max_iterations && kkt.ready(); ++iter) {
     result.iterations = iter;
     if (opt.deadline.Expired()) break;  // kIterationLimit below
@@ -375,11 +376,16 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
       ++polish_attempts;
       const ActiveSetPolish polish = PolishActiveSet(f, p, lower, upper, w, s, z, opt.polish);
       if (polish.accepted) return PolishedResult(p, polish, iter, polish_attempts);
+      polish_floor = std::max(polish_floor, polish.floor);
     }
     if (converged) {
       RelaxationResult done = ConvergedResult(f, p, lower, upper, w, s, z, r, opt, scale_d);
       done.iterations = iter;
       done.polish_attempts = polish_attempts;
+      // A rejected guess's box certificate still holds (any point, multipliers >= 0).
+      if (done.status == RelaxationStatus::kSolved) {
+        done.bound_floor = std::max(done.bound_floor, std::min(done.objective, polish_floor));
+      }
       return done;
     }
     // A node that cannot beat the incumbent is settled as soon as the floor proves it,

@@ -20,16 +20,23 @@ namespace mfp {
 struct ActiveSetPolishOptions {
   // Rows' and bounds' violation allowed at the polished point, relative to 1 + |d|_inf
   // (the interior point's primal scale).
-  double primal_tolerance = 1e-9;
+  double primal_tolerance = 1e-7;
   // objective - floor allowed, relative to max(1, |objective|): the check that the guess
   // was right (a wrong one leaves a multiplier of the wrong sign, which the floor pays).
   double gap = 1e-8;
-  // The KKT system [Q + dI, G_A'; G_A, -dI] is quasidefinite for d > 0, so an LDL' of it
+  // The KKT system [Q + D, G_A'; G_A, -dI] (D_jj = d (1 + |Q_jj|)) is quasidefinite for
+  // d > 0, so an LDL' of it
   // exists in any order even when G_A's rows are dependent or Q is singular on the free
   // variables; refinement against the unregularised system removes d's error where that
   // system is regular, and leaves the interior point's values where it is not.
-  double regularisation = 1e-8;
-  int refinement_steps = 4;
+  double regularisation = 1e-6;
+  int refinement_steps = 8;
+  // A multiplier this far below 0 (relative to 1 + |c|_inf) is of the wrong sign.
+  double dual_tolerance = 1e-9;
+  // KKT solves at most: the guess, then primal-dual active-set corrections (a free
+  // variable out of its box onto its bound, a violated row into the set, a bound or row
+  // whose multiplier has the wrong sign out of it) while they change the set.
+  int max_rounds = 4;
 };
 
 struct InteriorPointOptions {

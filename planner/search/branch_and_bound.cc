@@ -78,6 +78,8 @@ class Search {
   void StopOnceLong() { stop_once_long_ = true; }
   // Whether Run ended because the search became long (StopOnceLong), not on a limit.
   bool StoppedOnceLong() const { return stopped_once_long_; }
+  // After Run: every node was processed (no open, unresolved or cut-short subtree).
+  bool Exhausted() const { return exhausted_; }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -422,6 +424,7 @@ class Search {
     // limit, not a solver failure.
     if (state_.Active().Expired() && (root_failed_ || state_.HasUnresolved() || open)) hit_time_limit_ = true;
     const double open_bound = state_.UnexploredBound();
+    exhausted_ = !open && !hit_time_limit_ && !hit_node_limit_ && !state_.HasUnresolved();
     if (state_.HasIncumbent()) {
       result.bound = std::min(result.objective, std::max(result.bound, open_bound));
       if (!open && !state_.HasUnresolved()) result.bound = std::min(result.objective, state_.gap_pruned_bound());
@@ -461,6 +464,7 @@ class Search {
   bool root_done_ = false;
   bool stop_once_long_ = false;
   bool stopped_once_long_ = false;
+  bool exhausted_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
   bool root_infeasible_ = false;
@@ -529,7 +533,10 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   root.solve_time_s = elapsed();
   const bool settled = root.status == SolveStatus::kOptimal || root.status == SolveStatus::kInfeasible ||
                        root.status == SolveStatus::kInternalError;
-  if (settled || root.nodes >= options.max_nodes) return root;
+  // A first pass that exhausted its tree (an integral root whose certified floor misses
+  // the gap asked) is the answer too: cuts tighten open nodes, and there is none; a second
+  // pass would solve the same root to the same floor.
+  if (settled || first.Exhausted() || root.nodes >= options.max_nodes) return root;
   // A first pass kept to long searches that ended on its stall limit (not because it
   // became long) is the search's answer: a second pass would give it a second stall window.
   if (until_long && !first.StoppedOnceLong()) return root;
