@@ -230,14 +230,15 @@ int DropWrongSigned(const InequalityForm& f, const ActiveSetGuess& g, double dua
   return changes;
 }
 
-// One correction of set from its solved guess g, primal feasibility first: the violated
-// constraints join it; only when there is none do the wrong-signed ones leave (dropping
-// multipliers of a guess that is not yet feasible sent the corrections cycling on Table I).
-// Returns the number of changes (0: g is primal and dual feasible to the tolerances).
+// One primal-dual active-set correction of set from its solved guess g: the
+// wrong-signed constraints leave it and the violated ones join it, both at once (joining
+// first and dropping only once feasible finished fewer node QPs on Table I:
+// docs/measurements.md, proof9). Returns the number of changes (0: g is primal and dual
+// feasible to the tolerances).
 int CorrectSet(const InequalityForm& f, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                const ActiveSetGuess& g, double primal_tolerance, double dual_tolerance, ActiveSet* set) {
-  const int added = AddViolated(f, lower, upper, g, primal_tolerance, set);
-  return added > 0 ? added : DropWrongSigned(f, g, dual_tolerance, set);
+  const int dropped = DropWrongSigned(f, g, dual_tolerance, set);
+  return dropped + AddViolated(f, lower, upper, g, primal_tolerance, set);
 }
 
 }  // namespace
