@@ -275,7 +275,7 @@ ActiveSetPolish PolishActiveSet(const InequalityForm& f, const Miqp& p, const Ei
     const double gj = polish.gradient(j);
     floor += std::min(gj * (lower(j) - polish.x(j)), gj * (upper(j) - polish.x(j)));
   }
-  polish.floor = std::min(floor, polish.objective);
+  polish.floor = std::isfinite(floor) ? std::min(floor, polish.objective) : -kInfinity;
   polish.accepted = std::isfinite(floor) && violation <= tolerance &&
                     polish.objective - floor <= options.gap * std::max(1.0, std::abs(polish.objective));
   return polish;

@@ -22,7 +22,8 @@ struct ActiveSetPolish {
   // The box certificate of (x, z_rows), valid for any x and z_rows >= 0: every point of
   // the box that meets the rows costs at least
   //   f(x) + z_rows'(Gx - d) + sum_j min(g_j (lower_j - x_j), g_j (upper_j - x_j)).
-  double floor = 0.0;
+  // -infinity when the KKT system could not be solved (no certificate).
+  double floor = -kInfinity;
 };
 
 // Polishes the interior point's iterate (w, s, z) of f (built from p under lower/upper):
