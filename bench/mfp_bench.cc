@@ -71,6 +71,9 @@ struct Row {
   // of the search's [s].
   int node_fallbacks = 0, search_fallbacks = 0, plan_fallbacks = 0;
   double fallback_s = 0.0;
+  // The crossover on the nodes' own QPs (search.relaxation_polish; first window, first run):
+  // QPs it finished, active sets it tried.
+  int node_polished = 0, node_polish_attempts = 0;
   // The polisher's account of each window of the first run, and the plan's largest
   // reference/reachability box excess under exact R(yaw) [m].
   std::vector<std::pair<double, mfp::PolishReport>> windows;  // (window solve time [s], report)
@@ -129,6 +132,10 @@ void PrintRow(const Row& r) {
   if (r.root_cuts > 0) {
     std::printf("  %s root cut loop: %d cuts, root gap %.2e before cuts, %.2e after\n", r.name.c_str(), r.root_cuts,
                 r.root_gap_before_cuts, r.root_gap);
+  }
+  if (r.node_polish_attempts > 0) {
+    std::printf("  %s crossover: %d node QPs finished from their active sets, %d guesses tried\n", r.name.c_str(),
+                r.node_polished, r.node_polish_attempts);
   }
   std::fflush(stdout);
 }
@@ -199,7 +206,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   double root_bound_before_cuts = -mfp::kInfinity;
   int root_cuts = 0;
   double node_solve_ms = -1.0, node_iterations = -1.0;
-  int node_fallbacks = 0, search_fallbacks = 0;
+  int node_fallbacks = 0, search_fallbacks = 0, node_polished = 0, node_polish_attempts = 0;
   double fallback_s = 0.0;
   for (int k = 0; k < repeat; ++k) {
     const mfp::RelaxationSolverSet solvers =
@@ -240,6 +247,8 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                                            node_fallbacks = p.window_result.node_fallbacks;
                                            search_fallbacks = p.window_result.fallbacks;
                                            fallback_s = p.window_result.fallback_time_s;
+                                           node_polished = p.window_result.node_polished;
+                                           node_polish_attempts = p.window_result.node_polish_attempts;
                                          }
                                          for (const auto& [t, objective] : incumbents) {
                                            if (objective <= p.window_result.objective +
@@ -289,6 +298,8 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     row.node_fallbacks = node_fallbacks;
     row.search_fallbacks = search_fallbacks;
     row.fallback_s = fallback_s;
+    row.node_polished = node_polished;
+    row.node_polish_attempts = node_polish_attempts;
   }
   row.cpu_s = median(cpu_times);
   row.reaches_goal = plan.reaches_goal;

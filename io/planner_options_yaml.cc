@@ -287,6 +287,10 @@ void AddSearchKeys(Table* t) {
                    .Alias("reduced_cost_fixing").Advanced());
   t->push_back(Opt("search.early_cutoff", in(&B::early_cutoff),
                    "a node's relaxation stops once it cannot beat the incumbent").Alias("early_cutoff").Advanced());
+  t->push_back(Opt("search.relaxation_polish", in(&B::relaxation_polish), 0.0, 1e-2,
+                   "crossover: once a relaxation's interior point reaches this relative accuracy, finish from its "
+                   "active set (an exact optimum, its floor equal to it) and go on only when that fails (0: off)")
+                   .Advanced());
   t->push_back(Opt("search.root_cut_rounds", in(&B::root_cut_rounds), 0, 1000,
                    "rounds of cuts separated at the root after its first plan, before the search (0: off)")
                    .Alias("root_cut_rounds").Advanced());

@@ -86,5 +86,34 @@ TEST(CertifiedBound, FloorsWithinTheGapToleranceStillProve) {
   EXPECT_LE(r.gap, 1e-4);
 }
 
+// An integral root whose floor misses the gap asked: its tree is exhausted at the root,
+// so the root cut loop (which tightens open nodes) and its second pass have nothing to do.
+TEST(CertifiedBound, AnIntegralRootShortOfTheGapRunsNoRootCutLoop) {
+  // min -a - 2b s.t. a + b <= 2, binaries: the relaxation's optimum (1, 1) is integral.
+  MiqpBuilder b;
+  const int a = b.AddBinary("a"), bb = b.AddBinary("b");
+  b.AddRow("sum", LinExpr::Var(a) + LinExpr::Var(bb), -kInfinity, 2);
+  b.AddLinearCost(LinExpr::Var(a, -1) + LinExpr::Var(bb, -2));
+  const Miqp problem = b.Build();
+  BranchAndBoundOptions options;
+  options.early_cutoff = false;
+  options.long_search_only = 0;
+  int solves_without_cuts = 0;
+  for (const int rounds : {0, 5}) {
+    options.root_cut_rounds = rounds;
+    LaggingFloorSolver solver(0.05);
+    const BranchAndBoundResult r = SolveBranchAndBound(problem, solver, options);
+    EXPECT_NEAR(r.objective, -3.0, 1e-6) << rounds;
+    EXPECT_NE(r.status, SolveStatus::kOptimal) << rounds;
+    EXPECT_EQ(r.nodes, 1) << rounds;
+    EXPECT_EQ(r.root_cuts, 0) << rounds;
+    if (rounds == 0) {
+      solves_without_cuts = solver.solved;
+    } else {
+      EXPECT_EQ(solver.solved, solves_without_cuts);  // no cut round, no second pass
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mfp

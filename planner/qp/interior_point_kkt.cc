@@ -2,10 +2,49 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "base/check.h"
 
 namespace mfp {
+
+InequalityForm BuildInequalityForm(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                   double penalty) {
+  InequalityForm f;
+  f.n = p.num_variables();
+  // Rows: a'x - e <= u and -a'x - e <= -l, each with its own elastic variable.
+  std::vector<std::pair<int, double>> row_sides;  // (row, sign)
+  for (int i = 0; i < p.num_rows(); ++i) {
+    if (std::isfinite(p.row_upper(i))) row_sides.emplace_back(i, 1.0);
+    if (std::isfinite(p.row_lower(i))) row_sides.emplace_back(i, -1.0);
+  }
+  f.elastic = static_cast<int>(row_sides.size());
+  const int E = f.elastic;
+  std::vector<Eigen::Triplet<double>> g;
+  f.d.resize(2 * E + 2 * f.n);
+  for (int k = 0; k < E; ++k) {
+    const auto [row, sign] = row_sides[k];
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
+      g.emplace_back(k, static_cast<int>(it.col()), sign * it.value());
+    }
+    f.d(k) = sign > 0 ? p.row_upper(row) : -p.row_lower(row);
+    f.d(E + k) = 0.0;  // e >= 0
+  }
+  for (int j = 0; j < f.n; ++j) {  // variable bounds
+    MFP_CHECK(std::isfinite(lower(j)) && std::isfinite(upper(j)) && lower(j) < upper(j));
+    f.d(2 * E + 2 * j) = upper(j);
+    f.d(2 * E + 2 * j + 1) = -lower(j);
+  }
+  f.G.resize(E, f.n);
+  f.G.setFromTriplets(g.begin(), g.end());
+  f.Gt = f.G.transpose();
+  f.Q = p.Q;
+  f.q = Eigen::VectorXd::Zero(f.n + E);
+  f.q.head(f.n) = p.c;
+  f.q.tail(E).setConstant(penalty);
+  return f;
+}
 namespace {
 
 // A Newton system solved to this relative residual, as a multiple of the solve's

@@ -7,46 +7,10 @@
 
 #include "base/check.h"
 #include "planner/qp/internal/interior_point_kkt.h"
+#include "planner/qp/internal/interior_point_polish.h"
 
 namespace mfp {
 namespace {
-
-InequalityForm Build(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                     double penalty) {
-  InequalityForm f;
-  f.n = p.num_variables();
-  // Rows: a'x - e <= u and -a'x - e <= -l, each with its own elastic variable.
-  std::vector<std::pair<int, double>> row_sides;  // (row, sign)
-  for (int i = 0; i < p.num_rows(); ++i) {
-    if (std::isfinite(p.row_upper(i))) row_sides.emplace_back(i, 1.0);
-    if (std::isfinite(p.row_lower(i))) row_sides.emplace_back(i, -1.0);
-  }
-  f.elastic = static_cast<int>(row_sides.size());
-  const int E = f.elastic;
-  std::vector<Eigen::Triplet<double>> g;
-  f.d.resize(2 * E + 2 * f.n);
-  for (int k = 0; k < E; ++k) {
-    const auto [row, sign] = row_sides[k];
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(p.A, row); it; ++it) {
-      g.emplace_back(k, static_cast<int>(it.col()), sign * it.value());
-    }
-    f.d(k) = sign > 0 ? p.row_upper(row) : -p.row_lower(row);
-    f.d(E + k) = 0.0;  // e >= 0
-  }
-  for (int j = 0; j < f.n; ++j) {  // variable bounds
-    MFP_CHECK(std::isfinite(lower(j)) && std::isfinite(upper(j)) && lower(j) < upper(j));
-    f.d(2 * E + 2 * j) = upper(j);
-    f.d(2 * E + 2 * j + 1) = -lower(j);
-  }
-  f.G.resize(E, f.n);
-  f.G.setFromTriplets(g.begin(), g.end());
-  f.Gt = f.G.transpose();
-  f.Q = p.Q;
-  f.q = Eigen::VectorXd::Zero(f.n + E);
-  f.q.head(f.n) = p.c;
-  f.q.tail(E).setConstant(penalty);
-  return f;
-}
 
 // Largest alpha in (0, 1] keeping v + alpha dv >= 0 (v > 0), given inverse_v = 1 / v:
 // alpha = 1 / max(1, max_i -dv_i / v_i). One multiplying pass, no division, as it runs
@@ -340,12 +304,44 @@ void PredictorCorrectorStep(const NewtonSystem& newton, const KktSolver& kkt, do
   *z += alpha * dz;
 }
 
+// The crossover's result: x, objective and both floors the polished point's (its box
+// certificate, rates max(0, g_j) from the lower end and max(0, -g_j) from the upper end:
+// BoxFloor's with exact multipliers), the rows' rates its multipliers.
+RelaxationResult PolishedResult(const Miqp& p, const ActiveSetPolish& polish, int iterations, int attempts) {
+  RelaxationResult result;
+  result.status = RelaxationStatus::kSolved;
+  result.x = polish.x;
+  result.objective = polish.objective;
+  result.iterations = iterations;
+  result.cost_floor = result.bound_floor = polish.floor;
+  result.lower_cost_rate = polish.gradient.cwiseMax(0.0);
+  result.upper_cost_rate = (-polish.gradient).cwiseMax(0.0);
+  SetRowRates(p, polish.z_rows, &result);
+  result.polish_attempts = attempts;
+  result.polished = 1;
+  return result;
+}
+
+// Whether to try the crossover at this iterate: once at polish_tolerance, once more at
+// convergence (not twice at one iterate), and only while the elastic variables say the
+// rows can be met (an infeasible node's guess cannot pass the checks).
+bool PolishDue(const InequalityForm& f, const Residuals& r, const Eigen::VectorXd& w, const InteriorPointOptions& opt,
+               double scale_d, bool converged, int attempts) {
+  if (opt.polish_tolerance <= 0.0 || attempts >= 2 || (!converged && attempts >= 1)) return false;
+  InteriorPointOptions loose = opt;
+  loose.tolerance = std::max(opt.tolerance, opt.polish_tolerance);
+  if (!converged && !Converged(r, loose, scale_d)) return false;
+  if (converged && attempts == 1 && loose.tolerance == opt.tolerance) return false;  // tried at this iterate
+  const double violation = f.elastic ? w.tail(f.elastic).maxCoeff() : 0.0;
+  return violation <= std::max(opt.infeasible_violation, opt.infeasible_violation_per_tolerance * loose.tolerance * scale_d);
+}
+
 }  // namespace
 
 RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lower,
                                       const Eigen::VectorXd& upper, const Eigen::VectorXd* warm_start,
                                       const InteriorPointOptions& opt) {
-  const InequalityForm f = Build(p, lower, upper, opt.elastic_penalty);
+  const InequalityForm f = BuildInequalityForm(p, lower, upper, opt.elastic_penalty);
   const int n = f.n;
   RelaxationResult result;
 
@@ -369,14 +365,28 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
   }
   KktSolver kkt(f, opt.deadline);
 
+  int polish_attempts = 0;
+  double polish_floor = -kInfinity;  // the best certificate of the rejected guesses
   for (int iter = 0; iter < opt.max_iterations && kkt.ready(); ++iter) {
     result.iterations = iter;
     if (opt.deadline.Expired()) break;  // kIterationLimit below
     const Residuals r = ResidualsAt(f, p, w, s, z, scale_c);
-    if (Converged(r, opt, scale_d)) {
-      RelaxationResult converged = ConvergedResult(f, p, lower, upper, w, s, z, r, opt, scale_d);
-      converged.iterations = iter;
-      return converged;
+    const bool converged = Converged(r, opt, scale_d);
+    if (PolishDue(f, r, w, opt, scale_d, converged, polish_attempts)) {
+      ++polish_attempts;
+      const ActiveSetPolish polish = PolishActiveSet(f, p, lower, upper, w, s, z, opt.polish);
+      if (polish.accepted) return PolishedResult(p, polish, iter, polish_attempts);
+      polish_floor = std::max(polish_floor, polish.floor);
+    }
+    if (converged) {
+      RelaxationResult done = ConvergedResult(f, p, lower, upper, w, s, z, r, opt, scale_d);
+      done.iterations = iter;
+      done.polish_attempts = polish_attempts;
+      // A rejected guess's box certificate still holds (any point, multipliers >= 0).
+      if (done.status == RelaxationStatus::kSolved) {
+        done.bound_floor = std::max(done.bound_floor, std::min(done.objective, polish_floor));
+      }
+      return done;
     }
     // A node that cannot beat the incumbent is settled as soon as the floor proves it,
     // often many iterations before convergence.
@@ -394,6 +404,7 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     PredictorCorrectorStep(newton, kkt, r.mu, opt, &w, &s, &z);
   }
   result.status = RelaxationStatus::kIterationLimit;
+  result.polish_attempts = polish_attempts;
   result.x = w.head(n);
   result.objective = p.Objective(result.x);
   return result;

@@ -16,6 +16,29 @@
 
 namespace mfp {
 
+// The crossover's checks (InteriorPointOptions::polish_tolerance; interior_point_polish.h).
+struct ActiveSetPolishOptions {
+  // Rows' and bounds' violation allowed at the polished point, relative to 1 + |d|_inf
+  // (the interior point's primal scale).
+  double primal_tolerance = 1e-7;
+  // objective - floor allowed, relative to max(1, |objective|): the check that the guess
+  // was right (a wrong one leaves a multiplier of the wrong sign, which the floor pays).
+  double gap = 1e-8;
+  // The KKT system [Q + D, G_A'; G_A, -dI] (D_jj = d (1 + |Q_jj|)) is quasidefinite for
+  // d > 0, so an LDL' of it
+  // exists in any order even when G_A's rows are dependent or Q is singular on the free
+  // variables; refinement against the unregularised system removes d's error where that
+  // system is regular, and leaves the interior point's values where it is not.
+  double regularisation = 1e-6;
+  int refinement_steps = 8;
+  // A multiplier this far below 0 (relative to 1 + |c|_inf) is of the wrong sign.
+  double dual_tolerance = 1e-9;
+  // KKT solves at most: the guess, then primal-dual active-set corrections (a free
+  // variable out of its box onto its bound, a violated row into the set, a bound or row
+  // whose multiplier has the wrong sign out of it) while they change the set.
+  int max_rounds = 4;
+};
+
 struct InteriorPointOptions {
   double tolerance = 1e-8;          // relative residual and complementarity at convergence
   double acceptable_dual = 1e-3;    // relative dual residual accepted once complementarity is tiny
@@ -61,6 +84,15 @@ struct InteriorPointOptions {
   // fallback does not take over either (Ipopt's ordering alone took longer than the
   // plan's time limit on such a QP: docs/measurements.md).
   double max_kkt_terms = 2e7;
+  // Crossover (interior_point_polish.h), off at 0: once the iterate meets this relative
+  // accuracy (the convergence test with it as the tolerance; at least tolerance), the
+  // solver guesses the active set, solves its KKT system and returns that point when it
+  // is feasible and its certificate within polish.gap of its objective (exact optimum and
+  // floor); otherwise it iterates on and tries once more at convergence. A looser value
+  // stops the interior point sooner; a wrong guess costs one factorisation of the
+  // active set's system.
+  double polish_tolerance = 0.0;
+  ActiveSetPolishOptions polish;
 };
 
 // Solves min 0.5 x'Qx + c'x + constant s.t. row bounds, lower <= x <= upper (all finite,

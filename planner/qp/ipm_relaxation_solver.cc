@@ -19,6 +19,7 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     options.cutoff = request.cutoff;
     options.deadline = request.deadline;
     options.tolerance = std::max(options.tolerance, request.relative_tolerance);
+    if (request.polish_tolerance > 0.0) options.polish_tolerance = request.polish_tolerance;
     const Eigen::VectorXd& lower = request.LowerOr(problem);
     const Eigen::VectorXd& upper = request.UpperOr(problem);
     const Eigen::VectorXd* warm_start = request.WarmStart();
@@ -30,6 +31,8 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     result.status = r.status;
     result.over_work_budget = r.over_work_budget;
     result.iterations = r.iterations;
+    result.polish_attempts = r.polish_attempts;
+    result.polished = r.polished;
     result.x = reduced.Expand(r.x);
     // A cutoff's objective is its floor (the reduced problem's constant holds the fixed
     // variables' part), not the value at its unfinished point.

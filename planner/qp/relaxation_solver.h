@@ -67,6 +67,11 @@ struct RelaxationResult {
   // the wall time of both attempts [s]; 0 otherwise.
   int fallbacks = 0;
   double fallback_time_s = 0.0;
+  // Statistics of a crossover (RelaxationRequest::polish_tolerance): the active sets
+  // tried, and 1 when this result is a polished one (its floor certified by the polished
+  // point's multipliers); 0 without one.
+  int polish_attempts = 0;
+  int polished = 0;
 };
 
 // One solve's whole contract, as Drake's Solve(program, initial_guess, options): a
@@ -92,6 +97,10 @@ struct RelaxationRequest {
   // search that only needs bounds to a coarse gap need not pay for digits it will not
   // use); 0: the solver's own. Solvers without such a setting ignore it.
   double relative_tolerance = 0.0;
+  // Crossover, off at 0: the solver may finish from its iterate's active set once its
+  // relative residuals reach this (an exact optimum and a floor equal to it when the
+  // guess is right; its own method on otherwise). Solvers without one ignore it.
+  double polish_tolerance = 0.0;
 
   // The bounds in force: lower/upper, or the problem's own when empty.
   const Eigen::VectorXd& LowerOr(const Miqp& problem) const { return lower.size() ? lower : problem.var_lower; }

@@ -78,6 +78,8 @@ class Search {
   void StopOnceLong() { stop_once_long_ = true; }
   // Whether Run ended because the search became long (StopOnceLong), not on a limit.
   bool StoppedOnceLong() const { return stopped_once_long_; }
+  // After Run: every node was processed (no open, unresolved or cut-short subtree).
+  bool Exhausted() const { return exhausted_; }
 
   BranchAndBoundResult Run() {
     NodeQueue& queue = state_.queue();
@@ -133,6 +135,7 @@ class Search {
     double solve_s = 0.0;  // wall time of its solves
     int fallbacks = 0;        // of its solves, those the solver's fallback solved
     double fallback_s = 0.0;  // their wall time
+    int polished = 0, polish_attempts = 0;  // of its solves (RelaxationResult)
   };
 
   // Up to one node per worker: their relaxations are solved side by side, then the nodes
@@ -181,6 +184,8 @@ class Search {
     e.iterations += e.relaxation.iterations;
     e.fallbacks += e.relaxation.fallbacks;
     e.fallback_s += e.relaxation.fallback_time_s;
+    e.polished += e.relaxation.polished;
+    e.polish_attempts += e.relaxation.polish_attempts;
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
         warm != nullptr) {
       e.relaxation = state_.SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
@@ -188,6 +193,8 @@ class Search {
       e.iterations += e.relaxation.iterations;
       e.fallbacks += e.relaxation.fallbacks;
       e.fallback_s += e.relaxation.fallback_time_s;
+      e.polished += e.relaxation.polished;
+      e.polish_attempts += e.relaxation.polish_attempts;
     }
     e.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
@@ -202,6 +209,8 @@ class Search {
     result.node_fallbacks += e.fallbacks;
     result.fallbacks += e.fallbacks;
     result.fallback_time_s += e.fallback_s;
+    result.node_polished += e.polished;
+    result.node_polish_attempts += e.polish_attempts;
     const bool is_root = !root_done_;
     root_done_ = true;
     if (e.propagation_infeasible) {
@@ -415,6 +424,7 @@ class Search {
     // limit, not a solver failure.
     if (state_.Active().Expired() && (root_failed_ || state_.HasUnresolved() || open)) hit_time_limit_ = true;
     const double open_bound = state_.UnexploredBound();
+    exhausted_ = !open && !hit_time_limit_ && !hit_node_limit_ && !state_.HasUnresolved();
     if (state_.HasIncumbent()) {
       result.bound = std::min(result.objective, std::max(result.bound, open_bound));
       if (!open && !state_.HasUnresolved()) result.bound = std::min(result.objective, state_.gap_pruned_bound());
@@ -454,6 +464,7 @@ class Search {
   bool root_done_ = false;
   bool stop_once_long_ = false;
   bool stopped_once_long_ = false;
+  bool exhausted_ = false;
   bool hit_time_limit_ = false;
   bool hit_node_limit_ = false;
   bool root_infeasible_ = false;
@@ -474,6 +485,8 @@ void AddCounters(const BranchAndBoundResult& pass, BranchAndBoundResult* total) 
   total->node_fallbacks += pass.node_fallbacks;
   total->fallbacks += pass.fallbacks;
   total->fallback_time_s += pass.fallback_time_s;
+  total->node_polished += pass.node_polished;
+  total->node_polish_attempts += pass.node_polish_attempts;
   total->probed_nodes += pass.probed_nodes;
   total->rins_runs += pass.rins_runs;
   total->rins_improvements += pass.rins_improvements;
@@ -520,7 +533,10 @@ BranchAndBoundResult SolveWithRootCuts(const Miqp& problem, const std::vector<Re
   root.solve_time_s = elapsed();
   const bool settled = root.status == SolveStatus::kOptimal || root.status == SolveStatus::kInfeasible ||
                        root.status == SolveStatus::kInternalError;
-  if (settled || root.nodes >= options.max_nodes) return root;
+  // A first pass that exhausted its tree (an integral root whose certified floor misses
+  // the gap asked) is the answer too: cuts tighten open nodes, and there is none; a second
+  // pass would solve the same root to the same floor.
+  if (settled || first.Exhausted() || root.nodes >= options.max_nodes) return root;
   // A first pass kept to long searches that ended on its stall limit (not because it
   // became long) is the search's answer: a second pass would give it a second stall window.
   if (until_long && !first.StoppedOnceLong()) return root;

@@ -175,6 +175,9 @@ struct BranchAndBoundOptions {
   // Relative accuracy asked of each relaxation (RelaxationRequest::relative_tolerance)
   // when looser than the solver's own; 0: the solver's own.
   double relaxation_tolerance = 0.0;
+  // Crossover of each relaxation (RelaxationRequest::polish_tolerance), off at 0: its
+  // solver may finish from its active set once its residuals reach this relative accuracy.
+  double relaxation_polish = 0.0;
   // Optional: replaces a node's relaxation point x by one with more integral values that
   // is just as good (the caller knows where fractional values are only an artefact of
   // the encoding), within the node's bounds lower/upper; returns false when it changed
@@ -218,6 +221,10 @@ struct BranchAndBoundResult {
   // the wall time of the latter [s].
   int node_fallbacks = 0;
   int fallbacks = 0;
+  // The nodes' own solves the crossover finished (RelaxationResult::polished), and the
+  // active sets it tried on them: attempts - polished is its fallbacks to the solver's method.
+  int node_polished = 0;
+  int node_polish_attempts = 0;
   double fallback_time_s = 0.0;
   double solve_time_s = 0.0;
 };

@@ -61,6 +61,7 @@ RelaxationRequest SearchState::Request(Eigen::VectorXd lower, Eigen::VectorXd up
   request.deadline = Active();
   if (opt_.early_cutoff) request.cutoff = cutoff;
   request.relative_tolerance = opt_.relaxation_tolerance;
+  request.polish_tolerance = opt_.relaxation_polish;
   return request;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "base/deadline.h"
+#include "planner/miqp/miqp.h"
 #include "planner/qp/internal/sparse_ldlt.h"
 
 namespace mfp {
@@ -49,6 +50,11 @@ struct InequalityForm {
     return out;
   }
 };
+
+// p under the box lower/upper in that form, each row side's elastic variable costing
+// penalty per unit (lower < upper, all finite).
+InequalityForm BuildInequalityForm(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                                   double penalty);
 
 // Fills K = Q + G' diag(row_weight) G + diag(bound_weight) into a fixed pattern, with
 // the variables in elimination order: K's upper triangle is stored already permuted,
