@@ -32,9 +32,16 @@ void AddEdgeNormals(const std::vector<Eigen::Vector2d>& poly, std::vector<Eigen:
 std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m) {
   const double a = half_width_m;
   if (shape == ReachShape::kBox) return {{a, -a}, {a, a}, {-a, a}, {-a, -a}};
-  // The regular octagon of apothem a: its edges' normals at multiples of pi/4.
-  const double b = a * std::tan(M_PI / 8.0);
-  return {{a, -b}, {a, b}, {b, a}, {-b, a}, {-a, b}, {-a, -b}, {-b, -a}, {b, -a}};
+  // The regular polygon of apothem a, its edges' normals at multiples of 2 pi / sides from
+  // x: corner k between normals k and k + 1, a / cos(pi / sides) from the centre.
+  const int sides = ReachShapeSides(shape);
+  const double radius = a / std::cos(M_PI / sides);
+  std::vector<Eigen::Vector2d> corners;
+  for (int k = 0; k < sides; ++k) {
+    const double angle = (2 * k - 1) * M_PI / sides;
+    corners.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+  }
+  return corners;
 }
 
 std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot) {
