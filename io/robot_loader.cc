@@ -26,7 +26,7 @@ RobotModel LoadRobotShaped(const std::string& path, RobotDerivation* derivation,
     DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
     if (reach_shape) {
       options.reach_shape = *reach_shape;
-      options.reach_shape_given = "the caller";
+      options.reach_shape_given = "by the caller";
     }
     options.deadline = deadline;
     RobotDerivation derived = DeriveRobot(description, options);

@@ -59,7 +59,7 @@ OptionTable<RobotModel> MakeRobotOptionTable() {
       LoaderOpt<R>("legs[].nominal_offset", "[x, y]", "(required)", "foot in the body frame when standing").Unit("m"),
       LoaderOpt<R>("legs[].hip", "[x, y, z]", "-", "hip in the body frame").Unit("m"),
       LoaderOpt<R>("gait", "list of leg names or indices", "leg order", "cyclic order in which the legs move"),
-      LoaderOpt<R>("reach_shape", "one of box, octagon, hexadecagon", "octagon (URDF form); box (hand-written form)",
+      LoaderOpt<R>("reach_shape", "one of box, octagon, hexadecagon", "hexadecagon (URDF form); box (hand-written form)",
                    "a foot's reach polygon about its previous nominal spot, d_lim its half-width on each axis: the "
                    "paper's box, the octagon with |dx +- dy| <= sqrt(2) d_lim, or the regular 16-gon of apothem "
                    "d_lim (URDF form: the octagon and the 16-gon are derived inside the footprint's disk about the "
@@ -231,9 +231,9 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
   options.reach_shape = ReadReachShape(root, ctx, reach_shape, options.reach_shape);
   if (reach_shape) {
-    options.reach_shape_given = "the caller";
+    options.reach_shape_given = "by the caller";
   } else if (root["reach_shape"]) {
-    options.reach_shape_given = path;
+    options.reach_shape_given = "in " + path;
   }
   options = WithinDerivationBudget(options, &description);
   options.deadline = deadline;

@@ -461,7 +461,7 @@ void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions
   }
   const double corner = std::sqrt(2.0) * box;
   const std::string why =
-      !options.reach_shape_given.empty()           ? "given by " + options.reach_shape_given
+      !options.reach_shape_given.empty()           ? "given " + options.reach_shape_given
       : shape == DerivationOptions{}.reach_shape ? std::string("the default for a robot derived from a URDF, "
                                                                  "since it lies in every leg's reachable footprint "
                                                                  "at every body yaw")

@@ -44,8 +44,8 @@ struct DerivationOptions {
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
   // Which polygon d_lim is derived for. The default holds at every body yaw; the paper's box
   // only when a robot file states it (reach_shape_given).
-  ReachShape reach_shape = ReachShape::kOctagon;
-  std::string reach_shape_given;          // where the shape was stated ("" : the default)
+  ReachShape reach_shape = ReachShape::kHexadecagon;
+  std::string reach_shape_given;          // who stated it ("by the caller", "in FILE"; "": the default)
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
   // The request's deadline and stop flag: checked between legs and stance candidates and
