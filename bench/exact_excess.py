@@ -6,8 +6,8 @@ Recomputed from the plan JSON alone (DESIGN's plan JSON plus the README's extens
 for footstep i >= n, p_i is the centre of contacts of the n latest footsteps ending at i
 (footsteps before the plan are the start stance), r_nom,i = p_i + R(yaw_i) o_leg(i) with
 yaw_i the footstep's own `yaw`, and the excesses are |f_i - r_nom,i|_inf - l_bnd and
-|f_i - r_nom,i-n|_inf - d_lim (for a robot whose reach_shape is octagon, also
-|dx +- dy| / sqrt(2) - d_lim of f_i - r_nom,i-n). Also prints the final footstep's yaw and the yaw the final
+|f_i - r_nom,i-n|_inf - d_lim (for a robot whose reach_shape is octagon or hexadecagon, also
+|cos(phi) dx + sin(phi) dy| - d_lim of f_i - r_nom,i-n for its other faces' normals phi). Also prints the final footstep's yaw and the yaw the final
 feet imply (2-D Procrustes against the nominal offsets), to compare with a goal yaw.
 
     bench/exact_excess.py plan1.json [plan2.json ...] [--goal-yaw RAD]
@@ -15,6 +15,8 @@ feet imply (2-D Procrustes against the nominal offsets), to compare with a goal 
 import argparse
 import json
 import math
+
+SIDES = {"box": 4, "octagon": 8, "hexadecagon": 16}
 
 
 def excess(plan):
@@ -44,8 +46,10 @@ def excess(plan):
         ref = max(ref, max(abs(f[0] - a[0]), abs(f[1] - a[1])) - robot["l_bnd"])
         dx, dy = f[0] - b[0], f[1] - b[1]
         reach = max(reach, max(abs(dx), abs(dy)) - robot["d_lim"])
-        if robot.get("reach_shape") == "octagon":
-            reach = max(reach, max(abs(dx + dy), abs(dx - dy)) / math.sqrt(2.0) - robot["d_lim"])
+        sides = SIDES.get(robot.get("reach_shape", "box"), 4)
+        for k in range(1, sides // 2):
+            phi = 2.0 * math.pi * k / sides
+            reach = max(reach, abs(math.cos(phi) * dx + math.sin(phi) * dy) - robot["d_lim"])
     # Yaw the final feet imply.
     feet = {s["leg"]: (s["x"], s["y"]) for s in steps[-n:]}
     cx = sum(f[0] for f in feet.values()) / n

@@ -85,7 +85,7 @@ struct BenchFlags {
   std::vector<std::string> scans;
   std::vector<std::string> walk_robots;
   mfp::ScanWalkOptions walks;
-  std::string walk_reach;  // --walk-reach: "", box or octagon
+  std::string walk_reach;  // --walk-reach: "", box, octagon or hexadecagon
   bool digest = false;
 };
 
@@ -188,7 +188,7 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--walk-reach", f.walk_reach,
                  "the planner's reach polygon for the walks, replacing the robot file's (the draw and the judge keep "
                  "the box)")
-      ->check(CLI::IsMember({"box", "octagon"}));
+      ->check(CLI::IsMember({"box", "octagon", "hexadecagon"}));
   app.add_option("--walk-seed", walks.seed,
                  "the walks' draw: endpoints from this seed, mixed per scan file name and robot name (25: the draw "
                  "of the recorded walks)");
@@ -377,7 +377,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (!f.walk_reach.empty()) {
-    f.walks.reach_shape = f.walk_reach == "octagon" ? mfp::ReachShape::kOctagon : mfp::ReachShape::kBox;
+    for (mfp::ReachShape shape : {mfp::ReachShape::kBox, mfp::ReachShape::kOctagon, mfp::ReachShape::kHexadecagon}) {
+      if (f.walk_reach == mfp::ReachShapeName(shape)) f.walks.reach_shape = shape;
+    }
   }
   if (!f.walk_robots.empty()) {
     mfp::BenchScanWalks(f.scans, f.walk_robots, f.walks);

@@ -24,7 +24,10 @@ RobotModel LoadRobotShaped(const std::string& path, RobotDerivation* derivation,
   if (ext == "urdf") {
     RobotDescription description = ReadUrdfRobot(path);
     DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
-    options.reach_shape = reach_shape.value_or(options.reach_shape);
+    if (reach_shape) {
+      options.reach_shape = *reach_shape;
+      options.reach_shape_given = "by the caller";
+    }
     options.deadline = deadline;
     RobotDerivation derived = DeriveRobot(description, options);
     ValidateRobotModel(derived.model);

@@ -9,7 +9,9 @@
 
 namespace mfp {
 
-// FILE.urdf or FILE.yaml / FILE.yml. The result passed ValidateRobotModel. Throws
+// FILE.urdf or FILE.yaml / FILE.yml. The result passed ValidateRobotModel. A robot derived
+// from a URDF gets the reach polygon that holds at every body yaw (DerivationOptions'
+// reach_shape) unless its YAML states another. Throws
 // InputError (missing file, bad URDF or YAML, unknown extension, a leg that cannot stand).
 RobotModel LoadRobot(const std::string& path);
 

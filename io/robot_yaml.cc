@@ -59,10 +59,11 @@ OptionTable<RobotModel> MakeRobotOptionTable() {
       LoaderOpt<R>("legs[].nominal_offset", "[x, y]", "(required)", "foot in the body frame when standing").Unit("m"),
       LoaderOpt<R>("legs[].hip", "[x, y, z]", "-", "hip in the body frame").Unit("m"),
       LoaderOpt<R>("gait", "list of leg names or indices", "leg order", "cyclic order in which the legs move"),
-      LoaderOpt<R>("reach_shape", "one of box, octagon", "box",
+      LoaderOpt<R>("reach_shape", "one of box, octagon, hexadecagon", "hexadecagon (URDF form); box (hand-written form)",
                    "a foot's reach polygon about its previous nominal spot, d_lim its half-width on each axis: the "
-                   "paper's box, or the octagon with |dx +- dy| <= sqrt(2) d_lim (URDF form: derived inside the "
-                   "footprint's disk about the nominal foot, so it holds at every body yaw)"),
+                   "paper's box, the octagon with |dx +- dy| <= sqrt(2) d_lim, or the regular 16-gon of apothem "
+                   "d_lim (URDF form: the octagon and the 16-gon are derived inside the footprint's disk about the "
+                   "nominal foot, so they hold at every body yaw; the box does not)"),
   };
   for (const LimitField& f : kLimitFields) {
     const std::string range = "number in " + FormatRange(OptionKind::kDouble, f.min, f.max, false);
@@ -132,13 +133,17 @@ void SetProvenance(RobotModel* robot, const std::string& key, const std::string&
   robot->provenance.push_back(line);
 }
 
-// reach_shape: box (the default) or octagon; `given` (the caller's) replaces the key.
-ReachShape ReadReachShape(const YAML::Node& root, const YamlContext& ctx, std::optional<ReachShape> given) {
+// reach_shape: box, octagon or hexadecagon, `fallback` when absent; `given` (the caller's)
+// replaces the key.
+ReachShape ReadReachShape(const YAML::Node& root, const YamlContext& ctx, std::optional<ReachShape> given,
+                          ReachShape fallback) {
   const std::optional<std::string> text = OptionalString(root, ctx, "reach_shape");
   if (given) return *given;
-  if (!text || *text == "box") return ReachShape::kBox;
-  if (*text == "octagon") return ReachShape::kOctagon;
-  throw InputError(ctx.Child("reach_shape").Where() + ": '" + *text + "' is not one of box, octagon");
+  if (!text) return fallback;
+  for (ReachShape shape : {ReachShape::kBox, ReachShape::kOctagon, ReachShape::kHexadecagon}) {
+    if (*text == ReachShapeName(shape)) return shape;
+  }
+  throw InputError(ctx.Child("reach_shape").Where() + ": '" + *text + "' is not one of box, octagon, hexadecagon");
 }
 
 void ReadWeights(const YAML::Node& root, const YamlContext& ctx, PlannerWeights* weights) {
@@ -224,7 +229,12 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
   }
   DerivationOptions options;
   options.stance_height_m = OptionalDouble(root, ctx, "stance_height", 1e-4, 10.0);
-  options.reach_shape = ReadReachShape(root, ctx, reach_shape);
+  options.reach_shape = ReadReachShape(root, ctx, reach_shape, options.reach_shape);
+  if (reach_shape) {
+    options.reach_shape_given = "by the caller";
+  } else if (root["reach_shape"]) {
+    options.reach_shape_given = "in " + path;
+  }
   options = WithinDerivationBudget(options, &description);
   options.deadline = deadline;
   RobotDerivation derivation = DeriveRobot(description, options);
@@ -337,7 +347,7 @@ static RobotModel LoadRobotYamlUnguarded(const std::string& path, RobotDerivatio
                        std::to_string(f.min) + ", " + std::to_string(f.max) + "] " + f.unit + ")");
     }
   }
-  robot.reach_shape = ReadReachShape(root, ctx, reach_shape);
+  robot.reach_shape = ReadReachShape(root, ctx, reach_shape, ReachShape::kBox);
   robot.provenance.push_back(std::string("reach_shape = ") + ReachShapeName(robot.reach_shape) + ": " +
                              (reach_shape ? std::string("given by the caller")
                               : root["reach_shape"] ? "from " + path

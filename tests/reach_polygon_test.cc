@@ -35,6 +35,20 @@ TEST(ReachPolygon, TheStepPolygonReachesDLimPlusLBndOnAnAxisAndMoreOnADiagonal) 
   for (const Eigen::Vector2d& v : ReachPolygon(ReachShape::kOctagon, 0.2)) {
     EXPECT_NEAR(v.norm(), 0.2 / std::cos(M_PI / 8.0), 1e-12);
   }
+  // The 16-gon: the box's edges lie along four of its faces, so the sum keeps 16 corners.
+  robot.reach_shape = ReachShape::kHexadecagon;
+  const std::vector<Eigen::Vector2d> sixteen = StepPolygon(robot);
+  EXPECT_EQ(sixteen.size(), 16u);
+  EXPECT_NEAR(StepReachAlong(sixteen, {0, 1}), 0.3, 1e-12);
+  EXPECT_NEAR(StepReachAlong(sixteen, {1, 1}), 0.2 + std::sqrt(2.0) * 0.1, 1e-12);
+  const std::vector<Eigen::Vector2d> corners = ReachPolygon(ReachShape::kHexadecagon, 0.2);
+  ASSERT_EQ(corners.size(), 16u);
+  for (size_t k = 0; k < corners.size(); ++k) {
+    EXPECT_NEAR(corners[k].norm(), 0.2 / std::cos(M_PI / 16.0), 1e-12);
+    // Counter-clockwise, pi/8 apart, the first just below the x axis.
+    const double angle = std::atan2(corners[k].y(), corners[k].x());
+    EXPECT_NEAR(std::remainder(angle - (2.0 * k - 1.0) * M_PI / 16.0, 2.0 * M_PI), 0.0, 1e-12) << k;
+  }
 }
 
 TEST(ReachPolygon, StepsToBridgeIsTheGapOverTheStepsReachAcrossIt) {

@@ -1,14 +1,16 @@
 // Robots from URDFs: legs found, named and ordered; feet at collision-sphere centres;
-// derived models valid for 4, 6 and 8 legs; the derived square and height range really
+// derived models valid for 4, 6 and 8 legs; the derived reach polygon and height range really
 // reachable (inverse kinematics); every bad URDF a clear InputError and exit code 2.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include "base/check.h"
 #include "io/robot_loader.h"
+#include "planner/robot/reach_polygon.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
 
@@ -94,19 +96,19 @@ TEST_P(DerivedRobot, UrdfAloneGivesAValidModel) {
   EXPECT_GT(robot.stance_height_m, 0.0);
   EXPECT_FALSE(robot.provenance.empty());
 
-  // The d_lim square about each nominal foot is reachable at the stance height: inverse
-  // kinematics converges within the joint limits at points around its border, and the
-  // foot reaches dz_max above and below the nominal foot.
+  // The reach polygon about each nominal foot is reachable at the stance height: inverse
+  // kinematics converges within the joint limits at its corners and the middles of its
+  // edges (every body yaw: reach_soundness_test), and the foot reaches dz_max above and
+  // below the nominal foot.
   const RobotDescription description = ReadUrdfRobot(Source(path));
+  const std::vector<Eigen::Vector2d> corners = ReachPolygon(robot.reach_shape, robot.d_lim_m);
   for (int k = 0; k < robot.num_legs(); ++k) {
     const LegChain& chain = description.legs[k];
     const LegDerivation& leg = derivation.legs[k];
-    for (int i = 0; i < 16; ++i) {
-      const double t = -1.0 + 2.0 * (i % 4) / 3.0;
-      const Eigen::Vector2d edge = i < 4 ? Eigen::Vector2d(t, -1) : i < 8 ? Eigen::Vector2d(1, t)
-                                   : i < 12 ? Eigen::Vector2d(-t, 1) : Eigen::Vector2d(-1, -t);
-      const Eigen::Vector3d target =
-          leg.nominal_foot_body_m + robot.d_lim_m * Eigen::Vector3d(edge.x(), edge.y(), 0);
+    for (size_t i = 0; i < 2 * corners.size(); ++i) {
+      const Eigen::Vector2d& c = corners[i / 2];
+      const Eigen::Vector2d edge = i % 2 == 0 ? c : 0.5 * (c + corners[(i / 2 + 1) % corners.size()]);
+      const Eigen::Vector3d target = leg.nominal_foot_body_m + Eigen::Vector3d(edge.x(), edge.y(), 0);
       IkResult ik = SolveFootIk(chain, target, leg.nominal_q, 1e-5, 300);
       EXPECT_TRUE(ik.converged) << path << " leg " << k << " point " << i << " error "
                                 << ik.error_m;

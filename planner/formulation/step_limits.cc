@@ -8,6 +8,39 @@
 
 namespace mfp {
 
+namespace {
+
+// "reach_xpy" / "reach_xmy" on the diagonals, else the normal's angle in whole degrees
+// ("reach_p22", "reach_m67").
+std::string ReachFaceName(int k, int sides, double sign) {
+  if (8 * k == sides) return sign > 0 ? "reach_xpy" : "reach_xmy";
+  return std::string("reach_") + (sign > 0 ? "p" : "m") + std::to_string(360 * k / sides);
+}
+
+// The regular polygon's faces other than the axes', in metres along their normals at
+// +-2 pi k / sides from x: |cos(phi) dx + sin(phi) dy| <= d_lim of the move from r_nom,i-n
+// (the octagon's |dx +- dy| / sqrt(2) <= d_lim).
+void AddPolygonFaces(StepEncoder& e, const RobotModel& robot, int i, int sides) {
+  const int n = e.num_legs();
+  const StepExpr dx = e.Position(i, 0) - e.NominalFoot(i - n, 0);
+  const StepExpr dy = e.Position(i, 1) - e.NominalFoot(i - n, 1);
+  for (int k = 1; 4 * k < sides; ++k) {
+    for (const double sign : {1.0, -1.0}) {
+      StepExpr along;
+      if (8 * k == sides) {
+        along = (1.0 / std::sqrt(2.0)) * (dx + sign * dy);
+      } else {
+        const double phi = 2.0 * M_PI * k / sides;
+        along = std::cos(phi) * dx + (sign * std::sin(phi)) * dy;
+      }
+      e.AddRow(RowKind::kReachability, StepName(ReachFaceName(k, sides, sign).c_str(), i), FoldRotations(along),
+               -robot.d_lim_m, robot.d_lim_m);
+    }
+  }
+}
+
+}  // namespace
+
 void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
   const int n = e.num_legs();
   for (int axis = 0; axis < 2; ++axis) {
@@ -17,16 +50,8 @@ void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
     e.AddRow(RowKind::kReachability, std::string("reach_") + ax + "_" + std::to_string(i),
              e.Position(i, axis) - e.NominalFoot(i - n, axis), -robot.d_lim_m, robot.d_lim_m);
   }
-  if (robot.reach_shape == ReachShape::kOctagon) {
-    // The octagon's diagonal rows, scaled to metres along the diagonal: |dx +- dy| / sqrt(2) <= d_lim.
-    const double s = 1.0 / std::sqrt(2.0);
-    const StepExpr dx = e.Position(i, 0) - e.NominalFoot(i - n, 0);
-    const StepExpr dy = e.Position(i, 1) - e.NominalFoot(i - n, 1);
-    e.AddRow(RowKind::kReachability, StepName("reach_xpy", i), FoldRotations(s * (dx + dy)), -robot.d_lim_m,
-             robot.d_lim_m);
-    e.AddRow(RowKind::kReachability, StepName("reach_xmy", i), FoldRotations(s * (dx - dy)), -robot.d_lim_m,
-             robot.d_lim_m);
-  }
+  const int sides = ReachShapeSides(robot.reach_shape);
+  if (sides > 4) AddPolygonFaces(e, robot, i, sides);
   e.AddRow(RowKind::kHeightChange, StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m,
            robot.dz_max_m);
 }

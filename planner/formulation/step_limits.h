@@ -3,7 +3,8 @@
 // foot r_nom,i = p_i + R(theta_b(i)) o_l:
 //   reference box   |f_i - r_nom,i|_inf   <= l_bnd   (x, y)
 //   reachability    |f_i - r_nom,i-n|_inf <= d_lim   (x, y): from the previous configuration,
-//                   and |dx +- dy| / sqrt(2) <= d_lim of that move for the octagon (ReachShape)
+//                   and, for the octagon and the 16-gon (ReachShape), the other faces'
+//                   rows |cos(phi) dx + sin(phi) dy| <= d_lim of that move
 //   height change   |z_i - z_i-n|         <= dz_max
 // written once through a StepEncoder: the MIQP's rows (chords) and the polisher's (exact
 // sin/cos) alike, and evaluated by the plan validator.
@@ -17,7 +18,7 @@
 namespace mfp {
 
 // Reference box, reachability and height change of new step i, in this order: ref x,
-// reach x, ref y, reach y, (the octagon's reach x+y, reach x-y), dz.
+// reach x, ref y, reach y, (the polygon's other faces: the octagon's reach x+y, reach x-y), dz.
 void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i);
 
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the

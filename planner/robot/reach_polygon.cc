@@ -32,9 +32,31 @@ void AddEdgeNormals(const std::vector<Eigen::Vector2d>& poly, std::vector<Eigen:
 std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m) {
   const double a = half_width_m;
   if (shape == ReachShape::kBox) return {{a, -a}, {a, a}, {-a, a}, {-a, -a}};
-  // The regular octagon of apothem a: its edges' normals at multiples of pi/4.
-  const double b = a * std::tan(M_PI / 8.0);
-  return {{a, -b}, {a, b}, {b, a}, {-b, a}, {-a, b}, {-a, -b}, {-b, -a}, {b, -a}};
+  // The regular polygon of apothem a, its edges' normals at multiples of 2 pi / sides from x
+  // (sides a multiple of 8): its corners at angles (2j + 1) pi / sides, a / cos(pi / sides)
+  // from the centre. Those below the diagonal are computed, the rest mirrored from them, so
+  // that corners on one edge line share its coordinate exactly (the step polygon's hull
+  // then drops no corner and keeps no near-collinear one).
+  const int sides = ReachShapeSides(shape);
+  const double radius = a / std::cos(M_PI / sides);
+  std::vector<Eigen::Vector2d> octant = {{a, a * std::tan(M_PI / sides)}};
+  for (int j = 1; 4 * (2 * j + 1) < sides; ++j) {
+    const double angle = (2 * j + 1) * M_PI / sides;
+    octant.emplace_back(radius * std::cos(angle), radius * std::sin(angle));
+  }
+  std::vector<Eigen::Vector2d> quadrant = octant;
+  for (auto it = octant.rbegin(); it != octant.rend(); ++it) quadrant.emplace_back(it->y(), it->x());
+  // Counter-clockwise from the corner just below the x axis: the quadrants turned by pi/2.
+  std::vector<Eigen::Vector2d> corners = {{a, -octant.front().y()}};
+  for (int turn = 0; turn < 4; ++turn) {
+    for (size_t k = 0; k < quadrant.size(); ++k) {
+      if (turn == 3 && k + 1 == quadrant.size()) break;  // the first corner, already placed
+      const Eigen::Vector2d& q = quadrant[k];
+      corners.push_back(turn == 0 ? q : turn == 1 ? Eigen::Vector2d(-q.y(), q.x())
+                                        : turn == 2 ? Eigen::Vector2d(-q.x(), -q.y()) : Eigen::Vector2d(q.y(), -q.x()));
+    }
+  }
+  return corners;
 }
 
 std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot) {

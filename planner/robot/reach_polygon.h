@@ -1,6 +1,6 @@
 #pragma once
 // The plan-view moves one step of a foot can make under the robot's reach model
-// (robot_model.h): the new foot lies in the reach polygon (box or octagon, half-width d_lim)
+// (robot_model.h): the new foot lies in the reach polygon (box, octagon or 16-gon, half-width d_lim)
 // about its previous nominal spot, and the previous foot stood in the reference box
 // (half-side l_bnd) about that spot, so the step f_i - f_i-n lies in their Minkowski sum,
 // the step polygon. Two regions one step bridges are those whose gap that polygon spans:
@@ -12,8 +12,8 @@
 
 namespace mfp {
 
-// The reach polygon about the origin, counter-clockwise: the box's 4 corners or the
-// octagon's 8 [m].
+// The reach polygon about the origin, counter-clockwise: the box's 4 corners, the
+// octagon's 8 or the 16-gon's 16 [m].
 std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m);
 
 // Every move f_i - f_i-n of a later step (not a leg's first): the reach polygon plus the

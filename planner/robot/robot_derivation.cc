@@ -433,7 +433,8 @@ void AddModelLegs(const RobotDescription& robot, const std::vector<Eigen::Vector
 
 // d_lim for the chosen reach polygon, with the provenance of both polygons: the disk the
 // footprint holds about the nominal foot says whether the box holds at every body yaw.
-void AddReachLimit(const LegLimits& limits, double cell, ReachShape shape, RobotModel* model) {
+void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions& options, RobotModel* model) {
+  const ReachShape shape = options.reach_shape;
   const double half_cell = 0.5 * cell;
   const double box = std::max(0.0, limits.d_lim_raw - half_cell);
   const double disk = std::max(0.0, limits.disk_raw - half_cell);
@@ -445,22 +446,33 @@ void AddReachLimit(const LegLimits& limits, double cell, ReachShape shape, Robot
                                 limits.disk_leg + "', " + Fixed(limits.disk_raw) + " m) less half a cell, " +
                                 Fixed(disk) + " m";
   model->reach_shape = shape;
-  if (shape == ReachShape::kOctagon) {
-    model->d_lim_m = octagon;
-    model->provenance.push_back("d_lim = " + Fixed(octagon) + " m: derived, apothem of the reach octagon, cos(pi/8) * " +
-                                disk_line + " (the box would be " + Fixed(box) + " m: " + square_line + ")");
+  if (shape != ReachShape::kBox) {
+    // The regular polygon of apothem a has its corners a / cos(pi / sides) from its centre:
+    // inscribed in the disk, they lie in the footprint whatever the body's yaw.
+    const int sides = ReachShapeSides(shape);
+    const double apothem = std::cos(M_PI / sides) * disk;
+    model->d_lim_m = apothem;
+    model->provenance.push_back("d_lim = " + Fixed(apothem) + " m: derived, apothem of the reach " +
+                                ReachShapeName(shape) + ", cos(pi/" + std::to_string(sides) + ") * " + disk_line +
+                                " (the box would be " + Fixed(box) + " m: " + square_line + ")");
   } else {
     model->d_lim_m = box;
     model->provenance.push_back("d_lim = " + Fixed(box) + " m: derived, " + square_line);
   }
   const double corner = std::sqrt(2.0) * box;
+  const std::string why =
+      !options.reach_shape_given.empty()           ? "given " + options.reach_shape_given
+      : shape == DerivationOptions{}.reach_shape ? std::string("the default for a robot derived from a URDF, "
+                                                                 "since it lies in every leg's reachable footprint "
+                                                                 "at every body yaw")
+                                                   : std::string("chosen");
   model->provenance.push_back(
-      std::string("reach_shape = ") + ReachShapeName(shape) + ": " +
-      (shape == ReachShape::kOctagon ? "chosen" : "the paper's box, the default") + "; " + disk_line +
+      std::string("reach_shape = ") + ReachShapeName(shape) + ": " + why + "; " + disk_line +
       (corner <= disk + 1e-9 ? ", holds the box's corners (" + Fixed(corner) + " m) at every body yaw"
                              : ", does not hold the box's corners (" + Fixed(corner) +
                                    " m from it) when the body is turned from the world axes") +
-      "; the octagon inscribed in it has apothem " + Fixed(octagon) + " m");
+      "; the octagon inscribed in it has apothem " + Fixed(octagon) + " m, the 16-gon " +
+      Fixed(std::cos(M_PI / 16.0) * disk) + " m");
 }
 
 // The model's limits, foot radius, gait and weights, each with its provenance.
@@ -468,7 +480,7 @@ void AddModelLimits(const RobotDescription& robot, const LegLimits& limits, doub
                     const DerivationOptions& options, RobotModel* model) {
   double foot_radius = 0.0;
   for (const LegChain& leg : robot.legs) foot_radius = std::max(foot_radius, leg.foot_sphere_radius_m);
-  AddReachLimit(limits, cell, options.reach_shape, model);
+  AddReachLimit(limits, cell, options, model);
   model->l_bnd_m = options.l_bnd_fraction * model->d_lim_m;
   model->provenance.push_back("l_bnd = " + Fixed(model->l_bnd_m) + " m: derived, " +
                               Fixed(options.l_bnd_fraction, 2) + " * d_lim");

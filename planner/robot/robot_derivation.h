@@ -12,9 +12,9 @@
 //    towards the point below the hip; o_k = nominal foot - mean of the nominal feet;
 //  - d_lim: the half-width on each axis of the reach polygon (robot_model.h ReachShape):
 //    for the paper's box, the smallest of the legs' inscribed half-sides, less half a grid
-//    cell; for the octagon, the apothem of the regular octagon inscribed in the smallest of
-//    the legs' largest disks about their nominal feet, less half a grid cell (the octagon
-//    then lies in the footprint at every body yaw);
+//    cell; for the octagon and the 16-gon, the apothem of the regular polygon inscribed in
+//    the smallest of the legs' largest disks about their nominal feet, less half a grid cell
+//    (the polygon then lies in the footprint at every body yaw, which the box does not);
 //  - dz_max: the smallest, over legs and up/down, vertical travel of the foot from the
 //    nominal foot that stays reachable (continuation inverse kinematics);
 //  - l_bnd = l_bnd_fraction * d_lim; max yaw change: the yaw about the centre of contacts
@@ -42,7 +42,10 @@ struct DerivationOptions {
   int stance_candidates = 15;             // heights tried when choosing the stance height
   double stance_fraction = 0.70;          // preferred stance: this fraction of the downward reach
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
-  ReachShape reach_shape = ReachShape::kBox;  // which polygon d_lim is derived for
+  // Which polygon d_lim is derived for. The default holds at every body yaw; the paper's box
+  // only when a robot file states it (reach_shape_given).
+  ReachShape reach_shape = ReachShape::kHexadecagon;
+  std::string reach_shape_given;          // who stated it ("by the caller", "in FILE"; "": the default)
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
   // The request's deadline and stop flag: checked between legs and stance candidates and

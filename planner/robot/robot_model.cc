@@ -73,7 +73,29 @@ void ValidateRobotModel(const RobotModel& robot) {
   }
 }
 
-const char* ReachShapeName(ReachShape shape) { return shape == ReachShape::kOctagon ? "octagon" : "box"; }
+const char* ReachShapeName(ReachShape shape) {
+  switch (shape) {
+    case ReachShape::kOctagon:
+      return "octagon";
+    case ReachShape::kHexadecagon:
+      return "hexadecagon";
+    case ReachShape::kBox:
+      break;
+  }
+  return "box";
+}
+
+int ReachShapeSides(ReachShape shape) {
+  switch (shape) {
+    case ReachShape::kOctagon:
+      return 8;
+    case ReachShape::kHexadecagon:
+      return 16;
+    case ReachShape::kBox:
+      break;
+  }
+  return 4;
+}
 
 Eigen::Vector2d StanceCentreXY(const std::vector<Eigen::Vector3d>& feet_world_m) {
   MFP_CHECK(!feet_world_m.empty());

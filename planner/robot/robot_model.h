@@ -50,16 +50,22 @@ std::vector<Eigen::Vector2d> BodyFootprint(const BodyExtent& body, double x_m, d
 
 // The polygon a foot's new position keeps about its previous nominal spot (the paper's
 // reachability limit), world-aligned, d_lim its half-width on each axis:
-//   kBox      the paper's square |dx|, |dy| <= d_lim; its corners lie sqrt(2) d_lim from
-//             the spot, so it holds at every body yaw only where the leg reaches that far
-//             in every direction;
-//   kOctagon  the square with the diagonal rows |dx +- dy| <= sqrt(2) d_lim: the regular
-//             octagon of apothem d_lim, whose corners lie d_lim / cos(pi/8) from the spot;
-//             derived to lie in the leg's reachable footprint at every body yaw.
-enum class ReachShape { kBox, kOctagon };
+//   kBox          the paper's square |dx|, |dy| <= d_lim; its corners lie sqrt(2) d_lim
+//                 from the spot, so it holds at every body yaw only where the leg reaches
+//                 that far in every direction;
+//   kOctagon      the square with the diagonal rows |dx +- dy| <= sqrt(2) d_lim: the
+//                 regular octagon of apothem d_lim, corners d_lim / cos(pi/8) from the spot;
+//   kHexadecagon  the regular 16-gon of apothem d_lim (faces normal to multiples of pi/8),
+//                 corners d_lim / cos(pi/16) from the spot.
+// The octagon and the 16-gon are derived inside the leg's reachable footprint at every body
+// yaw (robot_derivation.h).
+enum class ReachShape { kBox, kOctagon, kHexadecagon };
 
-// "box" or "octagon".
+// "box", "octagon" or "hexadecagon".
 const char* ReachShapeName(ReachShape shape);
+
+// The shape's number of sides: 4, 8 or 16.
+int ReachShapeSides(ReachShape shape);
 
 struct RobotModel {
   std::string name;
