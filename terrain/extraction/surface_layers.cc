@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -295,6 +296,23 @@ void CollectRepairs(const HeightMap& hm, const std::vector<uint8_t>* unseen, con
       repairs->emplace_back(i, h0);  // one voxel off a level neighbourhood
     }
   }
+}
+
+// The cells within one cell (8-neighbours and itself) of the changed cells, ascending.
+std::vector<int> CellsAround(const HeightMap& hm, const std::vector<std::pair<int, float>>& changes) {
+  std::vector<int> cells;
+  cells.reserve(9 * changes.size());
+  for (const auto& change : changes) {
+    const int r = change.first / hm.cols, c = change.first % hm.cols;
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        if (hm.Inside(r + dr, c + dc)) cells.push_back(hm.Index(r + dr, c + dc));
+      }
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  return cells;
 }
 
 // Applies repairs in order. `before` (optional) gets each changed cell with its old height.
@@ -732,13 +750,26 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
   if (options.fill_single_cell_noise) {
     std::vector<std::vector<std::pair<int, float>>> before(layers->size());
     // Twice: a hole beside a displaced cell is filled once that cell is back.
+    // The second pass judges only the near cells within one cell of a first pass's change:
+    // the others see the heights and unseen bits the first pass judged (no repair then).
+    std::vector<std::vector<int>> around(layers->size());
     for (int pass = 0; pass < 2; ++pass) {
       each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
         band.changes.clear();
-        CollectRepairs(layer, &finish.unseen, band.near.data(), band.near.data() + band.near.size(), &band.changes);
+        std::vector<int> judged;
+        if (pass == 1) {
+          const std::vector<int>& touched = around[band.layer];
+          std::set_intersection(band.near.begin(), band.near.end(), touched.begin(), touched.end(),
+                                std::back_inserter(judged));
+        }
+        const std::vector<int>& cells = pass == 0 ? band.near : judged;
+        CollectRepairs(layer, &finish.unseen, cells.data(), cells.data() + cells.size(), &band.changes);
         RecordFills(layer, finish.unseen, band.changes, &finish.filled);
       });
       make_changes(&before, &LayerFinish::noise_cells_filled);
+      if (pass == 0) {
+        for (size_t l = 0; l < layers->size(); ++l) around[l] = CellsAround((*layers)[l], before[l]);
+      }
     }
     for (size_t l = 0; l < layers->size(); ++l) {
       if (!before[l].empty()) out[l].moved_as_seen = MovedCellsAsSeen((*layers)[l], before[l]);
