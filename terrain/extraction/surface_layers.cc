@@ -46,19 +46,32 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
-  const double x0 = static_cast<double>(x_lo), y0 = static_cast<double>(y_lo);
   std::vector<Footprint> prints;
   prints.reserve(static_cast<size_t>(end - begin));
   for (const OccupiedLeaf* it = begin; it != end; ++it) {
     const OccupiedLeaf& leaf = *it;
-    if (free_cells != nullptr) *free_cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
     const double n_d = leaf.size_m / res;
-    if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
-    const long long n = RoundToLongLong(n_d);
+    if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5) continue;  // the budget skips it too
+    const double x_d = (leaf.center_world_m.x() - 0.5 * leaf.size_m) / res;
+    const double y_d = (leaf.center_world_m.y() - 0.5 * leaf.size_m) / res;
+    const long long n = n_d <= 65536.5 ? RoundToLongLong(n_d) : 0, x = RoundToLongLong(x_d), y = RoundToLongLong(y_d);
+    if (free_cells != nullptr) {
+      // FreeLeafColumnCells from the rounded corner and width: the same whole numbers
+      // (exact below 2^52); beyond, its own arithmetic.
+      constexpr double kExact = 4503599627370496.0;  // 2^52
+      if (n_d <= 65536.5 && std::abs(x_d) < kExact && std::abs(y_d) < kExact) {
+        const long long dx = std::min(x + n, x_lo + hm.cols) - std::max(x, x_lo);
+        const long long dy = std::min(y + n, y_lo + hm.rows) - std::max(y, y_lo);
+        if (dx > 0 && dy > 0) *free_cells += static_cast<double>(dx) * static_cast<double>(dy);
+      } else {
+        const double x0 = static_cast<double>(x_lo), y0 = static_cast<double>(y_lo);
+        *free_cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
+      }
+    }
+    if (n_d > 65536.5) continue;
     const long long z0 = RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res);
     if (z0 > z_hi || z0 + n <= z_lo) continue;
-    const long long c0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo;
-    const long long r0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo;
+    const long long c0 = x - x_lo, r0 = y - y_lo;
     if (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0) continue;
     prints.push_back({z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
