@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "base/check.h"
@@ -43,6 +44,32 @@ TEST(HeightMapTest, RejectsExtentsBeyondTheCellLimit) {
   EXPECT_THROW(BuildHeightMap(map, 1000), InputError);
   map.leaves.push_back({Eigen::Vector3d(NAN, 0, 0), 0.02});
   EXPECT_THROW(BuildHeightMap(map), InputError);
+}
+
+// The layers' grid: BuildHeightMap's extent with every cell empty, its leaves' bounds
+// taken on any number of threads, the same refusals.
+TEST(HeightMapTest, TheGridAloneHasTheHeightMapsExtentOnAnyThreadsAndItsRefusals) {
+  OccupancyMap map;
+  map.resolution_m = 0.1;
+  for (int k = 0; k < 37; ++k) map.leaves.push_back({Eigen::Vector3d(0.05 + 0.1 * (k % 7), -0.35 + 0.2 * k, 0.05), 0.1});
+  map.leaves.push_back({Eigen::Vector3d(-0.4, 0.2, 1.0), 0.4});  // 4 x 4 cells, the lowest x
+  const HeightMap full = BuildHeightMap(map);
+  for (int threads : {1, 2, 3, 8}) {
+    const HeightMap grid = HeightMapGrid(map, kDefaultMaxHeightMapCells, threads);
+    EXPECT_EQ(grid.rows, full.rows) << threads;
+    EXPECT_EQ(grid.cols, full.cols) << threads;
+    EXPECT_EQ(grid.origin_world_m, full.origin_world_m) << threads;
+    EXPECT_EQ(grid.resolution_m, full.resolution_m) << threads;
+    ASSERT_EQ(grid.height_m.size(), full.height_m.size()) << threads;
+    EXPECT_TRUE(std::all_of(grid.height_m.begin(), grid.height_m.end(), [](float h) { return std::isnan(h); }));
+  }
+  EXPECT_EQ(full.cols, 13);  // x from -0.6 to 0.7 m
+  EXPECT_THROW(HeightMapGrid(map, 100, 2), InputError);
+  map.leaves.push_back({Eigen::Vector3d(0, NAN, 0), 0.1});
+  for (int threads : {1, 3}) EXPECT_THROW(HeightMapGrid(map, kDefaultMaxHeightMapCells, threads), InputError);
+  OccupancyMap empty;
+  empty.resolution_m = 0.1;
+  EXPECT_EQ(HeightMapGrid(empty, kDefaultMaxHeightMapCells, 2).rows, 0);
 }
 
 TEST(HeightMapTest, LocalFitRecoversATiltAndIgnoresAStepBeside) {

@@ -18,6 +18,7 @@
 #include "io/cli_values.h"
 #include "planner/robot/derivation_budget.h"
 #include "planner/robot/urdf_reader.h"
+#include "terrain/extraction/internal/surface_layers.h"
 #include "terrain/extraction/leaf_budget.h"
 #include "terrain/octomap/octomap_io.h"
 #include "tests/input_error_of.h"
@@ -68,6 +69,39 @@ TEST(LeafBudget, CountsEachLeafsFootprintNotItsNodes) {
   const std::string error = ErrorOf([] { CheckLeafColumnBudget(StackedLeaves(8, 4096), kDefaultMaxLeafColumns); });
   EXPECT_NE(error.find("SurfaceLayerOptions::max_leaf_columns"), std::string::npos) << error;
   EXPECT_NE(error.find("134217728"), std::string::npos) << error;
+}
+
+// The layers check the same budget with the same error, before expanding the leaves
+// into columns: the occupied leaves' part first, the free leaves' part summed by their
+// footprints' pass (free space asked) or by the budget's own (not asked).
+TEST(LeafBudget, TheLayersRefuseTheMapOverTheBudgetWithItsWholeCount) {
+  OccupancyMap map = StackedLeaves(1, 4);  // 16 column cells
+  map.free_leaves.push_back({Eigen::Vector3d(0.8, 0.8, 0.8), 1.6});  // 16 of its 256 inside the extent
+  map.free_leaves.push_back({Eigen::Vector3d(0.2, 0.2, 9.0), 0.4});  // 16, far above any surface
+  ASSERT_EQ(LeafColumnCells(map), 48u);
+  for (const bool seen_from_above : {true, false}) {
+    for (const int threads : {1, 2, 3}) {
+      SurfaceLayerOptions options;
+      options.require_seen_from_above = seen_from_above;
+      options.threads = threads;
+      options.max_leaf_columns = 48;
+      EXPECT_NO_THROW(BuildSurfaceLayers(map, options));
+      options.max_leaf_columns = 47;
+      const std::string error = ErrorOf([&] { BuildSurfaceLayers(map, options); });
+      EXPECT_NE(error.find("cover 48 x-y column cells"), std::string::npos) << error;
+      EXPECT_NE(error.find("SurfaceLayerOptions::max_leaf_columns"), std::string::npos) << error;
+      options.max_leaf_columns = 15;  // the occupied part alone is over
+      EXPECT_NE(ErrorOf([&] { BuildSurfaceLayers(map, options); }).find("cover 48 x-y"), std::string::npos);
+    }
+  }
+  // A map whose leaves the grid refuses (over max_cells) and over the budget names the
+  // budget, as when the budget was checked first.
+  SurfaceLayerOptions options;
+  options.max_cells = 4;
+  options.max_leaf_columns = 47;
+  EXPECT_NE(ErrorOf([&] { BuildSurfaceLayers(map, options); }).find("max_leaf_columns"), std::string::npos);
+  options.max_leaf_columns = 48;
+  EXPECT_NE(ErrorOf([&] { BuildSurfaceLayers(map, options); }).find("height map limit"), std::string::npos);
 }
 
 // A .bt like the 91-byte one (68 bytes): 8 occupied leaves 4096 voxels wide

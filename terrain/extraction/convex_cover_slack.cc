@@ -113,12 +113,26 @@ bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_in
   return true;
 }
 
-// Whether `part` overlaps no other piece's interior.
+// The pieces other than `self` whose bounds meet `box` grown by a rounding margin: the
+// only ones a part inside the box can meet (its bounds lie in the box).
+std::vector<size_t> PiecesNear(const Bounds& box, const std::vector<Bounds>& bounds, size_t self) {
+  constexpr double kMargin = 1e-6;  // [cells], far above a clip's rounding
+  Bounds grown = box;
+  grown.lo.array() -= kMargin;
+  grown.hi.array() += kMargin;
+  std::vector<size_t> near;
+  for (size_t k = 0; k < bounds.size(); ++k) {
+    if (k != self && bounds[k].Meets(grown)) near.push_back(k);
+  }
+  return near;
+}
+
+// Whether `part` overlaps no interior of the pieces `near` (PiecesNear of a box holding it).
 bool ClearOfOthers(const Polygon2d& part, const std::vector<Polygon2d>& pieces, const std::vector<Bounds>& bounds,
-                   size_t self) {
+                   const std::vector<size_t>& near) {
   const Bounds b = BoundsOf(part);
-  for (size_t k = 0; k < pieces.size(); ++k) {
-    if (k != self && bounds[k].Meets(b) && !InteriorsApart(part, pieces[k])) return false;
+  for (const size_t k : near) {
+    if (bounds[k].Meets(b) && !InteriorsApart(part, pieces[k])) return false;
   }
   return true;
 }
@@ -139,6 +153,8 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
     box.lo.array() -= options.most_cells;
     box.hi.array() += options.most_cells;
     bool moved_any = false;
+    // Only this piece changes while its sides move: the others it may meet are found once.
+    const std::vector<size_t> near = options.may_overlap ? std::vector<size_t>() : PiecesNear(box, bounds, k);
     for (size_t j = 0; j < planes.size(); ++j) {
       if (planes[j].normal.isZero()) continue;
       // What moving side j out by `shift` adds: the moved polygon beyond the side's line.
@@ -148,7 +164,7 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
         KeepBelowLineInto(moved_piece, -planes[j].normal, -planes[j].offset, &part);
         if (part.size() < 3) return true;
         return KeepsInsets(part, inset_at, max_inset_cells, &failed) &&
-               (options.may_overlap || ClearOfOthers(part, *pieces, bounds, k));
+               (options.may_overlap || ClearOfOthers(part, *pieces, bounds, near));
       };
       if (!sound(finest)) continue;  // no room: skip the bisection
       double lo = finest, hi = options.most_cells;

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "base/check.h"
 #include "base/round.h"
+#include "terrain/extraction/internal/parallel_work.h"
 
 namespace mfp {
 
@@ -19,7 +21,7 @@ Eigen::Vector2d HeightMap::CellCenter(int row, int col) const {
   return origin_world_m + resolution_m * Eigen::Vector2d(col + 0.5, row + 0.5);
 }
 
-HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
+HeightMap HeightMapGrid(const OccupancyMap& map, size_t max_cells, int threads) {
   const double res = map.resolution_m;
   if (!std::isfinite(res) || res <= 0.0) {
     throw InputError("occupancy map resolution must be a finite number > 0 m");
@@ -28,23 +30,40 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
   hm.resolution_m = res;
   if (map.leaves.empty()) return hm;
   // Integer cell bounds of every leaf; leaves are aligned to the grid at multiples of res.
+  struct Bounds {
+    long long lo_x = std::numeric_limits<long long>::max(), lo_y = lo_x;
+    long long hi_x = std::numeric_limits<long long>::min(), hi_y = hi_x;
+  };
+  const int parts = std::max(1, threads);
+  std::vector<Bounds> part_bounds(static_cast<size_t>(parts));
+  ParallelFor(parts, threads, [&](int p) {
+    const size_t n_leaves = map.leaves.size(), k = static_cast<size_t>(p), m = static_cast<size_t>(parts);
+    Bounds& b = part_bounds[k];
+    const double max_coord_m = 1e6;
+    for (size_t i = n_leaves * k / m; i < n_leaves * (k + 1) / m; ++i) {
+      const OccupiedLeaf& leaf = map.leaves[i];
+      const double cells = leaf.size_m / res;
+      if (!leaf.center_world_m.allFinite() || !std::isfinite(cells) || cells < 0.5 ||
+          cells > 65536.5 || leaf.center_world_m.cwiseAbs().maxCoeff() > max_coord_m) {
+        throw InputError("occupancy map: a leaf is not a finite cube between one voxel and the "
+                         "octree's extent");
+      }
+      const long long n = RoundToLongLong(cells);
+      const long long x0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
+      const long long y0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
+      b.lo_x = std::min(b.lo_x, x0);
+      b.lo_y = std::min(b.lo_y, y0);
+      b.hi_x = std::max(b.hi_x, x0 + n);
+      b.hi_y = std::max(b.hi_y, y0 + n);
+    }
+  });
   long long lo_x = std::numeric_limits<long long>::max(), lo_y = lo_x;
   long long hi_x = std::numeric_limits<long long>::min(), hi_y = hi_x;
-  const double max_coord_m = 1e6;
-  for (const OccupiedLeaf& leaf : map.leaves) {
-    const double cells = leaf.size_m / res;
-    if (!leaf.center_world_m.allFinite() || !std::isfinite(cells) || cells < 0.5 ||
-        cells > 65536.5 || leaf.center_world_m.cwiseAbs().maxCoeff() > max_coord_m) {
-      throw InputError("occupancy map: a leaf is not a finite cube between one voxel and the "
-                       "octree's extent");
-    }
-    const long long n = RoundToLongLong(cells);
-    const long long x0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res);
-    const long long y0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res);
-    lo_x = std::min(lo_x, x0);
-    lo_y = std::min(lo_y, y0);
-    hi_x = std::max(hi_x, x0 + n);
-    hi_y = std::max(hi_y, y0 + n);
+  for (const Bounds& b : part_bounds) {
+    lo_x = std::min(lo_x, b.lo_x);
+    lo_y = std::min(lo_y, b.lo_y);
+    hi_x = std::max(hi_x, b.hi_x);
+    hi_y = std::max(hi_y, b.hi_y);
   }
   const double cells = static_cast<double>(hi_x - lo_x) * static_cast<double>(hi_y - lo_y);
   if (cells > static_cast<double>(max_cells)) {
@@ -59,6 +78,14 @@ HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
   hm.origin_world_m = Eigen::Vector2d(lo_x * res, lo_y * res);
   hm.height_m.assign(static_cast<size_t>(hm.rows) * hm.cols,
                      std::numeric_limits<float>::quiet_NaN());
+  return hm;
+}
+
+HeightMap BuildHeightMap(const OccupancyMap& map, size_t max_cells) {
+  HeightMap hm = HeightMapGrid(map, max_cells);
+  const double res = hm.resolution_m;
+  const long long lo_x = RoundToLongLong(hm.origin_world_m.x() / res);
+  const long long lo_y = RoundToLongLong(hm.origin_world_m.y() / res);
   for (const OccupiedLeaf& leaf : map.leaves) {
     const int n = static_cast<int>(RoundToLongLong(leaf.size_m / res));
     const int c0 =

@@ -34,6 +34,11 @@ constexpr size_t kDefaultMaxHeightMapCells = size_t{4096} * 4096;
 HeightMap BuildHeightMap(const OccupancyMap& map,
                          size_t max_cells = kDefaultMaxHeightMapCells);
 
+// BuildHeightMap's grid (resolution, origin, rows, cols) with every cell NaN: its checks,
+// throws and limits, without the pass that expands each leaf into its cells' heights. The
+// leaves' bounds are taken in `threads` parts at once (the same grid for any count).
+HeightMap HeightMapGrid(const OccupancyMap& map, size_t max_cells = kDefaultMaxHeightMapCells, int threads = 1);
+
 // The local fit of the surface cells only (a layer of a large grid holds few of them).
 struct SurfaceAnalysis {
   std::vector<int> cells;                     // the surface cells (height not NaN), ascending

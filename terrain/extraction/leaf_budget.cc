@@ -62,17 +62,12 @@ uint64_t LeafColumnCells(const OccupancyMap& map, int threads) {
   ParallelFor(parts, threads, [&](int p) {
     const auto [begin, end] = range(map.free_leaves.size(), p);
     for (size_t i = begin; i < end; ++i) {
-      CellBox b;
-      if (!BoxOf(map.free_leaves[i], res, &b)) continue;
-      const double w = std::min(b.x1, extent.x1) - std::max(b.x0, extent.x0);
-      const double h = std::min(b.y1, extent.y1) - std::max(b.y0, extent.y0);
-      if (w > 0 && h > 0) free[static_cast<size_t>(p)] += w * h;
+      free[static_cast<size_t>(p)] += FreeLeafColumnCells(map.free_leaves[i], res, extent.x0, extent.y0, extent.x1, extent.y1);
     }
   });
   double total = 0.0;
   for (int p = 0; p < parts; ++p) total += occupied[static_cast<size_t>(p)] + free[static_cast<size_t>(p)];
-  if (!(total < 1.8e19)) return std::numeric_limits<uint64_t>::max();
-  return static_cast<uint64_t>(total);
+  return ColumnCellsFromSum(total);
 }
 
 void CheckLeafColumnBudget(const OccupancyMap& map, uint64_t max_leaf_columns, int threads) {

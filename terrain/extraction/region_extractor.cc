@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "base/check.h"
@@ -207,7 +208,27 @@ struct PatchOutcome {
   std::vector<CellFate> fates;      // kDecomposed with record_cell_fates: per patch cell
   bool cut_short = false;           // kDecomposed: the deadline had expired at its end
   bool pieces_alone = false;        // kDecomposed: by the convex pieces alone (DecomposePatch)
+  // kDecomposed: per polygon its region (id unset), or none where MakeRegionFromPolygon
+  // threw (made again in order, so that the error names the region's id).
+  std::vector<std::optional<ConvexRegion>> regions;
 };
+
+// The patch's polygons as regions on its plane (PatchOutcome::regions).
+std::vector<std::optional<ConvexRegion>> RegionsOf(const PlanarPatch& patch, const std::vector<Polygon2d>& polygons,
+                                                   double plane_tolerance_m) {
+  std::vector<std::optional<ConvexRegion>> regions(polygons.size());
+  std::vector<Eigen::Vector3d> vertices;
+  for (size_t k = 0; k < polygons.size(); ++k) {
+    vertices.clear();
+    for (const Eigen::Vector2d& xy : polygons[k]) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
+    try {
+      regions[k] = MakeRegionFromPolygon(-1, vertices, plane_tolerance_m);
+    } catch (const InputError&) {
+      regions[k].reset();
+    }
+  }
+  return regions;
+}
 
 // The patch's outcome; kNotStarted when the deadline has expired.
 PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<HeightMap>& layers,
@@ -241,6 +262,7 @@ PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<Heigh
   out.kind = PatchOutcome::kDecomposed;
   out.polygons = DecomposePatch(layers[static_cast<size_t>(layer_patch.layer)], patch, dec,
                                 options.record_cell_fates ? &out.fates : nullptr, &out.pieces_alone);
+  out.regions = RegionsOf(patch, out.polygons, options.plane_tolerance_voxels * res);
   // The cover checks the deadline before each piece: one that expired during this patch
   // may have cut its cover short, which the result must say (not count as a small patch).
   out.cut_short = options.deadline.Expired();
@@ -320,15 +342,20 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
         result->cell_fates[static_cast<size_t>(layer_patch.layer)][static_cast<size_t>(patch.cells[i])] = fate;
       }
     }
-    for (const Polygon2d& polygon : outcome.polygons) {
+    for (size_t k = 0; k < outcome.polygons.size(); ++k) {
       if (static_cast<int>(result->regions.size()) >= options.max_regions) {
         capped = true;
         break;
       }
-      std::vector<Eigen::Vector3d> vertices;
-      for (const Eigen::Vector2d& xy : polygon) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
-      result->regions.push_back(
-          MakeRegionFromPolygon(static_cast<int>(result->regions.size()), vertices, plane_tolerance_m));
+      const int id = static_cast<int>(result->regions.size());
+      if (outcome.regions[k]) {
+        result->regions.push_back(std::move(*outcome.regions[k]));
+        result->regions.back().id = id;
+      } else {
+        std::vector<Eigen::Vector3d> vertices;
+        for (const Eigen::Vector2d& xy : outcome.polygons[k]) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
+        result->regions.push_back(MakeRegionFromPolygon(id, vertices, plane_tolerance_m));
+      }
       result->region_layer.push_back(layer_patch.layer);
     }
   }

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -12,6 +12,7 @@
 #include "base/check.h"
 #include "base/round.h"
 #include "terrain/extraction/internal/parallel_work.h"
+#include "terrain/extraction/leaf_budget.h"
 
 namespace mfp {
 namespace {
@@ -36,10 +37,12 @@ struct Footprint {
 };
 
 // The footprints of the leaves that overlap the grid and the voxels [z_lo, z_hi] along z
-// (the others add no run that is asked), in order.
+// (the others add no run that is asked), in order. free_cells (optional) gets every
+// leaf's FreeLeafColumnCells inside the grid (the occupied extent) added, in order.
 std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm,
                                     long long z_lo = std::numeric_limits<long long>::min(),
-                                    long long z_hi = std::numeric_limits<long long>::max()) {
+                                    long long z_hi = std::numeric_limits<long long>::max(),
+                                    double* free_cells = nullptr) {
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
@@ -48,12 +51,27 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
   for (const OccupiedLeaf* it = begin; it != end; ++it) {
     const OccupiedLeaf& leaf = *it;
     const double n_d = leaf.size_m / res;
-    if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5 || n_d > 65536.5) continue;
-    const long long n = RoundToLongLong(n_d);
+    if (!leaf.center_world_m.allFinite() || !std::isfinite(n_d) || n_d < 0.5) continue;  // the budget skips it too
+    const double x_d = (leaf.center_world_m.x() - 0.5 * leaf.size_m) / res;
+    const double y_d = (leaf.center_world_m.y() - 0.5 * leaf.size_m) / res;
+    const long long n = n_d <= 65536.5 ? RoundToLongLong(n_d) : 0, x = RoundToLongLong(x_d), y = RoundToLongLong(y_d);
+    if (free_cells != nullptr) {
+      // FreeLeafColumnCells from the rounded corner and width: the same whole numbers
+      // (exact below 2^52); beyond, its own arithmetic.
+      constexpr double kExact = 4503599627370496.0;  // 2^52
+      if (n_d <= 65536.5 && std::abs(x_d) < kExact && std::abs(y_d) < kExact) {
+        const long long dx = std::min(x + n, x_lo + hm.cols) - std::max(x, x_lo);
+        const long long dy = std::min(y + n, y_lo + hm.rows) - std::max(y, y_lo);
+        if (dx > 0 && dy > 0) *free_cells += static_cast<double>(dx) * static_cast<double>(dy);
+      } else {
+        const double x0 = static_cast<double>(x_lo), y0 = static_cast<double>(y_lo);
+        *free_cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
+      }
+    }
+    if (n_d > 65536.5) continue;
     const long long z0 = RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res);
     if (z0 > z_hi || z0 + n <= z_lo) continue;
-    const long long c0 = RoundToLongLong((leaf.center_world_m.x() - 0.5 * leaf.size_m) / res) - x_lo;
-    const long long r0 = RoundToLongLong((leaf.center_world_m.y() - 0.5 * leaf.size_m) / res) - y_lo;
+    const long long c0 = x - x_lo, r0 = y - y_lo;
     if (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0) continue;
     prints.push_back({z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
@@ -293,6 +311,23 @@ void CollectRepairs(const HeightMap& hm, const std::vector<uint8_t>* unseen, con
   }
 }
 
+// The cells within one cell (8-neighbours and itself) of the changed cells, ascending.
+std::vector<int> CellsAround(const HeightMap& hm, const std::vector<std::pair<int, float>>& changes) {
+  std::vector<int> cells;
+  cells.reserve(9 * changes.size());
+  for (const auto& change : changes) {
+    const int r = change.first / hm.cols, c = change.first % hm.cols;
+    for (int dr = -1; dr <= 1; ++dr) {
+      for (int dc = -1; dc <= 1; ++dc) {
+        if (hm.Inside(r + dr, c + dc)) cells.push_back(hm.Index(r + dr, c + dc));
+      }
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  return cells;
+}
+
 // Applies repairs in order. `before` (optional) gets each changed cell with its old height.
 void ApplyRepairs(const std::vector<std::pair<int, float>>& repairs, HeightMap* hm, std::vector<int>* changed_cells,
                   std::vector<std::pair<int, float>>* before = nullptr) {
@@ -316,29 +351,34 @@ int FillSingleCellNoise(HeightMap* hm, const std::vector<uint8_t>* unseen, std::
 namespace {
 
 // Isolated single voxels: no occupied voxel in the 26-neighbourhood. One flag per run of
-// occ; counted in *isolated.
-std::vector<uint8_t> IsolatedVoxels(const HeightMap& grid, const Columns& occ, int* isolated) {
+// occ; counted in *isolated. Bands of rows on `threads` threads (each flag is its run's).
+std::vector<uint8_t> IsolatedVoxels(const HeightMap& grid, const Columns& occ, int threads, int* isolated) {
   std::vector<uint8_t> dropped(occ.runs.size(), 0);
-  for (int r = 0; r < grid.rows; ++r) {
-    for (int c = 0; c < grid.cols; ++c) {
-      const int col = grid.Index(r, c);
-      for (size_t i = occ.offset[col]; i < occ.offset[col + 1]; ++i) {
-        const Interval& run = occ.runs[i];
-        if (run.hi - run.lo != 1) continue;
-        bool alone = true;
-        for (int dr = -1; dr <= 1 && alone; ++dr) {
-          for (int dc = -1; dc <= 1 && alone; ++dc) {
-            if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
-            alone = !ColumnHas(occ, grid.Index(r + dr, c + dc), run.lo - 1, run.hi + 1);
+  const int band_rows = BandRows(grid.cols), bands = (grid.rows + band_rows - 1) / band_rows;
+  std::vector<int> band_isolated(static_cast<size_t>(bands), 0);
+  ParallelFor(bands, threads, [&](int b) {
+    for (int r = b * band_rows; r < std::min(grid.rows, (b + 1) * band_rows); ++r) {
+      for (int c = 0; c < grid.cols; ++c) {
+        const int col = grid.Index(r, c);
+        for (size_t i = occ.offset[col]; i < occ.offset[col + 1]; ++i) {
+          const Interval& run = occ.runs[i];
+          if (run.hi - run.lo != 1) continue;
+          bool alone = true;
+          for (int dr = -1; dr <= 1 && alone; ++dr) {
+            for (int dc = -1; dc <= 1 && alone; ++dc) {
+              if ((dr == 0 && dc == 0) || !grid.Inside(r + dr, c + dc)) continue;
+              alone = !ColumnHas(occ, grid.Index(r + dr, c + dc), run.lo - 1, run.hi + 1);
+            }
           }
-        }
-        if (alone) {
-          dropped[i] = 1;
-          ++*isolated;
+          if (alone) {
+            dropped[i] = 1;
+            ++band_isolated[static_cast<size_t>(b)];
+          }
         }
       }
     }
-  }
+  });
+  for (int n : band_isolated) *isolated += n;
   return dropped;
 }
 
@@ -350,17 +390,14 @@ struct Candidates {
   std::vector<int> col;       // the column of each candidate
 };
 
-// The tops of the runs with room above them (and, with free space known, seen from above).
-Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Columns* free,
-                             const std::vector<uint8_t>& dropped, const SurfaceLayerOptions& options,
-                             SurfaceLayers* out) {
-  const int cells = grid.rows * grid.cols;
-  const double res = grid.resolution_m;
-  Candidates cand;
-  cand.offset.assign(static_cast<size_t>(cells) + 1, 0);
-  const double clearance_voxels = options.clearance_m / res;
-  for (int col = 0; col < cells; ++col) {
-    cand.offset[col] = cand.height.size();
+// The tops of the runs of columns [begin, end) with room above them (and, with free space
+// known, seen from above), appended to heights; each column's first entry (relative to
+// heights' start) at offset[col]; the runs passed over counted in *no_room, *unseen.
+void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vector<uint8_t>& dropped,
+                         double clearance_voxels, double res, int begin, int end, size_t* offset,
+                         std::vector<float>* heights, int* no_room, int* unseen) {
+  for (int col = begin; col < end; ++col) {
+    offset[col] = heights->size();
     const size_t b = occ.offset[col], e = occ.offset[col + 1];
     for (size_t i = b; i < e; ++i) {
       if (dropped[i]) continue;
@@ -368,21 +405,60 @@ Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Co
       size_t next = i + 1;
       while (next < e && dropped[next]) ++next;
       if (next < e && static_cast<double>(occ.runs[next].lo - top) < clearance_voxels - 1e-6) {
-        ++out->no_room_above;
+        ++*no_room;
         continue;
       }
       if (free != nullptr && !ColumnHas(*free, col, top, top + 1)) {
-        ++out->not_seen_from_above;
+        ++*unseen;
         continue;
       }
-      cand.height.push_back(static_cast<float>(top * res));
+      heights->push_back(static_cast<float>(top * res));
     }
   }
-  cand.offset[cells] = cand.height.size();
-  cand.col.resize(cand.height.size());
-  for (int col = 0; col < cells; ++col) {
-    for (size_t k = cand.offset[col]; k < cand.offset[col + 1]; ++k) cand.col[k] = col;
+}
+
+// The tops of the runs with room above them (and, with free space known, seen from above),
+// in column order: bands of rows on options.threads threads, joined in order.
+Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Columns* free,
+                             const std::vector<uint8_t>& dropped, const SurfaceLayerOptions& options,
+                             SurfaceLayers* out) {
+  const int cells = grid.rows * grid.cols;
+  const int band_cols = BandRows(grid.cols) * std::max(1, grid.cols);
+  const int bands = cells > 0 ? (cells + band_cols - 1) / band_cols : 0;
+  struct Band {
+    std::vector<float> heights;
+    int no_room = 0, unseen = 0;
+  };
+  std::vector<Band> parts(static_cast<size_t>(bands));
+  Candidates cand;
+  cand.offset.assign(static_cast<size_t>(cells) + 1, 0);
+  ParallelFor(bands, options.threads, [&](int b) {
+    Band& band = parts[static_cast<size_t>(b)];
+    CandidatesOfColumns(occ, free, dropped, options.clearance_m / grid.resolution_m, grid.resolution_m,
+                        b * band_cols, std::min(cells, (b + 1) * band_cols), cand.offset.data(), &band.heights,
+                        &band.no_room, &band.unseen);
+  });
+  std::vector<size_t> start(static_cast<size_t>(bands) + 1, 0);
+  for (int b = 0; b < bands; ++b) {
+    const Band& band = parts[static_cast<size_t>(b)];
+    start[static_cast<size_t>(b) + 1] = start[static_cast<size_t>(b)] + band.heights.size();
+    out->no_room_above += band.no_room;
+    out->not_seen_from_above += band.unseen;
   }
+  cand.height.resize(start.back());
+  cand.col.resize(start.back());
+  cand.offset[cells] = start.back();
+  ParallelFor(bands, options.threads, [&](int b) {
+    const Band& band = parts[static_cast<size_t>(b)];
+    const size_t first = start[static_cast<size_t>(b)];
+    std::copy(band.heights.begin(), band.heights.end(), cand.height.begin() + static_cast<std::ptrdiff_t>(first));
+    const int end = std::min(cells, (b + 1) * band_cols);
+    for (int col = b * band_cols; col < end; ++col) {
+      cand.offset[col] += first;
+      const size_t next = col + 1 < end ? cand.offset[col + 1] + first : start[static_cast<size_t>(b) + 1];
+      for (size_t k = cand.offset[col]; k < next; ++k) cand.col[k] = col;
+    }
+  });
   return cand;
 }
 
@@ -392,18 +468,18 @@ std::vector<std::vector<int>> GrowSheets(const HeightMap& grid, const Candidates
   std::vector<int> cand_sheet(cand.height.size(), -1);
   std::vector<int> column_claim(static_cast<size_t>(grid.rows) * grid.cols, -1);
   std::vector<std::vector<int>> sheets;
-  std::deque<int> queue;
   for (size_t seed = 0; seed < cand.height.size(); ++seed) {
     if (cand_sheet[seed] >= 0) continue;
     const int id = static_cast<int>(sheets.size());
     sheets.emplace_back();
     cand_sheet[seed] = id;
     column_claim[cand.col[seed]] = id;
-    queue.push_back(static_cast<int>(seed));
-    while (!queue.empty()) {
-      const int k = queue.front();
-      queue.pop_front();
-      sheets[id].push_back(k);
+    // The sheet is its own first-in first-out queue: candidates join it in the order
+    // they are reached and are visited in that order.
+    std::vector<int>& sheet = sheets.back();
+    sheet.push_back(static_cast<int>(seed));
+    for (size_t head = 0; head < sheet.size(); ++head) {
+      const int k = sheet[head];
       const int col = cand.col[k];
       const int r = col / grid.cols, c = col % grid.cols;
       const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
@@ -423,7 +499,7 @@ std::vector<std::vector<int>> GrowSheets(const HeightMap& grid, const Candidates
         if (best < 0) continue;
         cand_sheet[best] = id;
         column_claim[ncol] = id;
-        queue.push_back(best);
+        sheet.push_back(best);
       }
     }
   }
@@ -687,13 +763,26 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
   if (options.fill_single_cell_noise) {
     std::vector<std::vector<std::pair<int, float>>> before(layers->size());
     // Twice: a hole beside a displaced cell is filled once that cell is back.
+    // The second pass judges only the near cells within one cell of a first pass's change:
+    // the others see the heights and unseen bits the first pass judged (no repair then).
+    std::vector<std::vector<int>> around(layers->size());
     for (int pass = 0; pass < 2; ++pass) {
       each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
         band.changes.clear();
-        CollectRepairs(layer, &finish.unseen, band.near.data(), band.near.data() + band.near.size(), &band.changes);
+        std::vector<int> judged;
+        if (pass == 1) {
+          const std::vector<int>& touched = around[band.layer];
+          std::set_intersection(band.near.begin(), band.near.end(), touched.begin(), touched.end(),
+                                std::back_inserter(judged));
+        }
+        const std::vector<int>& cells = pass == 0 ? band.near : judged;
+        CollectRepairs(layer, &finish.unseen, cells.data(), cells.data() + cells.size(), &band.changes);
         RecordFills(layer, finish.unseen, band.changes, &finish.filled);
       });
       make_changes(&before, &LayerFinish::noise_cells_filled);
+      if (pass == 0) {
+        for (size_t l = 0; l < layers->size(); ++l) around[l] = CellsAround((*layers)[l], before[l]);
+      }
     }
     for (size_t l = 0; l < layers->size(); ++l) {
       if (!before[l].empty()) out[l].moved_as_seen = MovedCellsAsSeen((*layers)[l], before[l]);
@@ -735,14 +824,33 @@ std::vector<Footprint> OccupiedFootprints(const OccupancyMap& map, const HeightM
   return prints;
 }
 
+// The grid (HeightMapGrid), its errors preceded by the leaf budget's as when the budget
+// was checked first.
+HeightMap GridAfterBudget(const OccupancyMap& map, const SurfaceLayerOptions& options) {
+  try {
+    return HeightMapGrid(map, options.max_cells, options.threads);
+  } catch (const InputError&) {
+    CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);
+    throw;
+  }
+}
+
+// Throws CheckLeafColumnBudget's error when `cells` (an exact sum of column cells, at
+// most the map's LeafColumnCells) is over the budget: the map's own count is then too.
+void CheckBudgetPart(const OccupancyMap& map, double cells, const SurfaceLayerOptions& options) {
+  if (ColumnCellsFromSum(cells) > options.max_leaf_columns) CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);
+}
+
 }  // namespace
 
 SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOptions& options) {
   MFP_CHECK(options.clearance_m > 0.0 && options.step_gate_m >= 0.0);
   SurfaceLayers out;
-  CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);  // before any leaf is expanded
-  // The grid and the validation of the leaves are the height map's.
-  HeightMap grid = BuildHeightMap(map, options.max_cells);
+  // The grid and the validation of the leaves are the height map's (its heights are not
+  // needed: the layers are built from the columns). The grid and the footprints are
+  // bounded by the map's size; the leaf budget is checked before any leaf is expanded
+  // into columns.
+  HeightMap grid = GridAfterBudget(map, options);
   if (grid.rows * grid.cols == 0) {
     out.layers.push_back(grid);
     out.solid_beside.emplace_back();
@@ -750,12 +858,21 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   }
   const bool know_free = !map.free_leaves.empty() && options.require_seen_from_above;
   const std::vector<Footprint> occupied = OccupiedFootprints(map, grid, options.threads);
-  // The occupied columns beside the free leaves' footprints (in parts, several for each
-  // thread so the threads end together), then the free columns in bands of rows.
+  // The leaf budget (CheckLeafColumnBudget) in parts, each before what it bounds is
+  // expanded: the occupied leaves' n^2 (the grid holds each whole) before their columns,
+  // all the leaves' before the free columns (the free leaves' part summed by the pass
+  // that takes their footprints; when that pass is not made, the budget's own).
+  double occupied_cells = 0.0;
+  for (const Footprint& f : occupied) occupied_cells += static_cast<double>(f.n) * f.n;
+  CheckBudgetPart(map, occupied_cells, options);
   long long z_lo = 0, z_hi = 0;
   const bool free_asked = know_free && FreeVoxelsAsked(occupied, grid.resolution_m, &z_lo, &z_hi);
+  if (!free_asked && !map.free_leaves.empty()) CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);
+  // The occupied columns beside the free leaves' footprints (in parts, several for each
+  // thread so the threads end together), then the free columns in bands of rows.
   const int parts = free_asked ? 2 * std::max(1, options.threads) : 0;
   std::vector<std::vector<Footprint>> free_prints(static_cast<size_t>(parts));
+  std::vector<double> free_cells(static_cast<size_t>(parts), 0.0);
   Columns occ, free;
   ParallelFor(1 + parts, options.threads, [&](int job) {
     if (job == 0) {
@@ -764,11 +881,16 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     }
     const size_t n = map.free_leaves.size(), k = static_cast<size_t>(job - 1), m = static_cast<size_t>(parts);
     const OccupiedLeaf* leaves = map.free_leaves.data();
-    free_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid, z_lo, z_hi);
+    free_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid, z_lo, z_hi, &free_cells[k]);
   });
+  if (free_asked) {
+    double all_cells = occupied_cells;
+    for (double cells : free_cells) all_cells += cells;
+    CheckBudgetPart(map, all_cells, options);
+  }
   if (know_free) free = UnsortedColumnsInBands(free_prints, grid, std::max(1, options.threads), options.threads);
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
-                                           ? IsolatedVoxels(grid, occ, &out.isolated_voxels)
+                                           ? IsolatedVoxels(grid, occ, options.threads, &out.isolated_voxels)
                                            : std::vector<uint8_t>(occ.runs.size(), 0);
   const Candidates cand = SurfaceCandidates(grid, occ, know_free ? &free : nullptr, dropped, options, &out);
   out.candidates = static_cast<int>(cand.height.size());

@@ -34,7 +34,7 @@ struct SurfaceLayerOptions {
   int enclosed_unseen_radius_cells = 0;
   size_t max_cells = kDefaultMaxHeightMapCells;
   uint64_t max_leaf_columns = kDefaultMaxLeafColumns;  // CheckLeafColumnBudget (leaf_budget.h)
-  int threads = 1;  // the occupied and the free columns on two threads when 2 or more (parallel_work.h)
+  int threads = 1;  // the layer stage's passes (grid bounds, footprints, columns, bands of rows) on this many (parallel_work.h)
 };
 
 // SurfaceLayers::unseen bits of an empty cell. kEmptyColumn: its column holds no occupied
