@@ -319,10 +319,14 @@ void ExpectAPlanAtEveryStall(const std::string& file_name, int steps) {
     EXPECT_TRUE(without_plan.empty()) << file_name << " " << steps << " steps: no plan when the deadline passed "
                                       << (before ? "during" : "after") << " QP k = " << Listed(without_plan);
   }
-  // The planner's own options (the exactness step on, the default overrun), the stall
-  // running past the whole plan's limit.
+  // The exactness step on (the planner's own options), the stall running past the whole
+  // plan's limit, so that the exactness step's reserve is spent too. The overrun is as
+  // generous as above: how far a loaded machine gets within the default is the bench's
+  // measure (docs/measurements.md), not a test's.
+  PlannerOptions exact = c.scenario.options;
+  exact.polish.completion_overrun_s = options.polish.completion_overrun_s;
   for (bool before : {false, true}) {
-    const std::vector<int> without_plan = StallsWithoutAPlan(c, c.scenario.options, before, /*past_the_plan=*/true);
+    const std::vector<int> without_plan = StallsWithoutAPlan(c, exact, before, /*past_the_plan=*/true);
     EXPECT_TRUE(without_plan.empty()) << file_name << " " << steps << " steps: no plan when the plan's limit passed "
                                       << (before ? "during" : "after") << " QP k = " << Listed(without_plan);
   }
