@@ -350,6 +350,29 @@ TEST(FirstPlanDeadline, EveryQpAtWhichTheDeadlinePassesStillGivesAPlanHexapod) {
   ExpectAPlanAtEveryStall("hexapod_stepping_stones_45.yaml", 36);
 }
 
+TEST(FirstPlanDeadline, AFirstPlanFoundAsThePlansTimeRunsOutIsStillPolished) {
+  // LittleDog 36 (its MIQP plan exceeds the exact reach by the chords' error): the clock
+  // passes the whole plan's limit right after the QP that follows its first plan, so the
+  // exactness step's reserve is spent before the polisher starts. The polisher of the
+  // plan's first plan runs within the overrun and makes it exact. (Before, it got a
+  // millisecond, made nothing exact, and the window was planned again within the chords'
+  // error with no time: on a loaded machine hexapod 36 ended no_solution that way with a
+  // plan in hand, 2 of 10 runs at --time-limit 1.)
+  Course c = LittleDogTableI(36);
+  c.request.time_limit_s = 1.0;
+  PlannerOptions options = c.scenario.options;
+  options.polish.completion_overrun_s = 10.0;  // generous for a loaded machine
+  const int first = QpsToTheFirstPlan(c, options);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  StallingSolver late(solvers.workers().front(), [first](const Miqp&, int call) { return call == first + 1; },
+                      /*before=*/false, Deadline::After(c.request.time_limit_s));
+  const Plan plan = PlanWith(c, options, &late);
+  ASSERT_TRUE(late.stalled);
+  ExpectCompletePlan(c, plan);
+  EXPECT_TRUE(plan.window_records.front().polished) << plan.message;
+  EXPECT_FALSE(plan.window_records.front().replanned) << plan.message;
+}
+
 // Passes solves on to `inner`, each marked as solved by the solver's fallback.
 class AllFallbackSolver : public RelaxationSolver {
  public:
