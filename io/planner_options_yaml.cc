@@ -369,7 +369,8 @@ void AddPolishKeys(Table* t) {
   t->push_back(Opt("polish.completion_overrun", in(&O::completion_overrun_s), 0, 10,
                    "a re-plan out of time completes the window's own choices with one QP, at most this long past the "
                    "plan's deadline; a window's search without a plan finishes its roundings and first-plan dive at "
-                   "most this long past its deadline").Unit("s").Advanced());
+                   "most this long past its deadline; the polisher of the plan's first window gets at least this long "
+                   "when the plan's time is spent").Unit("s").Advanced());
 }
 
 Table MakeTable() {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <functional>
 #include <set>
 #include <string>
@@ -42,8 +43,11 @@ class StallingSolver : public RelaxationSolver {
   using Pick = std::function<bool(const Miqp& problem, int call)>;
   StallingSolver(RelaxationSolver* inner, Pick stall_at, bool before = false)
       : inner_(inner), stall_at_(std::move(stall_at)), before_(before) {}
+  // Stalls until `until` has passed instead (the whole plan's time limit, say).
+  StallingSolver(RelaxationSolver* inner, Pick stall_at, bool before, const Deadline& until)
+      : inner_(inner), stall_at_(std::move(stall_at)), before_(before), until_(until) {}
   RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
-    if (++calls == 1) first_deadline_ = request.deadline;
+    if (++calls == 1) first_deadline_ = until_.finite() ? until_ : request.deadline;
     const bool stall = !stalled && stall_at_(problem, calls);
     if (stall && before_) Stall();
     RelaxationResult r = inner_->Solve(problem, request);
@@ -63,6 +67,7 @@ class StallingSolver : public RelaxationSolver {
   RelaxationSolver* inner_;
   Pick stall_at_;
   bool before_;
+  Deadline until_;
   Deadline first_deadline_;
 };
 
@@ -113,6 +118,28 @@ TEST(FirstPlanDeadline, ARoundingDiveCutByTheDeadlineAfterItsFirstStageStillGive
   const Plan plan = PlanWith(c, ShortClockOptions(c), &late);
   ASSERT_TRUE(late.stalled);
   ExpectCompletePlan(c, plan);
+}
+
+TEST(FirstPlanDeadline, ARoundingDiveBegunEarlyRunsToTheFirstPlansDeadlineNotToItsShare) {
+  // LittleDog 36: the clock passes the window's deadline by 1 s right after the rounding
+  // dive's first stage QP, within the first plan's overrun (10 s here). The dive's share
+  // (the window's time counted from the dive's start, a little after the window's own
+  // start) has passed too, but the first plan's deadline has not: the rounding dive carries
+  // on to its plan. (Before, the share ended it there, its first stage's point rounded to no
+  // plan, and the stage-search dive began again from the root: 18 or more QPs more, which
+  // a loaded machine could not fit in the overrun.)
+  Course c = LittleDogTableI(36);
+  c.request.time_limit_s = 1.0;
+  const int full = FullIntegers(c);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(c.scenario.options.solvers.backend, 1);
+  StallingSolver late(solvers.workers().front(), [full](const Miqp& p, int) { return p.num_integer() < full; },
+                      /*before=*/false, Deadline::After(c.request.time_limit_s + 1.0));
+  const Plan plan = PlanWith(c, ShortClockOptions(c), &late);
+  ASSERT_TRUE(late.stalled);
+  ExpectCompletePlan(c, plan);
+  // The rounding dive's 9 stage QPs (one per configuration, each rounding completed at
+  // its first proposal); no stage-search dive.
+  EXPECT_LE(plan.window_records.front().heuristic_relaxations, 9);
 }
 
 TEST(FirstPlanDeadline, ASeedCutByTheDeadlineWithoutAFirstPlanIsCompletedByRounding) {
@@ -218,6 +245,132 @@ TEST(FirstPlanDeadline, ARoundingDiveStageWhoseRoundingsAllFailIsNotTakenForOneC
   EXPECT_EQ(cut.stage_calls, 3) << "a QP cut by the share leaves the stage's other roundings unjudged";
   EXPECT_GT(cut.full_problem_calls, 0) << "a stage cut short was not completed";
   EXPECT_EQ(completed.relaxations, cut.calls);
+}
+
+// Counts the solves it passes on to `inner`.
+class CountingSolver : public RelaxationSolver {
+ public:
+  explicit CountingSolver(RelaxationSolver* inner) : inner_(inner) {}
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    ++calls;
+    return inner_->Solve(problem, request);
+  }
+  std::string Name() const override { return "counting " + inner_->Name(); }
+  int calls = 0;
+
+ private:
+  RelaxationSolver* inner_;
+};
+
+// The QPs a window's search solves up to its first plan, its root relaxation included
+// (the solve after which the first incumbent was offered), on an unhurried clock.
+int QpsToTheFirstPlan(const Course& c, const PlannerOptions& options) {
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  CountingSolver counting(solvers.workers().front());
+  int first = -1;
+  PlannerOptions counted = options;
+  counted.branch_and_bound.on_incumbent = [&](const BranchAndBoundResult&) {
+    if (first < 0) first = counting.calls;
+  };
+  const Plan plan = PlanFootsteps(c.robot, c.regions, c.request, counted, std::vector<RelaxationSolver*>{&counting});
+  EXPECT_TRUE(HasPlan(plan.status)) << ToString(plan.status) << ": " << plan.message;
+  return first;
+}
+
+// Every QP index k from the root relaxation's to the first plan's, the deadline passing
+// right after QP k (or, with `before`, while QP k runs: it starts once the deadline has
+// passed): the indices at which the search ended without a plan. A root relaxation cut
+// by the deadline (k = 1 with `before`) has nothing to round and is left out.
+// With `past_the_plan`, the stall lasts until the whole plan's time limit has passed
+// (the exactness step's reserve spent too), and one QP past the first plan is swept.
+std::vector<int> StallsWithoutAPlan(const Course& c, const PlannerOptions& options, bool before,
+                                    bool past_the_plan = false) {
+  const int first = QpsToTheFirstPlan(c, options);
+  EXPECT_GE(first, 1);
+  std::vector<int> without_plan;
+  for (int k = before ? 2 : 1; k <= first + (past_the_plan ? 1 : 0); ++k) {
+    const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+    const Deadline plan_deadline = past_the_plan ? Deadline::After(c.request.time_limit_s) : Deadline();
+    StallingSolver late(solvers.workers().front(), [k](const Miqp&, int call) { return call == k; }, before,
+                        plan_deadline);
+    const Plan plan = PlanWith(c, options, &late);
+    if (!HasPlan(plan.status)) {
+      without_plan.push_back(k);
+      std::printf("  k = %d%s: %s: %s\n", k, before ? " (during)" : "", ToString(plan.status).c_str(),
+                  plan.message.c_str());
+    }
+  }
+  return without_plan;
+}
+
+std::string Listed(const std::vector<int>& ks) {
+  std::string s;
+  for (int k : ks) s += (s.empty() ? "" : " ") + std::to_string(k);
+  return s;
+}
+
+// The sweep on a Table I instance.
+void ExpectAPlanAtEveryStall(const std::string& file_name, int steps) {
+  Course c = LoadTableICourse(file_name, steps);
+  c.request.time_limit_s = 1.0;
+  const PlannerOptions options = ShortClockOptions(c);
+  for (bool before : {false, true}) {
+    const std::vector<int> without_plan = StallsWithoutAPlan(c, options, before);
+    EXPECT_TRUE(without_plan.empty()) << file_name << " " << steps << " steps: no plan when the deadline passed "
+                                      << (before ? "during" : "after") << " QP k = " << Listed(without_plan);
+  }
+  // The exactness step on (the planner's own options), the stall running past the whole
+  // plan's limit, so that the exactness step's reserve is spent too. The overrun is as
+  // generous as above: how far a loaded machine gets within the default is the bench's
+  // measure (docs/measurements.md), not a test's.
+  PlannerOptions exact = c.scenario.options;
+  exact.polish.completion_overrun_s = options.polish.completion_overrun_s;
+  for (bool before : {false, true}) {
+    const std::vector<int> without_plan = StallsWithoutAPlan(c, exact, before, /*past_the_plan=*/true);
+    EXPECT_TRUE(without_plan.empty()) << file_name << " " << steps << " steps: no plan when the plan's limit passed "
+                                      << (before ? "during" : "after") << " QP k = " << Listed(without_plan);
+  }
+}
+
+TEST(FirstPlanDeadline, EveryQpAtWhichTheDeadlinePassesStillGivesAPlanLittleDog36) {
+  ExpectAPlanAtEveryStall("littledog_stepping_stones_45.yaml", 36);
+}
+
+TEST(FirstPlanDeadline, EveryQpAtWhichTheDeadlinePassesStillGivesAPlanLittleDog24) {
+  ExpectAPlanAtEveryStall("littledog_stepping_stones_45.yaml", 24);
+}
+
+TEST(FirstPlanDeadline, EveryQpAtWhichTheDeadlinePassesStillGivesAPlanLittleDog12) {
+  ExpectAPlanAtEveryStall("littledog_stepping_stones_45.yaml", 12);
+}
+
+TEST(FirstPlanDeadline, EveryQpAtWhichTheDeadlinePassesStillGivesAPlanHexapod) {
+  ExpectAPlanAtEveryStall("hexapod_stepping_stones_45.yaml", 12);
+  ExpectAPlanAtEveryStall("hexapod_stepping_stones_45.yaml", 24);
+  ExpectAPlanAtEveryStall("hexapod_stepping_stones_45.yaml", 36);
+}
+
+TEST(FirstPlanDeadline, AFirstPlanFoundAsThePlansTimeRunsOutIsStillPolished) {
+  // LittleDog 36 (its MIQP plan exceeds the exact reach by the chords' error): the clock
+  // passes the whole plan's limit right after the QP that follows its first plan, so the
+  // exactness step's reserve is spent before the polisher starts. The polisher of the
+  // plan's first plan runs within the overrun and makes it exact. (Before, it got a
+  // millisecond, made nothing exact, and the window was planned again within the chords'
+  // error with no time: on a loaded machine hexapod 36 ended no_solution that way with a
+  // plan in hand, 2 of 10 runs at --time-limit 1.)
+  Course c = LittleDogTableI(36);
+  c.request.time_limit_s = 1.0;
+  PlannerOptions options = c.scenario.options;
+  options.polish.completion_overrun_s = 10.0;  // generous for a loaded machine
+  const int first = QpsToTheFirstPlan(c, options);
+  const RelaxationSolverSet solvers = MakeRelaxationSolvers(options.solvers.backend, 1);
+  StallingSolver late(solvers.workers().front(), [first](const Miqp&, int call) { return call == first + 1; },
+                      /*before=*/false, Deadline::After(c.request.time_limit_s));
+  const Plan plan = PlanWith(c, options, &late);
+  ASSERT_TRUE(late.stalled);
+  ExpectCompletePlan(c, plan);
+  EXPECT_TRUE(plan.window_records.front().polished) << plan.message;
+  EXPECT_FALSE(plan.window_records.front().replanned) << plan.message;
 }
 
 // Passes solves on to `inner`, each marked as solved by the solver's fallback.

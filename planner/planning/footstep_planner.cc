@@ -243,7 +243,7 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       EndOnFailedSearch(context, search.result, &state);
       break;
     }
-    const ExactWindow exact = MakeWindowExact(context, formulation, std::move(search));
+    const ExactWindow exact = MakeWindowExact(context, formulation, std::move(search), state.planned == 0);
     state.plan.window_records.back().polish_s = exact.polish_s;
     if (state.polish_note.empty() && !exact.note.empty()) state.polish_note = state.WindowName() + ": " + exact.note;
     if (exact.NoExactPlan()) {

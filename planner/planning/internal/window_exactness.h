@@ -30,9 +30,11 @@ struct ExactWindow {
 };
 
 // Polishes the search's plan within the polisher's time (at most the plan's time left
-// and, under guidance, the window's share) and re-plans when it stays inexact
+// and, under guidance, the window's share; for the plan's first plan, first_plan, at
+// least polish.completion_overrun_s) and re-plans when it stays inexact
 // (PolishOptions::replan_when_inexact).
-ExactWindow MakeWindowExact(const PlanContext& context, const MiqpFormulation& formulation, WindowSearch search);
+ExactWindow MakeWindowExact(const PlanContext& context, const MiqpFormulation& formulation, WindowSearch search,
+                            bool first_plan);
 
 // Counts a successful re-plan's work in the plan and marks the window's record (the last).
 void RecordExactness(const ExactWindow& exact, Plan* plan);

@@ -63,7 +63,8 @@ struct PolishOptions {
   bool replan_when_inexact = true;
   // A re-plan that ends without a plan on the plan's deadline completes the window's own
   // integer choices with one QP (exact_window.h), which may run this long past that
-  // deadline [s] (a stop flag still ends it at once).
+  // deadline [s] (a stop flag still ends it at once). The polisher of the plan's first
+  // window gets at least this long when the plan's time is spent (window_exactness.h).
   double completion_overrun_s = 0.25;
 };
 

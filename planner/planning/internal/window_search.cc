@@ -85,13 +85,15 @@ RelaxAndFixResult RelaxAndFixSeed(const PlanContext& context, const MiqpFormulat
 
 // The quick first plan of a seeded window whose root roundings found none
 // (RelaxAndFixOptions::first_plan_dive): one node per stage, the stage roundings on, one
-// path, within the same time as the full run (each stage's QPs take milliseconds). The
-// rounding dive first (rf.rounding_dive), then, when it finds no plan, the stage-search
-// dive with a share of its own: cut short, it still ends with its rounding's complete plan
-// (RelaxAndFix), where one given what the rounding dive left could end with none. The
-// relaxations of both are counted. Both are the window's first plan's work: they run
-// under its deadline extended by bnb.first_plan_overrun_s, so a root relaxation solved
-// in time is carried through to a plan.
+// path (each stage's QPs take milliseconds). The rounding dive first (rf.rounding_dive),
+// then, when it finds no plan, the stage-search dive with a share of its own: cut short,
+// it still ends with its rounding's complete plan (RelaxAndFix), where one given what the
+// rounding dive left could end with none. The relaxations of both are counted. Both are
+// the window's first plan's work: they run under its deadline extended by
+// bnb.first_plan_overrun_s, so a root relaxation solved in time is carried through to a
+// plan, and each one's share (time_share of the window's time, counted from its own
+// start) reaches at least that deadline: a share ending sooner cut a dive that began early
+// while it still had time, and a dive's early stage points do not round to a plan.
 RelaxAndFixResult RelaxAndFixDive(const PlanContext& context, const MiqpFormulation& formulation,
                                   const BranchAndBoundOptions& bnb, const Eigen::VectorXd& root_x) {
   RelaxAndFixOptions rf = context.options.relax_and_fix;
@@ -99,6 +101,7 @@ RelaxAndFixResult RelaxAndFixDive(const PlanContext& context, const MiqpFormulat
   rf.stage.deadline = bnb.deadline.ExtendedBy(bnb.first_plan_overrun_s);
   rf.stage.time_limit_needs_incumbent = false;
   rf.time_limit_s = rf.time_share * bnb.time_limit_s;
+  if (rf.stage.deadline.finite()) rf.time_limit_s = std::max(rf.time_limit_s, rf.stage.deadline.RemainingSeconds());
   RelaxAndFixResult rounding;
   if (rf.rounding_dive) {
     rounding = RoundingDive(formulation, *context.solvers.front(), root_x, rf);
