@@ -86,6 +86,26 @@ TEST(CertifiedBound, FloorsWithinTheGapToleranceStillProve) {
   EXPECT_LE(r.gap, 1e-4);
 }
 
+// The root cut loop's second pass on a fractional root, with lagging floors: whatever it
+// proves (reduced-cost fixing against the incumbent may fix every integer, an exact proof),
+// the bound it claims never lies above the true optimum, and a plan called optimal is it.
+TEST(CertifiedBound, TheRootCutLoopsSecondPassClaimsNoBoundAboveTheOptimum) {
+  for (const double lag : {0.05, 0.5, 3.0}) {
+    for (const int rounds : {0, 5}) {
+      BranchAndBoundOptions options;
+      options.early_cutoff = false;
+      options.long_search_only = 0;
+      options.root_cut_rounds = rounds;
+      LaggingFloorSolver solver(lag);
+      const BranchAndBoundResult r = SolveBranchAndBound(Knapsack(), solver, options);
+      ASSERT_GT(solver.solved, 0) << lag << " " << rounds;
+      EXPECT_NEAR(r.objective, -10.0, 1e-6) << lag << " " << rounds;
+      EXPECT_LE(r.bound, -10.0 + 1e-9) << lag << " " << rounds;
+      EXPECT_LE(r.root_bound, -10.0 - lag + 1e-6) << lag << " " << rounds;
+    }
+  }
+}
+
 // An integral root whose floor misses the gap asked: its tree is exhausted at the root,
 // so the root cut loop (which tightens open nodes) and its second pass have nothing to do.
 TEST(CertifiedBound, AnIntegralRootShortOfTheGapRunsNoRootCutLoop) {

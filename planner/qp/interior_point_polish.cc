@@ -118,7 +118,7 @@ SpMat KktMatrix(const InequalityForm& f, const ActiveSetGuess& g, double regular
       if (it.row() == g.free[jf]) diagonal = std::abs(it.value());
     }
     // Relative to Q's diagonal, so that a singular block of large costs keeps it in
-    // rounding (an absolute shift below their last digit left exact zero pivots).
+    // rounding (an absolute shift below their last digit can leave exact zero pivots).
     t.emplace_back(jf, jf, regularisation * (1.0 + diagonal));
   }
   for (int a = 0; a < na; ++a) {
@@ -231,10 +231,9 @@ int DropWrongSigned(const InequalityForm& f, const ActiveSetGuess& g, double dua
 }
 
 // One primal-dual active-set correction of set from its solved guess g: the
-// wrong-signed constraints leave it and the violated ones join it, both at once (joining
-// first and dropping only once feasible finished fewer node QPs on Table I:
-// docs/measurements.md, proof9). Returns the number of changes (0: g is primal and dual
-// feasible to the tolerances).
+// wrong-signed constraints leave it and the violated ones join it, both at once (the
+// order chosen in docs/measurements.md). Returns the number of changes (0: g is primal
+// and dual feasible to the tolerances).
 int CorrectSet(const InequalityForm& f, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                const ActiveSetGuess& g, double primal_tolerance, double dual_tolerance, ActiveSet* set) {
   const int dropped = DropWrongSigned(f, g, dual_tolerance, set);

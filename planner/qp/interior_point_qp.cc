@@ -372,6 +372,9 @@ RelaxationResult SolveQpInteriorPoint(const Miqp& p, const Eigen::VectorXd& lowe
     if (opt.deadline.Expired()) break;  // kIterationLimit below
     const Residuals r = ResidualsAt(f, p, w, s, z, scale_c);
     const bool converged = Converged(r, opt, scale_d);
+    // The crossover runs only with time left (checked just above) and costs at most
+    // ActiveSetPolishOptions::max_rounds factorisations of a KKT system no larger than
+    // this solve's, which max_kkt_terms has already bounded: a few iterations' work.
     if (PolishDue(f, r, w, opt, scale_d, converged, polish_attempts)) {
       ++polish_attempts;
       const ActiveSetPolish polish = PolishActiveSet(f, p, lower, upper, w, s, z, opt.polish);

@@ -9,15 +9,17 @@ ExactWindow MakeWindowExact(const PlanContext& context, const MiqpFormulation& f
                             bool first_plan) {
   // The polisher's time comes out of the plan's: at most what is left of it. A window
   // whose plan would be the plan's first has nothing else to return: its polisher may run
-  // past the plan's limit by polish.completion_overrun_s, as the first plan's work and the
-  // re-plan's completion may (unless the request was stopped). Its search ends at the
-  // plan's limit less this step's reserve, which a loaded machine can spend before the
-  // polisher starts; a polisher left a millisecond makes nothing exact, and the re-plan
-  // within the chords' error then has no time either.
+  // until polish.completion_overrun_s past the plan's limit (counted from that limit, so
+  // with the first plan's work, which may overrun by the same, nothing ends later than
+  // limit + overrun), unless the request was stopped. Its search ends at the plan's limit
+  // less this step's reserve, which a loaded machine can spend before the polisher starts;
+  // a polisher left a millisecond makes nothing exact, and the re-plan within the chords'
+  // error then has no time either.
   PolishOptions polish = context.options.polish;
-  const double least_s =
-      first_plan && !context.request.deadline.Stopped() ? std::max(1e-3, polish.completion_overrun_s) : 1e-3;
-  polish.time_limit_s = std::min(polish.time_limit_s, std::max(least_s, context.TimeLeftSeconds()));
+  const double least_s = first_plan && !context.request.deadline.Stopped()
+                             ? context.TimeLeftSeconds() + polish.completion_overrun_s
+                             : 1e-3;
+  polish.time_limit_s = std::min(polish.time_limit_s, std::max({1e-3, least_s, context.TimeLeftSeconds()}));
   // Under guidance no more than the window's own share (at least 50 ms): the polisher
   // took 0.2-0.4 s of 0.3 s shares on octopod stones; a window it cannot polish in
   // time is planned again within the chords' error (below).
@@ -35,6 +37,9 @@ ExactWindow MakeWindowExact(const PlanContext& context, const MiqpFormulation& f
   // (exact_window.h).
   BranchAndBoundOptions bnb = std::move(search.bnb);
   bnb.deadline = context.request.deadline.Within(context.TimeLeftSeconds());
+  // The re-plan's own polisher gets only what is left of the plan's time: its plan is
+  // exact without it (exact_window.h), so it never extends the overrun above.
+  polish.time_limit_s = std::min(polish.time_limit_s, std::max(1e-3, context.TimeLeftSeconds()));
   out.replan_tried = true;
   out.replan = ReplanWithinChordError(formulation, context.solvers, bnb, polish, &out.result.x);
   out.note = out.replan.note;

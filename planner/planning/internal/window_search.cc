@@ -101,7 +101,13 @@ RelaxAndFixResult RelaxAndFixDive(const PlanContext& context, const MiqpFormulat
   rf.stage.deadline = bnb.deadline.ExtendedBy(bnb.first_plan_overrun_s);
   rf.stage.time_limit_needs_incumbent = false;
   rf.time_limit_s = rf.time_share * bnb.time_limit_s;
-  if (rf.stage.deadline.finite()) rf.time_limit_s = std::max(rf.time_limit_s, rf.stage.deadline.RemainingSeconds());
+  // At least to the first plan's deadline, but no longer than the window's own time and
+  // the overrun, counted from the dive's start: in a plan of several windows whose
+  // deadline is the plan's, one window's dive does not take the later windows' time.
+  if (rf.stage.deadline.finite()) {
+    rf.time_limit_s = std::max(rf.time_limit_s, std::min(rf.stage.deadline.RemainingSeconds(),
+                                                         bnb.time_limit_s + bnb.first_plan_overrun_s));
+  }
   RelaxAndFixResult rounding;
   if (rf.rounding_dive) {
     rounding = RoundingDive(formulation, *context.solvers.front(), root_x, rf);
