@@ -9,6 +9,7 @@
 #include "planner/miqp/miqp_builder.h"
 #include "planner/qp/interior_point_qp.h"
 #include "planner/qp/internal/interior_point_kkt.h"
+#include "tests/test_qps.h"
 
 namespace mfp {
 namespace {
@@ -17,14 +18,7 @@ namespace {
 // is a degenerate vertex: the row and both upper bounds are active, and their multipliers
 // are not unique (the row's lambda and each bound's 2 - lambda, any lambda in [0, 2]), so
 // the interior point ends inside that face and its floor below the optimum.
-Miqp DegenerateVertex() {
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", -5, 1, false), y = b.AddVariable("y", -5, 1, false);
-  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(2), 1.0);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(2), 1.0);
-  b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 2.0);
-  return b.Build();
-}
+Miqp DegenerateVertex() { return NearestPointBelowTheLine(2.0, 2.0, -5.0, 1.0); }
 
 TEST(InteriorPointPolish, TheCrossoverRecoversTheExactOptimumAndAFloorEqualToIt) {
   const Miqp p = DegenerateVertex();
@@ -82,14 +76,7 @@ TEST(InteriorPointPolish, AnEqualityRowsMultiplierMayHaveEitherSign) {
 
 // min (x - 0.5)^2 + (y - 0.5)^2  s.t.  x + y <= 2, x, y in [0, 2]: the optimum (0.5, 0.5),
 // cost 0, leaves the row inactive.
-Miqp InactiveRow() {
-  MiqpBuilder b;
-  const int x = b.AddVariable("x", 0, 2, false), y = b.AddVariable("y", 0, 2, false);
-  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(0.5), 1.0);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(0.5), 1.0);
-  b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 2.0);
-  return b.Build();
-}
+Miqp InactiveRow() { return NearestPointBelowTheLine(0.5, 0.5, 0.0, 2.0); }
 
 TEST(InteriorPointPolish, AWrongGuessIsRejectedAndItsFloorStaysBelowTheOptimum) {
   const Miqp p = InactiveRow();

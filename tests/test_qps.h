@@ -7,17 +7,21 @@
 
 namespace mfp {
 
-// min (x - 2)^2 + (y - 1)^2  s.t.  x + y <= 2, x, y in [-5, 5].
-// The unconstrained optimum (2, 1) violates x + y <= 2; projecting it onto x + y = 2
-// gives (1.5, 0.5) with cost 0.25 + 0.25 = 0.5.
-inline Miqp Projection() {
+// min (x - target_x)^2 + (y - target_y)^2  s.t.  x + y <= 2, x, y in [lo, hi]: the point
+// of the box below the line nearest the target.
+inline Miqp NearestPointBelowTheLine(double target_x, double target_y, double lo, double hi) {
   MiqpBuilder b;
-  const int x = b.AddVariable("x", -5, 5, false), y = b.AddVariable("y", -5, 5, false);
-  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(2), 1.0);
-  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(1), 1.0);
+  const int x = b.AddVariable("x", lo, hi, false), y = b.AddVariable("y", lo, hi, false);
+  b.AddSquaredCost(LinExpr::Var(x) - LinExpr::Constant(target_x), 1.0);
+  b.AddSquaredCost(LinExpr::Var(y) - LinExpr::Constant(target_y), 1.0);
   b.AddRow("sum", LinExpr::Var(x) + LinExpr::Var(y), -kInfinity, 2.0);
   return b.Build();
 }
+
+// min (x - 2)^2 + (y - 1)^2  s.t.  x + y <= 2, x, y in [-5, 5].
+// The unconstrained optimum (2, 1) violates x + y <= 2; projecting it onto x + y = 2
+// gives (1.5, 0.5) with cost 0.25 + 0.25 = 0.5.
+inline Miqp Projection() { return NearestPointBelowTheLine(2.0, 1.0, -5.0, 5.0); }
 
 // min (y - 2)^2 over x in {0, 1} (variable 0), y in [0, 2] (variable 1), with rows that a
 // node fixing x = 1 makes redundant or one-sided:

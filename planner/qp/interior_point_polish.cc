@@ -269,11 +269,8 @@ ActiveSetPolish PolishActiveSet(const InequalityForm& f, const Miqp& p, const Ei
   const Eigen::VectorXd qx = f.Q * polish.x;
   polish.gradient = qx + p.c + f.Gt * polish.z_rows;
   polish.objective = 0.5 * polish.x.dot(qx) + p.c.dot(polish.x) + p.constant;
-  double floor = polish.objective + polish.z_rows.dot(gx - f.d.head(E));
-  for (int j = 0; j < n; ++j) {
-    const double gj = polish.gradient(j);
-    floor += std::min(gj * (lower(j) - polish.x(j)), gj * (upper(j) - polish.x(j)));
-  }
+  const double floor = BoxCertificate(polish.objective, polish.z_rows, gx - f.d.head(E), lower, upper, polish.x,
+                                      [&polish](int j) { return polish.gradient(j); });
   polish.floor = std::isfinite(floor) ? std::min(floor, polish.objective) : -kInfinity;
   polish.accepted = std::isfinite(floor) && violation <= tolerance &&
                     polish.objective - floor <= options.gap * std::max(1.0, std::abs(polish.objective));

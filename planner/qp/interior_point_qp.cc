@@ -44,13 +44,9 @@ double LagrangianFloor(const InequalityForm& f, double objective, const Eigen::V
 double BoxFloor(const InequalityForm& f, double objective, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                 const Eigen::VectorXd& w, const Eigen::VectorXd& z, const Eigen::VectorXd& r_d) {
   const int n = f.n, E = f.elastic;
-  double floor = objective + z.head(E).dot(f.G * w.head(n) - f.d.head(E));
-  for (int j = 0; j < n; ++j) {
-    // r_d's x part is g plus the bound multipliers' part.
-    const double gj = r_d(j) - (z(2 * E + 2 * j) - z(2 * E + 2 * j + 1));
-    floor += gj > 0.0 ? gj * (lower(j) - w(j)) : gj * (upper(j) - w(j));
-  }
-  return floor;
+  // r_d's x part is g plus the bound multipliers' part.
+  return BoxCertificate(objective, z.head(E), f.G * w.head(n) - f.d.head(E), lower, upper, w.head(n),
+                        [&](int j) { return r_d(j) - (z(2 * E + 2 * j) - z(2 * E + 2 * j + 1)); });
 }
 
 // The reduced-cost certificate of RelaxationResult from the final iterate. With the

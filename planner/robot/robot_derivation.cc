@@ -438,7 +438,10 @@ void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions
   const double half_cell = 0.5 * cell;
   const double box = std::max(0.0, limits.d_lim_raw - half_cell);
   const double disk = std::max(0.0, limits.disk_raw - half_cell);
-  const double octagon = std::cos(M_PI / 8.0) * disk;
+  // A regular polygon's corners lie apothem / cos(pi / sides) from its centre: the apothem
+  // of the one inscribed in the disk, so that it lies in the footprint at every body yaw.
+  const auto inscribed_apothem = [disk](ReachShape polygon) { return std::cos(M_PI / ReachShapeSides(polygon)) * disk; };
+  const double octagon = inscribed_apothem(ReachShape::kOctagon);
   const std::string square_line = "half-side of the largest square in the reachable footprint at the stance height, "
                                   "smallest over legs (leg '" + limits.d_leg + "', " + Fixed(limits.d_lim_raw) +
                                   " m) less half a footprint cell (" + Fixed(half_cell) + " m)";
@@ -447,13 +450,11 @@ void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions
                                 Fixed(disk) + " m";
   model->reach_shape = shape;
   if (shape != ReachShape::kBox) {
-    // The regular polygon of apothem a has its corners a / cos(pi / sides) from its centre:
-    // inscribed in the disk, they lie in the footprint whatever the body's yaw.
-    const int sides = ReachShapeSides(shape);
-    const double apothem = std::cos(M_PI / sides) * disk;
+    const double apothem = inscribed_apothem(shape);
     model->d_lim_m = apothem;
     model->provenance.push_back("d_lim = " + Fixed(apothem) + " m: derived, apothem of the reach " +
-                                ReachShapeName(shape) + ", cos(pi/" + std::to_string(sides) + ") * " + disk_line +
+                                ReachShapeName(shape) + ", cos(pi/" + std::to_string(ReachShapeSides(shape)) + ") * " +
+                                disk_line +
                                 " (the box would be " + Fixed(box) + " m: " + square_line + ")");
   } else {
     model->d_lim_m = box;
@@ -472,7 +473,7 @@ void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions
                              : ", does not hold the box's corners (" + Fixed(corner) +
                                    " m from it) when the body is turned from the world axes") +
       "; the octagon inscribed in it has apothem " + Fixed(octagon) + " m, the 16-gon " +
-      Fixed(std::cos(M_PI / 16.0) * disk) + " m");
+      Fixed(inscribed_apothem(ReachShape::kHexadecagon)) + " m");
 }
 
 // The model's limits, foot radius, gait and weights, each with its provenance.

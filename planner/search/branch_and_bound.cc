@@ -136,6 +136,17 @@ class Search {
     int fallbacks = 0;        // of its solves, those the solver's fallback solved
     double fallback_s = 0.0;  // their wall time
     int polished = 0, polish_attempts = 0;  // of its solves (RelaxationResult)
+
+    // Takes solve r as the node's relaxation and adds its work to the counts.
+    void TakeSolve(RelaxationResult r) {
+      relaxation = std::move(r);
+      ++solves;
+      iterations += relaxation.iterations;
+      fallbacks += relaxation.fallbacks;
+      fallback_s += relaxation.fallback_time_s;
+      polished += relaxation.polished;
+      polish_attempts += relaxation.polish_attempts;
+    }
   };
 
   // Up to one node per worker: their relaxations are solved side by side, then the nodes
@@ -179,22 +190,10 @@ class Search {
     const auto start = std::chrono::steady_clock::now();
     RelaxationRequest request = state_.Request(e.lower, e.upper, warm, cutoff);
     request.warm_token = node.warm_token;
-    e.relaxation = solver.Solve(p_, request);
-    ++e.solves;
-    e.iterations += e.relaxation.iterations;
-    e.fallbacks += e.relaxation.fallbacks;
-    e.fallback_s += e.relaxation.fallback_time_s;
-    e.polished += e.relaxation.polished;
-    e.polish_attempts += e.relaxation.polish_attempts;
+    e.TakeSolve(solver.Solve(p_, request));
     if (e.relaxation.status != RelaxationStatus::kSolved && e.relaxation.status != RelaxationStatus::kCutoff &&
         warm != nullptr) {
-      e.relaxation = state_.SolveWith(solver, e.lower, e.upper, nullptr);  // a bad warm start can stall Ipopt
-      ++e.solves;
-      e.iterations += e.relaxation.iterations;
-      e.fallbacks += e.relaxation.fallbacks;
-      e.fallback_s += e.relaxation.fallback_time_s;
-      e.polished += e.relaxation.polished;
-      e.polish_attempts += e.relaxation.polish_attempts;
+      e.TakeSolve(state_.SolveWith(solver, e.lower, e.upper, nullptr));  // a bad warm start can stall Ipopt
     }
     e.solve_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return e;
@@ -437,7 +436,7 @@ class Search {
       } else {
         result.status = hit_time_limit_ ? SolveStatus::kTimeLimit : SolveStatus::kFeasible;
       }
-    } else if (root_infeasible_ || (!open && !hit_time_limit_ && !hit_node_limit_ && !state_.HasUnresolved())) {
+    } else if (root_infeasible_ || exhausted_) {
       result.status = SolveStatus::kInfeasible;
       result.bound = kInfinity;
     } else if (root_failed_ && !hit_time_limit_) {

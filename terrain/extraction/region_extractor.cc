@@ -213,16 +213,21 @@ struct PatchOutcome {
   std::vector<std::optional<ConvexRegion>> regions;
 };
 
+// A plan-view polygon's corners lifted onto the patch's plane.
+std::vector<Eigen::Vector3d> OnPlane(const PlanarPatch& patch, const Polygon2d& polygon) {
+  std::vector<Eigen::Vector3d> vertices;
+  vertices.reserve(polygon.size());
+  for (const Eigen::Vector2d& xy : polygon) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
+  return vertices;
+}
+
 // The patch's polygons as regions on its plane (PatchOutcome::regions).
 std::vector<std::optional<ConvexRegion>> RegionsOf(const PlanarPatch& patch, const std::vector<Polygon2d>& polygons,
                                                    double plane_tolerance_m) {
   std::vector<std::optional<ConvexRegion>> regions(polygons.size());
-  std::vector<Eigen::Vector3d> vertices;
   for (size_t k = 0; k < polygons.size(); ++k) {
-    vertices.clear();
-    for (const Eigen::Vector2d& xy : polygons[k]) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
     try {
-      regions[k] = MakeRegionFromPolygon(-1, vertices, plane_tolerance_m);
+      regions[k] = MakeRegionFromPolygon(-1, OnPlane(patch, polygons[k]), plane_tolerance_m);
     } catch (const InputError&) {
       regions[k].reset();
     }
@@ -352,9 +357,7 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
         result->regions.push_back(std::move(*outcome.regions[k]));
         result->regions.back().id = id;
       } else {
-        std::vector<Eigen::Vector3d> vertices;
-        for (const Eigen::Vector2d& xy : outcome.polygons[k]) vertices.emplace_back(xy.x(), xy.y(), patch.HeightAt(xy));
-        result->regions.push_back(MakeRegionFromPolygon(id, vertices, plane_tolerance_m));
+        result->regions.push_back(MakeRegionFromPolygon(id, OnPlane(patch, outcome.polygons[k]), plane_tolerance_m));
       }
       result->region_layer.push_back(layer_patch.layer);
     }

@@ -56,6 +56,25 @@ struct InequalityForm {
 InequalityForm BuildInequalityForm(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                    double penalty);
 
+// The box certificate of a point x of the box [lower, upper] (the rows dualised, the box
+// kept): for row multipliers z_rows >= 0 of the E elastic rows, their residuals
+// rows_residual = Gx - d (first E entries of d) and g_j = gradient(j) of Qx + c + G'z_rows,
+// every point y of the box that meets the rows costs at least
+//   objective + z_rows'rows_residual + sum_j min(g_j (lower_j - x_j), g_j (upper_j - x_j))
+// (convexity), objective being f(x) with its constant. The interior point's BoxFloor and
+// the crossover's polished point both certify with it.
+template <class Gradient>
+double BoxCertificate(double objective, const Eigen::Ref<const Eigen::VectorXd>& z_rows,
+                      const Eigen::VectorXd& rows_residual, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
+                      const Eigen::Ref<const Eigen::VectorXd>& x, const Gradient& gradient) {
+  double floor = objective + z_rows.dot(rows_residual);
+  for (int j = 0; j < lower.size(); ++j) {
+    const double gj = gradient(j);
+    floor += gj > 0.0 ? gj * (lower(j) - x(j)) : gj * (upper(j) - x(j));
+  }
+  return floor;
+}
+
 // Fills K = Q + G' diag(row_weight) G + diag(bound_weight) into a fixed pattern, with
 // the variables in elimination order: K's upper triangle is stored already permuted,
 // so the factorisation neither orders nor copies it (NaturalOrdering reads an upper
