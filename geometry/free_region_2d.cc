@@ -133,9 +133,9 @@ Bounds BoundsOf(const Polygon& polygon) {
 // before each few, those apart from the region are dropped (they would be on their turn).
 class BoundOrder {
  public:
-  BoundOrder(const SeedShape& seed, const std::vector<Polygon>& obstacles) : bounds_(obstacles.size()) {
-    pending_.reserve(obstacles.size());
-    for (size_t k = 0; k < obstacles.size(); ++k) {
+  BoundOrder(const SeedShape& seed, const Polygon* obstacles, size_t count) : bounds_(count) {
+    pending_.reserve(count);
+    for (size_t k = 0; k < count; ++k) {
       if (obstacles[k].size() < 3) continue;
       pending_.push_back({SeedNormalsGap(seed, obstacles[k]), static_cast<int>(k)});
       bounds_[k] = BoundsOf(obstacles[k]);
@@ -203,6 +203,13 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
                                                const std::vector<std::vector<Eigen::Vector2d>>& obstacles,
                                                const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double near_gap,
                                                Eigen::Vector2d* near_lo, Eigen::Vector2d* near_hi) {
+  return GrowFreeRegionNear(seed, obstacles.data(), obstacles.size(), lo, hi, near_gap, near_lo, near_hi);
+}
+
+std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d>& seed,
+                                               const std::vector<Eigen::Vector2d>* obstacles, size_t count,
+                                               const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double near_gap,
+                                               Eigen::Vector2d* near_lo, Eigen::Vector2d* near_hi) {
   if (seed.size() < 3) return std::nullopt;
   for (const Eigen::Vector2d& v : seed) {
     if ((v - lo).minCoeff() < 0.0 || (hi - v).minCoeff() < 0.0) return std::nullopt;
@@ -213,7 +220,7 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
   // order of the best gap along the seed's own normals (Separate's first candidates, so
   // never above the exact gap), then, when that bound comes up, by the exact gap (a heap of
   // the few that get one).
-  BoundOrder by_bound(seed_shape, obstacles);
+  BoundOrder by_bound(seed_shape, obstacles, count);
   std::vector<PendingCut> by_gap;  // a heap
   std::vector<Eigen::Vector2d> normals = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   std::vector<double> offsets = {hi.x(), hi.y(), -lo.x(), -lo.y()};
@@ -234,7 +241,7 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
     if (bound_first) {
       const int k = bound->index;
       by_bound.Pop();
-      const Polygon& obstacle = obstacles[static_cast<size_t>(k)];
+      const Polygon& obstacle = obstacles[k];
       // The region only shrinks: an obstacle apart from it now is cut off when its turn comes.
       // One that overlaps the seed is never apart (the seed stays in the region).
       if (by_bound.bounds(k).Apart(region_bounds)) continue;
@@ -250,7 +257,7 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
     const int k = by_gap.back().index;
     const Separation separation = by_gap.back().separation;
     by_gap.pop_back();
-    if (!MeetsRegion(obstacles[static_cast<size_t>(k)], by_bound.bounds(k), region_bounds, normals, offsets, &inside,
+    if (!MeetsRegion(obstacles[k], by_bound.bounds(k), region_bounds, normals, offsets, &inside,
                      &scratch)) {
       continue;  // already cut off
     }

@@ -38,6 +38,13 @@ std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d
                                                const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double near_gap,
                                                Eigen::Vector2d* near_lo, Eigen::Vector2d* near_hi);
 
+// GrowFreeRegionNear among the `count` obstacles from `obstacles` on (a caller's work
+// space may hold more).
+std::optional<FreeRegion2d> GrowFreeRegionNear(const std::vector<Eigen::Vector2d>& seed,
+                                               const std::vector<Eigen::Vector2d>* obstacles, size_t count,
+                                               const Eigen::Vector2d& lo, const Eigen::Vector2d& hi, double near_gap,
+                                               Eigen::Vector2d* near_lo, Eigen::Vector2d* near_hi);
+
 // Largest excess a . p - b over the region's rows and the points (<= 0: all inside).
 double RegionExcess(const FreeRegion2d& region, const std::vector<Eigen::Vector2d>& points);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "base/check.h"
@@ -135,14 +136,19 @@ class CoverState {
     const Window near{std::max(window.c0, int(seed.x0) - kNearCells), std::max(window.r0, int(seed.y0) - kNearCells),
                       std::min(window.c1, int(seed.x1) + kNearCells), std::min(window.r1, int(seed.y1) + kNearCells)};
     Eigen::Vector2d near_lo, near_hi;
-    std::optional<FreeRegion2d> region = GrowFreeRegionNear(seed_polygon, Obstacles(near, window), window.Lo(),
+    const size_t near_count = Obstacles(near, window);  // before obstacles_.data(): it may grow the vector
+    std::optional<FreeRegion2d> region = GrowFreeRegionNear(seed_polygon, obstacles_.data(), near_count, window.Lo(),
                                                             window.Hi(), kNearCells, &near_lo, &near_hi);
     constexpr double kMargin = 1e-9;  // for rounding in the region's later bounds [cells]
     const bool near_enough = (near.c0 == window.c0 || near_lo.x() > near.c0 + kMargin) &&
                              (near.r0 == window.r0 || near_lo.y() > near.r0 + kMargin) &&
                              (near.c1 == window.c1 || near_hi.x() < near.c1 - kMargin) &&
                              (near.r1 == window.r1 || near_hi.y() < near.r1 - kMargin);
-    if (region && !near_enough) region = GrowFreeRegion(seed_polygon, Obstacles(window, window), window.Lo(), window.Hi());
+    if (region && !near_enough) {
+      const size_t count = Obstacles(window, window);
+      region = GrowFreeRegionNear(seed_polygon, obstacles_.data(), count, window.Lo(), window.Hi(),
+                                  std::numeric_limits<double>::infinity(), &near_lo, &near_hi);
+    }
     if (!region || region->polygon.size() < 3) return seed_polygon;
     return SimplifyConvex(region->polygon, std::max(3, options_.max_vertices));
   }
@@ -155,9 +161,9 @@ class CoverState {
   };
 
   // The obstacle squares in `squares` row by row, then (without overlap) the earlier pieces
-  // meeting `window`. Filled in place (no allocation once the polygons have room);
-  // GrowFreeRegion skips the empty ones left at the end.
-  const std::vector<Polygon2d>& Obstacles(const Window& squares, const Window& window) const {
+  // meeting `window`, into the first of obstacles_ (filled in place: no allocation once
+  // the polygons have room); returns how many.
+  size_t Obstacles(const Window& squares, const Window& window) const {
     size_t used = 0;
     auto add = [&](const Eigen::Vector2d* begin, const Eigen::Vector2d* end) {
       if (used == obstacles_.size()) obstacles_.emplace_back();
@@ -179,8 +185,7 @@ class CoverState {
         if (boxes_[k].Meets(box)) add(pieces_[k].data(), pieces_[k].data() + pieces_[k].size());
       }
     }
-    for (size_t k = used; k < obstacles_.size(); ++k) obstacles_[k].clear();
-    return obstacles_;
+    return used;
   }
 
   // Squares the piece holds wholly become owned; without overlap, squares it meets close
@@ -225,7 +230,7 @@ class CoverState {
   UncoveredRectangles open_;  // squares a seed may use
   std::vector<size_t> closing_;  // Mark's work space: the squares it closes
   std::vector<uint8_t> corner_in_;  // Mark's work space: the lattice points the piece holds
-  mutable std::vector<Polygon2d> obstacles_;  // Grow's work space: the first ones used, the rest empty
+  mutable std::vector<Polygon2d> obstacles_;  // Grow's work space: the first Obstacles() ones used
   std::vector<int> owner_;     // a piece holding the square wholly, -1 when none does
   std::vector<int> obstacle_cols_;       // the obstacle squares' (outside the set, touching it) columns, row by row
   std::vector<size_t> row_obstacles_;  // row r's are obstacle_cols_[row_obstacles_[r], row_obstacles_[r + 1])

@@ -9,28 +9,40 @@
 namespace mfp {
 namespace {
 
-// The median of the seen heights of the cell's 3 x 3 neighbourhood (NaN with fewer than 5).
-float NeighbourhoodMedian(const HeightMap& hm, int cell) {
+// The median of the seen heights of the cell's 3 x 3 neighbourhood (itself included) when
+// it may lie half a voxel or more from the cell's own height; NaN with fewer than 5 seen,
+// and when the median lies nearer (the only medians OffCellsInRows keeps are the others).
+// The distance from the cell's height falls as the height rises, so the heights half a
+// voxel or more below it come first in order and those as far above it last: the median
+// (the n/2-th of n in order) is one of them only when more than n/2, or at least n - n/2,
+// are; otherwise it is near and not computed.
+float FarNeighbourhoodMedian(const HeightMap& hm, int cell) {
   float seen[9];
-  int n = 0;
+  int n = 0, below = 0, above = 0;
   const int row = cell / hm.cols, col = cell % hm.cols;
+  const double own = hm.height_m[static_cast<size_t>(cell)], half = 0.5 * hm.resolution_m;
   for (int dr = -1; dr <= 1; ++dr) {
     for (int dc = -1; dc <= 1; ++dc) {
       if (!hm.Inside(row + dr, col + dc)) continue;
       const float h = hm.height_m[static_cast<size_t>(hm.Index(row + dr, col + dc))];
-      if (!std::isnan(h)) seen[n++] = h;
+      if (std::isnan(h)) continue;
+      seen[n++] = h;
+      const double d = own - h;  // OffCellsInRows' difference, were h the median
+      below += d >= half;
+      above += d <= -half;
     }
   }
-  if (n < 5) return NAN;
+  if (n < 5 || (below <= n / 2 && above < n - n / 2)) return NAN;
   std::nth_element(seen, seen + n / 2, seen + n);
   return seen[n / 2];
 }
 
-// The surface cells of rows [r0, r1) off their neighbourhood, ascending, appended to off.
-void OffCellsInRows(const HeightMap& hm, double tolerance_m, int r0, int r1, std::vector<OffCell>* off) {
-  for (int cell = r0 * hm.cols; cell < r1 * hm.cols; ++cell) {
-    if (std::isnan(hm.height_m[static_cast<size_t>(cell)])) continue;
-    const float median = NeighbourhoodMedian(hm, cell);
+// The surface cells [begin, end) (ascending) off their neighbourhood, in order, appended
+// to off.
+void OffCellsAmong(const HeightMap& hm, double tolerance_m, const int* begin, const int* end, std::vector<OffCell>* off) {
+  for (const int* it = begin; it != end; ++it) {
+    const int cell = *it;
+    const float median = FarNeighbourhoodMedian(hm, cell);
     const double d = static_cast<double>(hm.height_m[static_cast<size_t>(cell)]) - median;
     if (std::isnan(d) || std::abs(d) < 0.5 * hm.resolution_m || std::abs(d) > tolerance_m) continue;
     off->push_back({cell, static_cast<int8_t>(d > 0.0 ? 1 : -1), median});
@@ -71,13 +83,15 @@ bool Isolated(const HeightMap& hm, const std::vector<int>& group, int side) {
 
 }  // namespace
 
-NoiseLevels NoiseFreeLevels(const HeightMap& hm, double tolerance_m, int max_cells) {
+NoiseLevels NoiseFreeLevels(const HeightMap& hm, const std::vector<int>& surface_cells, double tolerance_m,
+                            int max_cells) {
   std::vector<OffCell> off;
-  OffCellsInRows(hm, tolerance_m, 0, hm.rows, &off);
+  OffCellsAmong(hm, tolerance_m, surface_cells.data(), surface_cells.data() + surface_cells.size(), &off);
   return NoiseFreeLevelsFrom(hm, off, max_cells);
 }
 
-std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers, double tolerance_m,
+std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers,
+                                                   const std::vector<SurfaceAnalysis>& surfaces, double tolerance_m,
                                                    int threads) {
   // Bands of BandRows rows (parallel_work.h): enough to share one large layer between threads.
   struct Band {
@@ -92,7 +106,12 @@ std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>&
   }
   ParallelFor(static_cast<int>(bands.size()), threads, [&](int i) {
     Band& band = bands[static_cast<size_t>(i)];
-    OffCellsInRows(layers[band.layer], tolerance_m, band.r0, band.r1, &band.off);
+    // The band's surface cells: those in [r0 * cols, r1 * cols) of the layer's ascending list.
+    const std::vector<int>& cells = surfaces[band.layer].cells;
+    const int cols = layers[band.layer].cols;
+    const int* begin = std::lower_bound(cells.data(), cells.data() + cells.size(), band.r0 * cols);
+    const int* end = std::lower_bound(begin, cells.data() + cells.size(), band.r1 * cols);
+    OffCellsAmong(layers[band.layer], tolerance_m, begin, end, &band.off);
   });
   std::vector<std::vector<OffCell>> off(layers.size());
   for (const Band& band : bands) off[band.layer].insert(off[band.layer].end(), band.off.begin(), band.off.end());

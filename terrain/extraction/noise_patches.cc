@@ -53,8 +53,10 @@ bool HoldsDisk(const HeightMap& hm, const std::vector<int>& owner, const PlanarP
   return false;
 }
 
-// Patches joined across 4-adjacent seen cells at most two voxels apart, one side small.
-PatchGroups GroupPatches(const HeightMap& hm, const std::vector<PlanarPatch>& patches, double foot_radius_m) {
+// Patches joined across 4-adjacent seen cells at most two voxels apart, one side small;
+// the seen cells (surface_cells, ascending) in order.
+PatchGroups GroupPatches(const HeightMap& hm, const std::vector<int>& surface_cells,
+                         const std::vector<PlanarPatch>& patches, double foot_radius_m) {
   const int n = static_cast<int>(patches.size());
   PatchGroups groups;
   groups.parent.resize(static_cast<size_t>(n));
@@ -70,9 +72,9 @@ PatchGroups GroupPatches(const HeightMap& hm, const std::vector<PlanarPatch>& pa
     }
   }
   const double max_step_m = 2.0 * hm.resolution_m * (1.0 + 1e-3);
-  for (int cell = 0; cell < static_cast<int>(owner.size()); ++cell) {
+  for (const int cell : surface_cells) {
     const int p = owner[static_cast<size_t>(cell)];
-    if (p < 0 || std::isnan(hm.height_m[static_cast<size_t>(cell)])) continue;
+    if (p < 0) continue;
     const int row = cell / hm.cols, col = cell % hm.cols;
     for (const auto& [dr, dc] : {std::pair{0, 1}, std::pair{1, 0}}) {
       if (!hm.Inside(row + dr, col + dc)) continue;
@@ -185,9 +187,10 @@ void JoinIntoLarge(const HeightMap& hm, const SegmentationOptions& options, Plan
 
 }  // namespace
 
-void JoinNoisePatches(const HeightMap& hm, const SegmentationOptions& options, std::vector<PlanarPatch>* patches) {
+void JoinNoisePatches(const HeightMap& hm, const std::vector<int>& surface_cells, const SegmentationOptions& options,
+                      std::vector<PlanarPatch>* patches) {
   if (!(options.noise_patch_foot_radius_m > 0.0) || patches->size() < 2) return;
-  PatchGroups groups = GroupPatches(hm, *patches, options.noise_patch_foot_radius_m);
+  PatchGroups groups = GroupPatches(hm, surface_cells, *patches, options.noise_patch_foot_radius_m);
   const int n = static_cast<int>(patches->size());
   std::vector<std::vector<PlanarPatch*>> members(static_cast<size_t>(n));
   for (int p = 0; p < n; ++p) members[static_cast<size_t>(groups.Find(p))].push_back(&(*patches)[static_cast<size_t>(p)]);

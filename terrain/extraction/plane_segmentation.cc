@@ -204,7 +204,7 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const Surfac
   const bool noise_levels = options.noise_patch_foot_radius_m > 0.0 && options.noise_max_cells > 0;
   NoiseLevels own_levels;
   if (noise_levels && options.noise_levels == nullptr) {
-    own_levels = NoiseFreeLevels(raw, options.noise_tolerance_m, options.noise_max_cells);
+    own_levels = NoiseFreeLevels(raw, surface.cells, options.noise_tolerance_m, options.noise_max_cells);
   }
   const NoiseLevels& noise = noise_levels && options.noise_levels != nullptr ? *options.noise_levels : own_levels;
   const HeightMap& hm = noise.denoised_cells > 0 ? noise.levels : raw;
@@ -216,15 +216,15 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const Surfac
   std::deque<int> queue;
   std::vector<int> members;
   std::vector<uint8_t> kind(hm.height_m.size(), kFree);
-  size_t entry = 0;  // surface.cells[entry] is the first surface cell at or after the seed
-  for (int seed = 0; seed < static_cast<int>(label.size()); ++seed) {
+  // Seeds in ascending order among the surface cells (a cell without one is neither smooth
+  // nor a flat level): the fit's cells, the raw map's surface cells in ascending order,
+  // which the noise levels keep.
+  for (size_t entry = 0; entry < surface.cells.size(); ++entry) {
+    const int seed = surface.cells[entry];
+    MFP_CHECK(!std::isnan(hm.height_m[seed]) && (entry == 0 || surface.cells[entry - 1] < seed));
     // A cell a patch's fit left out (a stone one voxel above the floor the patch grew
     // over) starts a patch of its own when smooth.
     if (label[seed] != kUnvisited && label[seed] != kDropped) continue;
-    if (std::isnan(hm.height_m[seed])) continue;  // no surface: neither smooth nor a flat level
-    while (entry < surface.cells.size() && surface.cells[entry] < seed) ++entry;
-    // The fit's cells are the raw map's surface cells, which the noise levels keep.
-    MFP_CHECK(entry < surface.cells.size() && surface.cells[entry] == seed);
     const bool smooth = surface.roughness_m[entry] <= options.max_seed_roughness_m;
     if (!smooth && !(noise.denoised_cells > 0 && FlatLevel(hm, seed))) continue;
     const int patch_id = static_cast<int>(patches.size());
@@ -269,7 +269,7 @@ std::vector<PlanarPatch> SegmentPlanarPatches(const HeightMap& raw, const Surfac
     patches.push_back(std::move(patch));
   }
   if (noise.denoised_cells > 0) RefitOnHeights(raw, noise, options.max_residual_m, &patches);
-  JoinNoisePatches(raw, options, &patches);
+  JoinNoisePatches(raw, surface.cells, options, &patches);
   return patches;
 }
 

@@ -222,36 +222,57 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 
 namespace {
 
+// The columns [lo, hi) of a row that hold its surface cells (lo == hi: none).
+struct RowSpan {
+  int lo = 0, hi = 0;
+};
+
 // The cells of rows [r0, r1) with a surface in their 3 x 3 neighbourhood (itself
 // included), in row order, appended to near: the only cells the noise repair and the
-// unseen bits can change, as both look at neighbours only.
-void NearCellsInRows(const HeightMap& hm, int r0, int r1, std::vector<int>* near) {
-  // Per row from r0 - 1 to r1 (clipped), which columns hold a surface and whether any does.
+// unseen bits can change, as both look at neighbours only. spans (optional) gets the
+// RowSpan of each of the rows [r0, r1) at spans[r - r0].
+void NearCellsInRows(const HeightMap& hm, int r0, int r1, std::vector<int>* near, RowSpan* spans = nullptr) {
+  // Per row from r0 - 1 to r1 (clipped), which columns hold a surface and their span.
   const int first = std::max(0, r0 - 1), last = std::min(hm.rows - 1, r1);
   if (first > last) return;
-  std::vector<uint8_t> has(static_cast<size_t>(last - first + 1) * hm.cols, 0), row_any(static_cast<size_t>(last - first + 1), 0);
+  std::vector<uint8_t> has(static_cast<size_t>(last - first + 1) * hm.cols, 0);
+  std::vector<RowSpan> span(static_cast<size_t>(last - first + 1));
   for (int r = first; r <= last; ++r) {
     const float* h = &hm.height_m[static_cast<size_t>(r) * hm.cols];
     uint8_t* out = &has[static_cast<size_t>(r - first) * hm.cols];
-    uint8_t any = 0;
-    for (int c = 0; c < hm.cols; ++c) any |= out[c] = !std::isnan(h[c]);
-    row_any[static_cast<size_t>(r - first)] = any;
+    int lo = hm.cols, hi = 0;
+    for (int c = 0; c < hm.cols; ++c) {
+      out[c] = !std::isnan(h[c]);
+      if (out[c]) {
+        lo = std::min(lo, c);
+        hi = c + 1;
+      }
+    }
+    span[static_cast<size_t>(r - first)] = lo < hi ? RowSpan{lo, hi} : RowSpan{};
+  }
+  if (spans != nullptr) {
+    for (int r = r0; r < r1; ++r) spans[r - r0] = span[static_cast<size_t>(r - first)];
   }
   std::vector<uint8_t> column(static_cast<size_t>(hm.cols));  // a surface in the column within a row
   for (int r = r0; r < r1; ++r) {
-    const int lo = std::max(first, r - 1), hi = std::min(last, r + 1);
-    bool any = false;
-    for (int rr = lo; rr <= hi; ++rr) any = any || row_any[static_cast<size_t>(rr - first)];
-    if (!any) continue;
-    std::fill(column.begin(), column.end(), 0);
-    for (int rr = lo; rr <= hi; ++rr) {
-      if (!row_any[static_cast<size_t>(rr - first)]) continue;
-      const uint8_t* in = &has[static_cast<size_t>(rr - first) * hm.cols];
-      for (int c = 0; c < hm.cols; ++c) column[static_cast<size_t>(c)] |= in[c];
+    // The columns [lo, hi) of the rows r - 1 to r + 1 that hold a surface: the near cells
+    // lie in [lo - 1, hi + 1).
+    int lo = hm.cols, hi = 0;
+    for (int rr = std::max(first, r - 1); rr <= std::min(last, r + 1); ++rr) {
+      const RowSpan& sp = span[static_cast<size_t>(rr - first)];
+      if (sp.lo == sp.hi) continue;
+      lo = std::min(lo, sp.lo);
+      hi = std::max(hi, sp.hi);
     }
-    for (int c = 0; c < hm.cols; ++c) {
-      const bool left = c > 0 && column[static_cast<size_t>(c) - 1], right = c + 1 < hm.cols && column[static_cast<size_t>(c) + 1];
-      if (left || column[static_cast<size_t>(c)] || right) near->push_back(hm.Index(r, c));
+    if (lo >= hi) continue;
+    std::fill(column.begin() + lo, column.begin() + hi, 0);
+    for (int rr = std::max(first, r - 1); rr <= std::min(last, r + 1); ++rr) {
+      const uint8_t* in = &has[static_cast<size_t>(rr - first) * hm.cols];
+      for (int c = lo; c < hi; ++c) column[static_cast<size_t>(c)] |= in[c];
+    }
+    for (int c = std::max(0, lo - 1); c < std::min(hm.cols, hi + 1); ++c) {
+      const bool left = c - 1 >= lo && column[static_cast<size_t>(c) - 1], right = c + 1 < hi && column[static_cast<size_t>(c) + 1];
+      if (left || (c >= lo && c < hi && column[static_cast<size_t>(c)]) || right) near->push_back(hm.Index(r, c));
     }
   }
 }
@@ -608,20 +629,23 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // gets the lower of the surrounding heights' middle pair. The cells of rows [r0, r1) to
 // fill, judged on the layer as it is (so fills do not chain), are appended in row order
 // to fills with their heights.
+// spans: the RowSpan of each of the rows [r0, r1) (cells outside it have no surface on
+// one side in their row, so none is enclosed).
 void CollectEnclosedFills(const HeightMap& seen, const Columns& occ, const Columns& free, double clearance_m,
-                          int radius, int r0, int r1, std::vector<std::pair<int, float>>* fills) {
+                          int radius, int r0, int r1, const RowSpan* spans, std::vector<std::pair<int, float>>* fills) {
   const double res = seen.resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
   std::vector<int> next_right(static_cast<size_t>(seen.cols));
   for (int r = r0; r < r1; ++r) {
+    const RowSpan span = spans[r - r0];
+    if (span.lo == span.hi) continue;  // no surface in the row
     // The nearest surface at or right of each column, and the last one left of it: a cell
     // without one within radius on both sides of its row is not enclosed.
     const float* row = &seen.height_m[static_cast<size_t>(seen.Index(r, 0))];
     int next = std::numeric_limits<int>::max() / 2;
-    for (int c = seen.cols - 1; c >= 0; --c) next_right[static_cast<size_t>(c)] = next = std::isnan(row[c]) ? next : c;
-    if (next >= seen.cols) continue;  // no surface in the row
+    for (int c = span.hi - 1; c >= span.lo; --c) next_right[static_cast<size_t>(c)] = next = std::isnan(row[c]) ? next : c;
     int last_left = std::numeric_limits<int>::min() / 2;
-    for (int c = 0; c < seen.cols; ++c) {
+    for (int c = span.lo; c < span.hi; ++c) {
       const size_t i = static_cast<size_t>(seen.Index(r, c));
       if (!std::isnan(seen.height_m[i])) {
         last_left = c;
@@ -650,11 +674,13 @@ const Interval* RunHolding(const Columns& cols, int c, long long z) {
 }
 
 // Material rising beside each surface cell of rows [r0, r1) of layer
-// (SurfaceLayers::solid_beside), written to those rows of bits.
-void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1, std::vector<uint8_t>* bits) {
+// (SurfaceLayers::solid_beside), written to those rows of bits; spans: the RowSpan of
+// each of those rows.
+void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1, const RowSpan* spans,
+                     std::vector<uint8_t>* bits) {
   const double res = layer.resolution_m;
   for (int r = r0; r < r1; ++r) {
-    for (int c = 0; c < layer.cols; ++c) {
+    for (int c = spans[r - r0].lo; c < spans[r - r0].hi; ++c) {
       const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
       if (std::isnan(h)) continue;
       const long long top_voxel = RoundToLongLong(h / res) - 1;
@@ -712,6 +738,7 @@ struct LayerBand {
   size_t layer;
   int r0, r1;
   std::vector<int> near;                       // NearCellsInRows of the band
+  std::vector<RowSpan> spans;                  // each row's, from NearCellsInRows: no change moves them
   std::vector<std::pair<int, float>> changes;  // a pass's repairs or fills in the band, in order
 };
 
@@ -727,7 +754,7 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
   const int band_rows = BandRows(cols);
   std::vector<LayerBand> bands;
   for (size_t l = 0; l < layers->size(); ++l) {
-    for (int r0 = 0; r0 < rows; r0 += band_rows) bands.push_back({l, r0, std::min(rows, r0 + band_rows), {}, {}});
+    for (int r0 = 0; r0 < rows; r0 += band_rows) bands.push_back({l, r0, std::min(rows, r0 + band_rows), {}, {}, {}});
   }
   std::vector<LayerFinish> out(layers->size());
   for (LayerFinish& f : out) {
@@ -757,7 +784,8 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
     });
   };
   each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
-    NearCellsInRows(layer, band.r0, band.r1, &band.near);
+    band.spans.resize(static_cast<size_t>(band.r1 - band.r0));
+    NearCellsInRows(layer, band.r0, band.r1, &band.near, band.spans.data());
     for (int i : band.near) finish.unseen[static_cast<size_t>(i)] = UnseenCell(layer, occ, free, i / cols, i % cols, room);
   });
   if (options.fill_single_cell_noise) {
@@ -792,14 +820,14 @@ std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Colu
     each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
       band.changes.clear();
       CollectEnclosedFills(layer, occ, *free, options.clearance_m, options.enclosed_unseen_radius_cells, band.r0,
-                           band.r1, &band.changes);
+                           band.r1, band.spans.data(), &band.changes);
       for (const auto& change : band.changes) finish.filled[static_cast<size_t>(change.first)] = kFilledUnseen;
     });
     make_changes(nullptr, &LayerFinish::enclosed_unseen_filled);
   }
   for (LayerFinish& f : out) f.solid_beside.assign(static_cast<size_t>(rows) * cols, 0);
   each_band([&](LayerBand& band, HeightMap& layer, LayerFinish& finish) {
-    SolidBesideRows(layer, occ, band.r0, band.r1, &finish.solid_beside);
+    SolidBesideRows(layer, occ, band.r0, band.r1, band.spans.data(), &finish.solid_beside);
   });
   return out;
 }

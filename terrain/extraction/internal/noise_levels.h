@@ -22,8 +22,10 @@ struct NoiseLevels {
 };
 
 // tolerance_m: how far off its neighbourhood a noise cell may lie (at least half a voxel
-// off counts as off).
-NoiseLevels NoiseFreeLevels(const HeightMap& height_map, double tolerance_m, int max_cells);
+// off counts as off). surface_cells: the map's cells with a height (SurfaceAnalysis::cells),
+// ascending.
+NoiseLevels NoiseFreeLevels(const HeightMap& height_map, const std::vector<int>& surface_cells, double tolerance_m,
+                            int max_cells);
 
 // A surface cell one voxel (up to the tolerance) above (side +1) or below (-1) its
 // neighbourhood's median.
@@ -36,7 +38,9 @@ struct OffCell {
 // NoiseFreeLevels in two steps: the off cells of every layer, found in bands of rows on
 // `threads` threads (each cell judged on its own neighbourhood), ascending per layer; then
 // the levels of one height map from its off cells.
-std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers, double tolerance_m,
+// surfaces: per layer its SurfaceCellsOf (the cells judged).
+std::vector<std::vector<OffCell>> OffCellsOfLayers(const std::vector<HeightMap>& layers,
+                                                   const std::vector<SurfaceAnalysis>& surfaces, double tolerance_m,
                                                    int threads);
 NoiseLevels NoiseFreeLevelsFrom(const HeightMap& height_map, const std::vector<OffCell>& off, int max_cells);
 

@@ -27,8 +27,9 @@ namespace mfp {
 bool FitPlaneToSeenCells(const HeightMap& height_map, const std::vector<int>& cells, PlanarPatch* plane);
 
 // Replaces `patches` by the joined ones (order: as the first member of each group);
-// nothing changes when options.noise_patch_foot_radius_m is 0.
-void JoinNoisePatches(const HeightMap& height_map, const SegmentationOptions& options,
-                      std::vector<PlanarPatch>* patches);
+// nothing changes when options.noise_patch_foot_radius_m is 0. surface_cells: the height
+// map's cells with a height (SurfaceAnalysis::cells), ascending.
+void JoinNoisePatches(const HeightMap& height_map, const std::vector<int>& surface_cells,
+                      const SegmentationOptions& options, std::vector<PlanarPatch>* patches);
 
 }  // namespace mfp
