@@ -240,15 +240,13 @@ void NearCellsInRows(const HeightMap& hm, int r0, int r1, std::vector<int>* near
   for (int r = first; r <= last; ++r) {
     const float* h = &hm.height_m[static_cast<size_t>(r) * hm.cols];
     uint8_t* out = &has[static_cast<size_t>(r - first) * hm.cols];
-    int lo = hm.cols, hi = 0;
-    for (int c = 0; c < hm.cols; ++c) {
-      out[c] = !std::isnan(h[c]);
-      if (out[c]) {
-        lo = std::min(lo, c);
-        hi = c + 1;
-      }
-    }
-    span[static_cast<size_t>(r - first)] = lo < hi ? RowSpan{lo, hi} : RowSpan{};
+    uint8_t any = 0;
+    for (int c = 0; c < hm.cols; ++c) any |= out[c] = !std::isnan(h[c]);
+    if (!any) continue;  // RowSpan{}: none
+    const auto lo = static_cast<int>(std::find(out, out + hm.cols, uint8_t{1}) - out);
+    int hi = hm.cols;
+    while (!out[hi - 1]) --hi;
+    span[static_cast<size_t>(r - first)] = RowSpan{lo, hi};
   }
   if (spans != nullptr) {
     for (int r = r0; r < r1; ++r) spans[r - r0] = span[static_cast<size_t>(r - first)];
@@ -316,6 +314,8 @@ void CollectRepairs(const HeightMap& hm, const std::vector<uint8_t>* unseen, con
       const float g = around[k];
       if (std::isnan(g)) continue;
       ++present;
+      // A height equal to an earlier one has its count, which cannot beat the best.
+      if (std::find(around, around + k, g) != around + k) continue;
       int same = 0;
       for (int j = 0; j < 8; ++j) same += !std::isnan(around[j]) && std::abs(around[j] - g) < 0.01 * res;
       if (same > best) {
