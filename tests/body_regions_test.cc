@@ -101,6 +101,37 @@ TEST(FreeRegion, AmongTheNearObstaclesItIsTheRegionAmongAllWhenTheNearBoundsSayS
   EXPECT_GT(certified, 50);
 }
 
+TEST(FreeRegion, AmongTheFirstObstaclesOfAWorkSpaceItIsTheRegionAmongThoseAlone) {
+  // The convex cover's work space holds more polygons than one growth uses (left over from
+  // an earlier, larger one): grown among the first `count`, the region is the one grown
+  // among a vector of those alone, whatever follows them.
+  std::mt19937 rng(9);
+  std::bernoulli_distribution blocked(0.15);
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<Polygon> used, space;
+    for (int r = 0; r < 30; ++r) {
+      for (int c = 0; c < 30; ++c) {
+        if ((c >= 12 && c < 15 && r >= 12 && r < 14) || !blocked(rng)) continue;
+        used.push_back(Box(c, r, c + 1, r + 1));
+      }
+    }
+    space = used;
+    for (int k = 0; k < 20; ++k) space.push_back(Box(12 + k % 3, 12, 13 + k % 3, 13));  // over the seed: would refuse it
+    const Polygon seed = Box(12, 12, 15, 14);
+    const Eigen::Vector2d lo(0, 0), hi(30, 30);
+    Eigen::Vector2d lo_a, hi_a, lo_b, hi_b;
+    const std::optional<FreeRegion2d> alone = GrowFreeRegionNear(seed, used, lo, hi, 4.0, &lo_a, &hi_a);
+    const std::optional<FreeRegion2d> first = GrowFreeRegionNear(seed, space.data(), used.size(), lo, hi, 4.0, &lo_b, &hi_b);
+    ASSERT_TRUE(alone && first);
+    EXPECT_EQ(first->polygon, alone->polygon);
+    EXPECT_EQ(first->A, alone->A);
+    EXPECT_EQ(first->b, alone->b);
+    EXPECT_EQ(lo_b, lo_a);
+    EXPECT_EQ(hi_b, hi_a);
+    EXPECT_FALSE(GrowFreeRegionNear(seed, space.data(), space.size(), lo, hi, 4.0, &lo_b, &hi_b));
+  }
+}
+
 TEST(FreeRegion, ABodyInADoorGetsTheDoorsStripThroughTheWall) {
   // A wall along y at x in [1, 1.1] with a door y in [-0.2, 0.2]; the seed stands in it.
   const std::vector<Polygon> walls = {Box(1.0, 0.2, 1.1, 2.0), Box(1.0, -2.0, 1.1, -0.2)};

@@ -39,7 +39,8 @@ float FarNeighbourhoodMedian(const HeightMap& hm, int cell) {
 
 // The surface cells [begin, end) (ascending) off their neighbourhood, in order, appended
 // to off.
-void OffCellsAmong(const HeightMap& hm, double tolerance_m, const int* begin, const int* end, std::vector<OffCell>* off) {
+void OffCellsAmong(const HeightMap& hm, double tolerance_m, const int* begin, const int* end,
+                   std::vector<OffCell>* off) {
   for (const int* it = begin; it != end; ++it) {
     const int cell = *it;
     const float median = FarNeighbourhoodMedian(hm, cell);

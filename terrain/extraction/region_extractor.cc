@@ -152,9 +152,8 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
   // between the threads), then each layer's patches on its own (options.threads threads),
   // gathered in layer order.
   const bool noise_levels = seg.noise_patch_foot_radius_m > 0.0 && seg.noise_max_cells > 0;
-  const std::vector<std::vector<OffCell>> off = noise_levels
-                                                    ? OffCellsOfLayers(layers, surfaces, seg.noise_tolerance_m, options.threads)
-                                                    : std::vector<std::vector<OffCell>>{};
+  std::vector<std::vector<OffCell>> off;
+  if (noise_levels) off = OffCellsOfLayers(layers, surfaces, seg.noise_tolerance_m, options.threads);
   std::vector<std::vector<PlanarPatch>> per_layer(layers.size());
   ParallelFor(static_cast<int>(layers.size()), options.threads, [&](int l) {
     SegmentationOptions own = seg;
