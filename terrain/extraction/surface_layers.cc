@@ -55,6 +55,7 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
     const double x_d = (leaf.center_world_m.x() - 0.5 * leaf.size_m) / res;
     const double y_d = (leaf.center_world_m.y() - 0.5 * leaf.size_m) / res;
     const long long n = n_d <= 65536.5 ? RoundToLongLong(n_d) : 0, x = RoundToLongLong(x_d), y = RoundToLongLong(y_d);
+    bool on_grid = false;  // known to overlap the grid (the test below then passes)
     if (free_cells != nullptr) {
       // FreeLeafColumnCells from the rounded corner and width: the same whole numbers
       // (exact below 2^52); beyond, its own arithmetic.
@@ -62,7 +63,11 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
       if (n_d <= 65536.5 && std::abs(x_d) < kExact && std::abs(y_d) < kExact) {
         const long long dx = std::min(x + n, x_lo + hm.cols) - std::max(x, x_lo);
         const long long dy = std::min(y + n, y_lo + hm.rows) - std::max(y, y_lo);
-        if (dx > 0 && dy > 0) *free_cells += static_cast<double>(dx) * static_cast<double>(dy);
+        // With n >= 1 and a grid of at least one cell, dx > 0 and dy > 0 say the leaf
+        // overlaps the grid: the test below on c0, r0 and n.
+        if (dx <= 0 || dy <= 0) continue;
+        *free_cells += static_cast<double>(dx) * static_cast<double>(dy);
+        on_grid = true;
       } else {
         const double x0 = static_cast<double>(x_lo), y0 = static_cast<double>(y_lo);
         *free_cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
@@ -72,7 +77,7 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
     const long long z0 = RoundToLongLong((leaf.center_world_m.z() - 0.5 * leaf.size_m) / res);
     if (z0 > z_hi || z0 + n <= z_lo) continue;
     const long long c0 = x - x_lo, r0 = y - y_lo;
-    if (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0) continue;
+    if (!on_grid && (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0)) continue;
     prints.push_back({z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
   return prints;
