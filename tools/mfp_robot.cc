@@ -73,6 +73,39 @@ double LongestRunAlongX(const mfp::FootprintGrid& grid) {
   return best * grid.cell_m();
 }
 
+// How far a foot's footprint polygon (robot_model.h ReachFace) reaches from the nominal
+// foot along the body-frame unit direction u at every yaw within +-half_spread_rad: the
+// smallest over 1-degree samples of the ray's distance to the polygon's boundary [m].
+double PolygonReachTurned(const std::vector<mfp::ReachFace>& faces, const Eigen::Vector2d& u, double half_spread_rad) {
+  const int samples = static_cast<int>(std::ceil(half_spread_rad / (M_PI / 180.0)));
+  double reach = 1e300;
+  for (int k = -samples; k <= samples; ++k) {
+    const double yaw = samples == 0 ? 0.0 : half_spread_rad * k / samples;
+    const Eigen::Vector2d d(std::cos(yaw) * u.x() + std::sin(yaw) * u.y(), -std::sin(yaw) * u.x() + std::cos(yaw) * u.y());
+    for (const mfp::ReachFace& f : faces) {
+      const double along = f.normal.dot(d);
+      if (along > 1e-12) reach = std::min(reach, f.offset_m / along);
+    }
+  }
+  return reach;
+}
+
+// For the footprint shape: the polygons' forward step along x (the reach forward plus the
+// reference behind), smallest over legs, with the body turned by up to +-0, +-pi/16, +-pi/8.
+void PrintPolygonSteps(const mfp::RobotModel& robot, std::ostream& out) {
+  if (robot.reach_shape != mfp::ReachShape::kFootprint) return;
+  out << "  footprint polygons' step along x (fwd + back), body turned 0 / pi/16 / pi/8:";
+  for (const double spread : {0.0, M_PI / 16, M_PI / 8}) {
+    double step = 1e300;
+    for (const mfp::LegModel& leg : robot.legs) {
+      step = std::min(step, PolygonReachTurned(leg.footprint_faces, Eigen::Vector2d::UnitX(), spread) +
+                                PolygonReachTurned(leg.footprint_faces, -Eigen::Vector2d::UnitX(), spread));
+    }
+    out << " " << Fixed(step);
+  }
+  out << "\n";
+}
+
 // Per leg, the footprint's reach forward (+x) and back (-x) of the nominal foot when the
 // body may turn by +-0, +-pi/16 (one pi/8 yaw segment) and +-pi/8 (two), and its longest run
 // along x; then the longest forward step of one foot (smallest over legs, every leg must
@@ -117,6 +150,7 @@ void PrintStepExtents(const mfp::RobotModel& robot, const mfp::RobotDerivation& 
       << " / " << Fixed(sum[2]) << "\n";
   out << "  body still, the longest run along x:                    " << Fixed(run) << "\n";
   out << "  body moved by the other feet's longest run (no balance): " << Fixed(run + second_run) << "\n";
+  PrintPolygonSteps(robot, out);
 }
 
 void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation,
