@@ -63,16 +63,25 @@ void AddFootprintFaces(StepEncoder& e, const RobotModel& robot, int i, int j, Ro
   const int pieces = hi > lo ? static_cast<int>(std::ceil((hi - lo) / kFootprintYawSpacing - 1e-9)) : 0;
   const double spacing = pieces > 0 ? (hi - lo) / pieces : 0.0;
   const double sagitta = FarthestCorner(leg) * (1.0 - std::cos(0.5 * spacing));
-  const StepExpr dx = e.Position(i, 0) - e.NominalFoot(j, 0);
-  const StepExpr dy = e.Position(i, 1) - e.NominalFoot(j, 1);
+  std::vector<ReachFace> rows;
   for (int p = 0; p <= pieces; ++p) {
     const double psi = pieces > 0 ? lo + spacing * p : lo;
-    for (size_t k = 0; k < leg.footprint_faces.size(); ++k) {
-      const ReachFace& face = leg.footprint_faces[k];
-      const Eigen::Vector2d u = Eigen::Rotation2Dd(psi) * face.normal;
-      e.AddRow(kind, StepName((std::string(what) + "_" + std::to_string(p) + "_" + std::to_string(k)).c_str(), i),
-               FoldRotations(u.x() * dx + u.y() * dy), -kInfinity, face.offset_m - sagitta);
+    for (const ReachFace& face : leg.footprint_faces) {
+      rows.push_back({Eigen::Rotation2Dd(psi) * face.normal, face.offset_m - sagitta});
     }
+  }
+  // Only the rows whose line touches the rows' intersection: the others are implied by them
+  // (the intersection is the same polygon, with fewer rows for the solver).
+  const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(rows);
+  const StepExpr dx = e.Position(i, 0) - e.NominalFoot(j, 0);
+  const StepExpr dy = e.Position(i, 1) - e.NominalFoot(j, 1);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    double touch = -kInfinity;
+    for (const Eigen::Vector2d& c : corners) touch = std::max(touch, rows[k].normal.dot(c));
+    if (!corners.empty() && touch < rows[k].offset_m - 1e-9) continue;
+    const Eigen::Vector2d& u = rows[k].normal;
+    e.AddRow(kind, StepName((std::string(what) + "_" + std::to_string(k)).c_str(), i),
+             FoldRotations(u.x() * dx + u.y() * dy), -kInfinity, rows[k].offset_m);
   }
 }
 
