@@ -1,6 +1,7 @@
 #include "bench/course_checker.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -11,6 +12,16 @@
 namespace mfp {
 
 namespace {
+
+// How far the world offset w from a nominal foot lies beyond the leg's footprint polygon
+// turned by yaw_rad: the largest face excess (<= 0 inside) [m].
+double FootprintExcess(const LegModel& leg, double yaw_rad, const Eigen::Vector2d& w) {
+  const Eigen::Vector2d body = Eigen::Rotation2Dd(-yaw_rad) * w;
+  double excess = -1e300;
+  for (const ReachFace& face : leg.footprint_faces) excess = std::max(excess, face.normal.dot(body) - face.offset_m);
+  return excess;
+}
+
 
 std::string Fmt(const Eigen::Vector3d& p) {
   std::ostringstream s;
@@ -98,9 +109,21 @@ CourseVerdict CheckPlanOnCourse(const TerrainDescription& terrain, const RobotMo
     const Eigen::Vector2d centre = StanceCentreXY(feet);
     configs.push_back({centre.x(), centre.y(), f.yaw_rad});
     const Eigen::Vector2d o = robot.legs[f.leg].nominal_offset_body_m;
-    const double reach = (p.head<2>() - NominalFootXY(robot, f.leg, before.x_m, before.y_m, before.yaw_rad))
-                             .cwiseAbs().maxCoeff();
-    const double ref = (p.head<2>() - (centre + Eigen::Rotation2Dd(f.yaw_rad) * o)).cwiseAbs().maxCoeff();
+    const Eigen::Vector2d from_before = p.head<2>() - NominalFootXY(robot, f.leg, before.x_m, before.y_m, before.yaw_rad);
+    const Eigen::Vector2d from_own = p.head<2>() - (centre + Eigen::Rotation2Dd(f.yaw_rad) * o);
+    if (robot.reach_shape == ReachShape::kFootprint) {
+      // The leg's footprint polygon, turned by each configuration's yaw (robot_model.h).
+      const double reach = FootprintExcess(robot.legs[f.leg], before.yaw_rad, from_before);
+      const double ref = FootprintExcess(robot.legs[f.leg], f.yaw_rad, from_own);
+      if (reach > tol.reach_m || ref > tol.reach_m) {
+        fail("reach", "step " + std::to_string(k) + " leg " + robot.legs[f.leg].name + " is " + std::to_string(reach) +
+                          " m beyond its footprint polygon about its nominal spot n steps back, " +
+                          std::to_string(ref) + " m beyond it about its own");
+      }
+      continue;
+    }
+    const double reach = from_before.cwiseAbs().maxCoeff();
+    const double ref = from_own.cwiseAbs().maxCoeff();
     if (reach > robot.d_lim_m + tol.reach_m || ref > robot.l_bnd_m + tol.reach_m) {
       fail("reach", "step " + std::to_string(k) + " leg " + robot.legs[f.leg].name + " is " + std::to_string(reach) +
                         " m from its nominal spot n steps back (d_lim " + std::to_string(robot.d_lim_m) + "), " +

@@ -85,7 +85,7 @@ struct BenchFlags {
   std::vector<std::string> scans;
   std::vector<std::string> walk_robots;
   mfp::ScanWalkOptions walks;
-  std::string walk_reach;  // --walk-reach: "", box, octagon or hexadecagon
+  std::string walk_reach;  // --walk-reach: "", box, octagon, hexadecagon or footprint
   bool digest = false;
 };
 
@@ -188,7 +188,7 @@ void AddWalkFlags(CLI::App& app, BenchFlags& f) {
   app.add_option("--walk-reach", f.walk_reach,
                  "the planner's reach polygon for the walks, replacing the robot file's (the draw and the judge keep "
                  "the box)")
-      ->check(CLI::IsMember({"box", "octagon", "hexadecagon"}));
+      ->check(CLI::IsMember({"box", "octagon", "hexadecagon", "footprint"}));
   app.add_option("--walk-seed", walks.seed,
                  "the walks' draw: endpoints from this seed, mixed per scan file name and robot name (25: the draw "
                  "of the recorded walks)");
@@ -377,7 +377,8 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (!f.walk_reach.empty()) {
-    for (mfp::ReachShape shape : {mfp::ReachShape::kBox, mfp::ReachShape::kOctagon, mfp::ReachShape::kHexadecagon}) {
+    for (mfp::ReachShape shape : {mfp::ReachShape::kBox, mfp::ReachShape::kOctagon, mfp::ReachShape::kHexadecagon,
+                                  mfp::ReachShape::kFootprint}) {
       if (f.walk_reach == mfp::ReachShapeName(shape)) f.walks.reach_shape = shape;
     }
   }

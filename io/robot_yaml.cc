@@ -59,11 +59,14 @@ OptionTable<RobotModel> MakeRobotOptionTable() {
       LoaderOpt<R>("legs[].nominal_offset", "[x, y]", "(required)", "foot in the body frame when standing").Unit("m"),
       LoaderOpt<R>("legs[].hip", "[x, y, z]", "-", "hip in the body frame").Unit("m"),
       LoaderOpt<R>("gait", "list of leg names or indices", "leg order", "cyclic order in which the legs move"),
-      LoaderOpt<R>("reach_shape", "one of box, octagon, hexadecagon", "hexadecagon (URDF form); box (hand-written form)",
+      LoaderOpt<R>("reach_shape", "one of box, octagon, hexadecagon, footprint",
+                   "hexadecagon (URDF form); box (hand-written form)",
                    "a foot's reach polygon about its previous nominal spot, d_lim its half-width on each axis: the "
                    "paper's box, the octagon with |dx +- dy| <= sqrt(2) d_lim, or the regular 16-gon of apothem "
                    "d_lim (URDF form: the octagon and the 16-gon are derived inside the footprint's disk about the "
-                   "nominal foot, so they hold at every body yaw; the box does not)"),
+                   "nominal foot, so they hold at every body yaw; the box does not); footprint (URDF form only): "
+                   "each leg's own footprint polygon, turned with the body, about both its previous and its own "
+                   "nominal spot"),
   };
   for (const LimitField& f : kLimitFields) {
     const std::string range = "number in " + FormatRange(OptionKind::kDouble, f.min, f.max, false);
@@ -133,17 +136,18 @@ void SetProvenance(RobotModel* robot, const std::string& key, const std::string&
   robot->provenance.push_back(line);
 }
 
-// reach_shape: box, octagon or hexadecagon, `fallback` when absent; `given` (the caller's)
+// reach_shape: box, octagon, hexadecagon or footprint, `fallback` when absent; `given` (the caller's)
 // replaces the key.
 ReachShape ReadReachShape(const YAML::Node& root, const YamlContext& ctx, std::optional<ReachShape> given,
                           ReachShape fallback) {
   const std::optional<std::string> text = OptionalString(root, ctx, "reach_shape");
   if (given) return *given;
   if (!text) return fallback;
-  for (ReachShape shape : {ReachShape::kBox, ReachShape::kOctagon, ReachShape::kHexadecagon}) {
+  for (ReachShape shape : {ReachShape::kBox, ReachShape::kOctagon, ReachShape::kHexadecagon, ReachShape::kFootprint}) {
     if (*text == ReachShapeName(shape)) return shape;
   }
-  throw InputError(ctx.Child("reach_shape").Where() + ": '" + *text + "' is not one of box, octagon, hexadecagon");
+  throw InputError(ctx.Child("reach_shape").Where() + ": '" + *text +
+                   "' is not one of box, octagon, hexadecagon, footprint");
 }
 
 void ReadWeights(const YAML::Node& root, const YamlContext& ctx, PlannerWeights* weights) {

@@ -16,6 +16,7 @@
 #include "planner/planning/internal/route_guide.h"
 #include "planner/planning/plan_validation.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace mfp {
 namespace {
@@ -111,6 +112,36 @@ TEST(ReachShapePlan, AGapWiderThanTheBoxsAxisStepIsCrossedByTheOctagonInsideTheF
     ADD_FAILURE() << v;
   }
   EXPECT_EQ(OutsideFootprint(m.octagon, m.derivation, crossed), "");
+}
+
+// The footprint shape (each leg's own footprint polygon, turned with the body, about both
+// its previous and its own nominal spot): a gap 4 cm wider than the 16-gon's step on the
+// axis (a doorway's groove) is refused by the 16-gon and crossed by the footprint, every
+// footstep inside its leg's derived footprint seen from the configuration its reach rows
+// refer to, and the plan valid by the validator's exact check (the polygon at each step's
+// own yaw).
+TEST(ReachShapePlan, AGapWiderThanThe16gonsStepIsCrossedByTheFootprintPolygonInsideTheFootprint) {
+  const Models m = Load();
+  const std::string path = std::string(MFP_SOURCE_DIR) + "/" + kRobot;
+  const RobotModel hexadecagon = LoadRobot(path, ReachShape::kHexadecagon);
+  const RobotModel footprint = LoadRobot(path, ReachShape::kFootprint);
+  ASSERT_EQ(footprint.reach_shape, ReachShape::kFootprint);
+  const double span = hexadecagon.d_lim_m + hexadecagon.l_bnd_m;
+  const double gap = span + 0.04;
+  ASSERT_GT(FootprintStepWidth(footprint), gap + 0.05) << "the footprint polygons' widest step";
+  const std::vector<ConvexRegion> regions = Corridor(hexadecagon, gap);
+  const double goal_x = gap + 0.5;
+
+  const Plan refused = PlanAcross(hexadecagon, regions, goal_x);
+  EXPECT_EQ(refused.status, SolveStatus::kNoRoute) << refused.message;
+
+  const Plan crossed = PlanAcross(footprint, regions, goal_x);
+  ASSERT_TRUE(HasPlan(crossed.status)) << crossed.message;
+  EXPECT_TRUE(crossed.reaches_goal) << crossed.message;
+  for (const std::string& v : ValidatePlan(footprint, regions, crossed, {goal_x, 0.0, 0.0}, ValidationTolerances{})) {
+    ADD_FAILURE() << v;
+  }
+  EXPECT_EQ(OutsideFootprint(footprint, m.derivation, crossed), "");
 }
 
 TEST(ReachShapePlan, TheRouteGraphJoinsAGapExactlyWhenOneStepOnTheAxisSpansIt) {

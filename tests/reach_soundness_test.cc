@@ -167,5 +167,53 @@ TEST(ReachSoundness, EveryZooQuadrupedsDefaultReachIsSteppableAtEveryBodyYaw) {
   EXPECT_GT(box_unreachable, 0);
 }
 
+// Points of each leg's footprint polygon (reach_shape footprint: its corners and the
+// middles of its edges, about the nominal foot; the polygon turns with the body, so no yaw
+// sweep) the leg's inverse kinematics does not reach; the first few named in `failures`.
+int UnreachableFootprintPoints(const std::string& file, std::vector<std::string>* failures) {
+  RobotDescription description = ReadUrdfRobot(file);
+  DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+  options.reach_shape = ReachShape::kFootprint;
+  const RobotDerivation derivation = DeriveRobot(description, options);
+  int unreachable = 0;
+  for (size_t k = 0; k < derivation.legs.size(); ++k) {
+    const LegDerivation& leg = derivation.legs[k];
+    const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(derivation.model.legs[k].footprint_faces);
+    EXPECT_GE(corners.size(), 3u) << file << " leg " << k;
+    Eigen::VectorXd q_hint = leg.nominal_q;
+    for (size_t c = 0; c < corners.size(); ++c) {
+      const Eigen::Vector2d middle = 0.5 * (corners[c] + corners[(c + 1) % corners.size()]);
+      for (const Eigen::Vector2d& point : {corners[c], middle}) {
+        Eigen::Vector3d target = leg.nominal_foot_body_m;
+        target.head<2>() += point;
+        if (Reaches(description.legs[k], leg.nominal_foot_body_m, target, leg.nominal_q, &q_hint)) continue;
+        ++unreachable;
+        if (failures->size() < 3) {
+          failures->push_back(file + " leg " + std::to_string(k) + " point (" + std::to_string(point.x()) + ", " +
+                              std::to_string(point.y()) + ")");
+        }
+      }
+    }
+  }
+  return unreachable;
+}
+
+TEST(ReachSoundness, EveryRepositoryUrdfRobotsFootprintPolygonIsSteppable) {
+  for (const std::string& file : RepositoryUrdfs()) {
+    std::vector<std::string> failures;
+    EXPECT_EQ(UnreachableFootprintPoints(file, &failures), 0) << Join(failures);
+  }
+}
+
+TEST(ReachSoundness, TheZooQuadrupedsFootprintPolygonsAreSteppable) {
+  const std::vector<std::string> files = ZooUrdfs();
+  ASSERT_FALSE(files.empty()) << "the robot zoo's venv (made by robot_zoo_test, which ctest runs first) is missing: "
+                                 "run `ctest -R robot_zoo_test`, or set MFP_ZOO_VENV to it";
+  for (const std::string& file : files) {
+    std::vector<std::string> failures;
+    EXPECT_EQ(UnreachableFootprintPoints(file, &failures), 0) << Join(failures);
+  }
+}
+
 }  // namespace
 }  // namespace mfp

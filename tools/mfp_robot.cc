@@ -1,8 +1,10 @@
-// mfp-robot FILE.urdf|FILE.yaml [--json FILE] [--svg FILE]: prints the robot model the
-// planner would use (legs, hips, nominal offsets, d_lim, l_bnd, dz_max, gait) with where
-// each value came from; --json writes the plan JSON's robot object (`-` = stdout), --svg
-// draws the body, hips, nominal stance and each foot's reachable footprint with its
-// inscribed square. Exit 0 on success, 2 on bad input.
+// mfp-robot FILE.urdf|FILE.yaml [--json FILE] [--svg FILE] [--step-extents]: prints the
+// robot model the planner would use (legs, hips, nominal offsets, d_lim, l_bnd, dz_max,
+// gait) with where each value came from; --json writes the plan JSON's robot object (`-` =
+// stdout), --svg draws the body, hips, nominal stance and each foot's reachable footprint
+// with its inscribed square; --step-extents prints how far each foot truly reaches forward
+// and back of its nominal foot when the body may be turned, and the longest forward step
+// the footprints allow. Exit 0 on success, 2 on bad input.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -33,6 +35,122 @@ double FootprintChord(const mfp::FootprintGrid& grid, const Eigen::Vector2d& p, 
     length += t;
   }
   return length;
+}
+
+// How far the foot reaches from p along the body-frame unit direction u while the body may
+// be turned by any yaw within +-half_spread_rad of u's heading: the largest t such that
+// every point s u, 0 <= s <= t, turned back by each such yaw (1-degree samples and both
+// ends) lies in the footprint [m]. half_spread_rad = 0: the plain ray.
+double ReachAlongTurned(const mfp::FootprintGrid& grid, const Eigen::Vector2d& p, const Eigen::Vector2d& u,
+                        double half_spread_rad) {
+  const double step = 0.1 * grid.cell_m();
+  const int samples = static_cast<int>(std::ceil(half_spread_rad / (M_PI / 180.0)));
+  auto inside = [&](double t) {
+    for (int k = -samples; k <= samples; ++k) {
+      const double yaw = samples == 0 ? 0.0 : half_spread_rad * k / samples;
+      const Eigen::Vector2d turned(std::cos(yaw) * u.x() + std::sin(yaw) * u.y(),
+                                   -std::sin(yaw) * u.x() + std::cos(yaw) * u.y());
+      if (!grid.OccupiedAt(p + t * turned)) return false;
+    }
+    return true;
+  };
+  double t = 0.0;
+  while (inside(t + step)) t += step;
+  return t;
+}
+
+// The footprint's longest run of occupied cells along body x, over its rows [m]: how far a
+// foot moves forward, body still, from the back of its reach to the front on the best line.
+double LongestRunAlongX(const mfp::FootprintGrid& grid) {
+  int best = 0;
+  for (int iy = 0; iy < grid.ny(); ++iy) {
+    int run = 0;
+    for (int ix = 0; ix < grid.nx(); ++ix) {
+      run = grid.Occupied(ix, iy) ? run + 1 : 0;
+      best = std::max(best, run);
+    }
+  }
+  return best * grid.cell_m();
+}
+
+// How far a foot's footprint polygon (robot_model.h ReachFace) reaches from the nominal
+// foot along the body-frame unit direction u at every yaw within +-half_spread_rad: the
+// smallest over 1-degree samples of the ray's distance to the polygon's boundary [m].
+double PolygonReachTurned(const std::vector<mfp::ReachFace>& faces, const Eigen::Vector2d& u, double half_spread_rad) {
+  const int samples = static_cast<int>(std::ceil(half_spread_rad / (M_PI / 180.0)));
+  double reach = 1e300;
+  for (int k = -samples; k <= samples; ++k) {
+    const double yaw = samples == 0 ? 0.0 : half_spread_rad * k / samples;
+    const Eigen::Vector2d d(std::cos(yaw) * u.x() + std::sin(yaw) * u.y(), -std::sin(yaw) * u.x() + std::cos(yaw) * u.y());
+    for (const mfp::ReachFace& f : faces) {
+      const double along = f.normal.dot(d);
+      if (along > 1e-12) reach = std::min(reach, f.offset_m / along);
+    }
+  }
+  return reach;
+}
+
+// For the footprint shape: the polygons' forward step along x (the reach forward plus the
+// reference behind), smallest over legs, with the body turned by up to +-0, +-pi/16, +-pi/8.
+void PrintPolygonSteps(const mfp::RobotModel& robot, std::ostream& out) {
+  if (robot.reach_shape != mfp::ReachShape::kFootprint) return;
+  out << "  footprint polygons' step along x (fwd + back), body turned 0 / pi/16 / pi/8:";
+  for (const double spread : {0.0, M_PI / 16, M_PI / 8}) {
+    double step = 1e300;
+    for (const mfp::LegModel& leg : robot.legs) {
+      step = std::min(step, PolygonReachTurned(leg.footprint_faces, Eigen::Vector2d::UnitX(), spread) +
+                                PolygonReachTurned(leg.footprint_faces, -Eigen::Vector2d::UnitX(), spread));
+    }
+    out << " " << Fixed(step);
+  }
+  out << "\n";
+}
+
+// Per leg, the footprint's reach forward (+x) and back (-x) of the nominal foot when the
+// body may turn by +-0, +-pi/16 (one pi/8 yaw segment) and +-pi/8 (two), and its longest run
+// along x; then the longest forward step of one foot (smallest over legs, every leg must
+// cross) under each model.
+void PrintStepExtents(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation, std::ostream& out) {
+  if (derivation.legs.size() != robot.legs.size()) {
+    out << "step extents: no footprints (the robot is not derived from a URDF)\n";
+    return;
+  }
+  const double spreads[3] = {0.0, M_PI / 16, M_PI / 8};
+  out << "step extents along body x [m] (fwd / back of the nominal foot, body turned by up to +-0, +-pi/16, "
+         "+-pi/8; run: the longest run along x)\n";
+  double fwd[3], sum[3], run = 1e9, second_run = 1e9;
+  for (int s = 0; s < 3; ++s) fwd[s] = sum[s] = 1e9;
+  for (int k = 0; k < robot.num_legs(); ++k) {
+    const mfp::LegDerivation& d = derivation.legs[k];
+    const Eigen::Vector2d nominal = d.nominal_foot_body_m.head<2>();
+    out << "  " << k << " " << robot.legs[k].name << ":";
+    for (int s = 0; s < 3; ++s) {
+      const double f = ReachAlongTurned(d.footprint, nominal, Eigen::Vector2d::UnitX(), spreads[s]);
+      const double b = ReachAlongTurned(d.footprint, nominal, -Eigen::Vector2d::UnitX(), spreads[s]);
+      out << "  " << Fixed(f) << " / " << Fixed(b);
+      fwd[s] = std::min(fwd[s], f);
+      sum[s] = std::min(sum[s], f + b);
+    }
+    const double r = LongestRunAlongX(d.footprint);
+    out << "  run " << Fixed(r) << "\n";
+    if (r < run) {
+      second_run = run;
+      run = r;
+    } else {
+      second_run = std::min(second_run, r);
+    }
+  }
+  const double l = robot.l_bnd_m;
+  out << "longest forward step of every leg [m]:\n";
+  out << "  this model (" << mfp::ReachShapeName(robot.reach_shape) << " d_lim + l_bnd):       " << Fixed(robot.d_lim_m + l)
+      << "\n";
+  out << "  footprint reach + l_bnd, body turned 0 / pi/16 / pi/8: " << Fixed(fwd[0] + l) << " / " << Fixed(fwd[1] + l)
+      << " / " << Fixed(fwd[2] + l) << "\n";
+  out << "  footprint reach and footprint reference (fwd + back):   " << Fixed(sum[0]) << " / " << Fixed(sum[1])
+      << " / " << Fixed(sum[2]) << "\n";
+  out << "  body still, the longest run along x:                    " << Fixed(run) << "\n";
+  out << "  body moved by the other feet's longest run (no balance): " << Fixed(run + second_run) << "\n";
+  PrintPolygonSteps(robot, out);
 }
 
 void PrintTable(const mfp::RobotModel& robot, const mfp::RobotDerivation& derivation,
@@ -192,9 +310,12 @@ std::string RobotSvg(const mfp::RobotModel& robot, const mfp::RobotDerivation& d
 int main(int argc, char** argv) {
   CLI::App app{"Prints the robot model mfp derives from a URDF or robot YAML."};
   std::string robot_file, json_file, svg_file;
+  bool step_extents = false;
   app.add_option("FILE", robot_file, "robot URDF or YAML")->required();
   app.add_option("--json", json_file, "write the robot JSON here ('-' = stdout)");
   app.add_option("--svg", svg_file, "draw body, hips, nominal stance and footprints here");
+  app.add_flag("--step-extents", step_extents,
+               "print each foot's reach forward and back of its nominal foot and the longest forward step");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -205,6 +326,7 @@ int main(int argc, char** argv) {
     mfp::RobotDerivation derivation;
     const mfp::RobotModel robot = mfp::LoadRobot(robot_file, &derivation);
     if (json_file != "-") PrintTable(robot, derivation, std::cout);
+    if (step_extents) PrintStepExtents(robot, derivation, std::cout);
     if (!json_file.empty()) mfp::WriteTextOutput(json_file, mfp::RobotToJson(robot).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     if (!svg_file.empty()) mfp::WriteTextOutput(svg_file, RobotSvg(robot, derivation));
   } catch (const mfp::InputError& e) {

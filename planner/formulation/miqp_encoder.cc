@@ -13,6 +13,17 @@ StepExpr MiqpEncoder::Rotated(int i, const Eigen::Vector2d& offset_body_m, int a
                    : NominalFootY(zero, e_.Sin(cfg), e_.Cos(cfg), offset_body_m);
 }
 
+std::pair<double, double> MiqpEncoder::YawBounds(int j) const {
+  MFP_CHECK(j >= 0);
+  const LinExpr yaw = e_.Yaw(j / e_.num_legs());
+  if (j < e_.num_legs() || yaw.terms.empty()) {
+    const double fixed = e_.StartStepYaw(j);
+    return {fixed, fixed};
+  }
+  MFP_CHECK(yaw.terms.size() == 1 && yaw.terms[0].second == 1.0);
+  return {b_->lower(yaw.terms[0].first), b_->upper(yaw.terms[0].first)};
+}
+
 void MiqpEncoder::AddRow(RowKind /*kind*/, const std::string& name, const StepExpr& expr, double lower,
                          double upper) {
   MFP_CHECK_MSG(expr.rotations.empty(), name + ": the MIQP has no exact rotation");

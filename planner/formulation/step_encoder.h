@@ -13,6 +13,7 @@
 //        the plan's footsteps; a row is its excess over its bounds.
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/expression_arithmetic.h"
@@ -66,6 +67,8 @@ class StepEncoder {
   virtual ~StepEncoder() = default;
 
   virtual int num_legs() const = 0;
+  // The leg step j moves.
+  virtual int LegOfStep(int j) const = 0;
   // Position of step j on one axis (0 x, 1 y, 2 z); steps before the plan (j < n) are
   // constants (the start stance, or the history before it for j < 0).
   virtual StepExpr Position(int j, int axis) const = 0;
@@ -78,6 +81,11 @@ class StepEncoder {
   // R(theta_b(i)) o on axis 0 or 1: a body-frame offset turned by the yaw of new step i's
   // configuration (i >= n).
   virtual StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const = 0;
+  // [lowest, highest] yaw the configuration of step j (j >= 0) may take [rad]: the MIQP's
+  // and the polisher's bounds on its yaw variable, the start's yaw for the start's steps,
+  // and, for the validator, the yaw step j reports (both ends). Rows that must hold at
+  // every yaw of that range (the footprint polygon's) are written for it.
+  virtual std::pair<double, double> YawBounds(int j) const = 0;
 
   // lower <= expr <= upper. name: the MIQP's row name.
   virtual void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) = 0;

@@ -61,9 +61,13 @@ LinExpr StepExpressions::Cos(int cfg) const {
   return cfg == 0 ? LinExpr::Constant(std::cos(problem_.start_yaw_rad)) : LinExpr::Var(vars_.c[cfg]);
 }
 
+double StepExpressions::StartStepYaw(int i) const {
+  return problem_.start_step_yaw_rad.empty() || i < 0 || i >= n_ ? problem_.start_yaw_rad : problem_.start_step_yaw_rad[i];
+}
+
 LinExpr StepExpressions::NominalFoot(int i, int axis) const {
   const int cfg = i < 0 ? 0 : i / n_;
-  const Eigen::Vector2d o = problem_.robot->legs[LegOfStep(problem_, i)].nominal_offset_body_m;
+  const Eigen::Vector2d o = problem_.robot->legs[mfp::LegOfStep(problem_, i)].nominal_offset_body_m;
   const LinExpr p = CentreOfContacts(i, axis);
   if (cfg == 0 && !problem_.start_step_yaw_rad.empty()) {
     // The rotated offset is a constant: R(yaw) o about the origin, then added to p.

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "base/check.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace mfp {
 
@@ -39,10 +42,66 @@ void AddPolygonFaces(StepEncoder& e, const RobotModel& robot, int i, int sides) 
   }
 }
 
+// The farthest corner of a leg's footprint polygon from its nominal foot [m].
+double FarthestCorner(const LegModel& leg) {
+  double far = 0.0;
+  for (const Eigen::Vector2d& c : ReachFaceCorners(leg.footprint_faces)) far = std::max(far, c.norm());
+  return far;
+}
+
+// The footprint polygon of step i's leg about the nominal foot of step j (j = i: the
+// reference rows, j = i - n: the reachability rows), at every yaw configuration b(j) may
+// take: for yaws psi spaced at most kFootprintYawSpacing apart over its range [lo, hi],
+// (R(psi) u_k) . (f_i - r_nom,j) <= h_k - |w|max (1 - cos(spacing / 2)) for each face
+// (u_k, h_k). Between two neighbouring psi the turned normal lies within 1 - cos(spacing /
+// 2) of their chord, so the rows at the two ends, shrunk by that sagitta times the farthest
+// corner |w|max, imply the face at every yaw between them. One yaw (the validator's, the
+// start's): the faces themselves, unshrunk.
+void AddFootprintFaces(StepEncoder& e, const RobotModel& robot, int i, int j, RowKind kind, const char* what) {
+  const LegModel& leg = robot.legs[e.LegOfStep(i)];
+  const auto [lo, hi] = e.YawBounds(j);
+  const int pieces = hi > lo ? static_cast<int>(std::ceil((hi - lo) / kFootprintYawSpacing - 1e-9)) : 0;
+  const double spacing = pieces > 0 ? (hi - lo) / pieces : 0.0;
+  const double sagitta = FarthestCorner(leg) * (1.0 - std::cos(0.5 * spacing));
+  std::vector<ReachFace> rows;
+  for (int p = 0; p <= pieces; ++p) {
+    const double psi = pieces > 0 ? lo + spacing * p : lo;
+    for (const ReachFace& face : leg.footprint_faces) {
+      rows.push_back({Eigen::Rotation2Dd(psi) * face.normal, face.offset_m - sagitta});
+    }
+  }
+  // Only the rows whose line touches the rows' intersection: the others are implied by them
+  // (the intersection is the same polygon, with fewer rows for the solver).
+  const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(rows);
+  const StepExpr dx = e.Position(i, 0) - e.NominalFoot(j, 0);
+  const StepExpr dy = e.Position(i, 1) - e.NominalFoot(j, 1);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    double touch = -kInfinity;
+    for (const Eigen::Vector2d& c : corners) touch = std::max(touch, rows[k].normal.dot(c));
+    if (!corners.empty() && touch < rows[k].offset_m - 1e-9) continue;
+    const Eigen::Vector2d& u = rows[k].normal;
+    e.AddRow(kind, StepName((std::string(what) + "_" + std::to_string(k)).c_str(), i),
+             FoldRotations(u.x() * dx + u.y() * dy), -kInfinity, rows[k].offset_m);
+  }
+}
+
 }  // namespace
+
+double FootprintReachRadius(const RobotModel& robot) {
+  double far = 0.0;
+  for (const LegModel& leg : robot.legs) far = std::max(far, FarthestCorner(leg));
+  return far;
+}
 
 void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
   const int n = e.num_legs();
+  if (robot.reach_shape == ReachShape::kFootprint) {
+    AddFootprintFaces(e, robot, i, i, RowKind::kReferenceBox, "ref_fp");
+    AddFootprintFaces(e, robot, i, i - n, RowKind::kReachability, "reach_fp");
+    e.AddRow(RowKind::kHeightChange, StepName("dz", i), e.Position(i, 2) - e.Position(i - n, 2), -robot.dz_max_m,
+             robot.dz_max_m);
+    return;
+  }
   for (int axis = 0; axis < 2; ++axis) {
     const char* ax = axis == 0 ? "x" : "y";
     e.AddRow(RowKind::kReferenceBox, std::string("ref_") + ax + "_" + std::to_string(i),
@@ -69,8 +128,13 @@ std::vector<double> MaxMovesXY(const StepExpressions& e, const RobotModel& robot
       start_offset[i] = std::max(start_offset[i], std::abs(constant(e.Position(i, axis)) - constant(e.NominalFoot(i, axis))));
     }
   }
+  // The footprint polygons, turned to any yaw, lie within their farthest corner of the
+  // nominal foot: on each axis the reach and the reference both lie that far.
+  const bool footprint = robot.reach_shape == ReachShape::kFootprint;
+  const double reach = footprint ? FootprintReachRadius(robot) : robot.d_lim_m;
+  const double reference = footprint ? reach : robot.l_bnd_m;
   std::vector<double> moves(num_steps, 0.0);
-  for (int i = n; i < num_steps; ++i) moves[i] = robot.d_lim_m + (i - n < n ? start_offset[i - n] : robot.l_bnd_m);
+  for (int i = n; i < num_steps; ++i) moves[i] = reach + (i - n < n ? start_offset[i - n] : reference);
   return moves;
 }
 

@@ -8,6 +8,7 @@
 //   height change   |z_i - z_i-n|         <= dz_max
 // written once through a StepEncoder: the MIQP's rows (chords) and the polisher's (exact
 // sin/cos) alike, and evaluated by the plan validator.
+#include <cmath>
 #include <vector>
 
 #include "planner/formulation/internal/step_expressions.h"
@@ -19,7 +20,18 @@ namespace mfp {
 
 // Reference box, reachability and height change of new step i, in this order: ref x,
 // reach x, ref y, reach y, (the polygon's other faces: the octagon's reach x+y, reach x-y), dz.
+// For ReachShape::kFootprint: the leg's footprint polygon about r_nom,i (the reference
+// rows) and about r_nom,i-n (the reachability rows), each at every yaw its configuration
+// may take (StepEncoder::YawBounds; the yaws sampled at most kFootprintYawSpacing apart,
+// the faces shrunk by the sagitta between samples), then dz.
 void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i);
+
+// Largest spacing of the yaws at which the footprint polygon's rows are written [rad]: pi/8,
+// the yaw grid's segment (the sagitta then costs 1.9 % of the farthest corner).
+constexpr double kFootprintYawSpacing = M_PI / 8;
+
+// The footprint polygons' farthest corner from their nominal foot, over the legs [m].
+double FootprintReachRadius(const RobotModel& robot);
 
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the
 // reachability box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n

@@ -130,6 +130,18 @@ StepExpr ExactEncoder::Rotated(int i, const Eigen::Vector2d& offset_body_m, int 
   return out;
 }
 
+std::pair<double, double> ExactEncoder::YawBounds(int j) const {
+  const FootstepProblem& problem = f_.problem();
+  const int cfg = j / f_.num_legs();
+  if (cfg == 0) {
+    const double fixed = problem.start_step_yaw_rad.empty() ? problem.start_yaw_rad : problem.start_step_yaw_rad[j];
+    return {fixed, fixed};
+  }
+  const int var = theta_var_[cfg];
+  if (var < 0) return {problem.start_yaw_rad, problem.start_yaw_rad};
+  return {lower_(var), upper_(var)};
+}
+
 StepExpr ExactEncoder::Yaw(int cfg) const {
   return theta_var_[cfg] >= 0 ? LinExpr::Var(theta_var_[cfg]) : LinExpr::Constant(f_.problem().start_yaw_rad);
 }

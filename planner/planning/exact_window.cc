@@ -1,5 +1,6 @@
 #include "planner/planning/internal/exact_window.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -70,6 +71,9 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
   }
   out.robot->l_bnd_m -= out.shrink_m;
   out.robot->d_lim_m -= out.shrink_m;
+  for (LegModel& leg : out.robot->legs) {
+    for (ReachFace& face : leg.footprint_faces) face.offset_m = std::max(1e-6, face.offset_m - out.shrink_m);
+  }
   FootstepProblem problem = formulation.problem();
   problem.robot = out.robot.get();
   // Its build belongs to the completion's time when the search has none (below).

@@ -29,6 +29,7 @@ class FootstepRowExcess final : public StepEncoder {
   }
 
   int num_legs() const override { return n_; }
+  int LegOfStep(int j) const override { return steps_[static_cast<size_t>(std::max(j, 0))].leg; }
   StepExpr Position(int j, int axis) const override { return LinExpr::Constant(Pos(j)(axis)); }
   StepExpr CentreOfContacts(int i, int axis) const override { return LinExpr::Constant(Centre(i)(axis)); }
   StepExpr NominalFoot(int j, int axis) const override {
@@ -40,6 +41,10 @@ class FootstepRowExcess final : public StepEncoder {
     const double yaw = steps_[static_cast<size_t>(i)].yaw_rad;
     const Eigen::Vector2d turned = Eigen::Rotation2Dd(yaw) * offset_body_m;
     return LinExpr::Constant(turned(axis));
+  }
+  std::pair<double, double> YawBounds(int j) const override {
+    const double yaw = steps_[static_cast<size_t>(std::max(j, 0))].yaw_rad;
+    return {yaw, yaw};
   }
   StepExpr Yaw(int cfg) const override {
     return LinExpr::Constant(steps_[std::min<size_t>(cfg * n_, steps_.size() - 1)].yaw_rad);

@@ -177,7 +177,9 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   }
   const double span = MaxStepSpan(robot);
   const std::vector<Eigen::Vector2d> step = StepPolygon(robot);
-  const double axis_span = robot.d_lim_m + robot.l_bnd_m;  // the step polygon's half-width on x and y
+  // The step polygon's half-width on x and y.
+  const double axis_span =
+      robot.reach_shape == ReachShape::kFootprint ? FootprintStepWidth(robot) : robot.d_lim_m + robot.l_bnd_m;
   std::vector<Eigen::AlignedBox2d> bounds(m);
   for (int r = 0; r < m; ++r) {
     for (const Eigen::Vector2d& p : nodes[r].poly) bounds[r].extend(p);

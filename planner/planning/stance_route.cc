@@ -11,6 +11,7 @@
 
 #include "geometry/plan_bounds.h"
 #include "planner/robot/body_obstacle_index.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace mfp {
 namespace {
@@ -238,10 +239,13 @@ std::unique_ptr<StanceSpace> MakeStanceSpace(const RobotModel& robot, const std:
                                              const Eigen::Vector2d& start_xy, const Eigen::Vector2d& goal_xy,
                                              const StanceRouteOptions& options, const Deadline& deadline) {
   const BodyGrid grid = MakeBodyGrid(robot, regions, start_xy, goal_xy, options);
-  // Support within l_bnd of a foot; the raster finer than the body grid.
+  // Support within l_bnd of a foot (for the footprint shape, within the polygon's inscribed
+  // disk about the nominal foot, where its reference rows let a foot stand at any yaw); the
+  // raster finer than the body grid.
   const double res = std::max(0.005, std::min(0.5 * robot.l_bnd_m, 0.5 * grid.cell));
+  const double reference = robot.reach_shape == ReachShape::kFootprint ? FootprintInscribedReach(robot) : robot.l_bnd_m;
   std::optional<SupportRaster> raster =
-      MakeSupportRaster(regions, grid.lo, grid.hi, res, options.support_radius_l_bnd * robot.l_bnd_m, deadline);
+      MakeSupportRaster(regions, grid.lo, grid.hi, res, options.support_radius_l_bnd * reference, deadline);
   if (!raster) return nullptr;
   return std::make_unique<StanceSpace>(robot, grid, std::move(*raster), body_obstacles, ground_z_m, options);
 }

@@ -59,7 +59,37 @@ std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m)
   return corners;
 }
 
+double FootprintInscribedReach(const RobotModel& robot) {
+  double reach = kInf;
+  for (const LegModel& leg : robot.legs) {
+    for (const ReachFace& f : leg.footprint_faces) reach = std::min(reach, f.offset_m);
+  }
+  return reach;
+}
+
+double FootprintStepWidth(const RobotModel& robot) {
+  constexpr int kDirections = 64;
+  double narrowest = kInf;
+  for (const LegModel& leg : robot.legs) {
+    const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(leg.footprint_faces);
+    double widest = 0.0;
+    for (int k = 0; k < kDirections; ++k) {
+      const double phi = M_PI * k / kDirections;
+      const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
+      widest = std::max(widest, Support(corners, u) + Support(corners, -u));
+    }
+    narrowest = std::min(narrowest, widest);
+  }
+  return narrowest;
+}
+
 std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot) {
+  if (robot.reach_shape == ReachShape::kFootprint) {
+    // The old foot anywhere in the polygon about r_nom,i-n, the new one too, at a yaw the
+    // windows choose: the regular 16-gon whose apothem is the polygon's widest width (an
+    // over-approximation: the route graph may join what a window's yaw range cannot cross).
+    return ReachPolygon(ReachShape::kHexadecagon, FootprintStepWidth(robot));
+  }
   const std::vector<Eigen::Vector2d> reach = ReachPolygon(robot.reach_shape, robot.d_lim_m);
   const std::vector<Eigen::Vector2d> box = ReachPolygon(ReachShape::kBox, robot.l_bnd_m);
   std::vector<Eigen::Vector2d> sums;

@@ -16,9 +16,23 @@ namespace mfp {
 // octagon's 8 or the 16-gon's 16 [m].
 std::vector<Eigen::Vector2d> ReachPolygon(ReachShape shape, double half_width_m);
 
+// The corners of a footprint polygon (LegModel::footprint_faces), counter-clockwise, about
+// the nominal foot (the faces clipped from a box 10 times the largest offset) [m].
+std::vector<Eigen::Vector2d> ReachFaceCorners(const std::vector<ReachFace>& faces);
+
+// For the footprint shape: the smallest face offset over the legs' polygons [m]: how far a
+// foot may stand from its nominal spot in every direction (the polygon's inscribed disk
+// about it).
+double FootprintInscribedReach(const RobotModel& robot);
+
 // Every move f_i - f_i-n of a later step (not a leg's first): the reach polygon plus the
-// reference box, counter-clockwise [m].
+// reference box, counter-clockwise [m]. For the footprint shape, the regular 16-gon of
+// apothem FootprintStepWidth: every move at some yaw, and more.
 std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot);
+
+// For the footprint shape: the smallest over the legs of the polygon's widest width (over
+// 64 directions), how far one foot moves from one side of its polygon to the other [m].
+double FootprintStepWidth(const RobotModel& robot);
 
 // The smallest t >= 0 such that a + t * step meets b (Minkowski sum), for convex polygons a
 // and b (plan view, either orientation, at least one point each) and a convex polygon

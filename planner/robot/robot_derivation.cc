@@ -9,6 +9,7 @@
 
 #include "base/check.h"
 #include "base/format.h"
+#include "planner/robot/internal/footprint_polygon.h"
 #include "planner/robot/internal/inscribed_square.h"
 
 namespace mfp {
@@ -509,6 +510,29 @@ void AddModelLimits(const RobotDescription& robot, const LegLimits& limits, doub
   model->provenance.push_back("weights: defaults (a URDF cannot say)");
 }
 
+// For the footprint shape: each leg's footprint polygon about its nominal foot, its faces
+// pulled in by half a cell (as the disk and the square are), with a provenance line giving
+// the shortest reach forward and back along x over the legs.
+void AddFootprintFaces(const std::vector<LegDerivation>& legs, double cell, const DerivationOptions& options,
+                       RobotModel* model) {
+  if (model->reach_shape != ReachShape::kFootprint) return;
+  double forward = std::numeric_limits<double>::infinity(), back = forward;
+  for (size_t k = 0; k < legs.size(); ++k) {
+    std::vector<ReachFace> faces =
+        FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces);
+    for (ReachFace& f : faces) {
+      f.offset_m -= 0.5 * cell;
+      if (f.normal.x() > 1.0 - 1e-9) forward = std::min(forward, f.offset_m);
+      if (f.normal.x() < -1.0 + 1e-9) back = std::min(back, f.offset_m);
+    }
+    model->legs[k].footprint_faces = std::move(faces);
+  }
+  model->provenance.push_back("footprint polygon: derived per leg, " + std::to_string(options.footprint_faces) +
+                              " faces about the nominal foot inside the reachable footprint at the stance height, "
+                              "less half a cell; its shortest reach over the legs along x is " + Fixed(forward) +
+                              " m forward and " + Fixed(back) + " m back");
+}
+
 }  // namespace
 
 RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptions& options) {
@@ -534,6 +558,7 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
   RejectExhaustedLegs(robot, sampling, limits, stance, cell);
   AddModelLegs(robot, feet_xy, sampling.hips, &model);
   AddModelLimits(robot, limits, cell, options, &model);
+  AddFootprintFaces(out.legs, cell, options, &model);
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(feet_xy.size());
   std::string body_line;

@@ -15,6 +15,8 @@
 //    cell; for the octagon and the 16-gon, the apothem of the regular polygon inscribed in
 //    the smallest of the legs' largest disks about their nominal feet, less half a grid cell
 //    (the polygon then lies in the footprint at every body yaw, which the box does not);
+//    for the footprint shape, d_lim is the 16-gon's and each leg also gets its footprint
+//    polygon (footprint_polygon.h), faces pulled in by half a cell;
 //  - dz_max: the smallest, over legs and up/down, vertical travel of the foot from the
 //    nominal foot that stays reachable (continuation inverse kinematics);
 //  - l_bnd = l_bnd_fraction * d_lim; max yaw change: the yaw about the centre of contacts
@@ -46,6 +48,7 @@ struct DerivationOptions {
   // only when a robot file states it (reach_shape_given).
   ReachShape reach_shape = ReachShape::kHexadecagon;
   std::string reach_shape_given;          // who stated it ("by the caller", "in FILE"; "": the default)
+  int footprint_faces = 12;               // faces of each leg's footprint polygon (reach_shape footprint)
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
   // The request's deadline and stop flag: checked between legs and stance candidates and

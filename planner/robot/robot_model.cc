@@ -53,6 +53,18 @@ void ValidateRobotModel(const RobotModel& robot) {
     }
   }
   RequirePositive(name, "d_lim", robot.d_lim_m);
+  for (const LegModel& leg : robot.legs) {
+    if (robot.reach_shape != ReachShape::kFootprint) break;
+    bool holds_nominal = leg.footprint_faces.size() >= 3;
+    for (const ReachFace& f : leg.footprint_faces) {
+      holds_nominal = holds_nominal && std::isfinite(f.offset_m) && f.offset_m > 0.0 && f.normal.allFinite();
+    }
+    if (!holds_nominal) {
+      throw InputError("robot '" + name + "': reach_shape footprint needs leg '" + leg.name +
+                       "''s footprint polygon (at least 3 faces, each with a positive offset): it is derived "
+                       "from a URDF only");
+    }
+  }
   RequirePositive(name, "l_bnd", robot.l_bnd_m);
   RequirePositive(name, "dz_max", robot.dz_max_m);
   RequirePositive(name, "max_yaw_change", robot.max_yaw_change_rad);
@@ -79,6 +91,8 @@ const char* ReachShapeName(ReachShape shape) {
       return "octagon";
     case ReachShape::kHexadecagon:
       return "hexadecagon";
+    case ReachShape::kFootprint:
+      return "footprint";
     case ReachShape::kBox:
       break;
   }
@@ -90,6 +104,7 @@ int ReachShapeSides(ReachShape shape) {
     case ReachShape::kOctagon:
       return 8;
     case ReachShape::kHexadecagon:
+    case ReachShape::kFootprint:
       return 16;
     case ReachShape::kBox:
       break;

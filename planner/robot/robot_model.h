@@ -8,6 +8,13 @@
 
 namespace mfp {
 
+// One face of a leg's footprint polygon: normal . w <= offset_m for a foot at w from the
+// nominal foot, body frame [m] (normal a unit vector).
+struct ReachFace {
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
+  double offset_m = 0.0;
+};
+
 struct LegModel {
   std::string name;
   // Foot position at the nominal stance relative to the centre of contacts, body frame,
@@ -15,6 +22,10 @@ struct LegModel {
   Eigen::Vector2d nominal_offset_body_m = Eigen::Vector2d::Zero();
   // Hip (first joint of the leg chain) in the body frame [m]; zero when unknown.
   Eigen::Vector3d hip_body_m = Eigen::Vector3d::Zero();
+  // The leg's footprint polygon (ReachShape::kFootprint): a convex polygon about the
+  // nominal foot inside the leg's reachable footprint at the stance height; empty for the
+  // other shapes.
+  std::vector<ReachFace> footprint_faces;
 };
 
 // Cost weights of the paper's objective. The goal term must dominate.
@@ -57,14 +68,20 @@ std::vector<Eigen::Vector2d> BodyFootprint(const BodyExtent& body, double x_m, d
 //                 regular octagon of apothem d_lim, corners d_lim / cos(pi/8) from the spot;
 //   kHexadecagon  the regular 16-gon of apothem d_lim (faces normal to multiples of pi/8),
 //                 corners d_lim / cos(pi/16) from the spot.
-// The octagon and the 16-gon are derived inside the leg's reachable footprint at every body
-// yaw (robot_derivation.h).
-enum class ReachShape { kBox, kOctagon, kHexadecagon };
+//   kFootprint    each leg's own footprint polygon (LegModel::footprint_faces), turned with
+//                 the body: both the reference rows (about r_nom,i) and the reachability rows
+//                 (about r_nom,i-n) keep the foot inside it at every yaw the configuration
+//                 may take; d_lim is then the inscribed 16-gon's apothem, the reach the
+//                 polygon has in every direction.
+// The octagon, the 16-gon and the footprint polygon are derived inside the leg's reachable
+// footprint at every body yaw (robot_derivation.h).
+enum class ReachShape { kBox, kOctagon, kHexadecagon, kFootprint };
 
-// "box", "octagon" or "hexadecagon".
+// "box", "octagon", "hexadecagon" or "footprint".
 const char* ReachShapeName(ReachShape shape);
 
-// The shape's number of sides: 4, 8 or 16.
+// The regular shape's number of sides: 4, 8 or 16; 16 for the footprint (its inscribed
+// 16-gon, which d_lim is the apothem of).
 int ReachShapeSides(ReachShape shape);
 
 struct RobotModel {

@@ -16,11 +16,13 @@ class MiqpEncoder final : public StepEncoder {
   MiqpEncoder(const StepExpressions& expressions, MiqpBuilder* builder) : e_(expressions), b_(builder) {}
 
   int num_legs() const override { return e_.num_legs(); }
+  int LegOfStep(int j) const override { return e_.LegOfStep(j); }
   StepExpr Position(int j, int axis) const override { return e_.Position(j, axis); }
   StepExpr CentreOfContacts(int i, int axis) const override { return e_.CentreOfContacts(i, axis); }
   StepExpr NominalFoot(int i, int axis) const override { return e_.NominalFoot(i, axis); }
   StepExpr Yaw(int cfg) const override { return e_.Yaw(cfg); }
   StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const override;
+  std::pair<double, double> YawBounds(int j) const override;
 
   void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) override;
   // expr + big_m indicator <= upper + big_m; left out when big_m <= 0.

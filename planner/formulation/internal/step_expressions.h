@@ -31,6 +31,7 @@ class StepExpressions {
   StepExpressions(const FootstepProblem& problem, const FootstepVariables& vars);
 
   int num_legs() const { return n_; }
+  int LegOfStep(int j) const { return mfp::LegOfStep(problem_, j); }
   // Position of step j on one axis (0 x, 1 y, 2 z). Steps before the plan (j < 0) are the
   // given history, or without one the start stance of the same leg: a cyclic gait moves
   // leg(j) = leg(j + n).
@@ -45,6 +46,9 @@ class StepExpressions {
   // Nominal foot of step i on axis 0 or 1. Start steps of a later window keep the yaw
   // they were planned with (FootstepProblem::start_step_yaw_rad).
   LinExpr NominalFoot(int i, int axis) const;
+  // The constant yaw the nominal foot of start step i (0 <= i < n) is turned by: the yaw it
+  // was planned with in a later window, else the start yaw [rad].
+  double StartStepYaw(int i) const;
 
  private:
   const FootstepProblem& problem_;

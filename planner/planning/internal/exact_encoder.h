@@ -51,6 +51,7 @@ class ExactEncoder final : public StepEncoder {
   ExactEncoder(const MiqpFormulation& formulation, const Eigen::VectorXd& miqp_x, double margin_m);
 
   int num_legs() const override { return f_.num_legs(); }
+  int LegOfStep(int j) const override { return f_.LegOfStep(j); }
   // Before the window: the history (or the start stance when there is none), as in the
   // formulation; a trimmed step is its leg's previous foot.
   StepExpr Position(int j, int axis) const override;
@@ -58,6 +59,8 @@ class ExactEncoder final : public StepEncoder {
   StepExpr CentreOfContacts(int i, int axis) const override;
   StepExpr NominalFoot(int i, int axis) const override;
   StepExpr Yaw(int cfg) const override;
+  // The yaw variable's bounds (the MIQP's), or the constant yaw of a start step or a held one.
+  std::pair<double, double> YawBounds(int j) const override;
   StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const override;
   void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) override;
   void AddImpliedRow(RowKind kind, const std::string& name, int indicator, const StepExpr& expr, double upper,

@@ -8,6 +8,7 @@
 
 #include "base/check.h"
 #include "geometry/region_reachability.h"
+#include "planner/formulation/step_limits.h"
 #include "planner/planning/internal/plan_outcome.h"
 #include "planner/planning/request_check.h"
 
@@ -16,7 +17,8 @@ namespace {
 
 // Largest horizontal move of one foot in one step [m]: on each axis d_lim about the
 // previous nominal spot plus how far the previous foot may lie from that spot (l_bnd, or
-// the start stance's own offset, whichever is larger), as a Euclidean length.
+// the start stance's own offset, whichever is larger), as a Euclidean length; for the
+// footprint shape, the polygons' farthest corner for both.
 double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
   const int n = robot.num_legs();
   const Eigen::Vector2d centre = StanceCentreXY(request.start_feet_world_m);
@@ -25,6 +27,10 @@ double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
     const Eigen::Vector2d d = request.start_feet_world_m[k].head<2>() -
                               NominalFootXY(robot, k, centre.x(), centre.y(), request.start_yaw_rad);
     offset = std::max(offset, d.cwiseAbs().maxCoeff());
+  }
+  if (robot.reach_shape == ReachShape::kFootprint) {
+    const double reach = FootprintReachRadius(robot);
+    return reach + std::max(reach, offset);
   }
   return std::sqrt(2.0) * (robot.d_lim_m + offset);
 }
