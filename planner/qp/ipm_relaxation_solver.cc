@@ -1,6 +1,7 @@
 #include "planner/qp/internal/ipm_relaxation_solver.h"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "base/check.h"
@@ -11,19 +12,24 @@ namespace {
 
 // RelaxationRequest::certify_floor's second method (FloorCertificationOptions): the dual
 // active-set method from the active set of the interior point's solved answer r of the
-// reduced QP, stopping once its floor reaches cutoff; its floor raises r's bound_floor
-// (never above r's objective) when higher.
-void RaiseFloorByActiveSet(const ReducedQp& reduced, double cutoff, const Deadline& deadline,
-                           const FloorCertificationOptions& certification, RelaxationResult* r) {
+// reduced QP, stopping once its floor reaches cutoff. Its solved answer (an optimum exact
+// to its regularisation, with its floor) replaces r when it certifies more; a cutoff's
+// floor (its objective) raises r's bound_floor, never above r's objective.
+void CertifyByActiveSet(const ReducedQp& reduced, double cutoff, const Deadline& deadline,
+                        const FloorCertificationOptions& certification, RelaxationResult* r) {
   const std::vector<int> start = DualActiveSetQp::ActiveSetAt(reduced.problem, reduced.lower, reduced.upper, *r);
   DualActiveSetQp exact(certification.active_set);
-  const RelaxationResult solved = exact.SolveFrom(reduced.problem, reduced.lower, reduced.upper, cutoff, deadline, start);
-  r->iterations += solved.iterations;
-  // A cutoff's objective is its floor.
-  double floor = -kInfinity;
-  if (solved.status == RelaxationStatus::kSolved) floor = solved.cost_floor;
-  if (solved.status == RelaxationStatus::kCutoff) floor = solved.objective;
-  r->bound_floor = std::max(r->bound_floor, std::min(r->objective, floor));
+  RelaxationResult solved = exact.SolveFrom(reduced.problem, reduced.lower, reduced.upper, cutoff, deadline, start);
+  solved.iterations += r->iterations;
+  solved.polish_attempts = r->polish_attempts;
+  if (solved.status == RelaxationStatus::kSolved && solved.CertifiedFloor() > r->CertifiedFloor()) {
+    *r = std::move(solved);
+    return;
+  }
+  r->iterations = solved.iterations;
+  if (solved.status == RelaxationStatus::kCutoff) {
+    r->bound_floor = std::max(r->bound_floor, std::min(r->objective, solved.objective));
+  }
 }
 
 class InteriorPointRelaxationSolver final : public RelaxationSolver {
@@ -49,9 +55,9 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     Eigen::VectorXd start;
     if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
     RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,
-                                                    warm_start != nullptr ? &start : nullptr, options);
+                                              warm_start != nullptr ? &start : nullptr, options);
     if (request.certify_floor && r.status == RelaxationStatus::kSolved && r.polished == 0) {
-      RaiseFloorByActiveSet(reduced, request.cutoff, request.deadline, certification_, &r);
+      CertifyByActiveSet(reduced, request.cutoff, request.deadline, certification_, &r);
     }
     result.status = r.status;
     result.over_work_budget = r.over_work_budget;

@@ -17,6 +17,7 @@ struct SettledSubtree {
   Eigen::VectorXd lower, upper;   // its box
   Eigen::VectorXd relaxed;        // a relaxation point of it or its parent: a warm start (empty: none)
   bool propagated = false;        // lower/upper were propagated over the rows already
+  int depth = 0;                  // its node's depth in the tree
   bool recertified = false;       // solved again once (a second solve would certify the same)
 };
 
