@@ -291,6 +291,10 @@ void AddSearchKeys(Table* t) {
                    "crossover: once a relaxation's interior point reaches this relative accuracy, finish from its "
                    "active set (an exact optimum, its floor equal to it) and go on only when that fails (0: off)")
                    .Advanced());
+  t->push_back(Opt("search.recertify_leaves", in(&B::recertify_leaves), 0, 10000,
+                   "when a window's tree is exhausted short of its gap, solve again this many of the subtrees it "
+                   "settled at the lowest floors, by exact methods, to certify their floors (0: off)")
+                   .Advanced());
   t->push_back(Opt("search.root_cut_rounds", in(&B::root_cut_rounds), 0, 1000,
                    "rounds of cuts separated at the root after its first plan, before the search (0: off)")
                    .Alias("root_cut_rounds").Advanced());

@@ -1,16 +1,20 @@
 // The search's bounds are what its relaxations certify (RelaxationResult::cost_floor),
 // not the objectives at their points: a solver whose floors lie below its objectives
 // (an interior point stopped at a coarse dual residual) must not make the search claim
-// a tighter gap than those floors prove.
+// a tighter gap than those floors prove. Re-certification (recertify_leaves) may raise
+// a settled subtree's floor only to what a certifying solve of it proves.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "planner/miqp/miqp_builder.h"
 #include "planner/qp/internal/ipm_relaxation_solver.h"
 #include "planner/search/branch_and_bound.h"
+#include "planner/search/internal/lagging_floors.h"
 
 namespace mfp {
 namespace {
@@ -50,8 +54,27 @@ class LaggingFloorSolver : public RelaxationSolver {
   std::unique_ptr<RelaxationSolver> inner_ = MakeInteriorPointRelaxationSolver();
 };
 
-BranchAndBoundResult Search(RelaxationSolver* solver) {
+// The lagging floors of LaggingFloorSolver, except on re-certification's solves
+// (RelaxationRequest::certify_floor), which get the interior point's own certificate.
+class LaggingUnlessCertifyingSolver : public RelaxationSolver {
+ public:
+  explicit LaggingUnlessCertifyingSolver(double lag) : lagging_(lag) {}
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    if (!request.certify_floor) return lagging_.Solve(problem, request);
+    ++certifying;
+    return exact_->Solve(problem, request);
+  }
+  std::string Name() const override { return "lagging unless certifying"; }
+  int certifying = 0;
+
+ private:
+  LaggingFloorSolver lagging_;
+  std::unique_ptr<RelaxationSolver> exact_ = MakeInteriorPointRelaxationSolver();
+};
+
+BranchAndBoundResult Search(RelaxationSolver* solver, int recertify_leaves = BranchAndBoundOptions().recertify_leaves) {
   BranchAndBoundOptions options;
+  options.recertify_leaves = recertify_leaves;
   // Every relaxation is solved to the end, so every floor the search sees is the lagged one
   // (a cutoff's floor is the solver's own).
   options.early_cutoff = false;
@@ -133,6 +156,84 @@ TEST(CertifiedBound, AnIntegralRootShortOfTheGapRunsNoRootCutLoop) {
       EXPECT_EQ(solver.solved, solves_without_cuts);  // no cut round, no second pass
     }
   }
+}
+
+// Re-certification (BranchAndBoundOptions::recertify_leaves): an exhausted tree short of
+// the gap by lagging floors solves its lowest-floor subtrees again; when those solves
+// certify the floors, the search proves its plan, and the bound it claims never lies above
+// the optimum, whatever the lag.
+TEST(CertifiedBound, ReCertifiedFloorsProveTheExhaustedTreeAndStayBelowTheOptimum) {
+  for (const double lag : {0.05, 0.5, 3.0}) {
+    LaggingUnlessCertifyingSolver solver(lag);
+    const BranchAndBoundResult r = Search(&solver, /*recertify_leaves=*/8);
+    EXPECT_NEAR(r.objective, -10.0, 1e-6) << lag;
+    EXPECT_EQ(r.status, SolveStatus::kOptimal) << lag;
+    EXPECT_LE(r.bound, -10.0 + 1e-9) << lag;
+    EXPECT_LE(r.gap, 1e-4) << lag;
+    EXPECT_GT(r.floor_recertifications, 0) << lag;
+    EXPECT_LE(r.floor_recertifications, 8) << lag;
+    EXPECT_EQ(solver.certifying, r.floor_recertifications) << lag;
+    EXPECT_GT(r.floors_certified, 0) << lag;
+  }
+}
+
+// Without it (0), or when the re-certifying solves certify no more than the search's own
+// (every solve lags), the same tree stays short of the gap: `feasible`, its bound the lagged one.
+TEST(CertifiedBound, WithoutCertifiedFloorsTheExhaustedTreeStaysFeasible) {
+  constexpr double kLag = 0.05;
+  LaggingUnlessCertifyingSolver off(kLag);
+  const BranchAndBoundResult r_off = Search(&off, /*recertify_leaves=*/0);
+  EXPECT_EQ(r_off.status, SolveStatus::kFeasible);
+  EXPECT_EQ(r_off.floor_recertifications, 0);
+  EXPECT_EQ(off.certifying, 0);
+  EXPECT_LE(r_off.bound, -10.0 - kLag + 1e-6);
+  LaggingFloorSolver lagging(kLag);
+  const BranchAndBoundResult r = Search(&lagging, /*recertify_leaves=*/8);
+  EXPECT_EQ(r.status, SolveStatus::kFeasible);
+  EXPECT_GT(r.floor_recertifications, 0);
+  EXPECT_EQ(r.floors_certified, 0);
+  EXPECT_LE(r.bound, -10.0 - kLag + 1e-6);
+}
+
+// The budget: at most recertify_leaves solves, and as many subtrees kept; a lagging
+// subtree not kept keeps its lagged floor, so a budget short of the lagging subtrees
+// leaves the gap unproven (and solves nothing: the proof is out of its reach).
+TEST(CertifiedBound, ReCertificationSolvesAtMostItsBudget) {
+  constexpr double kLag = 3.0;  // the subtrees of {a, b} (9) and {a, c} (8) lag below -10 too
+  LaggingUnlessCertifyingSolver all(kLag);
+  const BranchAndBoundResult proven = Search(&all, /*recertify_leaves=*/8);
+  EXPECT_EQ(proven.status, SolveStatus::kOptimal);
+  ASSERT_GE(proven.floor_recertifications, 2) << "the knapsack's tree should settle several lagging subtrees";
+  LaggingUnlessCertifyingSolver one(kLag);
+  const BranchAndBoundResult r = Search(&one, /*recertify_leaves=*/1);
+  EXPECT_LE(r.floor_recertifications, 1);
+  EXPECT_EQ(r.status, SolveStatus::kFeasible);
+  EXPECT_NEAR(r.objective, -10.0, 1e-6);
+  EXPECT_LE(r.bound, -10.0 - 1e-3);
+}
+
+// The store keeps the lowest floors below the target, up to its capacity; every other
+// floor counts by the least of them, so the least floor over all is never lost.
+TEST(CertifiedBound, TheLaggingFloorsStoreKeepsTheLowestAndCountsTheRest) {
+  LaggingFloors store(2);
+  const double target = 10.0;
+  for (const double floor : {5.0, 1.0, 12.0, 3.0, 0.0, 4.0}) {
+    SettledSubtree s;
+    s.floor = floor;
+    store.Note(std::move(s), target);
+  }
+  store.NoteFloor(2.5);  // without a box
+  ASSERT_EQ(store.kept().size(), 2u);
+  std::vector<double> kept = {store.kept()[0].floor, store.kept()[1].floor};
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, (std::vector<double>{0.0, 1.0}));
+  EXPECT_EQ(store.rest_floor(), 2.5);
+  EXPECT_EQ(store.Least(), 0.0);
+  EXPECT_FALSE(store.Keeps(11.0, target));  // at or above the target it never limits
+  EXPECT_FALSE(store.Keeps(2.0, target));   // above the highest kept one
+  EXPECT_TRUE(store.Keeps(0.5, target));
+  LaggingFloors off(0);
+  EXPECT_FALSE(off.Keeps(-100.0, target));
 }
 
 }  // namespace

@@ -131,10 +131,11 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     bnb.root_heuristic = nullptr;  // a stage is itself part of the root heuristic
     bnb.first_plan_heuristic = nullptr;
     bnb.root_cut_rounds = 0;  // the stages are heuristics: the cut loop is the full search's
-    // So are group probing and RINS: a stage (relax-and-fix's dive gives a window's first
+    // So are group probing, RINS and re-certification: a stage (relax-and-fix's dive gives a window's first
     // plan) spends no time on a stronger bound or on improving its own plans.
     bnb.group_probing = false;
     bnb.rins_frequency = 0;
+    bnb.recertify_leaves = 0;
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;

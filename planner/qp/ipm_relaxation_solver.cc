@@ -1,6 +1,8 @@
 #include "planner/qp/internal/ipm_relaxation_solver.h"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "base/check.h"
 #include "planner/qp/internal/fixed_variable_reduction.h"
@@ -8,9 +10,32 @@
 namespace mfp {
 namespace {
 
+// RelaxationRequest::certify_floor's second method (FloorCertificationOptions): the dual
+// active-set method from the active set of the interior point's solved answer r of the
+// reduced QP, stopping once its floor reaches cutoff. Its solved answer (an optimum exact
+// to its regularisation, with its floor) replaces r when it certifies more; a cutoff's
+// floor (its objective) raises r's bound_floor, never above r's objective.
+void CertifyByActiveSet(const ReducedQp& reduced, double cutoff, const Deadline& deadline,
+                        const FloorCertificationOptions& certification, RelaxationResult* r) {
+  const std::vector<int> start = DualActiveSetQp::ActiveSetAt(reduced.problem, reduced.lower, reduced.upper, *r);
+  DualActiveSetQp exact(certification.active_set);
+  RelaxationResult solved = exact.SolveFrom(reduced.problem, reduced.lower, reduced.upper, cutoff, deadline, start);
+  solved.iterations += r->iterations;
+  solved.polish_attempts = r->polish_attempts;
+  if (solved.status == RelaxationStatus::kSolved && solved.CertifiedFloor() > r->CertifiedFloor()) {
+    *r = std::move(solved);
+    return;
+  }
+  r->iterations = solved.iterations;
+  if (solved.status == RelaxationStatus::kCutoff) {
+    r->bound_floor = std::max(r->bound_floor, std::min(r->objective, solved.objective));
+  }
+}
+
 class InteriorPointRelaxationSolver final : public RelaxationSolver {
  public:
-  explicit InteriorPointRelaxationSolver(const InteriorPointOptions& options) : options_(options) {}
+  InteriorPointRelaxationSolver(const InteriorPointOptions& options, const FloorCertificationOptions& certification)
+      : options_(options), certification_(certification) {}
 
   RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
     RelaxationResult result;
@@ -20,14 +45,20 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
     options.deadline = request.deadline;
     options.tolerance = std::max(options.tolerance, request.relative_tolerance);
     if (request.polish_tolerance > 0.0) options.polish_tolerance = request.polish_tolerance;
+    // Re-certification tries the crossover once, at convergence (a tolerance no looser
+    // than the solve's own).
+    if (request.certify_floor && !(options.polish_tolerance > 0.0)) options.polish_tolerance = options.tolerance;
     const Eigen::VectorXd& lower = request.LowerOr(problem);
     const Eigen::VectorXd& upper = request.UpperOr(problem);
     const Eigen::VectorXd* warm_start = request.WarmStart();
     if (ReduceOrSettle(problem, lower, upper, options.infeasible_violation, &reduced, &result)) return result;
     Eigen::VectorXd start;
     if (warm_start != nullptr) start = reduced.Restrict(*warm_start);
-    const RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,
-                                                    warm_start != nullptr ? &start : nullptr, options);
+    RelaxationResult r = SolveQpInteriorPoint(reduced.problem, reduced.lower, reduced.upper,
+                                              warm_start != nullptr ? &start : nullptr, options);
+    if (request.certify_floor && r.status == RelaxationStatus::kSolved && r.polished == 0) {
+      CertifyByActiveSet(reduced, request.cutoff, request.deadline, certification_, &r);
+    }
     result.status = r.status;
     result.over_work_budget = r.over_work_budget;
     result.iterations = r.iterations;
@@ -65,12 +96,14 @@ class InteriorPointRelaxationSolver final : public RelaxationSolver {
 
  private:
   InteriorPointOptions options_;
+  FloorCertificationOptions certification_;
 };
 
 }  // namespace
 
-std::unique_ptr<RelaxationSolver> MakeInteriorPointRelaxationSolver(const InteriorPointOptions& options) {
-  return std::make_unique<InteriorPointRelaxationSolver>(options);
+std::unique_ptr<RelaxationSolver> MakeInteriorPointRelaxationSolver(const InteriorPointOptions& options,
+                                                                   const FloorCertificationOptions& certification) {
+  return std::make_unique<InteriorPointRelaxationSolver>(options, certification);
 }
 
 }  // namespace mfp

@@ -101,6 +101,11 @@ struct RelaxationRequest {
   // relative residuals reach this (an exact optimum and a floor equal to it when the
   // guess is right; its own method on otherwise). Solvers without one ignore it.
   double polish_tolerance = 0.0;
+  // Re-certification (BranchAndBoundOptions::recertify_leaves): the solve may spend
+  // several times its usual work to bring its certified floor (RelaxationResult::
+  // CertifiedFloor) up to its objective, by the exact methods it has (the crossover, an
+  // active-set solve from its answer's active set). Solvers without one ignore it.
+  bool certify_floor = false;
 
   // The bounds in force: lower/upper, or the problem's own when empty.
   const Eigen::VectorXd& LowerOr(const Miqp& problem) const { return lower.size() ? lower : problem.var_lower; }

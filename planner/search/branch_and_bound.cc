@@ -4,12 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "base/check.h"
 #include "planner/search/internal/bound_propagation.h"
 #include "planner/search/internal/branching.h"
+#include "planner/search/internal/floor_recertification.h"
 #include "planner/search/internal/group_probing.h"
 #include "planner/search/internal/parallel_for.h"
 #include "planner/search/internal/pseudo_costs.h"
@@ -82,9 +84,18 @@ class Search {
   bool Exhausted() const { return exhausted_; }
 
   BranchAndBoundResult Run() {
+    state_.queue().Push(SearchNode());
+    do {
+      SearchOpenNodes();
+    } while (!hit_time_limit_ && !hit_node_limit_ && ReopenLaggingSubtree());
+    return Finish();
+  }
+
+ private:
+  // The search loop proper: rounds of open nodes until none is left or a limit ends it.
+  void SearchOpenNodes() {
     NodeQueue& queue = state_.queue();
     const BranchAndBoundResult& result = state_.result();
-    queue.Push(SearchNode());
     while (!queue.empty()) {
       if (state_.Active().Expired() || state_.Stalled()) {
         hit_time_limit_ = true;
@@ -119,10 +130,37 @@ class Search {
       for (size_t k = 0; k < batch.size(); ++k) Process(batch[k], std::move(evaluations[k]));
       state_.SetInFlightBound(kInfinity);  // every node of the round is settled or back in the queue
     }
-    return Finish();
   }
 
- private:
+  // An exhausted tree short of the gap by its floors (options.recertify_leaves): its
+  // lowest settled subtrees are solved again (RecertifyLaggingFloors); one that may still
+  // beat the incumbent is processed again from that solve, as a node, and true is returned
+  // (its children, if any, are open). False when there is nothing to search again.
+  bool ReopenLaggingSubtree() {
+    if (!state_.queue().empty() || state_.HasUnresolved() || !state_.HasIncumbent() || opt_.recertify_leaves <= 0 ||
+        !(state_.gap_pruned_bound() < state_.ProofFloor())) {
+      return false;
+    }
+    std::optional<ReopenedSubtree> reopened = RecertifyLaggingFloors(&state_);
+    if (!reopened) return false;
+    SettledSubtree& subtree = reopened->subtree;
+    SearchNode node;
+    for (int j = 0; j < p_.num_variables(); ++j) {  // its box as changes from the root's
+      if (subtree.lower(j) != p_.var_lower(j) || subtree.upper(j) != p_.var_upper(j)) {
+        node.changes.push_back({j, subtree.lower(j), subtree.upper(j)});
+      }
+    }
+    node.parent_floor = subtree.floor;
+    node.depth = subtree.depth;
+    node.parent_objective = reopened->relaxation.objective;
+    NodeEvaluation e;
+    e.lower = std::move(subtree.lower);
+    e.upper = std::move(subtree.upper);
+    e.relaxation = std::move(reopened->relaxation);  // its solve is counted (floor_recertifications)
+    Process(node, std::move(e));
+    return true;
+  }
+
   // A node's bounds after propagation and its relaxation: the part of a node's work that
   // touches nothing shared, so that several nodes can be evaluated at once.
   struct NodeEvaluation {
@@ -158,7 +196,7 @@ class Search {
            state_.result().nodes + static_cast<int>(batch.size()) < opt_.max_nodes) {
       SearchNode node = queue.Pop(state_.HasIncumbent(), state_.result().objective);
       if (state_.HasIncumbent() && !state_.Improves(node.parent_bound)) {
-        state_.NoteGapPrune(node.parent_floor);
+        NoteUnsolvedPrune(node);
         continue;
       }
       batch.push_back(std::move(node));
@@ -226,7 +264,7 @@ class Search {
       ++result.early_cutoffs;
       const double floor = std::max(rel.objective, node.parent_floor);  // a cutoff's objective is its floor
       if (is_root) result.bound = result.root_bound = floor;
-      state_.NoteGapPrune(floor);
+      NoteSettled(floor, node.depth, e, nullptr);
       return;
     }
     if (rel.status != RelaxationStatus::kSolved) {
@@ -250,7 +288,7 @@ class Search {
       if (RunRootHeuristic(&state_, rel.x)) deferred_root_x_ = rel.x;
     }
     if (state_.HasIncumbent() && !state_.Improves(bound)) {
-      state_.NoteGapPrune(floor);
+      NoteSettled(floor, node.depth, e, &rel.x);
       return;
     }
     if (is_root) {
@@ -271,7 +309,7 @@ class Search {
         return;
       }
       state_.OfferIncumbent(rel.x);
-      state_.NoteGapPrune(floor);  // the subtree is closed at its floor
+      NoteSettled(floor, node.depth, e, &rel.x);  // the subtree is closed at its floor
       return;
     }
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
@@ -286,6 +324,40 @@ class Search {
       AppendProbedBounds(node, e.lower, e.upper, &fixings);
     }
     Branch(node, rel, bound, floor, branch_var, e.lower, e.upper, fixings);
+  }
+
+  // A solved node's subtree settled at `floor` (pruned or closed), with its evaluated box
+  // and relaxation point for re-certification (options.recertify_leaves).
+  void NoteSettled(double floor, int depth, const NodeEvaluation& e, const Eigen::VectorXd* relaxed) {
+    if (!state_.KeepsForRecertification(floor)) {
+      state_.NoteGapPrune(floor);
+      return;
+    }
+    SettledSubtree subtree;
+    subtree.floor = floor;
+    subtree.lower = e.lower;
+    subtree.upper = e.upper;
+    if (relaxed != nullptr) subtree.relaxed = *relaxed;
+    subtree.propagated = true;
+    subtree.depth = depth;
+    state_.NoteGapPrune(std::move(subtree));
+  }
+
+  // An open node pruned by its parent's bound before its own relaxation: its subtree
+  // counts at its parent's floor, its box the bound changes from the root.
+  void NoteUnsolvedPrune(const SearchNode& node) {
+    if (!state_.KeepsForRecertification(node.parent_floor)) {
+      state_.NoteGapPrune(node.parent_floor);
+      return;
+    }
+    SettledSubtree subtree;
+    subtree.floor = node.parent_floor;
+    subtree.lower = p_.var_lower;
+    subtree.upper = p_.var_upper;
+    ApplyChanges(node.changes, &subtree.lower, &subtree.upper);
+    subtree.relaxed = node.warm_start;
+    subtree.depth = node.depth;
+    state_.NoteGapPrune(std::move(subtree));
   }
 
   bool IsIntegral(const Eigen::VectorXd& x) const {
@@ -422,8 +494,8 @@ class Search {
     // A relaxation the deadline cut short left its subtree unresolved: that is the time
     // limit, not a solver failure.
     if (state_.Active().Expired() && (root_failed_ || state_.HasUnresolved() || open)) hit_time_limit_ = true;
-    const double open_bound = state_.UnexploredBound();
     exhausted_ = !open && !hit_time_limit_ && !hit_node_limit_ && !state_.HasUnresolved();
+    const double open_bound = state_.UnexploredBound();
     if (state_.HasIncumbent()) {
       result.bound = std::min(result.objective, std::max(result.bound, open_bound));
       if (!open && !state_.HasUnresolved()) result.bound = std::min(result.objective, state_.gap_pruned_bound());
@@ -486,6 +558,8 @@ void AddCounters(const BranchAndBoundResult& pass, BranchAndBoundResult* total) 
   total->fallback_time_s += pass.fallback_time_s;
   total->node_polished += pass.node_polished;
   total->node_polish_attempts += pass.node_polish_attempts;
+  total->floor_recertifications += pass.floor_recertifications;
+  total->floors_certified += pass.floors_certified;
   total->probed_nodes += pass.probed_nodes;
   total->rins_runs += pass.rins_runs;
   total->rins_improvements += pass.rins_improvements;

@@ -8,7 +8,7 @@ namespace mfp {
 namespace {
 
 // The sub-search: the search's own options, but none of its once-per-plan heuristics, no
-// root cut loop, no RINS of its own, and the node cap and the deadline in force.
+// root cut loop, no RINS of its own, no re-certification, and the node cap and the deadline in force.
 BranchAndBoundOptions SubSearchOptions(const SearchState& state) {
   BranchAndBoundOptions sub = state.options();
   sub.max_nodes = std::max(1, sub.rins_max_nodes);
@@ -18,6 +18,7 @@ BranchAndBoundOptions SubSearchOptions(const SearchState& state) {
   sub.stall_time_fraction = 0.0;
   sub.rins_frequency = 0;
   sub.root_cut_rounds = 0;
+  sub.recertify_leaves = 0;  // its bound is not the search's
   sub.root_heuristic = nullptr;
   sub.first_plan_heuristic = nullptr;
   sub.on_incumbent = nullptr;

@@ -17,7 +17,8 @@ SearchState::SearchState(const Miqp& problem, const std::vector<RelaxationSolver
       start_(Clock::now()),
       deadline_(options.deadline.Within(options.time_limit_s)),
       hard_deadline_(options.time_limit_needs_incumbent ? options.deadline : deadline_),
-      queue_(options.node_selection, options.plunge_fraction) {}
+      queue_(options.node_selection, options.plunge_fraction),
+      lagging_(options.recertify_leaves) {}
 
 double SearchState::StallTimeLeftSeconds() const {
   if (!(opt_.stall_time_fraction > 0.0) || !HasIncumbent()) return std::numeric_limits<double>::infinity();

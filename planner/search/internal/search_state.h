@@ -7,12 +7,14 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <chrono>
+#include <utility>
 #include <vector>
 
 #include "base/deadline.h"
 #include "planner/miqp/miqp.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/search/branch_and_bound.h"
+#include "planner/search/internal/lagging_floors.h"
 #include "planner/search/internal/node_queue.h"
 
 namespace mfp {
@@ -76,7 +78,24 @@ class SearchState {
 
   // A subtree dropped because it cannot beat the incumbent by more than the gap still
   // bounds the optimum: the reported bound must not rise above it.
-  void NoteGapPrune(double bound) { gap_pruned_bound_ = std::min(gap_pruned_bound_, bound); }
+  void NoteGapPrune(double bound) {
+    gap_pruned_bound_ = std::min(gap_pruned_bound_, bound);
+    lagging_.NoteFloor(bound);
+  }
+  // The same with the subtree's box (SettledSubtree), which the search may keep to
+  // certify its floor again (BranchAndBoundOptions::recertify_leaves).
+  void NoteGapPrune(SettledSubtree subtree) {
+    gap_pruned_bound_ = std::min(gap_pruned_bound_, subtree.floor);
+    lagging_.Note(std::move(subtree), ProofFloor());
+  }
+  // Whether a subtree settled at `floor` now would be kept (its box is worth building).
+  bool KeepsForRecertification(double floor) const { return lagging_.Keeps(floor, ProofFloor()); }
+  // The floor every settled subtree must reach for the incumbent to be proven within
+  // the gap asked (-infinity without an incumbent).
+  double ProofFloor() const { return HasIncumbent() ? result_.objective - GapTolerance() : -kInfinity; }
+  LaggingFloors& lagging() { return lagging_; }
+  // After re-certification: the least floor of the settled subtrees (LaggingFloors::Least).
+  void RaiseGapPrunedBound() { gap_pruned_bound_ = std::max(gap_pruned_bound_, lagging_.Least()); }
   // A subtree dropped because its relaxation could not be solved: optimality is unproven.
   void NoteUnresolved(double bound) { unresolved_bound_ = std::min(unresolved_bound_, bound); }
   bool HasUnresolved() const { return unresolved_bound_ < kInfinity; }
@@ -105,6 +124,7 @@ class SearchState {
   double unresolved_bound_ = kInfinity;
   double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
   double in_flight_bound_ = kInfinity;   // least parent floor of the round being processed
+  LaggingFloors lagging_;  // options.recertify_leaves
 };
 
 // (objective - bound) / max(1, |objective|).
