@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "base/check.h"
@@ -54,6 +56,38 @@ double Fingerprint(const Miqp& p) {
 
 }  // namespace
 
+// TEMPORARY TRACE (not to be committed as is).
+struct DualTraceCounts {
+  long solves = 0, build = 0, moved = 0, warm_drops = 0, iterate = 0, polish = 0, drifted = 0;
+  long outcome[5] = {0, 0, 0, 0, 0};
+  long adds = 0, drops = 0, distance = 0, opt_steps = 0, start_size = 0, end_size = 0;
+  double floor_gain = 0, floor_gap = 0;
+  long floor_count = 0;
+  void Count(int s) {
+    ++solves;
+    ++outcome[s];
+  }
+  ~DualTraceCounts() {
+    if (!std::getenv("MFP_DUAL_TRACE") || solves == 0) return;
+    std::fprintf(stderr,
+                 "DUALTRACE solves %ld build/solve %.2f moved %.2f warmdrops %.2f iterate %.2f (adds %.2f drops %.2f) "
+                 "polish %.2f | optimal %ld infeasible %ld cutoff %ld limit %ld failed %ld drifted %ld | "
+                 "floor gap/obj %.3g gain %.3g\n",
+                 solves, double(build) / solves, double(moved) / solves, double(warm_drops) / solves,
+                 double(iterate) / solves, double(adds) / solves, double(drops) / solves, double(polish) / solves,
+                 outcome[0], outcome[1], outcome[2], outcome[3], outcome[4], drifted,
+                 floor_count ? floor_gap / floor_count : 0.0, floor_count ? floor_gain / floor_count : 0.0);
+    if (outcome[0])
+      std::fprintf(stderr, "DUALTRACE optimal solves: steps %.2f, |start ^ end| %.2f, start %.1f end %.1f\n",
+                   double(opt_steps) / outcome[0], double(distance) / outcome[0], double(start_size) / outcome[0],
+                   double(end_size) / outcome[0]);
+  }
+};
+DualTraceCounts& DualTrace() {
+  static DualTraceCounts t;
+  return t;
+}
+
 bool DualActiveSetQp::Prepare(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   if (p.num_variables() == 0 || p.num_variables() > options_.max_variables) return false;
   if (!p.var_lower.allFinite() || !p.var_upper.allFinite() || !lower.allFinite() || !upper.allFinite()) return false;
@@ -83,7 +117,9 @@ bool DualActiveSetQp::FactorHessian(const Miqp& p) {
   A_ = &p.A;
   Q_ = &p.Q;
   constant_ = p.constant;
+  c0_ = p.c;
   c_ = p.c;
+  centre_ = Eigen::VectorXd::Zero(p.num_variables());
   eps_.resize(n_);
   for (int j = 0; j < n_; ++j) {
     const double range2 = std::max({1.0, p.var_lower(j) * p.var_lower(j), p.var_upper(j) * p.var_upper(j)});
@@ -110,6 +146,16 @@ bool DualActiveSetQp::FactorHessian(const Miqp& p) {
   }
   R_ = Eigen::MatrixXd::Zero(n_, n_);
   return true;
+}
+
+void DualActiveSetQp::SetCentre(const Eigen::VectorXd* centre) {
+  if (centre == nullptr) {
+    centre_.setZero();
+    c_ = c0_;
+    return;
+  }
+  centre_ = *centre;
+  c_ = c0_ - eps_.cwiseProduct(centre_);
 }
 
 void DualActiveSetQp::SetBounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
@@ -315,20 +361,25 @@ Eigen::VectorXd DualActiveSetQp::TransposedJTimesNormal(int con) const {
   return upper_side ? Eigen::VectorXd(-d) : d;
 }
 
+// The constraint of largest scaled violation (the first of equals, in constraint order).
+// A constraint with a slack of at least 0 is met (the test asks the scaled slack below a
+// negative threshold), so only violated ones pay for the scaling's division.
 int DualActiveSetQp::MostViolated() const {
   const double tol = options_.feasibility_tolerance;
   int best = -1;
   double best_s = 0.0;
-  const int total = 2 * n_ + 2 * m_;
-  for (int con = 0; con < total; ++con) {
-    if (is_active_[con] || !std::isfinite(rhs_(con))) continue;
-    const double scale = con < 2 * n_ ? 1.0 : row_norm_((con - 2 * n_) % m_);
-    const double s = Slack(con) / scale;
+  auto consider = [&](int con, double slack, double scale) {
+    if (slack >= 0.0 || is_active_[con] || !std::isfinite(rhs_(con))) return;
+    const double s = slack / scale;
     if (s < -tol * (1.0 + std::abs(rhs_(con)) / scale) && s < best_s) {
       best_s = s;
       best = con;
     }
-  }
+  };
+  for (int j = 0; j < n_; ++j) consider(j, x_(j) - rhs_(j), 1.0);
+  for (int j = 0; j < n_; ++j) consider(n_ + j, -x_(j) - rhs_(n_ + j), 1.0);
+  for (int i = 0; i < m_; ++i) consider(2 * n_ + i, ax_(i) - rhs_(2 * n_ + i), row_norm_(i));
+  for (int i = 0; i < m_; ++i) consider(2 * n_ + m_ + i, -ax_(i) - rhs_(2 * n_ + m_ + i), row_norm_(i));
   return best;
 }
 
@@ -371,8 +422,7 @@ void DualActiveSetQp::DropFromFactors(int position) {
 
 // Goldfarb and Idnani's step 2: moves x and the multipliers until constraint p is met
 // (then p joins the active set), dropping blocking constraints on the way.
-DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& deadline) {
-  double u_plus = 0.0;
+DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& deadline, double u_plus) {
   for (;;) {
     if (++steps_ > step_limit_ || deadline.Expired()) return Step::kLimit;
     const int k = static_cast<int>(active_.size());
@@ -399,11 +449,13 @@ DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& dead
     u_plus += t;
     if (!dependent) x_ += t * z;
     if (t2 <= t1) {
+      ++DualTrace().adds;
       AppendToFactors(p, d);
       u_.conservativeResize(k + 1);
       u_(k) = u_plus;
       return Step::kOptimal;
     }
+    ++DualTrace().drops;
     DropFromFactors(drop);
   }
 }
@@ -507,13 +559,19 @@ DualActiveSetQp::Step DualActiveSetQp::Polish(Step step, double cutoff, const De
   return step;
 }
 
+// f(x) + sum_j (eps_j / 2) (x_j - centre_j)^2: the problem the factors solve, up to a
+// constant (c_ = c0 - eps .* centre).
 double DualActiveSetQp::RegularisedObjective() const {
-  return 0.5 * x_.dot((*Q_) * x_) + 0.5 * x_.cwiseAbs2().dot(eps_) + c_.dot(x_) + constant_;
+  return 0.5 * x_.dot((*Q_) * x_) + 0.5 * (x_ - centre_).cwiseAbs2().dot(eps_) + c0_.dot(x_) + constant_;
 }
 
+// The regularisation's largest value over the node's box: min f >= min f_eps - this.
 double DualActiveSetQp::FloorCorrection() const {
   double sum = 0.0;
-  for (int j = 0; j < n_; ++j) sum += eps_(j) * std::max(lower_(j) * lower_(j), upper_(j) * upper_(j));
+  for (int j = 0; j < n_; ++j) {
+    const double lo = lower_(j) - centre_(j), up = upper_(j) - centre_(j);
+    sum += eps_(j) * std::max(lo * lo, up * up);
+  }
   return 0.5 * sum;
 }
 
@@ -558,29 +616,103 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
   }
   const Eigen::VectorXd res = StationarityResidual(u);
   const double slop = res.cwiseAbs().dot(upper_ - lower_);
-  const double floor = f_eps - FloorCorrection() - activity - slop;
+  const double regularised_floor = f_eps - FloorCorrection() - activity - slop;
+  // The box certificate of the unregularised problem at x (planner/qp/internal/
+  // interior_point_kkt.h's, the rows and active constraints dualised by u): its gradient
+  // residual g = Q x + c - N u is res less the regularisation's gradient, so the floor pays
+  // eps_j |x_j - centre_j| per unit of the box's width rather than the regularisation's
+  // largest value over the box.
+  const Eigen::VectorXd g = res - eps_.cwiseProduct(x_ - centre_);
+  double box_floor = 0.5 * x_.dot((*Q_) * x_) + c0_.dot(x_) + constant_ - activity;
+  for (int j = 0; j < n_; ++j) box_floor += g(j) > 0.0 ? g(j) * (lower_(j) - x_(j)) : g(j) * (upper_(j) - x_(j));
+  const double floor = std::max(regularised_floor, box_floor);
+  DualTrace().floor_gain += std::max(0.0, box_floor - regularised_floor) / (1.0 + std::abs(floor));
+  DualTrace().floor_gap += (result->objective - floor) / (1.0 + std::abs(floor));
+  DualTrace().floor_count += 1;
   result->cost_floor = std::min(result->objective, floor - 1e-9 * (1.0 + std::abs(floor)));
   result->warm_token = std::make_shared<const std::vector<int>>(active_);
 }
 
+// The bounds of the start's active set that the child tightened past the parent's point
+// are held at the parent's value (so the start is the parent's x and multipliers); each
+// is returned with its own value, for EnterMovedBounds.
+std::vector<std::pair<int, double>> DualActiveSetQp::HoldMovedBounds(const Eigen::VectorXd& parent_point) {
+  std::vector<std::pair<int, double>> moved;
+  for (int con : active_) {
+    if (con >= 2 * n_) continue;
+    const int j = con < n_ ? con : con - n_;
+    const double held = con < n_ ? parent_point(j) : -parent_point(j);
+    if (held < rhs_(con) - 1e-9 * (1.0 + std::abs(rhs_(con)))) {
+      moved.emplace_back(con, rhs_(con));
+      rhs_(con) = held;
+    }
+  }
+  return moved;
+}
+
+// Each held bound takes its own value as a constraint the dual method adds: parallel to
+// its held self, the first step of adding it drops the held one with its multiplier
+// carried over (Goldfarb and Idnani's partial step), x unmoved; then it is added. A held
+// bound the start dropped (negative multiplier) is only given its value: Iterate adds it
+// if violated.
+DualActiveSetQp::Step DualActiveSetQp::EnterMovedBounds(const std::vector<std::pair<int, double>>& moved,
+                                                        const Deadline& deadline) {
+  for (const auto& [con, value] : moved) rhs_(con) = value;
+  for (const auto& [con, value] : moved) {
+    if (!is_active_[con]) continue;
+    const int position = static_cast<int>(std::find(active_.begin(), active_.end(), con) - active_.begin());
+    const double carried = std::max(0.0, u_(position));
+    DropFromFactors(position);
+    ++steps_;
+    ax_ = (*A_) * x_;
+    if (NormalDot(con, x_) - rhs_(con) >= 0.0) continue;  // met already
+    const Step s = AddConstraint(con, deadline, carried);
+    if (s != Step::kOptimal) return s;
+  }
+  return Step::kOptimal;
+}
+
 RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::VectorXd& lower,
                                             const Eigen::VectorXd& upper, double cutoff, const Deadline& deadline,
-                                            const std::vector<int>& start) {
+                                            const std::vector<int>& start, const Eigen::VectorXd* parent_point) {
   RelaxationResult result;
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  const bool with_parent = parent_point != nullptr && parent_point->size() == n_;
+  SetCentre(with_parent && options_.proximal_centre ? parent_point : nullptr);
   SetBounds(lower, upper);
   BuildActiveSet(start);
+  DualTrace().build += steps_;
+  const int before_warm = steps_;
+  std::vector<std::pair<int, double>> moved;
+  if (with_parent && options_.enter_moved_bounds) moved = HoldMovedBounds(*parent_point);
+  DualTrace().moved += moved.size();
   WarmStart();
+  DualTrace().warm_drops += steps_ - before_warm;
   step_limit_ = steps_ + WarmStepBudget();
   warm_valid_ = true;
-  const Step step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
+  const int before_iterate = steps_;
+  Step step = EnterMovedBounds(moved, deadline);
+  if (step == Step::kOptimal) step = Iterate(cutoff, deadline);
+  DualTrace().iterate += steps_ - before_iterate;
+  const int before_polish = steps_;
+  step = Polish(step, cutoff, deadline);
+  DualTrace().polish += steps_ - before_polish;
   FillResult(problem, step, &result);
+  DualTrace().Count(static_cast<int>(step));
+  if (step == Step::kOptimal) {
+    mark_.assign(2 * n_ + 2 * m_, 0);
+    DualTrace().distance += ActiveSetDistance(start, active_);
+    DualTrace().opt_steps += steps_;
+    DualTrace().start_size += start.size();
+    DualTrace().end_size += active_.size();
+  }
   const double loose = 1e-6 * (1.0 + std::abs(result.objective)) + FloorCorrection();
   if (step == Step::kOptimal && result.objective - result.cost_floor > loose) {
     const int steps = result.iterations;
     result = RelaxationResult();  // kFailed: drifted factors
     result.iterations = steps;
+    DualTrace().drifted += 1;
     warm_valid_ = false;
   }
   // Only a solved node has children to start from its state (a cutoff, an infeasible
@@ -643,6 +775,7 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   RelaxationResult result;
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  SetCentre(nullptr);
   step_limit_ = options_.max_steps_per_size * (n_ + m_);
   SetBounds(lower, upper);
   RestoreNearest();
