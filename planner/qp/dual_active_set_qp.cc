@@ -3,11 +3,10 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <memory>
 
 #include "base/check.h"
+#include "planner/qp/internal/interior_point_kkt.h"
 
 namespace mfp {
 namespace {
@@ -55,38 +54,6 @@ double Fingerprint(const Miqp& p) {
 }
 
 }  // namespace
-
-// TEMPORARY TRACE (not to be committed as is).
-struct DualTraceCounts {
-  long solves = 0, build = 0, moved = 0, warm_drops = 0, iterate = 0, polish = 0, drifted = 0;
-  long outcome[5] = {0, 0, 0, 0, 0};
-  long adds = 0, drops = 0, distance = 0, opt_steps = 0, start_size = 0, end_size = 0;
-  double floor_gain = 0, floor_gap = 0;
-  long floor_count = 0;
-  void Count(int s) {
-    ++solves;
-    ++outcome[s];
-  }
-  ~DualTraceCounts() {
-    if (!std::getenv("MFP_DUAL_TRACE") || solves == 0) return;
-    std::fprintf(stderr,
-                 "DUALTRACE solves %ld build/solve %.2f moved %.2f warmdrops %.2f iterate %.2f (adds %.2f drops %.2f) "
-                 "polish %.2f | optimal %ld infeasible %ld cutoff %ld limit %ld failed %ld drifted %ld | "
-                 "floor gap/obj %.3g gain %.3g\n",
-                 solves, double(build) / solves, double(moved) / solves, double(warm_drops) / solves,
-                 double(iterate) / solves, double(adds) / solves, double(drops) / solves, double(polish) / solves,
-                 outcome[0], outcome[1], outcome[2], outcome[3], outcome[4], drifted,
-                 floor_count ? floor_gap / floor_count : 0.0, floor_count ? floor_gain / floor_count : 0.0);
-    if (outcome[0])
-      std::fprintf(stderr, "DUALTRACE optimal solves: steps %.2f, |start ^ end| %.2f, start %.1f end %.1f\n",
-                   double(opt_steps) / outcome[0], double(distance) / outcome[0], double(start_size) / outcome[0],
-                   double(end_size) / outcome[0]);
-  }
-};
-DualTraceCounts& DualTrace() {
-  static DualTraceCounts t;
-  return t;
-}
 
 bool DualActiveSetQp::Prepare(const Miqp& p, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   if (p.num_variables() == 0 || p.num_variables() > options_.max_variables) return false;
@@ -449,13 +416,11 @@ DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& dead
     u_plus += t;
     if (!dependent) x_ += t * z;
     if (t2 <= t1) {
-      ++DualTrace().adds;
       AppendToFactors(p, d);
       u_.conservativeResize(k + 1);
       u_(k) = u_plus;
       return Step::kOptimal;
     }
-    ++DualTrace().drops;
     DropFromFactors(drop);
   }
 }
@@ -606,29 +571,28 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
   result->lower_cost_rate = Eigen::VectorXd::Zero(n_);
   result->upper_cost_rate = Eigen::VectorXd::Zero(n_);
   Eigen::VectorXd u = u_;
+  Eigen::VectorXd surplus(u.size());  // n_i'x - b_i of each active constraint
   double activity = 0.0;
   for (size_t i = 0; i < active_.size(); ++i) {
     const int con = active_[i];
     if (!is_equality_[con]) u(i) = std::max(0.0, u(i));
-    activity += u(i) * (NormalDot(con, x_) - rhs_(con));
+    surplus(i) = NormalDot(con, x_) - rhs_(con);
+    activity += u(i) * surplus(i);
     if (con < n_) result->lower_cost_rate(con) = u(i);
     if (con >= n_ && con < 2 * n_) result->upper_cost_rate(con - n_) = u(i);
   }
   const Eigen::VectorXd res = StationarityResidual(u);
   const double slop = res.cwiseAbs().dot(upper_ - lower_);
   const double regularised_floor = f_eps - FloorCorrection() - activity - slop;
-  // The box certificate of the unregularised problem at x (planner/qp/internal/
-  // interior_point_kkt.h's, the rows and active constraints dualised by u): its gradient
-  // residual g = Q x + c - N u is res less the regularisation's gradient, so the floor pays
-  // eps_j |x_j - centre_j| per unit of the box's width rather than the regularisation's
-  // largest value over the box.
+  // The box certificate of the unregularised problem at x (the active constraints, as
+  // rows n_i'x >= b_i, dualised by u): its gradient residual g = Q x + c - N u is res less
+  // the regularisation's gradient, so this floor pays eps_j |x_j - centre_j| per unit of
+  // the box's width, not the regularisation's largest value over the box (what the
+  // proximal centre needs). Both floors hold; the higher is reported.
   const Eigen::VectorXd g = res - eps_.cwiseProduct(x_ - centre_);
-  double box_floor = 0.5 * x_.dot((*Q_) * x_) + c0_.dot(x_) + constant_ - activity;
-  for (int j = 0; j < n_; ++j) box_floor += g(j) > 0.0 ? g(j) * (lower_(j) - x_(j)) : g(j) * (upper_(j) - x_(j));
+  const double f = 0.5 * x_.dot((*Q_) * x_) + c0_.dot(x_) + constant_;
+  const double box_floor = BoxCertificate(f, u, -surplus, lower_, upper_, x_, [&g](int j) { return g(j); });
   const double floor = std::max(regularised_floor, box_floor);
-  DualTrace().floor_gain += std::max(0.0, box_floor - regularised_floor) / (1.0 + std::abs(floor));
-  DualTrace().floor_gap += (result->objective - floor) / (1.0 + std::abs(floor));
-  DualTrace().floor_count += 1;
   result->cost_floor = std::min(result->objective, floor - 1e-9 * (1.0 + std::abs(floor)));
   result->warm_token = std::make_shared<const std::vector<int>>(active_);
 }
@@ -682,37 +646,20 @@ RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::Ve
   SetCentre(with_parent && options_.proximal_centre ? parent_point : nullptr);
   SetBounds(lower, upper);
   BuildActiveSet(start);
-  DualTrace().build += steps_;
-  const int before_warm = steps_;
   std::vector<std::pair<int, double>> moved;
   if (with_parent && options_.enter_moved_bounds) moved = HoldMovedBounds(*parent_point);
-  DualTrace().moved += moved.size();
   WarmStart();
-  DualTrace().warm_drops += steps_ - before_warm;
   step_limit_ = steps_ + WarmStepBudget();
   warm_valid_ = true;
-  const int before_iterate = steps_;
   Step step = EnterMovedBounds(moved, deadline);
   if (step == Step::kOptimal) step = Iterate(cutoff, deadline);
-  DualTrace().iterate += steps_ - before_iterate;
-  const int before_polish = steps_;
   step = Polish(step, cutoff, deadline);
-  DualTrace().polish += steps_ - before_polish;
   FillResult(problem, step, &result);
-  DualTrace().Count(static_cast<int>(step));
-  if (step == Step::kOptimal) {
-    mark_.assign(2 * n_ + 2 * m_, 0);
-    DualTrace().distance += ActiveSetDistance(start, active_);
-    DualTrace().opt_steps += steps_;
-    DualTrace().start_size += start.size();
-    DualTrace().end_size += active_.size();
-  }
   const double loose = 1e-6 * (1.0 + std::abs(result.objective)) + FloorCorrection();
   if (step == Step::kOptimal && result.objective - result.cost_floor > loose) {
     const int steps = result.iterations;
     result = RelaxationResult();  // kFailed: drifted factors
     result.iterations = steps;
-    DualTrace().drifted += 1;
     warm_valid_ = false;
   }
   // Only a solved node has children to start from its state (a cutoff, an infeasible
