@@ -5,11 +5,15 @@
 //
 // Q is only positive semidefinite here (binaries and some continuous variables carry no
 // cost), so the method works on Q + diag(eps_j) with eps_j = regularisation /
-// max(1, l_j^2, u_j^2) over the problem's own (root) bounds. For every x of a node's box
-// the two objectives differ by at most 0.5 sum_j eps_j max(l_j^2, u_j^2) (at most
-// 0.5 * regularisation * n); that amount is subtracted from every floor reported, so
-// cost_floor and the cutoff's objective stay true lower bounds of the unregularised
-// node optimum.
+// max(1, l_j^2, u_j^2) over the problem's own (root) bounds, the term
+// (eps_j / 2) (x_j - centre_j)^2 centred at 0 (or at the parent's point: the option
+// proximal_centre). For every x of a node's box the two objectives differ by at most
+// 0.5 sum_j eps_j max((l_j - centre_j)^2, (u_j - centre_j)^2); that amount is subtracted
+// from the cutoff's objective and from the regularised floor, so they stay true lower
+// bounds of the unregularised node optimum. A solved node's cost_floor is the higher of
+// that floor and the box certificate (planner/qp/internal/interior_point_kkt.h) of the
+// unregularised problem at the node's x with its multipliers, which holds for any x and
+// multipliers >= 0 and pays for the regularisation only its gradient times the box.
 //
 // Warm start: the object keeps the factorisation of the regularised Hessian, the last
 // solve's active set and its QR factors. The next solve of the same problem changes the
