@@ -263,6 +263,74 @@ TEST(DualActiveSetQp, ChildrenStartedFromTheirParentsActiveSetMatchTheInteriorPo
   EXPECT_LT(warm_steps, cold_steps);
 }
 
+// The same tree with the parent's point given, under each option it serves: the
+// regularisation centred at the parent's point, the parent's moved active bounds entered
+// as violated constraints, and both. Every node agrees with the interior point, its floor
+// (the box certificate or the regularised one) stays below the interior point's optimum,
+// and the floor is within 1e-4 of it. Children move bounds their parent's point was on
+// (as bound propagation does), so that the entered bounds are exercised.
+TEST(DualActiveSetQp, ChildrenStartedFromTheirParentsPointMatchTheInteriorPointUnderEachOption) {
+  for (int variant = 1; variant < 4; ++variant) {
+    SCOPED_TRACE(variant);
+    DualActiveSetOptions options;
+    options.proximal_centre = variant & 1;
+    options.enter_moved_bounds = variant & 2;
+    for (unsigned seed : {7u, 11u}) {
+      const Miqp p = RandomSingularQp(60, 50, seed);
+      struct Open {
+        Eigen::VectorXd lower, upper, parent_x;
+        std::vector<int> parent_active;
+      };
+      const RelaxationResult root = Ipm(p, p.var_lower, p.var_upper);
+      ASSERT_EQ(root.status, RelaxationStatus::kSolved);
+      std::vector<Open> open{
+          {p.var_lower, p.var_upper, root.x, DualActiveSetQp::ActiveSetAt(p, p.var_lower, p.var_upper, root)}};
+      DualActiveSetQp qp(options);
+      std::mt19937 rng(seed);
+      int compared = 0;
+      while (!open.empty() && compared < 30) {
+        const size_t pick = rng() % open.size();
+        const Open node = open[pick];
+        open.erase(open.begin() + static_cast<long>(pick));
+        const RelaxationResult ipm = Ipm(p, node.lower, node.upper);
+        const RelaxationResult dual =
+            qp.SolveFrom(p, node.lower, node.upper, kInfinity, Deadline(), node.parent_active, &node.parent_x);
+        if (ipm.status == RelaxationStatus::kInfeasible) {
+          EXPECT_NE(dual.status, RelaxationStatus::kSolved);
+          continue;
+        }
+        SCOPED_TRACE(compared);
+        ExpectAgrees(p, dual, ipm);
+        ASSERT_TRUE(dual.warm_token);
+        ++compared;
+        for (int j = 2; j < p.num_variables(); j += 3) {
+          if (std::abs(dual.x(j) - std::round(dual.x(j))) < 1e-6) continue;
+          for (double side : {0.0, 1.0}) {
+            Open child{node.lower, node.upper, dual.x, *dual.warm_token};
+            child.lower(j) = child.upper(j) = side;
+            // Propagated bounds: two bounds the parent's point was on moved past it.
+            int moved = 0;
+            for (int step = 0, k = static_cast<int>(rng() % 60); step < 60 && moved < 2; ++step, k = (k + 7) % 60) {
+              if (k == j || child.upper(k) - child.lower(k) < 0.2) continue;
+              if (dual.x(k) - child.lower(k) < 1e-9) {
+                child.lower(k) += 0.05;
+              } else if (child.upper(k) - dual.x(k) < 1e-9) {
+                child.upper(k) -= 0.05;
+              } else {
+                continue;
+              }
+              ++moved;
+            }
+            open.push_back(child);
+          }
+          break;
+        }
+      }
+      EXPECT_GE(compared, 10);
+    }
+  }
+}
+
 // The planner's node relaxations through the factory: the root (no token) is the
 // interior point's answer and hands its active set on; a child given it agrees with the
 // interior point, through the factory and by the dual method alone.

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "base/check.h"
+#include "planner/qp/internal/interior_point_kkt.h"
 
 namespace mfp {
 namespace {
@@ -83,7 +84,9 @@ bool DualActiveSetQp::FactorHessian(const Miqp& p) {
   A_ = &p.A;
   Q_ = &p.Q;
   constant_ = p.constant;
+  c0_ = p.c;
   c_ = p.c;
+  centre_ = Eigen::VectorXd::Zero(p.num_variables());
   eps_.resize(n_);
   for (int j = 0; j < n_; ++j) {
     const double range2 = std::max({1.0, p.var_lower(j) * p.var_lower(j), p.var_upper(j) * p.var_upper(j)});
@@ -110,6 +113,16 @@ bool DualActiveSetQp::FactorHessian(const Miqp& p) {
   }
   R_ = Eigen::MatrixXd::Zero(n_, n_);
   return true;
+}
+
+void DualActiveSetQp::SetCentre(const Eigen::VectorXd* centre) {
+  if (centre == nullptr) {
+    centre_.setZero();
+    c_ = c0_;
+    return;
+  }
+  centre_ = *centre;
+  c_ = c0_ - eps_.cwiseProduct(centre_);
 }
 
 void DualActiveSetQp::SetBounds(const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
@@ -315,20 +328,25 @@ Eigen::VectorXd DualActiveSetQp::TransposedJTimesNormal(int con) const {
   return upper_side ? Eigen::VectorXd(-d) : d;
 }
 
+// The constraint of largest scaled violation (the first of equals, in constraint order).
+// A constraint with a slack of at least 0 is met (the test asks the scaled slack below a
+// negative threshold), so only violated ones pay for the scaling's division.
 int DualActiveSetQp::MostViolated() const {
   const double tol = options_.feasibility_tolerance;
   int best = -1;
   double best_s = 0.0;
-  const int total = 2 * n_ + 2 * m_;
-  for (int con = 0; con < total; ++con) {
-    if (is_active_[con] || !std::isfinite(rhs_(con))) continue;
-    const double scale = con < 2 * n_ ? 1.0 : row_norm_((con - 2 * n_) % m_);
-    const double s = Slack(con) / scale;
+  auto consider = [&](int con, double slack, double scale) {
+    if (slack >= 0.0 || is_active_[con] || !std::isfinite(rhs_(con))) return;
+    const double s = slack / scale;
     if (s < -tol * (1.0 + std::abs(rhs_(con)) / scale) && s < best_s) {
       best_s = s;
       best = con;
     }
-  }
+  };
+  for (int j = 0; j < n_; ++j) consider(j, x_(j) - rhs_(j), 1.0);
+  for (int j = 0; j < n_; ++j) consider(n_ + j, -x_(j) - rhs_(n_ + j), 1.0);
+  for (int i = 0; i < m_; ++i) consider(2 * n_ + i, ax_(i) - rhs_(2 * n_ + i), row_norm_(i));
+  for (int i = 0; i < m_; ++i) consider(2 * n_ + m_ + i, -ax_(i) - rhs_(2 * n_ + m_ + i), row_norm_(i));
   return best;
 }
 
@@ -371,8 +389,7 @@ void DualActiveSetQp::DropFromFactors(int position) {
 
 // Goldfarb and Idnani's step 2: moves x and the multipliers until constraint p is met
 // (then p joins the active set), dropping blocking constraints on the way.
-DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& deadline) {
-  double u_plus = 0.0;
+DualActiveSetQp::Step DualActiveSetQp::AddConstraint(int p, const Deadline& deadline, double u_plus) {
   for (;;) {
     if (++steps_ > step_limit_ || deadline.Expired()) return Step::kLimit;
     const int k = static_cast<int>(active_.size());
@@ -507,13 +524,19 @@ DualActiveSetQp::Step DualActiveSetQp::Polish(Step step, double cutoff, const De
   return step;
 }
 
+// f(x) + sum_j (eps_j / 2) (x_j - centre_j)^2: the problem the factors solve, up to a
+// constant (c_ = c0 - eps .* centre).
 double DualActiveSetQp::RegularisedObjective() const {
-  return 0.5 * x_.dot((*Q_) * x_) + 0.5 * x_.cwiseAbs2().dot(eps_) + c_.dot(x_) + constant_;
+  return 0.5 * x_.dot((*Q_) * x_) + 0.5 * (x_ - centre_).cwiseAbs2().dot(eps_) + c0_.dot(x_) + constant_;
 }
 
+// The regularisation's largest value over the node's box: min f >= min f_eps - this.
 double DualActiveSetQp::FloorCorrection() const {
   double sum = 0.0;
-  for (int j = 0; j < n_; ++j) sum += eps_(j) * std::max(lower_(j) * lower_(j), upper_(j) * upper_(j));
+  for (int j = 0; j < n_; ++j) {
+    const double lo = lower_(j) - centre_(j), up = upper_(j) - centre_(j);
+    sum += eps_(j) * std::max(lo * lo, up * up);
+  }
   return 0.5 * sum;
 }
 
@@ -548,33 +571,89 @@ void DualActiveSetQp::FillResult(const Miqp& problem, Step step, RelaxationResul
   result->lower_cost_rate = Eigen::VectorXd::Zero(n_);
   result->upper_cost_rate = Eigen::VectorXd::Zero(n_);
   Eigen::VectorXd u = u_;
+  Eigen::VectorXd surplus(u.size());  // n_i'x - b_i of each active constraint
   double activity = 0.0;
   for (size_t i = 0; i < active_.size(); ++i) {
     const int con = active_[i];
     if (!is_equality_[con]) u(i) = std::max(0.0, u(i));
-    activity += u(i) * (NormalDot(con, x_) - rhs_(con));
+    surplus(i) = NormalDot(con, x_) - rhs_(con);
+    activity += u(i) * surplus(i);
     if (con < n_) result->lower_cost_rate(con) = u(i);
     if (con >= n_ && con < 2 * n_) result->upper_cost_rate(con - n_) = u(i);
   }
   const Eigen::VectorXd res = StationarityResidual(u);
   const double slop = res.cwiseAbs().dot(upper_ - lower_);
-  const double floor = f_eps - FloorCorrection() - activity - slop;
+  const double regularised_floor = f_eps - FloorCorrection() - activity - slop;
+  // The box certificate of the unregularised problem at x (the active constraints, as
+  // rows n_i'x >= b_i, dualised by u): its gradient residual g = Q x + c - N u is res less
+  // the regularisation's gradient, so this floor pays eps_j |x_j - centre_j| per unit of
+  // the box's width, not the regularisation's largest value over the box (what the
+  // proximal centre needs). Both floors hold; the higher is reported.
+  const Eigen::VectorXd g = res - eps_.cwiseProduct(x_ - centre_);
+  const double f = 0.5 * x_.dot((*Q_) * x_) + c0_.dot(x_) + constant_;
+  const double box_floor = BoxCertificate(f, u, -surplus, lower_, upper_, x_, [&g](int j) { return g(j); });
+  const double floor = std::max(regularised_floor, box_floor);
   result->cost_floor = std::min(result->objective, floor - 1e-9 * (1.0 + std::abs(floor)));
   result->warm_token = std::make_shared<const std::vector<int>>(active_);
 }
 
+// The bounds of the start's active set that the child tightened past the parent's point
+// are held at the parent's value (so the start is the parent's x and multipliers); each
+// is returned with its own value, for EnterMovedBounds.
+std::vector<std::pair<int, double>> DualActiveSetQp::HoldMovedBounds(const Eigen::VectorXd& parent_point) {
+  std::vector<std::pair<int, double>> moved;
+  for (int con : active_) {
+    if (con >= 2 * n_) continue;
+    const int j = con < n_ ? con : con - n_;
+    const double held = con < n_ ? parent_point(j) : -parent_point(j);
+    if (held < rhs_(con) - 1e-9 * (1.0 + std::abs(rhs_(con)))) {
+      moved.emplace_back(con, rhs_(con));
+      rhs_(con) = held;
+    }
+  }
+  return moved;
+}
+
+// Each held bound takes its own value as a constraint the dual method adds: parallel to
+// its held self, the first step of adding it drops the held one with its multiplier
+// carried over (Goldfarb and Idnani's partial step), x unmoved; then it is added. A held
+// bound the start dropped (negative multiplier) is only given its value: Iterate adds it
+// if violated.
+DualActiveSetQp::Step DualActiveSetQp::EnterMovedBounds(const std::vector<std::pair<int, double>>& moved,
+                                                        const Deadline& deadline) {
+  for (const auto& [con, value] : moved) rhs_(con) = value;
+  for (const auto& [con, value] : moved) {
+    if (!is_active_[con]) continue;
+    const int position = static_cast<int>(std::find(active_.begin(), active_.end(), con) - active_.begin());
+    const double carried = std::max(0.0, u_(position));
+    DropFromFactors(position);
+    ++steps_;
+    ax_ = (*A_) * x_;
+    if (NormalDot(con, x_) - rhs_(con) >= 0.0) continue;  // met already
+    const Step s = AddConstraint(con, deadline, carried);
+    if (s != Step::kOptimal) return s;
+  }
+  return Step::kOptimal;
+}
+
 RelaxationResult DualActiveSetQp::SolveFrom(const Miqp& problem, const Eigen::VectorXd& lower,
                                             const Eigen::VectorXd& upper, double cutoff, const Deadline& deadline,
-                                            const std::vector<int>& start) {
+                                            const std::vector<int>& start, const Eigen::VectorXd* parent_point) {
   RelaxationResult result;
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  const bool with_parent = parent_point != nullptr && parent_point->size() == n_;
+  SetCentre(with_parent && options_.proximal_centre ? parent_point : nullptr);
   SetBounds(lower, upper);
   BuildActiveSet(start);
+  std::vector<std::pair<int, double>> moved;
+  if (with_parent && options_.enter_moved_bounds) moved = HoldMovedBounds(*parent_point);
   WarmStart();
   step_limit_ = steps_ + WarmStepBudget();
   warm_valid_ = true;
-  const Step step = Polish(Iterate(cutoff, deadline), cutoff, deadline);
+  Step step = EnterMovedBounds(moved, deadline);
+  if (step == Step::kOptimal) step = Iterate(cutoff, deadline);
+  step = Polish(step, cutoff, deadline);
   FillResult(problem, step, &result);
   const double loose = 1e-6 * (1.0 + std::abs(result.objective)) + FloorCorrection();
   if (step == Step::kOptimal && result.objective - result.cost_floor > loose) {
@@ -643,6 +722,7 @@ RelaxationResult DualActiveSetQp::Solve(const Miqp& problem, const Eigen::Vector
   RelaxationResult result;
   steps_ = 0;
   if (!Prepare(problem, lower, upper)) return result;  // kFailed
+  SetCentre(nullptr);
   step_limit_ = options_.max_steps_per_size * (n_ + m_);
   SetBounds(lower, upper);
   RestoreNearest();

@@ -5,11 +5,15 @@
 //
 // Q is only positive semidefinite here (binaries and some continuous variables carry no
 // cost), so the method works on Q + diag(eps_j) with eps_j = regularisation /
-// max(1, l_j^2, u_j^2) over the problem's own (root) bounds. For every x of a node's box
-// the two objectives differ by at most 0.5 sum_j eps_j max(l_j^2, u_j^2) (at most
-// 0.5 * regularisation * n); that amount is subtracted from every floor reported, so
-// cost_floor and the cutoff's objective stay true lower bounds of the unregularised
-// node optimum.
+// max(1, l_j^2, u_j^2) over the problem's own (root) bounds, the term
+// (eps_j / 2) (x_j - centre_j)^2 centred at 0 (or at the parent's point: the option
+// proximal_centre). For every x of a node's box the two objectives differ by at most
+// 0.5 sum_j eps_j max((l_j - centre_j)^2, (u_j - centre_j)^2); that amount is subtracted
+// from the cutoff's objective and from the regularised floor, so they stay true lower
+// bounds of the unregularised node optimum. A solved node's cost_floor is the higher of
+// that floor and the box certificate (planner/qp/internal/interior_point_kkt.h) of the
+// unregularised problem at the node's x with its multipliers, which holds for any x and
+// multipliers >= 0 and pays for the regularisation only its gradient times the box.
 //
 // Warm start: the object keeps the factorisation of the regularised Hessian, the last
 // solve's active set and its QR factors. The next solve of the same problem changes the
@@ -27,6 +31,7 @@
 // from the data, not from the factors). Otherwise kFailed, for a sound solver to decide
 // (the factory hands it to the interior point).
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "base/deadline.h"
@@ -59,6 +64,16 @@ struct DualActiveSetOptions {
   // solve starts from the one whose box differs from its own in the fewest bounds, so
   // that a heuristic's QP between two nodes does not cost the next node its start.
   int snapshots = 8;
+  // SolveFrom with the parent's point: the regularisation is centred there,
+  // (eps_j / 2) (x_j - parent_j)^2 instead of (eps_j / 2) x_j^2, so that on the singular
+  // directions of Q the child's optimum is the point of its optimal face nearest the
+  // parent's rather than the one nearest the origin.
+  bool proximal_centre = false;
+  // SolveFrom with the parent's point: a bound of the start's active set that the child
+  // tightened keeps the parent's value until the start is built (x and the multipliers
+  // are then the parent's), and enters afterwards as a violated constraint; without it
+  // the new value moves x at once and multipliers that turn negative are dropped.
+  bool enter_moved_bounds = false;
 };
 
 class DualActiveSetQp {
@@ -77,8 +92,11 @@ class DualActiveSetQp {
   // constraint of the difference), the constraints whose multipliers are negative are
   // dropped, and the method goes on from there. Never a cold solve of the whole set: a
   // result whose floor drifted from its objective ends kFailed, for the interior point.
+  // parent_point (optional: the parent's solved point) serves the options
+  // proximal_centre and enter_moved_bounds; null: neither applies.
   RelaxationResult SolveFrom(const Miqp& problem, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
-                             double cutoff, const Deadline& deadline, const std::vector<int>& start);
+                             double cutoff, const Deadline& deadline, const std::vector<int>& start,
+                             const Eigen::VectorXd* parent_point = nullptr);
 
   // The constraints a solved point meets with equality, by complementarity, in the
   // indexing of warm tokens (j: x_j >= lower_j; n + j: x_j <= upper_j; 2n + i: row i's
@@ -112,7 +130,10 @@ class DualActiveSetQp {
   bool WarmStart();
   Step Iterate(double cutoff, const Deadline& deadline);
   int MostViolated() const;
-  Step AddConstraint(int p, const Deadline& deadline);
+  Step AddConstraint(int p, const Deadline& deadline, double u_plus = 0.0);
+  std::vector<std::pair<int, double>> HoldMovedBounds(const Eigen::VectorXd& parent_point);
+  Step EnterMovedBounds(const std::vector<std::pair<int, double>>& moved, const Deadline& deadline);
+  void SetCentre(const Eigen::VectorXd* centre);
   bool CertifiesInfeasible(int p, const Eigen::VectorXd& r) const;
   void AppendToFactors(int p, Eigen::VectorXd d);
   void DropFromFactors(int position);
@@ -136,7 +157,9 @@ class DualActiveSetQp {
   double key_fingerprint_ = 0.0;
   int n_ = 0, m_ = 0;
   Eigen::VectorXd eps_;          // regularisation per variable
-  Eigen::VectorXd c_;            // linear cost
+  Eigen::VectorXd c0_;           // the problem's linear cost
+  Eigen::VectorXd centre_;       // the regularisation's centre (zero: none)
+  Eigen::VectorXd c_;            // linear cost of the regularised problem: c0 - eps .* centre
   Eigen::MatrixXd H_;            // Q + diag(eps)
   Eigen::MatrixXd J_;            // L^-T times the active set's orthogonal factor
   Eigen::MatrixXd R_;            // upper triangular, active columns first

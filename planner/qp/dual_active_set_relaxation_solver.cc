@@ -27,7 +27,8 @@ class DualActiveSetRelaxationSolver final : public RelaxationSolver {
     const bool has_children = SomeIntegerFree(problem, lower, upper);
     int dual_steps = 0;
     if (request.warm_token && has_children) {
-      RelaxationResult dual = qp_.SolveFrom(problem, lower, upper, request.cutoff, request.deadline, *request.warm_token);
+      RelaxationResult dual = qp_.SolveFrom(problem, lower, upper, request.cutoff, request.deadline, *request.warm_token,
+                                            request.WarmStart());
       if (dual.status == RelaxationStatus::kSolved || dual.status == RelaxationStatus::kCutoff ||
           dual.status == RelaxationStatus::kInfeasible || request.deadline.Expired()) {
         return dual;
