@@ -22,7 +22,6 @@ double FootprintExcess(const LegModel& leg, double yaw_rad, const Eigen::Vector2
   return excess;
 }
 
-
 std::string Fmt(const Eigen::Vector3d& p) {
   std::ostringstream s;
   s.precision(3);

@@ -60,6 +60,7 @@ double FarthestCorner(const LegModel& leg) {
 void AddFootprintFaces(StepEncoder& e, const RobotModel& robot, int i, int j, RowKind kind, const char* what) {
   const LegModel& leg = robot.legs[e.LegOfStep(i)];
   const auto [lo, hi] = e.YawBounds(j);
+  MFP_CHECK(std::isfinite(lo) && std::isfinite(hi));
   const int pieces = hi > lo ? static_cast<int>(std::ceil((hi - lo) / kFootprintYawSpacing - 1e-9)) : 0;
   const double spacing = pieces > 0 ? (hi - lo) / pieces : 0.0;
   const double sagitta = FarthestCorner(leg) * (1.0 - std::cos(0.5 * spacing));

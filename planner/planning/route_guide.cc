@@ -118,8 +118,15 @@ std::string FirstStepWithoutRegion(const RobotModel& robot, const std::vector<Co
                                    const std::vector<Eigen::Vector3d>& start_feet, double start_yaw_rad,
                                    double start_tolerance_m) {
   const Eigen::Vector2d centre = StanceCentreXY(start_feet);
-  const std::vector<Eigen::Vector2d> reach = ReachPolygon(robot.reach_shape, robot.d_lim_m);
+  const std::vector<Eigen::Vector2d> shape_reach = ReachPolygon(robot.reach_shape, robot.d_lim_m);
   for (int k = 0; k < robot.num_legs(); ++k) {
+    // A footprint robot's first step stays in its leg's own polygon about the nominal foot,
+    // turned to the start yaw (the start configuration's reach rows).
+    std::vector<Eigen::Vector2d> reach = shape_reach;
+    if (robot.reach_shape == ReachShape::kFootprint) {
+      reach = ReachFaceCorners(robot.legs[k].footprint_faces);
+      for (Eigen::Vector2d& v : reach) v = Eigen::Rotation2Dd(start_yaw_rad) * v;
+    }
     bool held = false;
     for (const ConvexRegion& r : regions) held = held || RegionContains(r, start_feet[k], start_tolerance_m);
     if (held) continue;

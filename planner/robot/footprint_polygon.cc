@@ -21,7 +21,8 @@ double RayReach(const FootprintGrid& grid, const Eigen::Vector2d& p, const Eigen
 // Whether the square of half-side `half` centred at c (about the polygon's centre) meets the
 // polygon: no separating axis among the faces' normals and the square's (exact for two
 // convex polygons). When it does, *pull is the face whose line the square lies most beyond
-// relative to its offset: the one to pull in.
+// relative to its offset, among the faces that can be pulled in front of it and stay ahead of
+// the centre: the one to pull in (-1 when there is none).
 bool SquareMeets(const std::vector<ReachFace>& faces, const std::vector<Eigen::Vector2d>& corners,
                  const Eigen::Vector2d& c, double half, int* pull) {
   for (int axis = 0; axis < 2; ++axis) {
@@ -37,6 +38,8 @@ bool SquareMeets(const std::vector<ReachFace>& faces, const std::vector<Eigen::V
     const Eigen::Vector2d& u = faces[j].normal;
     const double nearest = u.dot(c) - half * (std::abs(u.x()) + std::abs(u.y()));
     if (nearest >= faces[j].offset_m) return false;
+    // Only a face that can be pulled in front of the square and stay ahead of the centre.
+    if (nearest <= 0.0) continue;
     const double along = u.dot(c) / std::max(faces[j].offset_m, 1e-12);
     if (along > most) {
       most = along;
@@ -87,9 +90,14 @@ std::vector<ReachFace> FootprintPolygon(const FootprintGrid& grid, const Eigen::
     for (const Eigen::Vector2d& c : empty) {
       int pull = -1;
       if (!SquareMeets(out, corners, c, half, &pull)) continue;
+      if (pull < 0) {
+        throw InputError(
+            "footprint polygon: an unreachable cell touches the leg's nominal foot, so no polygon about it fits "
+            "the leg's reachable footprint; check the leg's joint limits and nominal stance in the robot's "
+            "URDF/YAML, or use reach_shape: hexadecagon");
+      }
       ReachFace& f = out[static_cast<size_t>(pull)];
       f.offset_m = f.normal.dot(c) - half * (std::abs(f.normal.x()) + std::abs(f.normal.y())) - 1e-9;
-      MFP_CHECK_MSG(f.offset_m > 0.0, "footprint polygon: an empty cell next to the nominal foot");
       corners = ReachFaceCorners(out);
       conflict = true;
     }

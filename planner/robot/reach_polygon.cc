@@ -68,15 +68,14 @@ double FootprintInscribedReach(const RobotModel& robot) {
 }
 
 double FootprintStepWidth(const RobotModel& robot) {
-  constexpr int kDirections = 64;
+  // A polygon's widest width over every direction is its diameter, the largest distance
+  // between two of its corners.
   double narrowest = kInf;
   for (const LegModel& leg : robot.legs) {
     const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(leg.footprint_faces);
     double widest = 0.0;
-    for (int k = 0; k < kDirections; ++k) {
-      const double phi = M_PI * k / kDirections;
-      const Eigen::Vector2d u(std::cos(phi), std::sin(phi));
-      widest = std::max(widest, Support(corners, u) + Support(corners, -u));
+    for (const Eigen::Vector2d& a : corners) {
+      for (const Eigen::Vector2d& b : corners) widest = std::max(widest, (a - b).norm());
     }
     narrowest = std::min(narrowest, widest);
   }
