@@ -178,13 +178,15 @@ struct BranchAndBoundOptions {
   // Crossover of each relaxation (RelaxationRequest::polish_tolerance), off at 0: its
   // solver may finish from its active set once its residuals reach this relative accuracy.
   double relaxation_polish = 0.0;
-  // Re-certification of lagging floors, off at 0: the search keeps (boxes and relaxation
-  // points) the this-many lowest-floor subtrees it settled below what its gap asks (pruned
-  // by their objectives, closed at an integral point, strong-branching children); when
-  // its tree is exhausted short of the gap, it solves them again, lowest floor first, with
-  // RelaxationRequest::certify_floor, raising each floor to what the exact solve
-  // certifies, until the gap is met, each has been solved once, or the deadline passes.
-  int recertify_leaves = 8;
+  // Re-certification of lagging floors, off at 0 (the default: the certified window plans
+  // it re-opens can end a walk short of its goal; docs/measurements.md, stop 37). The
+  // search keeps (boxes and relaxation points) the this-many lowest-floor subtrees it
+  // settled below what its gap asks (pruned by their objectives, closed at an integral
+  // point, strong-branching children); when its tree is exhausted short of the gap, it
+  // solves them again, lowest floor first, with RelaxationRequest::certify_floor, raising
+  // each floor to what the exact solve certifies, until the gap is met, each has been
+  // solved once, or the deadline passes.
+  int recertify_leaves = 0;
   // Optional: replaces a node's relaxation point x by one with more integral values that
   // is just as good (the caller knows where fractional values are only an artefact of
   // the encoding), within the node's bounds lower/upper; returns false when it changed
