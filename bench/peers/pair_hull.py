@@ -164,11 +164,14 @@ def arc_rows(model, s, c, lam, lo, hi, tangents=7):
     return rows + 1
 
 
-def add_pair_family(inst, i, j, dxy, dz, single=False):
+def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False):
     """The extended formulation of the pair (i, j); returns {(r, rr): (lambda, copies)} and sizes.
-    With single, only step j's stone is disjoined (the hull of one step, i's copies free)."""
+    With single, only step j's stone is disjoined (the hull of one step, i's copies free). With lean,
+    only the feet's (x, y) are copied, with the stones' (x, y) rows and the move bound |dx|, |dy| <= dxy."""
     model, V = inst.model, inst.vars
     names = pair_copy_set(inst, i, j)
+    if lean:
+        names = [n for n in names if n[0] in "xy"]
     rows = pair_rows(inst, i, j, names)
     first = inst.stones[i] if i >= inst.n and not single else [None]
     family, nvars, nrows = {}, 0, 0
@@ -200,9 +203,16 @@ def add_pair_family(inst, i, j, dxy, dz, single=False):
                 while f"region_{step}_{stone}_{k}" in inst.rows:
                     _, coef, rhs = inst.rows[f"region_{step}_{stone}_{k}"]
                     b = rhs - coef.get(f"H_{step}_{stone}", 0.0)
+                    k += 1
+                    if any(v not in copy for v in coef if not v.startswith("H_")):
+                        continue
                     model.addCons(quicksum(a * copy[v] for v, a in coef.items() if not v.startswith("H_")) <= b * lam)
                     nrows += 1
-                    k += 1
+            if lean and i >= inst.n:
+                for a in "xy":
+                    model.addCons(copy[f"{a}_{j}"] - copy[f"{a}_{i}"] <= dxy * lam)
+                    model.addCons(copy[f"{a}_{i}"] - copy[f"{a}_{j}"] <= dxy * lam)
+                    nrows += 2
             for step in (i, j):
                 cfg = inst.config.get(step) if step >= inst.n else None
                 if cfg is not None and f"sin_{cfg}" in copy:
@@ -301,7 +311,7 @@ def build(path, opts, pairs=True):
         i = j - inst.n
         if max(len(inst.stones[j]), len(inst.stones[i]) if i >= inst.n else 1) < opts.min_stones:
             continue
-        windows[j], v, r = add_pair_family(inst, i, j, dxy, dz, opts.single)
+        windows[j], v, r = add_pair_family(inst, i, j, dxy, dz, opts.single, opts.lean)
         nvars, nrows = nvars + v, nrows + r
     if opts.chain:
         nrows += chain_families(inst, windows)
@@ -346,16 +356,18 @@ def build(path, opts, pairs=True):
     return model, persp, windows, (nvars, nrows)
 
 
-def kelley(model, persp, rounds, tol=1e-6):
+def kelley(model, persp, rounds, time_limit, tol=1e-6):
     """Tangent cuts t >= (2 d0 / l0) . d - (|d0|^2 / l0^2) lambda until no perspective term is violated;
     yields (round, objective, cuts added before it, CPU seconds, violated terms)."""
     total_cuts = 0
     for rnd in range(rounds + 1):
         start = time.process_time()
+        model.setParam("limits/time", time_limit)
         model.optimize()
         seconds = time.process_time() - start
-        if model.getStatus() != "optimal":
-            raise RuntimeError(f"round {rnd} ended {model.getStatus()}")
+        if model.getStatus() != "optimal":  # a relaxation's dual bound is still a valid bound
+            yield rnd, model.getDualbound(), total_cuts, seconds, f"stopped {model.getStatus()}"
+            return
         objective = model.getObjVal()
         cuts = []
         for t, lam, d in persp:
@@ -382,6 +394,7 @@ def main(argv=None):
     parser.add_argument("--best", type=float, help="MPS objective of the best known plan")
     parser.add_argument("--rounds", type=int, default=30)
     parser.add_argument("--min-stones", type=int, default=2)
+    parser.add_argument("--solve-time-limit", type=float, default=600.0, help="per relaxation solve [s]")
     parser.add_argument("--from-step", type=int, default=0)
     parser.add_argument("--no-perspective", dest="perspective", action="store_false",
                         help="leave the windows' displacement cost as it is")
@@ -391,6 +404,8 @@ def main(argv=None):
                         help="disjoin only the later step of each pair (the hull of one step), for comparison")
     parser.add_argument("--seed-cuts", action="store_true",
                         help="write the goal terms' tangent rows at the stone's corners and centre at once")
+    parser.add_argument("--lean", action="store_true",
+                        help="copy only the feet's (x, y): stone rows and the move bound, no centres or yaws")
     parser.add_argument("--chain", action="store_true",
                         help="link the two families of a step per stone (copies conditioned on the stone)")
     opts = parser.parse_args(argv)
@@ -406,9 +421,9 @@ def main(argv=None):
     pairs = sum(len(f) for f in windows.values())
     print(f"pair families on {len(windows)} windows, {pairs} stone pairs: +{nv} variables, +{nr} rows, "
           f"{len(persp)} perspective terms", flush=True)
-    for rnd, objective, cuts, seconds, violated in kelley(model, persp, opts.rounds):
+    for rnd, objective, cuts, seconds, violated in kelley(model, persp, opts.rounds, opts.solve_time_limit):
         print(f"round {rnd:3d}: {objective:.4f}  closes {share(objective)}  cuts so far {cuts:5d}  "
-              f"violated {violated:5d}  ({seconds:.2f} s CPU)", flush=True)
+              f"violated {violated!s:>5}  ({seconds:.2f} s CPU)", flush=True)
     return 0
 
 
