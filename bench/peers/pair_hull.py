@@ -245,9 +245,10 @@ def chain_families(inst, windows):
         k = j + inst.n
         if k not in windows or j < inst.n:
             continue
-        shared = [n for n in pair_copy_set(inst, j, k) if n in next(iter(family.values()))[1]
-                  and n in next(iter(windows[k].values()))[1] and n.endswith(f"_{j}") or
-                  n.startswith(("sin_", "cos_")) and n.endswith(f"_{inst.config[j]}")]
+        own = {f"{a}_{j}" for a in ("x", "y", "z", "px", "py")}
+        own |= {f"sin_{inst.config[j]}", f"cos_{inst.config[j]}"}
+        in_both = set(next(iter(family.values()))[1]) & set(next(iter(windows[k].values()))[1])
+        shared = sorted(own & in_both)
         for s in inst.stones[j]:
             ending = [copy for key, (_, copy) in family.items() if key[1] == s]
             starting = [copy for key, (_, copy) in windows[k].items() if key[0] == s]
