@@ -27,32 +27,17 @@ import re
 import sys
 import time
 
-from pyscipopt import Model, quicksum
+from pyscipopt import quicksum
+
+import root_levers
+from root_levers import quadratic_objective
 
 INF = 1e19
 
 
 def load(path):
-    model = Model()
-    model.hideOutput()
-    model.setParam("parallel/maxnthreads", 1)
-    model.readProblem(path)
-    for var in model.getVars():
-        if var.vtype() in ("BINARY", "INTEGER"):
-            model.chgVarType(var, "CONTINUOUS")
-    return model
-
-
-def quadratic_objective(path):
-    terms, section = [], None
-    with open(path) as f:
-        for line in f:
-            if not line.startswith(" "):
-                section = line.split()[0] if line.strip() else section
-            elif section == "QUADOBJ":
-                a, b, value = line.split()
-                terms.append((a, b, float(value)))
-    return terms
+    """The MPS model with its integers relaxed."""
+    return root_levers.load(path, relax=True)
 
 
 class Instance:
