@@ -149,15 +149,20 @@ def arc_rows(model, s, c, lam, lo, hi, tangents=7):
     return rows + 1
 
 
-def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False):
+def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False, fixed_yaw=False):
     """The extended formulation of the pair (i, j); returns {(r, rr): (lambda, copies)} and sizes.
     With single, only step j's stone is disjoined (the hull of one step, i's copies free). With lean,
-    only the feet's (x, y) are copied, with the stones' (x, y) rows and the move bound |dx|, |dy| <= dxy."""
+    only the feet's (x, y) are copied, with the stones' (x, y) rows and the move bound |dx|, |dy| <= dxy.
+    With fixed_yaw, (sin, cos) are not copied: a row's rotation terms are replaced by their range over
+    the (sin, cos) bounds (feet and centres copied, yaws not)."""
     model, V = inst.model, inst.vars
     names = pair_copy_set(inst, i, j)
+    rows = pair_rows(inst, i, j, names)
     if lean:
         names = [n for n in names if n[0] in "xy"]
-    rows = pair_rows(inst, i, j, names)
+        rows = pair_rows(inst, i, j, names)
+    if fixed_yaw:
+        names = [n for n in names if not n.startswith(("sin_", "cos_"))]
     first = inst.stones[i] if i >= inst.n and not single else [None]
     family, nvars, nrows = {}, 0, 0
     for r in first:
@@ -174,12 +179,14 @@ def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False):
                 nrows += 2
             for row in rows:
                 lhs, coef, rhs = inst.rows[row]
-                expr = quicksum(a * copy[v] for v, a in coef.items())
+                expr = quicksum(a * copy[v] for v, a in coef.items() if v in copy)
+                rest = [(a * V[v].getLbGlobal(), a * V[v].getUbGlobal()) for v, a in coef.items() if v not in copy]
+                low, high = sum(min(p) for p in rest), sum(max(p) for p in rest)
                 if lhs > -INF:
-                    model.addCons(expr >= lhs * lam)
+                    model.addCons(expr >= (lhs - high) * lam)
                     nrows += 1
                 if rhs < INF:
-                    model.addCons(expr <= rhs * lam)
+                    model.addCons(expr <= (rhs - low) * lam)
                     nrows += 1
             for step, stone in ((i, r), (j, rr)):
                 if stone is None:
@@ -297,7 +304,7 @@ def build(path, opts, pairs=True):
         i = j - inst.n
         if max(len(inst.stones[j]), len(inst.stones[i]) if i >= inst.n else 1) < opts.min_stones:
             continue
-        windows[j], v, r = add_pair_family(inst, i, j, dxy, dz, opts.single, opts.lean)
+        windows[j], v, r = add_pair_family(inst, i, j, dxy, dz, opts.single, opts.lean, opts.fixed_yaw)
         nvars, nrows = nvars + v, nrows + r
     if opts.chain:
         nrows += chain_families(inst, windows)
@@ -392,6 +399,8 @@ def main(argv=None):
                         help="write the goal terms' tangent rows at the stone's corners and centre at once")
     parser.add_argument("--lean", action="store_true",
                         help="copy only the feet's (x, y): stone rows and the move bound, no centres or yaws")
+    parser.add_argument("--fixed-yaw", action="store_true",
+                        help="copy feet and centres but not (sin, cos): rotation terms bounded by their range")
     parser.add_argument("--chain", action="store_true",
                         help="link the two families of a step per stone (copies conditioned on the stone)")
     opts = parser.parse_args(argv)
