@@ -149,7 +149,7 @@ def arc_rows(model, s, c, lam, lo, hi, tangents=7):
     return rows + 1
 
 
-def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False, fixed_yaw=False):
+def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False, fixed_yaw=False, only_rows=None):
     """The extended formulation of the pair (i, j); returns {(r, rr): (lambda, copies)} and sizes.
     With single, only step j's stone is disjoined (the hull of one step, i's copies free). With lean,
     only the feet's (x, y) are copied, with the stones' (x, y) rows and the move bound |dx|, |dy| <= dxy.
@@ -163,6 +163,8 @@ def add_pair_family(inst, i, j, dxy, dz, single=False, lean=False, fixed_yaw=Fal
         rows = pair_rows(inst, i, j, names)
     if fixed_yaw:
         names = [n for n in names if not n.startswith(("sin_", "cos_"))]
+    if only_rows:
+        rows = [row for row in rows if row.startswith(tuple(only_rows))]
     first = inst.stones[i] if i >= inst.n and not single else [None]
     family, nvars, nrows = {}, 0, 0
     for r in first:
@@ -304,7 +306,8 @@ def build(path, opts, pairs=True):
         i = j - inst.n
         if max(len(inst.stones[j]), len(inst.stones[i]) if i >= inst.n else 1) < opts.min_stones:
             continue
-        windows[j], v, r = add_pair_family(inst, i, j, dxy, dz, opts.single, opts.lean, opts.fixed_yaw)
+        windows[j], v, r = add_pair_family(inst, i, j, dxy, dz, opts.single, opts.lean, opts.fixed_yaw,
+                                           opts.only_rows)
         nvars, nrows = nvars + v, nrows + r
     if opts.chain:
         nrows += chain_families(inst, windows)
@@ -401,6 +404,8 @@ def main(argv=None):
                         help="copy only the feet's (x, y): stone rows and the move bound, no centres or yaws")
     parser.add_argument("--fixed-yaw", action="store_true",
                         help="copy feet and centres but not (sin, cos): rotation terms bounded by their range")
+    parser.add_argument("--only-rows", nargs="+", metavar="PREFIX",
+                        help="copy only the pair's rows whose names start so (ref_, reach_, dz_); stones always")
     parser.add_argument("--chain", action="store_true",
                         help="link the two families of a step per stone (copies conditioned on the stone)")
     opts = parser.parse_args(argv)
