@@ -9,16 +9,22 @@ over r are H_ir and H_jr') and copies of every variable that the pair's own rows
 both stance centres (px, py) and both configurations' (sin, cos). Every MPS row whose variables
 all lie in that set (ref_ and reach_ rows, dz_, both stones' region_ rows with H -> lambda) is
 copied with its bounds scaled by lambda; each copy of (sin, cos) is kept in the hull of its
-configuration's yaw arc. The window's cost can then be written on the copies with the
-perspective w |P_j - P_i|^2 / lambda (kept at least w |px_j - px_i|^2), solved by tangent cuts
-t >= (2 D0 / l0) . D - (|D0|^2 / l0^2) lambda (Kelley's loop: each round re-solves and cuts
-every copy whose t lies below its perspective).
+configuration's yaw arc (`def_` rows of the first steps, whose centre holds only that foot and
+fixed start feet, are copied too). On the copies, the window's cost can be written with the
+perspective w |P_j - P_i|^2 / lambda, and with --goal-perspective the last feet's goal cost
+w |F_j - g lambda|^2 / lambda (each kept at least its original term), solved by tangent cuts
+t >= 2 u . d - |u|^2 lambda at u = d0 / l0 (Kelley's loop: each round re-solves and cuts every copy
+whose t lies below its perspective; --seed-cuts writes the goal's rows at the stone's corners and
+centre at once). The displacement weight is 1 against the goal's 1000, so --no-perspective (the
+windows' cost left as it is) loses nothing; see docs/measurements.md (proof11).
 
-  bench/.venv/bin/python bench/peers/pair_hull.py FILE.mps [--best OBJ] [--rounds 30]
-      [--min-stones 2] [--no-perspective] [--from-step K]
+  bench/.venv/bin/python bench/peers/pair_hull.py FILE.mps --best OBJ [--rounds 30] [--min-stones 2]
+      [--from-step K] [--no-perspective] [--goal-perspective [--seed-cuts]] [--chain] [--single]
+      [--lean | --fixed-yaw] [--only-rows PREFIX ...] [--solve-time-limit S]
 
-Prints, per case: the relaxation's objective, its share of the root gap (to --best, the MPS
-objective of the best known plan), the added variables and rows, and SCIP's solve time.
+Prints: the relaxation's objective, the added variables and rows, then per round the objective,
+its share of the root gap (to --best, the MPS objective of the best known plan), the cuts and
+SCIP's CPU time. A solve stopped at --solve-time-limit prints its dual bound (still a bound).
 Diagnostic only: one thread.
 """
 import argparse
