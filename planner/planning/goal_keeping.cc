@@ -42,6 +42,11 @@ std::vector<VariableRange> GoalKeepingRanges(const MiqpFormulation& formulation,
     ranges.push_back({v.x[i], spot.x() - half.x(), spot.x() + half.x()});
     ranges.push_back({v.y[i], spot.y() - half.y(), spot.y() + half.y()});
   }
+  // The steps the plan takes stay taken: a plan that reaches the goal in fewer steps earns
+  // their trim reward on the chords' reach, which the exact steps may not have.
+  for (int i = n; i < steps; ++i) {
+    if (v.trim[i] >= 0 && x(v.trim[i]) < 0.5) ranges.push_back({v.trim[i], 0.0, 0.0});
+  }
   return ranges;
 }
 

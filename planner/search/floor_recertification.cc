@@ -53,7 +53,7 @@ double FloorAfter(const SettledSubtree& subtree, const RelaxationResult& r) {
 // the incumbent does not meet restrict nothing.
 void RestrictToWhatTheIncumbentKeeps(SearchState* state) {
   const BranchAndBoundOptions& options = state->options();
-  if (state->Restricted() || !options.recertify_within) return;
+  if (!options.recertify_within || !state->FirstRestrictionAsk()) return;
   const std::vector<VariableRange> ranges = options.recertify_within(state->result().x);
   if (ranges.empty()) return;
   const Miqp& p = state->problem();

@@ -5,7 +5,10 @@
 // re-opens subtrees of lower objective (BranchAndBoundOptions::recertify_within), could
 // trade a window plan that reaches the goal for one that stops short of it. Once the
 // incumbent reaches the goal, the search is restricted to final feet within the goal's
-// tolerance. Private to planner/planning.
+// tolerance and to the steps the incumbent takes: a plan of fewer steps that reaches the
+// goal on the MIQP's chords earns their trim reward, and its exact steps, polished, can
+// end short (new_college seed 27: 7-10 cm; docs/measurements.md, stop 38). Private to
+// planner/planning.
 #include <Eigen/Core>
 #include <functional>
 #include <vector>
@@ -22,7 +25,8 @@ namespace mfp {
 // the largest area (half sides tolerance / sqrt 2 each, or, for a foot farther than that
 // on one axis, its offset on that axis and the rest of the disc on the other). Empty when
 // x does not reach the goal (a final foot, new or of the start stance, beyond the
-// tolerance) or the window's goal is not `goal` (a local goal along the route).
+// tolerance) or the window's goal is not `goal` (a local goal along the route). Then,
+// for each new step x takes (trim below one half), its trim variable held at 0.
 std::vector<VariableRange> GoalKeepingRanges(const MiqpFormulation& formulation, const GoalSpec& goal,
                                              const Eigen::VectorXd& x);
 

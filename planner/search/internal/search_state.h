@@ -71,6 +71,8 @@ class SearchState {
   // no point outside lower/upper (within the feasibility tolerance) becomes the incumbent.
   void Restrict(Eigen::VectorXd lower, Eigen::VectorXd upper);
   bool Restricted() const { return restricted_lower_.size() > 0; }
+  // BranchAndBoundOptions::recertify_within is asked once per search: true the first time.
+  bool FirstRestrictionAsk() { return !std::exchange(restriction_asked_, true); }
   // x lies within lower/upper, within the feasibility tolerance.
   bool Within(const Eigen::VectorXd& x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const;
 
@@ -133,6 +135,7 @@ class SearchState {
   double in_flight_bound_ = kInfinity;   // least parent floor of the round being processed
   LaggingFloors lagging_;  // options.recertify_leaves
   Eigen::VectorXd restricted_lower_, restricted_upper_;  // Restrict (empty: none)
+  bool restriction_asked_ = false;
 };
 
 // (objective - bound) / max(1, |objective|).
