@@ -185,8 +185,9 @@ struct BranchAndBoundOptions {
   // solver may finish from its active set once its residuals reach this relative accuracy.
   double relaxation_polish = 0.0;
   // Re-certification of lagging floors, off at 0 (8 by default: every window of the 8
-  // scenarios is then certified; docs/measurements.md, stops 37 and 38). The search keeps (boxes and relaxation points) the this-many lowest-floor subtrees it
-  // settled below what its gap asks (pruned by their objectives, closed at an integral
+  // scenarios is then certified; docs/measurements.md, stops 37 and 38). The search
+  // keeps (boxes and relaxation points) the this-many lowest-floor subtrees it settled
+  // below what its gap asks (pruned by their objectives, closed at an integral
   // point, strong-branching children); when its tree is exhausted short of the gap, it
   // solves them again, lowest floor first, with RelaxationRequest::certify_floor, raising
   // each floor to what the exact solve certifies, until the gap is met, each has been
