@@ -184,15 +184,16 @@ struct BranchAndBoundOptions {
   // Crossover of each relaxation (RelaxationRequest::polish_tolerance), off at 0: its
   // solver may finish from its active set once its residuals reach this relative accuracy.
   double relaxation_polish = 0.0;
-  // Re-certification of lagging floors, off at 0 (8 by default: every window of the 8
-  // scenarios is then certified; docs/measurements.md, stops 37 and 38). The search
+  // Re-certification of lagging floors, off at 0 (the default until the whole walk
+  // population is re-run idle with it on; with 8 every window of the 8 scenarios is
+  // certified and a window keeps its goal: docs/measurements.md, stops 37-38). The search
   // keeps (boxes and relaxation points) the this-many lowest-floor subtrees it settled
   // below what its gap asks (pruned by their objectives, closed at an integral
   // point, strong-branching children); when its tree is exhausted short of the gap, it
   // solves them again, lowest floor first, with RelaxationRequest::certify_floor, raising
   // each floor to what the exact solve certifies, until the gap is met, each has been
   // solved once, or the deadline passes.
-  int recertify_leaves = 8;
+  int recertify_leaves = 0;
   // What re-certification keeps of the incumbent (optional): called once, with the
   // incumbent, when re-certification is about to solve its first subtree; returns ranges
   // of variables that the incumbent meets (empty: nothing to keep; ranges it does not
