@@ -184,9 +184,9 @@ struct BranchAndBoundOptions {
   // Crossover of each relaxation (RelaxationRequest::polish_tolerance), off at 0: its
   // solver may finish from its active set once its residuals reach this relative accuracy.
   double relaxation_polish = 0.0;
-  // Re-certification of lagging floors, off at 0 (the default until the whole walk
-  // population is re-run idle with it on; with 8 every window of the 8 scenarios is
-  // certified and a window keeps its goal: docs/measurements.md, stops 37-38). The search
+  // Re-certification of lagging floors, off at 0 (the default: with 8 every window of the
+  // 8 scenarios is certified and a window keeps its goal, but a real-scan walk decided by
+  // re-certified local-goal windows still ends short: docs/measurements.md, stops 37-38). The search
   // keeps (boxes and relaxation points) the this-many lowest-floor subtrees it settled
   // below what its gap asks (pruned by their objectives, closed at an integral
   // point, strong-branching children); when its tree is exhausted short of the gap, it
