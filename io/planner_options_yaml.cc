@@ -293,7 +293,8 @@ void AddSearchKeys(Table* t) {
                    .Advanced());
   t->push_back(Opt("search.recertify_leaves", in(&B::recertify_leaves), 0, 10000,
                    "when a window's tree is exhausted short of its gap, solve again this many of the subtrees it "
-                   "settled at the lowest floors, by exact methods, to certify their floors (0: off)")
+                   "settled at the lowest floors, by exact methods, to certify their floors; a window whose plan "
+                   "reaches the goal keeps it, and its steps, meanwhile (0: off)")
                    .Advanced());
   t->push_back(Opt("search.root_cut_rounds", in(&B::root_cut_rounds), 0, 1000,
                    "rounds of cuts separated at the root after its first plan, before the search (0: off)")

@@ -2,12 +2,14 @@
 // not the objectives at their points: a solver whose floors lie below its objectives
 // (an interior point stopped at a coarse dual residual) must not make the search claim
 // a tighter gap than those floors prove. Re-certification (recertify_leaves) may raise
-// a settled subtree's floor only to what a certifying solve of it proves.
+// a settled subtree's floor only to what a certifying solve of it proves, and keeps what
+// the caller asks of the incumbent (recertify_within).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -210,6 +212,100 @@ TEST(CertifiedBound, ReCertificationSolvesAtMostItsBudget) {
   EXPECT_EQ(r.status, SolveStatus::kFeasible);
   EXPECT_NEAR(r.objective, -10.0, 1e-6);
   EXPECT_LE(r.bound, -10.0 - 1e-3);
+}
+
+// A window's last choice, reduced to two variables: the binary s trims the last step (1:
+// the foot stops half way), the final foot f in [0, 1] has its goal at 1, f <= 1 - s / 2,
+// and the cost (f - 1)^2 - 0.3 s rewards the goal without demanding it: reaching it costs
+// 0, stopping short -0.05, the optimum.
+struct StopShortOrReachTheGoal {
+  StopShortOrReachTheGoal() {
+    MiqpBuilder b;
+    s = b.AddBinary("s");
+    f = b.AddVariable("f", 0.0, 1.0, false);
+    b.AddRow("half way when trimmed", LinExpr::Var(f) + LinExpr::Var(s, 0.5), -kInfinity, 1.0);
+    b.AddSquaredCost(LinExpr::Var(f) - LinExpr::Constant(1.0), 1.0);
+    b.AddLinearCost(LinExpr::Var(s, -0.3));
+    problem = b.Build();
+  }
+  Miqp problem;
+  int s = -1, f = -1;
+};
+
+// The interior point as it misled a window's search (cert10's case (b)): every floor 0.01
+// below its objective; where s is free, a point stopped early that leans to the goal
+// (s = 0.3, f = 0.85, with its own objective, above the relaxation's optimum), so the
+// search dives to the goal plan first; where s is fixed to 1, an objective 1 too high, so
+// the search prunes the subtree that beats the goal plan. Re-certification's solves
+// (certify_floor) are the interior point's own.
+class MisledToTheGoalSolver : public RelaxationSolver {
+ public:
+  explicit MisledToTheGoalSolver(int s, int f) : s_(s), f_(f) {}
+  RelaxationResult Solve(const Miqp& problem, const RelaxationRequest& request) override {
+    RelaxationResult r = inner_->Solve(problem, request);
+    if (request.certify_floor || r.status != RelaxationStatus::kSolved) return r;
+    r.cost_floor = std::min(r.cost_floor, r.objective - 0.01);
+    r.bound_floor = std::min(r.bound_floor, r.objective - 0.01);
+    const double lower = request.lower.size() ? request.lower(s_) : problem.var_lower(s_);
+    const double upper = request.upper.size() ? request.upper(s_) : problem.var_upper(s_);
+    if (lower < upper) {
+      r.x(s_) = 0.3;
+      r.x(f_) = 0.85;
+      r.objective = problem.Objective(r.x);
+    } else if (lower >= 1.0) {
+      r.objective += 1.0;
+    }
+    return r;
+  }
+  std::string Name() const override { return "misled to the goal"; }
+
+ private:
+  int s_, f_;
+  std::unique_ptr<RelaxationSolver> inner_ = MakeInteriorPointRelaxationSolver();
+};
+
+// Re-certification re-opens the pruned subtree whose exact optimum beats the incumbent:
+// without recertify_within it trades the goal plan for the one that stops short (proven
+// optimal); with ranges that keep the foot within 0.1 of its goal once the incumbent is
+// there, the goal plan stays and is proven optimal within them.
+TEST(CertifiedBound, ReCertificationKeepsWhatTheIncumbentKeeps) {
+  const StopShortOrReachTheGoal w;
+  BranchAndBoundOptions options;
+  options.recertify_leaves = 8;
+  options.early_cutoff = false;
+  options.rounding_heuristic = false;  // a rounding of the root would find the short plan first
+  MisledToTheGoalSolver traded_solver(w.s, w.f);
+  const BranchAndBoundResult traded = SolveBranchAndBound(w.problem, traded_solver, options);
+  EXPECT_EQ(traded.status, SolveStatus::kOptimal);
+  EXPECT_NEAR(traded.objective, -0.05, 1e-6);
+  EXPECT_NEAR(traded.x(w.f), 0.5, 1e-4) << "the misled search should have re-opened the short plan";
+  EXPECT_FALSE(traded.restricted);
+  EXPECT_GT(traded.floor_recertifications, 0);
+
+  int calls = 0;
+  options.recertify_within = [&](const Eigen::VectorXd& incumbent) {
+    ++calls;
+    std::vector<VariableRange> keep;
+    if (std::abs(incumbent(w.f) - 1.0) <= 0.1) keep.push_back({w.f, 0.9, 1.1});
+    return keep;
+  };
+  MisledToTheGoalSolver kept_solver(w.s, w.f);
+  const BranchAndBoundResult kept = SolveBranchAndBound(w.problem, kept_solver, options);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(kept.status, SolveStatus::kOptimal);
+  EXPECT_TRUE(kept.restricted);
+  EXPECT_NEAR(kept.objective, 0.0, 1e-6);
+  EXPECT_NEAR(kept.x(w.f), 1.0, 1e-4);
+  EXPECT_NEAR(kept.x(w.s), 0.0, 1e-9);
+  EXPECT_LE(kept.bound, 0.0 + 1e-9);
+  EXPECT_GE(kept.bound, -1e-4);  // proven within the ranges, not over the whole problem (-0.05)
+
+  // Ranges the incumbent does not meet restrict nothing: the short plan is taken again.
+  options.recertify_within = [&](const Eigen::VectorXd&) { return std::vector<VariableRange>{{w.f, 0.0, 0.6}}; };
+  MisledToTheGoalSolver unmet_solver(w.s, w.f);
+  const BranchAndBoundResult unmet = SolveBranchAndBound(w.problem, unmet_solver, options);
+  EXPECT_FALSE(unmet.restricted);
+  EXPECT_NEAR(unmet.objective, -0.05, 1e-6);
 }
 
 // The store keeps the lowest floors below the target, up to its capacity; every other

@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "planner/planning/internal/goal_keeping.h"
 #include "planner/qp/fixed_integer_qp.h"
 
 namespace mfp {
@@ -57,7 +58,7 @@ std::optional<Eigen::VectorXd> CompleteOnShrunk(const MiqpFormulation& formulati
 
 ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
                                    const BranchAndBoundOptions& bnb, const PolishOptions& polish,
-                                   const Eigen::VectorXd* window_x) {
+                                   const Eigen::VectorXd* window_x, const GoalSpec* keep_goal) {
   ExactReplan out;
   out.shrink_m = ChordErrorBound(formulation) + kSolutionTolerance_m;
   out.robot = std::make_unique<RobotModel>(*formulation.problem().robot);
@@ -99,6 +100,7 @@ ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std
       return shrunk.SnapYawToOneSegment(lower, upper, x);
     };
   }
+  search.recertify_within = keep_goal != nullptr ? GoalKeeping(shrunk, *keep_goal) : nullptr;
   out.result = SolveBranchAndBound(shrunk.miqp(), solvers, search, rounding);
   // Polished against the true boxes when the two MIQPs share their variables (the
   // shrunk solution is then a point of the true one), else against the shrunk boxes.

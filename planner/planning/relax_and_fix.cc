@@ -136,6 +136,7 @@ RelaxAndFixResult RelaxAndFix(const MiqpFormulation& formulation, const std::vec
     bnb.group_probing = false;
     bnb.rins_frequency = 0;
     bnb.recertify_leaves = 0;
+    bnb.recertify_within = nullptr;  // it refers to the window's MIQP, not the stage's
     const BranchAndBoundResult r = SolveBranchAndBound(stage, solvers, bnb, rounding);
     ++result.stages;
     result.nodes += r.nodes;

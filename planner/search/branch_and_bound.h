@@ -33,6 +33,12 @@ enum class BranchingRule {
 
 struct BranchAndBoundResult;
 
+// The bounds one variable is kept within (BranchAndBoundOptions::recertify_within).
+struct VariableRange {
+  int index = -1;
+  double lower = -kInfinity, upper = kInfinity;
+};
+
 // The cut families of the root cut loop (BranchAndBoundOptions::root_cut_families).
 enum RootCutFamily : int {
   kMirCuts = 1,            // c-MIR on aggregated rows (mir_cuts.h)
@@ -178,15 +184,28 @@ struct BranchAndBoundOptions {
   // Crossover of each relaxation (RelaxationRequest::polish_tolerance), off at 0: its
   // solver may finish from its active set once its residuals reach this relative accuracy.
   double relaxation_polish = 0.0;
-  // Re-certification of lagging floors, off at 0 (the default: the certified window plans
-  // it re-opens can end a walk short of its goal; docs/measurements.md, stop 37). The
-  // search keeps (boxes and relaxation points) the this-many lowest-floor subtrees it
-  // settled below what its gap asks (pruned by their objectives, closed at an integral
+  // Re-certification of lagging floors, off at 0 (the default: with 8 every window of the
+  // 8 scenarios is certified and a window keeps its goal, but a real-scan walk decided by
+  // re-certified local-goal windows still ends short: docs/measurements.md, stops 37-38). The search
+  // keeps (boxes and relaxation points) the this-many lowest-floor subtrees it settled
+  // below what its gap asks (pruned by their objectives, closed at an integral
   // point, strong-branching children); when its tree is exhausted short of the gap, it
   // solves them again, lowest floor first, with RelaxationRequest::certify_floor, raising
   // each floor to what the exact solve certifies, until the gap is met, each has been
   // solved once, or the deadline passes.
   int recertify_leaves = 0;
+  // What re-certification keeps of the incumbent (optional): called once, with the
+  // incumbent, when re-certification is about to solve its first subtree; returns ranges
+  // of variables that the incumbent meets (empty: nothing to keep; ranges it does not
+  // meet are ignored). From then on the search proves the problem within those ranges:
+  // the kept subtrees' boxes are cut to them before their solves, so a subtree is
+  // re-opened only when it can beat the incumbent within them, and no point outside them
+  // becomes the incumbent (BranchAndBoundResult::restricted). Every floor settled before
+  // stays a floor of the restricted problem, which is a part of the whole. A receding
+  // window whose plan reaches the goal keeps its final feet within the goal's tolerance
+  // (planner/planning/internal/goal_keeping.h): its objective rewards the goal without
+  // demanding it, and a certified window must not trade the goal for a lower objective.
+  std::function<std::vector<VariableRange>(const Eigen::VectorXd& incumbent)> recertify_within;
   // Optional: replaces a node's relaxation point x by one with more integral values that
   // is just as good (the caller knows where fractional values are only an artefact of
   // the encoding), within the node's bounds lower/upper; returns false when it changed
@@ -238,6 +257,9 @@ struct BranchAndBoundResult {
   // counted in relaxations, and how many of them now meet the gap.
   int floor_recertifications = 0;
   int floors_certified = 0;
+  // The bound and the status hold over the problem within options.recertify_within's
+  // ranges (re-certification restricted the search to them); false: over the whole problem.
+  bool restricted = false;
   double fallback_time_s = 0.0;
   double solve_time_s = 0.0;
 };

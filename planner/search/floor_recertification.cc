@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/check.h"
 #include "planner/search/internal/bound_propagation.h"
 
 namespace mfp {
@@ -46,6 +47,32 @@ double FloorAfter(const SettledSubtree& subtree, const RelaxationResult& r) {
   return subtree.floor;
 }
 
+// options.recertify_within, once per search, before the first solve: its ranges become
+// the search's restriction and cut every kept subtree's box (to be propagated again); a
+// box they leave empty holds nothing of the restricted problem (floor +infinity). Ranges
+// the incumbent does not meet restrict nothing.
+void RestrictToWhatTheIncumbentKeeps(SearchState* state) {
+  const BranchAndBoundOptions& options = state->options();
+  if (!options.recertify_within || !state->FirstRestrictionAsk()) return;
+  const std::vector<VariableRange> ranges = options.recertify_within(state->result().x);
+  if (ranges.empty()) return;
+  const Miqp& p = state->problem();
+  Eigen::VectorXd lower = p.var_lower, upper = p.var_upper;
+  for (const VariableRange& r : ranges) {
+    MFP_CHECK(r.index >= 0 && r.index < p.num_variables());
+    lower(r.index) = std::max(lower(r.index), r.lower);
+    upper(r.index) = std::min(upper(r.index), r.upper);
+  }
+  if (!state->Within(state->result().x, lower, upper)) return;
+  for (SettledSubtree& subtree : state->lagging().kept()) {
+    subtree.lower = subtree.lower.cwiseMax(lower);
+    subtree.upper = subtree.upper.cwiseMin(upper);
+    subtree.propagated = false;
+    if ((subtree.lower.array() > subtree.upper.array()).any()) subtree.floor = kInfinity;
+  }
+  state->Restrict(std::move(lower), std::move(upper));
+}
+
 }  // namespace
 
 std::optional<ReopenedSubtree> RecertifyLaggingFloors(SearchState* state) {
@@ -54,6 +81,7 @@ std::optional<ReopenedSubtree> RecertifyLaggingFloors(SearchState* state) {
   const double target = state->ProofFloor();
   // A subtree not kept misses the proof already: solving the kept ones cannot give it.
   if (!(lagging.rest_floor() >= target)) return std::nullopt;
+  RestrictToWhatTheIncumbentKeeps(state);
   std::vector<SettledSubtree>& kept = lagging.kept();
   while (!state->Active().Expired() && result.floor_recertifications < state->options().recertify_leaves) {
     auto lowest = Lowest(&kept);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "planner/qp/fixed_integer_qp.h"
 
@@ -45,12 +46,24 @@ double SearchState::GapTolerance() const {
 void SearchState::OfferIncumbent(Eigen::VectorXd x, bool report) {
   const std::optional<double> objective = FeasibleObjective(p_, &x, opt_.feasibility_tolerance);
   if (!objective) return;
+  if (Restricted() && !Within(x, restricted_lower_, restricted_upper_)) return;
   if (!HasIncumbent() || *objective < result_.objective) {
     result_.x = std::move(x);
     result_.objective = *objective;
     last_improvement_ = Clock::now();
     if (report && opt_.on_incumbent) ReportProgress();
   }
+}
+
+void SearchState::Restrict(Eigen::VectorXd lower, Eigen::VectorXd upper) {
+  restricted_lower_ = std::move(lower);
+  restricted_upper_ = std::move(upper);
+  result_.restricted = true;
+}
+
+bool SearchState::Within(const Eigen::VectorXd& x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const {
+  const double tol = opt_.feasibility_tolerance;
+  return !((x.array() < lower.array() - tol).any() || (x.array() > upper.array() + tol).any());
 }
 
 RelaxationRequest SearchState::Request(Eigen::VectorXd lower, Eigen::VectorXd upper, const Eigen::VectorXd* warm,

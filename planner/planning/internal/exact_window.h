@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "planner/formulation/miqp_formulation.h"
+#include "planner/planning/internal/goal.h"
 #include "planner/planning/internal/window_polisher.h"
 #include "planner/qp/relaxation_solver.h"
 #include "planner/search/branch_and_bound.h"
@@ -37,9 +38,11 @@ struct ExactReplan {
 // MIQP is the plan: one
 // fixed-integer QP, solved past the deadline by at most polish.completion_overrun_s
 // (bnb.deadline's stop flag still ends it), which keeps a window that had a plan from
-// ending with none.
+// ending with none. keep_goal (optional): the plan's goal, which the re-plan's
+// re-certification keeps once its plan reaches it (goal_keeping.h); bnb.recertify_within
+// belongs to the window's own formulation and is replaced.
 ExactReplan ReplanWithinChordError(const MiqpFormulation& formulation, const std::vector<RelaxationSolver*>& solvers,
                                    const BranchAndBoundOptions& bnb, const PolishOptions& polish,
-                                   const Eigen::VectorXd* window_x = nullptr);
+                                   const Eigen::VectorXd* window_x = nullptr, const GoalSpec* keep_goal = nullptr);
 
 }  // namespace mfp

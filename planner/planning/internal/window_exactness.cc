@@ -41,7 +41,7 @@ ExactWindow MakeWindowExact(const PlanContext& context, const MiqpFormulation& f
   // exact without it (exact_window.h), so it never extends the overrun above.
   polish.time_limit_s = std::min(polish.time_limit_s, std::max(1e-3, context.TimeLeftSeconds()));
   out.replan_tried = true;
-  out.replan = ReplanWithinChordError(formulation, context.solvers, bnb, polish, &out.result.x);
+  out.replan = ReplanWithinChordError(formulation, context.solvers, bnb, polish, &out.result.x, &context.goal);
   out.note = out.replan.note;
   if (!out.replan.planned) return out;
   const double polish_s = out.polished.report.time_s;

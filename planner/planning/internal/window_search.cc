@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "planner/planning/internal/goal_keeping.h"
 #include "planner/planning/internal/relax_and_fix.h"
 #include "planner/planning/internal/route_proposals.h"
 #include "planner/planning/internal/warm_start.h"
@@ -161,6 +162,8 @@ BranchAndBoundOptions WindowSearchOptions(const PlanContext& context, const Hori
   bnb.deadline = context.request.deadline.Within(
       bnb.time_limit_needs_incumbent ? std::min(time_left_s, options.anytime_window_cap * bnb.time_limit_s)
                                      : time_left_s);
+  // A window aiming at the goal whose plan reaches it keeps it through re-certification.
+  bnb.recertify_within = GoalKeeping(formulation, context.goal);
   if (options.snap_yaw_segments) {
     bnb.equivalent_point = [&formulation](const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                           Eigen::VectorXd* x) {

@@ -64,8 +64,17 @@ class SearchState {
   // How much better than the incumbent a subtree must be able to get to be explored.
   double GapTolerance() const;
   // x with its integers rounded becomes the incumbent when it meets the rows and bounds
-  // and beats the incumbent; then, with `report`, options.on_incumbent is told.
+  // (and the restriction, once set) and beats the incumbent; then, with `report`,
+  // options.on_incumbent is told.
   void OfferIncumbent(Eigen::VectorXd x, bool report = true);
+  // Re-certification's restriction (BranchAndBoundOptions::recertify_within): from now on
+  // no point outside lower/upper (within the feasibility tolerance) becomes the incumbent.
+  void Restrict(Eigen::VectorXd lower, Eigen::VectorXd upper);
+  bool Restricted() const { return restricted_lower_.size() > 0; }
+  // BranchAndBoundOptions::recertify_within is asked once per search: true the first time.
+  bool FirstRestrictionAsk() { return !std::exchange(restriction_asked_, true); }
+  // x lies within lower/upper, within the feasibility tolerance.
+  bool Within(const Eigen::VectorXd& x, const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) const;
 
   // The request for one relaxation within the node bounds lower/upper, under the
   // deadline in force. cutoff: see BranchAndBoundOptions::early_cutoff.
@@ -125,6 +134,8 @@ class SearchState {
   double gap_pruned_bound_ = kInfinity;  // least bound of the subtrees pruned by the gap
   double in_flight_bound_ = kInfinity;   // least parent floor of the round being processed
   LaggingFloors lagging_;  // options.recertify_leaves
+  Eigen::VectorXd restricted_lower_, restricted_upper_;  // Restrict (empty: none)
+  bool restriction_asked_ = false;
 };
 
 // (objective - bound) / max(1, |objective|).
