@@ -223,6 +223,60 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
   return false;
 }
 
+// The known free voxels the extraction asks about (FreeVoxelsAsked's band [z_lo, z_hi]),
+// one of two ways: a bit per voxel of the band in every column (one test a voxel, filled
+// without counting or sorting), or, when those bits would take more memory than the
+// leaves' column runs may (a band many voxels tall), the free columns' runs.
+struct FreeSpace {
+  long long z0 = 0;  // the voxel of each column's first bit
+  size_t words = 0;  // 64-bit words per column; 0: runs
+  std::vector<uint64_t> bits;
+  Columns runs;
+  // Whether voxel z of column col is known free; z in the band.
+  bool Has(int col, long long z) const {
+    if (words == 0) return ColumnHas(runs, col, z, z + 1);
+    const long long d = z - z0;
+    if (d < 0 || d >= static_cast<long long>(words) * 64) return false;
+    return (bits[static_cast<size_t>(col) * words + static_cast<size_t>(d >> 6)] >> (d & 63)) & 1u;
+  }
+};
+
+// 64-bit words a column's bits of the band [z_lo, z_hi] take.
+uint64_t BandWords(long long z_lo, long long z_hi) { return (static_cast<uint64_t>(z_hi - z_lo) + 64) / 64; }
+
+// FreeSpace's bits of the prints of every part, clipped to the band [z_lo, z_hi], the
+// grid's rows in `bands` bands on the threads (each band sets only its own columns' bits).
+FreeSpace FreeBitsInBands(const std::vector<std::vector<Footprint>>& parts, const HeightMap& hm, long long z_lo,
+                          long long z_hi, int bands, int threads) {
+  FreeSpace space;
+  space.z0 = z_lo;
+  space.words = static_cast<size_t>(BandWords(z_lo, z_hi));
+  const size_t words = space.words;
+  space.bits.assign(static_cast<size_t>(hm.rows) * hm.cols * words, 0);
+  ParallelFor(bands, threads, [&](int b) {
+    const int r0 = hm.rows * b / bands, r1 = hm.rows * (b + 1) / bands;
+    for (const std::vector<Footprint>& prints : parts) {
+      for (const Footprint& f : prints) {
+        const int fr0 = std::max(r0, f.r0), fr1 = std::min(r1, f.r0 + f.n);
+        if (fr0 >= fr1) continue;
+        const int c0 = std::max(0, f.c0), c1 = std::min(hm.cols, f.c0 + f.n);
+        // The leaf's voxels in the band, as bits [a, e) of a column.
+        const long long a = std::max(f.z0, z_lo) - z_lo, e = std::min(f.z0 + f.n, z_hi + 1) - z_lo;
+        if (a >= e) continue;
+        for (long long w = a >> 6; w <= (e - 1) >> 6; ++w) {
+          const long long lo = std::max(a, w * 64) - w * 64, hi = std::min(e, w * 64 + 64) - w * 64;
+          const uint64_t mask = (hi - lo == 64 ? ~uint64_t{0} : ((uint64_t{1} << (hi - lo)) - 1)) << lo;
+          for (int r = fr0; r < fr1; ++r) {
+            uint64_t* row = &space.bits[(static_cast<size_t>(r) * hm.cols) * words + static_cast<size_t>(w)];
+            for (int c = c0; c < c1; ++c) row[static_cast<size_t>(c) * words] |= mask;
+          }
+        }
+      }
+    }
+  });
+  return space;
+}
+
 }  // namespace
 
 namespace {
@@ -419,7 +473,7 @@ struct Candidates {
 // The tops of the runs of columns [begin, end) with room above them (and, with free space
 // known, seen from above), appended to heights; each column's first entry (relative to
 // heights' start) at offset[col]; the runs passed over counted in *no_room, *unseen.
-void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vector<uint8_t>& dropped,
+void CandidatesOfColumns(const Columns& occ, const FreeSpace* free, const std::vector<uint8_t>& dropped,
                          double clearance_voxels, double res, int begin, int end, size_t* offset,
                          std::vector<float>* heights, int* no_room, int* unseen) {
   for (int col = begin; col < end; ++col) {
@@ -434,7 +488,7 @@ void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vec
         ++*no_room;
         continue;
       }
-      if (free != nullptr && !ColumnHas(*free, col, top, top + 1)) {
+      if (free != nullptr && !free->Has(col, top)) {
         ++*unseen;
         continue;
       }
@@ -445,7 +499,7 @@ void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vec
 
 // The tops of the runs with room above them (and, with free space known, seen from above),
 // in column order: bands of rows on options.threads threads, joined in order.
-Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Columns* free,
+Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const FreeSpace* free,
                              const std::vector<uint8_t>& dropped, const SurfaceLayerOptions& options,
                              SurfaceLayers* out) {
   const int cells = grid.rows * grid.cols;
@@ -568,17 +622,17 @@ long long RoomVoxels(double clearance_m, double res) {
 }
 
 // SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
-uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
+uint8_t UnseenBits(const Columns& occ, const FreeSpace* free, int col, float level, double res, long long room) {
   const long long top_voxel = TopVoxelOf(level, res);
   if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
   // A ray through the voxel under the floor's level went into a hole: a drop.
-  if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
-  const bool erased = free != nullptr && ColumnHas(*free, col, top_voxel, top_voxel + 1);
+  if (free != nullptr && free->Has(col, top_voxel - 1)) return 0;
+  const bool erased = free != nullptr && free->Has(col, top_voxel);
   return static_cast<uint8_t>(kEmptyColumn | (erased ? 0 : kNotErased));
 }
 
 // SurfaceLayers::unseen bits of cell (r, c) of layer: 0 unless it is empty beside a surface.
-uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* free, int r, int c, long long room) {
+uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const FreeSpace* free, int r, int c, long long room) {
   if (!std::isnan(layer.height_m[static_cast<size_t>(layer.Index(r, c))])) return 0;
   float level = -std::numeric_limits<float>::infinity();
   const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
@@ -592,7 +646,7 @@ uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* fr
 
 // `unseen` (the layer's unseen bits before the cells `changed` got a surface or a new
 // height) brought up to date: only those cells and their 4-neighbours can differ.
-void UpdateUnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
+void UpdateUnseenCells(const HeightMap& layer, const Columns& occ, const FreeSpace* free, double clearance_m,
                        const int* changed, size_t n_changed, std::vector<uint8_t>* unseen) {
   const long long room = RoomVoxels(clearance_m, layer.resolution_m);
   for (size_t k = 0; k < n_changed; ++k) {
@@ -636,7 +690,7 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // to fills with their heights.
 // spans: the RowSpan of each of the rows [r0, r1) (cells outside it have no surface on
 // one side in their row, so none is enclosed).
-void CollectEnclosedFills(const HeightMap& seen, const Columns& occ, const Columns& free, double clearance_m,
+void CollectEnclosedFills(const HeightMap& seen, const Columns& occ, const FreeSpace& free, double clearance_m,
                           int radius, int r0, int r1, const RowSpan* spans, std::vector<std::pair<int, float>>* fills) {
   const double res = seen.resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
@@ -753,7 +807,7 @@ struct LayerBand {
 // bands of rows of every layer on options.threads threads, judging every cell on the
 // heights before the pass; its changes are then made per layer in row order: the result a
 // single thread passing over each layer in row order gives.
-std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Columns& occ, const Columns* free,
+std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Columns& occ, const FreeSpace* free,
                                       const SurfaceLayerOptions& options) {
   const int rows = layers->front().rows, cols = layers->front().cols;
   const int band_rows = BandRows(cols);
@@ -906,7 +960,8 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   const int parts = free_asked ? 2 * std::max(1, options.threads) : 0;
   std::vector<std::vector<Footprint>> free_prints(static_cast<size_t>(parts));
   std::vector<double> free_cells(static_cast<size_t>(parts), 0.0);
-  Columns occ, free;
+  Columns occ;
+  FreeSpace free;
   ParallelFor(1 + parts, options.threads, [&](int job) {
     if (job == 0) {
       occ = ColumnsOf(occupied, grid);
@@ -916,19 +971,30 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     const OccupiedLeaf* leaves = map.free_leaves.data();
     free_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid, z_lo, z_hi, &free_cells[k]);
   });
+  double free_sum = 0.0;  // the free leaves' column cells: the most the free columns' runs may hold
   if (free_asked) {
-    double all_cells = occupied_cells;
-    for (double cells : free_cells) all_cells += cells;
-    CheckBudgetPart(map, all_cells, options);
+    for (double cells : free_cells) free_sum += cells;
+    CheckBudgetPart(map, occupied_cells + free_sum, options);
   }
-  if (know_free) free = UnsortedColumnsInBands(free_prints, grid, std::max(1, options.threads), options.threads);
+  if (know_free) {
+    // The bits when they take no more memory than the runs may (offsets and runs; a
+    // band's words per column against one offset and two words a run).
+    const double grid_cells = static_cast<double>(grid.rows) * grid.cols;
+    const bool bits = free_asked && static_cast<double>(BandWords(z_lo, z_hi)) * grid_cells <= grid_cells + 1 + 2 * free_sum;
+    const int bands = std::max(1, options.threads);
+    if (bits) {
+      free = FreeBitsInBands(free_prints, grid, z_lo, z_hi, bands, options.threads);
+    } else {
+      free.runs = UnsortedColumnsInBands(free_prints, grid, bands, options.threads);
+    }
+  }
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
                                            ? IsolatedVoxels(grid, occ, options.threads, &out.isolated_voxels)
                                            : std::vector<uint8_t>(occ.runs.size(), 0);
   const Candidates cand = SurfaceCandidates(grid, occ, know_free ? &free : nullptr, dropped, options, &out);
   out.candidates = static_cast<int>(cand.height.size());
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
-  const Columns* free_or_null = know_free ? &free : nullptr;
+  const FreeSpace* free_or_null = know_free ? &free : nullptr;
   std::vector<LayerFinish> finished = FinishLayers(&out.layers, occ, free_or_null, options);
   for (LayerFinish& f : finished) {
     out.unseen.push_back(std::move(f.unseen));
