@@ -1,11 +1,13 @@
 #include "terrain/extraction/internal/surface_layers.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -36,18 +38,15 @@ struct Footprint {
   int c0, r0, n;
 };
 
-// The footprints of the leaves that overlap the grid and the voxels [z_lo, z_hi] along z
-// (the others add no run that is asked), in order. free_cells (optional) gets every
-// leaf's FreeLeafColumnCells inside the grid (the occupied extent) added, in order.
-std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm,
-                                    long long z_lo = std::numeric_limits<long long>::min(),
-                                    long long z_hi = std::numeric_limits<long long>::max(),
-                                    double* free_cells = nullptr) {
+// Calls emit(footprint) for the leaves that overlap the grid and the voxels [z_lo, z_hi]
+// along z (the others add no run that is asked), in order. free_cells (optional) gets
+// every leaf's FreeLeafColumnCells inside the grid (the occupied extent) added, in order.
+template <typename Emit>
+void ForEachFootprint(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm, long long z_lo,
+                      long long z_hi, double* free_cells, Emit&& emit) {
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
-  std::vector<Footprint> prints;
-  prints.reserve(static_cast<size_t>(end - begin));
   for (const OccupiedLeaf* it = begin; it != end; ++it) {
     const OccupiedLeaf& leaf = *it;
     const double n_d = leaf.size_m / res;
@@ -78,8 +77,18 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
     if (z0 > z_hi || z0 + n <= z_lo) continue;
     const long long c0 = x - x_lo, r0 = y - y_lo;
     if (!on_grid && (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0)) continue;
-    prints.push_back({z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
+    emit(Footprint{z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
+}
+
+// ForEachFootprint's footprints, in order.
+std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm,
+                                    long long z_lo = std::numeric_limits<long long>::min(),
+                                    long long z_hi = std::numeric_limits<long long>::max(),
+                                    double* free_cells = nullptr) {
+  std::vector<Footprint> prints;
+  prints.reserve(static_cast<size_t>(end - begin));
+  ForEachFootprint(begin, end, hm, z_lo, z_hi, free_cells, [&](const Footprint& f) { prints.push_back(f); });
   return prints;
 }
 
@@ -224,58 +233,58 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 }
 
 // The known free voxels the extraction asks about (FreeVoxelsAsked's band [z_lo, z_hi]),
-// one of two ways: a bit per voxel of the band in every column (one test a voxel, filled
-// without counting or sorting), or, when those bits would take more memory than the
-// leaves' column runs may (a band many voxels tall), the free columns' runs.
+// one of two ways: a bit per voxel of the band in every column, set straight from the
+// leaves (no footprints kept, no counting or sorting, one test a voxel), or, when those
+// bits would take more memory than the footprints and runs may, the free columns' runs.
+// The bits are set by several threads at once (an atomic OR: the same bits in any order).
 struct FreeSpace {
   long long z0 = 0;  // the voxel of each column's first bit
   size_t words = 0;  // 64-bit words per column; 0: runs
-  std::vector<uint64_t> bits;
+  std::unique_ptr<std::atomic<uint64_t>[]> bits;  // words per column, column after column
   Columns runs;
+  // Every column's words, zero, in `threads` parts at once.
+  void ZeroBits(size_t columns, int threads) {
+    const size_t n = columns * words;
+    bits.reset(new std::atomic<uint64_t>[n]);
+    const int parts = std::max(1, threads);
+    ParallelFor(parts, threads, [&](int p) {
+      const size_t k = static_cast<size_t>(p), m = static_cast<size_t>(parts);
+      for (size_t i = n * k / m; i < n * (k + 1) / m; ++i) bits[i].store(0, std::memory_order_relaxed);
+    });
+  }
   // Whether voxel z of column col is known free; z in the band.
   bool Has(int col, long long z) const {
     if (words == 0) return ColumnHas(runs, col, z, z + 1);
     const long long d = z - z0;
     if (d < 0 || d >= static_cast<long long>(words) * 64) return false;
-    return (bits[static_cast<size_t>(col) * words + static_cast<size_t>(d >> 6)] >> (d & 63)) & 1u;
+    const auto word = static_cast<size_t>(col) * words + static_cast<size_t>(d >> 6);
+    return (bits[word].load(std::memory_order_relaxed) >> (d & 63)) & 1u;
+  }
+  // Sets the bits of a leaf's footprint on the grid, its voxels clipped to the bits' span
+  // (a leaf one voxel wide: on the grid and in the band, as ForEachFootprint gives it).
+  void Set(const Footprint& f, const HeightMap& hm) {
+    const long long a = std::max(f.z0, z0) - z0, e = std::min(f.z0 + f.n - z0, static_cast<long long>(words) * 64);
+    if (f.n == 1) {  // most leaves: on the grid and in the band
+      bits[(static_cast<size_t>(f.r0) * hm.cols + f.c0) * words + static_cast<size_t>(a >> 6)].fetch_or(
+          uint64_t{1} << (a & 63), std::memory_order_relaxed);
+      return;
+    }
+    const int r0 = std::max(0, f.r0), r1 = std::min(hm.rows, f.r0 + f.n);
+    const int c0 = std::max(0, f.c0), c1 = std::min(hm.cols, f.c0 + f.n);
+    for (long long w = a >> 6; a < e && w <= (e - 1) >> 6; ++w) {
+      const long long lo = std::max(a, w * 64) - w * 64, hi = std::min(e, w * 64 + 64) - w * 64;
+      const uint64_t mask = (hi - lo == 64 ? ~uint64_t{0} : ((uint64_t{1} << (hi - lo)) - 1)) << lo;
+      for (int r = r0; r < r1; ++r) {
+        for (int c = c0; c < c1; ++c) {
+          bits[(static_cast<size_t>(r) * hm.cols + c) * words + static_cast<size_t>(w)].fetch_or(mask, std::memory_order_relaxed);
+        }
+      }
+    }
   }
 };
 
 // 64-bit words a column's bits of the band [z_lo, z_hi] take.
 uint64_t BandWords(long long z_lo, long long z_hi) { return (static_cast<uint64_t>(z_hi - z_lo) + 64) / 64; }
-
-// FreeSpace's bits of the prints of every part, clipped to the band [z_lo, z_hi], the
-// grid's rows in `bands` bands on the threads (each band sets only its own columns' bits).
-FreeSpace FreeBitsInBands(const std::vector<std::vector<Footprint>>& parts, const HeightMap& hm, long long z_lo,
-                          long long z_hi, int bands, int threads) {
-  FreeSpace space;
-  space.z0 = z_lo;
-  space.words = static_cast<size_t>(BandWords(z_lo, z_hi));
-  const size_t words = space.words;
-  space.bits.assign(static_cast<size_t>(hm.rows) * hm.cols * words, 0);
-  ParallelFor(bands, threads, [&](int b) {
-    const int r0 = hm.rows * b / bands, r1 = hm.rows * (b + 1) / bands;
-    for (const std::vector<Footprint>& prints : parts) {
-      for (const Footprint& f : prints) {
-        const int fr0 = std::max(r0, f.r0), fr1 = std::min(r1, f.r0 + f.n);
-        if (fr0 >= fr1) continue;
-        const int c0 = std::max(0, f.c0), c1 = std::min(hm.cols, f.c0 + f.n);
-        // The leaf's voxels in the band, as bits [a, e) of a column.
-        const long long a = std::max(f.z0, z_lo) - z_lo, e = std::min(f.z0 + f.n, z_hi + 1) - z_lo;
-        if (a >= e) continue;
-        for (long long w = a >> 6; w <= (e - 1) >> 6; ++w) {
-          const long long lo = std::max(a, w * 64) - w * 64, hi = std::min(e, w * 64 + 64) - w * 64;
-          const uint64_t mask = (hi - lo == 64 ? ~uint64_t{0} : ((uint64_t{1} << (hi - lo)) - 1)) << lo;
-          for (int r = fr0; r < fr1; ++r) {
-            uint64_t* row = &space.bits[(static_cast<size_t>(r) * hm.cols) * words + static_cast<size_t>(w)];
-            for (int c = c0; c < c1; ++c) row[static_cast<size_t>(c) * words] |= mask;
-          }
-        }
-      }
-    }
-  });
-  return space;
-}
 
 }  // namespace
 
@@ -955,38 +964,56 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   long long z_lo = 0, z_hi = 0;
   const bool free_asked = know_free && FreeVoxelsAsked(occupied, grid.resolution_m, &z_lo, &z_hi);
   if (!free_asked && !map.free_leaves.empty()) CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);
+  // The free space as bits when they take no more memory than the footprints the runs
+  // are cut from (a band's words per column against an offset per column and two words a
+  // leaf): bounded by the map's size, as those are.
+  FreeSpace free;
+  const double grid_cells = static_cast<double>(grid.rows) * grid.cols;
+  const bool bits = free_asked && static_cast<double>(BandWords(z_lo, z_hi)) * grid_cells <=
+                                      grid_cells + 1 + 2 * static_cast<double>(map.free_leaves.size());
+  if (bits) {
+    free.z0 = z_lo;
+    free.words = static_cast<size_t>(BandWords(z_lo, z_hi));
+    free.ZeroBits(static_cast<size_t>(grid_cells), options.threads);
+  }
   // The occupied columns beside the free leaves' footprints (in parts, several for each
-  // thread so the threads end together), then the free columns in bands of rows.
+  // thread so the threads end together): with bits, a leaf one voxel wide sets its bit at
+  // once and a wider one waits for the budget; else every footprint is kept for the runs.
   const int parts = free_asked ? 2 * std::max(1, options.threads) : 0;
   std::vector<std::vector<Footprint>> free_prints(static_cast<size_t>(parts));
   std::vector<double> free_cells(static_cast<size_t>(parts), 0.0);
   Columns occ;
-  FreeSpace free;
   ParallelFor(1 + parts, options.threads, [&](int job) {
     if (job == 0) {
       occ = ColumnsOf(occupied, grid);
       return;
     }
     const size_t n = map.free_leaves.size(), k = static_cast<size_t>(job - 1), m = static_cast<size_t>(parts);
-    const OccupiedLeaf* leaves = map.free_leaves.data();
-    free_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid, z_lo, z_hi, &free_cells[k]);
-  });
-  double free_sum = 0.0;  // the free leaves' column cells: the most the free columns' runs may hold
-  if (free_asked) {
-    for (double cells : free_cells) free_sum += cells;
-    CheckBudgetPart(map, occupied_cells + free_sum, options);
-  }
-  if (know_free) {
-    // The bits when they take no more memory than the runs may (offsets and runs; a
-    // band's words per column against one offset and two words a run).
-    const double grid_cells = static_cast<double>(grid.rows) * grid.cols;
-    const bool bits = free_asked && static_cast<double>(BandWords(z_lo, z_hi)) * grid_cells <= grid_cells + 1 + 2 * free_sum;
-    const int bands = std::max(1, options.threads);
-    if (bits) {
-      free = FreeBitsInBands(free_prints, grid, z_lo, z_hi, bands, options.threads);
-    } else {
-      free.runs = UnsortedColumnsInBands(free_prints, grid, bands, options.threads);
+    const OccupiedLeaf* begin = map.free_leaves.data() + n * k / m;
+    const OccupiedLeaf* end = map.free_leaves.data() + n * (k + 1) / m;
+    if (!bits) {
+      free_prints[k] = FootprintsOf(begin, end, grid, z_lo, z_hi, &free_cells[k]);
+      return;
     }
+    ForEachFootprint(begin, end, grid, z_lo, z_hi, &free_cells[k], [&](const Footprint& f) {
+      if (f.n == 1) {
+        free.Set(f, grid);
+      } else {
+        free_prints[k].push_back(f);
+      }
+    });
+  });
+  if (free_asked) {
+    double all_cells = occupied_cells;
+    for (double cells : free_cells) all_cells += cells;
+    CheckBudgetPart(map, all_cells, options);
+  }
+  if (bits) {
+    ParallelFor(parts, options.threads, [&](int k) {
+      for (const Footprint& f : free_prints[static_cast<size_t>(k)]) free.Set(f, grid);
+    });
+  } else if (know_free) {
+    free.runs = UnsortedColumnsInBands(free_prints, grid, std::max(1, options.threads), options.threads);
   }
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
                                            ? IsolatedVoxels(grid, occ, options.threads, &out.isolated_voxels)
