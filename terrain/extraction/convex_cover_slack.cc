@@ -106,7 +106,7 @@ bool TooClose(const Polygon2d& part, const Bounds& b, const InsetCell& cell) {
   const std::array<Eigen::Vector2d, 4> square = {
       Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r + 0.5),
       Eigen::Vector2d(c - 0.5, r + 0.5)};
-  return ConvexPolygonDistance(part, square) < cell.inset - kEps;
+  return ConvexPolygonsNearer(part, square, cell.inset - kEps);
 }
 
 // The outside cells (inset > 0) that some part with bounds inside `box` may come nearer
