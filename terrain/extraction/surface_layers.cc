@@ -1,7 +1,6 @@
 #include "terrain/extraction/internal/surface_layers.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -240,16 +239,16 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
 struct FreeSpace {
   long long z0 = 0;  // the voxel of each column's first bit
   size_t words = 0;  // 64-bit words per column; 0: runs
-  std::unique_ptr<std::atomic<uint64_t>[]> bits;  // words per column, column after column
+  std::unique_ptr<uint64_t[]> bits;  // words per column, column after column
   Columns runs;
   // Every column's words, zero, in `threads` parts at once.
   void ZeroBits(size_t columns, int threads) {
     const size_t n = columns * words;
-    bits.reset(new std::atomic<uint64_t>[n]);
+    bits.reset(new uint64_t[n]);
     const int parts = std::max(1, threads);
     ParallelFor(parts, threads, [&](int p) {
       const size_t k = static_cast<size_t>(p), m = static_cast<size_t>(parts);
-      for (size_t i = n * k / m; i < n * (k + 1) / m; ++i) bits[i].store(0, std::memory_order_relaxed);
+      std::fill(bits.get() + n * k / m, bits.get() + n * (k + 1) / m, uint64_t{0});
     });
   }
   // Whether voxel z of column col is known free; z in the band.
@@ -258,15 +257,16 @@ struct FreeSpace {
     const long long d = z - z0;
     if (d < 0 || d >= static_cast<long long>(words) * 64) return false;
     const auto word = static_cast<size_t>(col) * words + static_cast<size_t>(d >> 6);
-    return (bits[word].load(std::memory_order_relaxed) >> (d & 63)) & 1u;
+    return (bits[word] >> (d & 63)) & 1u;
   }
+  // An OR other threads may make at the same time (the bits are read once all are made).
+  static void Or(uint64_t* word, uint64_t mask) { __atomic_fetch_or(word, mask, __ATOMIC_RELAXED); }
   // Sets the bits of a leaf's footprint on the grid, its voxels clipped to the bits' span
   // (a leaf one voxel wide: on the grid and in the band, as ForEachFootprint gives it).
   void Set(const Footprint& f, const HeightMap& hm) {
     const long long a = std::max(f.z0, z0) - z0, e = std::min(f.z0 + f.n - z0, static_cast<long long>(words) * 64);
     if (f.n == 1) {  // most leaves: on the grid and in the band
-      bits[(static_cast<size_t>(f.r0) * hm.cols + f.c0) * words + static_cast<size_t>(a >> 6)].fetch_or(
-          uint64_t{1} << (a & 63), std::memory_order_relaxed);
+      Or(&bits[(static_cast<size_t>(f.r0) * hm.cols + f.c0) * words + static_cast<size_t>(a >> 6)], uint64_t{1} << (a & 63));
       return;
     }
     const int r0 = std::max(0, f.r0), r1 = std::min(hm.rows, f.r0 + f.n);
@@ -276,7 +276,7 @@ struct FreeSpace {
       const uint64_t mask = (hi - lo == 64 ? ~uint64_t{0} : ((uint64_t{1} << (hi - lo)) - 1)) << lo;
       for (int r = r0; r < r1; ++r) {
         for (int c = c0; c < c1; ++c) {
-          bits[(static_cast<size_t>(r) * hm.cols + c) * words + static_cast<size_t>(w)].fetch_or(mask, std::memory_order_relaxed);
+          Or(&bits[(static_cast<size_t>(r) * hm.cols + c) * words + static_cast<size_t>(w)], mask);
         }
       }
     }
@@ -747,6 +747,30 @@ const Interval* RunHolding(const Columns& cols, int c, long long z) {
 void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1, const RowSpan* spans,
                      std::vector<uint8_t>* bits) {
   const double res = layer.resolution_m;
+  // Whether material rises in column (rr, cc) beside a top voxel `top` (a function of the
+  // two alone), kept for the three rows a row's cells ask: the cells of one floor ask
+  // their shared neighbours at one level.
+  constexpr long long kNone = std::numeric_limits<long long>::min();
+  const auto cols = static_cast<size_t>(layer.cols);
+  std::vector<long long> asked(3 * cols, kNone);
+  std::vector<uint8_t> rises(3 * cols, 0);
+  int slot_row[3] = {-1, -1, -1};
+  auto rises_beside = [&](int rr, int cc, long long top) {
+    const auto slot = static_cast<size_t>(rr % 3);
+    if (slot_row[slot] != rr) {
+      slot_row[slot] = rr;
+      std::fill(asked.begin() + static_cast<std::ptrdiff_t>(slot * cols), asked.begin() + static_cast<std::ptrdiff_t>((slot + 1) * cols), kNone);
+    }
+    const size_t k = slot * cols + static_cast<size_t>(cc);
+    if (asked[k] != top) {
+      // Occupied above the top voxel, and at its level or one higher still. Runs are
+      // merged (a gap between any two), so both lie in the run holding the first.
+      const Interval* run = RunHolding(occ, layer.Index(rr, cc), top + 1);
+      rises[k] = run != nullptr && (run->lo <= top || run->hi >= top + 3);
+      asked[k] = top;
+    }
+    return rises[k] != 0;
+  };
   for (int r = r0; r < r1; ++r) {
     for (int c = spans[r - r0].lo; c < spans[r - r0].hi; ++c) {
       const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
@@ -756,12 +780,7 @@ void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1,
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if ((dr == 0 && dc == 0) || !layer.Inside(r + dr, c + dc)) continue;
-          // Occupied above the top voxel, and at its level or one higher still. Runs are
-          // merged (a gap between any two), so both lie in the run holding the first.
-          const Interval* run = RunHolding(occ, layer.Index(r + dr, c + dc), top_voxel + 1);
-          if (run != nullptr && (run->lo <= top_voxel || run->hi >= top_voxel + 3)) {
-            b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
-          }
+          if (rises_beside(r + dr, c + dc, top_voxel)) b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
         }
       }
       (*bits)[static_cast<size_t>(layer.Index(r, c))] = b;
