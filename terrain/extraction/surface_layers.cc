@@ -747,30 +747,6 @@ const Interval* RunHolding(const Columns& cols, int c, long long z) {
 void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1, const RowSpan* spans,
                      std::vector<uint8_t>* bits) {
   const double res = layer.resolution_m;
-  // Whether material rises in column (rr, cc) beside a top voxel `top` (a function of the
-  // two alone), kept for the three rows a row's cells ask: the cells of one floor ask
-  // their shared neighbours at one level.
-  constexpr long long kNone = std::numeric_limits<long long>::min();
-  const auto cols = static_cast<size_t>(layer.cols);
-  std::vector<long long> asked(3 * cols, kNone);
-  std::vector<uint8_t> rises(3 * cols, 0);
-  int slot_row[3] = {-1, -1, -1};
-  auto rises_beside = [&](int rr, int cc, long long top) {
-    const auto slot = static_cast<size_t>(rr % 3);
-    if (slot_row[slot] != rr) {
-      slot_row[slot] = rr;
-      std::fill(asked.begin() + static_cast<std::ptrdiff_t>(slot * cols), asked.begin() + static_cast<std::ptrdiff_t>((slot + 1) * cols), kNone);
-    }
-    const size_t k = slot * cols + static_cast<size_t>(cc);
-    if (asked[k] != top) {
-      // Occupied above the top voxel, and at its level or one higher still. Runs are
-      // merged (a gap between any two), so both lie in the run holding the first.
-      const Interval* run = RunHolding(occ, layer.Index(rr, cc), top + 1);
-      rises[k] = run != nullptr && (run->lo <= top || run->hi >= top + 3);
-      asked[k] = top;
-    }
-    return rises[k] != 0;
-  };
   for (int r = r0; r < r1; ++r) {
     for (int c = spans[r - r0].lo; c < spans[r - r0].hi; ++c) {
       const float h = layer.height_m[static_cast<size_t>(layer.Index(r, c))];
@@ -780,7 +756,12 @@ void SolidBesideRows(const HeightMap& layer, const Columns& occ, int r0, int r1,
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if ((dr == 0 && dc == 0) || !layer.Inside(r + dr, c + dc)) continue;
-          if (rises_beside(r + dr, c + dc, top_voxel)) b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
+          // Occupied above the top voxel, and at its level or one higher still. Runs are
+          // merged (a gap between any two), so both lie in the run holding the first.
+          const Interval* run = RunHolding(occ, layer.Index(r + dr, c + dc), top_voxel + 1);
+          if (run != nullptr && (run->lo <= top_voxel || run->hi >= top_voxel + 3)) {
+            b = static_cast<uint8_t>(b | (1u << NeighbourBit(dr, dc)));
+          }
         }
       }
       (*bits)[static_cast<size_t>(layer.Index(r, c))] = b;
