@@ -46,6 +46,7 @@ void ForEachFootprint(const OccupiedLeaf* begin, const OccupiedLeaf* end, const 
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
+  double cells = 0.0;  // the leaves' FreeLeafColumnCells so far (whole numbers, exact below 2^53 in any order)
   for (const OccupiedLeaf* it = begin; it != end; ++it) {
     const OccupiedLeaf& leaf = *it;
     const double n_d = leaf.size_m / res;
@@ -64,11 +65,11 @@ void ForEachFootprint(const OccupiedLeaf* begin, const OccupiedLeaf* end, const 
         // With n >= 1 and a grid of at least one cell, dx > 0 and dy > 0 say the leaf
         // overlaps the grid: the test below on c0, r0 and n.
         if (dx <= 0 || dy <= 0) continue;
-        *free_cells += static_cast<double>(dx) * static_cast<double>(dy);
+        cells += static_cast<double>(dx) * static_cast<double>(dy);
         on_grid = true;
       } else {
         const double x0 = static_cast<double>(x_lo), y0 = static_cast<double>(y_lo);
-        *free_cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
+        cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
       }
     }
     if (n_d > 65536.5) continue;
@@ -78,6 +79,7 @@ void ForEachFootprint(const OccupiedLeaf* begin, const OccupiedLeaf* end, const 
     if (!on_grid && (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0)) continue;
     emit(Footprint{z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
+  if (free_cells != nullptr) *free_cells += cells;
 }
 
 // ForEachFootprint's footprints, in order.
@@ -264,13 +266,14 @@ struct FreeSpace {
   // Sets the bits of a leaf's footprint on the grid, its voxels clipped to the bits' span
   // (a leaf one voxel wide: on the grid and in the band, as ForEachFootprint gives it).
   void Set(const Footprint& f, const HeightMap& hm) {
-    const long long a = std::max(f.z0, z0) - z0, e = std::min(f.z0 + f.n - z0, static_cast<long long>(words) * 64);
     if (f.n == 1) {  // most leaves: on the grid and in the band
+      const long long a = f.z0 - z0;
       Or(&bits[(static_cast<size_t>(f.r0) * hm.cols + f.c0) * words + static_cast<size_t>(a >> 6)], uint64_t{1} << (a & 63));
       return;
     }
     const int r0 = std::max(0, f.r0), r1 = std::min(hm.rows, f.r0 + f.n);
     const int c0 = std::max(0, f.c0), c1 = std::min(hm.cols, f.c0 + f.n);
+    const long long a = std::max(f.z0, z0) - z0, e = std::min(f.z0 + f.n - z0, static_cast<long long>(words) * 64);
     for (long long w = a >> 6; a < e && w <= (e - 1) >> 6; ++w) {
       const long long lo = std::max(a, w * 64) - w * 64, hi = std::min(e, w * 64 + 64) - w * 64;
       const uint64_t mask = (hi - lo == 64 ? ~uint64_t{0} : ((uint64_t{1} << (hi - lo)) - 1)) << lo;
@@ -976,10 +979,10 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
     free.words = static_cast<size_t>(BandWords(z_lo, z_hi));
     free.ZeroBits(static_cast<size_t>(grid_cells), options.threads);
   }
-  // The occupied columns beside the free leaves' footprints (in parts, several for each
-  // thread so the threads end together): with bits, a leaf one voxel wide sets its bit at
+  // The occupied columns beside the free leaves' footprints (in parts, four for each
+  // thread so the threads end together beside the occupied columns' one item): with bits, a leaf one voxel wide sets its bit at
   // once and a wider one waits for the budget; else every footprint is kept for the runs.
-  const int parts = free_asked ? 2 * std::max(1, options.threads) : 0;
+  const int parts = free_asked ? 4 * std::max(1, options.threads) : 0;
   std::vector<std::vector<Footprint>> free_prints(static_cast<size_t>(parts));
   std::vector<double> free_cells(static_cast<size_t>(parts), 0.0);
   Columns occ;
