@@ -239,7 +239,6 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   return dec;
 }
 
-
 // A plan-view polygon's corners lifted onto the patch's plane.
 std::vector<Eigen::Vector3d> OnPlane(const PlanarPatch& patch, const Polygon2d& polygon) {
   std::vector<Eigen::Vector3d> vertices;
