@@ -44,4 +44,21 @@ double ConvexPolygonDistance(const P& p, const Q& q) {
   return d;
 }
 
+// Whether ConvexPolygonDistance(p, q) < limit: the same answer (that distance is the least
+// of the vertex-to-side distances it compares), given as soon as one of them is below the
+// limit.
+template <typename P, typename Q>
+bool ConvexPolygonsNearer(const P& p, const Q& q, double limit) {
+  if (!SideOfFirstSeparates(p, q) && !SideOfFirstSeparates(q, p)) return 0.0 < limit;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Eigen::Vector2d &a = p[i], &b = p[(i + 1) % p.size()];
+    for (size_t j = 0; j < q.size(); ++j) {
+      if (PointSegmentDistance(q[j], a, b) < limit || PointSegmentDistance(a, q[j], q[(j + 1) % q.size()]) < limit) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace mfp

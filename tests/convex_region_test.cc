@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "base/check.h"
@@ -125,6 +126,31 @@ TEST(ConvexPolygonDistance, ZeroWhenTheyMeetOtherwiseVertexToSide) {
   // A repeated vertex (a side without length) separates nothing.
   const std::vector<Eigen::Vector2d> repeated = {{0.2, 0.2}, {0.2, 0.2}, {0.8, 0.2}, {0.5, 0.8}};
   EXPECT_EQ(ConvexPolygonDistance(square, repeated), 0.0);
+}
+
+// The early answer is the distance's: on random pairs of convex polygons (apart, touching
+// or overlapping), at limits just below, at and just above the distance.
+TEST(ConvexPolygonDistance, NearerThanALimitAnswersAsTheDistanceDoes) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-2.0, 2.0), angle(0.0, 2 * M_PI), size(0.1, 1.5);
+  auto polygon = [&](int n) {  // a regular n-gon, turned and moved
+    const double a0 = angle(rng), r = size(rng);
+    const Eigen::Vector2d centre(u(rng), u(rng));
+    std::vector<Eigen::Vector2d> out;
+    for (int k = 0; k < n; ++k) out.push_back(centre + r * Eigen::Vector2d(std::cos(a0 + 2 * M_PI * k / n), std::sin(a0 + 2 * M_PI * k / n)));
+    return out;
+  };
+  int apart = 0, met = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const std::vector<Eigen::Vector2d> p = polygon(3 + trial % 6), q = polygon(3 + trial / 6 % 4);
+    const double d = ConvexPolygonDistance(p, q);
+    (d > 0.0 ? apart : met)++;
+    for (double limit : {std::nextafter(d, -INFINITY), d, std::nextafter(d, INFINITY), d + 0.1, d - 0.1}) {
+      EXPECT_EQ(ConvexPolygonsNearer(p, q, limit), d < limit) << "trial " << trial << ", limit " << limit;
+    }
+  }
+  EXPECT_GT(apart, 100);
+  EXPECT_GT(met, 100);
 }
 
 }  // namespace

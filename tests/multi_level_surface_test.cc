@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -332,6 +334,114 @@ TEST(MultiLevelSurfaceTest, ACellTheNoiseRepairMovesKeepsItsSeenHeight) {
   const int col = static_cast<int>(std::floor((7.5 * 0.05 - seen.origin_world_m.x()) / 0.05));
   const int row = static_cast<int>(std::floor((7.5 * 0.05 - seen.origin_world_m.y()) / 0.05));
   EXPECT_NEAR(seen.height_m[static_cast<size_t>(seen.Index(row, col))], 0.05f, 1e-6);
+}
+
+// A scanned floor with steps, holes, unseen and erased columns, unseen tops, and a slab
+// 70 voxels up (the band of voxels asked spans two 64-bit words), its free space as an
+// octree would prune it (aligned cubes of 8, 4, 2 and 1 voxels). The known free voxels are
+// kept as bits per column of that band, or as runs when the bits would take more memory:
+// one occupied voxel 100 000 voxels up (isolated, so dropped, and under no surface) makes
+// the band that tall. Both must give the same layers.
+OccupancyMap PrunedScanFloor(unsigned seed) {
+  const double r = 0.05;
+  constexpr int n = 24, k_lo = -8, k_hi = 88;  // free voxels in [-4, 80], cubes aligned from k_lo
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<uint8_t> free_voxel(static_cast<size_t>(n * n * (k_hi - k_lo)), 0);
+  auto at = [&](int i, int j, int k) -> uint8_t& { return free_voxel[static_cast<size_t>(((k - k_lo) * n + j) * n + i)]; };
+  OccupancyMap map;
+  map.resolution_m = r;
+  auto leaf = [r](int i, int j, int k, int size) {
+    return OccupiedLeaf{{(i + 0.5 * size) * r, (j + 0.5 * size) * r, (k + 0.5 * size) * r}, size * r};
+  };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double x = u(rng);
+      const bool empty = x < 0.12;                                  // unseen (< 0.06) or erased
+      const int top = x < 0.3 ? 0 : (x < 0.35 ? 1 : -1);            // voxel index of the top
+      const int free_from = x < 0.06 ? 1 : (empty ? -1 : (x > 0.95 ? top + 2 : top + 1));
+      if (!empty) {
+        for (int k = -3; k <= top; ++k) map.leaves.push_back(leaf(i, j, k, 1));
+      }
+      const bool slab = i >= 4 && i < 10 && j >= 14 && j < 20;
+      if (slab) map.leaves.push_back(leaf(i, j, 69, 1));
+      for (int k = std::max(-4, free_from); k <= 80; ++k) at(i, j, k) = !(slab && k == 69);
+    }
+  }
+  std::vector<uint8_t> taken(free_voxel.size(), 0);
+  for (int size : {8, 4, 2, 1}) {
+    for (int k0 = k_lo; k0 < k_hi; k0 += size) {
+      for (int j0 = 0; j0 < n; j0 += size) {
+        for (int i0 = 0; i0 < n; i0 += size) {
+          bool whole = true;
+          for (int k = k0; k < k0 + size; ++k) {
+            for (int j = j0; j < j0 + size; ++j) {
+              for (int i = i0; i < i0 + size; ++i) whole = whole && at(i, j, k) && !taken[&at(i, j, k) - free_voxel.data()];
+            }
+          }
+          if (!whole) continue;
+          for (int k = k0; k < k0 + size; ++k) {
+            for (int j = j0; j < j0 + size; ++j) {
+              for (int i = i0; i < i0 + size; ++i) taken[&at(i, j, k) - free_voxel.data()] = 1;
+            }
+          }
+          map.free_leaves.push_back(leaf(i0, j0, k0, size));
+        }
+      }
+    }
+  }
+  return map;
+}
+
+void ExpectSameLayers(const SurfaceLayers& a, const SurfaceLayers& b) {
+  ASSERT_EQ(a.layers.size(), b.layers.size());
+  for (size_t l = 0; l < a.layers.size(); ++l) {
+    const std::vector<float>& ha = a.layers[l].height_m;
+    const std::vector<float>& hb = b.layers[l].height_m;
+    ASSERT_EQ(ha.size(), hb.size());
+    EXPECT_EQ(std::memcmp(ha.data(), hb.data(), ha.size() * sizeof(float)), 0) << "layer " << l;
+  }
+  EXPECT_EQ(a.unseen, b.unseen);
+  EXPECT_EQ(a.solid_beside, b.solid_beside);
+  EXPECT_EQ(a.filled, b.filled);
+  ASSERT_EQ(a.moved_as_seen.size(), b.moved_as_seen.size());
+  for (size_t l = 0; l < a.moved_as_seen.size(); ++l) {
+    EXPECT_EQ(std::memcmp(a.moved_as_seen[l].height_m.data(), b.moved_as_seen[l].height_m.data(),
+                          a.moved_as_seen[l].height_m.size() * sizeof(float)),
+              0);
+  }
+  EXPECT_EQ(a.candidates, b.candidates);
+  EXPECT_EQ(a.no_room_above, b.no_room_above);
+  EXPECT_EQ(a.not_seen_from_above, b.not_seen_from_above);
+  EXPECT_EQ(a.noise_cells_filled, b.noise_cells_filled);
+  EXPECT_EQ(a.enclosed_unseen_filled, b.enclosed_unseen_filled);
+}
+
+TEST(MultiLevelSurfaceTest, FreeSpaceAsBitsOrAsRunsGivesTheSameLayers) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const OccupancyMap map = PrunedScanFloor(seed);
+    OccupancyMap tall = map;
+    tall.leaves.push_back(map.leaves.front());  // a floor column's lowest voxel ...
+    tall.leaves.back().center_world_m.z() += 1e5 * map.resolution_m;  // ... 100 000 voxels up
+    for (int threads : {1, 2, 3}) {
+      SurfaceLayerOptions options;
+      options.clearance_m = 0.4;
+      options.step_gate_m = 0.06;
+      options.enclosed_unseen_radius_cells = 3;
+      options.threads = threads;
+      const SurfaceLayers bits = BuildSurfaceLayers(map, options);
+      const SurfaceLayers runs = BuildSurfaceLayers(tall, options);
+      SCOPED_TRACE(testing::Message() << "seed " << seed << ", " << threads << " threads");
+      // The free space decides things here: tops not seen from above, unseen cells.
+      EXPECT_GT(bits.not_seen_from_above, 0);
+      EXPECT_GT(bits.layers.size(), 1u);  // the slab over the floor
+      size_t unseen_cells = 0;
+      for (const std::vector<uint8_t>& u : bits.unseen) unseen_cells += std::count_if(u.begin(), u.end(), [](uint8_t v) { return v != 0; });
+      EXPECT_GT(unseen_cells, 0u);
+      ExpectSameLayers(bits, runs);
+      EXPECT_EQ(runs.isolated_voxels, bits.isolated_voxels + 1);
+    }
+  }
 }
 
 }  // namespace

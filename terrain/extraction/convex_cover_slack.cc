@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -48,67 +49,115 @@ std::vector<HalfPlane> HalfPlanesOf(const Polygon2d& polygon) {
   return planes;
 }
 
-// The polygon's half-planes with edge `moved` pushed out by `shift`, within `box`, into
-// `polygon` (`scratch`: the caller's work space).
-void Intersection(const std::vector<HalfPlane>& planes, size_t moved, double shift, const Bounds& box, Polygon2d* polygon,
-                  Polygon2d* scratch) {
-  *polygon = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
-  for (size_t j = 0; j < planes.size() && polygon->size() >= 3; ++j) {
+// `polygon` clipped by the half-planes [begin, end) in order, edge `moved` pushed out by
+// `shift` (`scratch`: the caller's work space).
+void ClipBy(const std::vector<HalfPlane>& planes, size_t begin, size_t end, size_t moved, double shift,
+            Polygon2d* polygon, Polygon2d* scratch) {
+  for (size_t j = begin; j < end && polygon->size() >= 3; ++j) {
     if (planes[j].normal.isZero()) continue;
     KeepBelowLineInto(*polygon, planes[j].normal, planes[j].offset + (j == moved ? shift : 0.0), scratch);
     std::swap(*polygon, *scratch);
   }
 }
 
+// The polygon's half-planes with edge `moved` pushed out by `shift`, within `box`, into
+// `polygon` (`scratch`: the caller's work space).
+void Intersection(const std::vector<HalfPlane>& planes, size_t moved, double shift, const Bounds& box, Polygon2d* polygon,
+                  Polygon2d* scratch) {
+  *polygon = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
+  ClipBy(planes, 0, planes.size(), moved, shift, polygon, scratch);
+}
+
 // Whether two convex polygons' interiors are apart: some edge of either separates them.
+// (HalfPlanesOf's edges, taken one at a time.)
 bool InteriorsApart(const Polygon2d& p, const Polygon2d& q) {
   for (const Polygon2d* a : {&p, &q}) {
     const Polygon2d* b = a == &p ? &q : &p;
-    for (const HalfPlane& h : HalfPlanesOf(*a)) {
-      if (h.normal.isZero()) continue;
+    for (size_t i = 0; i < a->size(); ++i) {
+      const Eigen::Vector2d e = (*a)[(i + 1) % a->size()] - (*a)[i];
+      const double length = e.norm();
+      if (length < 1e-12) continue;  // a degenerate edge: no constraint
+      const Eigen::Vector2d n(e.y() / length, -e.x() / length);
+      const double offset = n.dot((*a)[i]);
       double lowest = INFINITY;
-      for (const Eigen::Vector2d& v : *b) lowest = std::min(lowest, h.normal.dot(v) - h.offset);
+      for (const Eigen::Vector2d& v : *b) lowest = std::min(lowest, n.dot(v) - offset);
       if (lowest >= -kEps) return true;
     }
   }
   return false;
 }
 
-// A cell, by row and column.
-struct Cell {
+// An outside cell (its square spanning [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]) and the
+// inset it asks [cells].
+struct InsetCell {
   int r = 0, c = 0;
+  double inset = 0.0;
 };
 
-// Whether every point of `part` keeps each outside cell's inset from the cell's square
-// (cell (r, c) spans [c - 0.5, c + 0.5] x [r - 0.5, r + 0.5]): the exact test. The cell at
-// *hint (when set) is tested first and a cell found too close is left there: the cell that
-// failed a bisection step is the likeliest to fail the next (the answer does not depend on
-// the order, and a cell beyond the scanned box passes, so testing it changes nothing).
-bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells, std::optional<Cell>* hint) {
+// Whether cell's square is nearer `part` than its inset, the part's bounds b: first by the
+// bounds (far enough apart: not too close), then exactly.
+bool TooClose(const Polygon2d& part, const Bounds& b, const InsetCell& cell) {
+  const int r = cell.r, c = cell.c;
+  const double dy = std::max({0.0, (r - 0.5) - b.hi.y(), b.lo.y() - (r + 0.5)});
+  const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
+  // The boxes are far enough apart. Squared with a relative margin of 1e-12, so a cell
+  // skipped here is one the exact distance would pass as well.
+  if (dx * dx + dy * dy >= cell.inset * cell.inset * (1.0 + 1e-12)) return false;
+  const std::array<Eigen::Vector2d, 4> square = {
+      Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r + 0.5),
+      Eigen::Vector2d(c - 0.5, r + 0.5)};
+  return ConvexPolygonsNearer(part, square, cell.inset - kEps);
+}
+
+// The outside cells (inset > 0) that some part with bounds inside `box` may come nearer
+// than their inset: those TooClose's bounds test does not clear against the box (a part
+// inside it is no nearer to any other cell). Cells beyond max_inset_cells + 0.5 of the box
+// are cleared by that test, so only the box grown by that much is scanned.
+std::vector<InsetCell> CellsNear(const Bounds& box, const CellInset& inset_at, double max_inset_cells) {
+  const double reach = max_inset_cells + 0.5;
+  const int r0 = static_cast<int>(std::floor(box.lo.y() - reach)), r1 = static_cast<int>(std::ceil(box.hi.y() + reach));
+  const int c0 = static_cast<int>(std::floor(box.lo.x() - reach)), c1 = static_cast<int>(std::ceil(box.hi.x() + reach));
+  std::vector<InsetCell> cells;
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      const double inset = inset_at(r, c);
+      if (inset <= 0.0) continue;  // a patch cell, or no inset asked
+      const double dy = std::max({0.0, (r - 0.5) - box.hi.y(), box.lo.y() - (r + 0.5)});
+      const double dx = std::max({0.0, (c - 0.5) - box.hi.x(), box.lo.x() - (c + 0.5)});
+      if (dx * dx + dy * dy < inset * inset * (1.0 + 1e-12)) cells.push_back({r, c, inset});
+    }
+  }
+  return cells;
+}
+
+// Whether every point of `part` keeps each outside cell's inset from the cell's square:
+// the exact test, over the cells near its bounds, stopping at the first too close.
+bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells) {
   const Bounds b = BoundsOf(part);
   const double reach = max_inset_cells + 0.5;
   const int r0 = static_cast<int>(std::floor(b.lo.y() - reach)), r1 = static_cast<int>(std::ceil(b.hi.y() + reach));
   const int c0 = static_cast<int>(std::floor(b.lo.x() - reach)), c1 = static_cast<int>(std::ceil(b.hi.x() + reach));
-  auto too_close = [&](int r, int c) {
-    const double inset = inset_at(r, c);
-    if (inset <= 0.0) return false;  // a patch cell, or no inset asked
-    const double dy = std::max({0.0, (r - 0.5) - b.hi.y(), b.lo.y() - (r + 0.5)});
-    const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
-    // The boxes are far enough apart. Squared with a relative margin of 1e-12, so a cell
-    // skipped here is one the exact distance would pass as well.
-    if (dx * dx + dy * dy >= inset * inset * (1.0 + 1e-12)) return false;
-    const Polygon2d cell = {{c - 0.5, r - 0.5}, {c + 0.5, r - 0.5}, {c + 0.5, r + 0.5}, {c - 0.5, r + 0.5}};
-    return ConvexPolygonDistance(part, cell) < inset - kEps;
-  };
-  const bool hinted = hint->has_value() && (*hint)->r >= r0 && (*hint)->r <= r1 && (*hint)->c >= c0 && (*hint)->c <= c1;
-  if (hinted && too_close((*hint)->r, (*hint)->c)) return false;
   for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {
-      if (hinted && r == (*hint)->r && c == (*hint)->c) continue;
-      if (!too_close(r, c)) continue;
-      *hint = Cell{r, c};
-      return false;
+      const double inset = inset_at(r, c);
+      if (inset > 0.0 && TooClose(part, b, InsetCell{r, c, inset})) return false;
     }
+  }
+  return true;
+}
+
+// KeepsInsets over `cells` (CellsNear of a box holding the part). The cell at *hint
+// (an index into cells, when set) is tested first and a cell found too close is left
+// there: the cell that failed a bisection step is the likeliest to fail the next (the
+// answer does not depend on the order).
+bool KeepsInsets(const Polygon2d& part, const std::vector<InsetCell>& cells, std::optional<size_t>* hint) {
+  const Bounds b = BoundsOf(part);
+  if (hint->has_value() && TooClose(part, b, cells[**hint])) return false;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    if (hint->has_value() && i == **hint) continue;
+    if (!TooClose(part, b, cells[i])) continue;
+    *hint = i;
+    return false;
   }
   return true;
 }
@@ -144,7 +193,7 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
   std::vector<Bounds> bounds;
   for (const Polygon2d& piece : *pieces) bounds.push_back(BoundsOf(piece));
   const double finest = options.most_cells / std::ldexp(1.0, std::max(0, options.bisections));
-  Polygon2d moved_piece, part, scratch;  // work space of the tests
+  Polygon2d before_side, moved_piece, part, scratch;  // work space of the tests
   for (size_t k = 0; k < pieces->size() && !options.deadline.Expired(); ++k) {
     Polygon2d& piece = (*pieces)[k];
     if (piece.size() < 3) continue;
@@ -158,15 +207,34 @@ void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, dou
     for (size_t j = 0; j < planes.size(); ++j) {
       if (planes[j].normal.isZero()) continue;
       // What moving side j out by `shift` adds: the moved polygon beyond the side's line.
-      std::optional<Cell> failed;  // the cell that last failed a test of this side
-      auto sound = [&](double shift) {
-        Intersection(planes, j, shift, box, &moved_piece, &scratch);
+      // Every shift tried is at most most_cells, and what it adds lies in what that adds:
+      // the cells near the latter's bounds (grown for rounding) are the only ones to test.
+      // The box clipped by the sides before j, which no shift of side j changes: the
+      // clips in Intersection's order, so the same polygons.
+      before_side = {box.lo, {box.hi.x(), box.lo.y()}, box.hi, {box.lo.x(), box.hi.y()}};
+      ClipBy(planes, 0, j, planes.size(), 0.0, &before_side, &scratch);
+      auto added = [&](double shift) {
+        moved_piece = before_side;
+        ClipBy(planes, j, planes.size(), j, shift, &moved_piece, &scratch);
         KeepBelowLineInto(moved_piece, -planes[j].normal, -planes[j].offset, &part);
-        if (part.size() < 3) return true;
-        return KeepsInsets(part, inset_at, max_inset_cells, &failed) &&
-               (options.may_overlap || ClearOfOthers(part, *pieces, bounds, near));
       };
-      if (!sound(finest)) continue;  // no room: skip the bisection
+      added(finest);
+      if (part.size() >= 3 && !(KeepsInsets(part, inset_at, max_inset_cells) &&
+                                (options.may_overlap || ClearOfOthers(part, *pieces, bounds, near)))) {
+        continue;  // no room: skip the bisection
+      }
+      added(options.most_cells);
+      constexpr double kMargin = 1e-6;  // [cells], far above a clip's rounding
+      Bounds most = part.size() >= 3 ? BoundsOf(part) : moved_piece.size() >= 3 ? BoundsOf(moved_piece) : box;
+      most.lo.array() -= kMargin;
+      most.hi.array() += kMargin;
+      const std::vector<InsetCell> cells = CellsNear(most, inset_at, max_inset_cells);
+      std::optional<size_t> failed;  // the cell (in cells) that last failed a test of this side
+      auto sound = [&](double shift) {
+        added(shift);
+        if (part.size() < 3) return true;
+        return KeepsInsets(part, cells, &failed) && (options.may_overlap || ClearOfOthers(part, *pieces, bounds, near));
+      };
       double lo = finest, hi = options.most_cells;
       for (int it = 1; it < options.bisections; ++it) {
         const double mid = 0.5 * (lo + hi);

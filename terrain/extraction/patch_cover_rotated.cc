@@ -122,7 +122,7 @@ bool TooClose(const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out
   const int r = out.r, c = out.c;
   const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
                                                Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
-  return ConvexPolygonDistance(quad, cell) < out.inset_cells - 1e-9;
+  return ConvexPolygonsNearer(quad, cell, out.inset_cells - 1e-9);
 }
 
 std::array<Eigen::Vector2d, 4> RectQuad(const RotatedFrame& frame, double u0, double u1, double v0, double v1) {

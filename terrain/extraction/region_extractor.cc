@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -124,17 +125,40 @@ std::vector<SurfaceAnalysis> FitLayers(const std::vector<HeightMap>& layers, int
   return surfaces;
 }
 
+// What decomposing one planar patch gave, before it is added to the result.
+struct PatchOutcome {
+  enum Kind { kNotStarted, kSteep, kSmall, kDecomposed } kind = kNotStarted;
+  std::vector<Polygon2d> polygons;  // kDecomposed: the patch's regions in the plane's x-y
+  std::vector<CellFate> fates;      // kDecomposed with record_cell_fates: per patch cell
+  bool cut_short = false;           // kDecomposed: the deadline had expired at its end
+  bool pieces_alone = false;        // kDecomposed: by the convex pieces alone (DecomposePatch)
+  // kDecomposed: per polygon its region (id unset), or none where MakeRegionFromPolygon
+  // threw (made again in order, so that the error names the region's id).
+  std::vector<std::optional<ConvexRegion>> regions;
+};
+
 struct LayerPatch {
   int layer;
   PlanarPatch patch;
+  // Decomposed while the largest layer was still being segmented (SegmentLayers'
+  // early_decompose); none: not yet.
+  std::optional<PatchOutcome> outcome;
 };
+
+// A patch's outcome (DecomposeOne of the patch of layer `layer`), for SegmentLayers.
+using EarlyDecompose = std::function<PatchOutcome(int layer, const PlanarPatch& patch)>;
 
 // The planar patches of every layer, largest first.
 // `unseen`: SurfaceLayers::unseen (empty: no cell is).
+// early_decompose (optional): each patch of a layer after the first is decomposed by it,
+// layer by layer and in each layer's order, as soon as that layer is segmented and for as
+// long as the first layer (the largest: one item) is still being segmented, so the
+// threads that finished the small layers do not wait for it. An outcome does not depend
+// on when it is made (the deadline aside), so the regions are the same.
 std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
                                       const std::vector<SurfaceAnalysis>& surfaces,
                                       const std::vector<std::vector<uint8_t>>& unseen, double res,
-                                      const RegionExtractorOptions& options) {
+                                      const RegionExtractorOptions& options, const EarlyDecompose& early_decompose) {
   SegmentationOptions seg;
   // The small margin keeps exact one-voxel risers of a voxelised tilt inside the tolerance.
   seg.grow_tolerance_m = options.grow_tolerance_voxels * res * (1.0 + 1e-3);
@@ -155,6 +179,8 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
   std::vector<std::vector<OffCell>> off;
   if (noise_levels) off = OffCellsOfLayers(layers, surfaces, seg.noise_tolerance_m, options.threads);
   std::vector<std::vector<PlanarPatch>> per_layer(layers.size());
+  std::vector<std::vector<std::optional<PatchOutcome>>> early(layers.size());
+  std::atomic<bool> first_done{false};
   ParallelFor(static_cast<int>(layers.size()), options.threads, [&](int l) {
     SegmentationOptions own = seg;
     own.unseen = static_cast<size_t>(l) < unseen.size() ? &unseen[static_cast<size_t>(l)] : nullptr;
@@ -163,12 +189,24 @@ std::vector<LayerPatch> SegmentLayers(const std::vector<HeightMap>& layers,
       levels = NoiseFreeLevelsFrom(layers[static_cast<size_t>(l)], off[static_cast<size_t>(l)], seg.noise_max_cells);
       own.noise_levels = &levels;
     }
-    per_layer[static_cast<size_t>(l)] =
-        SegmentPlanarPatches(layers[static_cast<size_t>(l)], surfaces[static_cast<size_t>(l)], own);
+    const auto layer = static_cast<size_t>(l);
+    per_layer[layer] = SegmentPlanarPatches(layers[layer], surfaces[layer], own);
+    if (l == 0) {
+      first_done = true;
+      return;
+    }
+    early[layer].resize(per_layer[layer].size());
+    for (size_t k = 0; k < per_layer[layer].size() && early_decompose && !first_done; ++k) {
+      PatchOutcome outcome = early_decompose(l, per_layer[layer][k]);
+      if (outcome.kind != PatchOutcome::kNotStarted) early[layer][k] = std::move(outcome);
+    }
   });
   std::vector<LayerPatch> patches;
   for (size_t l = 0; l < layers.size(); ++l) {
-    for (PlanarPatch& p : per_layer[l]) patches.push_back({static_cast<int>(l), std::move(p)});
+    for (size_t k = 0; k < per_layer[l].size(); ++k) {
+      patches.push_back({static_cast<int>(l), std::move(per_layer[l][k]),
+                         k < early[l].size() ? std::move(early[l][k]) : std::nullopt});
+    }
   }
   std::stable_sort(patches.begin(), patches.end(), [](const LayerPatch& a, const LayerPatch& b) {
     return a.patch.cells.size() > b.patch.cells.size();
@@ -201,18 +239,6 @@ PatchDecompositionOptions DecompositionOptions(double res, const RegionExtractor
   return dec;
 }
 
-// What decomposing one planar patch gave, before it is added to the result.
-struct PatchOutcome {
-  enum Kind { kNotStarted, kSteep, kSmall, kDecomposed } kind = kNotStarted;
-  std::vector<Polygon2d> polygons;  // kDecomposed: the patch's regions in the plane's x-y
-  std::vector<CellFate> fates;      // kDecomposed with record_cell_fates: per patch cell
-  bool cut_short = false;           // kDecomposed: the deadline had expired at its end
-  bool pieces_alone = false;        // kDecomposed: by the convex pieces alone (DecomposePatch)
-  // kDecomposed: per polygon its region (id unset), or none where MakeRegionFromPolygon
-  // threw (made again in order, so that the error names the region's id).
-  std::vector<std::optional<ConvexRegion>> regions;
-};
-
 // A plan-view polygon's corners lifted onto the patch's plane.
 std::vector<Eigen::Vector3d> OnPlane(const PlanarPatch& patch, const Polygon2d& polygon) {
   std::vector<Eigen::Vector3d> vertices;
@@ -236,13 +262,12 @@ std::vector<std::optional<ConvexRegion>> RegionsOf(const PlanarPatch& patch, con
 }
 
 // The patch's outcome; kNotStarted when the deadline has expired.
-PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<HeightMap>& layers,
+PatchOutcome DecomposeOne(int patch_layer, const PlanarPatch& patch, const std::vector<HeightMap>& layers,
                           const std::vector<std::vector<uint8_t>>& solid_beside,
                           const std::vector<std::vector<uint8_t>>& filled, double res,
                           const RegionExtractorOptions& options, PatchDecompositionOptions dec) {
   PatchOutcome out;
   if (options.deadline.Expired()) return out;
-  const PlanarPatch& patch = layer_patch.patch;
   const double slope = patch.SlopeRad();
   if (slope > options.max_slope_rad) {
     out.kind = PatchOutcome::kSteep;
@@ -259,13 +284,13 @@ PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<Heigh
                                  : options.min_region_area_m2;
   // Region area on the plane = projected area / cos(slope).
   dec.min_area_xy_m2 = min_area_m2 * cos_slope;
-  dec.solid_beside = &solid_beside[static_cast<size_t>(layer_patch.layer)];
-  const auto layer = static_cast<size_t>(layer_patch.layer);
+  const auto layer = static_cast<size_t>(patch_layer);
+  dec.solid_beside = &solid_beside[layer];
   if (layer < filled.size() && !filled[layer].empty()) dec.filled = &filled[layer];
   dec.cover.max_rects = static_cast<int>(std::min(
       1e4, std::max<double>(options.max_regions_per_patch, std::ceil(options.regions_per_m2 * patch_area_m2))));
   out.kind = PatchOutcome::kDecomposed;
-  out.polygons = DecomposePatch(layers[static_cast<size_t>(layer_patch.layer)], patch, dec,
+  out.polygons = DecomposePatch(layers[layer], patch, dec,
                                 options.record_cell_fates ? &out.fates : nullptr, &out.pieces_alone);
   out.regions = RegionsOf(patch, out.polygons, options.plane_tolerance_voxels * res);
   // The cover checks the deadline before each piece: one that expired during this patch
@@ -276,20 +301,23 @@ PatchOutcome DecomposeOne(const LayerPatch& layer_patch, const std::vector<Heigh
 
 // The patches' outcomes in order, on options.threads threads. Patches after the one whose
 // regions pass max_regions are not needed (they stay kNotStarted or are ignored).
-std::vector<PatchOutcome> DecomposeAll(const std::vector<LayerPatch>& patches,
+// Patches decomposed already (LayerPatch::outcome) are not decomposed again.
+std::vector<PatchOutcome> DecomposeAll(std::vector<LayerPatch>* patches,
                                        const std::vector<std::vector<uint8_t>>& solid_beside,
                                        const std::vector<std::vector<uint8_t>>& filled, double res,
                                        const RegionExtractorOptions& options, const std::vector<HeightMap>& layers) {
   const PatchDecompositionOptions dec = DecompositionOptions(res, options);
-  std::vector<PatchOutcome> outcomes(patches.size());
+  std::vector<PatchOutcome> outcomes(patches->size());
   // The finished prefix: patches [0, prefix) done, holding prefix_regions polygons.
   std::mutex progress;
-  std::vector<uint8_t> done(patches.size(), 0);
+  std::vector<uint8_t> done(patches->size(), 0);
   size_t prefix = 0, prefix_regions = 0;
   std::atomic<bool> enough{false};
-  ParallelFor(static_cast<int>(patches.size()), options.threads, [&](int i) {
+  ParallelFor(static_cast<int>(patches->size()), options.threads, [&](int i) {
     if (enough) return;
-    PatchOutcome outcome = DecomposeOne(patches[static_cast<size_t>(i)], layers, solid_beside, filled, res, options, dec);
+    LayerPatch& lp = (*patches)[static_cast<size_t>(i)];
+    PatchOutcome outcome = lp.outcome ? std::move(*lp.outcome)
+                                      : DecomposeOne(lp.layer, lp.patch, layers, solid_beside, filled, res, options, dec);
     const std::lock_guard<std::mutex> lock(progress);
     outcomes[static_cast<size_t>(i)] = std::move(outcome);
     done[static_cast<size_t>(i)] = 1;
@@ -301,7 +329,7 @@ std::vector<PatchOutcome> DecomposeAll(const std::vector<LayerPatch>& patches,
 
 // Decomposes the patches, largest first, into result's regions until the deadline or
 // max_regions; counts the patches too steep or too small in result's stats.
-void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<std::vector<uint8_t>>& solid_beside,
+void DecomposePatches(std::vector<LayerPatch>* patch_list, const std::vector<std::vector<uint8_t>>& solid_beside,
                       double res, const RegionExtractorOptions& options, RegionExtractionResult* result) {
   RegionExtractionStats& stats = result->stats;
   const double plane_tolerance_m = options.plane_tolerance_voxels * res;
@@ -310,7 +338,8 @@ void DecomposePatches(const std::vector<LayerPatch>& patches, const std::vector<
     if (!record) return;
     for (int cell : lp.patch.cells) result->cell_fates[static_cast<size_t>(lp.layer)][static_cast<size_t>(cell)] = fate;
   };
-  std::vector<PatchOutcome> outcomes = DecomposeAll(patches, solid_beside, result->filled, res, options, result->layers);
+  std::vector<PatchOutcome> outcomes = DecomposeAll(patch_list, solid_beside, result->filled, res, options, result->layers);
+  const std::vector<LayerPatch>& patches = *patch_list;
   int patches_done = 0;
   bool capped = false;   // max_regions reached: the patches left are not decomposed
   bool expired = false;  // a patch found the deadline expired: it and those after are not decomposed
@@ -409,13 +438,17 @@ void ExtractFromLayers(const SurfaceLayers& layers, const RegionExtractorOptions
   }
 
   t = Clock::now();
-  const std::vector<LayerPatch> patches = SegmentLayers(result->layers, surfaces, layers.unseen, res, options);
+  const PatchDecompositionOptions dec = DecompositionOptions(res, options);
+  const EarlyDecompose early = [&](int layer, const PlanarPatch& patch) {
+    return DecomposeOne(layer, patch, result->layers, layers.solid_beside, result->filled, res, options, dec);
+  };
+  std::vector<LayerPatch> patches = SegmentLayers(result->layers, surfaces, layers.unseen, res, options, early);
   stats.segmentation_s = SecondsSince(t);
   stats.patches = static_cast<int>(patches.size());
 
   if (options.record_cell_fates) InitCellFates(result);
   t = Clock::now();
-  DecomposePatches(patches, layers.solid_beside, res, options, result);
+  DecomposePatches(&patches, layers.solid_beside, res, options, result);
   stats.decomposition_s = SecondsSince(t);
   stats.total_s = SecondsSince(start);
   if (result->regions.empty() && !result->stopped) result->message = NoRegionsMessage(stats, options);

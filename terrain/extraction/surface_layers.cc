@@ -6,6 +6,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <utility>
 
@@ -36,18 +37,16 @@ struct Footprint {
   int c0, r0, n;
 };
 
-// The footprints of the leaves that overlap the grid and the voxels [z_lo, z_hi] along z
-// (the others add no run that is asked), in order. free_cells (optional) gets every
-// leaf's FreeLeafColumnCells inside the grid (the occupied extent) added, in order.
-std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm,
-                                    long long z_lo = std::numeric_limits<long long>::min(),
-                                    long long z_hi = std::numeric_limits<long long>::max(),
-                                    double* free_cells = nullptr) {
+// Calls emit(footprint) for the leaves that overlap the grid and the voxels [z_lo, z_hi]
+// along z (the others add no run that is asked), in order. free_cells (optional) gets
+// every leaf's FreeLeafColumnCells inside the grid (the occupied extent) added, in order.
+template <typename Emit>
+void ForEachFootprint(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm, long long z_lo,
+                      long long z_hi, double* free_cells, Emit&& emit) {
   const double res = hm.resolution_m;
   const long long x_lo = RoundToLongLong(hm.origin_world_m.x() / res);
   const long long y_lo = RoundToLongLong(hm.origin_world_m.y() / res);
-  std::vector<Footprint> prints;
-  prints.reserve(static_cast<size_t>(end - begin));
+  double cells = 0.0;  // the leaves' FreeLeafColumnCells so far (whole numbers, exact below 2^53 in any order)
   for (const OccupiedLeaf* it = begin; it != end; ++it) {
     const OccupiedLeaf& leaf = *it;
     const double n_d = leaf.size_m / res;
@@ -66,11 +65,11 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
         // With n >= 1 and a grid of at least one cell, dx > 0 and dy > 0 say the leaf
         // overlaps the grid: the test below on c0, r0 and n.
         if (dx <= 0 || dy <= 0) continue;
-        *free_cells += static_cast<double>(dx) * static_cast<double>(dy);
+        cells += static_cast<double>(dx) * static_cast<double>(dy);
         on_grid = true;
       } else {
         const double x0 = static_cast<double>(x_lo), y0 = static_cast<double>(y_lo);
-        *free_cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
+        cells += FreeLeafColumnCells(leaf, res, x0, y0, x0 + hm.cols, y0 + hm.rows);
       }
     }
     if (n_d > 65536.5) continue;
@@ -78,8 +77,19 @@ std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLea
     if (z0 > z_hi || z0 + n <= z_lo) continue;
     const long long c0 = x - x_lo, r0 = y - y_lo;
     if (!on_grid && (c0 >= hm.cols || r0 >= hm.rows || c0 + n <= 0 || r0 + n <= 0)) continue;
-    prints.push_back({z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
+    emit(Footprint{z0, static_cast<int>(c0), static_cast<int>(r0), static_cast<int>(n)});
   }
+  if (free_cells != nullptr) *free_cells += cells;
+}
+
+// ForEachFootprint's footprints, in order.
+std::vector<Footprint> FootprintsOf(const OccupiedLeaf* begin, const OccupiedLeaf* end, const HeightMap& hm,
+                                    long long z_lo = std::numeric_limits<long long>::min(),
+                                    long long z_hi = std::numeric_limits<long long>::max(),
+                                    double* free_cells = nullptr) {
+  std::vector<Footprint> prints;
+  prints.reserve(static_cast<size_t>(end - begin));
+  ForEachFootprint(begin, end, hm, z_lo, z_hi, free_cells, [&](const Footprint& f) { prints.push_back(f); });
   return prints;
 }
 
@@ -222,6 +232,62 @@ bool ColumnHas(const Columns& cols, int c, long long z_lo, long long z_hi) {
   }
   return false;
 }
+
+// The known free voxels the extraction asks about (FreeVoxelsAsked's band [z_lo, z_hi]),
+// one of two ways: a bit per voxel of the band in every column, set straight from the
+// leaves (no footprints kept, no counting or sorting, one test a voxel), or, when those
+// bits would take more memory than the footprints and runs may, the free columns' runs.
+// The bits are set by several threads at once (an atomic OR: the same bits in any order).
+struct FreeSpace {
+  long long z0 = 0;  // the voxel of each column's first bit
+  size_t words = 0;  // 64-bit words per column; 0: runs
+  std::unique_ptr<uint64_t[]> bits;  // words per column, column after column
+  Columns runs;
+  // Every column's words, zero, in `threads` parts at once.
+  void ZeroBits(size_t columns, int threads) {
+    const size_t n = columns * words;
+    bits.reset(new uint64_t[n]);
+    const int parts = std::max(1, threads);
+    ParallelFor(parts, threads, [&](int p) {
+      const size_t k = static_cast<size_t>(p), m = static_cast<size_t>(parts);
+      std::fill(bits.get() + n * k / m, bits.get() + n * (k + 1) / m, uint64_t{0});
+    });
+  }
+  // Whether voxel z of column col is known free; z in the band.
+  bool Has(int col, long long z) const {
+    if (words == 0) return ColumnHas(runs, col, z, z + 1);
+    const long long d = z - z0;
+    if (d < 0 || d >= static_cast<long long>(words) * 64) return false;
+    const auto word = static_cast<size_t>(col) * words + static_cast<size_t>(d >> 6);
+    return (bits[word] >> (d & 63)) & 1u;
+  }
+  // An OR other threads may make at the same time (the bits are read once all are made).
+  static void Or(uint64_t* word, uint64_t mask) { __atomic_fetch_or(word, mask, __ATOMIC_RELAXED); }
+  // Sets the bits of a leaf's footprint on the grid, its voxels clipped to the bits' span
+  // (a leaf one voxel wide: on the grid and in the band, as ForEachFootprint gives it).
+  void Set(const Footprint& f, const HeightMap& hm) {
+    if (f.n == 1) {  // most leaves: on the grid and in the band
+      const long long a = f.z0 - z0;
+      Or(&bits[(static_cast<size_t>(f.r0) * hm.cols + f.c0) * words + static_cast<size_t>(a >> 6)], uint64_t{1} << (a & 63));
+      return;
+    }
+    const int r0 = std::max(0, f.r0), r1 = std::min(hm.rows, f.r0 + f.n);
+    const int c0 = std::max(0, f.c0), c1 = std::min(hm.cols, f.c0 + f.n);
+    const long long a = std::max(f.z0, z0) - z0, e = std::min(f.z0 + f.n - z0, static_cast<long long>(words) * 64);
+    for (long long w = a >> 6; a < e && w <= (e - 1) >> 6; ++w) {
+      const long long lo = std::max(a, w * 64) - w * 64, hi = std::min(e, w * 64 + 64) - w * 64;
+      const uint64_t mask = (hi - lo == 64 ? ~uint64_t{0} : ((uint64_t{1} << (hi - lo)) - 1)) << lo;
+      for (int r = r0; r < r1; ++r) {
+        for (int c = c0; c < c1; ++c) {
+          Or(&bits[(static_cast<size_t>(r) * hm.cols + c) * words + static_cast<size_t>(w)], mask);
+        }
+      }
+    }
+  }
+};
+
+// 64-bit words a column's bits of the band [z_lo, z_hi] take.
+uint64_t BandWords(long long z_lo, long long z_hi) { return (static_cast<uint64_t>(z_hi - z_lo) + 64) / 64; }
 
 }  // namespace
 
@@ -419,7 +485,7 @@ struct Candidates {
 // The tops of the runs of columns [begin, end) with room above them (and, with free space
 // known, seen from above), appended to heights; each column's first entry (relative to
 // heights' start) at offset[col]; the runs passed over counted in *no_room, *unseen.
-void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vector<uint8_t>& dropped,
+void CandidatesOfColumns(const Columns& occ, const FreeSpace* free, const std::vector<uint8_t>& dropped,
                          double clearance_voxels, double res, int begin, int end, size_t* offset,
                          std::vector<float>* heights, int* no_room, int* unseen) {
   for (int col = begin; col < end; ++col) {
@@ -434,7 +500,7 @@ void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vec
         ++*no_room;
         continue;
       }
-      if (free != nullptr && !ColumnHas(*free, col, top, top + 1)) {
+      if (free != nullptr && !free->Has(col, top)) {
         ++*unseen;
         continue;
       }
@@ -445,7 +511,7 @@ void CandidatesOfColumns(const Columns& occ, const Columns* free, const std::vec
 
 // The tops of the runs with room above them (and, with free space known, seen from above),
 // in column order: bands of rows on options.threads threads, joined in order.
-Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const Columns* free,
+Candidates SurfaceCandidates(const HeightMap& grid, const Columns& occ, const FreeSpace* free,
                              const std::vector<uint8_t>& dropped, const SurfaceLayerOptions& options,
                              SurfaceLayers* out) {
   const int cells = grid.rows * grid.cols;
@@ -568,17 +634,17 @@ long long RoomVoxels(double clearance_m, double res) {
 }
 
 // SurfaceLayers::unseen bits of empty column `col` beside a surface at `level` [m].
-uint8_t UnseenBits(const Columns& occ, const Columns* free, int col, float level, double res, long long room) {
+uint8_t UnseenBits(const Columns& occ, const FreeSpace* free, int col, float level, double res, long long room) {
   const long long top_voxel = TopVoxelOf(level, res);
   if (occ.begin(col) != occ.end(col) && occ.begin(col)->lo < top_voxel + 1 + room) return 0;
   // A ray through the voxel under the floor's level went into a hole: a drop.
-  if (free != nullptr && ColumnHas(*free, col, top_voxel - 1, top_voxel)) return 0;
-  const bool erased = free != nullptr && ColumnHas(*free, col, top_voxel, top_voxel + 1);
+  if (free != nullptr && free->Has(col, top_voxel - 1)) return 0;
+  const bool erased = free != nullptr && free->Has(col, top_voxel);
   return static_cast<uint8_t>(kEmptyColumn | (erased ? 0 : kNotErased));
 }
 
 // SurfaceLayers::unseen bits of cell (r, c) of layer: 0 unless it is empty beside a surface.
-uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* free, int r, int c, long long room) {
+uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const FreeSpace* free, int r, int c, long long room) {
   if (!std::isnan(layer.height_m[static_cast<size_t>(layer.Index(r, c))])) return 0;
   float level = -std::numeric_limits<float>::infinity();
   const int dr[4] = {1, -1, 0, 0}, dc[4] = {0, 0, 1, -1};
@@ -592,7 +658,7 @@ uint8_t UnseenCell(const HeightMap& layer, const Columns& occ, const Columns* fr
 
 // `unseen` (the layer's unseen bits before the cells `changed` got a surface or a new
 // height) brought up to date: only those cells and their 4-neighbours can differ.
-void UpdateUnseenCells(const HeightMap& layer, const Columns& occ, const Columns* free, double clearance_m,
+void UpdateUnseenCells(const HeightMap& layer, const Columns& occ, const FreeSpace* free, double clearance_m,
                        const int* changed, size_t n_changed, std::vector<uint8_t>* unseen) {
   const long long room = RoomVoxels(clearance_m, layer.resolution_m);
   for (size_t k = 0; k < n_changed; ++k) {
@@ -636,7 +702,7 @@ bool SurfaceAllRound(const HeightMap& layer, int r, int c, int radius, float hit
 // to fills with their heights.
 // spans: the RowSpan of each of the rows [r0, r1) (cells outside it have no surface on
 // one side in their row, so none is enclosed).
-void CollectEnclosedFills(const HeightMap& seen, const Columns& occ, const Columns& free, double clearance_m,
+void CollectEnclosedFills(const HeightMap& seen, const Columns& occ, const FreeSpace& free, double clearance_m,
                           int radius, int r0, int r1, const RowSpan* spans, std::vector<std::pair<int, float>>* fills) {
   const double res = seen.resolution_m;
   const long long room = RoomVoxels(clearance_m, res);
@@ -753,7 +819,7 @@ struct LayerBand {
 // bands of rows of every layer on options.threads threads, judging every cell on the
 // heights before the pass; its changes are then made per layer in row order: the result a
 // single thread passing over each layer in row order gives.
-std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Columns& occ, const Columns* free,
+std::vector<LayerFinish> FinishLayers(std::vector<HeightMap>* layers, const Columns& occ, const FreeSpace* free,
                                       const SurfaceLayerOptions& options) {
   const int rows = layers->front().rows, cols = layers->front().cols;
   const int band_rows = BandRows(cols);
@@ -901,34 +967,64 @@ SurfaceLayers BuildSurfaceLayers(const OccupancyMap& map, const SurfaceLayerOpti
   long long z_lo = 0, z_hi = 0;
   const bool free_asked = know_free && FreeVoxelsAsked(occupied, grid.resolution_m, &z_lo, &z_hi);
   if (!free_asked && !map.free_leaves.empty()) CheckLeafColumnBudget(map, options.max_leaf_columns, options.threads);
-  // The occupied columns beside the free leaves' footprints (in parts, several for each
-  // thread so the threads end together), then the free columns in bands of rows.
-  const int parts = free_asked ? 2 * std::max(1, options.threads) : 0;
+  // The free space as bits when they take no more memory than the footprints the runs
+  // are cut from (a band's words per column against an offset per column and two words a
+  // leaf): bounded by the map's size, as those are.
+  FreeSpace free;
+  const double grid_cells = static_cast<double>(grid.rows) * grid.cols;
+  const bool bits = free_asked && static_cast<double>(BandWords(z_lo, z_hi)) * grid_cells <=
+                                      grid_cells + 1 + 2 * static_cast<double>(map.free_leaves.size());
+  if (bits) {
+    free.z0 = z_lo;
+    free.words = static_cast<size_t>(BandWords(z_lo, z_hi));
+    free.ZeroBits(static_cast<size_t>(grid_cells), options.threads);
+  }
+  // The occupied columns beside the free leaves' footprints (in parts, four for each
+  // thread so the threads end together beside the occupied columns' one item): with bits, a leaf one voxel wide sets its bit at
+  // once and a wider one waits for the budget; else every footprint is kept for the runs.
+  const int parts = free_asked ? 4 * std::max(1, options.threads) : 0;
   std::vector<std::vector<Footprint>> free_prints(static_cast<size_t>(parts));
   std::vector<double> free_cells(static_cast<size_t>(parts), 0.0);
-  Columns occ, free;
+  Columns occ;
   ParallelFor(1 + parts, options.threads, [&](int job) {
     if (job == 0) {
       occ = ColumnsOf(occupied, grid);
       return;
     }
     const size_t n = map.free_leaves.size(), k = static_cast<size_t>(job - 1), m = static_cast<size_t>(parts);
-    const OccupiedLeaf* leaves = map.free_leaves.data();
-    free_prints[k] = FootprintsOf(leaves + n * k / m, leaves + n * (k + 1) / m, grid, z_lo, z_hi, &free_cells[k]);
+    const OccupiedLeaf* begin = map.free_leaves.data() + n * k / m;
+    const OccupiedLeaf* end = map.free_leaves.data() + n * (k + 1) / m;
+    if (!bits) {
+      free_prints[k] = FootprintsOf(begin, end, grid, z_lo, z_hi, &free_cells[k]);
+      return;
+    }
+    ForEachFootprint(begin, end, grid, z_lo, z_hi, &free_cells[k], [&](const Footprint& f) {
+      if (f.n == 1) {
+        free.Set(f, grid);
+      } else {
+        free_prints[k].push_back(f);
+      }
+    });
   });
   if (free_asked) {
     double all_cells = occupied_cells;
     for (double cells : free_cells) all_cells += cells;
     CheckBudgetPart(map, all_cells, options);
   }
-  if (know_free) free = UnsortedColumnsInBands(free_prints, grid, std::max(1, options.threads), options.threads);
+  if (bits) {
+    ParallelFor(parts, options.threads, [&](int k) {
+      for (const Footprint& f : free_prints[static_cast<size_t>(k)]) free.Set(f, grid);
+    });
+  } else if (know_free) {
+    free.runs = UnsortedColumnsInBands(free_prints, grid, std::max(1, options.threads), options.threads);
+  }
   const std::vector<uint8_t> dropped = options.drop_isolated_voxels
                                            ? IsolatedVoxels(grid, occ, options.threads, &out.isolated_voxels)
                                            : std::vector<uint8_t>(occ.runs.size(), 0);
   const Candidates cand = SurfaceCandidates(grid, occ, know_free ? &free : nullptr, dropped, options, &out);
   out.candidates = static_cast<int>(cand.height.size());
   out.layers = StackSheets(grid, cand, GrowSheets(grid, cand, options.step_gate_m));
-  const Columns* free_or_null = know_free ? &free : nullptr;
+  const FreeSpace* free_or_null = know_free ? &free : nullptr;
   std::vector<LayerFinish> finished = FinishLayers(&out.layers, occ, free_or_null, options);
   for (LayerFinish& f : finished) {
     out.unseen.push_back(std::move(f.unseen));
