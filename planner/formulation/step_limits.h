@@ -30,9 +30,6 @@ void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i);
 // the yaw grid's segment (the sagitta then costs 1.9 % of the farthest corner).
 constexpr double kFootprintYawSpacing = M_PI / 8;
 
-// The footprint polygons' farthest corner from their nominal foot, over the legs [m].
-double FootprintReachRadius(const RobotModel& robot);
-
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the
 // reachability box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n
 // (l_bnd, or for a leg's first move how far its start foot is from its nominal foot).
