@@ -518,18 +518,8 @@ void AddFootprintFaces(const std::vector<LegDerivation>& legs, double cell, cons
   if (model->reach_shape != ReachShape::kFootprint) return;
   double forward = std::numeric_limits<double>::infinity(), back = forward;
   for (size_t k = 0; k < legs.size(); ++k) {
-    std::vector<ReachFace> faces;
-    try {
-      faces = FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces);
-    } catch (const InputError& e) {
-      if (!options.reach_shape_given.empty()) throw;
-      // The default, not a robot file's choice: the 16-gon (d_lim is its apothem already).
-      model->reach_shape = ReachShape::kHexadecagon;
-      for (LegModel& leg : model->legs) leg.footprint_faces.clear();
-      model->provenance.push_back("reach_shape = hexadecagon: the default's footprint polygon does not fit leg '" +
-                                  model->legs[k].name + "' (" + e.what() + "), so the 16-gon instead");
-      return;
-    }
+    std::vector<ReachFace> faces =
+        FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces);
     for (ReachFace& f : faces) {
       f.offset_m -= 0.5 * cell;
       if (f.normal.x() > 1.0 - 1e-9) forward = std::min(forward, f.offset_m);

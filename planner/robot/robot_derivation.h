@@ -44,16 +44,14 @@ struct DerivationOptions {
   int stance_candidates = 15;             // heights tried when choosing the stance height
   double stance_fraction = 0.70;          // preferred stance: this fraction of the downward reach
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
-  // Which polygon d_lim is derived for. The default, each leg's footprint polygon, holds at
-  // every body yaw (as the octagon and the 16-gon do) and keeps the footprint's reach forward
-  // and back; the paper's box only when a robot file states it (reach_shape_given). When no
-  // footprint polygon fits about a leg's nominal foot, the default falls back to the 16-gon.
-  ReachShape reach_shape = ReachShape::kFootprint;
+  // Which polygon d_lim is derived for. The default holds at every body yaw; the paper's box
+  // only when a robot file states it (reach_shape_given).
+  ReachShape reach_shape = ReachShape::kHexadecagon;
   std::string reach_shape_given;          // who stated it ("by the caller", "in FILE"; "": the default)
-  // Faces of each leg's footprint polygon (reach_shape footprint). 8: each face is one row
-  // per yaw the rows are written at, and 8 faces plan as fast as the 16-gon on the zoo
-  // courses where 12 took 1.7 times as long (docs/measurements.md, stop 38).
-  int footprint_faces = 8;
+  // Faces of each leg's footprint polygon (reach_shape footprint). 8 plan faster but cut
+  // Go1's polygon along x by 5 cm at yaw 0, and its doorway walks on geb079 are lost
+  // (docs/measurements.md, stop 38, reach11).
+  int footprint_faces = 12;
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
   // The request's deadline and stop flag: checked between legs and stance candidates and
