@@ -48,9 +48,9 @@ struct DerivationOptions {
   // only when a robot file states it (reach_shape_given).
   ReachShape reach_shape = ReachShape::kHexadecagon;
   std::string reach_shape_given;          // who stated it ("by the caller", "in FILE"; "": the default)
-  // Faces of each leg's footprint polygon (reach_shape footprint). 8 plan faster but cut
-  // Go1's polygon along x by 5 cm at yaw 0, and its doorway walks on geb079 are lost
-  // (docs/measurements.md, stop 38, reach11).
+  // Faces of each leg's footprint polygon (reach_shape footprint): enough to follow the
+  // footprint's rounded front and back, which give the long steps the shape is chosen for
+  // (fewer faces plan faster and step shorter: docs/measurements.md, stop 38).
   int footprint_faces = 12;
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
