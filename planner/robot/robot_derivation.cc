@@ -9,8 +9,8 @@
 
 #include "base/check.h"
 #include "base/format.h"
-#include "planner/robot/internal/footprint_polygon.h"
 #include "planner/robot/internal/inscribed_square.h"
+#include "planner/robot/internal/reach_choice.h"
 
 namespace mfp {
 namespace {
@@ -432,47 +432,6 @@ void AddModelLegs(const RobotDescription& robot, const std::vector<Eigen::Vector
   }
 }
 
-// The reach polygon the model gets, why (a provenance phrase), and for the footprint shape
-// each leg's polygon about its nominal foot with its faces pulled in by half a cell (as the
-// disk and the square are).
-struct ReachChoice {
-  ReachShape shape = ReachShape::kBox;
-  std::string why;
-  std::vector<std::vector<ReachFace>> faces;  // per leg; empty unless shape is kFootprint
-};
-
-// The options' shape, except that the default footprint falls back to the 16-gon when some
-// leg's footprint holds no polygon about its nominal foot: a URDF robot must not become
-// unplannable by the default, while a stated footprint is the caller's choice and throws.
-ReachChoice ChooseReach(const RobotDescription& robot, const std::vector<LegDerivation>& legs, double cell,
-                        const DerivationOptions& options) {
-  ReachChoice choice;
-  choice.shape = options.reach_shape;
-  const bool given = !options.reach_shape_given.empty();
-  choice.why = given ? "given " + options.reach_shape_given
-               : choice.shape != DerivationOptions{}.reach_shape
-                   ? std::string("chosen")
-                   : std::string("the default for a robot derived from a URDF: each leg's own footprint polygon, "
-                                 "turned with the body, lies in its reachable footprint at every body yaw and keeps "
-                                 "the footprint's reach forward and back");
-  if (choice.shape != ReachShape::kFootprint) return choice;
-  for (size_t k = 0; k < legs.size(); ++k) {
-    try {
-      choice.faces.push_back(
-          FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces));
-    } catch (const InputError& e) {
-      if (given) throw;
-      choice.shape = ReachShape::kHexadecagon;
-      choice.faces.clear();
-      choice.why = "the default's fallback: no footprint polygon fits leg '" + robot.legs[k].name + "' (" +
-                   e.what() + "), and the 16-gon lies in every leg's reachable footprint at every body yaw";
-      return choice;
-    }
-    for (ReachFace& f : choice.faces.back()) f.offset_m -= 0.5 * cell;
-  }
-  return choice;
-}
-
 // d_lim for the chosen reach polygon, with the provenance of both polygons: the disk the
 // footprint holds about the nominal foot says whether the box holds at every body yaw.
 void AddReachLimit(const LegLimits& limits, double cell, const ReachChoice& choice, RobotModel* model) {
@@ -587,7 +546,9 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
   const LegLimits limits = SmallestLimits(robot, out.legs);
   RejectExhaustedLegs(robot, sampling, limits, stance, cell);
   AddModelLegs(robot, feet_xy, sampling.hips, &model);
-  const ReachChoice reach = ChooseReach(robot, out.legs, cell, options);
+  std::vector<std::string> leg_names;
+  for (const LegChain& leg : robot.legs) leg_names.push_back(leg.name);
+  const ReachChoice reach = ChooseReach(out.legs, leg_names, cell, options);
   AddModelLimits(robot, limits, cell, options, reach, &model);
   AddFootprintFaces(reach, options.footprint_faces, &model);
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
