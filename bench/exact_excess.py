@@ -7,7 +7,8 @@ for footstep i >= n, p_i is the centre of contacts of the n latest footsteps end
 (footsteps before the plan are the start stance), r_nom,i = p_i + R(yaw_i) o_leg(i) with
 yaw_i the footstep's own `yaw`, and the excesses are |f_i - r_nom,i|_inf - l_bnd and
 |f_i - r_nom,i-n|_inf - d_lim (for a robot whose reach_shape is octagon or hexadecagon, also
-|cos(phi) dx + sin(phi) dy| - d_lim of f_i - r_nom,i-n for its other faces' normals phi). Also prints the final footstep's yaw and the yaw the final
+|cos(phi) dx + sin(phi) dy| - d_lim of f_i - r_nom,i-n for its other faces' normals phi; nan
+for reach_shape footprint, whose polygons the plan JSON does not carry). Also prints the final footstep's yaw and the yaw the final
 feet imply (2-D Procrustes against the nominal offsets), to compare with a goal yaw.
 
     bench/exact_excess.py plan1.json [plan2.json ...] [--goal-yaw RAD]
@@ -39,6 +40,9 @@ def excess(plan):
         return px + c * ox - si * oy, py + si * ox + c * oy
 
     ref = reach = -math.inf
+    if robot.get("reach_shape") == "footprint":
+        # Each leg's footprint polygon is not in the plan JSON: mfp-plan --validate checks it.
+        return math.nan, math.nan, steps[-1]["yaw"], math.nan
     for i in range(n, len(steps)):
         f = pos(i)
         a = nominal(i)

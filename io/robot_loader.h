@@ -10,8 +10,8 @@
 namespace mfp {
 
 // FILE.urdf or FILE.yaml / FILE.yml. The result passed ValidateRobotModel. A robot derived
-// from a URDF gets the reach polygon that holds at every body yaw (DerivationOptions'
-// reach_shape) unless its YAML states another. Throws
+// from a URDF gets each leg's footprint polygon, the 16-gon where none fits a leg
+// (DerivationOptions' reach_shape), unless its YAML states another. Throws
 // InputError (missing file, bad URDF or YAML, unknown extension, a leg that cannot stand).
 RobotModel LoadRobot(const std::string& path);
 

@@ -60,13 +60,14 @@ OptionTable<RobotModel> MakeRobotOptionTable() {
       LoaderOpt<R>("legs[].hip", "[x, y, z]", "-", "hip in the body frame").Unit("m"),
       LoaderOpt<R>("gait", "list of leg names or indices", "leg order", "cyclic order in which the legs move"),
       LoaderOpt<R>("reach_shape", "one of box, octagon, hexadecagon, footprint",
-                   "hexadecagon (URDF form); box (hand-written form)",
+                   "footprint (URDF form; hexadecagon with a d_lim override or where no polygon fits a leg); "
+                   "box (hand-written form)",
                    "a foot's reach polygon about its previous nominal spot, d_lim its half-width on each axis: the "
                    "paper's box, the octagon with |dx +- dy| <= sqrt(2) d_lim, or the regular 16-gon of apothem "
                    "d_lim (URDF form: the octagon and the 16-gon are derived inside the footprint's disk about the "
                    "nominal foot, so they hold at every body yaw; the box does not); footprint (URDF form only): "
                    "each leg's own footprint polygon, turned with the body, about both its previous and its own "
-                   "nominal spot"),
+                   "nominal spot (stated: an error where no polygon fits a leg's nominal foot)"),
   };
   for (const LimitField& f : kLimitFields) {
     const std::string range = "number in " + FormatRange(OptionKind::kDouble, f.min, f.max, false);
@@ -238,6 +239,11 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
     options.reach_shape_given = "by the caller";
   } else if (root["reach_shape"]) {
     options.reach_shape_given = "in " + path;
+  } else if (root["d_lim"]) {
+    // The footprint polygons are derived from the legs alone and would not follow a d_lim
+    // override: the 16-gon, whose reach d_lim is, keeps the file's limit on every step.
+    options.reach_shape = ReachShape::kHexadecagon;
+    options.reach_shape_given = "by the d_lim override in " + path + " (a footprint polygon would not follow it)";
   }
   options = WithinDerivationBudget(options, &description);
   options.deadline = deadline;

@@ -3,8 +3,9 @@
 //  - with `urdf: FILE` (relative to the YAML): legs, nominal offsets and reach limits are
 //    derived from the URDF (robot_derivation.h); the YAML may name the foot links
 //    (`feet: [link, ...]`), fix `stance_height`, and give what a URDF cannot say (gait,
-//    foot radius, max slope, weights) and the reach polygon (`reach_shape`; without it the
-//    one that holds at every body yaw, DerivationOptions' default). Any limit it gives (d_lim, l_bnd, dz_max,
+//    foot radius, max slope, weights) and the reach polygon (`reach_shape`; without it each
+//    leg's footprint polygon, DerivationOptions' default, or the 16-gon when the file
+//    overrides d_lim, which the footprint polygons would not follow). Any limit it gives (d_lim, l_bnd, dz_max,
 //    max_yaw_change, foot_radius) overrides the derived value, and the provenance line
 //    says so: "d_lim = 0.0700 m: override in littledog.yaml (derived 0.0640 m)". l_bnd and
 //    max_yaw_change follow an overridden d_lim unless they are overridden themselves.

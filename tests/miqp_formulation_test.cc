@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "base/check.h"
@@ -448,6 +449,66 @@ TEST_F(FormulationDeathTest, MalformedProblemsAreProgrammerErrors) {
   p = problem_;
   p.regions.clear();
   EXPECT_DEATH(MiqpFormulation(p, FormulationOptions()), "regions");
+}
+
+// The footprint shape (each leg's polygon, here a regular octagon of 0.15 m about the
+// nominal foot): a face row whose nominal foot turns with a yaw variable is written on the
+// offset f_i - r_nom,i as two variables of its own, so every face row touches at most two
+// variables (the reference rows' offsets otherwise touch the foot, the centre of contacts
+// and the chords); at the hand-made point, with the offsets their definitions give, every
+// face row holds, and 10 cm more forward for the first new foot breaks both kinds.
+TEST_F(FormulationTest, FootprintFaceRowsTouchOnlyTheStepsSharedOffset) {
+  RobotModel robot = TestRobot();
+  robot.reach_shape = ReachShape::kFootprint;
+  for (LegModel& leg : robot.legs) {
+    leg.footprint_faces.clear();
+    for (int j = 0; j < 8; ++j) {
+      leg.footprint_faces.push_back({Eigen::Vector2d(std::cos(j * M_PI / 4), std::sin(j * M_PI / 4)), 0.15});
+    }
+  }
+  FootstepProblem problem = problem_;
+  problem.robot = &robot;
+  FormulationOptions options;
+  options.prune_unreachable_regions = false;
+  options.yaw_encoding = YawEncoding::kBigM;
+  formulation_ = std::make_unique<MiqpFormulation>(problem, options);
+  const Miqp& m = formulation_->miqp();
+  Eigen::VectorXd x = HandPoint();
+  // The shared offsets' values at x: each definition row reads w - expr = 0.
+  const auto set_shared = [&m](Eigen::VectorXd* point) {
+    int shared = 0;
+    for (int r = 0; r < m.num_rows(); ++r) {
+      const std::string& name = m.row_names[r];
+      if (name.find("_fp_w") == std::string::npos || name.size() < 4 || name.substr(name.size() - 4) != "_def") continue;
+      const auto w = std::find(m.var_names.begin(), m.var_names.end(), name.substr(0, name.size() - 4));
+      EXPECT_NE(w, m.var_names.end()) << name;
+      if (w == m.var_names.end()) continue;
+      const int j = static_cast<int>(w - m.var_names.begin());
+      (*point)(j) = 0.0;
+      (*point)(j) = m.row_lower(r) - m.A.row(r).dot(point->transpose());
+      ++shared;
+    }
+    return shared;
+  };
+  const int shared = set_shared(&x);
+  EXPECT_EQ(shared, 2 * 4) << "the reference rows' offsets of the 4 new steps (their reach rows refer to the start)";
+  int faces = 0;
+  for (int r = 0; r < m.num_rows(); ++r) {
+    const std::string& name = m.row_names[r];
+    const bool face = (name.rfind("ref_fp_", 0) == 0 || name.rfind("reach_fp_", 0) == 0) &&
+                      name.find("_fp_w") == std::string::npos;
+    if (!face) continue;
+    ++faces;
+    int touched = 0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m.A, r); it; ++it) touched += it.value() != 0.0;
+    EXPECT_LE(touched, 2) << name;
+    EXPECT_EQ(RowViolation(name, x), 0.0) << name;
+  }
+  EXPECT_GT(faces, 0);
+  x(formulation_->vars().x[4]) += 0.1;
+  set_shared(&x);
+  EXPECT_GT(MaxViolationOfRowsStarting("reach_fp_", x), 0.0);
+  EXPECT_GT(MaxViolationOfRowsStarting("ref_fp_", x), 0.0);
 }
 
 }  // namespace

@@ -55,6 +55,10 @@ TEST(RobotYaml, OverridesReplaceDerivedValuesVisibly) {
   EXPECT_TRUE(HasLine(robot, "(derived 0."));
   EXPECT_TRUE(HasLine(robot, "stance_height = 0.1200 m: given in"));
   EXPECT_NE(robot.d_lim_m, derived.d_lim_m);
+  // The default footprint polygons would not follow the d_lim override: the 16-gon does.
+  EXPECT_EQ(derived.reach_shape, ReachShape::kFootprint);
+  EXPECT_EQ(robot.reach_shape, ReachShape::kHexadecagon);
+  EXPECT_TRUE(HasLine(robot, "reach_shape = hexadecagon: given by the d_lim override in"));
 }
 
 TEST(RobotYaml, HandWrittenRobotsStillLoad) {

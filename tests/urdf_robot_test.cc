@@ -1,6 +1,7 @@
 // Robots from URDFs: legs found, named and ordered; feet at collision-sphere centres;
-// derived models valid for 4, 6 and 8 legs; the derived reach polygon and height range really
-// reachable (inverse kinematics); every bad URDF a clear InputError and exit code 2.
+// derived models valid for 4, 6 and 8 legs; the derived reach polygon (by default each leg's
+// footprint polygon, the 16-gon where none fits) and height range really reachable (inverse
+// kinematics); every bad URDF a clear InputError and exit code 2.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,8 @@
 
 #include "base/check.h"
 #include "io/robot_loader.h"
+#include "planner/robot/internal/footprint_grid.h"
+#include "planner/robot/internal/reach_choice.h"
 #include "planner/robot/reach_polygon.h"
 #include "planner/robot/robot_derivation.h"
 #include "planner/robot/urdf_reader.h"
@@ -96,15 +99,17 @@ TEST_P(DerivedRobot, UrdfAloneGivesAValidModel) {
   EXPECT_GT(robot.stance_height_m, 0.0);
   EXPECT_FALSE(robot.provenance.empty());
 
-  // The reach polygon about each nominal foot is reachable at the stance height: inverse
-  // kinematics converges within the joint limits at its corners and the middles of its
-  // edges (every body yaw: reach_soundness_test), and the foot reaches dz_max above and
-  // below the nominal foot.
+  // The reach polygon about each nominal foot (by default the leg's own footprint polygon)
+  // is reachable at the stance height: inverse kinematics converges within the joint limits
+  // at its corners and the middles of its edges (every body yaw: reach_soundness_test), and
+  // the foot reaches dz_max above and below the nominal foot.
+  EXPECT_EQ(robot.reach_shape, ReachShape::kFootprint) << path;
   const RobotDescription description = ReadUrdfRobot(Source(path));
-  const std::vector<Eigen::Vector2d> corners = ReachPolygon(robot.reach_shape, robot.d_lim_m);
   for (int k = 0; k < robot.num_legs(); ++k) {
     const LegChain& chain = description.legs[k];
     const LegDerivation& leg = derivation.legs[k];
+    const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(robot.legs[k].footprint_faces);
+    EXPECT_GE(corners.size(), 3u) << path << " leg " << k;
     for (size_t i = 0; i < 2 * corners.size(); ++i) {
       const Eigen::Vector2d& c = corners[i / 2];
       const Eigen::Vector2d edge = i % 2 == 0 ? c : 0.5 * (c + corners[(i / 2 + 1) % corners.size()]);
@@ -127,6 +132,65 @@ INSTANTIATE_TEST_SUITE_P(
                       std::make_pair(std::string("config/robots/hexapod.urdf"), 6),
                       std::make_pair(std::string("tests/data/robots/octopod.urdf"), 8),
                       std::make_pair(std::string("tests/data/robots/sphere_quad.urdf"), 4)));
+
+// The default reach of a URDF robot is each leg's footprint polygon of
+// DerivationOptions::footprint_faces faces, and its provenance says it is the default.
+TEST(DerivedRobot, AUrdfRobotGetsItsLegsFootprintPolygonsByDefault) {
+  const RobotModel robot = LoadRobot(Source("config/robots/littledog.urdf"));
+  ASSERT_EQ(robot.reach_shape, ReachShape::kFootprint);
+  for (const LegModel& leg : robot.legs) {
+    EXPECT_EQ(static_cast<int>(leg.footprint_faces.size()), DerivationOptions{}.footprint_faces) << leg.name;
+  }
+  int lines = 0;
+  for (const std::string& line : robot.provenance) {
+    lines += line.rfind("reach_shape = footprint: the default for a robot derived from a URDF", 0) == 0;
+  }
+  EXPECT_EQ(lines, 1);
+}
+
+// Two legs on one hand-made footprint (cells of 0.5 m, a ring of empty cells about 7 x 7
+// occupied ones, one of them empty): leg 'sound' stands two cells from the empty one, leg
+// 'touched' on the corner the empty cell shares with three occupied ones. A derived leg
+// never stands there (DeriveRobot requires an inscribed square wider than a cell), and
+// faces pointing into the empty cell clear it at offset 0; a 4-face polygon has none such,
+// so no 4-face polygon about 'touched''s nominal foot fits the footprint.
+std::vector<LegDerivation> LegsBesideAnEmptyCell() {
+  FootprintGrid grid(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(2.0, 2.0), 0.5);
+  for (int iy = 1; iy + 1 < grid.ny(); ++iy) {
+    for (int ix = 1; ix + 1 < grid.nx(); ++ix) grid.Set(ix, iy, !(ix == 3 && iy == 3));
+  }
+  grid.UpdateBoundary();
+  std::vector<LegDerivation> legs(2);
+  for (LegDerivation& leg : legs) leg.footprint = grid;
+  legs[0].nominal_foot_body_m = Eigen::Vector3d(1.5, 1.5, -0.2);
+  // The corner between cells (3, 3) and (4, 4): it lies in cell (4, 4), which is occupied.
+  legs[1].nominal_foot_body_m = Eigen::Vector3d(0.75, 0.75, -0.2);
+  return legs;
+}
+
+TEST(ReachChoice, TheDefaultFootprintFallsBackToThe16gonWhereNoPolygonFitsALeg) {
+  const std::vector<LegDerivation> legs = LegsBesideAnEmptyCell();
+  const std::vector<std::string> names = {"sound", "touched"};
+  DerivationOptions options;
+  const ReachChoice sound = ChooseReach({legs[0]}, {names[0]}, 0.5, options);
+  EXPECT_EQ(sound.shape, ReachShape::kFootprint);
+  ASSERT_EQ(sound.faces.size(), 1u);
+  EXPECT_EQ(static_cast<int>(sound.faces[0].size()), options.footprint_faces);
+  EXPECT_EQ(sound.why.rfind("the default", 0), 0u) << sound.why;
+
+  options.footprint_faces = 4;
+  const ReachChoice fallback = ChooseReach(legs, names, 0.5, options);
+  EXPECT_EQ(fallback.shape, ReachShape::kHexadecagon);
+  EXPECT_TRUE(fallback.faces.empty());
+  EXPECT_NE(fallback.why.find("fallback: no footprint polygon fits leg 'touched'"), std::string::npos)
+      << fallback.why;
+
+  // Stated, the footprint is the caller's choice: an error, not a quiet 16-gon.
+  options.reach_shape_given = "in robot.yaml";
+  EXPECT_THROW(ChooseReach(legs, names, 0.5, options), InputError);
+  options.reach_shape = ReachShape::kOctagon;
+  EXPECT_EQ(ChooseReach(legs, names, 0.5, options).shape, ReachShape::kOctagon);
+}
 
 TEST(DerivedRobot, MirrorImageLegsGetMirrorImageOffsets) {
   const RobotModel robot = LoadRobot(Source("config/robots/littledog.urdf"));

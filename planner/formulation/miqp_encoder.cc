@@ -24,6 +24,14 @@ std::pair<double, double> MiqpEncoder::YawBounds(int j) const {
   return {b_->lower(yaw.terms[0].first), b_->upper(yaw.terms[0].first)};
 }
 
+StepExpr MiqpEncoder::Shared(const std::string& name, const StepExpr& expr, double lower, double upper) {
+  MFP_CHECK_MSG(expr.rotations.empty(), name + ": the MIQP has no exact rotation");
+  MFP_CHECK(lower < upper);
+  const int v = b_->AddVariable(name, lower, upper, false);
+  b_->AddRow(name + "_def", LinExpr::Var(v) - expr.lin, 0.0, 0.0);
+  return StepExpr(LinExpr::Var(v));
+}
+
 void MiqpEncoder::AddRow(RowKind /*kind*/, const std::string& name, const StepExpr& expr, double lower,
                          double upper) {
   MFP_CHECK_MSG(expr.rotations.empty(), name + ": the MIQP has no exact rotation");

@@ -87,6 +87,15 @@ class StepEncoder {
   // every yaw of that range (the footprint polygon's) are written for it.
   virtual std::pair<double, double> YawBounds(int j) const = 0;
 
+  // `expr` as one quantity that many rows will be written on. The MIQP makes it a
+  // variable bounded by [lower, upper], tied to expr by an equality row, so that each of
+  // those rows touches that variable instead of expr's terms: the same feasible set (the
+  // caller guarantees that the rows it writes on it imply lower <= expr <= upper) with
+  // sparser rows, hence cheaper node QPs. The other encoders return expr itself.
+  virtual StepExpr Shared(const std::string& /*name*/, const StepExpr& expr, double /*lower*/, double /*upper*/) {
+    return expr;
+  }
+
   // lower <= expr <= upper. name: the MIQP's row name.
   virtual void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) = 0;
   // indicator => expr <= upper, with indicator a binary of the MIQP and big_m a bound on

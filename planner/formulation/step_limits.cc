@@ -13,6 +13,11 @@ namespace mfp {
 
 namespace {
 
+// How far the shared offsets' bounds lie beyond the footprint rows' bounding box [m]: the
+// bounds are implied by the rows, and kept off the polygon's corners so that they are never
+// active at an optimum (a bound active with two face rows at one corner is degenerate).
+constexpr double kSharedOffsetMargin = 0.01;
+
 // "reach_xpy" / "reach_xmy" on the diagonals, else the normal's angle in whole degrees
 // ("reach_p22", "reach_m67").
 std::string ReachFaceName(int k, int sides, double sign) {
@@ -42,13 +47,6 @@ void AddPolygonFaces(StepEncoder& e, const RobotModel& robot, int i, int sides) 
   }
 }
 
-// The farthest corner of a leg's footprint polygon from its nominal foot [m].
-double FarthestCorner(const LegModel& leg) {
-  double far = 0.0;
-  for (const Eigen::Vector2d& c : ReachFaceCorners(leg.footprint_faces)) far = std::max(far, c.norm());
-  return far;
-}
-
 // The footprint polygon of step i's leg about the nominal foot of step j (j = i: the
 // reference rows, j = i - n: the reachability rows), at every yaw configuration b(j) may
 // take: for yaws psi spaced at most kFootprintYawSpacing apart over its range [lo, hi],
@@ -63,7 +61,7 @@ void AddFootprintFaces(StepEncoder& e, const RobotModel& robot, int i, int j, Ro
   MFP_CHECK(std::isfinite(lo) && std::isfinite(hi));
   const int pieces = hi > lo ? static_cast<int>(std::ceil((hi - lo) / kFootprintYawSpacing - 1e-9)) : 0;
   const double spacing = pieces > 0 ? (hi - lo) / pieces : 0.0;
-  const double sagitta = FarthestCorner(leg) * (1.0 - std::cos(0.5 * spacing));
+  const double sagitta = FootprintFarthestCorner(leg) * (1.0 - std::cos(0.5 * spacing));
   std::vector<ReachFace> rows;
   for (int p = 0; p <= pieces; ++p) {
     const double psi = pieces > 0 ? lo + spacing * p : lo;
@@ -74,8 +72,22 @@ void AddFootprintFaces(StepEncoder& e, const RobotModel& robot, int i, int j, Ro
   // Only the rows whose line touches the rows' intersection: the others are implied by them
   // (the intersection is the same polygon, with fewer rows for the solver).
   const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(rows);
-  const StepExpr dx = e.Position(i, 0) - e.NominalFoot(j, 0);
-  const StepExpr dy = e.Position(i, 1) - e.NominalFoot(j, 1);
+  StepExpr dx = e.Position(i, 0) - e.NominalFoot(j, 0);
+  StepExpr dy = e.Position(i, 1) - e.NominalFoot(j, 1);
+  // The offset f_i - r_nom,j as two quantities of its own (StepEncoder::Shared) when it is
+  // more than the foot's position: each face row then touches two variables, not the
+  // centre of contacts' and the yaw's too. Their bounds are the polygon's bounding box
+  // widened by kSharedOffsetMargin, which the rows imply.
+  if (dx.lin.terms.size() > 1 && !corners.empty()) {
+    Eigen::Vector2d lo = corners.front(), hi = corners.front();
+    for (const Eigen::Vector2d& c : corners) {
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+    }
+    const double m = kSharedOffsetMargin;
+    dx = e.Shared(StepName((std::string(what) + "_wx").c_str(), i), dx, lo.x() - m, hi.x() + m);
+    dy = e.Shared(StepName((std::string(what) + "_wy").c_str(), i), dy, lo.y() - m, hi.y() + m);
+  }
   for (size_t k = 0; k < rows.size(); ++k) {
     double touch = -kInfinity;
     for (const Eigen::Vector2d& c : corners) touch = std::max(touch, rows[k].normal.dot(c));
@@ -87,12 +99,6 @@ void AddFootprintFaces(StepEncoder& e, const RobotModel& robot, int i, int j, Ro
 }
 
 }  // namespace
-
-double FootprintReachRadius(const RobotModel& robot) {
-  double far = 0.0;
-  for (const LegModel& leg : robot.legs) far = std::max(far, FarthestCorner(leg));
-  return far;
-}
 
 void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i) {
   const int n = e.num_legs();
@@ -129,13 +135,19 @@ std::vector<double> MaxMovesXY(const StepExpressions& e, const RobotModel& robot
       start_offset[i] = std::max(start_offset[i], std::abs(constant(e.Position(i, axis)) - constant(e.NominalFoot(i, axis))));
     }
   }
-  // The footprint polygons, turned to any yaw, lie within their farthest corner of the
-  // nominal foot: on each axis the reach and the reference both lie that far.
-  const bool footprint = robot.reach_shape == ReachShape::kFootprint;
-  const double reach = footprint ? FootprintReachRadius(robot) : robot.d_lim_m;
-  const double reference = footprint ? reach : robot.l_bnd_m;
   std::vector<double> moves(num_steps, 0.0);
-  for (int i = n; i < num_steps; ++i) moves[i] = reach + (i - n < n ? start_offset[i - n] : reference);
+  if (robot.reach_shape == ReachShape::kFootprint) {
+    // A leg's first move: its polygon, turned to any yaw, lies within its farthest corner of
+    // the nominal foot. A later move f_i - f_i-n: both feet lie in the leg's polygon about
+    // r_nom,i-n (the reach rows of step i, the reference rows of step i - n) turned by the
+    // same yaw, that of configuration b(i - n), so the move is at most the polygon's diameter.
+    for (int i = n; i < num_steps; ++i) {
+      const LegModel& leg = robot.legs[e.LegOfStep(i)];
+      moves[i] = i - n < n ? FootprintFarthestCorner(leg) + start_offset[i - n] : FootprintDiameter(leg);
+    }
+    return moves;
+  }
+  for (int i = n; i < num_steps; ++i) moves[i] = robot.d_lim_m + (i - n < n ? start_offset[i - n] : robot.l_bnd_m);
   return moves;
 }
 

@@ -30,12 +30,11 @@ void AddStepLimits(StepEncoder& e, const RobotModel& robot, int i);
 // the yaw grid's segment (the sagitta then costs 1.9 % of the farthest corner).
 constexpr double kFootprintYawSpacing = M_PI / 8;
 
-// The footprint polygons' farthest corner from their nominal foot, over the legs [m].
-double FootprintReachRadius(const RobotModel& robot);
-
 // Largest move in plan view (x or y) of each step, valid for every feasible plan: the
 // reachability box about r_nom,i-n plus how far the previous foot can be from r_nom,i-n
-// (l_bnd, or for a leg's first move how far its start foot is from its nominal foot).
+// (l_bnd, or for a leg's first move how far its start foot is from its nominal foot); for
+// the footprint shape, the leg's polygon's diameter, or for its first move the polygon's
+// farthest corner plus that start offset.
 // Indexed by step; 0 for start steps. Bounds big-M constants and region pruning.
 std::vector<double> MaxMovesXY(const StepExpressions& e, const RobotModel& robot, int num_steps);
 

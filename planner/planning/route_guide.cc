@@ -107,8 +107,13 @@ std::string GapBeyond(const RobotModel& robot, const std::vector<ConvexRegion>& 
   msg.precision(3);
   msg << "; the nearest region beyond it toward that spot, region " << regions[beyond].id << ", lies across a gap "
       << width << " m wide from (" << p.x() << ", " << p.y() << ") to (" << q.x() << ", " << q.y()
-      << "), and one step (reach " << ReachShapeName(robot.reach_shape) << " d_lim " << robot.d_lim_m << " m, l_bnd "
-      << robot.l_bnd_m << " m) spans " << StepReachAlong(StepPolygon(robot), q - p) << " m in that direction";
+      << "), and one step (reach " << ReachShapeName(robot.reach_shape);
+  if (robot.reach_shape == ReachShape::kFootprint) {
+    msg << ", " << AxisStepSpanName(robot) << " " << AxisStepSpan(robot) << " m";
+  } else {
+    msg << " d_lim " << robot.d_lim_m << " m, l_bnd " << robot.l_bnd_m << " m";
+  }
+  msg << ") spans " << StepReachAlong(StepPolygon(robot), q - p) << " m in that direction";
   return msg.str();
 }
 
@@ -185,8 +190,7 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
   const double span = MaxStepSpan(robot);
   const std::vector<Eigen::Vector2d> step = StepPolygon(robot);
   // The step polygon's half-width on x and y.
-  const double axis_span =
-      robot.reach_shape == ReachShape::kFootprint ? FootprintStepWidth(robot) : robot.d_lim_m + robot.l_bnd_m;
+  const double axis_span = AxisStepSpan(robot);
   std::vector<Eigen::AlignedBox2d> bounds(m);
   for (int r = 0; r < m; ++r) {
     for (const Eigen::Vector2d& p : nodes[r].poly) bounds[r].extend(p);
@@ -272,8 +276,8 @@ RouteGuide PlanRoute(const RobotModel& robot, const std::vector<ConvexRegion>& r
       if (near >= 0) {
         msg << "; the regions reachable from the start end at region " << regions[near].id << " near ("
             << nodes[near].centre.x() << ", " << nodes[near].centre.y() << "), " << near_d
-            << " m from that spot; beyond it every region is more than one step away (" << robot.d_lim_m + robot.l_bnd_m
-            << " m on x or y, " << span << " m at most) or more than " << robot.dz_max_m
+            << " m from that spot; beyond it every region is more than one step away (" << AxisStepSpanName(robot) << " "
+            << AxisStepSpan(robot) << " m on x or y, " << span << " m at most) or more than " << robot.dz_max_m
             << " m (dz_max) higher or lower" << GapBeyond(robot, regions, nodes, dist, near, spot);
       }
       guide.broken = msg.str();

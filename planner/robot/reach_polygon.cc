@@ -67,19 +67,35 @@ double FootprintInscribedReach(const RobotModel& robot) {
   return reach;
 }
 
-double FootprintStepWidth(const RobotModel& robot) {
+double FootprintFarthestCorner(const LegModel& leg) {
+  double far = 0.0;
+  for (const Eigen::Vector2d& c : ReachFaceCorners(leg.footprint_faces)) far = std::max(far, c.norm());
+  return far;
+}
+
+double FootprintDiameter(const LegModel& leg) {
   // A polygon's widest width over every direction is its diameter, the largest distance
   // between two of its corners.
-  double narrowest = kInf;
-  for (const LegModel& leg : robot.legs) {
-    const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(leg.footprint_faces);
-    double widest = 0.0;
-    for (const Eigen::Vector2d& a : corners) {
-      for (const Eigen::Vector2d& b : corners) widest = std::max(widest, (a - b).norm());
-    }
-    narrowest = std::min(narrowest, widest);
+  const std::vector<Eigen::Vector2d> corners = ReachFaceCorners(leg.footprint_faces);
+  double widest = 0.0;
+  for (const Eigen::Vector2d& a : corners) {
+    for (const Eigen::Vector2d& b : corners) widest = std::max(widest, (a - b).norm());
   }
+  return widest;
+}
+
+double FootprintStepWidth(const RobotModel& robot) {
+  double narrowest = kInf;
+  for (const LegModel& leg : robot.legs) narrowest = std::min(narrowest, FootprintDiameter(leg));
   return narrowest;
+}
+
+double AxisStepSpan(const RobotModel& robot) {
+  return robot.reach_shape == ReachShape::kFootprint ? FootprintStepWidth(robot) : robot.d_lim_m + robot.l_bnd_m;
+}
+
+const char* AxisStepSpanName(const RobotModel& robot) {
+  return robot.reach_shape == ReachShape::kFootprint ? "the footprint polygon's width" : "d_lim + l_bnd";
 }
 
 std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot) {

@@ -30,9 +30,22 @@ double FootprintInscribedReach(const RobotModel& robot);
 // apothem FootprintStepWidth: every move at some yaw, and more.
 std::vector<Eigen::Vector2d> StepPolygon(const RobotModel& robot);
 
-// For the footprint shape: the smallest over the legs of the polygon's widest width (over
-// 64 directions), how far one foot moves from one side of its polygon to the other [m].
+// For the footprint shape: the smallest over the legs of the polygon's widest width (its
+// diameter), how far one foot moves from one side of its polygon to the other [m].
 double FootprintStepWidth(const RobotModel& robot);
+
+// How far one step spans on an axis, for the route graph's quick test and the messages:
+// d_lim + l_bnd, or for the footprint shape FootprintStepWidth [m].
+double AxisStepSpan(const RobotModel& robot);
+// What AxisStepSpan is, for messages: "d_lim + l_bnd" or "the footprint polygon's width".
+const char* AxisStepSpanName(const RobotModel& robot);
+
+// A leg's footprint polygon: its farthest corner from the nominal foot [m].
+double FootprintFarthestCorner(const LegModel& leg);
+
+// A leg's footprint polygon's diameter, the largest distance between two of its corners
+// [m]: how far the foot moves between two points of the polygon turned by one yaw.
+double FootprintDiameter(const LegModel& leg);
 
 // The smallest t >= 0 such that a + t * step meets b (Minkowski sum), for convex polygons a
 // and b (plan view, either orientation, at least one point each) and a convex polygon

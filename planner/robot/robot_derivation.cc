@@ -9,8 +9,8 @@
 
 #include "base/check.h"
 #include "base/format.h"
-#include "planner/robot/internal/footprint_polygon.h"
 #include "planner/robot/internal/inscribed_square.h"
+#include "planner/robot/internal/reach_choice.h"
 
 namespace mfp {
 namespace {
@@ -434,8 +434,8 @@ void AddModelLegs(const RobotDescription& robot, const std::vector<Eigen::Vector
 
 // d_lim for the chosen reach polygon, with the provenance of both polygons: the disk the
 // footprint holds about the nominal foot says whether the box holds at every body yaw.
-void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions& options, RobotModel* model) {
-  const ReachShape shape = options.reach_shape;
+void AddReachLimit(const LegLimits& limits, double cell, const ReachChoice& choice, RobotModel* model) {
+  const ReachShape shape = choice.shape;
   const double half_cell = 0.5 * cell;
   const double box = std::max(0.0, limits.d_lim_raw - half_cell);
   const double disk = std::max(0.0, limits.disk_raw - half_cell);
@@ -462,14 +462,8 @@ void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions
     model->provenance.push_back("d_lim = " + Fixed(box) + " m: derived, " + square_line);
   }
   const double corner = std::sqrt(2.0) * box;
-  const std::string why =
-      !options.reach_shape_given.empty()           ? "given " + options.reach_shape_given
-      : shape == DerivationOptions{}.reach_shape ? std::string("the default for a robot derived from a URDF, "
-                                                                 "since it lies in every leg's reachable footprint "
-                                                                 "at every body yaw")
-                                                   : std::string("chosen");
   model->provenance.push_back(
-      std::string("reach_shape = ") + ReachShapeName(shape) + ": " + why + "; " + disk_line +
+      std::string("reach_shape = ") + ReachShapeName(shape) + ": " + choice.why + "; " + disk_line +
       (corner <= disk + 1e-9 ? ", holds the box's corners (" + Fixed(corner) + " m) at every body yaw"
                              : ", does not hold the box's corners (" + Fixed(corner) +
                                    " m from it) when the body is turned from the world axes") +
@@ -479,10 +473,10 @@ void AddReachLimit(const LegLimits& limits, double cell, const DerivationOptions
 
 // The model's limits, foot radius, gait and weights, each with its provenance.
 void AddModelLimits(const RobotDescription& robot, const LegLimits& limits, double cell,
-                    const DerivationOptions& options, RobotModel* model) {
+                    const DerivationOptions& options, const ReachChoice& reach, RobotModel* model) {
   double foot_radius = 0.0;
   for (const LegChain& leg : robot.legs) foot_radius = std::max(foot_radius, leg.foot_sphere_radius_m);
-  AddReachLimit(limits, cell, options, model);
+  AddReachLimit(limits, cell, reach, model);
   model->l_bnd_m = options.l_bnd_fraction * model->d_lim_m;
   model->provenance.push_back("l_bnd = " + Fixed(model->l_bnd_m) + " m: derived, " +
                               Fixed(options.l_bnd_fraction, 2) + " * d_lim");
@@ -510,24 +504,19 @@ void AddModelLimits(const RobotDescription& robot, const LegLimits& limits, doub
   model->provenance.push_back("weights: defaults (a URDF cannot say)");
 }
 
-// For the footprint shape: each leg's footprint polygon about its nominal foot, its faces
-// pulled in by half a cell (as the disk and the square are), with a provenance line giving
-// the shortest reach forward and back along x over the legs.
-void AddFootprintFaces(const std::vector<LegDerivation>& legs, double cell, const DerivationOptions& options,
-                       RobotModel* model) {
-  if (model->reach_shape != ReachShape::kFootprint) return;
+// For the footprint shape: each leg's polygon, with a provenance line giving the shortest
+// reach forward and back along x over the legs.
+void AddFootprintFaces(const ReachChoice& reach, int faces_per_leg, RobotModel* model) {
+  if (reach.shape != ReachShape::kFootprint) return;
   double forward = std::numeric_limits<double>::infinity(), back = forward;
-  for (size_t k = 0; k < legs.size(); ++k) {
-    std::vector<ReachFace> faces =
-        FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces);
-    for (ReachFace& f : faces) {
-      f.offset_m -= 0.5 * cell;
+  for (size_t k = 0; k < reach.faces.size(); ++k) {
+    for (const ReachFace& f : reach.faces[k]) {
       if (f.normal.x() > 1.0 - 1e-9) forward = std::min(forward, f.offset_m);
       if (f.normal.x() < -1.0 + 1e-9) back = std::min(back, f.offset_m);
     }
-    model->legs[k].footprint_faces = std::move(faces);
+    model->legs[k].footprint_faces = reach.faces[k];
   }
-  model->provenance.push_back("footprint polygon: derived per leg, " + std::to_string(options.footprint_faces) +
+  model->provenance.push_back("footprint polygon: derived per leg, " + std::to_string(faces_per_leg) +
                               " faces about the nominal foot inside the reachable footprint at the stance height, "
                               "less half a cell; its shortest reach over the legs along x is " + Fixed(forward) +
                               " m forward and " + Fixed(back) + " m back");
@@ -557,8 +546,11 @@ RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptio
   const LegLimits limits = SmallestLimits(robot, out.legs);
   RejectExhaustedLegs(robot, sampling, limits, stance, cell);
   AddModelLegs(robot, feet_xy, sampling.hips, &model);
-  AddModelLimits(robot, limits, cell, options, &model);
-  AddFootprintFaces(out.legs, cell, options, &model);
+  std::vector<std::string> leg_names;
+  for (const LegChain& leg : robot.legs) leg_names.push_back(leg.name);
+  const ReachChoice reach = ChooseReach(out.legs, leg_names, cell, options);
+  AddModelLimits(robot, limits, cell, options, reach, &model);
+  AddFootprintFaces(reach, options.footprint_faces, &model);
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (const Eigen::Vector2d& f : feet_xy) mean += f / static_cast<double>(feet_xy.size());
   std::string body_line;

@@ -15,8 +15,10 @@
 //    cell; for the octagon and the 16-gon, the apothem of the regular polygon inscribed in
 //    the smallest of the legs' largest disks about their nominal feet, less half a grid cell
 //    (the polygon then lies in the footprint at every body yaw, which the box does not);
-//    for the footprint shape, d_lim is the 16-gon's and each leg also gets its footprint
-//    polygon (footprint_polygon.h), faces pulled in by half a cell;
+//    for the footprint shape (the default), d_lim is the 16-gon's and each leg also gets its
+//    footprint polygon (footprint_polygon.h), faces pulled in by half a cell; when some leg's
+//    footprint holds none and the shape was not stated (reach_shape_given empty), the model
+//    gets the 16-gon instead, with a provenance line naming the leg;
 //  - dz_max: the smallest, over legs and up/down, vertical travel of the foot from the
 //    nominal foot that stays reachable (continuation inverse kinematics);
 //  - l_bnd = l_bnd_fraction * d_lim; max yaw change: the yaw about the centre of contacts
@@ -44,11 +46,18 @@ struct DerivationOptions {
   int stance_candidates = 15;             // heights tried when choosing the stance height
   double stance_fraction = 0.70;          // preferred stance: this fraction of the downward reach
   double l_bnd_fraction = 0.5;            // l_bnd = l_bnd_fraction * d_lim
-  // Which polygon d_lim is derived for. The default holds at every body yaw; the paper's box
-  // only when a robot file states it (reach_shape_given).
-  ReachShape reach_shape = ReachShape::kHexadecagon;
+  // Which polygon d_lim is derived for. The default, each leg's own footprint polygon turned
+  // with the body, holds at every body yaw (as the octagon and the 16-gon do) and keeps the
+  // footprint's longer reach forward and back, so the robot crosses the gaps its legs can
+  // cross; the paper's box only when a robot file states it (reach_shape_given). When a
+  // leg's footprint holds no polygon about its nominal foot, the default falls back to the
+  // 16-gon, so that no URDF robot becomes unplannable by it; a stated footprint throws.
+  ReachShape reach_shape = ReachShape::kFootprint;
   std::string reach_shape_given;          // who stated it ("by the caller", "in FILE"; "": the default)
-  int footprint_faces = 12;               // faces of each leg's footprint polygon (reach_shape footprint)
+  // Faces of each leg's footprint polygon (reach_shape footprint): enough to follow the
+  // footprint's rounded front and back, which give the long steps the shape is chosen for
+  // (fewer faces plan faster and step shorter: docs/measurements.md, stop 38).
+  int footprint_faces = 12;
   double centre_weight_per_m = 0.1;       // tie-break towards the point below the hip
   double ik_tolerance_m = 1e-5;
   // The request's deadline and stop flag: checked between legs and stance candidates and
@@ -75,7 +84,8 @@ struct RobotDerivation {
 };
 
 // Throws InputError when a leg cannot reach the ground at any stance height (or at the
-// given one) or the legs have no common stance height.
+// given one), the legs have no common stance height, or a stated footprint shape
+// (reach_shape_given) finds no polygon about some leg's nominal foot.
 RobotDerivation DeriveRobot(const RobotDescription& robot, const DerivationOptions& options);
 
 // The default wave gait for nominal offsets (see above).

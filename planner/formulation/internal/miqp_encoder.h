@@ -23,6 +23,8 @@ class MiqpEncoder final : public StepEncoder {
   StepExpr Yaw(int cfg) const override { return e_.Yaw(cfg); }
   StepExpr Rotated(int i, const Eigen::Vector2d& offset_body_m, int axis) const override;
   std::pair<double, double> YawBounds(int j) const override;
+  // A continuous variable `name` in [lower, upper] and the row variable - expr = 0.
+  StepExpr Shared(const std::string& name, const StepExpr& expr, double lower, double upper) override;
 
   void AddRow(RowKind kind, const std::string& name, const StepExpr& expr, double lower, double upper) override;
   // expr + big_m indicator <= upper + big_m; left out when big_m <= 0.

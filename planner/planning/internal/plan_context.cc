@@ -8,9 +8,9 @@
 
 #include "base/check.h"
 #include "geometry/region_reachability.h"
-#include "planner/formulation/step_limits.h"
 #include "planner/planning/internal/plan_outcome.h"
 #include "planner/planning/request_check.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace mfp {
 namespace {
@@ -18,7 +18,7 @@ namespace {
 // Largest horizontal move of one foot in one step [m]: on each axis d_lim about the
 // previous nominal spot plus how far the previous foot may lie from that spot (l_bnd, or
 // the start stance's own offset, whichever is larger), as a Euclidean length; for the
-// footprint shape, the polygons' farthest corner for both.
+// footprint shape, as MaxMovesXY (step_limits.h) bounds it.
 double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
   const int n = robot.num_legs();
   const Eigen::Vector2d centre = StanceCentreXY(request.start_feet_world_m);
@@ -29,8 +29,13 @@ double StepReachXY(const RobotModel& robot, const PlanRequest& request) {
     offset = std::max(offset, d.cwiseAbs().maxCoeff());
   }
   if (robot.reach_shape == ReachShape::kFootprint) {
-    const double reach = FootprintReachRadius(robot);
-    return reach + std::max(reach, offset);
+    // A leg's first move from the start (MaxMovesXY), or a later one within its polygon's
+    // diameter.
+    double move = 0.0;
+    for (const LegModel& leg : robot.legs) {
+      move = std::max({move, FootprintFarthestCorner(leg) + std::sqrt(2.0) * offset, FootprintDiameter(leg)});
+    }
+    return move;
   }
   return std::sqrt(2.0) * (robot.d_lim_m + offset);
 }

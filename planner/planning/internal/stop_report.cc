@@ -11,6 +11,7 @@
 
 #include "geometry/plan_bounds.h"
 #include "planner/planning/internal/route_guide.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace mfp {
 namespace {
@@ -347,7 +348,7 @@ PlanStop DescribeStop(const PlanContext& context, const Plan& plan, const std::s
   const double sample_m = std::max(kMinSampleStepM, options.stop_report_step_l_bnd * robot.l_bnd_m);
   const StopPath path =
       PathAhead(context, stop.centre_world_m.head<2>(), stop.yaw_rad, sample_m, options.stop_report_max_samples);
-  stop.gap = FirstGapAhead(robot, context.usable, feet, path, robot.d_lim_m + robot.l_bnd_m, deadline);
+  stop.gap = FirstGapAhead(robot, context.usable, feet, path, AxisStepSpan(robot), deadline);
   return stop;
 }
 
@@ -375,7 +376,7 @@ std::string StopText(const RobotModel& robot, const PlanStop& stop) {
          << Xy(g.from_m) << " to region " << g.to_region << " near " << Xy(g.to_m) << ": " << g.width_m
          << " m on an axis";
     if (g.width_m > g.step_span_m) {
-      text << ", more than one step spans (d_lim + l_bnd = " << g.step_span_m << " m)";
+      text << ", more than one step spans (" << AxisStepSpanName(robot) << " = " << g.step_span_m << " m)";
     } else {
       text << ", within a step (" << g.step_span_m << " m), but a " << g.rise_m << " m rise, more than dz_max ("
            << robot.dz_max_m << " m)";
