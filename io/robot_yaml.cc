@@ -46,6 +46,23 @@ using option_table_internal::FormatNumber;
 using option_table_internal::FormatRange;
 
 // The keys of a robot YAML: the loaders below read each; the limits come from kLimitFields.
+// The reach limit a URDF robot's file overrides (d_lim, then l_bnd), or nullptr.
+const char* ReachLimitOverride(const YAML::Node& root) {
+  if (root["d_lim"]) return "d_lim";
+  if (root["l_bnd"]) return "l_bnd";
+  return nullptr;
+}
+
+// A footprint robot's reach rows are its legs' polygons, which no d_lim or l_bnd bounds: an
+// override of either would be shown in the provenance and not kept by any step.
+void RefuseReachLimitOverride(const YAML::Node& root, const YamlContext& ctx) {
+  const char* limit = ReachLimitOverride(root);
+  if (limit == nullptr) return;
+  throw InputError(ctx.Child(limit).Where() + ": reach_shape footprint takes each leg's reach from its URDF "
+                   "footprint, which a " + std::string(limit) + " override cannot bound; remove " + limit +
+                   " or state reach_shape: hexadecagon (its reach follows d_lim and l_bnd)");
+}
+
 OptionTable<RobotModel> MakeRobotOptionTable() {
   using R = RobotModel;
   OptionTable<R> t = {
@@ -239,12 +256,14 @@ RobotModel LoadUrdfYaml(const YAML::Node& root, const YamlContext& ctx, const st
     options.reach_shape_given = "by the caller";
   } else if (root["reach_shape"]) {
     options.reach_shape_given = "in " + path;
-  } else if (root["d_lim"]) {
-    // The footprint polygons are derived from the legs alone and would not follow a d_lim
-    // override: the 16-gon, whose reach d_lim is, keeps the file's limit on every step.
+  } else if (const char* limit = ReachLimitOverride(root)) {
+    // The footprint polygons are derived from the legs alone and would not follow a d_lim or
+    // l_bnd override: the 16-gon, whose reach d_lim and l_bnd are, keeps the file's limits.
     options.reach_shape = ReachShape::kHexadecagon;
-    options.reach_shape_given = "by the d_lim override in " + path + " (a footprint polygon would not follow it)";
+    options.reach_shape_given = std::string("by the ") + limit + " override in " + path +
+                                " (a footprint polygon would not follow it)";
   }
+  if (options.reach_shape == ReachShape::kFootprint) RefuseReachLimitOverride(root, ctx);
   options = WithinDerivationBudget(options, &description);
   options.deadline = deadline;
   RobotDerivation derivation = DeriveRobot(description, options);

@@ -61,6 +61,26 @@ TEST(RobotYaml, OverridesReplaceDerivedValuesVisibly) {
   EXPECT_TRUE(HasLine(robot, "reach_shape = hexadecagon: given by the d_lim override in"));
 }
 
+// A footprint robot's reach rows ignore d_lim and l_bnd: an override of either, without a
+// stated shape, gives the 16-gon (which keeps both); with footprint stated it is refused.
+TEST(RobotYaml, AReachLimitOverrideIsKeptByTheShapeOrRefused) {
+  const std::string urdf = Source("tests/data/robots/sphere_quad.urdf");
+  const RobotModel l_bnd_only = LoadRobot(WriteTemp("l_bnd_only.yaml", "urdf: " + urdf + "\nl_bnd: 0.01\n"));
+  EXPECT_EQ(l_bnd_only.reach_shape, ReachShape::kHexadecagon);
+  EXPECT_DOUBLE_EQ(l_bnd_only.l_bnd_m, 0.01);
+  EXPECT_TRUE(HasLine(l_bnd_only, "reach_shape = hexadecagon: given by the l_bnd override in"));
+  for (const char* limit : {"d_lim: 0.05", "l_bnd: 0.01"}) {
+    const std::string stated = WriteTemp("footprint_override.yaml",
+                                         "urdf: " + urdf + "\nreach_shape: footprint\n" + limit + "\n");
+    try {
+      LoadRobot(stated);
+      FAIL() << limit;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("reach_shape: hexadecagon"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(RobotYaml, HandWrittenRobotsStillLoad) {
   const std::string path = WriteTemp("hand_robot.yaml", R"(
 name: hand
