@@ -5,7 +5,8 @@
 //    (`feet: [link, ...]`), fix `stance_height`, and give what a URDF cannot say (gait,
 //    foot radius, max slope, weights) and the reach polygon (`reach_shape`; without it each
 //    leg's footprint polygon, DerivationOptions' default, or the 16-gon when the file
-//    overrides d_lim, which the footprint polygons would not follow). Any limit it gives (d_lim, l_bnd, dz_max,
+//    overrides d_lim or l_bnd, which the footprint polygons would not follow; a stated
+//    footprint with either override is an InputError). Any limit it gives (d_lim, l_bnd, dz_max,
 //    max_yaw_change, foot_radius) overrides the derived value, and the provenance line
 //    says so: "d_lim = 0.0700 m: override in littledog.yaml (derived 0.0640 m)". l_bnd and
 //    max_yaw_change follow an overridden d_lim unless they are overridden themselves.

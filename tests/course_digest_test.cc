@@ -34,9 +34,9 @@ std::string Hex(uint64_t v) {
 
 // CourseHash(course, 1 nm) of courses 0..47 of the default rotation, seed 1 (course i: seed
 // 1 + i); 0: the generator gives up (course 41, the octopod's doorway: its body is too near
-// square for a door that needs a turn). The octopod's courses follow its reach: since its
-// robot YAML (derived from a URDF) takes the 16-gon by default, they are sized by the
-// 16-gon's d_lim (stop 36).
+// square for a door that needs a turn). The octopod's courses follow its d_lim: its robot
+// YAML (derived from a URDF) states no reach shape, and both defaults it has had (the 16-gon
+// from stop 36, the footprint from stop 38) keep the 16-gon's d_lim.
 constexpr uint64_t kPinned[48] = {
     0xa62416f4e72f8ac8ull, 0x9725142a1aa0f5e1ull, 0xa019a1dd3b453495ull, 0x6a3927b498944f60ull,
     0x8146a394d94c563aull, 0x64937d433f096798ull, 0x8e625699da0c1b87ull, 0x593b88db7e3f92e0ull,

@@ -19,6 +19,7 @@
 #include "io/robot_json.h"
 #include "io/robot_loader.h"
 #include "io/text_output.h"
+#include "planner/robot/reach_polygon.h"
 
 namespace {
 
@@ -142,8 +143,8 @@ void PrintStepExtents(const mfp::RobotModel& robot, const mfp::RobotDerivation& 
   }
   const double l = robot.l_bnd_m;
   out << "longest forward step of every leg [m]:\n";
-  out << "  this model (" << mfp::ReachShapeName(robot.reach_shape) << " d_lim + l_bnd):       " << Fixed(robot.d_lim_m + l)
-      << "\n";
+  out << "  this model (" << mfp::ReachShapeName(robot.reach_shape) << ", " << mfp::AxisStepSpanName(robot)
+      << "): " << Fixed(mfp::AxisStepSpan(robot)) << "\n";
   out << "  footprint reach + l_bnd, body turned 0 / pi/16 / pi/8: " << Fixed(fwd[0] + l) << " / " << Fixed(fwd[1] + l)
       << " / " << Fixed(fwd[2] + l) << "\n";
   out << "  footprint reach and footprint reference (fwd + back):   " << Fixed(sum[0]) << " / " << Fixed(sum[1])

@@ -156,10 +156,14 @@ std::vector<std::string> ValidatePlan(const RobotModel& robot, const std::vector
     } else if (e.region > tol.position_m) {
       report(i, "outside region " + std::to_string(steps[i].region_id), e.region);
     }
-    // Reference box about r_nom,i and reachability box about r_nom,i-n.
+    // Reference polygon about r_nom,i and reach polygon about r_nom,i-n (the box's l_bnd and
+    // d_lim, or the leg's footprint polygon at the step's yaw).
     const double box_tol = tol.position_m;
-    if (e.reference > box_tol) report(i, "reference box l_bnd", e.reference);
-    if (e.reachability > box_tol) report(i, "reachability box d_lim", e.reachability);
+    const bool footprint = robot.reach_shape == ReachShape::kFootprint;
+    if (e.reference > box_tol) report(i, footprint ? "reference footprint polygon" : "reference box l_bnd", e.reference);
+    if (e.reachability > box_tol) {
+      report(i, footprint ? "reach footprint polygon" : "reachability box d_lim", e.reachability);
+    }
     if (e.height > tol.position_m) report(i, "height change dz_max", e.height);
     if (e.yaw_change > tol.yaw_rad) report(i, "yaw change", e.yaw_change);
   }

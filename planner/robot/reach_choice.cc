@@ -1,5 +1,7 @@
 #include "planner/robot/internal/reach_choice.h"
 
+#include <string>
+
 #include "base/check.h"
 #include "planner/robot/internal/footprint_polygon.h"
 
@@ -22,6 +24,14 @@ ReachChoice ChooseReach(const std::vector<LegDerivation>& legs, const std::vecto
     try {
       choice.faces.push_back(
           FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces));
+      // Pulled in by half a cell (below), every face must still pass in front of the nominal
+      // foot, or the polygon no longer holds it.
+      for (const ReachFace& f : choice.faces.back()) {
+        if (f.offset_m <= 0.5 * cell_m) {
+          throw InputError("the footprint polygon of leg '" + leg_names[k] + "' is not wider than half a footprint "
+                           "cell (" + std::to_string(0.5 * cell_m) + " m) about its nominal foot");
+        }
+      }
     } catch (const InputError& e) {
       if (given) throw;
       choice.shape = ReachShape::kHexadecagon;
