@@ -3,7 +3,9 @@
 // every leg's reachable footprint.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -97,5 +99,46 @@ TEST(ReachPolygon, TheDerivedOctagonLiesInEveryFootprintAtEveryBodyYaw) {
   }
 }
 
+// MaxMovesXY bounds a footprint leg's later move by FootprintDiameter: both feet lie in the
+// leg's polygon about the same nominal spot, turned by the same yaw, so a move on an axis
+// is at most the polygon's width across that axis. The bound must hold every such move (the
+// trimming big-M and region pruning rely on it) and cut none: the widest width of the
+// polygon's points (a fine grid of them, found by its faces alone) over 72 directions is the
+// diameter, to within the grid's step.
+TEST(ReachPolygon, AFootprintLegsMoveOnAnAxisReachesItsDiameterAndNoFarther) {
+  RobotDescription description =
+      ReadUrdfRobot(std::string(MFP_SOURCE_DIR) + "/tests/data/robots/octopod.urdf");
+  DerivationOptions options = WithinDerivationBudget(DerivationOptions{}, &description);
+  options.reach_shape = ReachShape::kFootprint;
+  const RobotModel robot = DeriveRobot(description, options).model;
+  ASSERT_EQ(robot.reach_shape, ReachShape::kFootprint);
+  for (size_t k = 0; k < robot.legs.size(); ++k) {
+    const LegModel& leg = robot.legs[k];
+    double reach = 0.0;
+    for (const ReachFace& f : leg.footprint_faces) reach = std::max(reach, f.offset_m);
+    const int cells = 300;
+    const double step = 4.0 * reach / cells;  // the grid spans [-2 reach, 2 reach]^2
+    std::vector<Eigen::Vector2d> points;
+    for (int a = 0; a <= cells; ++a) {
+      for (int b = 0; b <= cells; ++b) {
+        const Eigen::Vector2d p(-2.0 * reach + a * step, -2.0 * reach + b * step);
+        bool inside = true;
+        for (const ReachFace& f : leg.footprint_faces) inside = inside && f.normal.dot(p) <= f.offset_m;
+        if (inside) points.push_back(p);
+      }
+    }
+    ASSERT_GT(points.size(), 100u) << "leg " << k;
+    double widest = 0.0;
+    for (int degrees = 0; degrees < 180; degrees += 2) {
+      const Eigen::Vector2d u(std::cos(degrees * M_PI / 180.0), std::sin(degrees * M_PI / 180.0));
+      double lo = 1e9, hi = -1e9;
+      for (const Eigen::Vector2d& p : points) lo = std::min(lo, u.dot(p)), hi = std::max(hi, u.dot(p));
+      widest = std::max(widest, hi - lo);
+    }
+    const double diameter = FootprintDiameter(leg);
+    EXPECT_LE(widest, diameter + 1e-12) << "leg " << k;
+    EXPECT_GE(widest, diameter - 3.0 * step) << "leg " << k;
+  }
+}
 }  // namespace
 }  // namespace mfp
