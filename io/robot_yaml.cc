@@ -45,7 +45,6 @@ const LimitField kLimitFields[] = {
 using option_table_internal::FormatNumber;
 using option_table_internal::FormatRange;
 
-// The keys of a robot YAML: the loaders below read each; the limits come from kLimitFields.
 // The reach limit a URDF robot's file overrides (d_lim, then l_bnd), or nullptr.
 const char* ReachLimitOverride(const YAML::Node& root) {
   if (root["d_lim"]) return "d_lim";
@@ -63,6 +62,7 @@ void RefuseReachLimitOverride(const YAML::Node& root, const YamlContext& ctx) {
                    " or state reach_shape: hexadecagon (its reach follows d_lim and l_bnd)");
 }
 
+// The keys of a robot YAML: the loaders below read each; the limits come from kLimitFields.
 OptionTable<RobotModel> MakeRobotOptionTable() {
   using R = RobotModel;
   OptionTable<R> t = {

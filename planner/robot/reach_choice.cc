@@ -24,10 +24,11 @@ ReachChoice ChooseReach(const std::vector<LegDerivation>& legs, const std::vecto
     try {
       choice.faces.push_back(
           FootprintPolygon(legs[k].footprint, legs[k].nominal_foot_body_m.head<2>(), options.footprint_faces));
-      // Pulled in by half a cell (below), every face must still pass in front of the nominal
-      // foot, or the polygon no longer holds it.
-      for (const ReachFace& f : choice.faces.back()) {
-        if (f.offset_m <= 0.5 * cell_m) {
+      // Each face pulled in by half a cell must still pass in front of the nominal foot, or
+      // the polygon no longer holds it.
+      for (ReachFace& f : choice.faces.back()) {
+        f.offset_m -= 0.5 * cell_m;
+        if (f.offset_m <= 0.0) {
           throw InputError("the footprint polygon of leg '" + leg_names[k] + "' is not wider than half a footprint "
                            "cell (" + std::to_string(0.5 * cell_m) + " m) about its nominal foot");
         }
@@ -40,7 +41,6 @@ ReachChoice ChooseReach(const std::vector<LegDerivation>& legs, const std::vecto
                    "), and the 16-gon lies in every leg's reachable footprint at every body yaw";
       return choice;
     }
-    for (ReachFace& f : choice.faces.back()) f.offset_m -= 0.5 * cell_m;
   }
   return choice;
 }

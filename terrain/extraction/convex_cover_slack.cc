@@ -94,39 +94,52 @@ struct InsetCell {
   double inset = 0.0;
 };
 
+// Whether cell (r, c)'s square lies at least `inset` from the box b: then no part inside
+// b comes nearer. Squared with a relative margin of 1e-12, so a cell cleared here is one the
+// exact distance would pass as well.
+bool BoundsClearCell(const Bounds& b, int r, int c, double inset) {
+  const double dy = std::max({0.0, (r - 0.5) - b.hi.y(), b.lo.y() - (r + 0.5)});
+  const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
+  return dx * dx + dy * dy >= inset * inset * (1.0 + 1e-12);
+}
+
 // Whether cell's square is nearer `part` than its inset, the part's bounds b: first by the
 // bounds (far enough apart: not too close), then exactly.
 bool TooClose(const Polygon2d& part, const Bounds& b, const InsetCell& cell) {
   const int r = cell.r, c = cell.c;
-  const double dy = std::max({0.0, (r - 0.5) - b.hi.y(), b.lo.y() - (r + 0.5)});
-  const double dx = std::max({0.0, (c - 0.5) - b.hi.x(), b.lo.x() - (c + 0.5)});
-  // The boxes are far enough apart. Squared with a relative margin of 1e-12, so a cell
-  // skipped here is one the exact distance would pass as well.
-  if (dx * dx + dy * dy >= cell.inset * cell.inset * (1.0 + 1e-12)) return false;
+  if (BoundsClearCell(b, r, c, cell.inset)) return false;
   const std::array<Eigen::Vector2d, 4> square = {
       Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r + 0.5),
       Eigen::Vector2d(c - 0.5, r + 0.5)};
   return ConvexPolygonsNearer(part, square, cell.inset - kEps);
 }
 
-// The outside cells (inset > 0) that some part with bounds inside `box` may come nearer
-// than their inset: those TooClose's bounds test does not clear against the box (a part
-// inside it is no nearer to any other cell). Cells beyond max_inset_cells + 0.5 of the box
-// are cleared by that test, so only the box grown by that much is scanned.
-std::vector<InsetCell> CellsNear(const Bounds& box, const CellInset& inset_at, double max_inset_cells) {
+// Calls visit(cell) for each outside cell (inset > 0) within max_inset_cells + 0.5 of
+// `box`, row by row, until visit returns false, and says whether none did. Cells farther
+// away lie beyond their inset of any part inside the box (BoundsClearCell).
+template <typename Visit>
+bool ForOutsideCellsNear(const Bounds& box, const CellInset& inset_at, double max_inset_cells, Visit visit) {
   const double reach = max_inset_cells + 0.5;
   const int r0 = static_cast<int>(std::floor(box.lo.y() - reach)), r1 = static_cast<int>(std::ceil(box.hi.y() + reach));
   const int c0 = static_cast<int>(std::floor(box.lo.x() - reach)), c1 = static_cast<int>(std::ceil(box.hi.x() + reach));
-  std::vector<InsetCell> cells;
   for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {
       const double inset = inset_at(r, c);
-      if (inset <= 0.0) continue;  // a patch cell, or no inset asked
-      const double dy = std::max({0.0, (r - 0.5) - box.hi.y(), box.lo.y() - (r + 0.5)});
-      const double dx = std::max({0.0, (c - 0.5) - box.hi.x(), box.lo.x() - (c + 0.5)});
-      if (dx * dx + dy * dy < inset * inset * (1.0 + 1e-12)) cells.push_back({r, c, inset});
+      if (inset > 0.0 && !visit(InsetCell{r, c, inset})) return false;  // inset <= 0: a patch cell, or none asked
     }
   }
+  return true;
+}
+
+// The outside cells that some part with bounds inside `box` may come nearer than their
+// inset: those TooClose's bounds test does not clear against the box (a part inside it is
+// no nearer to any other cell).
+std::vector<InsetCell> CellsNear(const Bounds& box, const CellInset& inset_at, double max_inset_cells) {
+  std::vector<InsetCell> cells;
+  ForOutsideCellsNear(box, inset_at, max_inset_cells, [&](const InsetCell& cell) {
+    if (!BoundsClearCell(box, cell.r, cell.c, cell.inset)) cells.push_back(cell);
+    return true;
+  });
   return cells;
 }
 
@@ -134,16 +147,7 @@ std::vector<InsetCell> CellsNear(const Bounds& box, const CellInset& inset_at, d
 // the exact test, over the cells near its bounds, stopping at the first too close.
 bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells) {
   const Bounds b = BoundsOf(part);
-  const double reach = max_inset_cells + 0.5;
-  const int r0 = static_cast<int>(std::floor(b.lo.y() - reach)), r1 = static_cast<int>(std::ceil(b.hi.y() + reach));
-  const int c0 = static_cast<int>(std::floor(b.lo.x() - reach)), c1 = static_cast<int>(std::ceil(b.hi.x() + reach));
-  for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) {
-      const double inset = inset_at(r, c);
-      if (inset > 0.0 && TooClose(part, b, InsetCell{r, c, inset})) return false;
-    }
-  }
-  return true;
+  return ForOutsideCellsNear(b, inset_at, max_inset_cells, [&](const InsetCell& cell) { return !TooClose(part, b, cell); });
 }
 
 // KeepsInsets over `cells` (CellsNear of a box holding the part). The cell at *hint
