@@ -83,22 +83,26 @@ struct OutsideCell {
   double inset_cells;
 };
 
-// The outside cells row by row (rows from -ring, each in column order), so a test near
-// a rectangle visits only the rows and columns within reach of it.
+// The outside cells row by row (rows from -ring, each in column order) in one list, so
+// a test near a rectangle visits only the rows and columns within reach of it.
 struct OutsideCells {
   int row0 = 0;
-  std::vector<std::vector<OutsideCell>> rows;
+  std::vector<OutsideCell> cells;
+  std::vector<size_t> row_begin;  // row i's cells are cells[row_begin[i], row_begin[i + 1])
+  int rows() const { return static_cast<int>(row_begin.size()) - 1; }
 };
 
 OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
   OutsideCells outside;
   outside.row0 = -inset.ring();
+  outside.row_begin.reserve(static_cast<size_t>(mask.rows + 2 * inset.ring()) + 1);
+  outside.row_begin.push_back(0);
   for (int r = -inset.ring(); r < mask.rows + inset.ring(); ++r) {
-    std::vector<OutsideCell>& row = outside.rows.emplace_back();
     for (int c = -inset.ring(); c < mask.cols + inset.ring(); ++c) {
       if (mask.Contains(r, c)) continue;
-      row.push_back({r, c, inset.At(r, c)});
+      outside.cells.push_back({r, c, inset.At(r, c)});
     }
+    outside.row_begin.push_back(outside.cells.size());
   }
   return outside;
 }
@@ -136,14 +140,14 @@ bool ForCellsNear(const OutsideCells& outside, const std::array<Eigen::Vector2d,
                   Visit&& visit) {
   Box2d box;
   for (const Eigen::Vector2d& p : quad) box.Add(p);
-  const int n_rows = static_cast<int>(outside.rows.size());
   const int first = std::max(0, static_cast<int>(std::ceil(box.ymin - reach)) - outside.row0);
-  const int last = std::min(n_rows - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
+  const int last = std::min(outside.rows() - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
   for (int i = first; i <= last; ++i) {
-    const std::vector<OutsideCell>& row = outside.rows[static_cast<size_t>(i)];
-    auto it = std::lower_bound(row.begin(), row.end(), box.xmin - reach,
+    const auto row_begin = outside.cells.begin() + static_cast<std::ptrdiff_t>(outside.row_begin[static_cast<size_t>(i)]);
+    const auto row_end = outside.cells.begin() + static_cast<std::ptrdiff_t>(outside.row_begin[static_cast<size_t>(i) + 1]);
+    auto it = std::lower_bound(row_begin, row_end, box.xmin - reach,
                                [](const OutsideCell& cell, double x) { return cell.c < x; });
-    for (; it != row.end() && it->c <= box.xmax + reach; ++it) {
+    for (; it != row_end && it->c <= box.xmax + reach; ++it) {
       if (!visit(*it)) return false;
     }
   }
