@@ -178,8 +178,11 @@ bool MeetsRegion(const Polygon& obstacle, const Bounds& obstacle_bounds, const B
                  Polygon* scratch) {
   if (obstacle_bounds.Apart(region_bounds)) return false;
   // Wholly on or beyond one line: the clip by that line keeps no area (the common case for
-  // an obstacle a cut already passed), so no copy is clipped.
-  for (size_t r = 0; r < normals.size(); ++r) {
+  // an obstacle a cut already passed), so no copy is clipped. Any such line answers, so
+  // the cuts are tried latest first (an obstacle is passed by the cuts near it, which come
+  // late for the obstacles whose turn comes late) and the box's four sides, which hold
+  // every obstacle grown among, last.
+  for (size_t r = normals.size(); r-- > 0;) {
     if (MinAlong(obstacle, normals[r]) >= offsets[r]) return false;
   }
   *inside = obstacle;

@@ -198,7 +198,7 @@ class CoverState {
     closing_.clear();
     // Whether the piece holds each lattice point of the box (a square's four corners).
     const int width = c1 - c0 + 1;
-    corner_in_.assign(static_cast<size_t>(std::max(0, r1 - r0 + 1) * std::max(0, width)), 0);
+    corner_in_.resize(static_cast<size_t>(std::max(0, r1 - r0 + 1) * std::max(0, width)));  // every one set below
     for (int r = r0; r <= r1; ++r) {
       for (int c = c0; c <= c1; ++c) corner_in_[static_cast<size_t>((r - r0) * width + (c - c0))] = Contains(piece, {c, r});
     }

@@ -58,8 +58,14 @@ LocalGrid RotatedGrid(const RotatedFrame& frame, const LocalGrid& dual) {
     lower.swap(upper);
     for (int a = 0; a <= rotated.cols; ++a) upper[static_cast<size_t>(a)] = frame.Corner(a, b + 1);
     for (int a = 0; a < rotated.cols; ++a) {
-      Box2d box;
       const auto k = static_cast<size_t>(a);
+      // The dual square holding the cell's centre is one of those its box spans (the centre
+      // lies at least a quarter of a cell inside the box): when it is not a complete dual
+      // square, or off the grid, the cell is not kept, and the box need not be computed.
+      const Eigen::Vector2d centre = 0.25 * (lower[k] + lower[k + 1] + upper[k] + upper[k + 1]);
+      const int centre_c = static_cast<int>(std::floor(centre.x())), centre_r = static_cast<int>(std::floor(centre.y()));
+      if (!dual.Contains(centre_r, centre_c)) continue;
+      Box2d box;
       for (const Eigen::Vector2d& p : {lower[k], lower[k + 1], upper[k], upper[k + 1]}) box.Add(p);
       const int c0 = static_cast<int>(std::floor(box.xmin + 1e-9));
       const int c1 = static_cast<int>(std::ceil(box.xmax - 1e-9));
