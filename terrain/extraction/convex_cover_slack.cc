@@ -114,48 +114,11 @@ bool TooClose(const Polygon2d& part, const Bounds& b, const InsetCell& cell) {
   return ConvexPolygonsNearer(part, square, cell.inset - kEps);
 }
 
-// The insets of the cells in rows [r0, r1) x columns [c0, c1), asked of inset_at once
-// each (the side tests read a cell many times); a cell outside is asked of inset_at.
-class InsetWindow {
- public:
-  InsetWindow(const CellInset& inset_at, int r0, int c0, int r1, int c1)
-      : inset_at_(inset_at), r0_(r0), c0_(c0), r1_(std::max(r0, r1)), c1_(std::max(c0, c1)) {
-    values_.reserve(static_cast<size_t>(r1_ - r0_) * static_cast<size_t>(c1_ - c0_));
-    for (int r = r0_; r < r1_; ++r) {
-      for (int c = c0_; c < c1_; ++c) values_.push_back(inset_at(r, c));
-    }
-  }
-  double operator()(int r, int c) const {
-    if (r < r0_ || r >= r1_ || c < c0_ || c >= c1_) return inset_at_(r, c);
-    return values_[static_cast<size_t>(r - r0_) * static_cast<size_t>(c1_ - c0_) + static_cast<size_t>(c - c0_)];
-  }
-
- private:
-  const CellInset& inset_at_;
-  int r0_, c0_, r1_, c1_;
-  std::vector<double> values_;
-};
-
-// The InsetWindow over every cell a side test of the pieces may read: their bounds grown
-// by the most a side moves and the reach of ForOutsideCellsNear, and a cell for rounding.
-InsetWindow InsetsAboutPieces(const std::vector<Bounds>& bounds, const CellInset& inset_at, double max_inset_cells,
-                              double most_cells) {
-  if (bounds.empty()) return InsetWindow(inset_at, 0, 0, 0, 0);
-  Bounds all = bounds.front();
-  for (const Bounds& b : bounds) {
-    all.lo = all.lo.cwiseMin(b.lo);
-    all.hi = all.hi.cwiseMax(b.hi);
-  }
-  const double grow = most_cells + max_inset_cells + 0.5 + 1.0;
-  return InsetWindow(inset_at, static_cast<int>(std::floor(all.lo.y() - grow)), static_cast<int>(std::floor(all.lo.x() - grow)),
-                     static_cast<int>(std::ceil(all.hi.y() + grow)) + 1, static_cast<int>(std::ceil(all.hi.x() + grow)) + 1);
-}
-
 // Calls visit(cell) for each outside cell (inset > 0) within max_inset_cells + 0.5 of
 // `box`, row by row, until visit returns false, and says whether none did. Cells farther
 // away lie beyond their inset of any part inside the box (BoundsClearCell).
 template <typename Visit>
-bool ForOutsideCellsNear(const Bounds& box, const InsetWindow& inset_at, double max_inset_cells, Visit visit) {
+bool ForOutsideCellsNear(const Bounds& box, const CellInset& inset_at, double max_inset_cells, Visit visit) {
   const double reach = max_inset_cells + 0.5;
   const int r0 = static_cast<int>(std::floor(box.lo.y() - reach)), r1 = static_cast<int>(std::ceil(box.hi.y() + reach));
   const int c0 = static_cast<int>(std::floor(box.lo.x() - reach)), c1 = static_cast<int>(std::ceil(box.hi.x() + reach));
@@ -171,7 +134,7 @@ bool ForOutsideCellsNear(const Bounds& box, const InsetWindow& inset_at, double 
 // The outside cells that some part with bounds inside `box` may come nearer than their
 // inset: those TooClose's bounds test does not clear against the box (a part inside it is
 // no nearer to any other cell).
-std::vector<InsetCell> CellsNear(const Bounds& box, const InsetWindow& inset_at, double max_inset_cells) {
+std::vector<InsetCell> CellsNear(const Bounds& box, const CellInset& inset_at, double max_inset_cells) {
   std::vector<InsetCell> cells;
   ForOutsideCellsNear(box, inset_at, max_inset_cells, [&](const InsetCell& cell) {
     if (!BoundsClearCell(box, cell.r, cell.c, cell.inset)) cells.push_back(cell);
@@ -182,7 +145,7 @@ std::vector<InsetCell> CellsNear(const Bounds& box, const InsetWindow& inset_at,
 
 // Whether every point of `part` keeps each outside cell's inset from the cell's square:
 // the exact test, over the cells near its bounds, stopping at the first too close.
-bool KeepsInsets(const Polygon2d& part, const InsetWindow& inset_at, double max_inset_cells) {
+bool KeepsInsets(const Polygon2d& part, const CellInset& inset_at, double max_inset_cells) {
   const Bounds b = BoundsOf(part);
   return ForOutsideCellsNear(b, inset_at, max_inset_cells, [&](const InsetCell& cell) { return !TooClose(part, b, cell); });
 }
@@ -229,11 +192,10 @@ bool ClearOfOthers(const Polygon2d& part, const std::vector<Polygon2d>& pieces, 
 
 }  // namespace
 
-void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& cell_inset, double max_inset_cells,
+void AddSideSlack(std::vector<Polygon2d>* pieces, const CellInset& inset_at, double max_inset_cells,
                   const SideSlackOptions& options) {
   std::vector<Bounds> bounds;
   for (const Polygon2d& piece : *pieces) bounds.push_back(BoundsOf(piece));
-  const InsetWindow inset_at = InsetsAboutPieces(bounds, cell_inset, max_inset_cells, options.most_cells);
   const double finest = options.most_cells / std::ldexp(1.0, std::max(0, options.bisections));
   Polygon2d before_side, moved_piece, part, scratch;  // work space of the tests
   for (size_t k = 0; k < pieces->size() && !options.deadline.Expired(); ++k) {
