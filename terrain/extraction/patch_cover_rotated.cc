@@ -122,13 +122,37 @@ double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double 
   return step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
 }
 
+// How far the cell's square reaches from its centre toward the rectangle [cells]: with u the
+// unit vector from the centre to the rectangle's nearest point, the square's largest u . q
+// about its centre, (|u.x| + |u.y|) / 2 (half a diagonal at most). The rectangle lies beyond
+// the line through that point across u, so it keeps at least the centre distance less this
+// from the square.
+double SquareReachToward(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0,
+                         double v1) {
+  const double step = RotatedFrame::kStep;
+  const Eigen::Vector2d centre(out.c, out.r);
+  const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
+  const double along = a < u0 ? u0 - a : a > u1 ? u1 - a : 0.0, across = bb < v0 ? v0 - bb : bb > v1 ? v1 - bb : 0.0;
+  const Eigen::Vector2d toward = along * frame.eu + across * frame.ev;
+  const double length = toward.norm();
+  if (!(length > 0.0)) return 0.70710678118654757;  // inside the rectangle: any direction
+  return 0.5 * (std::abs(toward.x()) + std::abs(toward.y())) / length;
+}
+
 // Half a cell's diagonal, rounded up: a cell square lies within this of its centre [cells].
 constexpr double kHalfDiagonal = 0.7072;
 
-// Whether a rectangle keeps `out`'s inset from the cell's square (false) or not (true).
-bool TooClose(const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out, double centre_dist) {
+// Whether the rectangle [u0, u1] x [v0, v1] (its corners `quad`) keeps `out`'s inset from
+// the cell's square (false) or not (true): bounds by the centre's distance, then exactly.
+bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out, double u0,
+              double u1, double v0, double v1) {
+  const double centre_dist = CentreDistance(frame, out, u0, u1, v0, v1);
   if (centre_dist >= out.inset_cells + kHalfDiagonal) return false;
   if (centre_dist < out.inset_cells - kHalfDiagonal) return true;
+  // Clear by the square's reach toward the rectangle, with a margin far above the
+  // distances' rounding (the exact test below then answers false as well).
+  constexpr double kMargin = 1e-6;  // [cells]
+  if (centre_dist - SquareReachToward(frame, out, u0, u1, v0, v1) >= out.inset_cells + kMargin) return false;
   const int r = out.r, c = out.c;
   const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
                                                Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
@@ -167,7 +191,7 @@ bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, dou
   const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
   // Cells further than the largest inset plus a cell from the box cannot be too close.
   return ForCellsNear(outside, quad, max_inset_cells + 1, [&](const OutsideCell& out) {
-    return !TooClose(quad, out, CentreDistance(frame, out, u0, u1, v0, v1));
+    return !TooClose(frame, quad, out, u0, u1, v0, v1);
   });
 }
 
@@ -194,7 +218,7 @@ void CellsThatMayBeTooClose(const RotatedFrame& frame, const OutsideCells& outsi
 bool RotatedRectSafeAmong(const RotatedFrame& frame, const std::vector<const OutsideCell*>& near, double u0, double u1,
                           double v0, double v1, size_t* first) {
   const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
-  auto too_close = [&](size_t k) { return TooClose(quad, *near[k], CentreDistance(frame, *near[k], u0, u1, v0, v1)); };
+  auto too_close = [&](size_t k) { return TooClose(frame, quad, *near[k], u0, u1, v0, v1); };
   if (*first < near.size() && too_close(*first)) return false;
   for (size_t k = 0; k < near.size(); ++k) {
     if (k == *first || !too_close(k)) continue;
