@@ -70,15 +70,15 @@ struct SeedShape {
       if (!EdgeNormal(seed, k, &n)) continue;
       normals.push_back(n);
       reach.push_back(MaxAlong(seed, n));
-      axis_normals = axis_normals && (n.x() == 0.0 || n.y() == 0.0);
+      axis_normals = axis_normals && ((n.x() == 0.0 && std::abs(n.y()) == 1.0) || (n.y() == 0.0 && std::abs(n.x()) == 1.0));
     }
   }
   const Polygon& polygon;
   Eigen::Vector2d centroid;
   std::vector<Eigen::Vector2d> normals;
   std::vector<double> reach;
-  // Every normal along an axis (a unit normal then has components 0 and +-1): a . v is
-  // v's coordinate or its negative, so an obstacle's least a . v is a side of its bounds.
+  // Every normal exactly (+-1, 0) or (0, +-1) (a lattice rectangle's): a . v is v's
+  // coordinate or its negative, so an obstacle's least a . v is a side of its bounds.
   bool axis_normals = true;
 };
 
