@@ -113,13 +113,28 @@ OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
   return outside;
 }
 
-// What TooClose's cheap bounds compare: the distance [cells] from the cell's centre to the
-// rectangle [u0, u1] x [v0, v1] (rotated-grid steps).
-double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0, double v1) {
+// From the cell's centre to the nearest point of the rectangle [u0, u1] x [v0, v1], along
+// the rotated grid's axes [rotated-grid steps] (0, 0 inside it).
+struct TowardRectangle {
+  double along, across;
+};
+
+TowardRectangle OffsetToRectangle(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0,
+                                  double v1) {
   const double step = RotatedFrame::kStep;
   const Eigen::Vector2d centre(out.c, out.r);
   const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
-  return step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+  return {a < u0 ? u0 - a : a > u1 ? u1 - a : 0.0, bb < v0 ? v0 - bb : bb > v1 ? v1 - bb : 0.0};
+}
+
+// What TooClose's cheap bounds compare: the distance [cells] from the cell's centre to the
+// rectangle.
+double CentreDistance(const TowardRectangle& toward) {
+  return RotatedFrame::kStep * std::hypot(toward.along, toward.across);
+}
+
+double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0, double v1) {
+  return CentreDistance(OffsetToRectangle(frame, out, u0, u1, v0, v1));
 }
 
 // How far the cell's square reaches from its centre toward the rectangle [cells]: with u the
@@ -127,16 +142,11 @@ double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double 
 // about its centre, (|u.x| + |u.y|) / 2 (half a diagonal at most). The rectangle lies beyond
 // the line through that point across u, so it keeps at least the centre distance less this
 // from the square.
-double SquareReachToward(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0,
-                         double v1) {
-  const double step = RotatedFrame::kStep;
-  const Eigen::Vector2d centre(out.c, out.r);
-  const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
-  const double along = a < u0 ? u0 - a : a > u1 ? u1 - a : 0.0, across = bb < v0 ? v0 - bb : bb > v1 ? v1 - bb : 0.0;
-  const Eigen::Vector2d toward = along * frame.eu + across * frame.ev;
-  const double length = toward.norm();
-  if (!(length > 0.0)) return 0.70710678118654757;  // inside the rectangle: any direction
-  return 0.5 * (std::abs(toward.x()) + std::abs(toward.y())) / length;
+double SquareReachToward(const RotatedFrame& frame, const TowardRectangle& toward) {
+  const Eigen::Vector2d u = toward.along * frame.eu + toward.across * frame.ev;
+  const double length = u.norm();
+  if (!(length > 0.0)) return std::sqrt(0.5);  // inside the rectangle: any direction
+  return 0.5 * (std::abs(u.x()) + std::abs(u.y())) / length;
 }
 
 // Half a cell's diagonal, rounded up: a cell square lies within this of its centre [cells].
@@ -146,13 +156,14 @@ constexpr double kHalfDiagonal = 0.7072;
 // the cell's square (false) or not (true): bounds by the centre's distance, then exactly.
 bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out, double u0,
               double u1, double v0, double v1) {
-  const double centre_dist = CentreDistance(frame, out, u0, u1, v0, v1);
+  const TowardRectangle toward = OffsetToRectangle(frame, out, u0, u1, v0, v1);
+  const double centre_dist = CentreDistance(toward);
   if (centre_dist >= out.inset_cells + kHalfDiagonal) return false;
   if (centre_dist < out.inset_cells - kHalfDiagonal) return true;
   // Clear by the square's reach toward the rectangle, with a margin far above the
   // distances' rounding (the exact test below then answers false as well).
   constexpr double kMargin = 1e-6;  // [cells]
-  if (centre_dist - SquareReachToward(frame, out, u0, u1, v0, v1) >= out.inset_cells + kMargin) return false;
+  if (centre_dist - SquareReachToward(frame, toward) >= out.inset_cells + kMargin) return false;
   const int r = out.r, c = out.c;
   const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
                                                Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
