@@ -43,6 +43,24 @@ struct Separation {
   double gap = -std::numeric_limits<double>::infinity();  // between the two along a [m]
 };
 
+struct Bounds {
+  Eigen::Vector2d lo, hi;
+  // Strictly apart along x or y: the two sets share no point.
+  bool Apart(const Bounds& o) const {
+    return hi.x() < o.lo.x() || o.hi.x() < lo.x() || hi.y() < o.lo.y() || o.hi.y() < lo.y();
+  }
+};
+
+Bounds BoundsOf(const Polygon& polygon) {
+  Bounds b{Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()),
+           Eigen::Vector2d::Constant(-std::numeric_limits<double>::infinity())};
+  for (const Eigen::Vector2d& v : polygon) {
+    b.lo = b.lo.cwiseMin(v);
+    b.hi = b.hi.cwiseMax(v);
+  }
+  return b;
+}
+
 // What Separate needs of the seed, the same for every obstacle: its edge normals, how far
 // it reaches along each, and its centroid.
 struct SeedShape {
@@ -52,12 +70,16 @@ struct SeedShape {
       if (!EdgeNormal(seed, k, &n)) continue;
       normals.push_back(n);
       reach.push_back(MaxAlong(seed, n));
+      axis_normals = axis_normals && ((n.x() == 0.0 && std::abs(n.y()) == 1.0) || (n.y() == 0.0 && std::abs(n.x()) == 1.0));
     }
   }
   const Polygon& polygon;
   Eigen::Vector2d centroid;
   std::vector<Eigen::Vector2d> normals;
   std::vector<double> reach;
+  // Every normal exactly (+-1, 0) or (0, +-1) (a lattice rectangle's): a . v is v's
+  // coordinate or its negative, so an obstacle's least a . v is a side of its bounds.
+  bool axis_normals = true;
 };
 
 // The candidate lines in this order (the first of equal gaps wins): the seed's edge
@@ -90,6 +112,19 @@ double SeedNormalsGap(const SeedShape& seed, const Polygon& obstacle) {
   return best;
 }
 
+// SeedNormalsGap from the obstacle's bounds, when the seed's normals lie along the axes:
+// MinAlong along (+-1, 0) or (0, +-1) is the bounds' side (negated), the same value.
+double SeedNormalsGap(const SeedShape& seed, const Bounds& obstacle) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < seed.normals.size(); ++k) {
+    const Eigen::Vector2d& n = seed.normals[k];
+    const double least = n.x() > 0.0 ? obstacle.lo.x() : n.x() < 0.0 ? -obstacle.hi.x()
+                       : n.y() > 0.0 ? obstacle.lo.y() : -obstacle.hi.y();
+    best = std::max(best, least - seed.reach[k]);
+  }
+  return best;
+}
+
 // An obstacle waiting for its turn, keyed by its gap or a lower bound of it.
 struct Pending {
   double key;
@@ -111,24 +146,6 @@ struct ComesLater {
   }
 };
 
-struct Bounds {
-  Eigen::Vector2d lo, hi;
-  // Strictly apart along x or y: the two sets share no point.
-  bool Apart(const Bounds& o) const {
-    return hi.x() < o.lo.x() || o.hi.x() < lo.x() || hi.y() < o.lo.y() || o.hi.y() < lo.y();
-  }
-};
-
-Bounds BoundsOf(const Polygon& polygon) {
-  Bounds b{Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()),
-           Eigen::Vector2d::Constant(-std::numeric_limits<double>::infinity())};
-  for (const Eigen::Vector2d& v : polygon) {
-    b.lo = b.lo.cwiseMin(v);
-    b.hi = b.hi.cwiseMax(v);
-  }
-  return b;
-}
-
 // The obstacles in the order of their bounds (SeedNormalsGap), sorted a few at a time:
 // before each few, those apart from the region are dropped (they would be on their turn).
 class BoundOrder {
@@ -137,8 +154,9 @@ class BoundOrder {
     pending_.reserve(count);
     for (size_t k = 0; k < count; ++k) {
       if (obstacles[k].size() < 3) continue;
-      pending_.push_back({SeedNormalsGap(seed, obstacles[k]), static_cast<int>(k)});
       bounds_[k] = BoundsOf(obstacles[k]);
+      const double key = seed.axis_normals ? SeedNormalsGap(seed, bounds_[k]) : SeedNormalsGap(seed, obstacles[k]);
+      pending_.push_back({key, static_cast<int>(k)});
     }
   }
 
@@ -178,8 +196,11 @@ bool MeetsRegion(const Polygon& obstacle, const Bounds& obstacle_bounds, const B
                  Polygon* scratch) {
   if (obstacle_bounds.Apart(region_bounds)) return false;
   // Wholly on or beyond one line: the clip by that line keeps no area (the common case for
-  // an obstacle a cut already passed), so no copy is clipped.
-  for (size_t r = 0; r < normals.size(); ++r) {
+  // an obstacle a cut already passed), so no copy is clipped. Any such line answers, so
+  // the cuts are tried latest first (an obstacle is passed by the cuts near it, which come
+  // late for the obstacles whose turn comes late) and the box's four sides, which hold
+  // every obstacle grown among, last.
+  for (size_t r = normals.size(); r-- > 0;) {
     if (MinAlong(obstacle, normals[r]) >= offsets[r]) return false;
   }
   *inside = obstacle;

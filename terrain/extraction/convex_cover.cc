@@ -18,14 +18,32 @@ double Cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() 
 
 Polygon2d RectPolygon(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
 
-bool Contains(const Polygon2d& polygon, const Eigen::Vector2d& p) {
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    const Eigen::Vector2d& a = polygon[i];
-    const Eigen::Vector2d& b = polygon[(i + 1) % polygon.size()];
-    if (Cross(b - a, p - a) < -kEps * std::max(1.0, (b - a).norm())) return false;
+// Whether a point lies in a counter-clockwise polygon (up to kEps times an edge's length,
+// at least one), each edge's vector and allowance computed once for the many points asked.
+class PolygonContains {
+ public:
+  explicit PolygonContains(const Polygon2d& polygon) {
+    edges_.reserve(polygon.size());
+    for (size_t i = 0; i < polygon.size(); ++i) {
+      const Eigen::Vector2d& a = polygon[i];
+      const Eigen::Vector2d e = polygon[(i + 1) % polygon.size()] - a;
+      edges_.push_back({a, e, -kEps * std::max(1.0, e.norm())});
+    }
   }
-  return true;
-}
+  bool operator()(const Eigen::Vector2d& p) const {
+    for (const Edge& edge : edges_) {
+      if (Cross(edge.vector, p - edge.start) < edge.allowance) return false;
+    }
+    return true;
+  }
+
+ private:
+  struct Edge {
+    Eigen::Vector2d start, vector;
+    double allowance;
+  };
+  std::vector<Edge> edges_;
+};
 
 struct Box {
   double x0, y0, x1, y1;
@@ -51,9 +69,17 @@ class CoverState {
         owner_(squares.size(), -1) {
     for (uint8_t s : squares) total_ += s ? 1 : 0;
     row_obstacles_.assign(static_cast<size_t>(rows) + 1, 0);
+    // A square touches the set when a square of the set lies in its 3 x 3 block: the set
+    // ORed over three rows, then over three columns.
+    std::vector<uint8_t> rows_near(static_cast<size_t>(cols));
     for (int r = 0; r < rows; ++r) {
       for (int c = 0; c < cols; ++c) {
-        if (!squares[Index(r, c)] && TouchesSet(r, c)) obstacle_cols_.push_back(c);
+        rows_near[static_cast<size_t>(c)] = InSet(r - 1, c) || InSet(r, c) || InSet(r + 1, c);
+      }
+      for (int c = 0; c < cols; ++c) {
+        const bool touches = rows_near[static_cast<size_t>(c)] || (c > 0 && rows_near[static_cast<size_t>(c) - 1]) ||
+                             (c + 1 < cols && rows_near[static_cast<size_t>(c) + 1]);
+        if (!squares[Index(r, c)] && touches) obstacle_cols_.push_back(c);
       }
       row_obstacles_[static_cast<size_t>(r) + 1] = obstacle_cols_.size();
     }
@@ -104,14 +130,6 @@ class CoverState {
  private:
   size_t Index(int r, int c) const { return static_cast<size_t>(r) * cols_ + c; }
   bool InSet(int r, int c) const { return r >= 0 && r < rows_ && c >= 0 && c < cols_ && squares_[Index(r, c)]; }
-  bool TouchesSet(int r, int c) const {
-    for (int dr = -1; dr <= 1; ++dr) {
-      for (int dc = -1; dc <= 1; ++dc) {
-        if (InSet(r + dr, c + dc)) return true;
-      }
-    }
-    return false;
-  }
 
   static constexpr int kNearCells = 8;  // Grow's first window beyond the seed [cells]
 
@@ -198,9 +216,10 @@ class CoverState {
     closing_.clear();
     // Whether the piece holds each lattice point of the box (a square's four corners).
     const int width = c1 - c0 + 1;
-    corner_in_.assign(static_cast<size_t>(std::max(0, r1 - r0 + 1) * std::max(0, width)), 0);
+    corner_in_.resize(static_cast<size_t>(std::max(0, r1 - r0 + 1) * std::max(0, width)));  // every one set below
+    const PolygonContains contains(piece);
     for (int r = r0; r <= r1; ++r) {
-      for (int c = c0; c <= c1; ++c) corner_in_[static_cast<size_t>((r - r0) * width + (c - c0))] = Contains(piece, {c, r});
+      for (int c = c0; c <= c1; ++c) corner_in_[static_cast<size_t>((r - r0) * width + (c - c0))] = contains({c, r});
     }
     for (int r = r0; r < r1; ++r) {
       const uint8_t* below = &corner_in_[static_cast<size_t>((r - r0) * width)];

@@ -58,8 +58,14 @@ LocalGrid RotatedGrid(const RotatedFrame& frame, const LocalGrid& dual) {
     lower.swap(upper);
     for (int a = 0; a <= rotated.cols; ++a) upper[static_cast<size_t>(a)] = frame.Corner(a, b + 1);
     for (int a = 0; a < rotated.cols; ++a) {
-      Box2d box;
       const auto k = static_cast<size_t>(a);
+      // The dual square holding the cell's centre is one of those its box spans (the centre
+      // lies at least a quarter of a cell inside the box): when it is not a complete dual
+      // square, or off the grid, the cell is not kept, and the box need not be computed.
+      const Eigen::Vector2d centre = 0.25 * (lower[k] + lower[k + 1] + upper[k] + upper[k + 1]);
+      const int centre_c = static_cast<int>(std::floor(centre.x())), centre_r = static_cast<int>(std::floor(centre.y()));
+      if (!dual.Contains(centre_r, centre_c)) continue;
+      Box2d box;
       for (const Eigen::Vector2d& p : {lower[k], lower[k + 1], upper[k], upper[k + 1]}) box.Add(p);
       const int c0 = static_cast<int>(std::floor(box.xmin + 1e-9));
       const int c1 = static_cast<int>(std::ceil(box.xmax - 1e-9));
@@ -83,42 +89,81 @@ struct OutsideCell {
   double inset_cells;
 };
 
-// The outside cells row by row (rows from -ring, each in column order), so a test near
-// a rectangle visits only the rows and columns within reach of it.
+// The outside cells row by row (rows from -ring, each in column order) in one list, so
+// a test near a rectangle visits only the rows and columns within reach of it.
 struct OutsideCells {
   int row0 = 0;
-  std::vector<std::vector<OutsideCell>> rows;
+  std::vector<OutsideCell> cells;
+  std::vector<size_t> row_begin;  // row i's cells are cells[row_begin[i], row_begin[i + 1])
+  int rows() const { return static_cast<int>(row_begin.size()) - 1; }
 };
 
 OutsideCells ListOutsideCells(const LocalGrid& mask, const InsetField& inset) {
   OutsideCells outside;
   outside.row0 = -inset.ring();
+  outside.row_begin.reserve(static_cast<size_t>(mask.rows + 2 * inset.ring()) + 1);
+  outside.row_begin.push_back(0);
   for (int r = -inset.ring(); r < mask.rows + inset.ring(); ++r) {
-    std::vector<OutsideCell>& row = outside.rows.emplace_back();
     for (int c = -inset.ring(); c < mask.cols + inset.ring(); ++c) {
       if (mask.Contains(r, c)) continue;
-      row.push_back({r, c, inset.At(r, c)});
+      outside.cells.push_back({r, c, inset.At(r, c)});
     }
+    outside.row_begin.push_back(outside.cells.size());
   }
   return outside;
 }
 
-// What TooClose's cheap bounds compare: the distance [cells] from the cell's centre to the
-// rectangle [u0, u1] x [v0, v1] (rotated-grid steps).
-double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0, double v1) {
+// From the cell's centre to the nearest point of the rectangle [u0, u1] x [v0, v1], along
+// the rotated grid's axes [rotated-grid steps] (0, 0 inside it).
+struct TowardRectangle {
+  double along, across;
+};
+
+TowardRectangle OffsetToRectangle(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0,
+                                  double v1) {
   const double step = RotatedFrame::kStep;
   const Eigen::Vector2d centre(out.c, out.r);
   const double a = (centre.dot(frame.eu) - frame.umin) / step, bb = (centre.dot(frame.ev) - frame.vmin) / step;
-  return step * std::hypot(std::max({0.0, u0 - a, a - u1}), std::max({0.0, v0 - bb, bb - v1}));
+  return {a < u0 ? u0 - a : a > u1 ? u1 - a : 0.0, bb < v0 ? v0 - bb : bb > v1 ? v1 - bb : 0.0};
+}
+
+// What TooClose's cheap bounds compare: the distance [cells] from the cell's centre to the
+// rectangle.
+double CentreDistance(const TowardRectangle& toward) {
+  return RotatedFrame::kStep * std::hypot(toward.along, toward.across);
+}
+
+double CentreDistance(const RotatedFrame& frame, const OutsideCell& out, double u0, double u1, double v0, double v1) {
+  return CentreDistance(OffsetToRectangle(frame, out, u0, u1, v0, v1));
+}
+
+// How far the cell's square reaches from its centre toward the rectangle [cells]: with u the
+// unit vector from the centre to the rectangle's nearest point, the square's largest u . q
+// about its centre, (|u.x| + |u.y|) / 2 (half a diagonal at most). The rectangle lies beyond
+// the line through that point across u, so it keeps at least the centre distance less this
+// from the square.
+double SquareReachToward(const RotatedFrame& frame, const TowardRectangle& toward) {
+  const Eigen::Vector2d u = toward.along * frame.eu + toward.across * frame.ev;
+  const double length = u.norm();
+  if (!(length > 0.0)) return std::sqrt(0.5);  // inside the rectangle: any direction
+  return 0.5 * (std::abs(u.x()) + std::abs(u.y())) / length;
 }
 
 // Half a cell's diagonal, rounded up: a cell square lies within this of its centre [cells].
 constexpr double kHalfDiagonal = 0.7072;
 
-// Whether a rectangle keeps `out`'s inset from the cell's square (false) or not (true).
-bool TooClose(const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out, double centre_dist) {
+// Whether the rectangle [u0, u1] x [v0, v1] (its corners `quad`) keeps `out`'s inset from
+// the cell's square (false) or not (true): bounds by the centre's distance, then exactly.
+bool TooClose(const RotatedFrame& frame, const std::array<Eigen::Vector2d, 4>& quad, const OutsideCell& out, double u0,
+              double u1, double v0, double v1) {
+  const TowardRectangle toward = OffsetToRectangle(frame, out, u0, u1, v0, v1);
+  const double centre_dist = CentreDistance(toward);
   if (centre_dist >= out.inset_cells + kHalfDiagonal) return false;
   if (centre_dist < out.inset_cells - kHalfDiagonal) return true;
+  // Clear by the square's reach toward the rectangle, with a margin far above the
+  // distances' rounding (the exact test below then answers false as well).
+  constexpr double kMargin = 1e-6;  // [cells]
+  if (centre_dist - SquareReachToward(frame, toward) >= out.inset_cells + kMargin) return false;
   const int r = out.r, c = out.c;
   const std::array<Eigen::Vector2d, 4> cell = {Eigen::Vector2d(c - 0.5, r - 0.5), Eigen::Vector2d(c + 0.5, r - 0.5),
                                                Eigen::Vector2d(c + 0.5, r + 0.5), Eigen::Vector2d(c - 0.5, r + 0.5)};
@@ -136,14 +181,14 @@ bool ForCellsNear(const OutsideCells& outside, const std::array<Eigen::Vector2d,
                   Visit&& visit) {
   Box2d box;
   for (const Eigen::Vector2d& p : quad) box.Add(p);
-  const int n_rows = static_cast<int>(outside.rows.size());
   const int first = std::max(0, static_cast<int>(std::ceil(box.ymin - reach)) - outside.row0);
-  const int last = std::min(n_rows - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
+  const int last = std::min(outside.rows() - 1, static_cast<int>(std::floor(box.ymax + reach)) - outside.row0);
   for (int i = first; i <= last; ++i) {
-    const std::vector<OutsideCell>& row = outside.rows[static_cast<size_t>(i)];
-    auto it = std::lower_bound(row.begin(), row.end(), box.xmin - reach,
+    const auto row_begin = outside.cells.begin() + static_cast<std::ptrdiff_t>(outside.row_begin[static_cast<size_t>(i)]);
+    const auto row_end = outside.cells.begin() + static_cast<std::ptrdiff_t>(outside.row_begin[static_cast<size_t>(i) + 1]);
+    auto it = std::lower_bound(row_begin, row_end, box.xmin - reach,
                                [](const OutsideCell& cell, double x) { return cell.c < x; });
-    for (; it != row.end() && it->c <= box.xmax + reach; ++it) {
+    for (; it != row_end && it->c <= box.xmax + reach; ++it) {
       if (!visit(*it)) return false;
     }
   }
@@ -157,7 +202,7 @@ bool RotatedRectSafe(const RotatedFrame& frame, const OutsideCells& outside, dou
   const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
   // Cells further than the largest inset plus a cell from the box cannot be too close.
   return ForCellsNear(outside, quad, max_inset_cells + 1, [&](const OutsideCell& out) {
-    return !TooClose(quad, out, CentreDistance(frame, out, u0, u1, v0, v1));
+    return !TooClose(frame, quad, out, u0, u1, v0, v1);
   });
 }
 
@@ -184,7 +229,7 @@ void CellsThatMayBeTooClose(const RotatedFrame& frame, const OutsideCells& outsi
 bool RotatedRectSafeAmong(const RotatedFrame& frame, const std::vector<const OutsideCell*>& near, double u0, double u1,
                           double v0, double v1, size_t* first) {
   const std::array<Eigen::Vector2d, 4> quad = RectQuad(frame, u0, u1, v0, v1);
-  auto too_close = [&](size_t k) { return TooClose(quad, *near[k], CentreDistance(frame, *near[k], u0, u1, v0, v1)); };
+  auto too_close = [&](size_t k) { return TooClose(frame, quad, *near[k], u0, u1, v0, v1); };
   if (*first < near.size() && too_close(*first)) return false;
   for (size_t k = 0; k < near.size(); ++k) {
     if (k == *first || !too_close(k)) continue;

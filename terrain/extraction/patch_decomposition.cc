@@ -147,8 +147,8 @@ std::vector<Polygon2d> DecomposePatch(const HeightMap& hm, const PlanarPatch& pa
   const double res = hm.resolution_m;
   const InsetsInCells insets = InsetsToCells(options, res);
   const LocalGrid mask = PatchMask(hm, patch, options);
-  const InsetField inset(hm, mask, options, insets);
   if (mask.rows < 2 || mask.cols < 2) return {};
+  const InsetField inset(hm, mask, options, insets);
   const std::vector<DiskOffset> offsets = DiskOffsets(insets.max, res);
   const LocalGrid eroded = ErodedMask(mask, inset, offsets, res);
   const LocalGrid dual = DualSquares(eroded);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <vector>
 
 #include "terrain/extraction/internal/surface_layers.h"
 
@@ -107,13 +109,34 @@ InsetField::InsetField(const HeightMap& hm, const LocalGrid& mask,
   }
 }
 
-// Eroded mask: cells whose centre holds a whole foot disk.
+// Eroded mask: cells whose centre holds a whole foot disk. Only an outside cell (inset >= 0)
+// takes the disk away, so a cell whose box of offsets lies in the patch keeps it without
+// the offsets being tried (the patch's cells counted over boxes by summed rows and columns).
 LocalGrid ErodedMask(const LocalGrid& mask, const InsetField& inset, const std::vector<DiskOffset>& offsets,
                      double res) {
+  int reach = 0;
+  for (const DiskOffset& o : offsets) reach = std::max({reach, std::abs(o.dr), std::abs(o.dc)});
+  const int side = 2 * reach + 1;
+  // held[(r + 1) * (cols + 1) + c + 1]: the patch's cells in rows [0, r] x columns [0, c].
+  const size_t stride = static_cast<size_t>(mask.cols) + 1;
+  std::vector<int> held(stride * (static_cast<size_t>(mask.rows) + 1), 0);
+  for (int r = 0; r < mask.rows; ++r) {
+    for (int c = 0; c < mask.cols; ++c) {
+      const size_t i = (static_cast<size_t>(r) + 1) * stride + static_cast<size_t>(c) + 1;
+      held[i] = held[i - 1] + held[i - stride] - held[i - stride - 1] + (mask.At(r, c) ? 1 : 0);
+    }
+  }
+  auto box_in_patch = [&](int r, int c) {
+    if (r - reach < 0 || c - reach < 0 || r + reach >= mask.rows || c + reach >= mask.cols) return false;
+    const size_t lo_r = static_cast<size_t>(r - reach), hi_r = static_cast<size_t>(r + reach) + 1;
+    const size_t lo_c = static_cast<size_t>(c - reach), hi_c = static_cast<size_t>(c + reach) + 1;
+    return held[hi_r * stride + hi_c] - held[lo_r * stride + hi_c] - held[hi_r * stride + lo_c] +
+               held[lo_r * stride + lo_c] == side * side;
+  };
   LocalGrid eroded = mask;
   for (int r = 0; r < mask.rows; ++r) {
     for (int c = 0; c < mask.cols; ++c) {
-      if (!mask.At(r, c)) continue;
+      if (!mask.At(r, c) || box_in_patch(r, c)) continue;
       for (const DiskOffset& o : offsets) {
         const double cell_inset = inset.At(r + o.dr, c + o.dc);
         if (cell_inset >= 0.0 && res * o.dist_cells < res * cell_inset - 1e-12) {

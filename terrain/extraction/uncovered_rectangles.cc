@@ -27,20 +27,32 @@ UncoveredRectangles::UncoveredRectangles(const std::vector<uint8_t>& mask, int r
 }
 
 void UncoveredRectangles::ScanRow(int r) const {
-  // The stack scan of LargestRectangle, over this row's histogram only.
+  // The stack scan of LargestRectangle, over this row's histogram only, one run of set
+  // columns at a time: a column of height 0 empties the stack (every height is >= 0) and
+  // adds no area, so each run is scanned alone with its first column as the left end of
+  // an empty stack, the same rectangles compared in the same order.
   CellRect best;
   const int* heights = &height_[static_cast<size_t>(r) * cols_];
-  stack_.clear();
-  for (int c = 0; c <= cols_; ++c) {
-    const int hc = c < cols_ ? heights[c] : 0;  // the 0 past the end flushes the stack
-    while (!stack_.empty() && heights[stack_.back()] >= hc) {
-      const int h = heights[stack_.back()];
-      stack_.pop_back();
-      const int left = stack_.empty() ? 0 : stack_.back() + 1;
-      const int width = c - left;
-      if (h * width > best.Area()) best = CellRect{r - h + 1, left, h, width};
+  for (int c = 0; c < cols_;) {
+    if (heights[c] == 0) {
+      ++c;
+      continue;
     }
-    stack_.push_back(c);
+    const int run_begin = c;
+    while (c < cols_ && heights[c] != 0) ++c;
+    const int run_end = c;
+    stack_.clear();
+    for (int k = run_begin; k <= run_end; ++k) {
+      const int hk = k < run_end ? heights[k] : 0;  // the 0 after the run flushes the stack
+      while (!stack_.empty() && heights[stack_.back()] >= hk) {
+        const int h = heights[stack_.back()];
+        stack_.pop_back();
+        const int left = stack_.empty() ? run_begin : stack_.back() + 1;
+        const int width = k - left;
+        if (h * width > best.Area()) best = CellRect{r - h + 1, left, h, width};
+      }
+      stack_.push_back(k);
+    }
   }
   row_best_[static_cast<size_t>(r)] = best;
 }
