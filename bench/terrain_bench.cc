@@ -359,19 +359,8 @@ MapVerdicts BenchSyntheticMaps(const BenchFlags& f) {
   return verdicts;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"Region extraction benchmark on synthetic terrains"};
-  BenchFlags f;
-  f.options.clearance_m = 0.4;
-  AddExtractorFlags(app, f);
-  AddMapFlags(app, f);
-  AddWalkFlags(app, f);
-  app.add_flag("--digest", f.digest,
-               "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
-               "maps (with --scans-only: the scans alone): equal digests, equal regions");
-  CLI11_PARSE(app, argc, argv);
+// Runs what the flags ask for; bad input (a map, a robot) throws mfp::InputError.
+int Run(BenchFlags f) {
   if (f.digest) {
     mfp::PrintRegionDigests(f.scans, f.options, f.runs, f.scans_only);
     return 0;
@@ -401,4 +390,26 @@ int main(int argc, char** argv) {
   std::printf("maps marked *: soundness >= 0.99 and coverage of the whole walkable face >= 85%% on every face: %s\n",
               verdicts.criterion_ok ? "yes" : "NO");
   return verdicts.all_ok && verdicts.criterion_ok && scans_ok ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Region extraction benchmark on synthetic terrains"};
+  BenchFlags f;
+  f.options.clearance_m = 0.4;
+  AddExtractorFlags(app, f);
+  AddMapFlags(app, f);
+  AddWalkFlags(app, f);
+  app.add_flag("--digest", f.digest,
+               "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
+               "maps (with --scans-only: the scans alone): equal digests, equal regions");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return Run(std::move(f));
+  } catch (const mfp::InputError& e) {
+    // A map or robot file that cannot be read: its message names the file and the problem.
+    std::fprintf(stderr, "mfp-terrain-bench: %s\n", e.what());
+    return 2;
+  }
 }

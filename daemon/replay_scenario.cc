@@ -59,6 +59,12 @@ ScenarioRequest ReadRequest(const YAML::Node& node, const YamlContext& ctx) {
 static ReplayScenario LoadReplayScenarioUnguarded(const std::string& path) {
   const YAML::Node root = LoadYamlFile(path);
   const YamlContext ctx{path, ""};
+  // mfp-plan's scenario files (config/scenarios) are the likeliest wrong file: say which one is wanted.
+  if (root.IsMap() && root["robot"] && root["start"] && root["goal"] && !root["requests"]) {
+    throw InputError(path + ": an mfp-plan scenario (robot, start, goal); a replay scenario gives a map (terrain: or "
+                            "map:) and timed requests: (daemon/replay_scenario.h; e.g. "
+                            "tests/daemon_replay_scenario.yaml)");
+  }
   RejectUnknownKeys(root, ctx, {"description", "terrain", "map", "map_at_s", "as_height_map", "requests", "malformed"});
   ReplayScenario s;
   s.file = path;

@@ -16,7 +16,8 @@ using Table = OptionTable<P>;
 // The top of the block: the plan's size, time and tolerances.
 void AddPlanKeys(Table* t) {
   t->push_back(Opt("max_steps", At(&P::default_max_steps), 0, 100000,
-                   "new footsteps in a whole plan when the request gives none (0: 12 x legs)"));
+                   "new footsteps in a whole plan when the request gives none (0: route.step_budget times the "
+                   "route at d_lim per configuration, at least 12 x legs)"));
   t->push_back(Opt("window", At(&P::default_window_steps), 0, 1000,
                    "new footsteps per MIQP window when the request gives none (0: 2 x legs)"));
   t->push_back(Opt("time_limit", At(&P::default_time_limit_s), 1e-3, 3600,

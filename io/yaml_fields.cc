@@ -29,11 +29,17 @@ void RethrowYamlAsInputError(const std::string& file, const YAML::Exception& e) 
 
 YAML::Node LoadYamlFile(const std::string& path) {
   const std::string text = ReadBoundedRegularFile(path, kMaxTextInputBytes, "YAML file");
+  YAML::Node root;
   try {
-    return YAML::Load(text);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw InputError(path + ": not valid YAML: " + e.what());
   }
+  if (root.IsNull()) {
+    throw InputError(path + ": the file is empty (or comments only): expected a mapping of keys (every key: "
+                            "docs/options.md, or mfp-plan --list-options)");
+  }
+  return root;
 }
 
 namespace {

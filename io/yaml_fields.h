@@ -19,7 +19,8 @@ struct YamlContext {
   std::string Where() const;
 };
 
-// Loads a YAML file; throws InputError when it is missing, unreadable or malformed.
+// Loads a YAML file; throws InputError when it is missing, unreadable, malformed or empty
+// (no document, or comments only: every caller reads a mapping of keys).
 YAML::Node LoadYamlFile(const std::string& path);
 
 // Runs parse(), turning any yaml-cpp exception that escaped the typed readers below (a

@@ -37,3 +37,12 @@ set -e
 [ "$code" -eq 2 ] && grep -q "no sync word" "$WORK/random.err" ||
   { echo "FAIL: mfp-replay on random bytes exited $code: $(cat "$WORK/random.err")"; exit 1; }
 echo "hostile logs: exit 2 with a message"
+# An mfp-plan scenario given where a replay scenario belongs: exit 2, the message says which file is wanted.
+set +e
+"$BUILD_DIR/tools/mfp-make-log" "$SOURCE_DIR/config/scenarios/hexapod_flat.yaml" --config "$CONFIG" \
+  --out "$WORK/plan_scenario.lcmlog" 2> "$WORK/plan_scenario.err"
+code=$?
+set -e
+[ "$code" -eq 2 ] && grep -q "an mfp-plan scenario.*tests/daemon_replay_scenario.yaml" "$WORK/plan_scenario.err" ||
+  { echo "FAIL: mfp-make-log on an mfp-plan scenario exited $code: $(cat "$WORK/plan_scenario.err")"; exit 1; }
+echo "an mfp-plan scenario: exit 2 naming the replay scenario wanted"

@@ -69,6 +69,17 @@ TEST(HostileYaml, KeyThatIsAListInARobotYaml) {
       "legs[0]: a key is a list");
 }
 
+// An empty file, or one of comments only, says so (not just "expected a mapping") and
+// where the keys are listed, for every loader of a file a user writes.
+TEST(HostileYaml, AnEmptyFileSaysItIsEmptyAndWhereTheKeysAreListed) {
+  for (const std::string text : {"", "# only a comment\n", "\n\n"}) {
+    const std::string path = Write("empty.yaml", text);
+    ExpectInputError([&] { LoadScenario(path); }, "empty.yaml: the file is empty (or comments only)");
+    ExpectInputError([&] { LoadTerrainDescription(path); }, "the file is empty");
+    ExpectInputError([&] { LoadRobotYaml(path); }, "docs/options.md");
+  }
+}
+
 TEST(HostileYaml, WrongKindsAnywhere) {
   // Each a node of the wrong kind where the loader subscripts or reads it.
   const std::string wrong[] = {

@@ -70,7 +70,10 @@ void AddFlags(CLI::App* app, Flags* f) {
   app->add_option("--terrain", f->terrain_path, "terrain: .bt/.ot map, or a height map (.npy with its .yaml, or the .yaml)");
   app->add_option("--start", f->start_text, "start pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
   app->add_option("--goal", f->goal_text, "goal pose X,Y,YAW [m, m, rad]")->check(mfp::PoseFlag());
-  app->add_option("--max-steps", f->max_steps, "new footsteps in the whole plan (default 12 n)")->check(CLI::Range(1, 100000));
+  app->add_option("--max-steps", f->max_steps,
+                  "new footsteps in the whole plan (default planner.max_steps; unset, route.step_budget times the "
+                  "route at d_lim per configuration, at least 12 n)")
+      ->check(CLI::Range(1, 100000));
   app->add_option("--window", f->window, "new footsteps per MIQP (default 2 n; the paper used 4 n)")->check(CLI::Range(1, 1000));
   app->add_option("--time-limit", f->time_limit, "time limit for the whole plan [s]")->check(mfp::FiniteRange(1e-3, 3600.0));
   app->add_option("--json", f->json_path, "write the plan JSON here ('-' = stdout)");
