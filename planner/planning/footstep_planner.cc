@@ -202,8 +202,11 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
   HorizonState state(context);
   state.plan.setup_s = context.ElapsedSeconds();
   HorizonPolicy policy(context);
-  // The next window is planned again with its body regions (HorizonPolicy::RetryClearOfBody).
+  // The next window is planned again with its body regions (HorizonPolicy::RetryClearOfBody);
+  // not again once such a window had no plan, until a window is accepted (a map's obstacles
+  // can leave no body region for the start stance, docs/body_clearance.md).
   bool retry_clear_of_body = false;
+  bool clear_of_body_failed = false;
   while (state.WantsAnotherWindow()) {
     const bool clear_of_body = std::exchange(retry_clear_of_body, false);
     const double remaining_s = context.RemainingSeconds();
@@ -243,6 +246,7 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
     state.RecordWindow(record);
     if (!HasPlan(search.result.status)) {
       // Kept clear of the body's obstacles the window has no plan: closer local goals instead.
+      clear_of_body_failed = clear_of_body_failed || clear_of_body;
       if (clear_of_body && policy.ReplanCloser(state.WindowName() + ": " + ToString(search.result.status), &state)) {
         continue;
       }
@@ -268,7 +272,7 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       // Between the route's clear poses the window's yaw is free: the same window kept
       // clear of the obstacles by its body regions, and when that clashes too (the regions
       // hold the body's box at its configurations, the check its exact plan) closer local goals.
-      if (!clear_of_body && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
+      if (!clear_of_body && !clear_of_body_failed && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
         retry_clear_of_body = true;
         continue;
       }
@@ -276,6 +280,7 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
     }
     RecordExactness(exact, &state.plan);
     const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps);
+    clear_of_body_failed = false;
     ReportWindow(context, state, kept, exact, on_progress);
     state.NoteProgress(RemainingWay(context, state.plan.footsteps), MinProgressGain(context));
     if (const std::optional<std::string> stuck = policy.Stuck(state, kept)) {

@@ -82,7 +82,8 @@ bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
 }
 
 bool HorizonPolicy::RetryClearOfBody(const std::string& why, HorizonState* state) {
-  if (context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
+  // Only while a closer re-plan is still to come: a retry without a plan goes on to one.
+  if (lookahead_scale_ <= 0.125 || context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
   state->BackUp(/*past_failed_window=*/false);
   ++state->plan.horizon_retries;
   state->plan.message = why;
