@@ -117,6 +117,40 @@ TEST_F(HorizonPolicyTest, KeptStepsPastTheFailureRestoreTheDefaultWindow) {
   EXPECT_EQ(policy.NextWindowSteps(*state_), window);
 }
 
+// A window whose plan takes the body into an obstacle is planned again from its own start
+// (the loop then gives that window its body regions): the same horizon and lookahead, the
+// retry counted and named; not at an eighth of the lookahead (no closer re-plan could
+// follow a retry without a plan), nor once 50 retries are spent.
+TEST_F(HorizonPolicyTest, AWindowWhoseBodyClashesIsPlannedAgainFromItsOwnStart) {
+  SetUpContext(8);
+  HorizonPolicy policy(*context_);
+  const int window = context_->window_steps;
+  KeepAWindow();
+  state_->TakeSnapshot();  // window 2 starts at n steps; its plan clashes
+  KeepSteps(n(), 0.1);
+  ASSERT_TRUE(policy.RetryClearOfBody("window 2: the body clashes", state_.get()));
+  EXPECT_EQ(state_->planned, n());
+  EXPECT_EQ(state_->plan.footsteps.size(), static_cast<size_t>(2 * n()));
+  EXPECT_EQ(policy.NextWindowSteps(*state_), window);
+  EXPECT_EQ(policy.LookaheadScale(), 1.0);
+  EXPECT_EQ(state_->plan.horizon_retries, 1);
+  EXPECT_EQ(state_->plan.message, "window 2: the body clashes");
+  for (int k = 0; k < 3; ++k) {  // half, a quarter, an eighth of the lookahead
+    state_->TakeSnapshot();
+    ASSERT_TRUE(policy.ReplanCloser("closer", state_.get()));
+  }
+  state_->TakeSnapshot();
+  EXPECT_FALSE(policy.RetryClearOfBody("at an eighth", state_.get()));
+  EXPECT_EQ(state_->plan.horizon_retries, 4);
+  policy.OnStepsKept(state_.get(), n());  // a kept window: the whole lookahead again
+  state_->plan.horizon_retries = 50;
+  state_->TakeSnapshot();
+  const size_t snapshots = state_->snapshots.size();
+  EXPECT_FALSE(policy.RetryClearOfBody("window 2 again", state_.get()));
+  EXPECT_EQ(state_->plan.horizon_retries, 50);
+  EXPECT_EQ(state_->snapshots.size(), snapshots);  // nothing backed up
+}
+
 TEST_F(HorizonPolicyTest, AWindowThatKeepsNoStepOrOnlyShufflesIsStuck) {
   SetUpContext(2);
   HorizonPolicy policy(*context_);

@@ -8,6 +8,7 @@
 #include "planner/formulation/body_region_faces.h"
 #include "planner/formulation/centre_of_contacts.h"
 #include "planner/formulation/internal/cost.h"
+#include "planner/formulation/internal/footprint_step_boxes.h"
 #include "planner/formulation/internal/miqp_encoder.h"
 #include "planner/formulation/internal/region_choice.h"
 #include "planner/formulation/internal/region_union_hull.h"
@@ -110,8 +111,14 @@ void MiqpFormulation::Build(const Deadline& deadline) {
   if (options_.trimmed_configurations_hold_yaw) {
     AddTrimmedConfigurationsHoldYaw(e, robot, num_configurations_, vars_, &b);
   }
+  // The footprint's moves (its polygon's diameter) reach far past where its rows let a
+  // later step be: its regions are pruned by the rows' boxes too.
+  const std::vector<Eigen::AlignedBox2d> step_boxes =
+      robot.reach_shape == ReachShape::kFootprint && options_.prune_unreachable_regions
+          ? FootprintStepBoxes(e, b, robot, num_steps_)
+          : std::vector<Eigen::AlignedBox2d>{};
   RegionChoiceRows regions =
-      AddRegionChoice(e, problem_, options_, box, max_move_xy, num_steps_, &b, &vars_, deadline);
+      AddRegionChoice(e, problem_, options_, box, max_move_xy, step_boxes, num_steps_, &b, &vars_, deadline);
   out_of_time_ = regions.out_of_time || deadline.Expired();
   if (out_of_time_) return;
   region_rows_ = std::move(regions.rows);

@@ -37,7 +37,8 @@ void AddRegionRows(const StepExpressions& e, const ConvexRegion& region, RegionE
 
 RegionChoiceRows AddRegionChoice(const StepExpressions& e, const FootstepProblem& problem,
                                  const FormulationOptions& options, const Box3& box,
-                                 const std::vector<double>& max_move_xy, int num_steps, MiqpBuilder* b,
+                                 const std::vector<double>& max_move_xy,
+                                 const std::vector<Eigen::AlignedBox2d>& step_boxes, int num_steps, MiqpBuilder* b,
                                  FootstepVariables* vars, const Deadline& deadline) {
   const int n = e.num_legs();
   const int N = num_steps;
@@ -73,6 +74,12 @@ RegionChoiceRows AddRegionChoice(const StepExpressions& e, const FootstepProblem
             rb.lo.y() <= start_foot.y() + reach_xy[i] && rb.hi.y() >= start_foot.y() - reach_xy[i] &&
             rb.lo.z() - tol <= start_foot.z() + reach_z[i] && rb.hi.z() + tol >= start_foot.z() - reach_z[i];
         if (!reachable) continue;
+        if (!step_boxes.empty() && step_boxes[i]
+                                       .intersection(Eigen::AlignedBox2d(rb.lo.head<2>() - Eigen::Vector2d::Constant(tol),
+                                                                         rb.hi.head<2>() + Eigen::Vector2d::Constant(tol)))
+                                       .isEmpty()) {
+          continue;
+        }
       }
       const int h = b->AddBinary("H_" + std::to_string(i) + "_" + std::to_string(region.id));
       vars->region[i][r] = h;

@@ -202,20 +202,29 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
   HorizonState state(context);
   state.plan.setup_s = context.ElapsedSeconds();
   HorizonPolicy policy(context);
+  // The next window is planned again with its body regions (HorizonPolicy::RetryClearOfBody);
+  // not again once such a window had no plan, until a window is accepted (a map's obstacles
+  // can leave no body region for the start stance, docs/body_clearance.md).
+  bool retry_clear_of_body = false;
+  bool clear_of_body_failed = false;
   while (state.WantsAnotherWindow()) {
+    const bool clear_of_body = std::exchange(retry_clear_of_body, false);
     const double remaining_s = context.RemainingSeconds();
     if (remaining_s <= 0.0) {
       EndOnTimeLimit(context, &state);
       break;
     }
     state.TakeSnapshot();
-    FootstepProblem problem = NextWindowProblem(context, state, policy.NextWindowSteps(state), policy.LookaheadScale());
+    FootstepProblem problem =
+        NextWindowProblem(context, state, policy.NextWindowSteps(state), policy.LookaheadScale(), clear_of_body);
+    FormulationOptions formulation_options = options.formulation;
+    formulation_options.body_regions = formulation_options.body_regions || clear_of_body;
     if (policy.finishing()) FinishGoalWeights(context, &problem);
     WindowRecord record;
     record.new_steps = problem.num_new_steps;
     record.regions = static_cast<int>(problem.regions.size());
     const PlanClock::time_point build_start = PlanClock::now();
-    const MiqpFormulation formulation(problem, options.formulation, context.request.deadline.Within(remaining_s));
+    const MiqpFormulation formulation(problem, formulation_options, context.request.deadline.Within(remaining_s));
     record.build_s = SecondsSince(build_start);
     if (formulation.out_of_time()) {
       EndOnTimeLimit(context, &state);
@@ -236,6 +245,11 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
                                        state.plan.windows == 1, StanceCentreXY(state.stance), &record);
     state.RecordWindow(record);
     if (!HasPlan(search.result.status)) {
+      // Kept clear of the body's obstacles the window has no plan: closer local goals instead.
+      clear_of_body_failed = clear_of_body_failed || clear_of_body;
+      if (clear_of_body && policy.ReplanCloser(state.WindowName() + ": " + ToString(search.result.status), &state)) {
+        continue;
+      }
       if (policy.RetryLonger(state.WindowName() + ": " + ToString(search.result.status), &state,
                              search.result.status == SolveStatus::kInfeasible)) {
         continue;
@@ -255,11 +269,18 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
     }
     if (const std::optional<std::string> clash = WindowBodyClash(context, exact.polished.footsteps,
                                                                      state.KeptSteps(exact.Used(formulation), exact.result))) {
-      // Between the route's clear poses the window's yaw is free: closer local goals.
+      // Between the route's clear poses the window's yaw is free: the same window kept
+      // clear of the obstacles by its body regions, and when that clashes too (the regions
+      // hold the body's box at its configurations, the check its exact plan) closer local goals.
+      if (!clear_of_body && !clear_of_body_failed && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
+        retry_clear_of_body = true;
+        continue;
+      }
       if (policy.ReplanCloser(state.WindowName() + ": " + *clash, &state)) continue;
     }
     RecordExactness(exact, &state.plan);
     const int kept = state.Accept(exact.Used(formulation), exact.result, exact.polished.footsteps);
+    clear_of_body_failed = false;
     ReportWindow(context, state, kept, exact, on_progress);
     state.NoteProgress(RemainingWay(context, state.plan.footsteps), MinProgressGain(context));
     if (const std::optional<std::string> stuck = policy.Stuck(state, kept)) {

@@ -5,10 +5,13 @@
 //   convex hull:  f_i = sum_r f_ir, A_r f_ir <= b_r H_ir, box_lo H_ir <= f_ir <= box_hi H_ir
 //                 (disaggregated copies: a tighter relaxation, more variables)
 // A region no feasible plan can reach from the start stance (its box is farther from the
-// leg's start foot than the leg's moves so far can carry it) gets no binary when pruning.
+// leg's start foot than the leg's moves so far can carry it, or, given step boxes, it
+// misses the step's box) gets no binary when pruning.
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "base/deadline.h"
 #include "planner/formulation/internal/footstep_problem.h"
@@ -29,11 +32,13 @@ struct RegionChoiceRows {
   bool out_of_time = false;
 };
 
-// max_move_xy: MaxMovesXY (step_limits.h). deadline is checked before each step's
-// regions (a step of a large map writes rows for hundreds of them).
+// max_move_xy: MaxMovesXY (step_limits.h); step_boxes: empty, or per step a plan-view box
+// that holds the step's foot in every feasible plan (FootprintStepBoxes). deadline is
+// checked before each step's regions (a step of a large map writes rows for hundreds of them).
 RegionChoiceRows AddRegionChoice(const StepExpressions& e, const FootstepProblem& problem,
                                  const FormulationOptions& options, const Box3& box,
-                                 const std::vector<double>& max_move_xy, int num_steps, MiqpBuilder* b,
+                                 const std::vector<double>& max_move_xy,
+                                 const std::vector<Eigen::AlignedBox2d>& step_boxes, int num_steps, MiqpBuilder* b,
                                  FootstepVariables* vars, const Deadline& deadline);
 
 }  // namespace mfp

@@ -81,6 +81,15 @@ bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
   return true;
 }
 
+bool HorizonPolicy::RetryClearOfBody(const std::string& why, HorizonState* state) {
+  // Only while a closer re-plan is still to come: a retry without a plan goes on to one.
+  if (lookahead_scale_ <= 0.125 || context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
+  state->BackUp(/*past_failed_window=*/false);
+  ++state->plan.horizon_retries;
+  state->plan.message = why;
+  return true;
+}
+
 bool HorizonPolicy::FinishAtGoal(HorizonState* state) {
   if (finishing_ || state->plan.reaches_goal || context_.TimeLeftSeconds() <= 0.0) return false;
   if (!(RemainingWay(context_, state->plan.footsteps) <= context_.robot.d_lim_m)) return false;

@@ -45,6 +45,12 @@ class HorizonPolicy {
   // backed up and the retry counted. False at an eighth of the lookahead or when the
   // plan's time is up.
   bool ReplanCloser(const std::string& why, HorizonState* state);
+  // The same: true when it is worth planning it again from its own start, at the same
+  // lookahead, with body regions in its MIQP (formulation.body_regions for this window);
+  // then the state is backed up and the retry counted. False when ReplanCloser would
+  // refuse (an eighth of the lookahead: a retry without a plan must still have a closer
+  // re-plan to go to), the plan's time is up or 50 retries were spent.
+  bool RetryClearOfBody(const std::string& why, HorizonState* state);
   // A plan that stalled or is stuck within one step (d_lim) of the goal but outside its
   // tolerances: with the robot's weights a window's goal term can be worth less than the
   // trim reward of the steps that would close it (a last foot e off its spot, k steps to

@@ -35,11 +35,12 @@ std::vector<BodyPose> SeedPoses(const PlanContext& context, const FootstepProble
 
 }  // namespace
 
-std::vector<FreeRegion2d> WindowBodyRegions(const PlanContext& context, const FootstepProblem& problem) {
+std::vector<FreeRegion2d> WindowBodyRegions(const PlanContext& context, const FootstepProblem& problem,
+                                           bool clear_of_body) {
   const RobotModel& robot = context.robot;
   const BodyExtent& body = robot.body;
   const FormulationOptions& options = context.options.formulation;
-  if (!options.body_regions || options.max_body_regions <= 0 || !body.known() ||
+  if (!(options.body_regions || clear_of_body) || options.max_body_regions <= 0 || !body.known() ||
       context.request.body_obstacles.empty()) {
     return {};
   }

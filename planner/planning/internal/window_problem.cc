@@ -32,7 +32,7 @@ std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen
 }
 
 FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps,
-                                  double lookahead_scale) {
+                                  double lookahead_scale, bool clear_of_body) {
   const int n = context.robot.num_legs();
   FootstepProblem problem = FirstWindowProblem(context.robot, context.regions, context.request, context.options);
   problem.start_feet_world_m = state.stance;
@@ -55,7 +55,7 @@ FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState
     problem.history_feet_world_m = state.history;
     problem.start_step_yaw_rad = state.stance_yaw;
   }
-  problem.body_regions = WindowBodyRegions(context, problem);
+  problem.body_regions = WindowBodyRegions(context, problem, clear_of_body);
   return problem;
 }
 

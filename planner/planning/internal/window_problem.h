@@ -21,9 +21,11 @@ std::optional<Eigen::Vector2d> LocalGoal(const PlanContext& context, const Eigen
                                          std::optional<double>* yaw_rad = nullptr, double lookahead_scale = 1.0);
 
 // The window from the state's stance: `steps` new footsteps, the usable regions those
-// steps can reach, the local goal, and after the first window the feet's history.
+// steps can reach, the local goal, and after the first window the feet's history; its
+// body regions (WindowBodyRegions) when formulation.body_regions is on or the window is
+// planned again clear_of_body.
 FootstepProblem NextWindowProblem(const PlanContext& context, const HorizonState& state, int steps,
-                                  double lookahead_scale = 1.0);
+                                  double lookahead_scale = 1.0, bool clear_of_body = false);
 
 // Goal weights for a plan's finishing windows (HorizonPolicy::FinishAtGoal): a foot half
 // the goal tolerance off its spot, or the yaw half its tolerance off, outweighs the trim
