@@ -146,9 +146,10 @@ struct BranchAndBoundOptions {
   // Table I's LittleDog 24 holds a plan 6.6 % above its optimum for 30 s without it
   // (docs/measurements.md, stop 39).
   int rins_frequency = 20;  // the interval [nodes] after a run that improved the plan, and the first
-  // The first run waits until the search has processed this many nodes (0: at the root):
-  // a proof of a few hundred nodes finds its plan in its own tree, and sub-searches would
-  // only add to it (as relax_and_fix.after_nodes waits for the slow root heuristic).
+  // The first run waits until the search has processed this many nodes since its plan
+  // last improved (0: at the root): a search whose tree keeps finding better plans, or a
+  // proof of a few hundred nodes, needs no sub-searches (as relax_and_fix.after_nodes
+  // waits for the slow root heuristic).
   int rins_after_nodes = 200;
   // Each run that finds no plan better by more than the gap tolerance multiplies the
   // interval by this (1: a fixed interval); one that does restores rins_frequency. Runs
