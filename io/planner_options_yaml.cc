@@ -265,9 +265,9 @@ void AddSearchKeys(Table* t) {
                    "branched step's groups and their neighbours first")
                    .Advanced());
   t->push_back(Opt("search.rins_frequency", in(&B::rins_frequency), 0, 1000000,
-                   "once the plan has not improved for rins_after_nodes nodes, then every this many nodes (grown by rins_backoff), while the gap is above "
-                   "rins_min_gap, fix the integers where the incumbent and the node's relaxation agree and search the "
-                   "rest for a better plan (RINS; 0: off)")
+                   "once the plan has not improved for rins_after_nodes nodes, then every this many nodes (grown by "
+                   "rins_backoff), while the gap is above rins_min_gap, fix the integers where the incumbent and the "
+                   "node's relaxation agree and search the rest for a better plan (RINS; 0: off)")
                    .Advanced());
   t->push_back(Opt("search.rins_after_nodes", in(&B::rins_after_nodes), 0, 100000000,
                    "RINS: the first run waits until the search has processed this many nodes since its plan last "
