@@ -137,15 +137,16 @@ struct BranchAndBoundOptions {
   // sweep starts at the branched group and goes outwards along the list (the plan's
   // neighbouring steps first) and stops between groups once the cap is spent.
   double group_probing_work = 5.0;
-  // RINS (rins.h): at a branched node once the interval has passed since the last run
-  // (0: off), and at the root after its heuristics, while the search's gap is above
-  // rins_min_gap, the integers on which the incumbent and the node's relaxation agree within
+  // RINS (rins.h; when it runs: RinsSchedule there and the options below; rins_frequency
+  // 0: off): at a node (or at the root after its heuristics) the integers on which the
+  // incumbent and the node's relaxation agree within
   // rins_agreement are fixed to the incumbent's values and the rest searched with at most
   // rins_max_nodes nodes; skipped when fewer than rins_min_fixed_fraction of the integers
   // (or all of them) agree. On by default (kept to long searches by long_search_only):
   // Table I's LittleDog 24 holds a plan 6.6 % above its optimum for 30 s without it
   // (docs/measurements.md, stop 39).
-  int rins_frequency = 20;  // the interval [nodes] after a run that improved the plan, and the first
+  // The nodes between runs at first and after a run that improved the plan.
+  int rins_frequency = 20;
   // The first run waits until the search has processed this many nodes since its plan
   // last improved (0: at the root): a search whose tree keeps finding better plans, or a
   // proof of a few hundred nodes, needs no sub-searches (as relax_and_fix.after_nodes

@@ -29,7 +29,8 @@ RinsOutcome RunRins(SearchState* state, const Eigen::VectorXd& relaxed, const Ro
 // holds a plan whose gap to the bound exceeds rins_min_gap. The interval starts at
 // rins_frequency, is multiplied by rins_backoff after each run that did not improve the
 // plan by more than the search's gap tolerance, and returns to rins_frequency after one
-// that did. Node counts and gaps only: the schedule is the same on every run of a search.
+// that did. It counts nodes and reads gaps, no clock (SearchState::IsLong, which the search
+// also asks before a run, does).
 class RinsSchedule {
  public:
   explicit RinsSchedule(const BranchAndBoundOptions& options)
