@@ -74,6 +74,9 @@ struct Row {
   // The crossover on the nodes' own QPs (search.relaxation_polish; first window, first run):
   // QPs it finished, active sets it tried.
   int node_polished = 0, node_polish_attempts = 0;
+  // RINS (search.rins_frequency; first window, first run): sub-searches run, those that
+  // found a better plan, and their nodes (not counted in nodes).
+  int rins_runs = 0, rins_improvements = 0, rins_nodes = 0;
   // Re-certification (search.recertify_leaves), over the windows of the first run: settled
   // subtrees solved again, and of them those whose floors then met their window's gap.
   int floor_recertifications = 0, floors_certified = 0;
@@ -135,6 +138,10 @@ void PrintRow(const Row& r) {
   if (r.root_cuts > 0) {
     std::printf("  %s root cut loop: %d cuts, root gap %.2e before cuts, %.2e after\n", r.name.c_str(), r.root_cuts,
                 r.root_gap_before_cuts, r.root_gap);
+  }
+  if (r.rins_runs > 0) {
+    std::printf("  %s RINS: %d sub-searches, %d better plans, %d sub-search nodes\n", r.name.c_str(), r.rins_runs,
+                r.rins_improvements, r.rins_nodes);
   }
   if (r.node_polish_attempts > 0) {
     std::printf("  %s crossover: %d node QPs finished from their active sets, %d guesses tried\n", r.name.c_str(),
@@ -223,6 +230,7 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
   int root_cuts = 0;
   double node_solve_ms = -1.0, node_iterations = -1.0;
   int node_fallbacks = 0, search_fallbacks = 0, node_polished = 0, node_polish_attempts = 0;
+  int rins_runs = 0, rins_improvements = 0, rins_nodes = 0;
   double fallback_s = 0.0;
   int floor_recertifications = 0, floors_certified = 0;
   for (int k = 0; k < repeat; ++k) {
@@ -270,6 +278,9 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
                                            fallback_s = p.window_result.fallback_time_s;
                                            node_polished = p.window_result.node_polished;
                                            node_polish_attempts = p.window_result.node_polish_attempts;
+                                           rins_runs = p.window_result.rins_runs;
+                                           rins_improvements = p.window_result.rins_improvements;
+                                           rins_nodes = p.window_result.rins_nodes;
                                          }
                                          for (const auto& [t, objective] : incumbents) {
                                            if (objective <= p.window_result.objective +
@@ -321,6 +332,9 @@ Row Run(const std::string& name, const mfp::Scenario& scenario, const mfp::Robot
     row.fallback_s = fallback_s;
     row.node_polished = node_polished;
     row.node_polish_attempts = node_polish_attempts;
+    row.rins_runs = rins_runs;
+    row.rins_improvements = rins_improvements;
+    row.rins_nodes = rins_nodes;
   }
   row.floor_recertifications = floor_recertifications;
   row.floors_certified = floors_certified;

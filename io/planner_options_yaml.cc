@@ -208,6 +208,13 @@ void AddFormulationKeys(Table* t) {
                    "body regions grown per window (one binary per configuration each)").Advanced());
 }
 
+std::vector<std::pair<std::string, NodeSelection>> NodeSelectionNames() {
+  return {{"best_bound", NodeSelection::kBestBound},
+          {"depth_first", NodeSelection::kDepthFirst},
+          {"dive_then_best_bound", NodeSelection::kDiveThenBestBound},
+          {"plunging", NodeSelection::kBestBoundWithPlunging}};
+}
+
 void AddSearchKeys(Table* t) {
   using B = BranchAndBoundOptions;
   auto in = [](auto B::*field) { return In(&P::branch_and_bound, field); };
@@ -216,12 +223,7 @@ void AddSearchKeys(Table* t) {
   t->push_back(Opt("search.relative_gap", in(&B::relative_gap), 0, 1,
                    "a window's search stops this close to its proven optimum, relative to the objective")
                    .Alias("relative_gap"));
-  t->push_back(EnumOpt("search.node_selection", in(&B::node_selection),
-                       std::vector<std::pair<std::string, NodeSelection>>{
-                           {"best_bound", NodeSelection::kBestBound},
-                           {"depth_first", NodeSelection::kDepthFirst},
-                           {"dive_then_best_bound", NodeSelection::kDiveThenBestBound},
-                           {"plunging", NodeSelection::kBestBoundWithPlunging}},
+  t->push_back(EnumOpt("search.node_selection", in(&B::node_selection), NodeSelectionNames(),
                        "which open node the search explores next").Alias("node_selection").Advanced());
   t->push_back(Opt("search.plunge_fraction", in(&B::plunge_fraction), 0, 1,
                    "plunging: go on into a child while its bound lies within this fraction of bound to incumbent")
@@ -264,12 +266,27 @@ void AddSearchKeys(Table* t) {
                    "branched step's groups and their neighbours first")
                    .Advanced());
   t->push_back(Opt("search.rins_frequency", in(&B::rins_frequency), 0, 1000000,
-                   "every this many nodes (and at the root), fix the integers where the incumbent and the node's "
-                   "relaxation agree and search the rest for a better plan (RINS; 0: off)")
+                   "once the plan has not improved for rins_after_nodes nodes, then every this many nodes (grown by "
+                   "rins_backoff), while the gap is above rins_min_gap, fix the integers where the incumbent and the "
+                   "node's relaxation agree and search the rest for a better plan (RINS; 0: off)")
+                   .Advanced());
+  t->push_back(Opt("search.rins_after_nodes", in(&B::rins_after_nodes), 0, 100000000,
+                   "RINS: the first run waits until the search has processed this many nodes since its plan last "
+                   "improved (0: at the root)")
+                   .Advanced());
+  t->push_back(Opt("search.rins_backoff", in(&B::rins_backoff), 1, 1000,
+                   "RINS: a run that finds no better plan multiplies the interval to the next by this; one that does "
+                   "restores rins_frequency (1: a fixed interval)")
+                   .Advanced());
+  t->push_back(Opt("search.rins_min_gap", in(&B::rins_min_gap), 0, 1,
+                   "RINS runs only while the search's relative gap (plan to bound) is above this")
                    .Advanced());
   t->push_back(Opt("search.rins_max_nodes", in(&B::rins_max_nodes), 1, 10000000,
                    "RINS: nodes each of its sub-searches explores at most")
                    .Advanced());
+  t->push_back(EnumOpt("search.rins_node_selection", in(&B::rins_node_selection), NodeSelectionNames(),
+                       "RINS: which open node its sub-searches explore next (they hold the plan from their root)")
+                       .Advanced());
   t->push_back(Opt("search.long_search_only", in(&B::long_search_only), 0, kAllLongSearchLevers,
                    "levers that run only while the search is long (long_search_min_nodes, long_search_nodes_left), a "
                    "sum of 1 (group probing), 2 (RINS), 4 (root cut loop: the search starts without cuts and restarts "

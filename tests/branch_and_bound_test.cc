@@ -391,6 +391,9 @@ TEST(BranchAndBound, RinsKeepsEveryOptimum) {
   EXPECT_GE(CatalogueWithAndWithout(
                 [](BranchAndBoundOptions* o, bool on) {
                   o->rins_frequency = on ? 1 : 0;
+                  o->rins_after_nodes = 0;  // at the root and every node, whatever the gap
+                  o->rins_backoff = 1.0;
+                  o->rins_min_gap = 0.0;
                   o->rins_min_fixed_fraction = 0.0;
                   o->rins_agreement = 0.5;
                 },
@@ -404,6 +407,8 @@ TEST(BranchAndBound, RinsFromTheRootImprovesTheRoundingsDecoy) {
   // within its own node cap, before the main search's first branching.
   BranchAndBoundOptions options;
   options.rins_frequency = 1000;
+  options.rins_after_nodes = 0;  // at the root
+  options.rins_min_gap = 0.0;
   options.rins_min_fixed_fraction = 0.0;
   options.max_nodes = 1;
   const auto solver = MakeInteriorPointRelaxationSolver();

@@ -20,6 +20,7 @@ BranchAndBoundOptions Quiet() {
   options.rounding_heuristic = false;  // the search's own dives find the plans
   options.group_probing = false;       // the levers are each test's own (probing is on by default)
   options.group_probing_work = 0.0;
+  options.rins_frequency = 0;          // RINS too (on by default)
   return options;
 }
 
@@ -33,6 +34,9 @@ BranchAndBoundOptions Kept(int min_nodes, double nodes_left) {
   BranchAndBoundOptions options = Quiet();
   options.group_probing = true;
   options.rins_frequency = 1;
+  options.rins_after_nodes = 0;  // from the root, at every node, whatever the gap (the rule alone decides)
+  options.rins_backoff = 1.0;
+  options.rins_min_gap = 0.0;
   options.rins_min_fixed_fraction = 0.0;
   options.long_search_only = kLongSearchProbing | kLongSearchRins;
   options.long_search_min_nodes = min_nodes;

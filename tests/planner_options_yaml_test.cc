@@ -171,7 +171,7 @@ TEST(PlannerOptionsYaml, EveryKeyAndItsFlatAliasSetTheSameMember) {
     ASSERT_EQ(warnings.size(), 1u) << o.alias;
     EXPECT_NE(warnings[0].find("planner." + o.key), std::string::npos) << warnings[0];  // names the new place
   }
-  EXPECT_EQ(PlannerOptionTable().size(), 106u);  // the keys of the planner: block
+  EXPECT_EQ(PlannerOptionTable().size(), 110u);  // the keys of the planner: block
 }
 
 TEST(PlannerOptionsYaml, SectionsReadAsTheStructsTheyMirror) {

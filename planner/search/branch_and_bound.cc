@@ -67,7 +67,8 @@ class Search {
         state_(problem, solvers, options),
         branching_(problem, options),
         pseudo_(problem.num_variables()),
-        reliability_(&state_, &branching_, &pseudo_) {
+        reliability_(&state_, &branching_, &pseudo_),
+        rins_(options) {
     if (options.group_probing) prober_ = std::make_unique<GroupProber>(problem);
   }
 
@@ -293,7 +294,7 @@ class Search {
     }
     if (is_root) {
       ProbeRootAfterHeuristics(node, &e);
-      if (opt_.rins_frequency > 0 && state_.LeverPays(kLongSearchRins)) Rins(rel.x);
+      if (rins_.DueAtRoot(state_) && state_.LeverPays(kLongSearchRins)) Rins(rel.x);
     }
     std::vector<BoundChange> fixings;
     if (opt_.reduced_cost_fixing && state_.HasIncumbent()) FixByReducedCosts(rel, &state_, &e.lower, &e.upper, &fixings);
@@ -315,8 +316,7 @@ class Search {
     if (opt_.rounding_heuristic && opt_.rounding_frequency > 0 && result.nodes % opt_.rounding_frequency == 0) {
       TryRounding(&state_, branching_, rounding_, rel.x);
     }
-    if (!is_root && opt_.rins_frequency > 0 && result.nodes - last_rins_node_ >= opt_.rins_frequency &&
-        state_.LeverPays(kLongSearchRins)) {
+    if (!is_root && rins_.DueAtNode(state_) && state_.LeverPays(kLongSearchRins)) {
       Rins(rel.x);
     }
     if (e.probed) {
@@ -387,8 +387,9 @@ class Search {
   }
 
   void Rins(const Eigen::VectorXd& relaxed) {
-    last_rins_node_ = state_.result().nodes;
+    const double objective_before = state_.result().objective;
     const RinsOutcome outcome = RunRins(&state_, relaxed, rounding_);
+    rins_.Record(state_, outcome, objective_before);
     BranchAndBoundResult& result = state_.result();
     result.rins_runs += outcome.ran ? 1 : 0;
     result.rins_improvements += outcome.improved ? 1 : 0;
@@ -528,7 +529,7 @@ class Search {
   PseudoCosts pseudo_;
   ReliabilityBranching reliability_;
   std::unique_ptr<GroupProber> prober_;  // with options.group_probing
-  int last_rins_node_ = 0;  // the node count at the last RINS
+  RinsSchedule rins_;
   // The root relaxation point while root_heuristic waits (root_heuristic_after_nodes);
   // empty otherwise.
   Eigen::VectorXd deferred_root_x_;

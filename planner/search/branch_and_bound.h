@@ -137,14 +137,34 @@ struct BranchAndBoundOptions {
   // sweep starts at the branched group and goes outwards along the list (the plan's
   // neighbouring steps first) and stops between groups once the cap is spent.
   double group_probing_work = 5.0;
-  // RINS (rins.h): at a branched node once this many nodes have passed since the last
-  // run (0: off), and at the root after its heuristics,
-  // the integers on which the incumbent and the node's relaxation agree within
+  // RINS (rins.h; when it runs: RinsSchedule there and the options below; rins_frequency
+  // 0: off): at a node (or at the root after its heuristics) the integers on which the
+  // incumbent and the node's relaxation agree within
   // rins_agreement are fixed to the incumbent's values and the rest searched with at most
   // rins_max_nodes nodes; skipped when fewer than rins_min_fixed_fraction of the integers
-  // (or all of them) agree.
-  int rins_frequency = 0;
+  // (or all of them) agree. On by default (kept to long searches by long_search_only):
+  // Table I's LittleDog 24 holds a plan 6.6 % above its optimum for 30 s without it
+  // (docs/measurements.md, stop 39).
+  // The nodes between runs at first and after a run that improved the plan.
+  int rins_frequency = 20;
+  // The first run waits until the search has processed this many nodes since its plan
+  // last improved (0: at the root): a search whose tree keeps finding better plans, or a
+  // proof of a few hundred nodes, needs no sub-searches (as relax_and_fix.after_nodes
+  // waits for the slow root heuristic).
+  int rins_after_nodes = 200;
+  // Each run that finds no plan better by more than the gap tolerance multiplies the
+  // interval by this (1: a fixed interval); one that does restores rins_frequency. Runs
+  // that keep failing thus cost a share of the nodes that shrinks as the search goes on.
+  double rins_backoff = 2.0;
+  // RINS runs only while the search's relative gap (incumbent to bound, as reported)
+  // exceeds this: a plan this close to the bound leaves a sub-search little to find, and
+  // its nodes would be the proof's.
+  double rins_min_gap = 0.05;
   int rins_max_nodes = 200;
+  // How the sub-searches choose their nodes. Depth first: a sub-search holds the incumbent
+  // from its root, so best bound would spend its nodes raising the bound of a
+  // neighbourhood instead of reaching its plans.
+  NodeSelection rins_node_selection = NodeSelection::kDepthFirst;
   double rins_agreement = 0.1;
   double rins_min_fixed_fraction = 0.5;
   // Where the levers pay: a search is *long* at a moment when it has processed at least
@@ -154,10 +174,10 @@ struct BranchAndBoundOptions {
   // root's heuristics included). A search whose time share holds only a few dozen nodes
   // (a receding window) is never long: the levers' cost per node would not be repaid.
   // The levers named in long_search_only (a sum of LongSearchLever values) run only while
-  // the search is long; the others whenever they are on. Group probing by default.
+  // the search is long; the others whenever they are on. Group probing and RINS by default.
   int long_search_min_nodes = 0;
   double long_search_nodes_left = 200.0;
-  int long_search_only = kLongSearchProbing;
+  int long_search_only = kLongSearchProbing | kLongSearchRins;
   // Root cut loop (root_cuts.h): rounds of cut separation at the root (0: off). The root
   // is solved and its roundings and heuristics run first, on the problem as given, so the
   // loop never delays the first plan; then the loop (with reduced-cost fixing against that

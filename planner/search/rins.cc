@@ -7,6 +7,10 @@
 namespace mfp {
 namespace {
 
+// The back-off's largest interval [nodes]: beyond any node limit (search.max_nodes is at
+// most 1e7); it only keeps the product finite.
+constexpr double kMaxInterval = 1e9;
+
 // The sub-search: the search's own options, but none of its once-per-plan heuristics, no
 // root cut loop, no RINS of its own, no re-certification, and the node cap and the deadline in force.
 BranchAndBoundOptions SubSearchOptions(const SearchState& state) {
@@ -22,6 +26,7 @@ BranchAndBoundOptions SubSearchOptions(const SearchState& state) {
   sub.root_heuristic = nullptr;
   sub.first_plan_heuristic = nullptr;
   sub.on_incumbent = nullptr;
+  sub.node_selection = sub.rins_node_selection;
   return sub;
 }
 
@@ -66,6 +71,20 @@ RinsOutcome RunRins(SearchState* state, const Eigen::VectorXd& relaxed, const Ro
     outcome.improved = state->result().objective < incumbent_objective;
   }
   return outcome;
+}
+
+void RinsSchedule::Record(const SearchState& state, const RinsOutcome& outcome, double objective_before) {
+  last_node_ = state.result().nodes;
+  if (!outcome.ran) return;
+  const bool improved = objective_before - state.result().objective > state.GapTolerance();
+  interval_ = improved ? options_.rins_frequency : std::min(interval_ * options_.rins_backoff, kMaxInterval);
+}
+
+bool RinsSchedule::GapCalls(const SearchState& state) const {
+  if (!state.HasIncumbent()) return false;
+  const BranchAndBoundResult& result = state.result();
+  const double bound = std::min(result.objective, std::max(result.bound, state.UnexploredBound()));
+  return RelativeGap(result.objective, bound) > options_.rins_min_gap;
 }
 
 }  // namespace mfp

@@ -51,6 +51,7 @@ void SearchState::OfferIncumbent(Eigen::VectorXd x, bool report) {
     result_.x = std::move(x);
     result_.objective = *objective;
     last_improvement_ = Clock::now();
+    last_improvement_node_ = result_.nodes;
     if (report && opt_.on_incumbent) ReportProgress();
   }
 }

@@ -59,6 +59,8 @@ class SearchState {
   double Elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
 
   bool HasIncumbent() const { return result_.x.size() > 0; }
+  // The nodes processed since the incumbent last improved (all of them before the first).
+  int NodesSinceImprovement() const { return result_.nodes - last_improvement_node_; }
   // True when a subtree with this bound may still beat the incumbent by more than the gap.
   bool Improves(double bound) const { return bound < result_.objective - GapTolerance(); }
   // How much better than the incumbent a subtree must be able to get to be explored.
@@ -126,6 +128,7 @@ class SearchState {
   const BranchAndBoundOptions& opt_;
   const Clock::time_point start_;
   Clock::time_point last_improvement_;  // when the incumbent last improved
+  int last_improvement_node_ = 0;       // the node count then
   const Deadline deadline_;       // time_limit_s from the start, or the caller's deadline if sooner
   const Deadline hard_deadline_;  // the caller's deadline alone under time_limit_needs_incumbent
   NodeQueue queue_;
