@@ -32,7 +32,9 @@ for seed in 25 26 27; do
   echo "== seed $seed"
   "$bench" "${common[@]}" --walk-seed "$seed" "${args[@]}" ${extra[@]+"${extra[@]}"} | tee -a "$out"
 done
-# Joined and unjoined walks together make the population.
-awk '/^(joined|unjoined): valid to the goal:/ {v += $6; n += $8}
-     END {printf "population %s: %d of %d walks valid to the goal\n", FILENAME_SCAN, v, n}' \
-  FILENAME_SCAN="$(basename "$scan")" "$out"
+# The population is the joined walks (ends joined by certifiable floor); the unjoined
+# ones the draw met on the way are a second population, counted apart.
+awk -v scan="$(basename "$scan")" '
+  /^joined: valid to the goal:/   {v += $6; n += $8}
+  /^unjoined: valid to the goal:/ {uv += $6; un += $8}
+  END {printf "population %s: %d of %d walks valid to the goal (unjoined: %d of %d)\n", scan, v, n, uv, un}' "$out"

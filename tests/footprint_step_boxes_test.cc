@@ -109,7 +109,7 @@ TEST(FootprintStepBoxes, PruningKeepsEveryRegionTheRelaxationCanReachAndDropsMor
   const StepExpressions e(problem, v);
   const std::vector<double> moves = MaxMovesXY(e, robot, n + problem.num_new_steps);
   const std::vector<Eigen::AlignedBox2d> boxes = StepBoxes(problem);
-  double reach[16] = {0};
+  std::vector<double> reach(n + problem.num_new_steps, 0.0);  // a leg's move bound summed over its steps
   for (int i = n; i < n + problem.num_new_steps; ++i) {
     Eigen::Vector2d lo, hi;
     for (int axis = 0; axis < 2; ++axis) {

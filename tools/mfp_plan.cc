@@ -130,9 +130,6 @@ mfp::PlanRequest RequestFromFlags(const Flags& f, const mfp::Scenario& scenario,
   mfp::PlanRequest request = mfp::ScenarioRequest(scenario, robot, terrain);
   if (f.max_steps > 0) request.max_steps = f.max_steps;
   if (f.window > 0) request.window_steps = f.window;
-  // DESIGN.md: `--window N --max-steps N` is one MIQP of N steps. Without this, a window
-  // that trims steps short of the goal would leave a budget for a second window.
-  if (f.window > 0 && f.max_steps > 0 && f.window >= f.max_steps) request.max_windows = 1;
   if (f.time_limit > 0) request.time_limit_s = f.time_limit;
   request.deadline = deadline;
   return request;

@@ -94,7 +94,7 @@ struct Plan {
   int relaxation_fallbacks = 0;  // of the searches' and their root heuristics' QPs, those solved by the solver's fallback
   int integer_variables = 0;   // in the first window's MIQP
   int windows = 0;
-  int horizon_retries = 0;     // windows planned again with a longer horizon (adaptive horizons)
+  int horizon_retries = 0;     // windows planned again: a longer horizon, a closer local goal, clear of the body
   // footsteps[0 .. n-1] are the start stance (in gait order); the last n are the final
   // stance, one per leg.
   std::vector<Footstep> footsteps;

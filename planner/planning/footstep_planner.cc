@@ -250,8 +250,10 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       if (clear_of_body && policy.ReplanCloser(state.WindowName() + ": " + ToString(search.result.status), &state)) {
         continue;
       }
+      // Body regions make a stricter problem than the window's own: their infeasibility
+      // proves nothing about the steps before it.
       if (policy.RetryLonger(state.WindowName() + ": " + ToString(search.result.status), &state,
-                             search.result.status == SolveStatus::kInfeasible)) {
+                             !clear_of_body && search.result.status == SolveStatus::kInfeasible)) {
         continue;
       }
       EndOnFailedSearch(context, search.result, &state);
@@ -272,7 +274,10 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       // Between the route's clear poses the window's yaw is free: the same window kept
       // clear of the obstacles by its body regions, and when that clashes too (the regions
       // hold the body's box at its configurations, the check its exact plan) closer local goals.
-      if (!clear_of_body && !clear_of_body_failed && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
+      // (With formulation.body_regions on, the window had them already: a retry would
+      // find the same plan.)
+      const bool had_body_regions = clear_of_body || options.formulation.body_regions;
+      if (!had_body_regions && !clear_of_body_failed && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
         retry_clear_of_body = true;
         continue;
       }

@@ -142,9 +142,8 @@ struct BranchAndBoundOptions {
   // incumbent and the node's relaxation agree within
   // rins_agreement are fixed to the incumbent's values and the rest searched with at most
   // rins_max_nodes nodes; skipped when fewer than rins_min_fixed_fraction of the integers
-  // (or all of them) agree. On by default (kept to long searches by long_search_only):
-  // Table I's LittleDog 24 holds a plan 6.6 % above its optimum for 30 s without it
-  // (docs/measurements.md, stop 39).
+  // (or all of them) agree. On by default, kept to long searches by long_search_only
+  // (what it gives: docs/measurements.md, inc12).
   // The nodes between runs at first and after a run that improved the plan.
   int rins_frequency = 20;
   // The first run waits until the search has processed this many nodes since its plan

@@ -7,6 +7,16 @@
 #include "planner/planning/internal/plan_progress.h"
 
 namespace mfp {
+namespace {
+
+// Retries of one plan's windows (longer, closer and clear-of-body re-plans together): a
+// bound on the work a plan that cannot progress spends before it ends.
+constexpr int kMaxHorizonRetries = 50;
+// The closest local goal a re-plan after a body clash aims at, as a fraction of the
+// default lookahead (three halvings).
+constexpr double kMinLookaheadScale = 0.125;
+
+}  // namespace
 
 HorizonPolicy::HorizonPolicy(const PlanContext& context)
     : context_(context),
@@ -20,7 +30,7 @@ int HorizonPolicy::NextWindowSteps(const HorizonState& state) const {
 
 bool HorizonPolicy::RetryLonger(const std::string& why, HorizonState* state, bool proven_infeasible) {
   Plan& plan = state->plan;
-  if (context_.TimeLeftSeconds() <= 0.0 || plan.horizon_retries >= 50) return false;
+  if (context_.TimeLeftSeconds() <= 0.0 || plan.horizon_retries >= kMaxHorizonRetries) return false;
   if (horizon_ >= max_horizon_) {
     // Proven infeasible at the longest look: the steps before it led into the dead end.
     // Plan again from the start of the window before, at the longest look.
@@ -72,8 +82,13 @@ std::optional<std::string> HorizonPolicy::Stalled(const HorizonState& state) con
   return why.str();
 }
 
+bool HorizonPolicy::CanReplanCloser(const HorizonState& state, int retries_after) const {
+  return lookahead_scale_ > kMinLookaheadScale && context_.TimeLeftSeconds() > 0.0 &&
+         state.plan.horizon_retries + retries_after < kMaxHorizonRetries;
+}
+
 bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
-  if (lookahead_scale_ <= 0.125 || context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
+  if (!CanReplanCloser(*state, 0)) return false;
   lookahead_scale_ *= 0.5;
   state->BackUp(/*past_failed_window=*/false);
   ++state->plan.horizon_retries;
@@ -82,8 +97,8 @@ bool HorizonPolicy::ReplanCloser(const std::string& why, HorizonState* state) {
 }
 
 bool HorizonPolicy::RetryClearOfBody(const std::string& why, HorizonState* state) {
-  // Only while a closer re-plan is still to come: a retry without a plan goes on to one.
-  if (lookahead_scale_ <= 0.125 || context_.TimeLeftSeconds() <= 0.0 || state->plan.horizon_retries >= 50) return false;
+  // Only while a closer re-plan can still follow it: a retry without a plan goes on to one.
+  if (!CanReplanCloser(*state, 1)) return false;
   state->BackUp(/*past_failed_window=*/false);
   ++state->plan.horizon_retries;
   state->plan.message = why;

@@ -49,7 +49,7 @@ class HorizonPolicy {
   // lookahead, with body regions in its MIQP (formulation.body_regions for this window);
   // then the state is backed up and the retry counted. False when ReplanCloser would
   // refuse (an eighth of the lookahead: a retry without a plan must still have a closer
-  // re-plan to go to), the plan's time is up or 50 retries were spent.
+  // re-plan to go to), the plan's time is up or the retry would leave none for that re-plan.
   bool RetryClearOfBody(const std::string& why, HorizonState* state);
   // A plan that stalled or is stuck within one step (d_lim) of the goal but outside its
   // tolerances: with the robot's weights a window's goal term can be worth less than the
@@ -74,6 +74,9 @@ class HorizonPolicy {
   int earlier_retries_ = 0;
   bool finishing_ = false;
   double lookahead_scale_ = 1.0;  // infeasible windows retried at the longest look since the last gain
+
+  // A closer re-plan is still possible after retries_after more retries.
+  bool CanReplanCloser(const HorizonState& state, int retries_after) const;
 };
 
 }  // namespace mfp

@@ -48,7 +48,10 @@ HorizonState::HorizonState(const PlanContext& c)
 }
 
 bool HorizonState::WantsAnotherWindow() const {
-  return !plan.reaches_goal && planned < context.max_steps &&
+  // A step budget one window holds is one MIQP (DESIGN.md: `--window N --max-steps N`):
+  // once that window has kept steps, the steps it trimmed are not planned by another.
+  const bool budget_was_one_window = context.window_steps >= context.max_steps && planned > 0;
+  return !plan.reaches_goal && planned < context.max_steps && !budget_was_one_window &&
          (context.request.max_windows <= 0 || plan.windows < context.request.max_windows);
 }
 

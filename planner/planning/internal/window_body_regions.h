@@ -17,8 +17,8 @@ namespace mfp {
 // At most options.formulation.max_body_regions regions; empty (no body rows) when the
 // option is off and the window is not `clear_of_body` (a window planned again because its
 // plan took the body into an obstacle, HorizonPolicy::RetryClearOfBody), the body is
-// unknown, or no obstacle in the band is near the window's regions. An obstacle counts when it reaches into the body's band over the highest
-// ground the window can stand on (its start feet, and its regions no higher than its
+// unknown, or no obstacle in the band is near the window's regions. An obstacle counts
+// when it reaches into the body's band over the highest ground the window can stand on (its start feet, and its regions no higher than its
 // configurations can climb at dz_max each): walls, not the stones and steps it walks on.
 std::vector<FreeRegion2d> WindowBodyRegions(const PlanContext& context, const FootstepProblem& problem,
                                            bool clear_of_body = false);
