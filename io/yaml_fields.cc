@@ -36,8 +36,8 @@ YAML::Node LoadYamlFile(const std::string& path) {
     throw InputError(path + ": not valid YAML: " + e.what());
   }
   if (root.IsNull()) {
-    throw InputError(path + ": the file is empty (or comments only): expected a mapping of keys (every key: "
-                            "docs/options.md, or mfp-plan --list-options)");
+    throw InputError(path + ": the file is empty (or comments only): expected a mapping of keys (a scenario's, "
+                            "robot's or daemon config's keys: docs/options.md, or mfp-plan --list-options)");
   }
   return root;
 }
