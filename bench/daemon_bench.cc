@@ -67,6 +67,7 @@
 #include "terrain/extraction/voxelize.h"
 #include "terrain/octomap/octomap_io.h"
 #include "terrain/quality/terrain_catalogue.h"
+#include "tools/cli_parse.h"
 
 namespace mfp {
 namespace {
@@ -866,7 +867,7 @@ int main(int argc, char** argv) {
   app.add_option("--stones", stones, "the stepping stones scenario of the soak")->capture_default_str();
   app.add_option("--burst", burst, "requests published at once; 0 = none")->capture_default_str();
   app.add_flag("--soak-cold", "plan every soak request from scratch (limits.warm_start_plans: 0)");
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   mfp::BoundHeapRetention();  // as mfp-daemon does at start
   try {
     mfp::DaemonConfig daemon_config = mfp::LoadDaemonConfig(config);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench/hostile_inputs.h"
+#include "tools/cli_parse.h"
 
 namespace {
 
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
   std::string only;
   app.add_option("--dir", dir, "folder for the generated inputs");
   app.add_option("--only", only, "rows whose input contains TEXT");
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   ::mkdir(dir.c_str(), 0755);
   std::vector<Row> rows = FileRows(dir);
   for (std::vector<Row> more : {UrdfNumberRows(dir), FlagRows(), LoadRows(dir)}) {

@@ -30,6 +30,7 @@
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/request_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tools/cli_parse.h"
 
 namespace {
 
@@ -451,7 +452,7 @@ int main(int argc, char** argv) {
                  "generated courses: robot files (YAML or URDF, e.g. the zoo's Go1 and ANYmal C) added to the "
                  "rotation after --course-robots' (or the default three)")
       ->check(CLI::ExistingFile);
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     if (courses > 0) {
       mfp::CourseBenchOptions o;

@@ -12,13 +12,14 @@
 #include "bench/course_generator.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
+#include "tools/cli_parse.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mfp-course-check: a plan judged against the true geometry of its course"};
   std::string scenario_path, plan_path;
   app.add_option("--scenario", scenario_path, "scenario YAML with terrain boxes")->required();
   app.add_option("--plan", plan_path, "plan JSON written by mfp-plan --json")->required();
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     const mfp::Scenario scenario = mfp::LoadScenario(scenario_path);
     if (scenario.terrain.boxes.empty()) throw mfp::InputError(scenario_path + ": the checker needs terrain boxes");

@@ -32,6 +32,7 @@
 #include "terrain/quality/terrain_catalogue.h"
 #include "terrain/quality/terrain_quality.h"
 #include "terrain/quality/voxel_quality.h"
+#include "tools/cli_parse.h"
 
 namespace {
 
@@ -404,7 +405,7 @@ int main(int argc, char** argv) {
   app.add_flag("--digest", f.digest,
                "only the regions' digests (count, vertex hash) and stage times of the --scan scans and the catalogue's "
                "maps (with --scans-only: the scans alone): equal digests, equal regions");
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     return Run(std::move(f));
   } catch (const mfp::InputError& e) {

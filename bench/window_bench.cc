@@ -14,6 +14,7 @@
 #include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
+#include "tools/cli_parse.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Per-window time and regions of one plan"};
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
   app.add_option("--robot", robot_path, "robot YAML or URDF instead of the scenario's");
   app.add_option("--time-limit", time_limit_s, "time limit of the plan [s] (default: the scenario's)")
       ->check(CLI::Range(0.01, 3600.0));
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     mfp::Scenario scenario = mfp::LoadScenario(scenario_path);
     if (!robot_path.empty()) scenario.robot_path = robot_path;

@@ -1,6 +1,7 @@
 #!/bin/bash
 # mfp-terrain-bench on files it cannot read (an empty map, a truncated map, a robot without
-# legs): exit 2 with a message naming the file and the problem, never an abort.
+# legs, a map that is not there): exit 2 with a message naming the file and the problem, never
+# an abort.
 # usage: terrain_bench_bad_input_test.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
 SOURCE_DIR=$(realpath "$1")
@@ -34,3 +35,5 @@ expect_exit_2 "an empty map" "empty.bt: the map is empty" --scans-only --scan "$
 expect_exit_2 "a truncated map" "truncated.bt: not a valid OctoMap file" --scans-only --scan "$WORK/truncated.bt"
 expect_exit_2 "a robot without legs" "no_legs.urdf: no legs found" --scans-only --scan "$WORK/flat.bt" \
   --walk-robot "$WORK/no_legs.urdf" --walks 1
+# A map that is not there: CLI11's check names it, with mfp's bad-input code (not CLI11's 105).
+expect_exit_2 "a missing map" "missing.bt" --scans-only --scan "$WORK/missing.bt"

@@ -5,6 +5,7 @@
 // Exit 0 when every check passes, 1 otherwise, 3 when some request has no reply yet,
 // 2 on bad input.
 #include "lcmtypes/event_log_reader.h"
+#include "tools/cli_parse.h"
 
 #include <CLI/CLI.hpp>
 #include <iostream>
@@ -211,7 +212,7 @@ int main(int argc, char** argv) {
   app.add_option("log", log, "LCM log with the daemon's replies")->required();
   app.add_option("--scenario", scenario, "the scenario the requests came from")->required();
   app.add_option("--config", config, "daemon YAML: robots and tolerances")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     return mfp::Run(log, scenario, config);
   } catch (const mfp::InputError& e) {

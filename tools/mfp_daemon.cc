@@ -25,6 +25,7 @@
 #include "daemon/udp_counters.h"
 #include "io/timestamped_log.h"
 #include "lcmtypes/lcm_transport.h"
+#include "tools/cli_parse.h"
 
 namespace {
 
@@ -144,7 +145,7 @@ int main(int argc, char** argv) {
   std::string url_override;
   app.add_option("--config", config_path, "daemon YAML (config/daemon.yaml)")->required();
   app.add_option("--lcm-url", url_override, "LCM provider URL; overrides the config's lcm_url");
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
 
   // Block the signals in every thread; the main thread takes them with sigwait.
   sigset_t signals;

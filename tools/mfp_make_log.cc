@@ -22,6 +22,7 @@
 #include "terrain/extraction/voxelize.h"
 #include "terrain/octomap/octomap_io.h"
 #include "terrain/quality/height_grid_sampling.h"
+#include "tools/cli_parse.h"
 
 namespace mfp {
 namespace {
@@ -133,7 +134,7 @@ int main(int argc, char** argv) {
   app.add_option("scenario", scenario, "scenario YAML (daemon/replay_scenario.h)")->required();
   app.add_option("--config", config, "daemon YAML: robots and limits")->capture_default_str();
   app.add_option("--out", out, "LCM log to write")->required();
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     return mfp::Run(scenario, config, out);
   } catch (const mfp::InputError& e) {

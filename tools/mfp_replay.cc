@@ -17,6 +17,7 @@
 #include "lcmtypes/event_log_reader.h"
 #include "lcmtypes/event_log_writer.h"
 #include "lcmtypes/transport.h"
+#include "tools/cli_parse.h"
 
 namespace mfp {
 namespace {
@@ -79,7 +80,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output LCM log")->required();
   app.add_option("--config", config, "daemon YAML")->capture_default_str();
   app.add_flag("-v,--verbose", verbose, "log every map, request and plan");
-  CLI11_PARSE(app, argc, argv);
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     return mfp::Run(log, out, config, verbose);
   } catch (const mfp::InputError& e) {
