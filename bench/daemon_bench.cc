@@ -55,6 +55,7 @@
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
 #include "geometry/convex_region.h"
+#include "io/cli_parse.h"
 #include "io/scenario_yaml.h"
 #include "io/terrain_yaml.h"
 #include "lcmtypes/lcm_transport.h"
@@ -67,7 +68,6 @@
 #include "terrain/extraction/voxelize.h"
 #include "terrain/octomap/octomap_io.h"
 #include "terrain/quality/terrain_catalogue.h"
-#include "tools/cli_parse.h"
 
 namespace mfp {
 namespace {

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "bench/hostile_inputs.h"
-#include "tools/cli_parse.h"
+#include "io/cli_parse.h"
 
 namespace {
 

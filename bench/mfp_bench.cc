@@ -20,6 +20,7 @@
 #include "base/check.h"
 #include "bench/course_bench.h"
 #include "bench/course_digest.h"
+#include "io/cli_parse.h"
 #include "io/plan_json.h"
 #include "io/planner_options_yaml.h"
 #include "io/robot_loader.h"
@@ -30,7 +31,6 @@
 #include "planner/planning/plan_validation.h"
 #include "planner/planning/request_check.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "tools/cli_parse.h"
 
 namespace {
 

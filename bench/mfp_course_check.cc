@@ -10,9 +10,9 @@
 #include "base/check.h"
 #include "bench/course_checker.h"
 #include "bench/course_generator.h"
+#include "io/cli_parse.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
-#include "tools/cli_parse.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"mfp-course-check: a plan judged against the true geometry of its course"};

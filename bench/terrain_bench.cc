@@ -26,13 +26,13 @@
 #include "bench/height_map_bench.h"
 #include "bench/region_digest.h"
 #include "bench/scan_walks.h"
+#include "io/cli_parse.h"
 #include "terrain/extraction/map_simulation.h"
 #include "terrain/extraction/region_extractor.h"
 #include "terrain/octomap/octomap_io.h"
 #include "terrain/quality/terrain_catalogue.h"
 #include "terrain/quality/terrain_quality.h"
 #include "terrain/quality/voxel_quality.h"
-#include "tools/cli_parse.h"
 
 namespace {
 

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "base/check.h"
+#include "io/cli_parse.h"
 #include "io/robot_loader.h"
 #include "io/scenario_yaml.h"
 #include "planner/planning/footstep_planner.h"
 #include "planner/qp/relaxation_solver_factory.h"
-#include "tools/cli_parse.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"Per-window time and regions of one plan"};

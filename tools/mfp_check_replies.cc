@@ -4,8 +4,8 @@
 // published regions, status_t counters that account for every malformed payload.
 // Exit 0 when every check passes, 1 otherwise, 3 when some request has no reply yet,
 // 2 on bad input.
+#include "io/cli_parse.h"
 #include "lcmtypes/event_log_reader.h"
-#include "tools/cli_parse.h"
 
 #include <CLI/CLI.hpp>
 #include <iostream>

@@ -23,9 +23,9 @@
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
 #include "daemon/udp_counters.h"
+#include "io/cli_parse.h"
 #include "io/timestamped_log.h"
 #include "lcmtypes/lcm_transport.h"
-#include "tools/cli_parse.h"
 
 namespace {
 

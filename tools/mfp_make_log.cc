@@ -14,6 +14,7 @@
 #include "daemon/height_map_message.h"
 #include "daemon/map_regions.h"
 #include "daemon/replay_scenario.h"
+#include "io/cli_parse.h"
 #include "io/timestamped_log.h"
 #include "lcmtypes/event_log_writer.h"
 #include "mfp/plan_request_t.hpp"
@@ -22,7 +23,6 @@
 #include "terrain/extraction/voxelize.h"
 #include "terrain/octomap/octomap_io.h"
 #include "terrain/quality/height_grid_sampling.h"
-#include "tools/cli_parse.h"
 
 namespace mfp {
 namespace {

@@ -13,11 +13,11 @@
 #include "daemon/daemon_setup.h"
 #include "daemon/map_regions.h"
 #include "daemon/solver_plan_function.h"
+#include "io/cli_parse.h"
 #include "io/timestamped_log.h"
 #include "lcmtypes/event_log_reader.h"
 #include "lcmtypes/event_log_writer.h"
 #include "lcmtypes/transport.h"
-#include "tools/cli_parse.h"
 
 namespace mfp {
 namespace {
