@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "base/check.h"
+#include "io/cli_parse.h"
 #include "io/cli_values.h"
 #include "io/map_file.h"
 #include "io/plan_json.h"
@@ -277,12 +278,7 @@ int main(int argc, char** argv) {
   CLI::App app{"mfp-plan: multilegged footstep planning by mixed-integer convex optimisation"};
   Flags flags;
   AddFlags(&app, &flags);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
-  }
+  MFP_CLI_PARSE(app, argc, argv);  // a parse error exits kExitBadInput (2)
   if (flags.list_options) {
     const auto groups = mfp::OptionReference();
     std::cout << (flags.markdown ? mfp::FormatOptionsMarkdown(groups) : mfp::FormatOptionsText(groups));

@@ -12,6 +12,7 @@
 
 #include "base/check.h"
 #include "io/body_obstacles.h"
+#include "io/cli_parse.h"
 #include "io/height_map_file.h"
 #include "io/region_json.h"
 #include "io/robot_loader.h"
@@ -69,11 +70,7 @@ int main(int argc, char** argv) {
   std::string body_robot_path;
   app.add_option("--body-of", body_robot_path,
                  "robot file (YAML or URDF): also find the map's obstacles to its body and print their count");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  MFP_CLI_PARSE(app, argc, argv);
   if (time_limit_s > 0) options.deadline = mfp::Deadline::After(time_limit_s);
   try {
     if (!body_robot_path.empty()) {

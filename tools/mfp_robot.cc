@@ -16,6 +16,7 @@
 
 #include "base/check.h"
 #include "base/format.h"
+#include "io/cli_parse.h"
 #include "io/robot_json.h"
 #include "io/robot_loader.h"
 #include "io/text_output.h"
@@ -317,12 +318,7 @@ int main(int argc, char** argv) {
   app.add_option("--svg", svg_file, "draw body, hips, nominal stance and footprints here");
   app.add_flag("--step-extents", step_extents,
                "print each foot's reach forward and back of its nominal foot and the longest forward step");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
-  }
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     mfp::RobotDerivation derivation;
     const mfp::RobotModel robot = mfp::LoadRobot(robot_file, &derivation);

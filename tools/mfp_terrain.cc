@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/check.h"
+#include "io/cli_parse.h"
 #include "io/terrain_yaml.h"
 #include "terrain/extraction/map_simulation.h"
 #include "terrain/octomap/octomap_io.h"
@@ -32,11 +33,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0));
   out->excludes(check);
   check->excludes(out);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  MFP_CLI_PARSE(app, argc, argv);
   try {
     const mfp::TerrainDescription terrain = mfp::LoadTerrainDescription(scenario_path);
     if (!plan_path.empty()) {

@@ -276,8 +276,7 @@ Plan PlanWindows(const RobotModel& robot, const std::vector<ConvexRegion>& regio
       // hold the body's box at its configurations, the check its exact plan) closer local goals.
       // (With formulation.body_regions on, the window had them already: a retry would
       // find the same plan.)
-      const bool had_body_regions = clear_of_body || options.formulation.body_regions;
-      if (!had_body_regions && !clear_of_body_failed && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
+      if (!formulation_options.body_regions && !clear_of_body_failed && policy.RetryClearOfBody(state.WindowName() + ": " + *clash, &state)) {
         retry_clear_of_body = true;
         continue;
       }

@@ -82,9 +82,7 @@ void RinsSchedule::Record(const SearchState& state, const RinsOutcome& outcome, 
 
 bool RinsSchedule::GapCalls(const SearchState& state) const {
   if (!state.HasIncumbent()) return false;
-  const BranchAndBoundResult& result = state.result();
-  const double bound = std::min(result.objective, std::max(result.bound, state.UnexploredBound()));
-  return RelativeGap(result.objective, bound) > options_.rins_min_gap;
+  return RelativeGap(state.result().objective, state.BoundNow()) > options_.rins_min_gap;
 }
 
 }  // namespace mfp

@@ -90,7 +90,7 @@ void SearchState::ReportProgress() const {
   BranchAndBoundResult progress;
   progress.status = SolveStatus::kFeasible;
   progress.objective = result_.objective;
-  progress.bound = std::min(result_.objective, std::max(result_.bound, UnexploredBound()));
+  progress.bound = BoundNow();
   progress.gap = RelativeGap(progress.objective, progress.bound);
   progress.nodes = result_.nodes;
   progress.relaxations = result_.relaxations;

@@ -119,6 +119,9 @@ class SearchState {
   // The least bound of everything not yet settled: open nodes, the round in flight,
   // subtrees that could not be bounded and subtrees pruned by the gap tolerance.
   double UnexploredBound() const;
+  // The search's bound at this moment: the settled bound raised to what its open and
+  // in-flight nodes allow, never above the incumbent (progress reports, RINS's gap gate).
+  double BoundNow() const { return std::min(result_.objective, std::max(result_.bound, UnexploredBound())); }
 
  private:
   void ReportProgress() const;
